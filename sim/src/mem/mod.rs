@@ -1,0 +1,1 @@
+//! Memory hierarchy (in progress).
