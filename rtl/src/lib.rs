@@ -1,1 +1,54 @@
-//! wasp-rtl
+//! wasp-rtl: the WaSP warp scheduler at register-transfer granularity.
+//!
+//! Each block is a struct of fixed-width registers with a pure next-state
+//! function (small control blocks) or an explicit two-phase interface
+//! (queues): outputs are computed from current state, then the clock edge
+//! loads the next state. Every block exposes its signals through
+//! [`wasp_waves::Traceable`].
+//!
+//! | block | paper |
+//! |---|---|
+//! | [`free_mshr::FreeMshrReg`] | the 5-bit register of free MSHRs |
+//! | [`nonblocked::NonblockedCounter`] | the 7-bit count of non-blocked priority warps |
+//! | [`datapath::WaspDatapath`] | multiply by 2.5 (shift-add), subtract, compare |
+//! | [`subset::Mesh`] | the two-bit comparator of Mesh4 (and Mesh2/8/16) |
+//! | [`queue::SplitQueue`] | the input queue split into priority and regular FIFOs |
+//! | [`policy`] | Baseline, Fullpriority, FreeMSHR-N, WaSP |
+//! | [`scheduler::LaunchScheduler`] | all of the above, one per core |
+
+pub mod datapath;
+pub mod free_mshr;
+pub mod nonblocked;
+pub mod policy;
+pub mod queue;
+pub mod scheduler;
+pub mod subset;
+pub mod uint;
+
+use std::fmt;
+
+/// An event that would take a register outside its legal range. Hardware
+/// would wrap; the model stops and reports it instead.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RegisterFault {
+    /// Hardware name of the register.
+    pub register: &'static str,
+    /// Its value before the event.
+    pub value: u32,
+    /// The value the event asked for.
+    pub attempted: i32,
+    /// The largest legal value.
+    pub limit: u32,
+}
+
+impl fmt::Display for RegisterFault {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "register `{}` would leave its range: {} -> {} (legal 0..={})",
+            self.register, self.value, self.attempted, self.limit
+        )
+    }
+}
+
+impl std::error::Error for RegisterFault {}

@@ -1,0 +1,36 @@
+//! FreeMSHR-N: a priority warp only while at least N MSHRs are free.
+//!
+//! The paper's Freemshr10 is N = 10. Unlike WaSP it ignores the misses that
+//! priority warps already in the core are about to make.
+
+use super::{LaunchPolicy, LaunchView};
+use crate::free_mshr::FreeMshrs;
+use crate::queue::QueueClass;
+
+/// FreeMSHR-N.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FreeMshrN {
+    n: FreeMshrs,
+}
+
+impl FreeMshrN {
+    /// Launch priority warps while `free_mshrs >= n`.
+    pub fn new(n: FreeMshrs) -> Self {
+        Self { n }
+    }
+}
+
+impl LaunchPolicy for FreeMshrN {
+    fn name(&self) -> String {
+        format!("freemshr:{}", self.n)
+    }
+    fn select(&self, v: &LaunchView) -> Option<QueueClass> {
+        if v.priority_waiting && v.free_mshrs >= self.n {
+            Some(QueueClass::Priority)
+        } else if v.regular_waiting {
+            Some(QueueClass::Regular)
+        } else {
+            None
+        }
+    }
+}

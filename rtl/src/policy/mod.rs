@@ -1,0 +1,210 @@
+//! Launch policies: which input FIFO the core launches its next warp from.
+//!
+//! Every policy decides from the same inputs the hardware has in the cycle
+//! of the launch: whether each FIFO holds a warp, the free-MSHR register, and
+//! the decision datapath's outputs. One file per policy.
+
+mod baseline;
+mod freemshr;
+mod fullpriority;
+mod wasp;
+
+pub use baseline::Baseline;
+pub use freemshr::FreeMshrN;
+pub use fullpriority::FullPriority;
+pub use wasp::Wasp;
+
+use crate::datapath::{Cf, DatapathOut, Threshold, WaspDatapath};
+use crate::free_mshr::FreeMshrs;
+use crate::queue::QueueClass;
+use std::fmt;
+use std::str::FromStr;
+
+/// What a policy sees in the cycle it decides.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LaunchView {
+    /// A warp waits in the priority FIFO.
+    pub priority_waiting: bool,
+    /// A warp waits in the regular FIFO.
+    pub regular_waiting: bool,
+    /// The free-MSHR register.
+    pub free_mshrs: FreeMshrs,
+    /// The decision datapath's outputs, for policies that have the datapath.
+    pub datapath: Option<DatapathOut>,
+}
+
+/// A warp launch policy.
+pub trait LaunchPolicy: fmt::Debug + Send + Sync {
+    /// Name as used on the command line (`baseline`, `wasp:4`, ...).
+    fn name(&self) -> String;
+    /// Whether the policy uses the priority FIFO at all. The baseline does
+    /// not: it sends every warp to the regular FIFO, which then behaves as
+    /// the baseline's single scanline-ordered queue.
+    fn uses_priority_queue(&self) -> bool {
+        true
+    }
+    /// The datapath constants, for policies that use the WaSP datapath.
+    fn datapath(&self) -> Option<WaspDatapath> {
+        None
+    }
+    /// Which FIFO to launch from this cycle, or `None` to launch nothing.
+    fn select(&self, v: &LaunchView) -> Option<QueueClass>;
+}
+
+/// A policy named on the command line or in a config file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PolicySpec {
+    /// Scanline order: one FIFO, no priority warps.
+    Baseline,
+    /// All priority warps before any regular warp.
+    FullPriority,
+    /// Priority warps only while at least N MSHRs are free.
+    FreeMshr(u32),
+    /// WaSP with a threshold and CF.
+    Wasp {
+        /// `Real_freeMSHRs > threshold` launches a priority warp.
+        threshold: u32,
+        /// Expected misses per non-blocked priority warp.
+        cf: f64,
+    },
+}
+
+impl PolicySpec {
+    /// The paper's WaSP with threshold `t` and CF = 2.5.
+    pub fn wasp(threshold: u32) -> Self {
+        PolicySpec::Wasp { threshold, cf: 2.5 }
+    }
+
+    /// Build the policy for a scheduler-level cache with `mshrs` entries,
+    /// checking that the registers can hold the constants and that priority
+    /// warps can always launch eventually.
+    pub fn build(&self, mshrs: u32) -> Result<Box<dyn LaunchPolicy>, String> {
+        match *self {
+            PolicySpec::Baseline => Ok(Box::new(Baseline)),
+            PolicySpec::FullPriority => Ok(Box::new(FullPriority)),
+            PolicySpec::FreeMshr(n) => {
+                let n = FreeMshrs::new(n).ok_or_else(|| {
+                    format!("freemshr:{n}: N must fit the 5-bit free-MSHR register (0..=31)")
+                })?;
+                if n.get() > mshrs {
+                    return Err(format!(
+                        "freemshr:{n}: N exceeds the {mshrs} MSHRs, so priority warps could never launch"
+                    ));
+                }
+                Ok(Box::new(FreeMshrN::new(n)))
+            }
+            PolicySpec::Wasp { threshold, cf } => {
+                let t = Threshold::new(threshold).ok_or_else(|| {
+                    format!("wasp:{threshold}: the threshold must fit its 5-bit register (0..=31)")
+                })?;
+                if threshold >= mshrs {
+                    return Err(format!(
+                        "wasp:{threshold}: the threshold must be below the {mshrs} MSHRs, or Real_freeMSHRs > threshold never holds and priority warps never launch"
+                    ));
+                }
+                let cf = Cf::from_f64(cf).ok_or_else(|| {
+                    format!("wasp CF {cf}: must be a multiple of 0.25 between 0 and 7.75 (a 5-bit constant in quarters)")
+                })?;
+                Ok(Box::new(Wasp::new(WaspDatapath { cf, threshold: t })))
+            }
+        }
+    }
+}
+
+impl fmt::Display for PolicySpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            PolicySpec::Baseline => f.write_str("baseline"),
+            PolicySpec::FullPriority => f.write_str("fullpriority"),
+            PolicySpec::FreeMshr(n) => write!(f, "freemshr:{n}"),
+            PolicySpec::Wasp { threshold, cf } if cf == 2.5 => write!(f, "wasp:{threshold}"),
+            PolicySpec::Wasp { threshold, cf } => write!(f, "wasp:{threshold}:{cf}"),
+        }
+    }
+}
+
+impl FromStr for PolicySpec {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let lower = s.trim().to_ascii_lowercase();
+        let parts: Vec<&str> = lower.split(':').collect();
+        let int = |p: &str, what: &str| {
+            p.parse::<u32>()
+                .map_err(|_| format!("policy `{s}`: {what} `{p}` is not a non-negative integer"))
+        };
+        match parts.as_slice() {
+            ["baseline"] | ["scanline"] => Ok(PolicySpec::Baseline),
+            ["fullpriority"] | ["full-priority"] => Ok(PolicySpec::FullPriority),
+            ["freemshr", n] => Ok(PolicySpec::FreeMshr(int(n, "N")?)),
+            ["freemshr10"] => Ok(PolicySpec::FreeMshr(10)),
+            ["wasp"] => Ok(PolicySpec::wasp(4)),
+            ["wasp", t] => Ok(PolicySpec::wasp(int(t, "threshold")?)),
+            ["wasp", t, cf] => Ok(PolicySpec::Wasp {
+                threshold: int(t, "threshold")?,
+                cf: cf
+                    .parse::<f64>()
+                    .map_err(|_| format!("policy `{s}`: CF `{cf}` is not a number"))?,
+            }),
+            _ => Err(format!(
+                "unknown policy `{s}` (expected baseline, fullpriority, freemshr:N, wasp[:threshold[:cf]])"
+            )),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_and_display() {
+        for s in [
+            "baseline",
+            "fullpriority",
+            "freemshr:10",
+            "wasp:4",
+            "wasp:3:1",
+        ] {
+            assert_eq!(s.parse::<PolicySpec>().unwrap().to_string(), s);
+        }
+        assert_eq!(
+            "scanline".parse::<PolicySpec>().unwrap(),
+            PolicySpec::Baseline
+        );
+        assert_eq!("wasp".parse::<PolicySpec>().unwrap(), PolicySpec::wasp(4));
+        assert!("wasp:x"
+            .parse::<PolicySpec>()
+            .unwrap_err()
+            .contains("threshold"));
+        assert!("lifo"
+            .parse::<PolicySpec>()
+            .unwrap_err()
+            .contains("expected"));
+    }
+
+    #[test]
+    fn build_checks_register_limits() {
+        assert!(PolicySpec::wasp(4).build(16).is_ok());
+        assert!(PolicySpec::wasp(32)
+            .build(16)
+            .unwrap_err()
+            .contains("5-bit"));
+        assert!(PolicySpec::wasp(16)
+            .build(16)
+            .unwrap_err()
+            .contains("below"));
+        assert!(PolicySpec::FreeMshr(40)
+            .build(16)
+            .unwrap_err()
+            .contains("5-bit"));
+        assert!(PolicySpec::FreeMshr(17)
+            .build(16)
+            .unwrap_err()
+            .contains("never"));
+        let bad_cf = PolicySpec::Wasp {
+            threshold: 1,
+            cf: 2.3,
+        };
+        assert!(bad_cf.build(16).unwrap_err().contains("0.25"));
+    }
+}

@@ -1,0 +1,283 @@
+//! The warp launch scheduler of one core: the split input queue, the
+//! subset comparator on its input, the free-MSHR register, the non-blocked
+//! priority-warp counter, the decision datapath and the launch policy.
+//!
+//! One cycle, two phases:
+//! 1. [`LaunchScheduler::decide`] reads only current register values (Q)
+//!    and returns which FIFO to launch from; [`LaunchScheduler::launch`]
+//!    pops that warp if the core can take it this cycle.
+//! 2. [`LaunchScheduler::clock`] takes the cycle's MSHR and priority-warp
+//!    events and loads the registers (D -> Q). The launch of this cycle is
+//!    counted by the scheduler itself.
+//!
+//! A decision in cycle t therefore sees the events of cycles up to t-1.
+
+use crate::datapath::DatapathOut;
+use crate::free_mshr::{FreeMshrReg, MshrEvents};
+use crate::nonblocked::{NonblockedCounter, PriorityEvents};
+use crate::policy::{LaunchPolicy, LaunchView};
+use crate::queue::{QueueClass, SplitQueue};
+use crate::subset::PrioritySubset;
+use crate::RegisterFault;
+use wasp_waves::{Traceable, Tracer};
+
+/// Encoding of the `launch` signal: 0 none, 1 regular, 2 priority.
+pub fn launch_code(c: Option<QueueClass>) -> u64 {
+    match c {
+        None => 0,
+        Some(QueueClass::Regular) => 1,
+        Some(QueueClass::Priority) => 2,
+    }
+}
+
+/// The combinational outputs of one cycle's decision.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LaunchDecision {
+    /// Which FIFO the policy picked (`None`: launch nothing).
+    pub select: Option<QueueClass>,
+    /// The datapath signals, for policies that have the datapath.
+    pub datapath: Option<DatapathOut>,
+}
+
+/// The launch scheduler of one core, holding warp tickets of type `T`.
+#[derive(Debug)]
+pub struct LaunchScheduler<T> {
+    queue: SplitQueue<T>,
+    subset: Box<dyn PrioritySubset>,
+    free_mshrs: FreeMshrReg,
+    nonblocked: NonblockedCounter,
+    policy: Box<dyn LaunchPolicy>,
+    // Signals of the current cycle, for the waveform.
+    decision: LaunchDecision,
+    launched: Option<QueueClass>,
+}
+
+impl<T: Copy> LaunchScheduler<T> {
+    /// A scheduler in its reset state.
+    pub fn new(
+        queue_capacity: usize,
+        subset: Box<dyn PrioritySubset>,
+        free_mshrs: FreeMshrReg,
+        policy: Box<dyn LaunchPolicy>,
+    ) -> Self {
+        Self {
+            queue: SplitQueue::new(queue_capacity),
+            subset,
+            free_mshrs,
+            nonblocked: NonblockedCounter::reset(),
+            policy,
+            decision: LaunchDecision {
+                select: None,
+                datapath: None,
+            },
+            launched: None,
+        }
+    }
+
+    /// The policy.
+    pub fn policy(&self) -> &dyn LaunchPolicy {
+        self.policy.as_ref()
+    }
+
+    /// The input queue.
+    pub fn queue(&self) -> &SplitQueue<T> {
+        &self.queue
+    }
+
+    /// The free-MSHR register.
+    pub fn free_mshrs(&self) -> FreeMshrReg {
+        self.free_mshrs
+    }
+
+    /// The non-blocked priority-warp counter.
+    pub fn nonblocked(&self) -> NonblockedCounter {
+        self.nonblocked
+    }
+
+    /// Which class the subset comparator gives the quad at (`qx`, `qy`)
+    /// under this policy (always regular for the baseline).
+    pub fn classify(&self, qx: u32, qy: u32) -> QueueClass {
+        if self.policy.uses_priority_queue() && self.subset.is_priority(qx, qy) {
+            QueueClass::Priority
+        } else {
+            QueueClass::Regular
+        }
+    }
+
+    /// Enqueue a warp from the rasterizer; `Err(ticket)` back if the queue
+    /// is full. Returns the class it was put in.
+    pub fn enqueue(&mut self, ticket: T, qx: u32, qy: u32) -> Result<QueueClass, T> {
+        let class = self.classify(qx, qy);
+        if self.queue.push(class, ticket) {
+            Ok(class)
+        } else {
+            Err(ticket)
+        }
+    }
+
+    /// Phase 1: the policy's choice from the current register values.
+    pub fn decide(&mut self) -> LaunchDecision {
+        let datapath = self
+            .policy
+            .datapath()
+            .map(|dp| dp.eval(self.free_mshrs.free(), self.nonblocked.count()));
+        let view = LaunchView {
+            priority_waiting: self.queue.has(QueueClass::Priority),
+            regular_waiting: self.queue.has(QueueClass::Regular),
+            free_mshrs: self.free_mshrs.free(),
+            datapath,
+        };
+        let select = self.policy.select(&view);
+        self.decision = LaunchDecision { select, datapath };
+        self.decision
+    }
+
+    /// Phase 1, continued: pop the chosen warp, when the core can take one
+    /// this cycle (`enable`). At most one launch per cycle.
+    pub fn launch(&mut self, decision: LaunchDecision, enable: bool) -> Option<(T, QueueClass)> {
+        let class = decision.select.filter(|_| enable)?;
+        let t = self.queue.pop(class)?;
+        self.launched = Some(class);
+        Some((t, class))
+    }
+
+    /// Phase 2: load the registers with this cycle's events. The priority
+    /// launch of this cycle (if any) is added to `prio` here.
+    pub fn clock(&mut self, mshr: MshrEvents, prio: PriorityEvents) -> Result<(), RegisterFault> {
+        let prio = PriorityEvents {
+            launched: prio.launched || self.launched == Some(QueueClass::Priority),
+            ..prio
+        };
+        let free = self.free_mshrs.next(mshr)?;
+        let nb = self.nonblocked.next(prio)?;
+        self.free_mshrs = free;
+        self.nonblocked = nb;
+        Ok(())
+    }
+
+    /// Forget this cycle's launch signal (call after tracing, before the
+    /// next cycle's phase 1).
+    pub fn end_cycle(&mut self) {
+        self.launched = None;
+    }
+}
+
+impl<T: Copy> Traceable for LaunchScheduler<T> {
+    fn trace<Tr: Tracer + ?Sized>(&self, t: &mut Tr) {
+        self.free_mshrs.trace(t);
+        self.nonblocked.trace(t);
+        match &self.decision.datapath {
+            Some(d) => d.trace(t),
+            None => DatapathOut {
+                product: Default::default(),
+                real_free: Default::default(),
+                priority_over_regular: false,
+            }
+            .trace(t),
+        }
+        t.signal("launch", 2, launch_code(self.launched));
+        self.queue.trace(t);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::datapath::{Cf, Threshold, WaspDatapath};
+    use crate::policy::{PolicySpec, Wasp};
+    use crate::subset::{Explicit, Mesh};
+
+    #[test]
+    fn baseline_keeps_scanline_order_through_the_split_queue() {
+        let mut s = LaunchScheduler::new(
+            8,
+            Box::new(Mesh::new(4).unwrap()),
+            FreeMshrReg::with_capacity(4).unwrap(),
+            PolicySpec::Baseline.build(4).unwrap(),
+        );
+        for i in 0..8u32 {
+            assert_eq!(s.enqueue(i, i, 0), Ok(QueueClass::Regular));
+        }
+        assert_eq!(s.enqueue(99, 0, 0), Err(99));
+        let mut order = vec![];
+        while let Some((w, _)) = {
+            let d = s.decide();
+            s.launch(d, true)
+        } {
+            order.push(w);
+            s.clock(MshrEvents::default(), PriorityEvents::default())
+                .unwrap();
+            s.end_cycle();
+        }
+        assert_eq!(order, (0..8).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn wasp_launches_priority_then_regular_as_mshrs_fill() {
+        let dp = WaspDatapath {
+            cf: Cf::ONE,
+            threshold: Threshold::new(1).unwrap(),
+        };
+        let mut s = LaunchScheduler::new(
+            16,
+            Box::new(Explicit::new([(0, 0), (5, 0), (10, 0)])),
+            FreeMshrReg::with_capacity(3).unwrap(),
+            Box::new(Wasp::new(dp)),
+        );
+        for i in 0..15u32 {
+            s.enqueue(i, i, 0).unwrap();
+        }
+        // Cycle 1: 3 free, nothing in flight: priority W0.
+        let d = s.decide();
+        assert_eq!(d.datapath.unwrap().real_free.get(), 3);
+        assert_eq!(s.launch(d, true), Some((0, QueueClass::Priority)));
+        // W0 launched and blocked on its miss in the same cycle.
+        s.clock(
+            MshrEvents {
+                allocs: 1,
+                replies: 0,
+            },
+            PriorityEvents {
+                blocked: 1,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        s.end_cycle();
+        assert_eq!(s.nonblocked().count().get(), 0);
+        // Cycle 2: 2 free > 1: priority W5.
+        let d = s.decide();
+        assert_eq!(s.launch(d, true), Some((5, QueueClass::Priority)));
+        s.clock(
+            MshrEvents {
+                allocs: 1,
+                replies: 0,
+            },
+            PriorityEvents {
+                blocked: 1,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        s.end_cycle();
+        // Cycle 3: 1 free, not > 1: regular W1.
+        let d = s.decide();
+        assert!(!d.datapath.unwrap().priority_over_regular);
+        assert_eq!(s.launch(d, true), Some((1, QueueClass::Regular)));
+    }
+
+    #[test]
+    fn no_launch_when_disabled() {
+        let mut s = LaunchScheduler::new(
+            4,
+            Box::new(Mesh::new(4).unwrap()),
+            FreeMshrReg::with_capacity(4).unwrap(),
+            PolicySpec::FullPriority.build(4).unwrap(),
+        );
+        s.enqueue(7u32, 0, 0).unwrap();
+        let d = s.decide();
+        assert_eq!(d.select, Some(QueueClass::Priority));
+        assert_eq!(s.launch(d, false), None);
+        assert_eq!(s.queue().len(), 1);
+    }
+}

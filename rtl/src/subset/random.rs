@@ -1,0 +1,72 @@
+//! Random: a seeded random 1/fraction of the tile's quads.
+//!
+//! The same pattern is used for every tile (hardware would hold it in a
+//! `side x side` bitmap). Exactly `side^2 / fraction` quads are chosen, by a
+//! partial Fisher-Yates shuffle driven by SplitMix64 on the seed, so a seed
+//! always gives the same pattern on every platform.
+
+use super::PrioritySubset;
+use bitvec::prelude::*;
+
+/// A fixed random bitmap of priority quads.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Random {
+    side: u32,
+    seed: u64,
+    map: BitVec<u64, Lsb0>,
+}
+
+fn splitmix64(state: &mut u64) -> u64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+impl Random {
+    /// `side^2 / fraction` quads of a `side` x `side` tile, chosen by `seed`.
+    pub fn new(side: u32, fraction: u32, seed: u64) -> Self {
+        let n = (side as usize) * (side as usize);
+        let pick = n / fraction.max(1) as usize;
+        let mut idx: Vec<u32> = (0..n as u32).collect();
+        let mut state = seed;
+        for i in 0..pick {
+            let r = (splitmix64(&mut state) % (n - i) as u64) as usize;
+            idx.swap(i, i + r);
+        }
+        let mut map = bitvec![u64, Lsb0; 0; n];
+        for &i in &idx[..pick] {
+            map.set(i as usize, true);
+        }
+        Self { side, seed, map }
+    }
+}
+
+impl PrioritySubset for Random {
+    fn name(&self) -> String {
+        format!("random:{}", self.seed)
+    }
+    fn is_priority(&self, qx: u32, qy: u32) -> bool {
+        if qx >= self.side || qy >= self.side {
+            return false;
+        }
+        self.map[(qy * self.side + qx) as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_count_and_deterministic() {
+        let a = Random::new(32, 16, 7);
+        let b = Random::new(32, 16, 7);
+        let c = Random::new(32, 16, 8);
+        assert_eq!(a.map.count_ones(), 64);
+        assert_eq!(a, b);
+        assert_ne!(a.map, c.map);
+        assert!(!a.is_priority(32, 0));
+    }
+}
