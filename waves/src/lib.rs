@@ -10,9 +10,13 @@
 //! Sinks provided here: [`vcd_sink::VcdSink`] writes a Value Change Dump
 //! (change-only values, vectors MSB first, `$timescale` of one cycle) and
 //! [`gtkw`] writes a GTKWave save file that preselects signals.
+//! [`readback`] parses a VCD back into per-cycle values, for tests.
 
 pub mod gtkw;
 pub mod vcd_sink;
+
+pub use gtkw::{Format, GtkwSave};
+pub use vcd_sink::{readback, SignalInfo, VcdSink};
 
 /// Receives the signals of a design, one cycle at a time.
 ///
@@ -41,6 +45,16 @@ pub trait Traceable {
     fn trace<T: Tracer + ?Sized>(&self, t: &mut T);
 }
 
+/// A [`Tracer`] that is sampled once per clock cycle: the clock owner calls
+/// [`CycleSink::begin_cycle`], lets the design visit its signals, then
+/// [`CycleSink::end_cycle`].
+pub trait CycleSink: Tracer {
+    /// Start the sample of `cycle` (cycles only increase).
+    fn begin_cycle(&mut self, cycle: u64);
+    /// Finish the sample of the current cycle.
+    fn end_cycle(&mut self) -> std::io::Result<()>;
+}
+
 /// A tracer that records nothing; useful to measure the cost of the visitor
 /// itself, and as the type parameter when tracing is off.
 #[derive(Debug, Default, Clone, Copy)]
@@ -53,4 +67,13 @@ impl Tracer for NullTracer {
     fn pop_scope(&mut self) {}
     #[inline]
     fn signal(&mut self, _name: &str, _width: u32, _value: u64) {}
+}
+
+impl CycleSink for NullTracer {
+    #[inline]
+    fn begin_cycle(&mut self, _cycle: u64) {}
+    #[inline]
+    fn end_cycle(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
 }
