@@ -1,0 +1,168 @@
+//! `wasp example`: the paper's worked example.
+
+use crate::CliError;
+use clap::Args;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use wasp_sim::example::{self, ExampleConfig, ExampleError, ExampleReport};
+use wasp_waves::{Format, GtkwSave, SignalInfo, VcdSink};
+
+/// Options of `wasp example`.
+#[derive(Args, Debug, Clone)]
+pub struct ExampleArgs {
+    /// Print the result as JSON (keys `scanline`, `all_priority_first`,
+    /// `wasp`, each with `cycles`, `stall_cycles`, hits and misses, the launch
+    /// order and the per-cycle timeline) instead of the chronographs.
+    #[arg(long)]
+    pub json: bool,
+
+    /// Write the waveform of all three runs to FILE (VCD, one time unit per
+    /// cycle, cycle 0 = reset) and a GTKWave save file FILE.gtkw that
+    /// preselects the scheduler and cache signals: `gtkwave FILE FILE.gtkw`.
+    #[arg(long, value_name = "FILE")]
+    pub vcd: Option<PathBuf>,
+
+    /// Main-memory latency in cycles (at least 1).
+    #[arg(long, default_value_t = 7, value_name = "CYCLES")]
+    pub latency: u32,
+
+    /// MSHR entries of the cache (1..=31: the free-MSHR register has 5 bits).
+    #[arg(long, default_value_t = 3, value_name = "N")]
+    pub mshrs: u32,
+
+    /// WaSP threshold: a priority warp launches when Real_freeMSHRs > this
+    /// (0..=31 and below --mshrs). CF is 1, as each warp makes one access.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub threshold: u32,
+}
+
+impl Default for ExampleArgs {
+    fn default() -> Self {
+        let d = ExampleConfig::default();
+        Self {
+            json: false,
+            vcd: None,
+            latency: d.latency,
+            mshrs: d.mshrs,
+            threshold: d.threshold,
+        }
+    }
+}
+
+fn map_err(e: ExampleError) -> CliError {
+    match e {
+        ExampleError::Config(m) => CliError::usage(m),
+        other => CliError::failed(other.to_string()),
+    }
+}
+
+/// Run the command.
+pub fn run(args: &ExampleArgs) -> Result<(), CliError> {
+    let cfg = ExampleConfig {
+        latency: args.latency,
+        mshrs: args.mshrs,
+        threshold: args.threshold,
+    };
+    cfg.validate().map_err(CliError::usage)?;
+    let report = match &args.vcd {
+        None => example::run(&cfg).map_err(map_err)?,
+        Some(path) => write_waves(&cfg, path)?,
+    };
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    let text = if args.json {
+        let mut s = serde_json::to_string_pretty(&report)
+            .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?;
+        s.push('\n');
+        s
+    } else {
+        example::render_report(&report)
+    };
+    out.write_all(text.as_bytes())
+        .map_err(|e| CliError::failed(format!("writing to standard output: {e}")))?;
+    if let (Some(path), false) = (&args.vcd, args.json) {
+        writeln!(
+            out,
+            "Waveform: {} (open with: gtkwave {} {})",
+            path.display(),
+            path.display(),
+            gtkw_path(path).display()
+        )
+        .map_err(|e| CliError::failed(format!("writing to standard output: {e}")))?;
+    }
+    Ok(())
+}
+
+/// `FILE.gtkw` beside `FILE`.
+fn gtkw_path(vcd: &Path) -> PathBuf {
+    let mut s = vcd.as_os_str().to_owned();
+    s.push(".gtkw");
+    PathBuf::from(s)
+}
+
+fn create(path: &Path) -> Result<BufWriter<File>, CliError> {
+    File::create(path)
+        .map(BufWriter::new)
+        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", path.display())))
+}
+
+fn write_waves(cfg: &ExampleConfig, path: &Path) -> Result<ExampleReport, CliError> {
+    let mut sink = VcdSink::new(create(path)?, "wasp_example");
+    let (report, last) = example::run_traced(cfg, &mut sink).map_err(map_err)?;
+    let signals: Vec<SignalInfo> = sink.signals().to_vec();
+    let mut w = sink
+        .finish(last + 1)
+        .map_err(|e| CliError::failed(format!("writing {}: {e}", path.display())))?;
+    w.flush()
+        .map_err(|e| CliError::failed(format!("writing {}: {e}", path.display())))?;
+
+    let gtkw = gtkw_path(path);
+    let save = gtkw_save(path, &signals, last + 1);
+    let mut g = create(&gtkw)?;
+    save.write_to(&mut g)
+        .and_then(|_| g.flush())
+        .map_err(|e| CliError::failed(format!("writing {}: {e}", gtkw.display())))?;
+    Ok(report)
+}
+
+/// How each example signal is best shown.
+fn format_of(name: &str) -> Format {
+    match name {
+        "real_free_mshrs" => Format::SignedDecimal,
+        _ => Format::Decimal,
+    }
+}
+
+/// A save file showing every run's scheduler and cache signals, grouped.
+fn gtkw_save(vcd: &Path, signals: &[SignalInfo], end: u64) -> GtkwSave {
+    let mut save = GtkwSave::new(vcd.display().to_string())
+        .zoom_to_fit(end)
+        .window_size(1400, 700)
+        .signals_width(300);
+    // The WaSP run first: it is the one to look at; then the paper's order.
+    let rank = |s: &&SignalInfo| match s.path.get(1).map(String::as_str) {
+        Some("wasp") => 0,
+        Some("scanline") => 1,
+        _ => 2,
+    };
+    let mut ordered: Vec<&SignalInfo> = signals.iter().collect();
+    ordered.sort_by_key(rank);
+    let mut current: Option<String> = None;
+    for s in ordered {
+        // path = [top, run, block]
+        let run = s.path.get(1).cloned().unwrap_or_default();
+        if current.as_deref() != Some(run.as_str()) {
+            if current.is_some() {
+                save = save.end_group();
+            }
+            save = save.begin_group(run.clone(), false);
+            current = Some(run);
+        }
+        save = save.traced(s, format_of(&s.name));
+    }
+    if current.is_some() {
+        save = save.end_group();
+    }
+    save
+}
