@@ -1,6 +1,9 @@
 //! `wasp`: the command-line front end of the wasp cycle model.
 
+mod bench_cmd;
 mod example_cmd;
+mod run_cmd;
+mod synth_cmd;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -30,12 +33,38 @@ enum Command {
     /// the RTL blocks (split queue, 5-bit free-MSHR register, 7-bit
     /// non-blocked priority counter, x CF shift-add, subtract, compare).
     Example(example_cmd::ExampleArgs),
+
+    /// Simulate a workload trace on the GPU model and report statistics.
+    ///
+    /// The whole GPU: shader cores with the launch scheduler at
+    /// register-transfer granularity, L0/L1 texture caches, shared L2 and
+    /// open-row DRAM, all with MSHRs. Prints a table (or JSON/CSV with
+    /// --json/--csv), optionally writes the waveform with --vcd.
+    Run(run_cmd::RunArgs),
+
+    /// Run several launch policies on the same trace and print speedups
+    /// against the first (the scanline baseline by default).
+    Compare(run_cmd::CompareArgs),
+
+    /// Write a synthetic workload trace (a textured-surface model with a
+    /// stated memory-instruction ratio and block reuse), and report the
+    /// figures it measures. Synthetic workloads say so in their names.
+    Synth(synth_cmd::SynthArgs),
+
+    /// Measure simulation speed: simulated core-cycles per second with
+    /// tracing off and on, and its growth with tile count and warp count.
+    /// Build with --release for meaningful numbers.
+    Bench(bench_cmd::BenchArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Some(Command::Example(args)) => example_cmd::run(&args),
+        Some(Command::Run(args)) => run_cmd::run(&args),
+        Some(Command::Compare(args)) => run_cmd::compare(&args),
+        Some(Command::Bench(args)) => bench_cmd::run(&args),
+        Some(Command::Synth(args)) => synth_cmd::run(&args),
         None => example_cmd::run(&example_cmd::ExampleArgs::default()),
     };
     match result {

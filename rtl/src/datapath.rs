@@ -118,10 +118,11 @@ impl WaspDatapath {
 #[inline]
 pub fn shift_add_multiply(n: NonblockedCount, cf: Cf) -> UInt<PRODUCT_BITS> {
     let n_acc = UInt::<ACC_BITS>::masked(n.get());
+    let q = cf.0.get();
     let mut acc = UInt::<ACC_BITS>::ZERO;
-    for (i, bit) in cf.0.bits().iter().enumerate() {
-        if *bit {
-            acc = acc.wrapping_add(n_acc.shl(i as u32));
+    for i in 0..5 {
+        if (q >> i) & 1 == 1 {
+            acc = acc.wrapping_add(n_acc.shl(i));
         }
     }
     UInt::<PRODUCT_BITS>::masked(acc.shr(2).get())

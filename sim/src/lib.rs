@@ -1,8 +1,12 @@
 //! wasp-sim: the clock, the paper's worked example, GPU assembly, memory
 //! system, workloads and statistics.
 
+pub mod bench;
+pub mod config;
 pub mod example;
+pub mod gpu;
 pub mod mem;
 pub mod rng;
+pub mod stats;
 pub mod synth;
 pub mod trace;

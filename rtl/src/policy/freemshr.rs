@@ -24,6 +24,9 @@ impl LaunchPolicy for FreeMshrN {
     fn name(&self) -> String {
         format!("freemshr:{}", self.n)
     }
+    fn reads_free_mshrs(&self) -> bool {
+        true
+    }
     fn select(&self, v: &LaunchView) -> Option<QueueClass> {
         if v.priority_waiting && v.free_mshrs >= self.n {
             Some(QueueClass::Priority)

@@ -43,6 +43,12 @@ pub trait LaunchPolicy: fmt::Debug + Send + Sync {
     fn uses_priority_queue(&self) -> bool {
         true
     }
+    /// Whether the policy reads the free-MSHR register (WaSP and
+    /// FreeMSHR-N do; the baseline and Fullpriority do not, so their
+    /// scheduler-level cache may have more MSHRs than 5 bits can count).
+    fn reads_free_mshrs(&self) -> bool {
+        self.datapath().is_some()
+    }
     /// The datapath constants, for policies that use the WaSP datapath.
     fn datapath(&self) -> Option<WaspDatapath> {
         None
@@ -73,6 +79,11 @@ impl PolicySpec {
     /// The paper's WaSP with threshold `t` and CF = 2.5.
     pub fn wasp(threshold: u32) -> Self {
         PolicySpec::Wasp { threshold, cf: 2.5 }
+    }
+
+    /// Whether the policy reads the free-MSHR register.
+    pub fn reads_free_mshrs(&self) -> bool {
+        matches!(self, PolicySpec::FreeMshr(_) | PolicySpec::Wasp { .. })
     }
 
     /// Build the policy for a scheduler-level cache with `mshrs` entries,
@@ -117,7 +128,7 @@ impl fmt::Display for PolicySpec {
             PolicySpec::Baseline => f.write_str("baseline"),
             PolicySpec::FullPriority => f.write_str("fullpriority"),
             PolicySpec::FreeMshr(n) => write!(f, "freemshr:{n}"),
-            PolicySpec::Wasp { threshold, cf } if cf == 2.5 => write!(f, "wasp:{threshold}"),
+            PolicySpec::Wasp { threshold, cf: 2.5 } => write!(f, "wasp:{threshold}"),
             PolicySpec::Wasp { threshold, cf } => write!(f, "wasp:{threshold}:{cf}"),
         }
     }

@@ -1,0 +1,530 @@
+//! The machine configuration: one TOML file describes the whole GPU.
+//!
+//! `configs/paper.toml` (embedded as [`MachineConfig::paper`]) holds the
+//! paper's Table II with its best baseline (pipeline width 4, 64 warps, L0
+//! present); `configs/paper-width2.toml` the width-2 machine (no L0, the
+//! scheduler watches the L1's MSHRs). Every field is documented in those
+//! files. Unknown keys are errors, and [`MachineConfig::validate`] refuses
+//! every value the model or the scheduler's registers cannot hold, naming
+//! the field and the limit.
+
+use crate::mem::{CacheConfig, DramConfig, MemConfig};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::Path;
+use wasp_rtl::free_mshr::FREE_MSHR_BITS;
+use wasp_rtl::nonblocked::NONBLOCKED_BITS;
+use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::subset::SubsetSpec;
+
+/// The paper's machine, as shipped in `configs/paper.toml`.
+pub const PAPER_TOML: &str = include_str!("../../configs/paper.toml");
+/// The width-2 machine, as shipped in `configs/paper-width2.toml`.
+pub const PAPER_WIDTH2_TOML: &str = include_str!("../../configs/paper-width2.toml");
+
+/// Global GPU parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GpuConfig {
+    /// Shader cores, each with its own L0/L1 texture caches.
+    pub cores: u32,
+    /// Clock frequency in MHz (for energy and time conversions).
+    pub frequency_mhz: u32,
+    /// Tile side in pixels; quads per tile side = tile_size / 2.
+    pub tile_size: u32,
+}
+
+/// One shader core.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CoreConfig {
+    /// Instructions issued per cycle (from different warps).
+    pub pipeline_width: u32,
+    /// Warp slots.
+    pub max_warps: u32,
+    /// Entries of the input queue (the baseline's single FIFO; WaSP splits
+    /// it into priority and regular FIFOs of the same total size).
+    pub input_queue: u32,
+    /// Quads the rasterizer delivers to the core's input queue per cycle.
+    pub raster_quads_per_cycle: u32,
+    /// Cycles from issuing an ALU instruction to the warp's next issue.
+    pub alu_latency: u32,
+    /// Cycles the texture unit needs after the last block of a texture
+    /// instruction arrives (address generation and filtering).
+    pub texture_latency: u32,
+    /// Texture instructions the LDST unit can hold (its queue).
+    pub ldst_queue: u32,
+}
+
+/// The launch scheduler.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SchedulerConfig {
+    /// Launch policy: `baseline`, `fullpriority`, `freemshr:N`,
+    /// `wasp[:threshold[:cf]]`.
+    pub policy: String,
+    /// Priority subset: `mesh2|4|8|16`, `hlines`, `vlines`, `top16`,
+    /// `random[:seed]`.
+    pub subset: String,
+}
+
+/// Main memory and the ideal-memory switch.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MemoryConfig {
+    /// Zero-latency main memory (the paper's motivation figure).
+    pub ideal: bool,
+}
+
+/// The event-energy model: energy per event and static power. Figures and
+/// their sources are stated in the config file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnergyConfig {
+    /// Energy of one ALU instruction of one warp (4 lanes), pJ.
+    pub alu_instruction_pj: f64,
+    /// Energy of one texture instruction in the texture unit (address
+    /// generation and filtering for 4 pixels), pJ.
+    pub texture_instruction_pj: f64,
+    /// One L0 access, pJ.
+    pub l0_access_pj: f64,
+    /// One L1 access, pJ.
+    pub l1_access_pj: f64,
+    /// One L2 access, pJ.
+    pub l2_access_pj: f64,
+    /// One 64-byte DRAM access that hits the open row, pJ.
+    pub dram_row_hit_pj: f64,
+    /// One 64-byte DRAM access that opens a row, pJ.
+    pub dram_row_miss_pj: f64,
+    /// Static (leakage and clock) power of one core with its caches, mW.
+    pub core_static_mw: f64,
+    /// Static power of the L2 and memory controller, mW.
+    pub uncore_static_mw: f64,
+}
+
+/// Simulation controls.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimConfig {
+    /// Stop a run that makes no forward progress (no launch, issue, reply
+    /// or completion) for this many cycles, and report the stuck state.
+    pub watchdog_cycles: u64,
+    /// Seed for everything random (the random subset, synthetic traces).
+    pub seed: u64,
+}
+
+/// The whole machine.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MachineConfig {
+    /// A name for reports.
+    pub name: String,
+    /// Global parameters.
+    pub gpu: GpuConfig,
+    /// The shader core.
+    pub core: CoreConfig,
+    /// The launch scheduler.
+    pub scheduler: SchedulerConfig,
+    /// Per-core L0 texture cache (absent at pipeline width 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub l0: Option<CacheConfig>,
+    /// Per-core L1 texture cache.
+    pub l1: CacheConfig,
+    /// Shared L2.
+    pub l2: CacheConfig,
+    /// Main memory (open-row DRAM).
+    pub dram: DramConfig,
+    /// Ideal-memory switch.
+    pub memory: MemoryConfig,
+    /// Energy model.
+    pub energy: EnergyConfig,
+    /// Simulation controls.
+    pub sim: SimConfig,
+}
+
+/// A configuration error: where, and what was expected.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ConfigError {
+    /// The file (or `<embedded paper.toml>`).
+    pub source: String,
+    /// The message, naming the field.
+    pub message: String,
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.source, self.message)
+    }
+}
+
+impl std::error::Error for ConfigError {}
+
+/// Limits the model enforces.
+pub mod limits {
+    /// Largest pipeline width.
+    pub const MAX_WIDTH: u32 = 16;
+    /// Largest warp-slot count (the paper's sweep goes to 128).
+    pub const MAX_WARPS: u32 = 128;
+    /// Largest core count.
+    pub const MAX_CORES: u32 = 64;
+    /// Largest input queue.
+    pub const MAX_QUEUE: u32 = 4096;
+    /// Largest latency of any fixed pipeline stage.
+    pub const MAX_LATENCY: u32 = 10_000;
+}
+
+impl MachineConfig {
+    /// The paper's machine (`configs/paper.toml`).
+    pub fn paper() -> Self {
+        Self::parse(PAPER_TOML, "<embedded configs/paper.toml>").expect("shipped config is valid")
+    }
+
+    /// The width-2 machine (`configs/paper-width2.toml`).
+    pub fn paper_width2() -> Self {
+        Self::parse(PAPER_WIDTH2_TOML, "<embedded configs/paper-width2.toml>")
+            .expect("shipped config is valid")
+    }
+
+    /// Read and validate a TOML file.
+    pub fn load(path: &Path) -> Result<Self, ConfigError> {
+        let source = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
+            source: source.clone(),
+            message: format!("cannot read: {e}"),
+        })?;
+        Self::parse(&text, &source)
+    }
+
+    /// Parse and validate TOML text; `source` names it in errors.
+    pub fn parse(text: &str, source: &str) -> Result<Self, ConfigError> {
+        let cfg: MachineConfig = toml::from_str(text).map_err(|e| ConfigError {
+            source: source.to_string(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        cfg.validate().map_err(|message| ConfigError {
+            source: source.to_string(),
+            message,
+        })?;
+        Ok(cfg)
+    }
+
+    /// The configuration as TOML (what `--config` reads back).
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).expect("config serializes")
+    }
+
+    /// The parsed launch policy.
+    pub fn policy(&self) -> Result<PolicySpec, String> {
+        self.scheduler
+            .policy
+            .parse()
+            .map_err(|e| format!("scheduler.policy: {e}"))
+    }
+
+    /// The parsed priority subset.
+    pub fn subset(&self) -> Result<SubsetSpec, String> {
+        self.scheduler
+            .subset
+            .parse()
+            .map_err(|e| format!("scheduler.subset: {e}"))
+    }
+
+    /// Quads per tile side.
+    pub fn quads_per_side(&self) -> u32 {
+        self.gpu.tile_size / 2
+    }
+
+    /// The cache whose MSHRs the scheduler watches, with its section name.
+    pub fn scheduler_cache(&self) -> (&'static str, &CacheConfig) {
+        match &self.l0 {
+            Some(l0) => ("l0", l0),
+            None => ("l1", &self.l1),
+        }
+    }
+
+    /// The memory-system part of the configuration.
+    pub fn mem_config(&self) -> MemConfig {
+        MemConfig {
+            cores: self.gpu.cores,
+            l0: self.l0,
+            l1: self.l1,
+            l2: self.l2,
+            dram: self.dram,
+            ideal_memory: self.memory.ideal,
+        }
+    }
+
+    /// Every check, each error naming the field and the limit.
+    pub fn validate(&self) -> Result<(), String> {
+        let range = |field: &str, v: u64, lo: u64, hi: u64, why: &str| {
+            if v < lo || v > hi {
+                Err(format!("{field} = {v}: must be in {lo}..={hi}{why}"))
+            } else {
+                Ok(())
+            }
+        };
+        range(
+            "gpu.cores",
+            self.gpu.cores as u64,
+            1,
+            limits::MAX_CORES as u64,
+            "",
+        )?;
+        range(
+            "gpu.frequency_mhz",
+            self.gpu.frequency_mhz as u64,
+            1,
+            100_000,
+            "",
+        )?;
+        let ts = self.gpu.tile_size;
+        if !(4..=64).contains(&ts) || !ts.is_power_of_two() {
+            return Err(format!(
+                "gpu.tile_size = {ts}: must be a power of two in 4..=64 (in-tile quad coordinates are 5-bit: at most 32 quads per side)"
+            ));
+        }
+        range(
+            "core.pipeline_width",
+            self.core.pipeline_width as u64,
+            1,
+            limits::MAX_WIDTH as u64,
+            "",
+        )?;
+        range(
+            "core.max_warps",
+            self.core.max_warps as u64,
+            1,
+            limits::MAX_WARPS as u64,
+            " (the paper sweeps 28..=128)",
+        )?;
+        range(
+            "core.input_queue",
+            self.core.input_queue as u64,
+            1,
+            limits::MAX_QUEUE as u64,
+            "",
+        )?;
+        range(
+            "core.raster_quads_per_cycle",
+            self.core.raster_quads_per_cycle as u64,
+            1,
+            64,
+            "",
+        )?;
+        range(
+            "core.alu_latency",
+            self.core.alu_latency as u64,
+            1,
+            limits::MAX_LATENCY as u64,
+            "",
+        )?;
+        range(
+            "core.texture_latency",
+            self.core.texture_latency as u64,
+            0,
+            limits::MAX_LATENCY as u64,
+            "",
+        )?;
+        range("core.ldst_queue", self.core.ldst_queue as u64, 1, 1024, "")?;
+        range(
+            "sim.watchdog_cycles",
+            self.sim.watchdog_cycles,
+            1,
+            u64::MAX,
+            "",
+        )?;
+
+        self.mem_config().check().map_err(|e| e.to_string())?;
+        let (level, sched_cache) = self.scheduler_cache();
+        let reg_max = (1u32 << FREE_MSHR_BITS) - 1;
+        let policy = self.policy()?;
+        if policy.reads_free_mshrs() && sched_cache.mshrs > reg_max {
+            return Err(format!(
+                "{level}.mshrs = {}: policy {policy} watches this cache's MSHRs in the {FREE_MSHR_BITS}-bit free-MSHR register, which holds at most {reg_max} (baseline and fullpriority do not read it)",
+                sched_cache.mshrs
+            ));
+        }
+        let subset = self.subset()?;
+        policy.build(sched_cache.mshrs.min(reg_max)).map_err(|e| {
+            format!(
+                "scheduler.policy: {e} ({level}.mshrs = {})",
+                sched_cache.mshrs
+            )
+        })?;
+        // The non-blocked counter counts priority warps in the core: at most
+        // one tile's priority quads, and at most the warp slots.
+        let side = self.quads_per_side();
+        let per_tile = subset.build(side).size_ratio(side) * (side * side) as f64;
+        let max_prio = (per_tile.round() as u32).min(self.core.max_warps);
+        let counter_max = (1u32 << NONBLOCKED_BITS) - 1;
+        if max_prio > counter_max {
+            return Err(format!(
+                "core.max_warps = {} with scheduler.subset = {subset}: up to {max_prio} priority warps could be in a core, but the {NONBLOCKED_BITS}-bit non-blocked priority-warp counter holds at most {counter_max}",
+                self.core.max_warps
+            ));
+        }
+        let e = &self.energy;
+        for (field, v) in [
+            ("energy.alu_instruction_pj", e.alu_instruction_pj),
+            ("energy.texture_instruction_pj", e.texture_instruction_pj),
+            ("energy.l0_access_pj", e.l0_access_pj),
+            ("energy.l1_access_pj", e.l1_access_pj),
+            ("energy.l2_access_pj", e.l2_access_pj),
+            ("energy.dram_row_hit_pj", e.dram_row_hit_pj),
+            ("energy.dram_row_miss_pj", e.dram_row_miss_pj),
+            ("energy.core_static_mw", e.core_static_mw),
+            ("energy.uncore_static_mw", e.uncore_static_mw),
+        ] {
+            if !v.is_finite() || v < 0.0 {
+                return Err(format!(
+                    "{field} = {v}: must be a finite, non-negative number"
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn with(edit: impl Fn(&str) -> String) -> Result<MachineConfig, ConfigError> {
+        MachineConfig::parse(&edit(PAPER_TOML), "test.toml")
+    }
+
+    #[test]
+    fn shipped_configs_are_the_papers_machines() {
+        let p = MachineConfig::paper();
+        assert_eq!(p.core.pipeline_width, 4);
+        assert_eq!(p.core.max_warps, 64);
+        assert_eq!(p.gpu.tile_size, 64);
+        assert_eq!(p.gpu.frequency_mhz, 600);
+        let l0 = p.l0.expect("L0 present at width 4");
+        assert_eq!((l0.size_bytes, l0.ports), (512, 2));
+        assert_eq!(
+            (p.l1.size_bytes, p.l1.ways, p.l1.hit_latency),
+            (65536, 4, 1)
+        );
+        assert_eq!(
+            (p.l2.size_bytes, p.l2.ways, p.l2.hit_latency),
+            (1 << 20, 8, 18)
+        );
+        assert_eq!(p.scheduler_cache().0, "l0");
+        let w2 = MachineConfig::paper_width2();
+        assert_eq!(w2.core.pipeline_width, 2);
+        assert!(w2.l0.is_none());
+        assert_eq!(w2.scheduler_cache().0, "l1");
+    }
+
+    #[test]
+    fn round_trips_through_toml() {
+        let p = MachineConfig::paper();
+        let again = MachineConfig::parse(&p.to_toml(), "again").unwrap();
+        assert_eq!(p, again);
+    }
+
+    #[test]
+    fn unknown_keys_name_the_key_and_the_line() {
+        let e = with(|s| s.replace("max_warps = 64", "max_warps = 64\nmax_wraps = 3")).unwrap_err();
+        assert_eq!(e.source, "test.toml");
+        assert!(e.message.contains("max_wraps"), "{e}");
+        assert!(e.message.contains("line"), "{e}");
+    }
+
+    #[test]
+    fn unknown_keys_in_cache_sections_are_errors() {
+        let e = with(|s| s.replacen("hit_latency = 18", "hit_latency = 18\nlatnecy = 3", 1))
+            .unwrap_err();
+        assert!(e.message.contains("latnecy"), "{e}");
+    }
+
+    #[test]
+    fn values_out_of_range_name_the_field() {
+        let cases: &[(&str, &str, &str)] = &[
+            ("max_warps = 64", "max_warps = 0", "core.max_warps"),
+            ("max_warps = 64", "max_warps = 129", "core.max_warps"),
+            (
+                "pipeline_width = 4",
+                "pipeline_width = 0",
+                "core.pipeline_width",
+            ),
+            ("tile_size = 64", "tile_size = 48", "gpu.tile_size"),
+            ("cores = 4", "cores = 0", "cores"),
+            (
+                "policy = \"wasp:4\"",
+                "policy = \"wasp:40\"",
+                "scheduler.policy",
+            ),
+            (
+                "policy = \"wasp:4\"",
+                "policy = \"fifo\"",
+                "scheduler.policy",
+            ),
+            (
+                "subset = \"mesh4\"",
+                "subset = \"mesh5\"",
+                "scheduler.subset",
+            ),
+            (
+                "watchdog_cycles = 1000000",
+                "watchdog_cycles = 0",
+                "sim.watchdog_cycles",
+            ),
+            (
+                "core_static_mw = 50.0",
+                "core_static_mw = -1.0",
+                "energy.core_static_mw",
+            ),
+        ];
+        for (from, to, field) in cases {
+            assert!(PAPER_TOML.contains(from), "fixture: {from}");
+            let e = with(|s| s.replacen(from, to, 1)).unwrap_err();
+            assert!(e.message.contains(field), "{to}: {e}");
+        }
+    }
+
+    #[test]
+    fn cache_geometry_errors() {
+        // 64 KiB / 64 B / 3 ways is not a whole power-of-two set count.
+        let e = with(|s| s.replacen("ways = 4", "ways = 3", 1)).unwrap_err();
+        assert!(e.message.contains("l1"), "{e}");
+        let e = with(|s| s.replacen("size_bytes = 65536", "size_bytes = 0", 1)).unwrap_err();
+        assert!(
+            e.message.contains("l1") && e.message.contains("size_bytes"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn registers_limit_mshrs_and_warps() {
+        let e = with(|s| s.replacen("mshrs = 16", "mshrs = 32", 1)).unwrap_err();
+        assert!(
+            e.message.contains("l0.mshrs") && e.message.contains("5-bit"),
+            "{e}"
+        );
+        // Policies that do not read the register may have more MSHRs.
+        with(|s| {
+            s.replacen("mshrs = 16", "mshrs = 64", 1)
+                .replace("policy = \"wasp:4\"", "policy = \"fullpriority\"")
+        })
+        .unwrap();
+        // Mesh2 puts 256 priority quads in a tile; with 128 warp slots the
+        // 7-bit counter could need to count 128.
+        let e = with(|s| {
+            s.replace("max_warps = 64", "max_warps = 128")
+                .replace("subset = \"mesh4\"", "subset = \"mesh2\"")
+        })
+        .unwrap_err();
+        assert!(e.message.contains("7-bit"), "{e}");
+        // 128 warps with Mesh4 (64 priority quads per tile) is fine.
+        with(|s| s.replace("max_warps = 64", "max_warps = 128")).unwrap();
+    }
+
+    #[test]
+    fn bad_toml_reports_line() {
+        let e = MachineConfig::parse("name = \"x\"\n[gpu\ncores = 1", "broken.toml").unwrap_err();
+        assert!(e.to_string().starts_with("broken.toml: "));
+        assert!(e.message.contains("line 2"), "{e}");
+    }
+}

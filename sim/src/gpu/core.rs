@@ -1,0 +1,616 @@
+//! One shader core: raster input, launch scheduler, warp slots, issue,
+//! the LDST unit and the texture unit.
+//!
+//! Per cycle `now` (phase 1, combinational from current state):
+//! 1. wake-ups: warps whose ALU result or texture data is ready become
+//!    ready to issue, or finish if their program is done;
+//! 2. raster: up to `raster_quads_per_cycle` quads of the current tile enter
+//!    the input queue (the subset comparator picks the FIFO);
+//! 3. launch: one warp per cycle from the FIFO the policy selects, if a
+//!    warp slot is free;
+//! 4. issue: up to `pipeline_width` ready warps issue one instruction each,
+//!    in loose round-robin order; a texture instruction enters the LDST
+//!    queue (one per cycle, if it has room);
+//! 5. LDST: the oldest texture instruction presents its unique blocks to the
+//!    first cache level, in order, until the cache refuses (ports used or
+//!    MSHRs full).
+//!
+//! Then the memory system ticks, and (phase 2) completions arrive: a warp
+//! whose last block arrived wakes `texture_latency` cycles later. The
+//! scheduler's registers are clocked with the cycle's MSHR and priority-warp
+//! events.
+//!
+//! A warp is *blocked* (the paper's long-latency state, deprioritised at
+//! fetch) from the cycle one of its accesses misses in the first level until
+//! its data arrives. A blocked warp cannot issue: each warp's instructions
+//! depend on the previous one, so nothing else of it is fetched meanwhile.
+
+use crate::gpu::SimError;
+use crate::mem::{Access, MemorySystem};
+use crate::trace::{Instr, Tile, Trace};
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, VecDeque};
+use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
+
+const FREE_MSHR_MAX: u32 = (1 << FREE_MSHR_BITS) - 1;
+
+/// Size of the wake-up timing wheel (a power of two, in cycles).
+const WHEEL: usize = 64;
+use wasp_rtl::nonblocked::PriorityEvents;
+use wasp_rtl::policy::LaunchPolicy;
+use wasp_rtl::queue::QueueClass;
+use wasp_rtl::scheduler::LaunchScheduler;
+use wasp_rtl::subset::PrioritySubset;
+use wasp_waves::{Traceable, Tracer};
+
+/// A warp in a slot.
+#[derive(Clone, Copy, Debug, Default)]
+struct Warp {
+    /// Index of its quad in the tile.
+    quad: u32,
+    /// Current instruction entry.
+    op: u32,
+    /// Instruction entries of its program.
+    n_ops: u32,
+    /// ALU instructions left in the current ALU run (0: not started).
+    alu_left: u32,
+    priority: bool,
+    blocked: bool,
+    /// Blocks of the current texture instruction not yet returned.
+    pending: u32,
+    /// Cycle the current texture instruction entered the LDST queue.
+    tex_start: u64,
+    /// Sum of the memory latencies of its texture instructions.
+    lat_sum: u64,
+    /// Texture instructions completed.
+    tex_done: u32,
+}
+
+/// A texture instruction in the LDST unit.
+#[derive(Clone, Copy, Debug)]
+struct LdstEntry {
+    slot: u8,
+    quad: u32,
+    op: u32,
+    /// Next block to present.
+    next: u32,
+}
+
+/// Counters of one core.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct CoreStats {
+    /// Tiles rendered.
+    pub tiles: u64,
+    /// Warps launched.
+    pub warps_launched: u64,
+    /// Warps finished.
+    pub warps_finished: u64,
+    /// Priority warps launched.
+    pub priority_launches: u64,
+    /// Warp instructions issued (ALU and texture).
+    pub instructions: u64,
+    /// Texture instructions issued.
+    pub tex_instructions: u64,
+    /// Cycles with a free slot and a waiting warp but no launch, because
+    /// the policy held a priority warp back (WaSP: Real_freeMSHRs too low).
+    pub held_cycles: u64,
+    /// Sum over warps of each warp's mean texture latency.
+    pub warp_latency_sum: [f64; 2],
+    /// Warps with at least one texture instruction, [regular, priority].
+    pub warps_with_tex: [u64; 2],
+    /// Cycles with no tile (idle core).
+    pub idle_cycles: u64,
+    /// Sum over cycles of active warps (for average occupancy).
+    pub occupancy_sum: u64,
+}
+
+/// Per-cycle signals of the core, for the waveform.
+#[derive(Clone, Copy, Debug, Default)]
+struct CoreSignals {
+    issued: u32,
+    tex_issued: bool,
+    ldst_presented: u32,
+    ldst_refused: bool,
+    finished: u32,
+}
+
+/// One shader core.
+#[derive(Debug)]
+pub struct ShaderCore {
+    id: usize,
+    width: u32,
+    alu_latency: u64,
+    texture_latency: u64,
+    ldst_cap: usize,
+    raster_rate: u32,
+    sched: LaunchScheduler<u32>,
+    /// Whether the free-MSHR register follows the cache (policies that
+    /// read it).
+    track_mshrs: bool,
+    /// Warp slots; a slot holds a warp when its bit in `free_slots` is 0.
+    slots: Vec<Warp>,
+    free_slots: u128,
+    /// Warps ready to issue an ALU instruction.
+    ready: u128,
+    /// Warps ready to issue a texture instruction (to the LDST queue).
+    ready_tex: u128,
+    /// Timing wheel of wake-ups: slot bitmasks by cycle modulo its size.
+    wheel: Vec<u128>,
+    /// Wake-ups further than the wheel reaches.
+    far: BinaryHeap<Reverse<(u64, u8)>>,
+    ldst: VecDeque<LdstEntry>,
+    /// Index of the current tile in the trace.
+    tile: Option<usize>,
+    /// Next quad of the tile to rasterize.
+    raster_next: u32,
+    active: u32,
+    rr: u32,
+    prio: PriorityEvents,
+    signals: CoreSignals,
+    last_progress: u64,
+    stats: CoreStats,
+}
+
+/// What a core needs from the configuration.
+#[derive(Clone, Copy, Debug)]
+pub struct CoreParams {
+    /// Instructions issued per cycle.
+    pub width: u32,
+    /// Warp slots (at most 128).
+    pub max_warps: u32,
+    /// Input queue entries.
+    pub input_queue: u32,
+    /// Quads rasterized per cycle.
+    pub raster_rate: u32,
+    /// ALU latency.
+    pub alu_latency: u32,
+    /// Texture unit latency after the data.
+    pub texture_latency: u32,
+    /// LDST queue entries.
+    pub ldst_queue: u32,
+    /// MSHRs of the scheduler-level cache.
+    pub sched_mshrs: u32,
+}
+
+impl ShaderCore {
+    /// A core in its reset state.
+    pub fn new(
+        id: usize,
+        p: CoreParams,
+        policy: Box<dyn LaunchPolicy>,
+        subset: Box<dyn PrioritySubset>,
+    ) -> Self {
+        // Policies that do not read the free-MSHR register may watch a cache
+        // with more entries than it holds; the register then stays at reset.
+        let track_mshrs = policy.reads_free_mshrs();
+        let free = FreeMshrReg::with_capacity(p.sched_mshrs.min(FREE_MSHR_MAX))
+            .expect("capacity clamped to the register");
+        let n = p.max_warps.min(128) as usize;
+        Self {
+            id,
+            width: p.width,
+            alu_latency: p.alu_latency as u64,
+            texture_latency: p.texture_latency as u64,
+            ldst_cap: p.ldst_queue as usize,
+            raster_rate: p.raster_rate,
+            sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy),
+            track_mshrs,
+            slots: vec![Warp::default(); n],
+            free_slots: if n == 128 {
+                u128::MAX
+            } else {
+                (1u128 << n) - 1
+            },
+            ready: 0,
+            ready_tex: 0,
+            wheel: vec![0; WHEEL],
+            far: BinaryHeap::new(),
+            ldst: VecDeque::with_capacity(p.ldst_queue as usize),
+            tile: None,
+            raster_next: 0,
+            active: 0,
+            rr: 0,
+            prio: PriorityEvents::default(),
+            signals: CoreSignals::default(),
+            last_progress: 0,
+            stats: CoreStats::default(),
+        }
+    }
+
+    /// Whether the core has no tile.
+    pub fn idle(&self) -> bool {
+        self.tile.is_none()
+    }
+
+    /// Give the core a tile (it must be idle).
+    pub fn assign_tile(&mut self, tile: usize, now: u64) {
+        debug_assert!(self.tile.is_none());
+        self.tile = Some(tile);
+        self.raster_next = 0;
+        self.last_progress = now;
+    }
+
+    /// The core's counters.
+    pub fn stats(&self) -> &CoreStats {
+        &self.stats
+    }
+
+    /// The last cycle the core made progress.
+    pub fn last_progress(&self) -> u64 {
+        self.last_progress
+    }
+
+    /// Phase 1 of cycle `now`.
+    pub fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) {
+        self.signals = CoreSignals::default();
+        self.prio = PriorityEvents::default();
+        let Some(ti) = self.tile else {
+            self.stats.idle_cycles += 1;
+            return;
+        };
+        let tile = &trace.tiles()[ti];
+        self.wakeups(now, tile);
+        self.raster(tile);
+        self.launch(now, tile);
+        self.issue(now, tile);
+        self.ldst(now, tile, mem);
+        self.stats.occupancy_sum += self.active as u64;
+    }
+
+    fn progress(&mut self, now: u64) {
+        self.last_progress = now;
+    }
+
+    /// Wake warp `slot` at cycle `at` (> the current cycle).
+    #[inline]
+    fn schedule(&mut self, now: u64, at: u64, slot: usize) {
+        if at - now < WHEEL as u64 {
+            self.wheel[(at as usize) & (WHEEL - 1)] |= 1u128 << slot;
+        } else {
+            self.far.push(Reverse((at, slot as u8)));
+        }
+    }
+
+    fn wakeups(&mut self, now: u64, tile: &Tile) {
+        while let Some(&Reverse((t, slot))) = self.far.peek() {
+            if t - now >= WHEEL as u64 {
+                break;
+            }
+            self.far.pop();
+            self.wheel[(t as usize) & (WHEEL - 1)] |= 1u128 << slot;
+        }
+        let i = (now as usize) & (WHEEL - 1);
+        let mut due = std::mem::take(&mut self.wheel[i]);
+        while due != 0 {
+            let s = due.trailing_zeros() as usize;
+            due &= due - 1;
+            let w = &mut self.slots[s];
+            if w.op >= w.n_ops {
+                let w = *w;
+                self.finish(s, &w);
+                self.progress(now);
+            } else if w.alu_left > 0 {
+                self.ready |= 1u128 << s;
+            } else {
+                // Starting a new instruction entry: decode it once.
+                let q = tile.quad(w.quad as usize).expect("quad in tile");
+                match q.entry(w.op as usize).expect("op in program") {
+                    Instr::Alu(n) => {
+                        w.alu_left = n;
+                        self.ready |= 1u128 << s;
+                    }
+                    Instr::Tex(_) => self.ready_tex |= 1u128 << s,
+                }
+            }
+        }
+    }
+
+    fn finish(&mut self, s: usize, w: &Warp) {
+        self.free_slots |= 1u128 << s;
+        self.active -= 1;
+        self.stats.warps_finished += 1;
+        self.signals.finished += 1;
+        if w.priority && !w.blocked {
+            self.prio.finished += 1;
+        }
+        if w.tex_done > 0 {
+            let c = w.priority as usize;
+            self.stats.warp_latency_sum[c] += w.lat_sum as f64 / w.tex_done as f64;
+            self.stats.warps_with_tex[c] += 1;
+        }
+    }
+
+    fn raster(&mut self, tile: &Tile) {
+        let n = tile.quad_count() as u32;
+        for _ in 0..self.raster_rate {
+            if self.raster_next >= n || self.sched.queue().is_full() {
+                break;
+            }
+            let q = tile.quad(self.raster_next as usize).expect("quad in tile");
+            if self.sched.enqueue(self.raster_next, q.x(), q.y()).is_err() {
+                break;
+            }
+            self.raster_next += 1;
+        }
+    }
+
+    fn launch(&mut self, now: u64, tile: &Tile) {
+        let have_slot = self.free_slots != 0;
+        let waiting = !self.sched.queue().is_empty();
+        if !(have_slot && waiting) {
+            // Nothing can launch: the decision logic is not evaluated (its
+            // waveform signals keep their last values, `launch` reads 0).
+            return;
+        }
+        let decision = self.sched.decide();
+        match self.sched.launch(decision, have_slot) {
+            Some((quad, class)) => {
+                let s = self.free_slots.trailing_zeros() as usize;
+                self.free_slots &= !(1u128 << s);
+                let priority = class == QueueClass::Priority;
+                let n_ops = tile
+                    .quad(quad as usize)
+                    .expect("quad in tile")
+                    .entry_count() as u32;
+                self.slots[s] = Warp {
+                    quad,
+                    op: 0,
+                    n_ops,
+                    alu_left: 0,
+                    priority,
+                    blocked: false,
+                    pending: 0,
+                    tex_start: 0,
+                    lat_sum: 0,
+                    tex_done: 0,
+                };
+                // The warp can issue from the next cycle.
+                self.schedule(now, now + 1, s);
+                self.active += 1;
+                self.stats.warps_launched += 1;
+                self.stats.priority_launches += priority as u64;
+                self.progress(now);
+            }
+            None => self.stats.held_cycles += 1,
+        }
+    }
+
+    fn issue(&mut self, now: u64, tile: &Tile) {
+        let n = self.slots.len() as u32;
+        let mut issued = 0;
+        let tex_ok = self.ldst.len() < self.ldst_cap;
+        let mut tex_taken = false;
+        let mut cand = self.ready | if tex_ok { self.ready_tex } else { 0 };
+        while issued < self.width && cand != 0 {
+            // Loose round-robin: the first candidate slot at or after `rr`.
+            let above = cand & (u128::MAX << self.rr);
+            let pick = if above != 0 { above } else { cand };
+            let s = pick.trailing_zeros() as usize;
+            let bit = 1u128 << s;
+            cand &= !bit;
+            let w = &mut self.slots[s];
+            if self.ready & bit != 0 {
+                w.alu_left -= 1;
+                if w.alu_left == 0 {
+                    w.op += 1;
+                }
+                self.ready &= !bit;
+                self.schedule(now, now + self.alu_latency, s);
+            } else {
+                let q = tile.quad(w.quad as usize).expect("quad in tile");
+                let Some(Instr::Tex(blocks)) = q.entry(w.op as usize) else {
+                    unreachable!("ready_tex warps wait on a texture instruction")
+                };
+                w.pending = blocks.len() as u32;
+                w.tex_start = now;
+                self.ldst.push_back(LdstEntry {
+                    slot: s as u8,
+                    quad: w.quad,
+                    op: w.op,
+                    next: 0,
+                });
+                self.ready_tex &= !bit;
+                self.stats.tex_instructions += 1;
+                // One texture instruction enters the LDST unit per cycle.
+                tex_taken = true;
+                cand &= self.ready;
+            }
+            self.stats.instructions += 1;
+            issued += 1;
+            self.rr = (s as u32 + 1) % n.max(1);
+        }
+        self.signals.issued = issued;
+        self.signals.tex_issued = tex_taken;
+        if issued > 0 {
+            self.progress(now);
+        }
+    }
+
+    fn ldst(&mut self, now: u64, tile: &Tile, mem: &mut MemorySystem) {
+        while let Some(e) = self.ldst.front_mut() {
+            let q = tile.quad(e.quad as usize).expect("quad in tile");
+            let Some(Instr::Tex(blocks)) = q.entry(e.op as usize) else {
+                unreachable!("LDST entries are texture instructions")
+            };
+            let mut refused = false;
+            while (e.next as usize) < blocks.len() {
+                let r = mem.access(now, self.id, blocks[e.next as usize], e.slot as u32);
+                if !r.accepted() {
+                    refused = true;
+                    break;
+                }
+                e.next += 1;
+                self.signals.ldst_presented += 1;
+                self.last_progress = now;
+                if matches!(r, Access::Miss | Access::SecondaryMiss) {
+                    let w = &mut self.slots[e.slot as usize];
+                    if !w.blocked {
+                        w.blocked = true;
+                        if w.priority {
+                            self.prio.blocked += 1;
+                        }
+                    }
+                }
+            }
+            if refused {
+                self.signals.ldst_refused = true;
+                break;
+            }
+            self.ldst.pop_front();
+        }
+    }
+
+    /// Phase 2 of cycle `now`: take the memory completions, then clock the
+    /// scheduler's registers.
+    pub fn complete(
+        &mut self,
+        now: u64,
+        mem: &mut MemorySystem,
+        scratch: &mut Vec<u32>,
+    ) -> Result<(), SimError> {
+        scratch.clear();
+        mem.take_completions(self.id, scratch);
+        for &tag in scratch.iter() {
+            let s = tag as usize;
+            if self.free_slots & (1u128 << s) != 0 {
+                return Err(SimError::Internal(format!(
+                    "core {}: completion for empty slot {s} at cycle {now}",
+                    self.id
+                )));
+            }
+            let w = &mut self.slots[s];
+            w.pending -= 1;
+            if w.pending == 0 {
+                let lat = now - w.tex_start;
+                w.lat_sum += lat;
+                w.tex_done += 1;
+                w.op += 1;
+                if w.blocked {
+                    w.blocked = false;
+                    if w.priority {
+                        self.prio.unblocked += 1;
+                    }
+                }
+                let at = now + self.texture_latency.max(1);
+                self.schedule(now, at, s);
+            }
+            self.last_progress = now;
+        }
+        let ev = mem.mshr_events(self.id);
+        let mshr = if self.track_mshrs {
+            MshrEvents {
+                allocs: ev.allocated as u8,
+                replies: ev.replied as u8,
+            }
+        } else {
+            MshrEvents::default()
+        };
+        self.sched
+            .clock(mshr, self.prio)
+            .map_err(|e| SimError::Register {
+                core: self.id,
+                cycle: now,
+                fault: e,
+            })?;
+        // Self-check: the register counts an entry free from its reply.
+        let free = self.sched.free_mshrs().free().get();
+        if self.track_mshrs && free != ev.free_from_reply() {
+            return Err(SimError::Internal(format!(
+                "core {}: free-MSHR register {free} != capacity - outstanding {} at cycle {now}",
+                self.id,
+                ev.free_from_reply()
+            )));
+        }
+        Ok(())
+    }
+
+    /// End of cycle: forget per-cycle signals; release the tile when every
+    /// warp of it has finished (fill and drain). Returns whether a tile
+    /// finished.
+    pub fn end_cycle(&mut self, trace: &Trace) -> bool {
+        self.sched.end_cycle();
+        let Some(ti) = self.tile else {
+            return false;
+        };
+        let n = trace.tiles()[ti].quad_count() as u32;
+        if self.raster_next == n
+            && self.sched.queue().is_empty()
+            && self.active == 0
+            && self.ldst.is_empty()
+        {
+            self.tile = None;
+            self.stats.tiles += 1;
+            return true;
+        }
+        false
+    }
+
+    /// A description of the core's state (for the watchdog).
+    pub fn describe(&self, trace: &Trace) -> String {
+        let tile = self
+            .tile
+            .map(|t| {
+                let tl = &trace.tiles()[t];
+                format!(
+                    "tile {} at ({}, {}), {} of {} quads rasterized",
+                    t,
+                    tl.tx(),
+                    tl.ty(),
+                    self.raster_next,
+                    tl.quad_count()
+                )
+            })
+            .unwrap_or_else(|| "no tile".into());
+        let blocked = (0..self.slots.len())
+            .filter(|&s| self.free_slots & (1u128 << s) == 0 && self.slots[s].blocked)
+            .count();
+        format!(
+            "core {}: {tile}; {} warps active ({} blocked, {} ready), queue {} priority + {} regular, LDST {} entries, free_mshrs {}, nonblocked_priority {}",
+            self.id,
+            self.active,
+            blocked,
+            (self.ready | self.ready_tex).count_ones(),
+            self.sched.queue().occupancy(QueueClass::Priority),
+            self.sched.queue().occupancy(QueueClass::Regular),
+            self.ldst.len(),
+            self.sched.free_mshrs().free(),
+            self.sched.nonblocked().count(),
+        )
+    }
+
+    /// Warps in flight (launched, not finished).
+    pub fn active(&self) -> u32 {
+        self.active
+    }
+}
+
+impl Traceable for ShaderCore {
+    fn trace<T: Tracer + ?Sized>(&self, t: &mut T) {
+        t.push_scope("scheduler");
+        self.sched.trace(t);
+        t.pop_scope();
+        let sw = (usize::BITS - self.slots.len().leading_zeros()).max(1);
+        t.signal("warps_active", sw, self.active as u64);
+        t.signal(
+            "warps_ready",
+            sw,
+            (self.ready | self.ready_tex).count_ones() as u64,
+        );
+        t.signal("issued", 5, self.signals.issued.min(31) as u64);
+        t.bit("tex_issued", self.signals.tex_issued);
+        let lw = (usize::BITS - self.ldst_cap.leading_zeros()).max(1);
+        t.signal("ldst_occupancy", lw, self.ldst.len() as u64);
+        t.signal(
+            "ldst_presented",
+            4,
+            self.signals.ldst_presented.min(15) as u64,
+        );
+        t.bit("ldst_refused", self.signals.ldst_refused);
+        t.signal("warps_finished", sw, self.signals.finished as u64);
+        t.signal(
+            "tile",
+            32,
+            self.tile.map(|t| t as u64 + 1).unwrap_or(0) & 0xffff_ffff,
+        );
+    }
+}

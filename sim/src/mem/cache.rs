@@ -1,0 +1,540 @@
+//! One set-associative, read-only, allocate-on-fill cache with an MSHR file.
+//!
+//! The cache decides what an access is (hit, primary miss, secondary miss or
+//! refused) and records the line when its fill arrives; moving requests and
+//! replies between levels, and the latencies of doing so, belong to
+//! [`MemorySystem`](super::MemorySystem).
+//!
+//! Rules, in the order they are applied to an access in cycle `now`:
+//! 1. every port already used this cycle -> [`Lookup::PortBusy`];
+//! 2. every MSHR occupied -> [`Lookup::Stall`], whatever the access would
+//!    have been, hits included (the paper's cache stall);
+//! 3. line present -> [`Lookup::Hit`] (refreshes its LRU position);
+//! 4. MSHR entry pending for the block -> [`Lookup::Secondary`] (merged), or
+//!    [`Lookup::MergeFull`] when the entry already has `1 + max_merged`
+//!    targets;
+//! 5. otherwise -> [`Lookup::Miss`]: an MSHR entry is allocated.
+//!
+//! Refused accesses use no port. Fills: a fill in cycle `r` writes the line at
+//! `r` (accesses from `r + 1` hit; accesses earlier in cycle `r` itself, which
+//! the owner processes before fills, merge and are delivered at `r`), returns
+//! the waiting targets, and the MSHR entry stays occupied through `r + 1`.
+//! Replacement: the victim is an invalid way if any, else the least recently
+//! used line of the set (lines are allocated only at fill, so a pending miss
+//! never owns a way; the LRU valid line is evicted whatever is pending).
+
+use super::config::{CacheConfig, MemConfigError};
+use super::mshr::{Merge, MshrFile};
+use super::stats::CacheStats;
+use wasp_waves::Tracer;
+
+/// Tag value of an invalid way (no block number reaches it: block numbers are
+/// byte addresses divided by 64).
+const INVALID: u64 = u64::MAX;
+
+/// What a cache did with one access.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lookup {
+    /// The line is present.
+    Hit,
+    /// Primary miss: an MSHR entry was allocated; the owner must send a
+    /// request for the block to the next level.
+    Miss,
+    /// Merged into the pending MSHR entry for the block.
+    Secondary,
+    /// Refused: every MSHR is occupied (cache stall).
+    Stall,
+    /// Refused: the pending entry for the block cannot take another target.
+    MergeFull,
+    /// Refused: every port was already used this cycle.
+    PortBusy,
+}
+
+impl Lookup {
+    /// The access was taken (it will complete); otherwise it must be retried.
+    #[inline]
+    pub fn accepted(self) -> bool {
+        matches!(self, Lookup::Hit | Lookup::Miss | Lookup::Secondary)
+    }
+}
+
+/// One cache.
+#[derive(Debug, Clone)]
+pub struct Cache {
+    cfg: CacheConfig,
+    set_mask: u64,
+    ways: usize,
+    /// `sets * ways` tags (the full block number), [`INVALID`] when empty.
+    tags: Vec<u64>,
+    /// Last-use stamp of each way, from `use_clock`.
+    last_use: Vec<u64>,
+    use_clock: u64,
+    mshr: MshrFile,
+    /// The cycle the per-cycle fields below describe.
+    cycle: u64,
+    ports_used: u32,
+    allocated: u32,
+    replied: u32,
+    hits_now: u32,
+    stalled: bool,
+    stats: CacheStats,
+}
+
+impl Cache {
+    /// An empty cache, or an error when `cfg` cannot be modelled.
+    pub fn new(cfg: &CacheConfig) -> Result<Self, MemConfigError> {
+        cfg.check("cache")?;
+        let sets = cfg.sets() as usize;
+        let ways = cfg.ways as usize;
+        Ok(Cache {
+            cfg: *cfg,
+            set_mask: sets as u64 - 1,
+            ways,
+            tags: vec![INVALID; sets * ways],
+            last_use: vec![0; sets * ways],
+            use_clock: 0,
+            mshr: MshrFile::new(cfg.mshrs, cfg.max_merged),
+            cycle: 0,
+            ports_used: 0,
+            allocated: 0,
+            replied: 0,
+            hits_now: 0,
+            stalled: false,
+            stats: CacheStats::default(),
+        })
+    }
+
+    /// The configuration.
+    #[inline]
+    pub fn config(&self) -> &CacheConfig {
+        &self.cfg
+    }
+
+    /// Move to cycle `now` (no-op when already there): per-cycle counters
+    /// restart and MSHR entries whose hold has ended are freed. Cycles must
+    /// not go backwards.
+    #[inline]
+    pub fn advance(&mut self, now: u64) {
+        if now == self.cycle {
+            return;
+        }
+        debug_assert!(now > self.cycle, "cache cycle went backwards");
+        self.cycle = now;
+        self.ports_used = 0;
+        self.allocated = 0;
+        self.replied = 0;
+        self.hits_now = 0;
+        self.stalled = false;
+        self.mshr.release(now);
+    }
+
+    /// Present one access for `block` in cycle `now`. `target` is stored in
+    /// the MSHR entry on a (primary or secondary) miss and handed back by
+    /// [`Cache::fill`].
+    #[inline]
+    pub fn access(&mut self, now: u64, block: u64, target: u32) -> Lookup {
+        self.advance(now);
+        if self.ports_used >= self.cfg.ports {
+            self.stats.port_busy += 1;
+            return Lookup::PortBusy;
+        }
+        if self.mshr.is_full() {
+            if !self.stalled {
+                self.stalled = true;
+                self.stats.stall_cycles += 1;
+            }
+            self.stats.stall_refusals += 1;
+            return Lookup::Stall;
+        }
+        let base = self.set_base(block);
+        if let Some(w) = find_way(&self.tags[base..base + self.ways], block) {
+            self.use_clock += 1;
+            self.last_use[base + w] = self.use_clock;
+            self.ports_used += 1;
+            self.hits_now += 1;
+            self.stats.accesses += 1;
+            self.stats.hits += 1;
+            return Lookup::Hit;
+        }
+        match self.mshr.merge(block, target, now) {
+            Merge::Merged => {
+                self.ports_used += 1;
+                self.stats.accesses += 1;
+                self.stats.secondary_misses += 1;
+                Lookup::Secondary
+            }
+            Merge::Full => {
+                self.stats.merge_stalls += 1;
+                Lookup::MergeFull
+            }
+            Merge::NotPending => {
+                self.mshr.allocate(block, target, now);
+                self.ports_used += 1;
+                self.allocated += 1;
+                self.stats.accesses += 1;
+                self.stats.misses += 1;
+                Lookup::Miss
+            }
+        }
+    }
+
+    /// The reply for `block` arrived in cycle `now`: write the line (evicting
+    /// the LRU line of its set if needed) and return the targets that waited
+    /// for it, primary first. Returns an empty slice if no miss was pending
+    /// for `block` (which the hierarchy never does).
+    #[inline]
+    pub fn fill(&mut self, now: u64, block: u64) -> &[u32] {
+        self.advance(now);
+        let Some(e) = self.mshr.complete(block, now) else {
+            debug_assert!(false, "fill of block {block} without a pending miss");
+            return &[];
+        };
+        self.replied += 1;
+        self.stats.fills += 1;
+        let base = self.set_base(block);
+        let set = &self.tags[base..base + self.ways];
+        debug_assert!(!set.contains(&block), "fill of a block already present");
+        let way = match set.iter().position(|&t| t == INVALID) {
+            Some(w) => w,
+            None => {
+                let stamps = &self.last_use[base..base + self.ways];
+                let mut best = 0;
+                for (w, &s) in stamps.iter().enumerate() {
+                    if s < stamps[best] {
+                        best = w;
+                    }
+                }
+                best
+            }
+        };
+        self.use_clock += 1;
+        self.tags[base + way] = block;
+        self.last_use[base + way] = self.use_clock;
+        let (targets, issued) = self.mshr.targets(e);
+        self.stats.miss_wait_sum += issued.iter().map(|&t| now - t).sum::<u64>();
+        targets
+    }
+
+    /// Whether the line of `block` is present (no side effect).
+    pub fn contains(&self, block: u64) -> bool {
+        let base = self.set_base(block);
+        find_way(&self.tags[base..base + self.ways], block).is_some()
+    }
+
+    /// Whether a miss for `block` is awaiting its reply.
+    pub fn is_pending(&self, block: u64) -> bool {
+        self.mshr.is_pending(block)
+    }
+
+    /// Add this cycle's MSHR occupancy to the integrals and count the cycle;
+    /// called once per cycle after the cycle's fills. (An owner may skip
+    /// cycles with no entry occupied, which add nothing to the integrals, and
+    /// then set `cycles` itself, as [`MemorySystem`](super::MemorySystem)
+    /// does.)
+    #[inline]
+    pub fn sample(&mut self, now: u64) {
+        self.advance(now);
+        let held = u64::from(self.mshr.occupied());
+        self.stats.mshr_held_sum += held;
+        self.stats.mshr_outstanding_sum += u64::from(self.mshr.outstanding());
+        self.stats.mshr_full_cycles += u64::from(self.mshr.is_full());
+        self.stats.cycles += 1;
+    }
+
+    /// MSHR entries.
+    #[inline]
+    pub fn mshr_capacity(&self) -> u32 {
+        self.mshr.capacity()
+    }
+
+    /// MSHR entries occupied (pending or in the cycle after their reply).
+    #[inline]
+    pub fn mshr_occupied(&self) -> u32 {
+        self.mshr.occupied()
+    }
+
+    /// MSHR entries awaiting their reply.
+    #[inline]
+    pub fn mshr_outstanding(&self) -> u32 {
+        self.mshr.outstanding()
+    }
+
+    /// MSHR entries allocated in the current cycle.
+    #[inline]
+    pub fn allocated_now(&self) -> u32 {
+        self.allocated
+    }
+
+    /// Fills (MSHR replies) in the current cycle.
+    #[inline]
+    pub fn replied_now(&self) -> u32 {
+        self.replied
+    }
+
+    /// Whether an access was refused for full MSHRs in the current cycle.
+    #[inline]
+    pub fn stalled_now(&self) -> bool {
+        self.stalled
+    }
+
+    /// The cycle the per-cycle values describe.
+    #[inline]
+    pub fn cycle(&self) -> u64 {
+        self.cycle
+    }
+
+    /// Counters so far.
+    #[inline]
+    pub fn stats(&self) -> &CacheStats {
+        &self.stats
+    }
+
+    /// Signals of this cache in cycle `now`: MSHR entries occupied and
+    /// pending, allocations and replies in the cycle, the full and stall bits
+    /// and the hits taken. Per-cycle values read as zero when the cache was
+    /// not advanced to `now` (nothing happened to it).
+    pub fn trace<T: Tracer + ?Sized>(&self, now: u64, t: &mut T) {
+        let wm = bits_for(u64::from(self.mshr.capacity()));
+        let wp = bits_for(u64::from(self.cfg.ports));
+        let cur = self.cycle == now;
+        let this_cycle = |v: u32| if cur { u64::from(v) } else { 0 };
+        t.signal("mshr_used", wm, u64::from(self.mshr.occupied()));
+        t.signal("mshr_pending", wm, u64::from(self.mshr.outstanding()));
+        t.signal("mshr_alloc", wp, this_cycle(self.allocated));
+        t.signal("mshr_reply", wm, this_cycle(self.replied));
+        t.signal("mshr_full", 1, u64::from(self.mshr.is_full()));
+        t.signal("stall", 1, u64::from(cur && self.stalled));
+        t.signal("hits", wp, this_cycle(self.hits_now));
+    }
+
+    #[inline]
+    fn set_base(&self, block: u64) -> usize {
+        (block & self.set_mask) as usize * self.ways
+    }
+}
+
+/// Way of `set` holding `block`. Scans every way without an early exit
+/// (a tag match is a CAM in hardware; here it avoids a data-dependent branch).
+#[inline]
+fn find_way(set: &[u64], block: u64) -> Option<usize> {
+    let mut found = usize::MAX;
+    for (w, &t) in set.iter().enumerate() {
+        if t == block {
+            found = w;
+        }
+    }
+    (found != usize::MAX).then_some(found)
+}
+
+/// Bits needed to hold every value in `0..=max` (at least 1).
+#[inline]
+pub(crate) fn bits_for(max: u64) -> u32 {
+    (64 - max.leading_zeros()).max(1)
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use std::collections::VecDeque;
+
+    pub(crate) fn cfg(
+        size: u32,
+        ways: u32,
+        mshrs: u32,
+        max_merged: u32,
+        ports: u32,
+    ) -> CacheConfig {
+        CacheConfig {
+            size_bytes: size,
+            ways,
+            line_bytes: 64,
+            hit_latency: 1,
+            mshrs,
+            max_merged,
+            ports,
+        }
+    }
+
+    #[test]
+    fn hit_miss_secondary_counts_on_a_script() {
+        // 4 sets x 2 ways.
+        let mut c = Cache::new(&cfg(512, 2, 4, 4, 4)).unwrap();
+        assert_eq!(c.access(1, 7, 0), Lookup::Miss);
+        assert_eq!(c.access(1, 7, 1), Lookup::Secondary);
+        assert_eq!(c.access(2, 8, 2), Lookup::Miss);
+        assert_eq!(c.access(3, 7, 3), Lookup::Secondary);
+        assert_eq!(c.fill(5, 7), &[0, 1, 3]);
+        assert!(c.contains(7) && !c.is_pending(7));
+        assert_eq!(c.access(6, 7, 4), Lookup::Hit);
+        assert_eq!(c.access(6, 8, 5), Lookup::Secondary);
+        assert_eq!(c.fill(6, 8), &[2, 5]);
+        assert_eq!(c.access(7, 8, 6), Lookup::Hit);
+        let s = c.stats();
+        assert_eq!(
+            (s.accesses, s.hits, s.misses, s.secondary_misses, s.fills),
+            (7, 2, 2, 3, 2)
+        );
+        // Waits: block 7 targets at 1,1,3 filled at 5; block 8 at 2,6 filled at 6.
+        assert_eq!(s.miss_wait_sum, 4 + 4 + 2 + 4);
+        assert_eq!(s.stall_cycles, 0);
+    }
+
+    #[test]
+    fn full_mshrs_refuse_hits_and_entries_are_held_one_cycle_after_reply() {
+        let mut c = Cache::new(&cfg(512, 2, 2, 4, 8)).unwrap();
+        assert_eq!(c.access(1, 1, 0), Lookup::Miss);
+        c.fill(2, 1); // line 1 present from cycle 3; entry held through 3
+        assert_eq!(c.access(3, 1, 1), Lookup::Hit);
+        assert_eq!(c.access(3, 2, 2), Lookup::Miss);
+        // Both entries occupied (one pending, one held through 3): stall.
+        assert_eq!(c.access(3, 1, 3), Lookup::Stall);
+        assert_eq!(c.access(3, 1, 4), Lookup::Stall);
+        assert!(c.stalled_now());
+        assert_eq!(c.mshr_occupied(), 2);
+        assert_eq!(c.mshr_outstanding(), 1);
+        // Cycle 4: the held entry is free again.
+        assert_eq!(c.access(4, 1, 5), Lookup::Hit);
+        assert_eq!(c.access(4, 3, 6), Lookup::Miss);
+        // Cycle 5: full with two pending misses; a hit to line 1 is refused.
+        assert_eq!(c.access(5, 1, 7), Lookup::Stall);
+        c.fill(5, 2);
+        assert_eq!(c.replied_now(), 1);
+        // r + 1 = 6: still full.
+        assert_eq!(c.access(6, 1, 8), Lookup::Stall);
+        assert_eq!(c.access(6, 2, 9), Lookup::Stall);
+        // r + 2 = 7: free.
+        assert_eq!(c.access(7, 2, 10), Lookup::Hit);
+        let s = c.stats();
+        assert_eq!(s.stall_cycles, 3, "cycles 3, 5 and 6, each once");
+        assert_eq!(s.stall_refusals, 5);
+        assert_eq!(s.port_busy, 0);
+    }
+
+    #[test]
+    fn merge_limit_and_ports() {
+        let mut c = Cache::new(&cfg(512, 2, 4, 1, 2)).unwrap();
+        assert_eq!(c.access(1, 5, 0), Lookup::Miss);
+        assert_eq!(c.access(1, 5, 1), Lookup::Secondary);
+        assert_eq!(c.access(1, 5, 2), Lookup::PortBusy);
+        assert_eq!(c.access(2, 5, 2), Lookup::MergeFull);
+        // A refused access uses no port.
+        assert_eq!(c.access(2, 6, 3), Lookup::Miss);
+        assert_eq!(c.access(2, 7, 4), Lookup::Miss);
+        assert_eq!(c.access(2, 8, 5), Lookup::PortBusy);
+        let s = c.stats();
+        assert_eq!((s.merge_stalls, s.port_busy, s.stall_cycles), (1, 2, 0));
+        assert_eq!(c.allocated_now(), 2);
+    }
+
+    #[test]
+    fn lru_evicts_least_recently_used_way() {
+        // 1 set x 2 ways: blocks 0, 1, 2 all map to it.
+        let mut c = Cache::new(&cfg(128, 2, 4, 4, 4)).unwrap();
+        let mut now = 1;
+        for b in [0, 1] {
+            assert_eq!(c.access(now, b, 0), Lookup::Miss);
+            c.fill(now + 1, b);
+            now += 3;
+        }
+        assert_eq!(c.access(now, 0, 0), Lookup::Hit); // 0 is now MRU
+        now += 1;
+        assert_eq!(c.access(now, 2, 0), Lookup::Miss);
+        c.fill(now + 1, 2); // evicts 1
+        now += 3;
+        assert!(c.contains(0) && c.contains(2) && !c.contains(1));
+        assert_eq!(c.access(now, 1, 0), Lookup::Miss);
+        c.fill(now + 1, 1); // evicts 0 (2 was used later)
+        assert!(c.contains(1) && c.contains(2) && !c.contains(0));
+    }
+
+    #[test]
+    fn sets_are_indexed_by_low_block_bits() {
+        // 2 sets x 1 way: even blocks to set 0, odd to set 1.
+        let mut c = Cache::new(&cfg(128, 1, 4, 0, 4)).unwrap();
+        c.access(1, 4, 0);
+        c.access(1, 5, 0);
+        c.fill(2, 4);
+        c.fill(2, 5);
+        assert!(c.contains(4) && c.contains(5));
+        c.access(4, 6, 0);
+        c.fill(5, 6);
+        assert!(c.contains(6) && c.contains(5) && !c.contains(4));
+    }
+
+    #[test]
+    fn occupancy_integral() {
+        let mut c = Cache::new(&cfg(512, 2, 4, 4, 4)).unwrap();
+        c.access(1, 1, 0);
+        c.sample(1);
+        c.access(2, 2, 0);
+        c.sample(2);
+        c.fill(3, 1);
+        c.sample(3); // 1 outstanding, 2 held
+        c.sample(4); // entry of 1 held through 4
+        c.sample(5); // freed
+        let s = c.stats();
+        assert_eq!(s.mshr_outstanding_sum, 1 + 2 + 1 + 1 + 1);
+        assert_eq!(s.mshr_held_sum, 1 + 2 + 2 + 2 + 1);
+        assert_eq!(s.cycles, 5);
+    }
+
+    /// The paper's worked example (Section III): a single-level cache with
+    /// 3 MSHRs in front of a main memory of fixed latency 7; 15 warps, one
+    /// access each, one warp presented per cycle from cycle 1, a refused warp
+    /// retried the next cycle. A miss in cycle `t` is answered at `t + 7`.
+    /// Returns (cycle the last warp finished, stall cycles, hits).
+    pub(crate) fn worked_example(order: &str) -> (u64, u64, u64) {
+        let mut c = Cache::new(&cfg(64 * 64, 4, 3, 16, 1)).unwrap();
+        let blocks: Vec<u64> = order.bytes().map(|b| u64::from(b - b'A')).collect();
+        let mut replies: VecDeque<(u64, u64)> = VecDeque::new();
+        let mut next = 0;
+        let mut done = 0;
+        let mut finish = 0;
+        let mut now = 1;
+        while done < blocks.len() {
+            if next < blocks.len() {
+                match c.access(now, blocks[next], next as u32) {
+                    Lookup::Hit => {
+                        done += 1;
+                        finish = now;
+                        next += 1;
+                    }
+                    Lookup::Miss => {
+                        replies.push_back((now + 7, blocks[next]));
+                        next += 1;
+                    }
+                    Lookup::Secondary => next += 1,
+                    Lookup::Stall => {}
+                    other => panic!("unexpected {other:?}"),
+                }
+            }
+            while replies.front().is_some_and(|&(at, _)| at == now) {
+                let (_, b) = replies.pop_front().unwrap();
+                done += c.fill(now, b).len();
+                finish = now;
+            }
+            now += 1;
+            assert!(now < 100);
+        }
+        (finish, c.stats().stall_cycles, c.stats().hits)
+    }
+
+    #[test]
+    fn paper_worked_example_scanline_order_takes_18_cycles() {
+        assert_eq!(worked_example("AAAAABBBBBCCCCC"), (18, 0, 0));
+    }
+
+    #[test]
+    fn paper_worked_example_all_priority_first_takes_21_cycles_with_6_stalls() {
+        // W0, W5, W10 first, then the rest: every later access hits (in
+        // scanline order every non-primary access is a secondary miss).
+        assert_eq!(worked_example("ABCAAAABBBBCCCC"), (21, 6, 12));
+    }
+
+    #[test]
+    fn paper_worked_example_wasp_spacing_takes_16_cycles() {
+        // W5 right after W0, W10 delayed until an MSHR is about to free.
+        assert_eq!(worked_example("ABAAAABBCBBCCCC").0, 16);
+        assert_eq!(worked_example("ABAAAABBCBBCCCC").1, 0);
+    }
+}

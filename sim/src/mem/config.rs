@@ -1,0 +1,354 @@
+//! Configuration of the memory hierarchy, its defaults (the paper's Table II
+//! plus wasp's stated choices) and the structural checks that
+//! [`MemorySystem::new`](super::MemorySystem::new) applies.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// Bytes in one memory block. Every address in the memory system is a block
+/// number (byte address / 64), and every cache line is one block.
+pub const BLOCK_BYTES: u32 = 64;
+
+/// Largest MSHR count the WaSP scheduler's 5-bit free-MSHR register can
+/// represent. The scheduler-level cache (L0 when present, else L1) should not
+/// have more MSHRs than this; the memory system itself does not enforce it
+/// (see [`MemConfig::scheduler_level`]).
+pub const FREE_MSHR_REGISTER_MAX: u32 = 31;
+
+/// Upper bound on `mshrs * (1 + max_merged)` for one cache, so that an absurd
+/// configuration is refused instead of allocating gigabytes.
+const MAX_TARGET_SLOTS: u64 = 1 << 22;
+/// Upper bound on the number of lines of one cache (a 1 GiB cache), same reason.
+const MAX_LINES: u64 = 1 << 24;
+
+/// One cache level.
+///
+/// All caches are read-only (texture data), allocate on fill, LRU per set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CacheConfig {
+    /// Capacity in bytes; must be a multiple of `line_bytes * ways`.
+    pub size_bytes: u32,
+    /// Associativity. `ways == size_bytes / line_bytes` is fully associative.
+    /// The number of sets must be a power of two.
+    pub ways: u32,
+    /// Line size in bytes; must be [`BLOCK_BYTES`] (64).
+    pub line_bytes: u32,
+    /// Latency in cycles, at least 1. A hit accepted in cycle `t` completes in
+    /// cycle `t + hit_latency - 1` (a 1-cycle cache answers in the cycle of the
+    /// access). On a miss the same latency is paid on the way back, between the
+    /// fill arriving from below and the data leaving upwards.
+    pub hit_latency: u32,
+    /// Miss Status Holding Registers: outstanding primary misses. When all are
+    /// occupied the cache accepts no access at all (cache stall).
+    pub mshrs: u32,
+    /// Secondary misses that can merge into one MSHR entry (the entry holds
+    /// `1 + max_merged` targets: the primary miss and up to `max_merged`
+    /// secondary ones). A further secondary miss is refused (a merge stall).
+    pub max_merged: u32,
+    /// Accesses accepted per cycle from the level above (or from the core).
+    pub ports: u32,
+}
+
+/// Main memory: an open-row DRAM model.
+///
+/// A block maps to bank `block % banks` (interleaving on the low block
+/// address bits) and, inside that bank, to row
+/// `(block / banks) / (row_bytes / 64)`. A request whose row is the bank's
+/// open row is a row hit; any other request (including the first one to a
+/// bank) is a row miss and opens its row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DramConfig {
+    /// Number of banks, at least 1.
+    pub banks: u32,
+    /// Bytes in one row of one bank; a non-zero multiple of 64.
+    pub row_bytes: u32,
+    /// Latency of a row hit in cycles, at least 1 (see the module docs for how
+    /// it adds to the end-to-end latency).
+    pub row_hit_latency: u32,
+    /// Latency of a row miss in cycles, at least 1.
+    pub row_miss_latency: u32,
+    /// Requests accepted per cycle; the others wait in the DRAM FIFO.
+    pub requests_per_cycle: u32,
+}
+
+/// The whole memory hierarchy.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct MemConfig {
+    /// GPU cores (each has its own L0 and L1 texture caches), at least 1.
+    pub cores: u32,
+    /// Per-core L0 texture cache, present at pipeline width 4.
+    pub l0: Option<CacheConfig>,
+    /// Per-core L1 texture cache.
+    pub l1: CacheConfig,
+    /// L2 shared by all cores.
+    pub l2: CacheConfig,
+    /// Main memory.
+    pub dram: DramConfig,
+    /// Ideal main memory: every L2 miss is answered with zero latency (in the
+    /// cycle of the miss, so an L2 miss costs exactly what an L2 hit costs) and
+    /// without bandwidth limit. The `dram` parameters are still validated but
+    /// otherwise unused. Used for the paper's motivation figure.
+    pub ideal_memory: bool,
+}
+
+impl MemConfig {
+    /// Defaults from the paper's Table II, with wasp's own choices where the
+    /// paper is silent. Paper values: 4 texture caches (one per core) of 64 KiB,
+    /// 4-way, 64-byte lines, 1 cycle; L2 1 MiB, 8-way, 64-byte lines, 18 cycles;
+    /// main memory latency 50-100 cycles; at pipeline width 4 a 0.5 KiB L0
+    /// with two ports per core.
+    ///
+    /// wasp's choices (not the paper's):
+    /// - L0: fully associative (8 ways = 8 lines), 1-cycle latency.
+    /// - MSHRs: L0 16, L1 16, L2 64. The scheduler-level cache (L0 at width 4,
+    ///   L1 at width 2) must fit the 5-bit free-MSHR register, so at most
+    ///   [`FREE_MSHR_REGISTER_MAX`] (31); 16 leaves room for the paper's
+    ///   FreeMSHR-10 heuristic and WaSP thresholds to be meaningful.
+    /// - Merging: 16 secondary misses per L0/L1 entry, 8 per L2 entry (an L2
+    ///   entry's targets are L1s, at most one pending request per L1 and block,
+    ///   so 8 never binds with 4 cores).
+    /// - Ports: L0 2 (paper), L1 1 (the paper adds the two-port L0 because
+    ///   the L1 cannot feed a width-4 pipeline), L2 4 (one request per core
+    ///   per cycle, so L2 bandwidth is not what limits the L0/L1 MSHRs).
+    /// - DRAM: 8 banks, 2 KiB rows, row hit 50 cycles, row miss 100 cycles (the
+    ///   two ends of the paper's 50-100 range), one request accepted per cycle.
+    pub fn paper(width4: bool) -> Self {
+        let l0 = CacheConfig {
+            size_bytes: 512,
+            ways: 8,
+            line_bytes: BLOCK_BYTES,
+            hit_latency: 1,
+            mshrs: 16,
+            max_merged: 16,
+            ports: 2,
+        };
+        MemConfig {
+            cores: 4,
+            l0: width4.then_some(l0),
+            l1: CacheConfig {
+                size_bytes: 64 * 1024,
+                ways: 4,
+                line_bytes: BLOCK_BYTES,
+                hit_latency: 1,
+                mshrs: 16,
+                max_merged: 16,
+                ports: 1,
+            },
+            l2: CacheConfig {
+                size_bytes: 1024 * 1024,
+                ways: 8,
+                line_bytes: BLOCK_BYTES,
+                hit_latency: 18,
+                mshrs: 64,
+                max_merged: 8,
+                ports: 4,
+            },
+            dram: DramConfig {
+                banks: 8,
+                row_bytes: 2048,
+                row_hit_latency: 50,
+                row_miss_latency: 100,
+                requests_per_cycle: 1,
+            },
+            ideal_memory: false,
+        }
+    }
+
+    /// The cache the warp scheduler watches: L0 when present, else L1.
+    pub fn scheduler_level(&self) -> &CacheConfig {
+        self.l0.as_ref().unwrap_or(&self.l1)
+    }
+
+    /// Structural checks: every value the memory system cannot model is
+    /// refused with a message naming the field.
+    pub fn check(&self) -> Result<(), MemConfigError> {
+        if self.cores == 0 {
+            return Err(MemConfigError::new("cores must be at least 1"));
+        }
+        if let Some(l0) = &self.l0 {
+            l0.check("l0")?;
+        }
+        self.l1.check("l1")?;
+        self.l2.check("l2")?;
+        self.dram.check()
+    }
+}
+
+impl CacheConfig {
+    /// Number of sets (valid only after [`CacheConfig::check`]).
+    pub fn sets(&self) -> u32 {
+        self.size_bytes / self.line_bytes / self.ways
+    }
+
+    /// Structural checks; `name` prefixes the error message.
+    pub fn check(&self, name: &str) -> Result<(), MemConfigError> {
+        let err = |msg: String| Err(MemConfigError(format!("{name}: {msg}")));
+        if self.line_bytes != BLOCK_BYTES {
+            return err(format!(
+                "line_bytes is {} but the memory system uses {BLOCK_BYTES}-byte blocks",
+                self.line_bytes
+            ));
+        }
+        if self.size_bytes == 0 {
+            return err("size_bytes must not be zero".into());
+        }
+        if self.ways == 0 {
+            return err("ways must not be zero".into());
+        }
+        if self.size_bytes % self.line_bytes != 0 {
+            return err(format!(
+                "size_bytes {} is not a multiple of line_bytes {}",
+                self.size_bytes, self.line_bytes
+            ));
+        }
+        let lines = self.size_bytes / self.line_bytes;
+        if u64::from(lines) > MAX_LINES {
+            return err(format!(
+                "{lines} lines is more than the supported {MAX_LINES}"
+            ));
+        }
+        if self.ways > lines {
+            return err(format!("ways {} exceeds the {lines} lines", self.ways));
+        }
+        if lines % self.ways != 0 {
+            return err(format!(
+                "{lines} lines do not divide into {} ways",
+                self.ways
+            ));
+        }
+        let sets = lines / self.ways;
+        if !sets.is_power_of_two() {
+            return err(format!("set count {sets} is not a power of two"));
+        }
+        if self.hit_latency == 0 {
+            return err("hit_latency must be at least 1".into());
+        }
+        if self.mshrs == 0 {
+            return err("mshrs must be at least 1".into());
+        }
+        if self.ports == 0 {
+            return err("ports must be at least 1".into());
+        }
+        let slots = u64::from(self.mshrs) * (1 + u64::from(self.max_merged));
+        if slots > MAX_TARGET_SLOTS {
+            return err(format!(
+                "mshrs x (1 + max_merged) = {slots} is more than the supported {MAX_TARGET_SLOTS}"
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl DramConfig {
+    /// Structural checks.
+    pub fn check(&self) -> Result<(), MemConfigError> {
+        let err = |msg: String| Err(MemConfigError(format!("dram: {msg}")));
+        if self.banks == 0 {
+            return err("banks must be at least 1".into());
+        }
+        if self.row_bytes == 0 || self.row_bytes % BLOCK_BYTES != 0 {
+            return err(format!(
+                "row_bytes {} must be a non-zero multiple of {BLOCK_BYTES}",
+                self.row_bytes
+            ));
+        }
+        if self.row_hit_latency == 0 || self.row_miss_latency == 0 {
+            return err("row_hit_latency and row_miss_latency must be at least 1 \
+                 (use ideal_memory for a zero-latency memory)"
+                .into());
+        }
+        if self.requests_per_cycle == 0 {
+            return err("requests_per_cycle must be at least 1".into());
+        }
+        Ok(())
+    }
+}
+
+/// A configuration the memory system cannot model; the message names the
+/// offending field.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct MemConfigError(pub String);
+
+impl MemConfigError {
+    fn new(msg: &str) -> Self {
+        MemConfigError(msg.to_string())
+    }
+}
+
+impl fmt::Display for MemConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "invalid memory configuration: {}", self.0)
+    }
+}
+
+impl std::error::Error for MemConfigError {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paper_defaults_are_valid_and_match_table_ii() {
+        for width4 in [false, true] {
+            let c = MemConfig::paper(width4);
+            c.check().unwrap();
+            assert_eq!(c.l0.is_some(), width4);
+            assert_eq!(c.cores, 4);
+            assert_eq!(
+                (c.l1.size_bytes, c.l1.ways, c.l1.line_bytes),
+                (65536, 4, 64)
+            );
+            assert_eq!(c.l1.hit_latency, 1);
+            assert_eq!(
+                (c.l2.size_bytes, c.l2.ways, c.l2.hit_latency),
+                (1 << 20, 8, 18)
+            );
+            assert!(c.dram.row_hit_latency >= 50 && c.dram.row_miss_latency <= 100);
+            assert!(c.scheduler_level().mshrs <= FREE_MSHR_REGISTER_MAX);
+        }
+        let l0 = MemConfig::paper(true).l0.unwrap();
+        assert_eq!((l0.size_bytes, l0.ports), (512, 2));
+        assert_eq!(l0.sets(), 1);
+        assert_eq!(MemConfig::paper(false).l1.sets(), 256);
+    }
+
+    #[test]
+    fn impossible_values_are_refused_with_a_message() {
+        let good = MemConfig::paper(true);
+        type Mutate = fn(&mut MemConfig);
+        let cases: Vec<(&str, Mutate)> = vec![
+            ("cores", |c| c.cores = 0),
+            ("l1: size_bytes", |c| c.l1.size_bytes = 0),
+            ("l1: ways must", |c| c.l1.ways = 0),
+            ("l2: line_bytes", |c| c.l2.line_bytes = 128),
+            ("power of two", |c| c.l1.size_bytes = 3 * 4 * 64),
+            ("exceeds", |c| c.l0.as_mut().unwrap().ways = 16),
+            ("l0: mshrs", |c| c.l0.as_mut().unwrap().mshrs = 0),
+            ("ports", |c| c.l2.ports = 0),
+            ("hit_latency", |c| c.l1.hit_latency = 0),
+            ("not a multiple", |c| c.l1.size_bytes = 65536 + 32),
+            ("divide", |c| c.l1.ways = 3),
+            ("max_merged", |c| c.l2.max_merged = u32::MAX),
+            ("banks", |c| c.dram.banks = 0),
+            ("row_bytes", |c| c.dram.row_bytes = 100),
+            ("ideal_memory", |c| c.dram.row_hit_latency = 0),
+            ("requests_per_cycle", |c| c.dram.requests_per_cycle = 0),
+        ];
+        for (needle, mutate) in cases {
+            let mut c = good.clone();
+            mutate(&mut c);
+            let e = c.check().expect_err(needle);
+            assert!(e.to_string().contains(needle), "{needle}: {e}");
+        }
+    }
+
+    #[test]
+    fn config_round_trips_through_json() {
+        let c = MemConfig::paper(true);
+        let s = serde_json::to_string(&c).unwrap();
+        let back: MemConfig = serde_json::from_str(&s).unwrap();
+        assert_eq!(back, c);
+    }
+}

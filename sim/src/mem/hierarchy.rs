@@ -1,0 +1,1122 @@
+//! The memory hierarchy of the GPU: per-core L0 (optional) and L1 texture
+//! caches, a shared L2, main memory, and the queues and delays between them.
+//! See the [module docs](super) for the timing model.
+
+use super::cache::{bits_for, Cache, Lookup};
+use super::config::{MemConfig, MemConfigError};
+use super::dram::Dram;
+use super::stats::{CacheStats, CoreMemStats, MemStats};
+use std::collections::VecDeque;
+use wasp_waves::Tracer;
+
+/// What happened to one access presented by a core.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    /// Hit in the core's first level; completes after its hit latency.
+    Hit,
+    /// Primary miss: an MSHR entry was allocated, the block is requested
+    /// below; completes when the fill arrives.
+    Miss,
+    /// Merged into the MSHR entry of an earlier miss to the same block;
+    /// completes with that entry's fill.
+    SecondaryMiss,
+    /// Refused, retry later: every MSHR of the first level is occupied (cache
+    /// stall; counted in `stall_cycles`), or the block's MSHR entry cannot
+    /// merge another target (counted in `merge_stalls`).
+    Stall,
+    /// Refused, retry later: every port of the first level was used this cycle.
+    PortBusy,
+}
+
+impl Access {
+    /// The access was taken and its tag will be returned exactly once by
+    /// [`MemorySystem::take_completions`]; otherwise it must be retried.
+    #[inline]
+    pub fn accepted(self) -> bool {
+        matches!(self, Access::Hit | Access::Miss | Access::SecondaryMiss)
+    }
+}
+
+/// What the WaSP scheduler's free-MSHR register sees of the scheduler-level
+/// cache (L0 when present, else L1) of one core, for the last cycle given to
+/// [`MemorySystem::access`] or [`MemorySystem::tick`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MshrEvents {
+    /// MSHR entries of the cache.
+    pub capacity: u32,
+    /// Entries allocated (primary misses) in this cycle.
+    pub allocated: u32,
+    /// Entries whose reply (fill) arrived in this cycle.
+    pub replied: u32,
+    /// Entries occupied as the cache sees them: awaiting a reply, or in the
+    /// cycle after their reply. The cache stalls when this equals `capacity`.
+    pub occupied: u32,
+    /// Entries awaiting their reply (outstanding misses).
+    pub outstanding: u32,
+}
+
+impl MshrEvents {
+    /// Free entries as the scheduler's register counts them (an entry is free
+    /// from its reply): `capacity - outstanding`.
+    #[inline]
+    pub fn free_from_reply(&self) -> u32 {
+        self.capacity - self.outstanding
+    }
+
+    /// Free entries as the cache sees them: `capacity - occupied`.
+    #[inline]
+    pub fn free(&self) -> u32 {
+        self.capacity - self.occupied
+    }
+}
+
+/// A request waiting to be presented to the next level.
+#[derive(Debug, Clone, Copy)]
+struct Request {
+    /// First cycle it may be presented.
+    ready: u64,
+    block: u64,
+}
+
+/// A block arriving at a level from below at a given cycle.
+#[derive(Debug, Clone, Copy)]
+struct Delivery {
+    at: u64,
+    block: u64,
+}
+
+/// A core's private levels and the queues around them.
+#[derive(Debug, Clone)]
+struct CoreMem {
+    l0: Option<Cache>,
+    l1: Cache,
+    /// L0 primary misses waiting to be presented to the L1 (only with L0).
+    to_l1: VecDeque<Request>,
+    /// L1 primary misses waiting to be presented to the L2.
+    to_l2: VecDeque<Request>,
+    /// Replies of the L1 travelling to the L0 (only with L0).
+    to_l0: VecDeque<Delivery>,
+    /// Tags and the cycle they complete, in completion-cycle order.
+    completing: VecDeque<(u64, u32)>,
+    /// Tags completed and not yet taken.
+    ready: Vec<u32>,
+    /// The L2 refused this core's head request this cycle (arbitration scratch).
+    l2_blocked: bool,
+}
+
+impl CoreMem {
+    #[inline]
+    fn first_level(&self) -> &Cache {
+        self.l0.as_ref().unwrap_or(&self.l1)
+    }
+
+    /// No MSHR entry occupied and nothing queued or completing: a tick has
+    /// nothing to do for this core (its caches' per-cycle values are then
+    /// simply not advanced; readers check the cycle they describe).
+    #[inline]
+    fn is_quiet(&self) -> bool {
+        self.l1.mshr_occupied() == 0
+            && self.l0.as_ref().map_or(true, |l0| l0.mshr_occupied() == 0)
+            && self.to_l1.is_empty()
+            && self.to_l2.is_empty()
+            && self.to_l0.is_empty()
+            && self.completing.is_empty()
+    }
+}
+
+/// Record that `tag` completes in cycle `at` (never before `now`): straight
+/// into `ready` when due now and nothing earlier is waiting, else in order.
+#[inline]
+fn complete(
+    completing: &mut VecDeque<(u64, u32)>,
+    ready: &mut Vec<u32>,
+    now: u64,
+    at: u64,
+    tag: u32,
+) {
+    if at <= now && completing.is_empty() {
+        ready.push(tag);
+    } else {
+        completing.push_back((at, tag));
+    }
+}
+
+/// L2 reply to the L1 of a core.
+#[derive(Debug, Clone, Copy)]
+struct L2Reply {
+    at: u64,
+    core: u32,
+    block: u64,
+}
+
+/// The memory hierarchy.
+///
+/// Per cycle `now` the owner calls, in this order: [`access`](Self::access)
+/// for that cycle's accesses (any cores, any order; the order within a core
+/// is the order of its ports), [`tick`](Self::tick) once, then any of
+/// [`take_completions`](Self::take_completions),
+/// [`mshr_events`](Self::mshr_events), [`trace`](Self::trace). Cycles must
+/// not go backwards and `tick` should be called for every cycle; cycles in
+/// which [`is_idle`](Self::is_idle) holds and no access is made may be
+/// skipped without changing any timing (only the `cycles` counters of
+/// [`stats`](Self::stats), which count ticks, see the difference).
+///
+/// Steady state allocates nothing: every queue is preallocated to its bound
+/// (the MSHR counts), the MSHR files and tag arrays are flat vectors, and
+/// replies travel in FIFOs sorted by construction (fixed latency per link).
+#[derive(Debug, Clone)]
+pub struct MemorySystem {
+    cfg: MemConfig,
+    cores: Vec<CoreMem>,
+    l2: Cache,
+    /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
+    to_l1: VecDeque<L2Reply>,
+    dram: Dram,
+    /// Last cycle seen.
+    now: u64,
+    /// Calls of `tick` so far (the `cycles` of every cache's stats).
+    ticks: u64,
+}
+
+impl MemorySystem {
+    /// An empty hierarchy (all caches invalid, all DRAM banks closed), or an
+    /// error naming the first value that cannot be modelled.
+    pub fn new(cfg: &MemConfig) -> Result<Self, MemConfigError> {
+        cfg.check()?;
+        let first = cfg.scheduler_level();
+        let n_cores = cfg.cores as usize;
+        let mut cores = Vec::with_capacity(n_cores);
+        for _ in 0..n_cores {
+            let l0 = cfg.l0.as_ref().map(Cache::new).transpose()?;
+            let l1_mshrs = cfg.l1.mshrs as usize;
+            let l0_mshrs = cfg.l0.map_or(0, |c| c.mshrs as usize);
+            // Bound on tags completing at once: every hit still in its latency
+            // plus every target of every MSHR entry.
+            let completing = first.ports as usize * first.hit_latency as usize
+                + first.mshrs as usize * (1 + first.max_merged as usize);
+            cores.push(CoreMem {
+                l0,
+                l1: Cache::new(&cfg.l1)?,
+                to_l1: VecDeque::with_capacity(l0_mshrs),
+                to_l2: VecDeque::with_capacity(l1_mshrs),
+                to_l0: VecDeque::with_capacity(l0_mshrs),
+                completing: VecDeque::with_capacity(completing),
+                ready: Vec::with_capacity(completing),
+                l2_blocked: false,
+            });
+        }
+        Ok(MemorySystem {
+            cfg: cfg.clone(),
+            cores,
+            l2: Cache::new(&cfg.l2)?,
+            to_l1: VecDeque::with_capacity(n_cores * cfg.l1.mshrs as usize),
+            dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
+            now: 0,
+            ticks: 0,
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &MemConfig {
+        &self.cfg
+    }
+
+    /// Number of cores.
+    pub fn cores(&self) -> usize {
+        self.cores.len()
+    }
+
+    /// Present one access of core `core` for `block` to its first level (L0
+    /// if present, else L1) in cycle `now`. `tag` is the requester's id,
+    /// returned by [`take_completions`](Self::take_completions) exactly once
+    /// if the access is accepted; a refused access leaves no trace but its
+    /// counters and must be presented again. Panics if `core` is out of range.
+    #[inline]
+    pub fn access(&mut self, now: u64, core: usize, block: u64, tag: u32) -> Access {
+        debug_assert!(now >= self.now, "access in a past cycle");
+        self.now = now;
+        let c = &mut self.cores[core];
+        let (first, queue) = match c.l0.as_mut() {
+            Some(l0) => (l0, &mut c.to_l1),
+            None => (&mut c.l1, &mut c.to_l2),
+        };
+        match first.access(now, block, tag) {
+            Lookup::Hit => {
+                let at = now + u64::from(first.config().hit_latency) - 1;
+                complete(&mut c.completing, &mut c.ready, now, at, tag);
+                Access::Hit
+            }
+            Lookup::Miss => {
+                queue.push_back(Request {
+                    ready: now + 1,
+                    block,
+                });
+                Access::Miss
+            }
+            Lookup::Secondary => Access::SecondaryMiss,
+            Lookup::Stall | Lookup::MergeFull => Access::Stall,
+            Lookup::PortBusy => Access::PortBusy,
+        }
+    }
+
+    /// Advance everything by cycle `now`, after that cycle's accesses: the L1s
+    /// take L0 requests, the L2 takes L1 requests (round robin over cores),
+    /// the DRAM accepts requests, then replies due at `now` fill the L2, the
+    /// L1s and the L0s in that order, and tags completing at `now` become
+    /// available to [`take_completions`](Self::take_completions).
+    pub fn tick(&mut self, now: u64) {
+        debug_assert!(now >= self.now, "tick in a past cycle");
+        self.now = now;
+        self.ticks += 1;
+        let has_l0 = self.cfg.l0.is_some();
+        let n = self.cores.len();
+
+        // L0 -> L1 requests. A quiet core (no MSHR occupied, nothing queued
+        // or completing) has nothing to do this cycle and is skipped.
+        let mut l2_candidates = 0;
+        for c in &mut self.cores {
+            c.l2_blocked = false;
+            if c.is_quiet() {
+                continue;
+            }
+            if let Some(l0) = c.l0.as_mut() {
+                l0.advance(now);
+            }
+            c.l1.advance(now);
+            if has_l0 {
+                let l1_reply = now + u64::from(c.l1.config().hit_latency) - 1;
+                while let Some(&r) = c.to_l1.front() {
+                    if r.ready > now {
+                        break;
+                    }
+                    match c.l1.access(now, r.block, 0) {
+                        Lookup::Hit => c.to_l0.push_back(Delivery {
+                            at: l1_reply,
+                            block: r.block,
+                        }),
+                        Lookup::Miss => c.to_l2.push_back(Request {
+                            ready: now + 1,
+                            block: r.block,
+                        }),
+                        Lookup::Secondary => {}
+                        Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy => break,
+                    }
+                    c.to_l1.pop_front();
+                }
+            }
+            l2_candidates += usize::from(c.to_l2.front().is_some_and(|r| r.ready <= now));
+        }
+
+        // L1 -> L2 requests, round robin over cores (core `now % cores` first,
+        // so the order does not depend on which cycles were ticked), one head
+        // per core per round, until the L2's ports are used or no head can go.
+        let first = if l2_candidates > 0 {
+            (now % n as u64) as usize
+        } else {
+            0
+        };
+        let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
+        let mut progress = l2_candidates > 0;
+        'arbitrate: while progress {
+            progress = false;
+            let mut k = first;
+            for _ in 0..n {
+                let c = &mut self.cores[k];
+                k = if k + 1 >= n { 0 } else { k + 1 };
+                if c.l2_blocked {
+                    continue;
+                }
+                let Some(&r) = c.to_l2.front() else { continue };
+                if r.ready > now {
+                    continue;
+                }
+                let core = if k == 0 { n - 1 } else { k - 1 } as u32;
+                match self.l2.access(now, r.block, core) {
+                    Lookup::Hit => self.to_l1.push_back(L2Reply {
+                        at: l2_reply,
+                        core,
+                        block: r.block,
+                    }),
+                    Lookup::Miss => self.dram.request(now, r.block),
+                    Lookup::Secondary => {}
+                    Lookup::PortBusy => break 'arbitrate,
+                    Lookup::Stall | Lookup::MergeFull => {
+                        c.l2_blocked = true;
+                        continue;
+                    }
+                }
+                c.to_l2.pop_front();
+                progress = true;
+            }
+        }
+
+        // Main memory: accept, then fill the L2 with the replies due now.
+        self.dram.accept(now);
+        while let Some(block) = self.dram.pop_reply(now) {
+            for &core in self.l2.fill(now, block) {
+                self.to_l1.push_back(L2Reply {
+                    at: l2_reply,
+                    core,
+                    block,
+                });
+            }
+        }
+        if self.l2.mshr_occupied() > 0 {
+            self.l2.sample(now);
+        }
+
+        // L2 replies fill the L1s.
+        while let Some(&r) = self.to_l1.front() {
+            if r.at > now {
+                break;
+            }
+            self.to_l1.pop_front();
+            let c = &mut self.cores[r.core as usize];
+            let at = now + u64::from(c.l1.config().hit_latency) - 1;
+            let targets = c.l1.fill(now, r.block);
+            if has_l0 {
+                // Each target is one L0 request (one per L0 miss).
+                for _ in targets {
+                    c.to_l0.push_back(Delivery { at, block: r.block });
+                }
+            } else {
+                for &tag in targets {
+                    complete(&mut c.completing, &mut c.ready, now, at, tag);
+                }
+            }
+        }
+
+        // L1 replies fill the L0s; tags due now complete.
+        for c in &mut self.cores {
+            if c.is_quiet() {
+                continue;
+            }
+            if let Some(l0) = c.l0.as_mut() {
+                let at = now + u64::from(l0.config().hit_latency) - 1;
+                while let Some(&d) = c.to_l0.front() {
+                    if d.at > now {
+                        break;
+                    }
+                    c.to_l0.pop_front();
+                    for &tag in l0.fill(now, d.block) {
+                        complete(&mut c.completing, &mut c.ready, now, at, tag);
+                    }
+                }
+                if l0.mshr_occupied() > 0 {
+                    l0.sample(now);
+                }
+            }
+            if c.l1.mshr_occupied() > 0 {
+                c.l1.sample(now);
+            }
+            while let Some(&(at, tag)) = c.completing.front() {
+                if at > now {
+                    break;
+                }
+                c.completing.pop_front();
+                c.ready.push(tag);
+            }
+        }
+    }
+
+    /// Append to `out` the tags of `core` completed by the last
+    /// [`tick`](Self::tick) (and any not taken before), in completion order:
+    /// by completion cycle, then hits in access order before fills, fills in
+    /// the order they arrived, each fill's targets in access order.
+    #[inline]
+    pub fn take_completions(&mut self, core: usize, out: &mut Vec<u32>) {
+        let c = &mut self.cores[core];
+        out.extend_from_slice(&c.ready);
+        c.ready.clear();
+    }
+
+    /// The scheduler-level cache's MSHR events of `core` in the last cycle.
+    #[inline]
+    pub fn mshr_events(&self, core: usize) -> MshrEvents {
+        let f = self.cores[core].first_level();
+        let current = f.cycle() == self.now;
+        MshrEvents {
+            capacity: f.mshr_capacity(),
+            allocated: if current { f.allocated_now() } else { 0 },
+            replied: if current { f.replied_now() } else { 0 },
+            occupied: f.mshr_occupied(),
+            outstanding: f.mshr_outstanding(),
+        }
+    }
+
+    /// Nothing in flight anywhere: no MSHR entry occupied (awaiting its
+    /// reply or in the cycle after it), no request or reply travelling, no
+    /// tag completing or completed and not taken. While this holds, ticks
+    /// change nothing but the tick count.
+    pub fn is_idle(&self) -> bool {
+        self.cores
+            .iter()
+            .all(|c| c.is_quiet() && c.ready.is_empty())
+            && self.l2.mshr_occupied() == 0
+            && self.to_l1.is_empty()
+            && self.dram.is_idle()
+    }
+
+    /// Counters of every level so far.
+    pub fn stats(&self) -> MemStats {
+        // Idle caches are not sampled; every cache lives through every tick.
+        let with_cycles = |c: &Cache| CacheStats {
+            cycles: self.ticks,
+            ..*c.stats()
+        };
+        let per_core: Vec<CoreMemStats> = self
+            .cores
+            .iter()
+            .map(|c| CoreMemStats {
+                l0: c.l0.as_ref().map(with_cycles),
+                l1: with_cycles(&c.l1),
+            })
+            .collect();
+        let mut l0 = self.cfg.l0.map(|_| CacheStats::default());
+        let mut l1 = CacheStats::default();
+        for c in &per_core {
+            if let (Some(sum), Some(s)) = (l0.as_mut(), c.l0.as_ref()) {
+                sum.add(s);
+            }
+            l1.add(&c.l1);
+        }
+        MemStats {
+            l0,
+            l1,
+            l2: with_cycles(&self.l2),
+            dram: *self.dram.stats(),
+            per_core,
+        }
+    }
+
+    /// Signals of `core`'s private levels in the last cycle: scopes `l0` (when
+    /// present) and `l1`, each with the cache's signals (see
+    /// [`Cache::trace`]) plus `miss_queue`, its requests waiting for the next
+    /// level. The caller opens the core's scope.
+    pub fn trace<T: Tracer + ?Sized>(&self, core: usize, t: &mut T) {
+        let c = &self.cores[core];
+        if let Some(l0) = &c.l0 {
+            t.push_scope("l0");
+            l0.trace(self.now, t);
+            let w = bits_for(u64::from(l0.mshr_capacity()));
+            t.signal("miss_queue", w, c.to_l1.len() as u64);
+            t.pop_scope();
+        }
+        t.push_scope("l1");
+        c.l1.trace(self.now, t);
+        let w = bits_for(u64::from(c.l1.mshr_capacity()));
+        t.signal("miss_queue", w, c.to_l2.len() as u64);
+        t.pop_scope();
+    }
+
+    /// Signals of the shared levels in the last cycle: scopes `l2` (the
+    /// cache's signals) and `dram` (FIFO depth, requests in flight, requests
+    /// accepted). The caller opens the enclosing scope.
+    pub fn trace_shared<T: Tracer + ?Sized>(&self, t: &mut T) {
+        t.push_scope("l2");
+        self.l2.trace(self.now, t);
+        t.pop_scope();
+        t.push_scope("dram");
+        self.dram.trace(self.now, t);
+        t.pop_scope();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mem::config::{CacheConfig, DramConfig};
+    use proptest::prelude::*;
+
+    fn small_cache(
+        size: u32,
+        ways: u32,
+        hit: u32,
+        mshrs: u32,
+        merged: u32,
+        ports: u32,
+    ) -> CacheConfig {
+        CacheConfig {
+            size_bytes: size,
+            ways,
+            line_bytes: 64,
+            hit_latency: hit,
+            mshrs,
+            max_merged: merged,
+            ports,
+        }
+    }
+
+    /// Completion cycle of a single access of core 0 to `block` presented at
+    /// `t` on an otherwise quiet system.
+    fn single(mem: &mut MemorySystem, t: u64, block: u64) -> u64 {
+        let mut out = Vec::new();
+        assert!(mem.access(t, 0, block, 99).accepted());
+        for now in t..t + 1000 {
+            mem.tick(now);
+            mem.take_completions(0, &mut out);
+            if !out.is_empty() {
+                assert_eq!(out, vec![99]);
+                return now;
+            }
+        }
+        panic!("no completion");
+    }
+
+    /// Tick from cycle `now` on until idle; the last entries are held for
+    /// the cycle after their reply, so this takes at most two ticks.
+    fn settle(mem: &mut MemorySystem, now: u64) {
+        for t in now..now + 2 {
+            mem.tick(t);
+        }
+        assert!(mem.is_idle());
+    }
+
+    #[test]
+    fn end_to_end_latencies_match_the_documented_table() {
+        for width4 in [false, true] {
+            let extra = u64::from(width4);
+            let mut mem = MemorySystem::new(&MemConfig::paper(width4)).unwrap();
+            // Block 0: bank 0 row 0, closed bank -> row miss.
+            assert_eq!(single(&mut mem, 10, 0), 10 + 118 + extra);
+            // Block 8: bank 0 row 0 again -> row hit.
+            assert_eq!(single(&mut mem, 200, 8), 200 + 68 + extra);
+            // First-level hit.
+            assert_eq!(single(&mut mem, 300, 8), 300);
+            if width4 {
+                // Evict block 8 from the 8-line fully associative L0 with 8
+                // other blocks; then 8 is an L0 miss and an L1 hit: 2 cycles.
+                let mut t = 400;
+                for b in 100..108 {
+                    t = single(&mut mem, t, b) + 1;
+                }
+                assert_eq!(single(&mut mem, t, 8), t + 1);
+                assert!(!mem.is_idle(), "the L0 entry is held through t + 2");
+                settle(&mut mem, t + 2);
+            }
+            let s = mem.stats();
+            // Blocks 100..108 open banks 4-7 and 1-3 (miss) and hit bank 0's row.
+            assert_eq!(s.dram.row_misses, if width4 { 1 + 7 } else { 1 });
+            assert_eq!(s.dram.row_hits, if width4 { 1 + 1 } else { 1 });
+            assert!(mem.is_idle());
+        }
+        // L1 miss, L2 hit: a second core reads what the first brought in.
+        let mut mem = MemorySystem::new(&MemConfig::paper(false)).unwrap();
+        single(&mut mem, 0, 5);
+        let mut out = Vec::new();
+        assert_eq!(mem.access(500, 1, 5, 1), Access::Miss);
+        let mut now = 500;
+        while out.is_empty() {
+            mem.tick(now);
+            mem.take_completions(1, &mut out);
+            now += 1;
+        }
+        assert_eq!(now - 1, 500 + 18);
+        assert_eq!(mem.stats().l2.hits, 1);
+        // Ideal memory: an L2 miss costs an L2 hit.
+        let mut cfg = MemConfig::paper(false);
+        cfg.ideal_memory = true;
+        let mut mem = MemorySystem::new(&cfg).unwrap();
+        assert_eq!(single(&mut mem, 7, 42), 7 + 18);
+        assert_eq!(mem.stats().dram.requests, 1);
+    }
+
+    /// The worked example through the whole hierarchy: L1 only with 3 MSHRs,
+    /// a 1-cycle L2 with room to spare and a 6-cycle DRAM make a memory of
+    /// latency 7 behind a single-level cache (1 + 6 = 7 cycles from the L1
+    /// miss to the fill).
+    fn example_config() -> MemConfig {
+        MemConfig {
+            cores: 1,
+            l0: None,
+            l1: small_cache(4096, 4, 1, 3, 16, 1),
+            l2: small_cache(4096, 4, 1, 16, 16, 1),
+            dram: DramConfig {
+                banks: 4,
+                row_bytes: 2048,
+                row_hit_latency: 6,
+                row_miss_latency: 6,
+                requests_per_cycle: 1,
+            },
+            ideal_memory: false,
+        }
+    }
+
+    /// One warp per cycle from cycle 1, retried when refused; returns (cycle
+    /// the last warp finished, L1 stall cycles).
+    fn hierarchy_example(order: &str) -> (u64, u64) {
+        let mut mem = MemorySystem::new(&example_config()).unwrap();
+        let blocks: Vec<u64> = order.bytes().map(|b| u64::from(b - b'A')).collect();
+        let (mut next, mut done, mut finish) = (0, Vec::new(), 0);
+        let mut now = 1;
+        while done.len() < blocks.len() {
+            if next < blocks.len() && mem.access(now, 0, blocks[next], next as u32).accepted() {
+                next += 1;
+            }
+            mem.tick(now);
+            let before = done.len();
+            mem.take_completions(0, &mut done);
+            if done.len() > before {
+                finish = now;
+            }
+            now += 1;
+            assert!(now < 100);
+        }
+        (finish, mem.stats().l1.stall_cycles)
+    }
+
+    #[test]
+    fn paper_worked_example_through_the_hierarchy() {
+        assert_eq!(hierarchy_example("AAAAABBBBBCCCCC"), (18, 0));
+        assert_eq!(hierarchy_example("ABCAAAABBBBCCCC"), (21, 6));
+        assert_eq!(hierarchy_example("ABAAAABBCBBCCCC"), (16, 0));
+        // The cache-level harness agrees.
+        for order in ["AAAAABBBBBCCCCC", "ABCAAAABBBBCCCC", "ABAAAABBCBBCCCC"] {
+            let (f, s, _) = crate::mem::cache::tests::worked_example(order);
+            assert_eq!((f, s), hierarchy_example(order), "{order}");
+        }
+    }
+
+    #[test]
+    fn mshr_events_follow_allocation_reply_and_hold() {
+        let mut mem = MemorySystem::new(&example_config()).unwrap();
+        let ev = |m: &MemorySystem| m.mshr_events(0);
+        assert_eq!(mem.access(1, 0, 0, 0), Access::Miss);
+        assert_eq!(mem.access(1, 0, 1, 1), Access::PortBusy);
+        mem.tick(1);
+        let e = ev(&mem);
+        assert_eq!(
+            (
+                e.capacity,
+                e.allocated,
+                e.replied,
+                e.occupied,
+                e.outstanding
+            ),
+            (3, 1, 0, 1, 1)
+        );
+        assert_eq!(mem.access(2, 0, 1, 1), Access::Miss);
+        mem.tick(2);
+        assert_eq!(mem.access(3, 0, 2, 2), Access::Miss);
+        mem.tick(3);
+        assert_eq!(
+            (
+                ev(&mem).occupied,
+                ev(&mem).free(),
+                ev(&mem).free_from_reply()
+            ),
+            (3, 0, 0)
+        );
+        for now in 4..8 {
+            assert_eq!(mem.access(now, 0, 0, 9), Access::Stall);
+            mem.tick(now);
+            assert_eq!(ev(&mem).allocated, 0);
+        }
+        // Block 0's reply at 8: free for the register, still held by the cache.
+        assert_eq!(mem.access(8, 0, 0, 9), Access::Stall);
+        mem.tick(8);
+        let e = ev(&mem);
+        assert_eq!(
+            (
+                e.replied,
+                e.occupied,
+                e.outstanding,
+                e.free_from_reply(),
+                e.free()
+            ),
+            (1, 3, 2, 1, 0)
+        );
+        assert_eq!(mem.access(9, 0, 0, 9), Access::Stall);
+        mem.tick(9);
+        assert_eq!(mem.access(10, 0, 0, 9), Access::Hit);
+        mem.tick(10);
+        let mut out = Vec::new();
+        mem.take_completions(0, &mut out);
+        // Hits of a cycle come before that cycle's fills.
+        assert_eq!(out, vec![0, 1, 9, 2]);
+        let s = mem.stats().l1;
+        assert_eq!((s.stall_cycles, s.stall_refusals, s.port_busy), (6, 6, 1));
+        // Nothing moves in a cycle without accesses or replies.
+        mem.tick(30);
+        assert_eq!(
+            ev(&mem),
+            MshrEvents {
+                capacity: 3,
+                ..Default::default()
+            }
+        );
+        assert!(mem.is_idle());
+    }
+
+    #[test]
+    fn l2_refusals_wait_in_the_l1_queue_and_count_at_the_l2() {
+        let mut cfg = example_config();
+        cfg.l1.mshrs = 8;
+        cfg.l2.mshrs = 2;
+        cfg.l2.ports = 4;
+        let mut mem = MemorySystem::new(&cfg).unwrap();
+        for (i, b) in [10u64, 11, 12, 13].into_iter().enumerate() {
+            assert_eq!(mem.access(i as u64, 0, b, i as u32), Access::Miss);
+            mem.tick(i as u64);
+        }
+        let mut out = Vec::new();
+        let mut now = 4;
+        while out.len() < 4 {
+            mem.tick(now);
+            mem.take_completions(0, &mut out);
+            now += 1;
+            assert!(now < 100);
+        }
+        let s = mem.stats();
+        assert_eq!(s.l1.stall_cycles, 0);
+        assert!(s.l2.stall_cycles > 0);
+        assert_eq!((s.l2.misses, s.dram.requests), (4, 4));
+        settle(&mut mem, now);
+    }
+
+    #[test]
+    fn misses_of_two_cores_merge_at_the_l2() {
+        let mut cfg = MemConfig::paper(false);
+        cfg.cores = 2;
+        let mut mem = MemorySystem::new(&cfg).unwrap();
+        assert_eq!(mem.access(0, 0, 77, 1), Access::Miss);
+        mem.tick(0);
+        assert_eq!(mem.access(1, 1, 77, 2), Access::Miss);
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        let mut now = 1;
+        while a.is_empty() || b.is_empty() {
+            mem.tick(now);
+            mem.take_completions(0, &mut a);
+            mem.take_completions(1, &mut b);
+            now += 1;
+        }
+        let s = mem.stats();
+        assert_eq!(
+            (s.l2.misses, s.l2.secondary_misses, s.dram.requests),
+            (1, 1, 1)
+        );
+        assert_eq!(s.per_core[0].l1.misses, 1);
+        assert_eq!(s.per_core[1].l1.misses, 1);
+        assert_eq!(s.l1.misses, 2);
+        assert_eq!(s.l1.cycles, 2 * s.l2.cycles);
+    }
+
+    #[test]
+    fn new_refuses_impossible_configurations() {
+        let mut cfg = MemConfig::paper(true);
+        cfg.l2.mshrs = 0;
+        let e = MemorySystem::new(&cfg).unwrap_err();
+        assert!(e.to_string().contains("l2: mshrs"), "{e}");
+    }
+
+    /// Every core presents its stream in order, up to `per_cycle` accesses a
+    /// cycle, retrying a refused one in the next cycle. Returns the cycle the
+    /// last tag completed, the completion log `(cycle, core, tag)` and stats.
+    fn drive(
+        cfg: &MemConfig,
+        streams: &[Vec<u64>],
+        per_cycle: usize,
+    ) -> (u64, Vec<(u64, usize, u32)>, MemStats) {
+        let mut mem = MemorySystem::new(cfg).unwrap();
+        let mut next = vec![0usize; streams.len()];
+        let total: usize = streams.iter().map(Vec::len).sum();
+        let mut log = Vec::with_capacity(total);
+        let mut buf = Vec::new();
+        let mut now = 0;
+        while log.len() < total {
+            for (k, s) in streams.iter().enumerate() {
+                for _ in 0..per_cycle {
+                    if next[k] < s.len()
+                        && mem.access(now, k, s[next[k]], next[k] as u32).accepted()
+                    {
+                        next[k] += 1;
+                    } else {
+                        break;
+                    }
+                }
+            }
+            mem.tick(now);
+            for k in 0..streams.len() {
+                buf.clear();
+                mem.take_completions(k, &mut buf);
+                log.extend(buf.iter().map(|&t| (now, k, t)));
+            }
+            now += 1;
+            assert!(now < 10_000_000, "no progress");
+        }
+        settle(&mut mem, now);
+        (now - 1, log, mem.stats())
+    }
+
+    /// A texture-like stream: each core walks its own region with reuse.
+    fn streams(cores: usize, len: usize) -> Vec<Vec<u64>> {
+        (0..cores)
+            .map(|k| {
+                let mut x = 0x9E37_79B9_7F4A_7C15u64.wrapping_mul(k as u64 + 1);
+                (0..len)
+                    .map(|i| {
+                        x ^= x << 13;
+                        x ^= x >> 7;
+                        x ^= x << 17;
+                        (k as u64) * 4096 + (i as u64 / 8) + x % 24
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn ideal_memory_is_never_slower() {
+        for width4 in [false, true] {
+            let cfg = MemConfig::paper(width4);
+            let mut ideal = cfg.clone();
+            ideal.ideal_memory = true;
+            let s = streams(4, 3000);
+            let per_cycle = if width4 { 2 } else { 1 };
+            let (real_t, real_log, real_stats) = drive(&cfg, &s, per_cycle);
+            let (ideal_t, ideal_log, ideal_stats) = drive(&ideal, &s, per_cycle);
+            assert!(
+                ideal_t < real_t,
+                "width4 {width4}: ideal {ideal_t} vs real {real_t}"
+            );
+            assert_eq!(real_log.len(), ideal_log.len());
+            assert_eq!(ideal_stats.dram.latency_sum, 0);
+            assert!(real_stats.dram.requests > 0);
+        }
+    }
+
+    #[test]
+    fn same_inputs_same_outputs() {
+        let cfg = MemConfig::paper(true);
+        let s = streams(4, 2000);
+        let a = drive(&cfg, &s, 2);
+        let b = drive(&cfg, &s, 2);
+        assert_eq!(a, b);
+        // And a fresh system behaves like a cloned one.
+        let mem = MemorySystem::new(&cfg).unwrap();
+        let mut m2 = mem.clone();
+        m2.tick(0);
+        assert!(m2.is_idle());
+    }
+
+    #[test]
+    fn skipping_ticks_while_idle_changes_no_timing() {
+        let mut cfg = MemConfig::paper(true);
+        cfg.cores = 3;
+        let s = streams(3, 200);
+        // Bursts of accesses separated by long idle gaps.
+        let run = |skip: bool| {
+            let mut mem = MemorySystem::new(&cfg).unwrap();
+            let mut next = [0usize; 3];
+            let mut log = Vec::new();
+            let mut buf = Vec::new();
+            for now in 0..60_000u64 {
+                let burst = now % 2000 < 40;
+                if burst {
+                    for k in 0..3 {
+                        if next[k] < s[k].len()
+                            && mem.access(now, k, s[k][next[k]], next[k] as u32).accepted()
+                        {
+                            next[k] += 1;
+                        }
+                    }
+                } else if skip && mem.is_idle() {
+                    continue;
+                }
+                mem.tick(now);
+                for k in 0..3 {
+                    buf.clear();
+                    mem.take_completions(k, &mut buf);
+                    log.extend(buf.iter().map(|&t| (now, k, t)));
+                }
+            }
+            let mut st = mem.stats();
+            st.l0 = None;
+            st.per_core.clear();
+            for c in [&mut st.l1, &mut st.l2] {
+                c.cycles = 0;
+            }
+            (log, st)
+        };
+        let (a, sa) = run(false);
+        let (b, sb) = run(true);
+        assert_eq!(a.len(), 600);
+        assert_eq!(a, b);
+        assert_eq!(sa, sb);
+    }
+
+    /// Records signal names and widths, checks values fit.
+    #[derive(Default)]
+    struct Recorder {
+        names: Vec<(String, u32)>,
+        depth: i32,
+    }
+
+    impl Tracer for Recorder {
+        fn push_scope(&mut self, name: &str) {
+            self.depth += 1;
+            self.names.push((format!("+{name}"), 0));
+        }
+        fn pop_scope(&mut self) {
+            self.depth -= 1;
+            self.names.push(("-".into(), 0));
+        }
+        fn signal(&mut self, name: &str, width: u32, value: u64) {
+            assert!((1..=64).contains(&width));
+            assert!(
+                width == 64 || value >> width == 0,
+                "{name} = {value} in {width} bits"
+            );
+            self.names.push((name.to_string(), width));
+        }
+    }
+
+    #[test]
+    fn trace_visits_the_same_signals_every_cycle_and_values_fit() {
+        for width4 in [false, true] {
+            let mut cfg = MemConfig::paper(width4);
+            cfg.cores = 2;
+            let mut mem = MemorySystem::new(&cfg).unwrap();
+            let s = streams(2, 400);
+            let mut first: Option<Vec<(String, u32)>> = None;
+            let mut next = [0usize; 2];
+            let mut sink = Vec::new();
+            for now in 0..3000u64 {
+                for k in 0..2 {
+                    if next[k] < s[k].len() && mem.access(now, k, s[k][next[k]], 0).accepted() {
+                        next[k] += 1;
+                    }
+                }
+                mem.tick(now);
+                let mut r = Recorder::default();
+                for k in 0..2 {
+                    r.push_scope("core");
+                    mem.trace(k, &mut r);
+                    r.pop_scope();
+                    mem.take_completions(k, &mut sink);
+                }
+                mem.trace_shared(&mut r);
+                assert_eq!(r.depth, 0);
+                match &first {
+                    None => first = Some(r.names),
+                    Some(f) => assert_eq!(f, &r.names),
+                }
+            }
+            let names = first.unwrap();
+            assert!(names.iter().any(|(n, _)| n == "+l0") == width4);
+            assert!(names.iter().any(|(n, _)| n == "stall"));
+        }
+    }
+
+    fn arb_cache(max_hit: u32) -> impl Strategy<Value = CacheConfig> {
+        (0u32..3, 0u32..2, 1..=max_hit, 1u32..5, 0u32..4, 1u32..3).prop_map(
+            |(size_log, ways_log, hit, mshrs, merged, ports)| {
+                small_cache(128 << size_log, 1 << ways_log, hit, mshrs, merged, ports)
+            },
+        )
+    }
+
+    fn arb_config() -> impl Strategy<Value = MemConfig> {
+        (
+            1u32..4,
+            proptest::option::of(arb_cache(2)),
+            arb_cache(3),
+            arb_cache(6),
+            (1u32..4, 1u32..4, 1u32..8, 1u32..12, 1u32..3),
+            any::<bool>(),
+        )
+            .prop_map(
+                |(cores, l0, l1, l2, (banks, rows, hit, miss, rpc), ideal_memory)| MemConfig {
+                    cores,
+                    l0,
+                    l1,
+                    l2,
+                    dram: DramConfig {
+                        banks,
+                        row_bytes: 64 * rows,
+                        row_hit_latency: hit,
+                        row_miss_latency: miss,
+                        requests_per_cycle: rpc,
+                    },
+                    ideal_memory,
+                },
+            )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// Every accepted access completes exactly once, never before it was
+        /// made, refused ones never; MSHR occupancy stays within capacity; the
+        /// system drains.
+        #[test]
+        fn accepted_accesses_complete_exactly_once(
+            cfg in arb_config(),
+            ops in proptest::collection::vec((0u8..4, 0u8..3, 0u64..40), 1..300),
+        ) {
+            let mut mem = MemorySystem::new(&cfg).unwrap();
+            let n = cfg.cores as usize;
+            let first = *cfg.scheduler_level();
+            // Per tag: Some(access cycle) when accepted.
+            let mut accepted: Vec<Option<u64>> = Vec::new();
+            let mut completed: Vec<Option<u64>> = Vec::new();
+            let mut owner: Vec<usize> = Vec::new();
+            let mut buf = Vec::new();
+            let mut now = 0u64;
+            let mut ops = ops.into_iter();
+            let mut draining = false;
+            loop {
+                if !draining {
+                    match ops.next() {
+                        // (idle cycle when 0, accesses per core, block)
+                        Some((0, _, _)) => {}
+                        Some((_, count, block)) => {
+                            for k in 0..n {
+                                for j in 0..u64::from(count) {
+                                    let tag = accepted.len() as u32;
+                                    let r = mem.access(now, k, block + j * 7 + k as u64, tag);
+                                    accepted.push(r.accepted().then_some(now));
+                                    completed.push(None);
+                                    owner.push(k);
+                                }
+                            }
+                        }
+                        None => draining = true,
+                    }
+                }
+                mem.tick(now);
+                for k in 0..n {
+                    let e = mem.mshr_events(k);
+                    prop_assert!(e.occupied <= e.capacity && e.outstanding <= e.occupied);
+                    prop_assert_eq!(e.capacity, first.mshrs);
+                    buf.clear();
+                    mem.take_completions(k, &mut buf);
+                    for &t in &buf {
+                        let t = t as usize;
+                        prop_assert_eq!(owner[t], k);
+                        let at = accepted[t];
+                        prop_assert!(at.is_some(), "refused tag {} completed", t);
+                        prop_assert!(at.unwrap() + u64::from(first.hit_latency) - 1 <= now);
+                        prop_assert!(completed[t].is_none(), "tag {} completed twice", t);
+                        completed[t] = Some(now);
+                    }
+                }
+                now += 1;
+                if draining && mem.is_idle() {
+                    break;
+                }
+                prop_assert!(now < 100_000, "no drain");
+            }
+            for (a, c) in accepted.iter().zip(&completed) {
+                prop_assert_eq!(a.is_some(), c.is_some());
+            }
+            let s = mem.stats();
+            let fl = s.l0.unwrap_or(s.l1);
+            prop_assert_eq!(fl.accesses, fl.hits + fl.misses + fl.secondary_misses);
+            prop_assert_eq!(fl.accesses as usize, accepted.iter().filter(|a| a.is_some()).count());
+            prop_assert_eq!(s.l2.misses, s.dram.requests);
+            prop_assert_eq!(s.l2.fills, s.l2.misses);
+            prop_assert_eq!(s.l1.fills, s.l1.misses);
+        }
+    }
+}

@@ -1,0 +1,428 @@
+//! Statistics of a run: JSON (serde), CSV and a readable table.
+//!
+//! Field names follow the paper's words: `cycles`, `ipc`, per cache level
+//! `accesses`, `hits`, `misses`, `secondary_misses`, `stall_cycles`, DRAM
+//! requests, the average memory latency per warp (all, priority, regular),
+//! the average number of outstanding misses, the priority subset's texture
+//! footprint ratio and size ratio, Min_Estimate1, CF, Min_Estimate2 and the
+//! energy of the event-energy model.
+
+use crate::config::MachineConfig;
+use crate::gpu::CoreStats;
+use crate::mem::{CacheStats, MemStats};
+use crate::trace::{mean_footprint_ratio, Trace};
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// One cache level's counters, summed over cores.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LevelStats {
+    /// Accesses accepted.
+    pub accesses: u64,
+    /// Hits.
+    pub hits: u64,
+    /// Primary misses.
+    pub misses: u64,
+    /// Secondary misses (merged into an MSHR entry).
+    pub secondary_misses: u64,
+    /// Cycles in which the level refused an access because every MSHR was
+    /// occupied (summed over the level's instances).
+    pub stall_cycles: u64,
+    /// Accesses refused because one MSHR entry could merge no more.
+    pub merge_stalls: u64,
+    /// Stall cycles / (cycles x instances): the fraction of time stalled.
+    pub stall_fraction: f64,
+    /// Average outstanding misses (MSHR entries awaiting a reply) per
+    /// instance per cycle.
+    pub avg_outstanding_misses: f64,
+}
+
+impl LevelStats {
+    fn of(s: &CacheStats, instances: u64, cycles: u64) -> Self {
+        let denom = (instances * cycles).max(1) as f64;
+        Self {
+            accesses: s.accesses,
+            hits: s.hits,
+            misses: s.misses,
+            secondary_misses: s.secondary_misses,
+            stall_cycles: s.stall_cycles,
+            merge_stalls: s.merge_stalls,
+            stall_fraction: s.stall_cycles as f64 / denom,
+            avg_outstanding_misses: s.mshr_outstanding_sum as f64 / denom,
+        }
+    }
+}
+
+/// Main-memory counters.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DramSummary {
+    /// Requests served.
+    pub requests: u64,
+    /// Row hits.
+    pub row_hits: u64,
+    /// Row misses.
+    pub row_misses: u64,
+    /// Average request latency in cycles (queueing included).
+    pub avg_latency: f64,
+}
+
+/// Average memory latency per warp: the mean over warps of each warp's mean
+/// texture-instruction latency (cycles from entering the LDST queue to the
+/// last block's arrival).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LatencyStats {
+    /// All warps with at least one texture instruction.
+    pub all: f64,
+    /// Priority warps.
+    pub priority: f64,
+    /// Regular warps.
+    pub regular: f64,
+}
+
+/// The priority subset and what it covers.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SubsetStats {
+    /// Subset name.
+    pub subset: String,
+    /// Fraction of a full tile's quads the subset selects.
+    pub subset_size_ratio: f64,
+    /// Mean over tiles of (blocks the subset's warps touch / blocks the tile
+    /// touches).
+    pub texture_footprint_ratio: f64,
+    /// Priority warps launched.
+    pub priority_warps: u64,
+}
+
+/// Energy by the event-energy model, in nanojoules.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EnergyStats {
+    /// ALU instructions.
+    pub alu_nj: f64,
+    /// Texture unit.
+    pub texture_nj: f64,
+    /// L0 accesses.
+    pub l0_nj: f64,
+    /// L1 accesses.
+    pub l1_nj: f64,
+    /// L2 accesses.
+    pub l2_nj: f64,
+    /// DRAM accesses.
+    pub dram_nj: f64,
+    /// Static energy over the run's time.
+    pub static_nj: f64,
+    /// Everything.
+    pub total_nj: f64,
+}
+
+/// Everything a run reports.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunStats {
+    /// Machine name.
+    pub machine: String,
+    /// Workload (from the trace; synthetic workloads say so).
+    pub workload: String,
+    /// Launch policy.
+    pub policy: String,
+    /// Zero-latency main memory.
+    pub ideal_memory: bool,
+    /// GPU cycles until every tile is rendered and memory is idle.
+    pub cycles: u64,
+    /// Warp instructions per GPU cycle.
+    pub ipc: f64,
+    /// Warps (quads) run.
+    pub warps: u64,
+    /// Warp instructions.
+    pub instructions: u64,
+    /// Texture instructions.
+    pub tex_instructions: u64,
+    /// Tiles rendered.
+    pub tiles: u64,
+    /// Per-core L0 (absent without L0).
+    pub l0: Option<LevelStats>,
+    /// Per-core L1.
+    pub l1: LevelStats,
+    /// Shared L2.
+    pub l2: LevelStats,
+    /// Main memory.
+    pub dram: DramSummary,
+    /// Average memory latency per warp.
+    pub memory_latency: LatencyStats,
+    /// Average warps in a core per cycle.
+    pub avg_warps_per_core: f64,
+    /// Cycles in which a core held a waiting priority warp back.
+    pub held_cycles: u64,
+    /// The priority subset.
+    pub subset: SubsetStats,
+    /// Memory-instruction ratio of the workload.
+    pub mem_instr_ratio: f64,
+    /// Min_Estimate1: unique blocks in tile / warps in tile.
+    pub min_estimate1: f64,
+    /// CF measured: distinct blocks per warp.
+    pub cf: f64,
+    /// Min_Estimate2: Min_Estimate1 / CF.
+    pub min_estimate2: f64,
+    /// Memory-block reuse in tile.
+    pub block_reuse: f64,
+    /// Energy.
+    pub energy: EnergyStats,
+}
+
+fn mean(sum: f64, n: u64) -> f64 {
+    if n == 0 {
+        0.0
+    } else {
+        sum / n as f64
+    }
+}
+
+impl RunStats {
+    /// Gather the statistics of a finished run.
+    pub fn collect(
+        cfg: &MachineConfig,
+        trace: &Trace,
+        cycles: u64,
+        cores: &[CoreStats],
+        mem: &MemStats,
+    ) -> Self {
+        let n = cores.len() as u64;
+        let sum = |f: &dyn Fn(&CoreStats) -> u64| cores.iter().map(f).sum::<u64>();
+        let instructions = sum(&|c| c.instructions);
+        let tex = sum(&|c| c.tex_instructions);
+        let lat = |i: usize| -> (f64, u64) {
+            (
+                cores.iter().map(|c| c.warp_latency_sum[i]).sum(),
+                cores.iter().map(|c| c.warps_with_tex[i]).sum(),
+            )
+        };
+        let (rs, rn) = lat(0);
+        let (ps, pn) = lat(1);
+        let ts = trace.stats();
+        let subset_spec = cfg.subset().expect("validated");
+        let side = cfg.quads_per_side();
+        let subset = subset_spec.build(side);
+        let uses_priority = cfg
+            .policy()
+            .map(|p| p != wasp_rtl::policy::PolicySpec::Baseline)
+            .unwrap_or(true);
+        let footprint = mean_footprint_ratio(trace, |x, y| subset.is_priority(x, y));
+        let e = &cfg.energy;
+        let alu_instr = instructions - tex;
+        let l0_acc = mem.l0.map(|s| s.accesses).unwrap_or(0);
+        let alu_nj = alu_instr as f64 * e.alu_instruction_pj / 1000.0;
+        let texture_nj = tex as f64 * e.texture_instruction_pj / 1000.0;
+        let l0_nj = l0_acc as f64 * e.l0_access_pj / 1000.0;
+        let l1_nj = mem.l1.accesses as f64 * e.l1_access_pj / 1000.0;
+        let l2_nj = mem.l2.accesses as f64 * e.l2_access_pj / 1000.0;
+        let dram_nj = (mem.dram.row_hits as f64 * e.dram_row_hit_pj
+            + mem.dram.row_misses as f64 * e.dram_row_miss_pj)
+            / 1000.0;
+        // mW x seconds = mJ; cycles / (MHz x 1e6) seconds; in nJ: x 1e6.
+        let seconds = cycles as f64 / (cfg.gpu.frequency_mhz as f64 * 1e6);
+        let static_nj = (e.core_static_mw * n as f64 + e.uncore_static_mw) * 1e-3 * seconds * 1e9;
+        let total_nj = alu_nj + texture_nj + l0_nj + l1_nj + l2_nj + dram_nj + static_nj;
+        RunStats {
+            machine: cfg.name.clone(),
+            workload: trace.header().workload.clone(),
+            policy: cfg.scheduler.policy.clone(),
+            ideal_memory: cfg.memory.ideal,
+            cycles,
+            ipc: instructions as f64 / cycles.max(1) as f64,
+            warps: sum(&|c| c.warps_finished),
+            instructions,
+            tex_instructions: tex,
+            tiles: sum(&|c| c.tiles),
+            l0: mem.l0.as_ref().map(|s| LevelStats::of(s, n, cycles)),
+            l1: LevelStats::of(&mem.l1, n, cycles),
+            l2: LevelStats::of(&mem.l2, 1, cycles),
+            dram: DramSummary {
+                requests: mem.dram.requests,
+                row_hits: mem.dram.row_hits,
+                row_misses: mem.dram.row_misses,
+                avg_latency: mem.dram.avg_latency(),
+            },
+            memory_latency: LatencyStats {
+                all: mean(rs + ps, rn + pn),
+                priority: mean(ps, pn),
+                regular: mean(rs, rn),
+            },
+            avg_warps_per_core: sum(&|c| c.occupancy_sum) as f64
+                / (cycles.max(1) * n.max(1)) as f64,
+            held_cycles: sum(&|c| c.held_cycles),
+            subset: SubsetStats {
+                subset: if uses_priority {
+                    subset_spec.to_string()
+                } else {
+                    format!("{subset_spec} (unused by the baseline)")
+                },
+                subset_size_ratio: subset.size_ratio(side),
+                texture_footprint_ratio: footprint,
+                priority_warps: sum(&|c| c.priority_launches),
+            },
+            mem_instr_ratio: ts.mem_instr_ratio,
+            min_estimate1: ts.min_estimate1,
+            cf: ts.cf,
+            min_estimate2: ts.min_estimate2,
+            block_reuse: ts.reuse,
+            energy: EnergyStats {
+                alu_nj,
+                texture_nj,
+                l0_nj,
+                l1_nj,
+                l2_nj,
+                dram_nj,
+                static_nj,
+                total_nj,
+            },
+        }
+    }
+
+    /// The statistics as pretty JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("stats serialize") + "\n"
+    }
+
+    /// Flat `key,value` CSV rows (nested names joined with `.`).
+    pub fn to_csv_rows(&self) -> Vec<(String, String)> {
+        let v = serde_json::to_value(self).expect("stats serialize");
+        let mut rows = Vec::new();
+        flatten("", &v, &mut rows);
+        rows
+    }
+
+    /// CSV with a header line and one line of values (several runs can be
+    /// joined under one header with [`csv_table`]).
+    pub fn to_csv(&self) -> String {
+        csv_table(std::slice::from_ref(self))
+    }
+
+    /// A readable table.
+    pub fn to_table(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "machine {}  |  workload {}", self.machine, self.workload);
+        let _ = writeln!(
+            s,
+            "policy {}  subset {}  ideal memory {}",
+            self.policy, self.subset.subset, self.ideal_memory
+        );
+        let _ = writeln!(
+            s,
+            "cycles {}  ipc {:.3}  warps {}  instructions {} ({} texture)  tiles {}",
+            self.cycles, self.ipc, self.warps, self.instructions, self.tex_instructions, self.tiles
+        );
+        let _ = writeln!(
+            s,
+            "{:<6}{:>12}{:>12}{:>10}{:>12}{:>10}{:>9}{:>13}",
+            "level", "accesses", "hits", "misses", "secondary", "stalls", "stall%", "outstanding"
+        );
+        let mut level = |name: &str, l: &LevelStats| {
+            let _ = writeln!(
+                s,
+                "{:<6}{:>12}{:>12}{:>10}{:>12}{:>10}{:>8.2}%{:>13.2}",
+                name,
+                l.accesses,
+                l.hits,
+                l.misses,
+                l.secondary_misses,
+                l.stall_cycles,
+                100.0 * l.stall_fraction,
+                l.avg_outstanding_misses
+            );
+        };
+        if let Some(l0) = &self.l0 {
+            level("l0", l0);
+        }
+        level("l1", &self.l1);
+        level("l2", &self.l2);
+        let _ = writeln!(
+            s,
+            "dram requests {} (row hits {}, row misses {}), avg latency {:.1} cycles",
+            self.dram.requests, self.dram.row_hits, self.dram.row_misses, self.dram.avg_latency
+        );
+        let _ = writeln!(
+            s,
+            "memory latency per warp: all {:.1}, priority {:.1}, regular {:.1} cycles",
+            self.memory_latency.all, self.memory_latency.priority, self.memory_latency.regular
+        );
+        let _ = writeln!(
+            s,
+            "warps per core {:.1}; priority warps {}; held cycles {}",
+            self.avg_warps_per_core, self.subset.priority_warps, self.held_cycles
+        );
+        let _ = writeln!(
+            s,
+            "subset size ratio {:.4}, texture footprint ratio {:.3}",
+            self.subset.subset_size_ratio, self.subset.texture_footprint_ratio
+        );
+        let _ = writeln!(
+            s,
+            "workload: mem-instr ratio {:.3}, block reuse {:.1}, CF {:.2}, Min_Estimate1 {:.3}, Min_Estimate2 {:.3}",
+            self.mem_instr_ratio, self.block_reuse, self.cf, self.min_estimate1, self.min_estimate2
+        );
+        let e = &self.energy;
+        let _ = writeln!(
+            s,
+            "energy {:.1} uJ (alu {:.1}, texture {:.1}, l0 {:.1}, l1 {:.1}, l2 {:.1}, dram {:.1}, static {:.1})",
+            e.total_nj / 1000.0,
+            e.alu_nj / 1000.0,
+            e.texture_nj / 1000.0,
+            e.l0_nj / 1000.0,
+            e.l1_nj / 1000.0,
+            e.l2_nj / 1000.0,
+            e.dram_nj / 1000.0,
+            e.static_nj / 1000.0
+        );
+        s
+    }
+}
+
+fn flatten(prefix: &str, v: &serde_json::Value, out: &mut Vec<(String, String)>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                let key = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                flatten(&key, x, out);
+            }
+        }
+        serde_json::Value::Null => out.push((prefix.to_string(), String::new())),
+        serde_json::Value::String(s) => out.push((prefix.to_string(), csv_field(s))),
+        other => out.push((prefix.to_string(), other.to_string())),
+    }
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// Several runs as one CSV table (header from the first run's fields).
+pub fn csv_table(runs: &[RunStats]) -> String {
+    let mut s = String::new();
+    let Some(first) = runs.first() else {
+        return s;
+    };
+    let header: Vec<String> = first.to_csv_rows().into_iter().map(|(k, _)| k).collect();
+    s.push_str(&header.join(","));
+    s.push('\n');
+    for r in runs {
+        let rows = r.to_csv_rows();
+        let vals: Vec<String> = header
+            .iter()
+            .map(|k| {
+                rows.iter()
+                    .find(|(rk, _)| rk == k)
+                    .map(|(_, v)| v.clone())
+                    .unwrap_or_default()
+            })
+            .collect();
+        s.push_str(&vals.join(","));
+        s.push('\n');
+    }
+    s
+}

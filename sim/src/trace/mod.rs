@@ -1,0 +1,1225 @@
+//! The wasp trace: the shaded quads of one frame, tile by tile, and the
+//! instructions each quad's shader executes — the input of the cycle model.
+//!
+//! # Format `wasp-trace 1`
+//!
+//! (The same text is in `tests/traces/FORMAT.md`.)
+//!
+//! A trace is UTF-8 text in lines ending in LF (a CR just before the LF is
+//! ignored). Tokens are separated by one or more spaces or tabs; blanks at the
+//! start and end of a line are ignored. No line may hold any other control
+//! character. Example:
+//!
+//! ```text
+//! wasp-trace 1
+//! # free comment lines
+//! workload synthetic:texmap scale=1 mem=0.15 seed=7
+//! frame 1960 768 tile 64
+//! tile 0 0
+//! q 0 0 a3 t1a40,1a41 a2 t1a40
+//! q 1 0 a5
+//! end
+//! tile 1 0
+//! q 0 0 t1a48 a4
+//! end
+//! ```
+//!
+//! * **Line 1** is exactly `wasp-trace 1`: the magic word and the format
+//!   version. A reader rejects any other version.
+//! * **Comments**: a line whose first non-blank character is `#` is a
+//!   comment; blank lines are ignored. Both may appear anywhere after line 1.
+//!   Comments before the `frame` line are the header *notes*: a reader
+//!   keeps their text (everything after the `#`, verbatim) and a writer
+//!   writes them back right after line 1. Other comments are dropped. There
+//!   are no comments at the end of a line.
+//! * **Header**, before the first tile and in this order, each exactly once:
+//!   * `workload NAME` — provenance: NAME is the rest of the line, not
+//!     empty. A synthetic workload's name starts with `synthetic:` and names
+//!     its generator parameters.
+//!   * `frame W H tile T` — frame width and height in pixels (1 to 65536)
+//!     and the tile edge in pixels (even, 2 to 512). The frame is cut into
+//!     ceil(W/T) x ceil(H/T) tiles; a tile holds (T/2) x (T/2) quads of 2x2
+//!     pixels (32 x 32 for the paper's 64-pixel tiles).
+//! * **Tile record**: `tile TX TY` (tile column and row, inside the frame),
+//!   then one `q` line per shaded quad, then `end` alone on its line. A tile
+//!   appears at most once and holds at least one quad. Tiles appear in
+//!   traversal order (the front end emits Z-order; a reader does not check
+//!   the order).
+//! * **Quad**: `q X Y INSTR...` — X, Y are the in-tile quad column and row
+//!   (0 to T/2-1); the quad's top-left pixel (TX*T + 2X, TY*T + 2Y) lies
+//!   inside the frame. Quads of a tile appear in rasterization (scanline)
+//!   order, strictly increasing in (Y, X), so at most once each. The cycle
+//!   model launches quads in file order, one quad = one warp.
+//! * **Instructions**, at least one per quad, in program order:
+//!   * `aN` — a run of N ALU instructions (decimal, 1 to 2^31-1). Two runs
+//!     are never adjacent: write `a5`, not `a3 a2`.
+//!   * `tB,B,...` — one texture instruction and the 64-byte memory blocks it
+//!     touches, as block numbers (byte address / 64) in hex (1 to 16 digits,
+//!     either case, no `0x`; writers use lowercase without leading zeros),
+//!     comma-separated without blanks: 1 to 1024 blocks, distinct within the
+//!     instruction, in the order the texture unit requests them.
+//! * Decimal numbers are ASCII digits without sign and must fit their range.
+//!
+//! A reader rejects any other input with an error `file:line: what was wrong
+//! (expected what)`, e.g. `scene.trace:7: quad 40 3 outside the tile
+//! (expected x and y from 0 to 31)`, and never panics. Writing a trace and
+//! reading it back gives the same trace.
+//!
+//! # In memory
+//!
+//! [`Trace`] holds a [`TraceHeader`] and the [`Tile`]s in file order. A tile
+//! keeps its quads, instructions and block numbers in three flat vectors (no
+//! allocation per quad or instruction), so a tile is self-contained and a
+//! full 1960x768 frame (about 376k quads) stays small. [`QuadRef`] views one
+//! quad; [`Instr`] is one run-length instruction entry. Build traces with
+//! [`TraceBuilder`], which enforces every rule of the format, so whatever it
+//! builds the writer writes and the reader reads back identically.
+
+mod read;
+mod stats;
+#[cfg(test)]
+mod tests;
+mod write;
+
+pub use stats::{footprint_ratio, mean_footprint_ratio, TileStats, TraceStats};
+
+use std::collections::HashSet;
+use std::fmt;
+
+/// The magic word on line 1.
+pub const MAGIC: &str = "wasp-trace";
+/// The format version this module reads and writes.
+pub const FORMAT_VERSION: u32 = 1;
+/// Largest frame width or height, in pixels.
+pub const MAX_FRAME_DIM: u32 = 65_536;
+/// Largest tile edge, in pixels.
+pub const MAX_TILE_SIZE: u32 = 512;
+/// Longest ALU run of one `aN` entry.
+pub const MAX_ALU_RUN: u32 = 0x7fff_ffff;
+/// Most blocks one texture instruction may touch.
+pub const MAX_TEX_BLOCKS: usize = 1024;
+
+/// The header: provenance, frame and tile size, and the header notes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TraceHeader {
+    /// Where the trace comes from; `synthetic:...` for generated ones.
+    pub workload: String,
+    /// Frame width in pixels.
+    pub frame_w: u32,
+    /// Frame height in pixels.
+    pub frame_h: u32,
+    /// Tile edge in pixels (even).
+    pub tile: u32,
+    /// Header comment lines, the text after `#` verbatim.
+    pub notes: Vec<String>,
+}
+
+impl TraceHeader {
+    /// A header without notes (validated when a [`TraceBuilder`] takes it).
+    pub fn new(workload: impl Into<String>, frame_w: u32, frame_h: u32, tile: u32) -> TraceHeader {
+        TraceHeader {
+            workload: workload.into(),
+            frame_w,
+            frame_h,
+            tile,
+            notes: Vec::new(),
+        }
+    }
+
+    /// Checks the header against the format's rules.
+    pub fn validate(&self) -> Result<(), Problem> {
+        check_text(&self.workload, TextField::Workload)?;
+        if self.workload.is_empty() {
+            return Err(Problem::EmptyWorkload);
+        }
+        if self.workload.trim_matches(BLANKS) != self.workload {
+            return Err(Problem::BadText {
+                field: TextField::Workload,
+                why: "starts or ends with a blank",
+            });
+        }
+        for note in &self.notes {
+            check_text(note, TextField::Note)?;
+        }
+        for (dim, v) in [("width", self.frame_w), ("height", self.frame_h)] {
+            if v == 0 || v > MAX_FRAME_DIM {
+                return Err(Problem::BadFrame { dim, value: v });
+            }
+        }
+        if self.tile < 2 || self.tile > MAX_TILE_SIZE || self.tile % 2 != 0 {
+            return Err(Problem::BadTileSize(self.tile));
+        }
+        Ok(())
+    }
+
+    /// Tile columns in the frame, ceil(frame_w / tile).
+    pub fn tiles_x(&self) -> u32 {
+        self.frame_w.div_ceil(self.tile.max(1))
+    }
+
+    /// Tile rows in the frame, ceil(frame_h / tile).
+    pub fn tiles_y(&self) -> u32 {
+        self.frame_h.div_ceil(self.tile.max(1))
+    }
+
+    /// Quads per tile edge, tile / 2.
+    pub fn quads_per_side(&self) -> u32 {
+        self.tile / 2
+    }
+
+    /// Quads whose top-left pixel lies in the frame: the most a frame can
+    /// shade, ceil(w/2) x ceil(h/2).
+    pub fn frame_quads(&self) -> u64 {
+        u64::from(self.frame_w.div_ceil(2)) * u64::from(self.frame_h.div_ceil(2))
+    }
+
+    /// Whether quad (x, y) of tile (tx, ty) has its top-left pixel in the frame.
+    pub fn quad_in_frame(&self, tx: u32, ty: u32, x: u32, y: u32) -> bool {
+        let px = u64::from(tx) * u64::from(self.tile) + 2 * u64::from(x);
+        let py = u64::from(ty) * u64::from(self.tile) + 2 * u64::from(y);
+        px < u64::from(self.frame_w) && py < u64::from(self.frame_h)
+    }
+}
+
+const BLANKS: &[char] = &[' ', '\t'];
+
+fn check_text(s: &str, field: TextField) -> Result<(), Problem> {
+    if s.chars().any(|c| c.is_control() && c != '\t') {
+        return Err(Problem::BadText {
+            field,
+            why: "contains a control character",
+        });
+    }
+    Ok(())
+}
+
+/// One instruction entry of a quad's program.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Instr<'a> {
+    /// A run of this many ALU instructions (at least 1).
+    Alu(u32),
+    /// One texture instruction and the distinct 64-byte block numbers it
+    /// touches (at least 1), in request order.
+    Tex(&'a [u64]),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Op {
+    Alu(u32),
+    /// Blocks `start..start + len` of the tile's block pool.
+    Tex {
+        start: u32,
+        len: u32,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct QuadRec {
+    x: u16,
+    y: u16,
+    op_start: u32,
+    op_len: u32,
+    block_start: u32,
+    block_len: u32,
+}
+
+/// One tile record: its position and its quads in launch (file) order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Tile {
+    tx: u32,
+    ty: u32,
+    quads: Vec<QuadRec>,
+    ops: Vec<Op>,
+    blocks: Vec<u64>,
+}
+
+impl Tile {
+    /// Tile column in the frame.
+    pub fn tx(&self) -> u32 {
+        self.tx
+    }
+
+    /// Tile row in the frame.
+    pub fn ty(&self) -> u32 {
+        self.ty
+    }
+
+    /// Number of quads (warps) in the tile; at least 1 in a built trace.
+    pub fn quad_count(&self) -> usize {
+        self.quads.len()
+    }
+
+    /// The `i`-th quad in launch order.
+    pub fn quad(&self, i: usize) -> Option<QuadRef<'_>> {
+        self.quads.get(i).map(|rec| QuadRef {
+            tile: self,
+            rec: *rec,
+            index: i,
+        })
+    }
+
+    /// The quad at in-tile position (x, y), if shaded.
+    pub fn quad_at(&self, x: u32, y: u32) -> Option<QuadRef<'_>> {
+        let key = (y, x);
+        self.quads
+            .binary_search_by_key(&key, |q| (u32::from(q.y), u32::from(q.x)))
+            .ok()
+            .and_then(|i| self.quad(i))
+    }
+
+    /// The quads in launch order.
+    pub fn quads(&self) -> Quads<'_> {
+        Quads {
+            tile: self,
+            range: 0..self.quads.len(),
+        }
+    }
+
+    /// Every block access of the tile: the blocks of every texture
+    /// instruction of every quad, in order, repeats included.
+    pub fn block_accesses(&self) -> &[u64] {
+        &self.blocks
+    }
+
+    /// The distinct blocks the tile touches, sorted.
+    pub fn unique_blocks(&self) -> Vec<u64> {
+        sorted_unique(&self.blocks)
+    }
+
+    /// Number of distinct blocks the tile touches (its texture footprint).
+    pub fn unique_block_count(&self) -> usize {
+        self.unique_blocks().len()
+    }
+
+    /// Instructions of all quads (ALU runs counted by length).
+    pub fn instr_count(&self) -> u64 {
+        self.quads().map(|q| q.instr_count()).sum()
+    }
+
+    /// Texture instructions of all quads.
+    pub fn tex_count(&self) -> u64 {
+        self.ops
+            .iter()
+            .filter(|op| matches!(op, Op::Tex { .. }))
+            .count() as u64
+    }
+
+    /// This tile's statistics.
+    pub fn stats(&self) -> TileStats {
+        TileStats::of(self)
+    }
+}
+
+fn sorted_unique(blocks: &[u64]) -> Vec<u64> {
+    let mut v = blocks.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// Iterator over a tile's quads in launch order.
+#[derive(Clone, Debug)]
+pub struct Quads<'a> {
+    tile: &'a Tile,
+    range: std::ops::Range<usize>,
+}
+
+impl<'a> Iterator for Quads<'a> {
+    type Item = QuadRef<'a>;
+    fn next(&mut self) -> Option<QuadRef<'a>> {
+        let i = self.range.next()?;
+        self.tile.quad(i)
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.range.size_hint()
+    }
+}
+
+impl DoubleEndedIterator for Quads<'_> {
+    fn next_back(&mut self) -> Option<Self::Item> {
+        let i = self.range.next_back()?;
+        self.tile.quad(i)
+    }
+}
+
+impl ExactSizeIterator for Quads<'_> {}
+
+/// A view of one quad (one warp) of a tile.
+#[derive(Clone, Copy, Debug)]
+pub struct QuadRef<'a> {
+    tile: &'a Tile,
+    rec: QuadRec,
+    index: usize,
+}
+
+impl<'a> QuadRef<'a> {
+    /// In-tile quad column, 0 to tile/2 - 1.
+    pub fn x(&self) -> u32 {
+        u32::from(self.rec.x)
+    }
+
+    /// In-tile quad row, 0 to tile/2 - 1.
+    pub fn y(&self) -> u32 {
+        u32::from(self.rec.y)
+    }
+
+    /// Position of the quad in its tile's launch order.
+    pub fn index(&self) -> usize {
+        self.index
+    }
+
+    /// The tile this quad belongs to.
+    pub fn tile(&self) -> &'a Tile {
+        self.tile
+    }
+
+    fn ops(&self) -> &'a [Op] {
+        let start = self.rec.op_start as usize;
+        &self.tile.ops[start..start + self.rec.op_len as usize]
+    }
+
+    fn decode(&self, op: Op) -> Instr<'a> {
+        match op {
+            Op::Alu(n) => Instr::Alu(n),
+            Op::Tex { start, len } => {
+                let s = start as usize;
+                Instr::Tex(&self.tile.blocks[s..s + len as usize])
+            }
+        }
+    }
+
+    /// Number of instruction entries (ALU runs and texture instructions).
+    pub fn entry_count(&self) -> usize {
+        self.rec.op_len as usize
+    }
+
+    /// The `i`-th instruction entry, in O(1).
+    pub fn entry(&self, i: usize) -> Option<Instr<'a>> {
+        self.ops().get(i).map(|&op| self.decode(op))
+    }
+
+    /// The instruction entries in program order.
+    pub fn instrs(&self) -> Instrs<'a> {
+        Instrs {
+            quad: *self,
+            range: 0..self.entry_count(),
+        }
+    }
+
+    /// Number of instructions, ALU runs counted by their length.
+    pub fn instr_count(&self) -> u64 {
+        self.ops()
+            .iter()
+            .map(|op| match op {
+                Op::Alu(n) => u64::from(*n),
+                Op::Tex { .. } => 1,
+            })
+            .sum()
+    }
+
+    /// Number of texture instructions.
+    pub fn tex_count(&self) -> usize {
+        self.ops()
+            .iter()
+            .filter(|op| matches!(op, Op::Tex { .. }))
+            .count()
+    }
+
+    /// Every block access of the quad in program order, repeats across
+    /// texture instructions included.
+    pub fn block_accesses(&self) -> &'a [u64] {
+        let s = self.rec.block_start as usize;
+        &self.tile.blocks[s..s + self.rec.block_len as usize]
+    }
+
+    /// The distinct blocks the quad touches, sorted.
+    pub fn unique_blocks(&self) -> Vec<u64> {
+        sorted_unique(self.block_accesses())
+    }
+}
+
+/// Iterator over a quad's instruction entries.
+#[derive(Clone, Debug)]
+pub struct Instrs<'a> {
+    quad: QuadRef<'a>,
+    range: std::ops::Range<usize>,
+}
+
+impl<'a> Iterator for Instrs<'a> {
+    type Item = Instr<'a>;
+    fn next(&mut self) -> Option<Instr<'a>> {
+        let i = self.range.next()?;
+        self.quad.entry(i)
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.range.size_hint()
+    }
+}
+
+impl ExactSizeIterator for Instrs<'_> {}
+
+/// A whole trace: header and tiles in traversal (file) order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Trace {
+    header: TraceHeader,
+    tiles: Vec<Tile>,
+}
+
+impl Trace {
+    /// A builder for a trace with this header (checked here).
+    pub fn builder(header: TraceHeader) -> Result<TraceBuilder, Problem> {
+        TraceBuilder::new(header)
+    }
+
+    /// The header.
+    pub fn header(&self) -> &TraceHeader {
+        &self.header
+    }
+
+    /// The tiles in traversal order.
+    pub fn tiles(&self) -> &[Tile] {
+        &self.tiles
+    }
+
+    /// Quads (warps) in the whole trace.
+    pub fn quad_count(&self) -> usize {
+        self.tiles.iter().map(Tile::quad_count).sum()
+    }
+
+    /// Instructions in the whole trace, ALU runs counted by length.
+    pub fn instr_count(&self) -> u64 {
+        self.tiles.iter().map(Tile::instr_count).sum()
+    }
+
+    /// Texture instructions in the whole trace.
+    pub fn tex_count(&self) -> u64 {
+        self.tiles.iter().map(Tile::tex_count).sum()
+    }
+
+    /// Adds a header note (e.g. provenance or measured figures).
+    pub fn push_note(&mut self, text: impl Into<String>) -> Result<(), Problem> {
+        let text = text.into();
+        check_text(&text, TextField::Note)?;
+        self.header.notes.push(text);
+        Ok(())
+    }
+
+    /// Per-tile statistics in traversal order.
+    pub fn tile_stats(&self) -> Vec<TileStats> {
+        self.tiles.iter().map(Tile::stats).collect()
+    }
+
+    /// Whole-trace statistics (see [`TraceStats`] for the definitions).
+    pub fn stats(&self) -> TraceStats {
+        TraceStats::of(self)
+    }
+}
+
+/// Builds a [`Trace`] step by step, enforcing every rule of the format.
+///
+/// A call that returns an error changes nothing, so a caller may report it
+/// and stop. `begin_quad` closes the previous quad, `end_tile` the tile.
+#[derive(Debug)]
+pub struct TraceBuilder {
+    header: TraceHeader,
+    tiles: Vec<Tile>,
+    seen: HashSet<(u32, u32)>,
+    open: Option<Tile>,
+}
+
+impl TraceBuilder {
+    /// Starts a trace with this header; fails if the header breaks a rule.
+    pub fn new(header: TraceHeader) -> Result<TraceBuilder, Problem> {
+        header.validate()?;
+        Ok(TraceBuilder {
+            header,
+            tiles: Vec::new(),
+            seen: HashSet::new(),
+            open: None,
+        })
+    }
+
+    /// The header being built.
+    pub fn header(&self) -> &TraceHeader {
+        &self.header
+    }
+
+    /// Number of closed tiles so far.
+    pub fn tile_count(&self) -> usize {
+        self.tiles.len()
+    }
+
+    /// Adds a header note (a comment line written after line 1).
+    pub fn note(&mut self, text: impl Into<String>) -> Result<(), Problem> {
+        let text = text.into();
+        check_text(&text, TextField::Note)?;
+        self.header.notes.push(text);
+        Ok(())
+    }
+
+    /// Position of the open tile, if any.
+    pub fn open_tile(&self) -> Option<(u32, u32)> {
+        self.open.as_ref().map(|t| (t.tx, t.ty))
+    }
+
+    /// Opens tile (tx, ty).
+    pub fn begin_tile(&mut self, tx: u32, ty: u32) -> Result<(), Problem> {
+        if let Some(t) = &self.open {
+            return Err(Problem::TileNotClosed { tx: t.tx, ty: t.ty });
+        }
+        let (nx, ny) = (self.header.tiles_x(), self.header.tiles_y());
+        if tx >= nx || ty >= ny {
+            return Err(Problem::TileOutsideFrame {
+                tx,
+                ty,
+                tiles_x: nx,
+                tiles_y: ny,
+            });
+        }
+        if self.seen.contains(&(tx, ty)) {
+            return Err(Problem::DuplicateTile { tx, ty });
+        }
+        self.open = Some(Tile {
+            tx,
+            ty,
+            quads: Vec::new(),
+            ops: Vec::new(),
+            blocks: Vec::new(),
+        });
+        Ok(())
+    }
+
+    /// Opens quad (x, y) of the open tile, closing the previous quad.
+    pub fn begin_quad(&mut self, x: u32, y: u32) -> Result<(), Problem> {
+        let header = &self.header;
+        let tile = self.open.as_mut().ok_or(Problem::QuadWithoutTile)?;
+        if let Some(prev) = tile.quads.last() {
+            if prev.op_len == 0 {
+                return Err(Problem::EmptyQuad {
+                    x: u32::from(prev.x),
+                    y: u32::from(prev.y),
+                });
+            }
+        }
+        let side = header.quads_per_side();
+        if x >= side || y >= side {
+            return Err(Problem::QuadOutsideTile { x, y, side });
+        }
+        if !header.quad_in_frame(tile.tx, tile.ty, x, y) {
+            return Err(Problem::QuadOutsideFrame {
+                x,
+                y,
+                px: u64::from(tile.tx) * u64::from(header.tile) + 2 * u64::from(x),
+                py: u64::from(tile.ty) * u64::from(header.tile) + 2 * u64::from(y),
+            });
+        }
+        if let Some(prev) = tile.quads.last() {
+            let (px, py) = (u32::from(prev.x), u32::from(prev.y));
+            if (y, x) == (py, px) {
+                return Err(Problem::DuplicateQuad { x, y });
+            }
+            if (y, x) < (py, px) {
+                return Err(Problem::QuadOutOfOrder {
+                    x,
+                    y,
+                    prev_x: px,
+                    prev_y: py,
+                });
+            }
+        }
+        // x, y < side <= 256 and the pools are below u32::MAX (checked when
+        // they grow), so these conversions are exact.
+        tile.quads.push(QuadRec {
+            x: x as u16,
+            y: y as u16,
+            op_start: tile.ops.len() as u32,
+            op_len: 0,
+            block_start: tile.blocks.len() as u32,
+            block_len: 0,
+        });
+        Ok(())
+    }
+
+    fn open_quad(&mut self) -> Result<&mut Tile, Problem> {
+        match &mut self.open {
+            Some(t) if !t.quads.is_empty() => Ok(t),
+            _ => Err(Problem::InstrWithoutQuad),
+        }
+    }
+
+    /// Appends a run of `n` ALU instructions to the open quad (merged into a
+    /// run that ends the quad's program so far).
+    pub fn alu(&mut self, n: u32) -> Result<(), Problem> {
+        if n == 0 {
+            return Err(Problem::ZeroAlu);
+        }
+        if n > MAX_ALU_RUN {
+            return Err(Problem::AluRunTooLong(u64::from(n)));
+        }
+        let tile = self.open_quad()?;
+        let q = *tile.quads.last().expect("open quad");
+        if q.op_len > 0 {
+            if let Some(Op::Alu(m)) = tile.ops.last_mut() {
+                let sum = u64::from(*m) + u64::from(n);
+                if sum > u64::from(MAX_ALU_RUN) {
+                    return Err(Problem::AluRunTooLong(sum));
+                }
+                *m = sum as u32;
+                return Ok(());
+            }
+        }
+        if tile.ops.len() >= u32::MAX as usize {
+            return Err(Problem::TileTooLarge);
+        }
+        tile.ops.push(Op::Alu(n));
+        tile.quads.last_mut().expect("open quad").op_len += 1;
+        Ok(())
+    }
+
+    /// Appends a texture instruction touching `blocks` to the open quad.
+    pub fn tex(&mut self, blocks: &[u64]) -> Result<(), Problem> {
+        if blocks.is_empty() {
+            return Err(Problem::TexNoBlock);
+        }
+        if blocks.len() > MAX_TEX_BLOCKS {
+            return Err(Problem::TooManyBlocks(blocks.len()));
+        }
+        if let Some(b) = first_duplicate(blocks) {
+            return Err(Problem::DuplicateBlock(b));
+        }
+        let tile = self.open_quad()?;
+        if tile.ops.len() >= u32::MAX as usize
+            || tile.blocks.len() + blocks.len() >= u32::MAX as usize
+        {
+            return Err(Problem::TileTooLarge);
+        }
+        let start = tile.blocks.len() as u32;
+        tile.blocks.extend_from_slice(blocks);
+        tile.ops.push(Op::Tex {
+            start,
+            len: blocks.len() as u32,
+        });
+        let q = tile.quads.last_mut().expect("open quad");
+        q.op_len += 1;
+        q.block_len += blocks.len() as u32;
+        Ok(())
+    }
+
+    /// Appends one instruction entry to the open quad.
+    pub fn instr(&mut self, instr: Instr<'_>) -> Result<(), Problem> {
+        match instr {
+            Instr::Alu(n) => self.alu(n),
+            Instr::Tex(b) => self.tex(b),
+        }
+    }
+
+    /// Adds a whole quad: `begin_quad(x, y)` then each entry. On error the
+    /// quad may be partly added; stop building.
+    pub fn quad(&mut self, x: u32, y: u32, instrs: &[Instr<'_>]) -> Result<(), Problem> {
+        if instrs.is_empty() {
+            return Err(Problem::EmptyQuad { x, y });
+        }
+        self.begin_quad(x, y)?;
+        instrs.iter().try_for_each(|&i| self.instr(i))
+    }
+
+    /// Closes the open tile.
+    pub fn end_tile(&mut self) -> Result<(), Problem> {
+        let tile = self.open.as_ref().ok_or(Problem::EndWithoutTile)?;
+        match tile.quads.last() {
+            None => {
+                return Err(Problem::EmptyTile {
+                    tx: tile.tx,
+                    ty: tile.ty,
+                })
+            }
+            Some(q) if q.op_len == 0 => {
+                return Err(Problem::EmptyQuad {
+                    x: u32::from(q.x),
+                    y: u32::from(q.y),
+                })
+            }
+            Some(_) => {}
+        }
+        let mut tile = self.open.take().expect("open tile");
+        tile.quads.shrink_to_fit();
+        tile.ops.shrink_to_fit();
+        tile.blocks.shrink_to_fit();
+        self.seen.insert((tile.tx, tile.ty));
+        self.tiles.push(tile);
+        Ok(())
+    }
+
+    /// The finished trace; fails if a tile is still open.
+    pub fn finish(self) -> Result<Trace, Problem> {
+        if let Some(t) = &self.open {
+            return Err(Problem::TileNotClosed { tx: t.tx, ty: t.ty });
+        }
+        Ok(Trace {
+            header: self.header,
+            tiles: self.tiles,
+        })
+    }
+}
+
+fn first_duplicate(blocks: &[u64]) -> Option<u64> {
+    if blocks.len() <= 32 {
+        for (i, b) in blocks.iter().enumerate() {
+            if blocks[..i].contains(b) {
+                return Some(*b);
+            }
+        }
+        None
+    } else {
+        let mut v = blocks.to_vec();
+        v.sort_unstable();
+        v.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+    }
+}
+
+/// Which free-text header field a [`Problem::BadText`] is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TextField {
+    /// The `workload` name.
+    Workload,
+    /// A header note (comment).
+    Note,
+}
+
+/// What is wrong with a trace: one broken rule of the format. Its Display
+/// reads `what was wrong (expected what)`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Problem {
+    /// The input has no line at all.
+    EmptyInput,
+    /// The input is not UTF-8.
+    InvalidUtf8,
+    /// A line holds a control character other than tab.
+    ControlCharacter,
+    /// Line 1 is not `wasp-trace 1`.
+    BadMagic(String),
+    /// Line 1 names another format version.
+    UnsupportedVersion(String),
+    /// A header line is missing before this line.
+    MissingHeader {
+        /// The header line that is missing.
+        missing: &'static str,
+        /// What was found instead.
+        found: String,
+    },
+    /// A header line appears twice or after the first tile.
+    MisplacedHeader(&'static str),
+    /// A line starts with an unknown word.
+    UnknownDirective {
+        /// The word found.
+        found: String,
+        /// What may appear here.
+        expected: &'static str,
+    },
+    /// A directive line has the wrong number of fields.
+    WrongFieldCount {
+        /// The directive.
+        directive: &'static str,
+        /// Fields found (the directive included).
+        found: usize,
+        /// The line's syntax.
+        usage: &'static str,
+    },
+    /// A decimal field is not a decimal number.
+    BadNumber {
+        /// The field.
+        what: &'static str,
+        /// The token.
+        found: String,
+    },
+    /// A number does not fit its range.
+    NumberTooLarge {
+        /// The field.
+        what: &'static str,
+        /// The token.
+        found: String,
+        /// The largest value allowed.
+        max: u64,
+    },
+    /// A block number is not 1 to 16 hex digits.
+    BadHex {
+        /// The token.
+        found: String,
+    },
+    /// The workload name is empty.
+    EmptyWorkload,
+    /// A workload name or note holds characters a line cannot.
+    BadText {
+        /// Which field.
+        field: TextField,
+        /// Why.
+        why: &'static str,
+    },
+    /// Frame width or height out of range.
+    BadFrame {
+        /// `width` or `height`.
+        dim: &'static str,
+        /// The value.
+        value: u32,
+    },
+    /// Tile size not even or out of range.
+    BadTileSize(u32),
+    /// A tile outside the frame's tile grid.
+    TileOutsideFrame {
+        /// Tile column.
+        tx: u32,
+        /// Tile row.
+        ty: u32,
+        /// Tile columns in the frame.
+        tiles_x: u32,
+        /// Tile rows in the frame.
+        tiles_y: u32,
+    },
+    /// A tile appears twice.
+    DuplicateTile {
+        /// Tile column.
+        tx: u32,
+        /// Tile row.
+        ty: u32,
+    },
+    /// A tile record has no `end` before the next tile or end of input.
+    TileNotClosed {
+        /// Tile column.
+        tx: u32,
+        /// Tile row.
+        ty: u32,
+    },
+    /// A tile record has no quad.
+    EmptyTile {
+        /// Tile column.
+        tx: u32,
+        /// Tile row.
+        ty: u32,
+    },
+    /// `end` with no open tile.
+    EndWithoutTile,
+    /// A quad with no open tile.
+    QuadWithoutTile,
+    /// An instruction with no open quad (builder only).
+    InstrWithoutQuad,
+    /// A quad position beyond the tile's edge.
+    QuadOutsideTile {
+        /// Quad column.
+        x: u32,
+        /// Quad row.
+        y: u32,
+        /// Quads per tile edge.
+        side: u32,
+    },
+    /// A quad whose top-left pixel is outside the frame.
+    QuadOutsideFrame {
+        /// Quad column.
+        x: u32,
+        /// Quad row.
+        y: u32,
+        /// Its top-left pixel column.
+        px: u64,
+        /// Its top-left pixel row.
+        py: u64,
+    },
+    /// A quad appears twice in a tile.
+    DuplicateQuad {
+        /// Quad column.
+        x: u32,
+        /// Quad row.
+        y: u32,
+    },
+    /// A quad before its predecessor in scanline order.
+    QuadOutOfOrder {
+        /// Quad column.
+        x: u32,
+        /// Quad row.
+        y: u32,
+        /// Previous quad's column.
+        prev_x: u32,
+        /// Previous quad's row.
+        prev_y: u32,
+    },
+    /// A quad with no instruction.
+    EmptyQuad {
+        /// Quad column.
+        x: u32,
+        /// Quad row.
+        y: u32,
+    },
+    /// An ALU run of length 0.
+    ZeroAlu,
+    /// An ALU run longer than [`MAX_ALU_RUN`].
+    AluRunTooLong(u64),
+    /// Two ALU runs next to each other in the text.
+    AdjacentAlu {
+        /// The first run.
+        first: u32,
+        /// The second run.
+        second: u32,
+    },
+    /// An instruction token that is neither `aN` nor `tB,...`.
+    BadInstr(String),
+    /// A texture instruction without blocks.
+    TexNoBlock,
+    /// An empty entry in a block list, e.g. `t1,,2`.
+    EmptyBlockEntry(String),
+    /// A block listed twice in one texture instruction.
+    DuplicateBlock(u64),
+    /// More than [`MAX_TEX_BLOCKS`] blocks in one texture instruction.
+    TooManyBlocks(usize),
+    /// A tile whose pools would exceed 2^32 - 1 entries.
+    TileTooLarge,
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use Problem::*;
+        match self {
+            EmptyInput => write!(
+                f,
+                "empty input (expected `{MAGIC} {FORMAT_VERSION}` on line 1)"
+            ),
+            InvalidUtf8 => write!(f, "invalid UTF-8 (expected UTF-8 text)"),
+            ControlCharacter => write!(
+                f,
+                "control character in line (expected printable text, blanks and tabs)"
+            ),
+            BadMagic(s) => write!(
+                f,
+                "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION}` on line 1)",
+                clip(s)
+            ),
+            UnsupportedVersion(v) => write!(
+                f,
+                "unsupported format version `{}` (expected {FORMAT_VERSION})",
+                clip(v)
+            ),
+            MissingHeader { missing, found } => write!(
+                f,
+                "`{}` before the header line `{missing}` (expected `workload NAME` then \
+                 `frame W H tile T` before the first tile)",
+                clip(found)
+            ),
+            MisplacedHeader(h) => write!(
+                f,
+                "header line `{h}` repeated or after the first tile (expected it once, \
+                 before the first tile)"
+            ),
+            UnknownDirective { found, expected } => {
+                write!(
+                    f,
+                    "unknown directive `{}` (expected {expected})",
+                    clip(found)
+                )
+            }
+            WrongFieldCount {
+                directive,
+                found,
+                usage,
+            } => write!(
+                f,
+                "`{directive}` line with {found} fields (expected `{usage}`)"
+            ),
+            BadNumber { what, found } => write!(
+                f,
+                "bad {what} `{}` (expected a decimal number)",
+                clip(found)
+            ),
+            NumberTooLarge { what, found, max } => write!(
+                f,
+                "{what} `{}` out of range (expected at most {max})",
+                clip(found)
+            ),
+            BadHex { found } => write!(
+                f,
+                "bad block number `{}` (expected 1 to 16 hex digits, no `0x`)",
+                clip(found)
+            ),
+            EmptyWorkload => write!(f, "empty workload name (expected `workload NAME`)"),
+            BadText { field, why } => {
+                let name = match field {
+                    TextField::Workload => "workload name",
+                    TextField::Note => "header note",
+                };
+                write!(f, "{name} {why} (expected printable text)")
+            }
+            BadFrame { dim, value } => write!(
+                f,
+                "frame {dim} {value} (expected 1 to {MAX_FRAME_DIM} pixels)"
+            ),
+            BadTileSize(t) => write!(
+                f,
+                "tile size {t} (expected an even number of pixels from 2 to {MAX_TILE_SIZE})"
+            ),
+            TileOutsideFrame {
+                tx,
+                ty,
+                tiles_x,
+                tiles_y,
+            } => write!(
+                f,
+                "tile {tx} {ty} outside the frame (expected x below {tiles_x} and y below \
+                 {tiles_y})"
+            ),
+            DuplicateTile { tx, ty } => write!(
+                f,
+                "tile {tx} {ty} appears twice (expected each tile at most once)"
+            ),
+            TileNotClosed { tx, ty } => write!(
+                f,
+                "tile {tx} {ty} is not closed (expected `end` before the next tile or the \
+                 end of input)"
+            ),
+            EmptyTile { tx, ty } => write!(
+                f,
+                "tile {tx} {ty} has no quad (expected at least one `q` line before `end`)"
+            ),
+            EndWithoutTile => write!(f, "`end` outside any tile (expected `tile TX TY` first)"),
+            QuadWithoutTile => write!(f, "quad outside any tile (expected `tile TX TY` first)"),
+            InstrWithoutQuad => {
+                write!(f, "instruction outside any quad (expected a quad first)")
+            }
+            QuadOutsideTile { x, y, side } => write!(
+                f,
+                "quad {x} {y} outside the tile (expected x and y from 0 to {})",
+                side.saturating_sub(1)
+            ),
+            QuadOutsideFrame { x, y, px, py } => write!(
+                f,
+                "quad {x} {y} at pixel ({px}, {py}) outside the frame (expected its top-left \
+                 pixel inside the frame)"
+            ),
+            DuplicateQuad { x, y } => write!(
+                f,
+                "quad {x} {y} appears twice in the tile (expected each quad at most once)"
+            ),
+            QuadOutOfOrder {
+                x,
+                y,
+                prev_x,
+                prev_y,
+            } => write!(
+                f,
+                "quad {x} {y} after quad {prev_x} {prev_y} (expected scanline order: y, then \
+                 x increasing)"
+            ),
+            EmptyQuad { x, y } => write!(
+                f,
+                "quad {x} {y} has no instruction (expected at least one `aN` or `tB,...`)"
+            ),
+            ZeroAlu => write!(f, "ALU run of 0 (expected a run of at least 1)"),
+            AluRunTooLong(n) => {
+                write!(f, "ALU run of {n} (expected at most {MAX_ALU_RUN})")
+            }
+            AdjacentAlu { first, second } => write!(
+                f,
+                "adjacent ALU runs `a{first} a{second}` (expected one run `a{}`)",
+                u64::from(*first) + u64::from(*second)
+            ),
+            BadInstr(s) => write!(
+                f,
+                "bad instruction `{}` (expected `aN` or `tB,B,...`)",
+                clip(s)
+            ),
+            TexNoBlock => write!(
+                f,
+                "texture instruction without blocks (expected `t` and hex block numbers)"
+            ),
+            EmptyBlockEntry(s) => write!(
+                f,
+                "empty block number in `{}` (expected hex digits between commas)",
+                clip(s)
+            ),
+            DuplicateBlock(b) => write!(
+                f,
+                "block {b:x} listed twice in one texture instruction (expected distinct \
+                 blocks)"
+            ),
+            TooManyBlocks(n) => write!(
+                f,
+                "texture instruction with {n} blocks (expected at most {MAX_TEX_BLOCKS})"
+            ),
+            TileTooLarge => write!(
+                f,
+                "tile too large (expected fewer than 2^32 instruction entries and blocks)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for Problem {}
+
+/// Shortens a quoted token in a message so one bad line cannot make a huge
+/// error.
+fn clip(s: &str) -> String {
+    const MAX: usize = 40;
+    if s.chars().count() <= MAX {
+        s.to_string()
+    } else {
+        let head: String = s.chars().take(MAX).collect();
+        format!("{head}...")
+    }
+}
+
+/// An error reading a trace.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum TraceError {
+    /// The file could not be read.
+    Io {
+        /// The path.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+    /// The input breaks the format at a line.
+    Malformed {
+        /// File name (or the source name given to [`Trace::parse`]).
+        source: String,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        problem: Problem,
+    },
+}
+
+impl TraceError {
+    /// The broken rule, if the input was read.
+    pub fn problem(&self) -> Option<&Problem> {
+        match self {
+            TraceError::Io { .. } => None,
+            TraceError::Malformed { problem, .. } => Some(problem),
+        }
+    }
+
+    /// The 1-based line of the problem, if the input was read.
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            TraceError::Io { .. } => None,
+            TraceError::Malformed { line, .. } => Some(*line),
+        }
+    }
+}
+
+impl fmt::Display for TraceError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TraceError::Io { path, message } => write!(f, "{path}: cannot read: {message}"),
+            TraceError::Malformed {
+                source,
+                line,
+                problem,
+            } => write!(f, "{source}:{line}: {problem}"),
+        }
+    }
+}
+
+impl std::error::Error for TraceError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            TraceError::Io { .. } => None,
+            TraceError::Malformed { problem, .. } => Some(problem),
+        }
+    }
+}

@@ -1,0 +1,243 @@
+//! Workload characterisation: the statistics of the paper's Table I and
+//! Section III-B, per tile and per trace.
+//!
+//! Definitions (a warp is a quad; a block is a 64-byte memory block; all
+//! block counts are per tile, a block touched in two tiles counts in both):
+//!
+//! * **memory-instruction ratio** = texture instructions / all instructions
+//!   (ALU runs counted by length). Table I's "Memory-Instr ratio".
+//! * **warp blocks** of a tile = sum over its warps of the number of distinct
+//!   blocks the warp touches = the number of distinct (warp, block) pairs.
+//! * **unique blocks** of a tile = distinct blocks any of its warps touch
+//!   (the tile's texture footprint).
+//! * **memory-block reuse in tile** = warp blocks / unique blocks: how many
+//!   warps touch each unique block of the tile, on average. Table I's
+//!   "Memory Block reuse in tile".
+//! * **CF** = warp blocks / warps: distinct blocks per warp, on average.
+//! * **Min_Estimate1** = unique blocks / warps (Section III-B).
+//! * **Min_Estimate2** = Min_Estimate1 / CF (Section III-B). Per tile this
+//!   equals 1 / reuse.
+//! * **texture footprint ratio** of a subset of a tile's warps = distinct
+//!   blocks the subset touches / unique blocks of the tile (Section III-B).
+//!
+//! A ratio whose denominator is zero is 0, except the footprint ratio of a
+//! tile without blocks, which is 1 (the empty footprint is fully covered).
+//!
+//! Over a trace: the memory-instruction ratio pools all instructions (sum of
+//! texture instructions / sum of instructions). CF and Min_Estimate1 are the
+//! means over tiles weighted by warps, which equal the pooled ratios (sum of
+//! warp blocks / sum of warps, sum of unique blocks / sum of warps). Reuse is
+//! the mean over tiles weighted by warps, over tiles that touch at least one
+//! block. Min_Estimate2 is the trace's Min_Estimate1 / the trace's CF, as in
+//! the paper, which divides by one CF for all tiles.
+
+use super::{Tile, Trace};
+use serde::Serialize;
+
+/// Statistics of one tile. Counts are exact; the ratios are methods.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct TileStats {
+    /// Tile column.
+    pub tx: u32,
+    /// Tile row.
+    pub ty: u32,
+    /// Quads (warps).
+    pub warps: u64,
+    /// Instructions, ALU runs counted by length.
+    pub instrs: u64,
+    /// Texture instructions.
+    pub tex_instrs: u64,
+    /// Block accesses: blocks listed over all texture instructions.
+    pub block_accesses: u64,
+    /// Distinct (warp, block) pairs.
+    pub warp_blocks: u64,
+    /// Distinct blocks of the tile.
+    pub unique_blocks: u64,
+}
+
+fn ratio(num: f64, den: f64) -> f64 {
+    if den == 0.0 {
+        0.0
+    } else {
+        num / den
+    }
+}
+
+impl TileStats {
+    pub(super) fn of(tile: &Tile) -> TileStats {
+        let mut buf = Vec::new();
+        let mut warp_blocks = 0u64;
+        let mut instrs = 0u64;
+        let mut tex = 0u64;
+        for q in tile.quads() {
+            buf.clear();
+            buf.extend_from_slice(q.block_accesses());
+            buf.sort_unstable();
+            buf.dedup();
+            warp_blocks += buf.len() as u64;
+            instrs += q.instr_count();
+            tex += q.tex_count() as u64;
+        }
+        TileStats {
+            tx: tile.tx(),
+            ty: tile.ty(),
+            warps: tile.quad_count() as u64,
+            instrs,
+            tex_instrs: tex,
+            block_accesses: tile.block_accesses().len() as u64,
+            warp_blocks,
+            unique_blocks: tile.unique_block_count() as u64,
+        }
+    }
+
+    /// Texture instructions / instructions.
+    pub fn mem_instr_ratio(&self) -> f64 {
+        ratio(self.tex_instrs as f64, self.instrs as f64)
+    }
+
+    /// Memory-block reuse in tile: warp blocks / unique blocks.
+    pub fn reuse(&self) -> f64 {
+        ratio(self.warp_blocks as f64, self.unique_blocks as f64)
+    }
+
+    /// CF: distinct blocks per warp, warp blocks / warps.
+    pub fn cf(&self) -> f64 {
+        ratio(self.warp_blocks as f64, self.warps as f64)
+    }
+
+    /// Min_Estimate1: unique blocks / warps.
+    pub fn min_estimate1(&self) -> f64 {
+        ratio(self.unique_blocks as f64, self.warps as f64)
+    }
+
+    /// Min_Estimate2: Min_Estimate1 / CF.
+    pub fn min_estimate2(&self) -> f64 {
+        ratio(self.min_estimate1(), self.cf())
+    }
+}
+
+/// Statistics of a whole trace (definitions in the module documentation).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TraceStats {
+    /// The workload name, so a report always says what it ran on.
+    pub workload: String,
+    /// Tile records.
+    pub tiles: u64,
+    /// Quads (warps).
+    pub warps: u64,
+    /// Quads the frame could shade (top-left pixel inside the frame).
+    pub frame_quads: u64,
+    /// warps / frame_quads.
+    pub coverage: f64,
+    /// warps / tiles.
+    pub warps_per_tile: f64,
+    /// Instructions, ALU runs counted by length.
+    pub instrs: u64,
+    /// Texture instructions.
+    pub tex_instrs: u64,
+    /// instrs / warps.
+    pub instrs_per_warp: f64,
+    /// Block accesses over all texture instructions.
+    pub block_accesses: u64,
+    /// Sum over tiles of distinct (warp, block) pairs.
+    pub warp_blocks: u64,
+    /// Sum over tiles of unique blocks per tile.
+    pub tile_unique_blocks: u64,
+    /// Distinct blocks of the whole frame.
+    pub frame_unique_blocks: u64,
+    /// Texture instructions / instructions.
+    pub mem_instr_ratio: f64,
+    /// Memory-block reuse in tile, mean over tiles weighted by warps.
+    pub reuse: f64,
+    /// Distinct blocks per warp.
+    pub cf: f64,
+    /// Unique blocks per tile / warps per tile, warp-weighted.
+    pub min_estimate1: f64,
+    /// min_estimate1 / cf.
+    pub min_estimate2: f64,
+}
+
+impl TraceStats {
+    pub(super) fn of(trace: &Trace) -> TraceStats {
+        let tiles = trace.tile_stats();
+        let sum = |f: fn(&TileStats) -> u64| tiles.iter().map(f).sum::<u64>();
+        let warps = sum(|t| t.warps);
+        let instrs = sum(|t| t.instrs);
+        let tex = sum(|t| t.tex_instrs);
+        let warp_blocks = sum(|t| t.warp_blocks);
+        let unique = sum(|t| t.unique_blocks);
+        let (mut reuse_num, mut reuse_den) = (0.0, 0.0);
+        for t in tiles.iter().filter(|t| t.unique_blocks > 0) {
+            reuse_num += t.warps as f64 * t.reuse();
+            reuse_den += t.warps as f64;
+        }
+        let mut all: Vec<u64> = trace
+            .tiles()
+            .iter()
+            .flat_map(|t| t.block_accesses().iter().copied())
+            .collect();
+        all.sort_unstable();
+        all.dedup();
+        let frame_quads = trace.header().frame_quads();
+        let cf = ratio(warp_blocks as f64, warps as f64);
+        let min_estimate1 = ratio(unique as f64, warps as f64);
+        TraceStats {
+            workload: trace.header().workload.clone(),
+            tiles: tiles.len() as u64,
+            warps,
+            frame_quads,
+            coverage: ratio(warps as f64, frame_quads as f64),
+            warps_per_tile: ratio(warps as f64, tiles.len() as f64),
+            instrs,
+            tex_instrs: tex,
+            instrs_per_warp: ratio(instrs as f64, warps as f64),
+            block_accesses: sum(|t| t.block_accesses),
+            warp_blocks,
+            tile_unique_blocks: unique,
+            frame_unique_blocks: all.len() as u64,
+            mem_instr_ratio: ratio(tex as f64, instrs as f64),
+            reuse: ratio(reuse_num, reuse_den),
+            cf,
+            min_estimate1,
+            min_estimate2: ratio(min_estimate1, cf),
+        }
+    }
+}
+
+/// Texture footprint ratio of the warps of `tile` whose in-tile quad
+/// position (x, y) satisfies `is_priority`: distinct blocks they touch /
+/// distinct blocks the whole tile touches. 1 for a tile without blocks.
+pub fn footprint_ratio(tile: &Tile, is_priority: impl Fn(u32, u32) -> bool) -> f64 {
+    let (selected, total) = footprint(tile, &is_priority);
+    if total == 0 {
+        1.0
+    } else {
+        selected as f64 / total as f64
+    }
+}
+
+fn footprint(tile: &Tile, is_priority: &impl Fn(u32, u32) -> bool) -> (usize, usize) {
+    let mut chosen: Vec<u64> = tile
+        .quads()
+        .filter(|q| is_priority(q.x(), q.y()))
+        .flat_map(|q| q.block_accesses().iter().copied())
+        .collect();
+    chosen.sort_unstable();
+    chosen.dedup();
+    (chosen.len(), tile.unique_block_count())
+}
+
+/// Mean texture footprint ratio over the tiles of `trace` that touch at
+/// least one block, weighted by their warps (0 if no tile touches a block).
+pub fn mean_footprint_ratio(trace: &Trace, is_priority: impl Fn(u32, u32) -> bool) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for tile in trace.tiles() {
+        let (selected, total) = footprint(tile, &is_priority);
+        if total > 0 {
+            let w = tile.quad_count() as f64;
+            num += w * selected as f64 / total as f64;
+            den += w;
+        }
+    }
+    ratio(num, den)
+}

@@ -1,0 +1,882 @@
+use super::*;
+use proptest::prelude::*;
+
+const TINY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/traces/tiny.trace");
+const SYNTH_SMALL: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../tests/traces/synthetic-small.trace"
+);
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-9
+}
+
+// ---------------------------------------------------------------- files
+
+#[test]
+fn tiny_trace_contents() {
+    let t = Trace::read(TINY).unwrap();
+    let h = t.header();
+    assert_eq!(h.workload, "hand:tiny");
+    assert_eq!((h.frame_w, h.frame_h, h.tile), (16, 8, 8));
+    assert_eq!(h.notes.len(), 8);
+    assert_eq!(
+        h.notes[0],
+        " tiny.trace: a hand-written trace for the reader's tests (see FORMAT.md)."
+    );
+    assert_eq!((h.tiles_x(), h.tiles_y(), h.quads_per_side()), (2, 1, 4));
+
+    let tiles = t.tiles();
+    assert_eq!(tiles.len(), 2);
+    assert_eq!((tiles[0].tx(), tiles[0].ty()), (0, 0));
+    assert_eq!((tiles[1].tx(), tiles[1].ty()), (1, 0));
+    assert_eq!(tiles[0].quad_count(), 16);
+    assert_eq!(tiles[1].quad_count(), 10);
+    assert_eq!(t.quad_count(), 26);
+
+    // Quad (3, 3) of tile 0 0: shader A touching four base blocks.
+    let q = tiles[0].quad_at(3, 3).unwrap();
+    assert_eq!(q.index(), 15);
+    assert_eq!(
+        q.instrs().collect::<Vec<_>>(),
+        vec![
+            Instr::Alu(2),
+            Instr::Tex(&[0x1a11, 0x1a12, 0x1a21, 0x1a22]),
+            Instr::Alu(4),
+            Instr::Tex(&[0x2000]),
+            Instr::Alu(1),
+        ]
+    );
+    assert_eq!(q.entry_count(), 5);
+    assert_eq!(q.entry(3), Some(Instr::Tex(&[0x2000])));
+    assert_eq!(q.entry(5), None);
+    assert_eq!(q.instr_count(), 9);
+    assert_eq!(q.tex_count(), 2);
+    assert_eq!(
+        q.unique_blocks(),
+        vec![0x1a11, 0x1a12, 0x1a21, 0x1a22, 0x2000]
+    );
+
+    // The partially covered tile: only quads with x <= y.
+    let t1 = &tiles[1];
+    let positions: Vec<(u32, u32)> = t1.quads().map(|q| (q.x(), q.y())).collect();
+    assert_eq!(
+        positions,
+        vec![
+            (0, 0),
+            (0, 1),
+            (1, 1),
+            (0, 2),
+            (1, 2),
+            (2, 2),
+            (0, 3),
+            (1, 3),
+            (2, 3),
+            (3, 3)
+        ]
+    );
+    assert!(t1.quad_at(1, 0).is_none());
+    assert_eq!(
+        t1.quad_at(1, 1).unwrap().block_accesses(),
+        &[0x3402, 0x3403, 0x3412, 0x3413]
+    );
+    assert_eq!(
+        t1.unique_blocks(),
+        vec![0x3402, 0x3403, 0x3412, 0x3413, 0x3414, 0x3422, 0x3423, 0x3424]
+    );
+    assert_eq!(tiles[0].unique_block_count(), 10);
+}
+
+#[test]
+fn tiny_trace_statistics_match_hand_computation() {
+    let t = Trace::read(TINY).unwrap();
+    let s0 = t.tiles()[0].stats();
+    assert_eq!(
+        s0,
+        TileStats {
+            tx: 0,
+            ty: 0,
+            warps: 16,
+            instrs: 16 * 9,
+            tex_instrs: 32,
+            block_accesses: 36 + 16,
+            warp_blocks: 52,
+            unique_blocks: 10,
+        }
+    );
+    assert!(close(s0.reuse(), 5.2));
+    assert!(close(s0.cf(), 3.25));
+    assert!(close(s0.min_estimate1(), 10.0 / 16.0));
+    assert!(close(s0.min_estimate2(), 10.0 / 52.0));
+    assert!(close(s0.mem_instr_ratio(), 2.0 / 9.0));
+    let s1 = t.tiles()[1].stats();
+    assert_eq!((s1.warps, s1.warp_blocks, s1.unique_blocks), (10, 23, 8));
+
+    let s = t.stats();
+    assert_eq!(s.workload, "hand:tiny");
+    assert_eq!((s.tiles, s.warps, s.frame_quads), (2, 26, 32));
+    assert_eq!((s.instrs, s.tex_instrs), (224, 42));
+    assert_eq!(
+        (s.warp_blocks, s.tile_unique_blocks, s.frame_unique_blocks),
+        (75, 18, 18)
+    );
+    assert!(close(s.coverage, 26.0 / 32.0));
+    assert!(close(s.mem_instr_ratio, 42.0 / 224.0));
+    assert!(close(s.cf, 75.0 / 26.0));
+    assert!(close(s.min_estimate1, 18.0 / 26.0));
+    assert!(close(s.min_estimate2, 18.0 / 75.0));
+    assert!(close(s.reuse, (16.0 * 5.2 + 10.0 * 2.875) / 26.0));
+    assert!(close(s.warps_per_tile, 13.0));
+
+    // Footprint of one quad in four (x, y even) and of Mesh4's (0, 0).
+    let tile0 = &t.tiles()[0];
+    assert!(close(
+        footprint_ratio(tile0, |x, y| x % 2 == 0 && y % 2 == 0),
+        0.5
+    ));
+    assert!(close(
+        footprint_ratio(tile0, |x, y| x % 4 == 0 && y % 4 == 0),
+        0.2
+    ));
+    assert!(close(footprint_ratio(tile0, |_, _| true), 1.0));
+    assert!(close(footprint_ratio(tile0, |_, _| false), 0.0));
+    // Tile 1 0: (0, 0) touches 1 of 8 blocks; (0,2),(2,2) add 3412 and 3413.
+    let mesh2 = mean_footprint_ratio(&t, |x, y| x % 2 == 0 && y % 2 == 0);
+    assert!(close(mesh2, (16.0 * 0.5 + 10.0 * 3.0 / 8.0) / 26.0));
+}
+
+#[test]
+fn synthetic_small_trace_contents() {
+    let t = Trace::read(SYNTH_SMALL).unwrap();
+    let h = t.header();
+    assert!(h.workload.starts_with("synthetic:"), "{}", h.workload);
+    assert!(h.notes.iter().any(|n| n.contains("generator-params")));
+    assert_eq!((h.frame_w, h.frame_h, h.tile), (128, 128, 64));
+    let tiles = t.tiles();
+    // Z-order over the 2x2 tile grid.
+    let order: Vec<(u32, u32)> = tiles.iter().map(|t| (t.tx(), t.ty())).collect();
+    assert_eq!(order, vec![(0, 0), (1, 0), (0, 1), (1, 1)]);
+    let counts: Vec<usize> = tiles.iter().map(Tile::quad_count).collect();
+    assert_eq!(counts, SYNTH_SMALL_QUADS);
+    let q = tiles[0].quad(0).unwrap();
+    assert_eq!((q.x(), q.y()), SYNTH_SMALL_Q0_POS);
+    assert_eq!(q.instrs().collect::<Vec<_>>(), synth_small_q0_instrs());
+    // The writer reproduces the file byte for byte.
+    let text = std::fs::read_to_string(SYNTH_SMALL).unwrap();
+    assert_eq!(t.to_text(), text);
+}
+
+// Pinned from tests/traces/synthetic-small.trace (tile 0 0 misses quads
+// 0..2 of row 0 behind a silhouette; tile 1 1 is fully covered).
+const SYNTH_SMALL_QUADS: [usize; 4] = [1006, 925, 527, 1024];
+const SYNTH_SMALL_Q0_POS: (u32, u32) = (3, 0);
+fn synth_small_q0_instrs() -> Vec<Instr<'static>> {
+    vec![
+        Instr::Alu(3),
+        Instr::Tex(&[0x1245f5, 0x1245f4]),
+        Instr::Alu(3),
+    ]
+}
+
+#[test]
+fn tiny_trace_round_trips_through_the_writer() {
+    let t = Trace::read(TINY).unwrap();
+    let text = t.to_text();
+    assert!(text.starts_with("wasp-trace 1\n# tiny.trace"));
+    assert!(text.contains("\nq 1 1 a2 t1a00,1a01,1a10,1a11 a4 t2000 a1\n"));
+    assert_eq!(Trace::parse(&text, "rt").unwrap(), t);
+}
+
+#[test]
+fn read_reports_missing_file() {
+    let e = Trace::read("/nonexistent/dir/x.trace").unwrap_err();
+    assert!(matches!(e, TraceError::Io { .. }));
+    assert!(e
+        .to_string()
+        .starts_with("/nonexistent/dir/x.trace: cannot read: "));
+}
+
+// ---------------------------------------------------------------- errors
+
+const HEAD: &str = "wasp-trace 1\nworkload w\nframe 100 70 tile 64\n";
+
+/// Parses `text` and returns (line, problem, message) of the error.
+fn fail(text: &str) -> (usize, Problem, String) {
+    match Trace::parse(text, "x.trace") {
+        Ok(t) => panic!("parsed: {t:?}"),
+        Err(e) => {
+            let msg = e.to_string();
+            let line = e.line().unwrap();
+            assert!(msg.starts_with(&format!("x.trace:{line}: ")), "{msg}");
+            assert!(msg.contains("(expected "), "{msg}");
+            (line, e.problem().unwrap().clone(), msg)
+        }
+    }
+}
+
+fn body(s: &str) -> String {
+    format!("{HEAD}{s}")
+}
+
+#[test]
+fn minimal_traces_parse() {
+    let t = Trace::parse(HEAD, "x").unwrap();
+    assert!(t.tiles().is_empty());
+    let t = Trace::parse(&body("tile 1 1\nq 0 0 a1\nend"), "x").unwrap(); // no final LF
+    assert_eq!(t.tiles()[0].quad_count(), 1);
+    let crlf = body("tile 0 0\nq 0 0 t1\nend\n").replace('\n', "\r\n");
+    let t = Trace::parse(&crlf, "x").unwrap();
+    assert_eq!(t.tiles()[0].quad(0).unwrap().block_accesses(), &[1]);
+    // Blanks, tabs, blank lines, comments anywhere, upper-case hex, zeros.
+    let t = Trace::parse(
+        &body("\n  tile\t0  0 \n# c\n\tq 0 0  a01 tFF,00a\n   # c2\nend\n\n"),
+        "x",
+    )
+    .unwrap();
+    let q = t.tiles()[0].quad(0).unwrap();
+    assert_eq!(
+        q.instrs().collect::<Vec<_>>(),
+        vec![Instr::Alu(1), Instr::Tex(&[0xff, 0xa])]
+    );
+    assert!(t.header().notes.is_empty());
+}
+
+#[test]
+fn every_malformation_is_reported_with_its_line() {
+    use Problem::*;
+    type Case = (String, usize, fn(&Problem) -> bool);
+    let cases: Vec<Case> = vec![
+        ("".into(), 1, |p| matches!(p, EmptyInput)),
+        ("wasp-trace 1".into(), 1, |p| {
+            matches!(
+                p,
+                MissingHeader {
+                    missing: "workload NAME",
+                    ..
+                }
+            )
+        }),
+        (
+            "wasp-trace 2\n".into(),
+            1,
+            |p| matches!(p, UnsupportedVersion(v) if v == "2"),
+        ),
+        ("wasp-trace\n".into(), 1, |p| matches!(p, BadMagic(_))),
+        ("wasp-trace 1 x\n".into(), 1, |p| matches!(p, BadMagic(_))),
+        (" wasp-trace 1\n".into(), 1, |p| matches!(p, BadMagic(_))),
+        ("# c\nwasp-trace 1\n".into(), 1, |p| {
+            matches!(p, BadMagic(_))
+        }),
+        ("wasp-trace 1\nframe 1 1 tile 2\n".into(), 2, |p| {
+            matches!(
+                p,
+                MissingHeader {
+                    missing: "workload NAME",
+                    ..
+                }
+            )
+        }),
+        ("wasp-trace 1\nworkload w\ntile 0 0\n".into(), 3, |p| {
+            matches!(
+                p,
+                MissingHeader {
+                    missing: "frame W H tile T",
+                    ..
+                }
+            )
+        }),
+        ("wasp-trace 1\nworkload w\n".into(), 2, |p| {
+            matches!(p, MissingHeader { .. })
+        }),
+        ("wasp-trace 1\nworkload \n".into(), 2, |p| {
+            matches!(p, EmptyWorkload)
+        }),
+        ("wasp-trace 1\nworkload a\nworkload b\n".into(), 3, |p| {
+            matches!(p, MisplacedHeader("workload"))
+        }),
+        (body("workload b\n"), 4, |p| {
+            matches!(p, MisplacedHeader("workload"))
+        }),
+        (body("frame 1 1 tile 2\n"), 4, |p| {
+            matches!(p, MisplacedHeader("frame"))
+        }),
+        (
+            "wasp-trace 1\nworkload w\nframe 10 10 tile\n".into(),
+            3,
+            |p| {
+                matches!(
+                    p,
+                    WrongFieldCount {
+                        directive: "frame",
+                        ..
+                    }
+                )
+            },
+        ),
+        (
+            "wasp-trace 1\nworkload w\nframe 10 10 tyle 2\n".into(),
+            3,
+            |p| {
+                matches!(
+                    p,
+                    WrongFieldCount {
+                        directive: "frame",
+                        ..
+                    }
+                )
+            },
+        ),
+        (
+            "wasp-trace 1\nworkload w\nframe 0 10 tile 2\n".into(),
+            3,
+            |p| matches!(p, BadFrame { dim: "width", .. }),
+        ),
+        (
+            "wasp-trace 1\nworkload w\nframe 10 65537 tile 2\n".into(),
+            3,
+            |p| {
+                matches!(
+                    p,
+                    NumberTooLarge {
+                        what: "frame height",
+                        ..
+                    }
+                )
+            },
+        ),
+        (
+            "wasp-trace 1\nworkload w\nframe 10 10 tile 7\n".into(),
+            3,
+            |p| matches!(p, BadTileSize(7)),
+        ),
+        (
+            "wasp-trace 1\nworkload w\nframe 10 10 tile 0\n".into(),
+            3,
+            |p| matches!(p, BadTileSize(0)),
+        ),
+        (
+            "wasp-trace 1\nworkload w\nframe -1 10 tile 2\n".into(),
+            3,
+            |p| {
+                matches!(
+                    p,
+                    BadNumber {
+                        what: "frame width",
+                        ..
+                    }
+                )
+            },
+        ),
+        ("wasp-trace 1\nbogus\n".into(), 2, |p| {
+            matches!(p, UnknownDirective { .. })
+        }),
+        (body("tile 0 0\nx 1 2\n"), 5, |p| {
+            matches!(
+                p,
+                UnknownDirective {
+                    expected: "`q X Y ...` or `end`",
+                    ..
+                }
+            )
+        }),
+        (body("tile 0 0\nq 0 0 a1\nend\nq 0 0 a1\n"), 7, |p| {
+            matches!(p, QuadWithoutTile)
+        }),
+        (body("q 0 0 a1\n"), 4, |p| matches!(p, QuadWithoutTile)),
+        (body("end\n"), 4, |p| matches!(p, EndWithoutTile)),
+        (body("tile 0 0\nq 0 0 a1\nend x\n"), 6, |p| {
+            matches!(
+                p,
+                WrongFieldCount {
+                    directive: "end",
+                    ..
+                }
+            )
+        }),
+        (body("tile 0 0\nq 0 0 a1\n"), 5, |p| {
+            matches!(p, TileNotClosed { tx: 0, ty: 0 })
+        }),
+        (body("tile 0 0\nq 0 0 a1\ntile 1 0\n"), 6, |p| {
+            matches!(p, TileNotClosed { tx: 0, ty: 0 })
+        }),
+        (body("tile 0 0\nend\n"), 5, |p| {
+            matches!(p, EmptyTile { .. })
+        }),
+        (body("tile 2 0\n"), 4, |p| {
+            matches!(
+                p,
+                TileOutsideFrame {
+                    tiles_x: 2,
+                    tiles_y: 2,
+                    ..
+                }
+            )
+        }),
+        (body("tile 0 2\n"), 4, |p| {
+            matches!(p, TileOutsideFrame { .. })
+        }),
+        (body("tile 0\n"), 4, |p| {
+            matches!(
+                p,
+                WrongFieldCount {
+                    directive: "tile",
+                    ..
+                }
+            )
+        }),
+        (body("tile 0 99999999999\n"), 4, |p| {
+            matches!(p, NumberTooLarge { what: "tile y", .. })
+        }),
+        (body("tile 0 0\nq 0 0 a1\nend\ntile 0 0\n"), 7, |p| {
+            matches!(p, DuplicateTile { tx: 0, ty: 0 })
+        }),
+        (body("tile 0 0\nq 32 0 a1\n"), 5, |p| {
+            matches!(
+                p,
+                QuadOutsideTile {
+                    x: 32,
+                    side: 32,
+                    ..
+                }
+            )
+        }),
+        (body("tile 0 0\nq 0 32 a1\n"), 5, |p| {
+            matches!(p, QuadOutsideTile { .. })
+        }),
+        // Frame 100x70: tile 1 0 holds pixel columns 64..99, quads x 0..17.
+        (body("tile 1 0\nq 18 0 a1\n"), 5, |p| {
+            matches!(p, QuadOutsideFrame { x: 18, px: 100, .. })
+        }),
+        (body("tile 0 1\nq 0 3 a1\n"), 5, |p| {
+            matches!(p, QuadOutsideFrame { py: 70, .. })
+        }),
+        (body("tile 0 0\nq 1 0 a1\nq 1 0 a1\n"), 6, |p| {
+            matches!(p, DuplicateQuad { x: 1, y: 0 })
+        }),
+        (body("tile 0 0\nq 1 1 a1\nq 2 0 a1\n"), 6, |p| {
+            matches!(
+                p,
+                QuadOutOfOrder {
+                    x: 2,
+                    y: 0,
+                    prev_x: 1,
+                    prev_y: 1
+                }
+            )
+        }),
+        (body("tile 0 0\nq 0 0\n"), 5, |p| {
+            matches!(p, EmptyQuad { x: 0, y: 0 })
+        }),
+        (body("tile 0 0\nq 0\n"), 5, |p| {
+            matches!(p, WrongFieldCount { directive: "q", .. })
+        }),
+        (body("tile 0 0\nq 0 x a1\n"), 5, |p| {
+            matches!(p, BadNumber { what: "quad y", .. })
+        }),
+        (body("tile 0 0\nq 0 0 a0\n"), 5, |p| matches!(p, ZeroAlu)),
+        (body("tile 0 0\nq 0 0 a\n"), 5, |p| matches!(p, BadInstr(_))),
+        (body("tile 0 0\nq 0 0 a-1\n"), 5, |p| {
+            matches!(p, BadInstr(_))
+        }),
+        (body("tile 0 0\nq 0 0 a2147483648\n"), 5, |p| {
+            matches!(
+                p,
+                NumberTooLarge {
+                    what: "ALU run",
+                    ..
+                }
+            )
+        }),
+        (body("tile 0 0\nq 0 0 a3 a2\n"), 5, |p| {
+            matches!(
+                p,
+                AdjacentAlu {
+                    first: 3,
+                    second: 2
+                }
+            )
+        }),
+        (body("tile 0 0\nq 0 0 x5\n"), 5, |p| {
+            matches!(p, BadInstr(_))
+        }),
+        (body("tile 0 0\nq 0 0 t\n"), 5, |p| matches!(p, TexNoBlock)),
+        (body("tile 0 0\nq 0 0 t1,\n"), 5, |p| {
+            matches!(p, EmptyBlockEntry(_))
+        }),
+        (body("tile 0 0\nq 0 0 t,1\n"), 5, |p| {
+            matches!(p, EmptyBlockEntry(_))
+        }),
+        (body("tile 0 0\nq 0 0 t1,,2\n"), 5, |p| {
+            matches!(p, EmptyBlockEntry(_))
+        }),
+        (body("tile 0 0\nq 0 0 t1g\n"), 5, |p| {
+            matches!(p, BadHex { .. })
+        }),
+        (body("tile 0 0\nq 0 0 t0x1\n"), 5, |p| {
+            matches!(p, BadHex { .. })
+        }),
+        (body("tile 0 0\nq 0 0 t+1\n"), 5, |p| {
+            matches!(p, BadHex { .. })
+        }),
+        (body("tile 0 0\nq 0 0 t10000000000000000\n"), 5, |p| {
+            matches!(p, BadHex { .. })
+        }),
+        (body("tile 0 0\nq 0 0 t1a,2,1A\n"), 5, |p| {
+            matches!(p, DuplicateBlock(0x1a))
+        }),
+        (
+            body(&format!(
+                "tile 0 0\nq 0 0 t{}\n",
+                (0..1025)
+                    .map(|i| format!("{i:x}"))
+                    .collect::<Vec<_>>()
+                    .join(",")
+            )),
+            5,
+            |p| matches!(p, TooManyBlocks(1025)),
+        ),
+        (body("tile 0 0\nq 0 0 a1 # c\n"), 5, |p| {
+            matches!(p, BadInstr(_))
+        }),
+        (body("tile 0 0\nq 0 0 a1\x0b\n"), 5, |p| {
+            matches!(p, ControlCharacter)
+        }),
+        (body("# bell \x07\n"), 4, |p| matches!(p, ControlCharacter)),
+        (body("tile 0 0\nq 0 0 a1\rx\n"), 5, |p| {
+            matches!(p, ControlCharacter)
+        }),
+    ];
+    for (text, line, check) in cases {
+        let (l, p, msg) = fail(&text);
+        assert!(check(&p), "{text:?}: got {p:?} ({msg})");
+        assert_eq!(l, line, "{text:?}: {msg}");
+    }
+}
+
+#[test]
+fn error_messages_read_well() {
+    let (_, _, msg) = fail(&body("tile 0 0\nq 40 3 a1\n"));
+    assert_eq!(
+        msg,
+        "x.trace:5: quad 40 3 outside the tile (expected x and y from 0 to 31)"
+    );
+    let (_, _, msg) = fail("wasp-trace 3\n");
+    assert_eq!(
+        msg,
+        "x.trace:1: unsupported format version `3` (expected 1)"
+    );
+    let (_, _, msg) = fail(&body("tile 0 0\nq 0 0 t1,1\n"));
+    assert_eq!(
+        msg,
+        "x.trace:5: block 1 listed twice in one texture instruction (expected distinct blocks)"
+    );
+    let (_, _, msg) = fail(&body(&format!("tile 0 0\nq 0 0 a{}\n", "9".repeat(200))));
+    assert!(msg.len() < 200, "{msg}");
+}
+
+#[test]
+fn invalid_utf8_reports_its_line() {
+    let mut bytes = body("tile 0 0\n").into_bytes();
+    bytes.extend_from_slice(b"q 0 0 t\xff\n");
+    let e = Trace::parse_bytes(&bytes, "b.trace").unwrap_err();
+    assert_eq!(e.line(), Some(5));
+    assert_eq!(e.problem(), Some(&Problem::InvalidUtf8));
+}
+
+// ---------------------------------------------------------------- builder
+
+#[test]
+fn builder_merges_alu_runs_and_rejects_without_changing_state() {
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    assert_eq!(b.alu(1), Err(Problem::InstrWithoutQuad));
+    assert_eq!(b.begin_quad(0, 0), Err(Problem::QuadWithoutTile));
+    b.begin_tile(0, 0).unwrap();
+    assert_eq!(b.end_tile(), Err(Problem::EmptyTile { tx: 0, ty: 0 }));
+    b.begin_quad(0, 1).unwrap();
+    assert_eq!(b.begin_quad(0, 2), Err(Problem::EmptyQuad { x: 0, y: 1 }));
+    b.alu(3).unwrap();
+    b.alu(2).unwrap();
+    assert_eq!(b.tex(&[5, 5]), Err(Problem::DuplicateBlock(5)));
+    assert_eq!(b.tex(&[]), Err(Problem::TexNoBlock));
+    b.tex(&[5, 6]).unwrap();
+    b.alu(1).unwrap();
+    assert_eq!(
+        b.alu(MAX_ALU_RUN),
+        Err(Problem::AluRunTooLong(1 + 0x7fff_ffff))
+    );
+    assert_eq!(
+        b.begin_quad(0, 0),
+        Err(Problem::QuadOutOfOrder {
+            x: 0,
+            y: 0,
+            prev_x: 0,
+            prev_y: 1
+        })
+    );
+    b.quad(1, 1, &[Instr::Tex(&[7]), Instr::Alu(4)]).unwrap();
+    assert_eq!(
+        b.finish().unwrap_err(),
+        Problem::TileNotClosed { tx: 0, ty: 0 }
+    );
+
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    b.begin_tile(0, 0).unwrap();
+    b.quad(
+        0,
+        1,
+        &[
+            Instr::Alu(3),
+            Instr::Alu(2),
+            Instr::Tex(&[5, 6]),
+            Instr::Alu(1),
+        ],
+    )
+    .unwrap();
+    b.quad(1, 1, &[Instr::Tex(&[7]), Instr::Alu(4)]).unwrap();
+    b.end_tile().unwrap();
+    assert_eq!(
+        b.begin_tile(0, 0),
+        Err(Problem::DuplicateTile { tx: 0, ty: 0 })
+    );
+    let t = b.finish().unwrap();
+    let q = t.tiles()[0].quad(0).unwrap();
+    assert_eq!(
+        q.instrs().collect::<Vec<_>>(),
+        vec![Instr::Alu(5), Instr::Tex(&[5, 6]), Instr::Alu(1)]
+    );
+    assert_eq!(t.tiles()[0].quad(1).unwrap().block_accesses(), &[7]);
+    assert_eq!(t.instr_count(), 7 + 5);
+    assert_eq!(t.tex_count(), 2);
+}
+
+#[test]
+fn builder_rejects_bad_headers() {
+    let bad = |h: TraceHeader| Trace::builder(h).unwrap_err();
+    assert_eq!(bad(TraceHeader::new("", 1, 1, 2)), Problem::EmptyWorkload);
+    assert!(matches!(
+        bad(TraceHeader::new(" w", 1, 1, 2)),
+        Problem::BadText { .. }
+    ));
+    assert!(matches!(
+        bad(TraceHeader::new("a\nb", 1, 1, 2)),
+        Problem::BadText { .. }
+    ));
+    assert!(matches!(
+        bad(TraceHeader::new("w", 1, 0, 2)),
+        Problem::BadFrame { .. }
+    ));
+    assert_eq!(
+        bad(TraceHeader::new("w", 1, 1, 514)),
+        Problem::BadTileSize(514)
+    );
+    let mut h = TraceHeader::new("w", 1, 1, 2);
+    h.notes.push("x\ry".into());
+    assert!(matches!(
+        bad(h),
+        Problem::BadText {
+            field: TextField::Note,
+            ..
+        }
+    ));
+}
+
+// ---------------------------------------------------------------- proptests
+
+/// An instruction of a generated quad: (ALU run, no blocks) or (0, blocks).
+type SpecInstr = (u32, Vec<u64>);
+
+/// A strategy for arbitrary valid traces, built through the builder.
+fn arb_trace() -> impl Strategy<Value = Trace> {
+    let header = (
+        1u32..300,
+        1u32..200,
+        1u32..=32,
+        "[ -~]{1,20}",
+        proptest::collection::vec("[ -~\t]{0,12}", 0..3),
+    )
+        .prop_filter_map("blank-edged name", |(w, h, half, name, notes)| {
+            let name = name.trim().to_string();
+            if name.is_empty() {
+                return None;
+            }
+            let mut hd = TraceHeader::new(name, w, h, 2 * half);
+            hd.notes = notes;
+            Some(hd)
+        });
+    let instr = prop_oneof![
+        (1u32..=MAX_ALU_RUN).prop_map(|n| (n, vec![])),
+        proptest::collection::btree_set(any::<u64>(), 1..6)
+            .prop_map(|s| (0, s.into_iter().collect::<Vec<u64>>())),
+        proptest::collection::btree_set(0u64..64, 1..5)
+            .prop_map(|s| (0, s.into_iter().rev().collect::<Vec<u64>>())),
+    ];
+    let quad = proptest::collection::vec(instr, 1..6);
+    header
+        .prop_flat_map(move |hd| {
+            let tiles = proptest::collection::vec(
+                (
+                    any::<u32>(),
+                    any::<u32>(),
+                    proptest::collection::vec((any::<u32>(), any::<u32>(), quad.clone()), 1..8),
+                ),
+                0..5,
+            );
+            (Just(hd), tiles)
+        })
+        .prop_map(|(hd, tiles)| {
+            let (nx, ny, side) = (hd.tiles_x(), hd.tiles_y(), hd.quads_per_side());
+            let mut b = Trace::builder(hd).unwrap();
+            for (tx, ty, quads) in tiles {
+                let (tx, ty) = (tx % nx, ty % ny);
+                if b.begin_tile(tx, ty).is_err() {
+                    continue; // duplicate tile
+                }
+                let mut placed: Vec<(u32, u32, Vec<SpecInstr>)> = quads
+                    .into_iter()
+                    .map(|(x, y, q)| (x % side, y % side, q))
+                    .filter(|&(x, y, _)| b.header().quad_in_frame(tx, ty, x, y))
+                    .collect();
+                placed.sort_by_key(|&(x, y, _)| (y, x));
+                placed.dedup_by_key(|&mut (x, y, _)| (x, y));
+                if placed.is_empty() {
+                    placed.push((0, 0, vec![(1, vec![])]));
+                }
+                for (x, y, instrs) in placed {
+                    b.begin_quad(x, y).unwrap();
+                    for (n, blocks) in instrs {
+                        if blocks.is_empty() {
+                            // Merging may overflow the run limit: then skip it.
+                            let _ = b.alu(n);
+                        } else {
+                            b.tex(&blocks).unwrap();
+                        }
+                    }
+                }
+                b.end_tile().unwrap();
+            }
+            b.finish().unwrap()
+        })
+}
+
+/// Mutations of a valid trace text: some keep it valid, most break it.
+fn mutate(text: &str, ops: &[(u8, usize, usize, String)]) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    for (kind, a, b, s) in ops {
+        if lines.is_empty() {
+            break;
+        }
+        let i = a % lines.len();
+        let j = b % lines.len();
+        match kind % 8 {
+            0 => {
+                lines.remove(i);
+            }
+            1 => {
+                let l = lines[i].clone();
+                lines.insert(j, l);
+            }
+            2 => lines.swap(i, j),
+            3 => lines.insert(i, s.clone()),
+            4 => {
+                let l = &mut lines[i];
+                let mut cut = (*b).min(l.len());
+                while !l.is_char_boundary(cut) {
+                    cut -= 1;
+                }
+                l.insert_str(cut, s);
+            }
+            5 => {
+                let l = &mut lines[i];
+                let mut cut = (*b).min(l.len());
+                while !l.is_char_boundary(cut) {
+                    cut -= 1;
+                }
+                l.truncate(cut);
+            }
+            6 => {
+                // Change one digit.
+                let l = &mut lines[i];
+                if let Some(p) = l
+                    .char_indices()
+                    .filter(|(_, c)| c.is_ascii_digit())
+                    .map(|(p, _)| p)
+                    .nth(*b % 4)
+                {
+                    l.replace_range(p..p + 1, &((b % 10).to_string()));
+                }
+            }
+            _ => lines[i] = lines[i].replace(' ', s),
+        }
+    }
+    lines.join("\n")
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn round_trip_is_exact(t in arb_trace()) {
+        let text = t.to_text();
+        let back = Trace::parse(&text, "rt").unwrap();
+        prop_assert_eq!(&back, &t);
+        prop_assert_eq!(back.to_text(), text);
+    }
+
+    #[test]
+    fn random_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..400)) {
+        let _ = Trace::parse_bytes(&bytes, "r");
+        let mut prefixed = HEAD.as_bytes().to_vec();
+        prefixed.extend_from_slice(&bytes);
+        let _ = Trace::parse_bytes(&prefixed, "r");
+    }
+
+    #[test]
+    fn random_token_soup_never_panics(
+        toks in proptest::collection::vec(prop_oneof![
+            Just("tile".to_string()), Just("q".to_string()), Just("end".to_string()),
+            Just("workload".to_string()), Just("frame".to_string()), Just("\n".to_string()),
+            Just("#".to_string()), Just("a1".to_string()), Just("a0".to_string()),
+            Just("t1,2".to_string()), Just("tffffffffffffffff".to_string()),
+            Just("4294967296".to_string()), Just("t".to_string()), Just(",".to_string()),
+            (0u32..40).prop_map(|n| n.to_string()), "[ -~]{0,4}",
+        ], 0..80)
+    ) {
+        let text = format!("{HEAD}{}", toks.join(" "));
+        if let Ok(t) = Trace::parse(&text, "soup") {
+            prop_assert_eq!(Trace::parse(&t.to_text(), "soup2").unwrap(), t);
+        }
+    }
+
+    #[test]
+    fn mutated_traces_never_panic(
+        t in arb_trace(),
+        ops in proptest::collection::vec((any::<u8>(), any::<usize>(), 0usize..40, "[ -~\t\r]{0,6}"), 1..6),
+    ) {
+        let text = mutate(&t.to_text(), &ops);
+        match Trace::parse(&text, "m") {
+            Ok(t2) => prop_assert_eq!(Trace::parse(&t2.to_text(), "m2").unwrap(), t2),
+            Err(e) => {
+                let msg = e.to_string();
+                prop_assert!(msg.starts_with("m:"), "{}", msg);
+                prop_assert!(msg.contains("(expected "), "{}", msg);
+            }
+        }
+    }
+
+    #[test]
+    fn statistics_are_consistent(t in arb_trace()) {
+        let s = t.stats();
+        prop_assert_eq!(s.warps as usize, t.quad_count());
+        prop_assert_eq!(s.instrs, t.instr_count());
+        prop_assert!(s.warp_blocks >= s.tile_unique_blocks);
+        prop_assert!(s.block_accesses >= s.warp_blocks);
+        prop_assert!(s.tile_unique_blocks >= s.frame_unique_blocks);
+        for tile in t.tiles() {
+            let ts = tile.stats();
+            prop_assert!(ts.unique_blocks == 0 || ts.reuse() >= 1.0);
+            prop_assert!(close(footprint_ratio(tile, |_, _| true), 1.0));
+            let f = footprint_ratio(tile, |x, _| x % 2 == 0);
+            prop_assert!((0.0..=1.0).contains(&f));
+        }
+    }
+}

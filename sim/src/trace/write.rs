@@ -1,0 +1,57 @@
+//! The writer of `wasp-trace 1` text.
+
+use super::{Instr, Trace, FORMAT_VERSION, MAGIC};
+use std::fmt::Write as _;
+use std::io::{self, Write};
+
+impl Trace {
+    /// Writes the trace as `wasp-trace 1` text: line 1, the header notes as
+    /// `#` lines, the header, then each tile record. Hex is lowercase without
+    /// leading zeros. `Trace::parse` of the output gives back `self`.
+    pub fn write(&self, mut out: impl Write) -> io::Result<()> {
+        let h = &self.header;
+        let mut buf = String::new();
+        // Writing into a String cannot fail.
+        let _ = writeln!(buf, "{MAGIC} {FORMAT_VERSION}");
+        for note in &h.notes {
+            let _ = writeln!(buf, "#{note}");
+        }
+        let _ = writeln!(buf, "workload {}", h.workload);
+        let _ = writeln!(buf, "frame {} {} tile {}", h.frame_w, h.frame_h, h.tile);
+        out.write_all(buf.as_bytes())?;
+        for tile in &self.tiles {
+            buf.clear();
+            let _ = writeln!(buf, "tile {} {}", tile.tx(), tile.ty());
+            for q in tile.quads() {
+                let _ = write!(buf, "q {} {}", q.x(), q.y());
+                for instr in q.instrs() {
+                    match instr {
+                        Instr::Alu(n) => {
+                            let _ = write!(buf, " a{n}");
+                        }
+                        Instr::Tex(blocks) => {
+                            buf.push_str(" t");
+                            for (i, b) in blocks.iter().enumerate() {
+                                if i > 0 {
+                                    buf.push(',');
+                                }
+                                let _ = write!(buf, "{b:x}");
+                            }
+                        }
+                    }
+                }
+                buf.push('\n');
+            }
+            buf.push_str("end\n");
+            out.write_all(buf.as_bytes())?;
+        }
+        out.flush()
+    }
+
+    /// The trace as `wasp-trace 1` text.
+    pub fn to_text(&self) -> String {
+        let mut out = Vec::new();
+        self.write(&mut out).expect("writing to a Vec cannot fail");
+        String::from_utf8(out).expect("the writer emits UTF-8")
+    }
+}

@@ -1,0 +1,406 @@
+//! `wasp run` and `wasp compare`: the GPU model on a trace.
+
+use crate::CliError;
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::{BufWriter, IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::subset::SubsetSpec;
+use wasp_sim::config::MachineConfig;
+use wasp_sim::gpu::{simulate, simulate_traced, RunOptions, SimError};
+use wasp_sim::stats::{csv_table, RunStats};
+use wasp_sim::synth::{generate, GenParams};
+use wasp_sim::trace::Trace;
+use wasp_waves::{Format, GtkwSave, VcdSink};
+
+/// Where the machine and the workload come from.
+#[derive(Args, Debug, Clone)]
+pub struct Inputs {
+    /// Machine configuration (TOML). Default: the embedded
+    /// configs/paper.toml (Table II, width 4, 64 warps, L0).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+
+    /// Workload trace (wasp-trace format, see tests/traces/FORMAT.md).
+    /// Default: the synthetic workload of `wasp synth` with its defaults
+    /// (a 1960x768 frame), generated with the config's seed.
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
+
+    /// Priority subset: mesh2, mesh4, mesh8, mesh16, hlines, vlines, top16,
+    /// random[:seed]. Overrides scheduler.subset.
+    #[arg(long, value_name = "SUBSET")]
+    pub subset: Option<SubsetSpec>,
+
+    /// Zero-latency main memory (overrides memory.ideal).
+    #[arg(long)]
+    pub ideal_memory: bool,
+
+    /// No progress bar, even on a terminal.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Options of `wasp run`.
+#[derive(Args, Debug, Clone)]
+pub struct RunArgs {
+    #[command(flatten)]
+    pub inputs: Inputs,
+
+    /// Launch policy: baseline, fullpriority, freemshr:N, wasp[:threshold[:cf]].
+    /// Overrides scheduler.policy.
+    #[arg(long, value_name = "POLICY")]
+    pub policy: Option<PolicySpec>,
+
+    /// Write the statistics as JSON to FILE (`-` for standard output).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+
+    /// Write the statistics as CSV to FILE (`-` for standard output).
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+
+    /// Write the waveform (VCD) to FILE, and a GTKWave save file FILE.gtkw
+    /// preselecting core 0's scheduler signals.
+    #[arg(long, value_name = "FILE")]
+    pub vcd: Option<PathBuf>,
+
+    /// First cycle written to the VCD.
+    #[arg(long, value_name = "CYCLE", requires = "vcd")]
+    pub vcd_from: Option<u64>,
+
+    /// Last cycle written to the VCD.
+    #[arg(long, value_name = "CYCLE", requires = "vcd")]
+    pub vcd_to: Option<u64>,
+}
+
+/// Options of `wasp compare`.
+#[derive(Args, Debug, Clone)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    pub inputs: Inputs,
+
+    /// Policies to compare, comma separated; the first is the reference for
+    /// speedups (scanline baseline by default).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "baseline,fullpriority,freemshr:10,wasp:4"
+    )]
+    pub policies: Vec<PolicySpec>,
+
+    /// Also run the reference policy with ideal (zero-latency) main memory.
+    #[arg(long)]
+    pub with_ideal: bool,
+
+    /// Write every run's statistics as a JSON array to FILE (`-`: stdout).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+
+    /// Write every run's statistics as CSV to FILE (`-`: stdout).
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+
+    /// Simulations run at once (default: the machine's cores).
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+}
+
+/// Load the configuration named by the inputs.
+pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
+    match &inputs.config {
+        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string())),
+        None => Ok(MachineConfig::paper()),
+    }
+}
+
+/// Load (or generate) the trace named by the inputs.
+pub fn load_trace(inputs: &Inputs, cfg: &MachineConfig) -> Result<Trace, CliError> {
+    match &inputs.trace {
+        Some(p) => Trace::read(p).map_err(|e| CliError::usage(e.to_string())),
+        None => {
+            let params = GenParams {
+                tile: cfg.gpu.tile_size,
+                seed: cfg.sim.seed,
+                ..GenParams::default()
+            };
+            if !inputs.quiet {
+                eprintln!(
+                    "wasp: no --trace given: generating the synthetic workload {}",
+                    params.workload_name()
+                );
+            }
+            generate(&params).map_err(|e| CliError::failed(format!("generating the trace: {e}")))
+        }
+    }
+}
+
+fn progress_bar(quiet: bool, total: usize, label: &str) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let pb = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
+    pb.set_style(
+        ProgressStyle::with_template(
+            "{prefix:>14} [{bar:40}] {pos}/{len} tiles {elapsed_precise} eta {eta}",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
+    );
+    pb.set_prefix(label.to_string());
+    pb
+}
+
+fn sim_err(e: SimError) -> CliError {
+    match e {
+        SimError::Config(m) => CliError::usage(m),
+        other => CliError::failed(other.to_string()),
+    }
+}
+
+/// Write `text` to FILE, or to standard output for `-`.
+pub fn emit(path: &Path, text: &str) -> Result<(), CliError> {
+    if path.as_os_str() == "-" {
+        let mut out = std::io::stdout().lock();
+        out.write_all(text.as_bytes())
+            .map_err(|e| CliError::failed(format!("writing to standard output: {e}")))
+    } else {
+        std::fs::write(path, text)
+            .map_err(|e| CliError::failed(format!("cannot write {}: {e}", path.display())))
+    }
+}
+
+fn gtkw_path(vcd: &Path) -> PathBuf {
+    let mut s = vcd.as_os_str().to_owned();
+    s.push(".gtkw");
+    PathBuf::from(s)
+}
+
+/// Run the command.
+pub fn run(args: &RunArgs) -> Result<(), CliError> {
+    let cfg = load_config(&args.inputs)?;
+    let trace = load_trace(&args.inputs, &cfg)?;
+    let window = match (args.vcd_from, args.vcd_to) {
+        (None, None) => None,
+        (f, t) => {
+            let (f, t) = (f.unwrap_or(0), t.unwrap_or(u64::MAX));
+            if f > t {
+                return Err(CliError::usage(format!(
+                    "--vcd-from {f} is after --vcd-to {t}"
+                )));
+            }
+            Some((f, t))
+        }
+    };
+    let opts = RunOptions {
+        policy: args.policy,
+        subset: args.inputs.subset.clone(),
+        ideal_memory: args.inputs.ideal_memory.then_some(true),
+        vcd_window: window,
+    };
+    let pb = progress_bar(args.inputs.quiet, trace.tiles().len(), "simulating");
+    let mut progress = |done: usize, _total: usize| pb.set_position(done as u64);
+    let stats = match &args.vcd {
+        None => simulate(&cfg, &trace, &opts, &mut progress).map_err(sim_err)?,
+        Some(path) => {
+            let file = std::fs::File::create(path)
+                .map_err(|e| CliError::failed(format!("cannot create {}: {e}", path.display())))?;
+            let mut sink = VcdSink::new(BufWriter::new(file), "wasp");
+            let stats =
+                simulate_traced(&cfg, &trace, &opts, &mut sink, &mut progress).map_err(sim_err)?;
+            let signals = sink.signals().to_vec();
+            let end = match window {
+                Some((_, to)) => to.min(stats.cycles) + 1,
+                None => stats.cycles + 1,
+            };
+            sink.finish(end)
+                .and_then(|mut w| w.flush())
+                .map_err(|e| CliError::failed(format!("writing {}: {e}", path.display())))?;
+            let mut save = GtkwSave::new(path.display().to_string())
+                .timestart(window.map(|w| w.0).unwrap_or(0))
+                .window_size(1400, 700)
+                .signals_width(320)
+                .zoom_to_fit(end);
+            save = save.begin_group("core0 scheduler", false);
+            for s in signals
+                .iter()
+                .filter(|s| s.path.len() >= 3 && s.path[1] == "core0" && s.path[2] == "scheduler")
+            {
+                let f = if s.name == "real_free_mshrs" {
+                    Format::SignedDecimal
+                } else {
+                    Format::Decimal
+                };
+                save = save.traced(s, f);
+            }
+            save = save.end_group().begin_group("core0", false);
+            for s in signals
+                .iter()
+                .filter(|s| s.path.len() == 2 && s.path[1] == "core0")
+            {
+                save = save.traced(s, Format::Decimal);
+            }
+            save = save.end_group();
+            let g = gtkw_path(path);
+            let mut out = Vec::new();
+            save.write_to(&mut out)
+                .map_err(|e| CliError::failed(format!("writing {}: {e}", g.display())))?;
+            emit(&g, &String::from_utf8_lossy(&out))?;
+            stats
+        }
+    };
+    pb.finish_and_clear();
+    let to_stdout = |p: &Option<PathBuf>| p.as_ref().is_some_and(|p| p.as_os_str() == "-");
+    if let Some(p) = &args.json {
+        emit(p, &stats.to_json())?;
+    }
+    if let Some(p) = &args.csv {
+        emit(p, &stats.to_csv())?;
+    }
+    if !to_stdout(&args.json) && !to_stdout(&args.csv) {
+        emit(Path::new("-"), &stats.to_table())?;
+    }
+    Ok(())
+}
+
+/// One run of a comparison.
+struct Job {
+    label: String,
+    opts: RunOptions,
+}
+
+/// Run the comparison.
+pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
+    let cfg = load_config(&args.inputs)?;
+    let trace = load_trace(&args.inputs, &cfg)?;
+    if args.policies.is_empty() {
+        return Err(CliError::usage("--policies: name at least one policy"));
+    }
+    let mut jobs: Vec<Job> = args
+        .policies
+        .iter()
+        .map(|p| Job {
+            label: p.to_string(),
+            opts: RunOptions {
+                policy: Some(*p),
+                subset: args.inputs.subset.clone(),
+                ideal_memory: args.inputs.ideal_memory.then_some(true),
+                vcd_window: None,
+            },
+        })
+        .collect();
+    if args.with_ideal {
+        jobs.push(Job {
+            label: format!("{} +ideal memory", args.policies[0]),
+            opts: RunOptions {
+                policy: Some(args.policies[0]),
+                subset: args.inputs.subset.clone(),
+                ideal_memory: Some(true),
+                vcd_window: None,
+            },
+        });
+    }
+    // Check every configuration before spending time on any run.
+    for j in &jobs {
+        j.opts.apply(&cfg).map_err(sim_err)?;
+    }
+    let threads = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .clamp(1, jobs.len());
+    let pb = progress_bar(
+        args.inputs.quiet,
+        trace.tiles().len() * jobs.len(),
+        "comparing",
+    );
+    let done_tiles = Mutex::new(vec![0usize; jobs.len()]);
+    let next = Mutex::new(0usize);
+    let results: Mutex<Vec<Option<Result<RunStats, SimError>>>> =
+        Mutex::new((0..jobs.len()).map(|_| None).collect());
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| loop {
+                let i = {
+                    let mut n = next.lock().expect("lock");
+                    let i = *n;
+                    *n += 1;
+                    i
+                };
+                if i >= jobs.len() {
+                    break;
+                }
+                let mut progress = |d: usize, _t: usize| {
+                    let mut v = done_tiles.lock().expect("lock");
+                    v[i] = d;
+                    pb.set_position(v.iter().sum::<usize>() as u64);
+                };
+                let r = simulate(&cfg, &trace, &jobs[i].opts, &mut progress);
+                results.lock().expect("lock")[i] = Some(r);
+            });
+        }
+    });
+    pb.finish_and_clear();
+    let mut runs = Vec::with_capacity(jobs.len());
+    for (j, r) in jobs.iter().zip(results.into_inner().expect("lock")) {
+        let r = r.expect("every job ran");
+        runs.push(r.map_err(|e| CliError::failed(format!("{}: {}", j.label, sim_err(e))))?);
+    }
+    let labels: Vec<String> = jobs.iter().map(|j| j.label.clone()).collect();
+    let to_stdout = |p: &Option<PathBuf>| p.as_ref().is_some_and(|p| p.as_os_str() == "-");
+    if let Some(p) = &args.json {
+        let text = serde_json::to_string_pretty(&runs)
+            .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?
+            + "\n";
+        emit(p, &text)?;
+    }
+    if let Some(p) = &args.csv {
+        emit(p, &csv_table(&runs))?;
+    }
+    if !to_stdout(&args.json) && !to_stdout(&args.csv) {
+        emit(Path::new("-"), &compare_table(&labels, &runs))?;
+    }
+    Ok(())
+}
+
+/// The comparison as a table: speedups against the first run.
+pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let Some(base) = runs.first() else {
+        return s;
+    };
+    let _ = writeln!(
+        s,
+        "machine {}  |  workload {}  |  subset {}",
+        base.machine, base.workload, base.subset.subset
+    );
+    let _ = writeln!(
+        s,
+        "{:<26}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}",
+        "policy", "cycles", "ipc", "speedup", "stall%", "latency", "l1 miss", "l2 miss", "energy"
+    );
+    for (l, r) in labels.iter().zip(runs) {
+        let stall = r.l0.as_ref().unwrap_or(&r.l1).stall_fraction;
+        let _ = writeln!(
+            s,
+            "{:<26}{:>12}{:>8.3}{:>+8.2}%{:>8.2}%{:>10.1}{:>10}{:>10}{:>9.1}uJ",
+            l,
+            r.cycles,
+            r.ipc,
+            100.0 * (base.cycles as f64 / r.cycles as f64 - 1.0),
+            100.0 * stall,
+            r.memory_latency.all,
+            r.l1.misses,
+            r.l2.misses,
+            r.energy.total_nj / 1000.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        "speedup = {} cycles / policy cycles - 1; stall% = scheduler-level cache (L0, else L1) stalled; latency = mean memory latency per warp in cycles",
+        labels[0]
+    );
+    s
+}

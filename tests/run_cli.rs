@@ -1,0 +1,311 @@
+//! Whole-program tests of `wasp run`, `wasp compare` and `wasp synth`.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use wasp_sim::config::MachineConfig;
+use wasp_sim::trace::Trace;
+use wasp_waves::readback;
+
+fn wasp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .args(args)
+        .output()
+        .expect("run wasp")
+}
+
+fn ok(o: &Output) -> String {
+    assert!(
+        o.status.success(),
+        "wasp failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("wasp-run-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn tiny_trace() -> String {
+    concat!(env!("CARGO_MANIFEST_DIR"), "/tests/traces/tiny.trace").to_string()
+}
+
+/// The paper's machine with the tile size of the tiny trace (8 pixels).
+fn tiny_config(d: &Path) -> String {
+    let mut c = MachineConfig::paper();
+    c.gpu.tile_size = 8;
+    let p = d.join("tiny.toml");
+    std::fs::write(&p, c.to_toml()).unwrap();
+    p.display().to_string()
+}
+
+/// A small synthetic trace written by `wasp synth`.
+fn synth_trace(d: &Path, seed: u64) -> String {
+    let p = d.join(format!("synth-{seed}.trace"));
+    let s = seed.to_string();
+    let out = ok(&wasp(&[
+        "synth",
+        "-o",
+        p.to_str().unwrap(),
+        "--frame",
+        "256x128",
+        "--seed",
+        &s,
+    ]));
+    assert!(out.contains("synthetic:"), "{out}");
+    p.display().to_string()
+}
+
+fn run_json(args: &[&str]) -> Value {
+    let mut a = vec!["run", "-q", "--json", "-"];
+    a.extend_from_slice(args);
+    serde_json::from_str(&ok(&wasp(&a))).unwrap()
+}
+
+#[test]
+fn every_policy_conserves_warps() {
+    let d = dir("conserve");
+    let cfg = tiny_config(&d);
+    let trace = tiny_trace();
+    let quads = Trace::read(&trace).unwrap().quad_count() as u64;
+    for policy in [
+        "baseline",
+        "fullpriority",
+        "freemshr:10",
+        "wasp:4",
+        "wasp:2:1.5",
+    ] {
+        let v = run_json(&["--config", &cfg, "--trace", &trace, "--policy", policy]);
+        assert_eq!(v["warps"], quads, "{policy}");
+        assert_eq!(v["policy"], policy);
+        assert!(v["cycles"].as_u64().unwrap() > 0);
+        for key in [
+            "ipc",
+            "instructions",
+            "l0",
+            "l1",
+            "l2",
+            "dram",
+            "memory_latency",
+            "energy",
+        ] {
+            assert!(!v[key].is_null(), "{policy}: {key} missing");
+        }
+        for key in [
+            "accesses",
+            "hits",
+            "misses",
+            "secondary_misses",
+            "stall_cycles",
+        ] {
+            assert!(v["l1"][key].is_u64(), "{policy}: l1.{key}");
+        }
+    }
+}
+
+#[test]
+fn json_is_byte_identical_on_repeat() {
+    let d = dir("determinism");
+    let t = synth_trace(&d, 2);
+    let a = wasp(&["run", "-q", "--trace", &t, "--json", "-"]);
+    let b = wasp(&["run", "-q", "--trace", &t, "--json", "-"]);
+    assert!(a.status.success());
+    assert_eq!(a.stdout, b.stdout);
+}
+
+#[test]
+fn ideal_memory_is_never_slower() {
+    let d = dir("ideal");
+    let t = synth_trace(&d, 4);
+    for policy in ["baseline", "wasp:4"] {
+        let real = run_json(&["--trace", &t, "--policy", policy]);
+        let ideal = run_json(&["--trace", &t, "--policy", policy, "--ideal-memory"]);
+        assert!(
+            ideal["cycles"].as_u64() <= real["cycles"].as_u64(),
+            "{policy}"
+        );
+        assert_eq!(ideal["ideal_memory"], true);
+    }
+}
+
+#[test]
+fn subsets_change_the_priority_set() {
+    let d = dir("subsets");
+    let t = synth_trace(&d, 6);
+    let m4 = run_json(&[
+        "--trace",
+        &t,
+        "--policy",
+        "fullpriority",
+        "--subset",
+        "mesh4",
+    ]);
+    let m2 = run_json(&[
+        "--trace",
+        &t,
+        "--policy",
+        "fullpriority",
+        "--subset",
+        "mesh2",
+    ]);
+    assert_eq!(m4["subset"]["subset_size_ratio"], 1.0 / 16.0);
+    assert_eq!(m2["subset"]["subset_size_ratio"], 0.25);
+    assert!(m2["subset"]["priority_warps"].as_u64() > m4["subset"]["priority_warps"].as_u64());
+    let f2 = m2["subset"]["texture_footprint_ratio"].as_f64().unwrap();
+    let f4 = m4["subset"]["texture_footprint_ratio"].as_f64().unwrap();
+    assert!(f2 > f4 && f4 > 0.0 && f2 <= 1.0, "{f2} {f4}");
+}
+
+#[test]
+fn csv_and_table_outputs() {
+    let d = dir("csv");
+    let cfg = tiny_config(&d);
+    let o = ok(&wasp(&[
+        "run",
+        "-q",
+        "--config",
+        &cfg,
+        "--trace",
+        &tiny_trace(),
+        "--csv",
+        "-",
+    ]));
+    let lines: Vec<&str> = o.lines().collect();
+    assert_eq!(lines.len(), 2, "{o}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let values: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(header.len(), values.len());
+    let i = header.iter().position(|h| *h == "l1.misses").unwrap();
+    assert!(values[i].parse::<u64>().is_ok());
+    let table = ok(&wasp(&[
+        "run",
+        "-q",
+        "--config",
+        &cfg,
+        "--trace",
+        &tiny_trace(),
+    ]));
+    assert!(table.contains("cycles") && table.contains("l1") && table.contains("energy"));
+}
+
+#[test]
+fn bad_inputs_are_clear_errors() {
+    let d = dir("errors");
+    let cfg = d.join("bad.toml");
+    let text = MachineConfig::paper()
+        .to_toml()
+        .replace("max_warps = 64", "max_warps = 64\nmax_wraps = 1");
+    std::fs::write(&cfg, text).unwrap();
+    let o = wasp(&[
+        "run",
+        "--config",
+        cfg.to_str().unwrap(),
+        "--trace",
+        &tiny_trace(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("bad.toml") && e.contains("max_wraps"), "{e}");
+
+    let trace = d.join("bad.trace");
+    std::fs::write(
+        &trace,
+        "wasp-trace 1\nworkload x\nframe 16 16 tile 8\ntile 0 0\nq 9 0 a1\nend\n",
+    )
+    .unwrap();
+    let o = wasp(&["run", "--trace", trace.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("bad.trace:5"), "{e}");
+
+    let o = wasp(&["run", "--policy", "wasp:99"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = wasp(&["run", "--subset", "mesh3"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("mesh4"));
+}
+
+#[test]
+fn vcd_window_and_signals() {
+    let d = dir("vcd");
+    let cfg = tiny_config(&d);
+    let vcd = d.join("run.vcd");
+    let v = run_json(&[
+        "--config",
+        &cfg,
+        "--trace",
+        &tiny_trace(),
+        "--vcd",
+        vcd.to_str().unwrap(),
+        "--vcd-from",
+        "10",
+        "--vcd-to",
+        "40",
+    ]);
+    assert!(v["cycles"].as_u64().unwrap() > 40);
+    let bytes = std::fs::read(&vcd).unwrap();
+    let rb = readback::values_by_cycle(&bytes).unwrap();
+    let names: Vec<&str> = rb.names().collect();
+    for s in [
+        "wasp.core0.scheduler.free_mshrs",
+        "wasp.core0.scheduler.nonblocked_priority",
+        "wasp.core0.scheduler.real_free_mshrs",
+        "wasp.core0.scheduler.priority_over_regular",
+        "wasp.core0.scheduler.launch",
+        "wasp.core0.scheduler.prio_queue_occupancy",
+        "wasp.core0.warps_active",
+    ] {
+        assert!(names.contains(&s), "{s} missing: {names:?}");
+    }
+    let first = rb.signal("wasp.core0.warps_active").unwrap().changes()[0].0;
+    assert_eq!(first, 10);
+    assert_eq!(rb.end_time(), Some(41));
+    let gtkw = std::fs::read_to_string(d.join("run.vcd.gtkw")).unwrap();
+    assert!(gtkw.contains("wasp.core0.scheduler.free_mshrs[4:0]"));
+}
+
+#[test]
+fn compare_prints_speedups_against_the_baseline() {
+    let d = dir("compare");
+    let t = synth_trace(&d, 8);
+    let o = ok(&wasp(&[
+        "compare",
+        "-q",
+        "--trace",
+        &t,
+        "--with-ideal",
+        "--jobs",
+        "2",
+    ]));
+    for p in [
+        "baseline",
+        "fullpriority",
+        "freemshr:10",
+        "wasp:4",
+        "+ideal memory",
+    ] {
+        assert!(o.contains(p), "{p} missing:\n{o}");
+    }
+    let base = o.lines().find(|l| l.starts_with("baseline ")).unwrap();
+    assert!(base.contains("+0.00%"), "{base}");
+    let j = ok(&wasp(&[
+        "compare",
+        "-q",
+        "--trace",
+        &t,
+        "--policies",
+        "baseline,wasp:4",
+        "--json",
+        "-",
+    ]));
+    let v: Value = serde_json::from_str(&j).unwrap();
+    assert_eq!(v.as_array().unwrap().len(), 2);
+    assert_eq!(v[0]["warps"], v[1]["warps"]);
+}
