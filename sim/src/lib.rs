@@ -7,6 +7,7 @@ pub mod example;
 pub mod gpu;
 pub mod mem;
 pub mod rng;
+pub mod scene;
 pub mod stats;
 pub mod synth;
 pub mod trace;

@@ -1,0 +1,1 @@
+//! openarena (in progress).

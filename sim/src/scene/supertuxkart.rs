@@ -1,0 +1,1 @@
+//! supertuxkart (in progress).

@@ -1,0 +1,1 @@
+//! teeworlds (in progress).

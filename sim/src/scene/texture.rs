@@ -1,0 +1,1 @@
+//! texture (in progress).
