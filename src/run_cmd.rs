@@ -199,6 +199,7 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
         subset: args.inputs.subset.clone(),
         ideal_memory: args.inputs.ideal_memory.then_some(true),
         vcd_window: window,
+        record_warps: false,
     };
     let pb = progress_bar(args.inputs.quiet, trace.tiles().len(), "simulating");
     let mut progress = |done: usize, _total: usize| pb.set_position(done as u64);
@@ -288,6 +289,7 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
                 subset: args.inputs.subset.clone(),
                 ideal_memory: args.inputs.ideal_memory.then_some(true),
                 vcd_window: None,
+                record_warps: false,
             },
         })
         .collect();
@@ -299,6 +301,7 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
                 subset: args.inputs.subset.clone(),
                 ideal_memory: Some(true),
                 vcd_window: None,
+                record_warps: false,
             },
         });
     }

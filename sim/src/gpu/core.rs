@@ -64,6 +64,27 @@ struct Warp {
     lat_sum: u64,
     /// Texture instructions completed.
     tex_done: u32,
+    /// Cycle of its launch.
+    launched_at: u64,
+}
+
+/// What one warp did, for per-quad pictures (heat maps) and analysis.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct WarpRecord {
+    /// Index of its tile in the trace.
+    pub tile: u32,
+    /// Index of its quad in the tile.
+    pub quad: u32,
+    /// Core that ran it.
+    pub core: u32,
+    /// Whether it was launched as a priority warp.
+    pub priority: bool,
+    /// Mean memory latency of its texture instructions (cycles), if any.
+    pub mem_latency: Option<f64>,
+    /// Cycle it was launched.
+    pub launched: u64,
+    /// Cycle it finished.
+    pub finished: u64,
 }
 
 /// A texture instruction in the LDST unit.
@@ -149,6 +170,8 @@ pub struct ShaderCore {
     signals: CoreSignals,
     last_progress: u64,
     stats: CoreStats,
+    /// Per-warp records, when asked for.
+    records: Option<Vec<WarpRecord>>,
 }
 
 /// What a core needs from the configuration.
@@ -214,6 +237,7 @@ impl ShaderCore {
             signals: CoreSignals::default(),
             last_progress: 0,
             stats: CoreStats::default(),
+            records: None,
         }
     }
 
@@ -287,7 +311,7 @@ impl ShaderCore {
             let w = &mut self.slots[s];
             if w.op >= w.n_ops {
                 let w = *w;
-                self.finish(s, &w);
+                self.finish(s, &w, now);
                 self.progress(now);
             } else if w.alu_left > 0 {
                 self.ready |= 1u128 << s;
@@ -305,13 +329,24 @@ impl ShaderCore {
         }
     }
 
-    fn finish(&mut self, s: usize, w: &Warp) {
+    fn finish(&mut self, s: usize, w: &Warp, now: u64) {
         self.free_slots |= 1u128 << s;
         self.active -= 1;
         self.stats.warps_finished += 1;
         self.signals.finished += 1;
         if w.priority && !w.blocked {
             self.prio.finished += 1;
+        }
+        if let (Some(r), Some(tile)) = (self.records.as_mut(), self.tile) {
+            r.push(WarpRecord {
+                tile: tile as u32,
+                quad: w.quad,
+                core: self.id as u32,
+                priority: w.priority,
+                mem_latency: (w.tex_done > 0).then(|| w.lat_sum as f64 / w.tex_done as f64),
+                launched: w.launched_at,
+                finished: now,
+            });
         }
         if w.tex_done > 0 {
             let c = w.priority as usize;
@@ -363,6 +398,7 @@ impl ShaderCore {
                     tex_start: 0,
                     lat_sum: 0,
                     tex_done: 0,
+                    launched_at: now,
                 };
                 // The warp can issue from the next cycle.
                 self.schedule(now, now + 1, s);
@@ -576,6 +612,16 @@ impl ShaderCore {
             self.sched.free_mshrs().free(),
             self.sched.nonblocked().count(),
         )
+    }
+
+    /// Start recording every warp (see [`WarpRecord`]).
+    pub fn record_warps(&mut self) {
+        self.records = Some(Vec::new());
+    }
+
+    /// The records so far.
+    pub fn take_records(&mut self) -> Vec<WarpRecord> {
+        self.records.take().unwrap_or_default()
     }
 
     /// Warps in flight (launched, not finished).

@@ -8,7 +8,7 @@
 
 mod core;
 
-pub use self::core::{CoreParams, CoreStats, ShaderCore};
+pub use self::core::{CoreParams, CoreStats, ShaderCore, WarpRecord};
 
 use crate::config::MachineConfig;
 use crate::mem::MemorySystem;
@@ -77,6 +77,8 @@ pub struct RunOptions {
     pub ideal_memory: Option<bool>,
     /// Sample the waveform only in `from..=to`.
     pub vcd_window: Option<(u64, u64)>,
+    /// Record every warp (see [`WarpRecord`]).
+    pub record_warps: bool,
 }
 
 impl RunOptions {
@@ -282,6 +284,24 @@ impl<'t> Gpu<'t> {
         self.finish()
     }
 
+    /// Record every warp from now on.
+    pub fn record_warps(&mut self) {
+        for c in self.cores.iter_mut() {
+            c.record_warps();
+        }
+    }
+
+    /// The warp records so far, ordered by tile and quad.
+    pub fn take_records(&mut self) -> Vec<WarpRecord> {
+        let mut all: Vec<WarpRecord> = self
+            .cores
+            .iter_mut()
+            .flat_map(|c| c.take_records())
+            .collect();
+        all.sort_by_key(|r| (r.tile, r.quad));
+        all
+    }
+
     fn finish(self) -> Result<RunStats, SimError> {
         let launched: u64 = self.cores.iter().map(|c| c.stats().warps_launched).sum();
         let finished: u64 = self.cores.iter().map(|c| c.stats().warps_finished).sum();
@@ -311,6 +331,29 @@ pub fn simulate(
 ) -> Result<RunStats, SimError> {
     let cfg = opts.apply(cfg)?;
     Gpu::new(&cfg, trace)?.run::<NullTracer>(None, None, progress)
+}
+
+/// Run `trace` on `cfg` with `opts` and return the statistics with one
+/// record per warp (for heat maps).
+pub fn simulate_recording(
+    cfg: &MachineConfig,
+    trace: &Trace,
+    opts: &RunOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<(RunStats, Vec<WarpRecord>), SimError> {
+    let cfg = opts.apply(cfg)?;
+    let mut gpu = Gpu::new(&cfg, trace)?;
+    gpu.record_warps();
+    let total = trace.tiles().len();
+    while !gpu.done() {
+        gpu.step()?;
+        if gpu.cycle() % 4096 == 0 {
+            progress(gpu.tiles_done(), total);
+        }
+    }
+    progress(gpu.tiles_done(), total);
+    let records = gpu.take_records();
+    Ok((gpu.finish()?, records))
 }
 
 /// Run `trace` on `cfg` with `opts`, sampling the waveform into `sink`.
@@ -465,6 +508,27 @@ mod tests {
         assert!(
             w.subset.priority_warps * 16 <= t.quad_count() as u64 + 16 * t.tiles().len() as u64
         );
+    }
+
+    #[test]
+    fn records_cover_every_warp_once() {
+        let t = tiny();
+        let cfg = cfg_for(&t);
+        let (stats, recs) =
+            simulate_recording(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
+        assert_eq!(recs.len() as u64, stats.warps);
+        let plain = run(&cfg, &t, "wasp:4");
+        assert_eq!(plain, stats, "recording does not change the run");
+        for r in &recs {
+            assert!(r.finished > r.launched);
+            assert!(
+                r.mem_latency.is_some_and(|l| l >= 1.0),
+                "every tiny quad samples"
+            );
+        }
+        let mut keys: Vec<(u32, u32)> = recs.iter().map(|r| (r.tile, r.quad)).collect();
+        keys.dedup();
+        assert_eq!(keys.len(), recs.len());
     }
 
     #[test]

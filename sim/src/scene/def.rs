@@ -1,1 +1,194 @@
-//! def (in progress).
+//! Scene definitions: small TOML files under `scenes/` naming a game, a
+//! map, a camera, a resolution and (optionally) a shader template.
+//!
+//! ```toml
+//! name = "stk-lighthouse-start"
+//! game = "supertuxkart"         # supertuxkart | openarena | teeworlds | frozen-bubble | procedural
+//! map = "lighthouse"            # the track, map, level or procedural scene
+//! camera = "start:0"            # loader-specific camera selector (see each loader)
+//! width = 1960
+//! height = 768
+//! description = "Lighthouse track, behind the first start position"
+//! ```
+
+use super::SceneError;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The games wasp loads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Game {
+    /// SuperTuxKart (3D racing): `supertuxkart-data`.
+    Supertuxkart,
+    /// OpenArena (3D shooter): `openarena-data`, `openarena-081-maps`,
+    /// `openarena-081-textures`.
+    Openarena,
+    /// Teeworlds (2D platformer): `teeworlds-data`.
+    Teeworlds,
+    /// Frozen Bubble (2D puzzle): `frozen-bubble-data`.
+    FrozenBubble,
+    /// Procedural scenes that need no download.
+    Procedural,
+}
+
+impl Game {
+    /// Every game.
+    pub const ALL: [Game; 5] = [
+        Game::Supertuxkart,
+        Game::Openarena,
+        Game::Teeworlds,
+        Game::FrozenBubble,
+        Game::Procedural,
+    ];
+
+    /// The Debian packages holding the game's data.
+    pub fn packages(self) -> &'static [&'static str] {
+        match self {
+            Game::Supertuxkart => &["supertuxkart-data"],
+            Game::Openarena => &[
+                "openarena-data",
+                "openarena-081-maps",
+                "openarena-081-textures",
+            ],
+            Game::Teeworlds => &["teeworlds-data"],
+            Game::FrozenBubble => &["frozen-bubble-data"],
+            Game::Procedural => &[],
+        }
+    }
+
+    /// The name used in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Game::Supertuxkart => "supertuxkart",
+            Game::Openarena => "openarena",
+            Game::Teeworlds => "teeworlds",
+            Game::FrozenBubble => "frozen-bubble",
+            Game::Procedural => "procedural",
+        }
+    }
+}
+
+impl fmt::Display for Game {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// One scene definition.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDef {
+    /// Unique name (also the file stem).
+    pub name: String,
+    /// Game.
+    pub game: Game,
+    /// Track, map, level or procedural scene name.
+    pub map: String,
+    /// Loader-specific camera selector.
+    pub camera: String,
+    /// Frame width in pixels.
+    pub width: u32,
+    /// Frame height in pixels.
+    pub height: u32,
+    /// What the scene shows.
+    #[serde(default)]
+    pub description: String,
+    /// Shader template override (see [`super::shader`]); default per material.
+    #[serde(default)]
+    pub shader: Option<String>,
+}
+
+impl SceneDef {
+    /// Parse a definition; `source` names it in errors.
+    pub fn parse(text: &str, source: &Path) -> Result<Self, SceneError> {
+        let d: SceneDef = toml::from_str(text)
+            .map_err(|e| SceneError::in_file(source, e.to_string().trim_end().to_string()))?;
+        if d.width == 0 || d.height == 0 || d.width > 16384 || d.height > 16384 {
+            return Err(SceneError::in_file(
+                source,
+                format!(
+                    "width x height = {}x{}: each must be in 1..=16384",
+                    d.width, d.height
+                ),
+            ));
+        }
+        if d.name.is_empty() || d.name.contains(char::is_whitespace) {
+            return Err(SceneError::in_file(
+                source,
+                format!("name {:?}: must be non-empty, without spaces", d.name),
+            ));
+        }
+        Ok(d)
+    }
+
+    /// Read a definition file.
+    pub fn load(path: &Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SceneError::in_file(path, format!("cannot read: {e}")))?;
+        Self::parse(&text, path)
+    }
+}
+
+/// The `scenes/` directory of the repository.
+pub fn scenes_dir() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"))
+}
+
+/// Every definition under `dir`, sorted by name.
+pub fn list(dir: &Path) -> Result<Vec<SceneDef>, SceneError> {
+    let rd = std::fs::read_dir(dir)
+        .map_err(|e| SceneError::in_file(dir, format!("cannot list scene definitions: {e}")))?;
+    let mut defs = Vec::new();
+    for entry in rd {
+        let entry = entry.map_err(|e| SceneError::in_file(dir, e.to_string()))?;
+        let p = entry.path();
+        if p.extension().is_some_and(|x| x == "toml") {
+            defs.push(SceneDef::load(&p)?);
+        }
+    }
+    defs.sort_by(|a, b| a.name.cmp(&b.name));
+    Ok(defs)
+}
+
+/// Find a scene by name under `dir` (or treat `name` as a path to a file).
+pub fn find(dir: &Path, name: &str) -> Result<SceneDef, SceneError> {
+    let as_path = Path::new(name);
+    if as_path.extension().is_some_and(|x| x == "toml") && as_path.exists() {
+        return SceneDef::load(as_path);
+    }
+    let defs = list(dir)?;
+    let names: Vec<&str> = defs.iter().map(|d| d.name.as_str()).collect();
+    defs.iter()
+        .find(|d| d.name == name)
+        .cloned()
+        .ok_or_else(|| {
+            SceneError::in_file(
+                dir,
+                format!("no scene named `{name}` (known: {})", names.join(", ")),
+            )
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_and_rejects() {
+        let ok = "name = \"x\"\ngame = \"frozen-bubble\"\nmap = \"1\"\ncamera = \"full\"\nwidth = 640\nheight = 480\n";
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        assert_eq!(d.game, Game::FrozenBubble);
+        let e = SceneDef::parse(&format!("{ok}colour = 1\n"), Path::new("x.toml")).unwrap_err();
+        assert!(e.message.contains("colour"), "{e}");
+        let e = SceneDef::parse(&ok.replace("640", "0"), Path::new("x.toml")).unwrap_err();
+        assert!(e.message.contains("width"), "{e}");
+        let e =
+            SceneDef::parse(&ok.replace("frozen-bubble", "doom"), Path::new("x.toml")).unwrap_err();
+        assert!(
+            e.message.contains("doom") || e.message.contains("variant"),
+            "{e}"
+        );
+    }
+}

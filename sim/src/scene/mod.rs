@@ -21,6 +21,7 @@ pub mod openarena;
 pub mod procedural;
 pub mod raster;
 pub mod render;
+pub mod shader;
 pub mod supertuxkart;
 pub mod teeworlds;
 pub mod texture;
