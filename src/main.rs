@@ -1,6 +1,7 @@
 //! `wasp`: the command-line front end of the wasp cycle model.
 
 mod bench_cmd;
+mod cost_cmd;
 mod example_cmd;
 mod run_cmd;
 mod synth_cmd;
@@ -51,6 +52,11 @@ enum Command {
     /// figures it measures. Synthetic workloads say so in their names.
     Synth(synth_cmd::SynthArgs),
 
+    /// The hardware overhead of WaSP: an inventory from the RTL blocks in
+    /// bits and gate equivalents, the Verilog twin synthesized by Yosys, and
+    /// the register file it saves.
+    Cost(cost_cmd::CostArgs),
+
     /// Measure simulation speed: simulated core-cycles per second with
     /// tracing off and on, and its growth with tile count and warp count.
     /// Build with --release for meaningful numbers.
@@ -64,6 +70,7 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => run_cmd::run(&args),
         Some(Command::Compare(args)) => run_cmd::compare(&args),
         Some(Command::Bench(args)) => bench_cmd::run(&args),
+        Some(Command::Cost(args)) => cost_cmd::run(&args),
         Some(Command::Synth(args)) => synth_cmd::run(&args),
         None => example_cmd::run(&example_cmd::ExampleArgs::default()),
     };

@@ -54,6 +54,9 @@ pub struct CoreConfig {
     pub texture_latency: u32,
     /// Texture instructions the LDST unit can hold (its queue).
     pub ldst_queue: u32,
+    /// 32-bit registers per thread; a warp (a quad) has 4 threads. Sizes the
+    /// register file that `wasp cost` sets against WaSP's hardware.
+    pub registers_per_thread: u32,
 }
 
 /// The launch scheduler.
@@ -326,6 +329,13 @@ impl MachineConfig {
             "",
         )?;
         range("core.ldst_queue", self.core.ldst_queue as u64, 1, 1024, "")?;
+        range(
+            "core.registers_per_thread",
+            self.core.registers_per_thread as u64,
+            1,
+            1024,
+            "",
+        )?;
         range(
             "sim.watchdog_cycles",
             self.sim.watchdog_cycles,

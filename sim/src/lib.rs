@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod config;
+pub mod cost;
 pub mod example;
 pub mod gpu;
 pub mod mem;

@@ -1,0 +1,456 @@
+//! `wasp cost`: the hardware overhead of WaSP.
+//!
+//! (a) An inventory from the RTL blocks ([`wasp_rtl::cost`]): every register
+//! and its width, adders, comparators, the multiplier, per core and per
+//! GPU, in bits and gate equivalents (counting rules stated in
+//! [`GateRules`]). (b) The same scheduler block synthesized by Yosys from
+//! the shipped Verilog twin (`props/verilog/wasp_sched.v`): cell counts,
+//! flip-flops and `stat -tech cmos` transistors, side by side. (c) What it
+//! saves: the register file of the extra warps the baseline needs for the
+//! same performance (the paper: WaSP at 32 warps matches the baseline at
+//! 48), sized from the register-file parameters.
+
+use crate::config::MachineConfig;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use wasp_rtl::cost::{core_inventory, GateRules, Item, Part};
+use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
+use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::subset::Mesh;
+
+/// An inventory line with its cost.
+#[derive(Clone, Debug, Serialize)]
+pub struct CostedItem {
+    /// The item.
+    #[serde(flatten)]
+    pub item: Item,
+    /// Flip-flop bits.
+    pub register_bits: u32,
+    /// Gate equivalents.
+    pub ge: f64,
+}
+
+/// Yosys's view of the synthesized twin.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct YosysStat {
+    /// The command that produced it.
+    pub command: String,
+    /// Cells after `synth`.
+    pub cells: u64,
+    /// Cells by type (`$_AND_`, `$_DFF_P_`, ...).
+    pub cell_types: BTreeMap<String, u64>,
+    /// Flip-flop cells.
+    pub flip_flops: u64,
+    /// `stat -tech cmos` transistor estimate.
+    pub transistors: Option<u64>,
+}
+
+/// The register-file side of the ledger.
+#[derive(Clone, Debug, Serialize)]
+pub struct Savings {
+    /// Warps WaSP needs.
+    pub wasp_warps: u32,
+    /// Warps the baseline needs for the same performance.
+    pub baseline_warps: u32,
+    /// Where those two numbers come from.
+    pub source: String,
+    /// Register-file bits per warp (threads x registers x bits).
+    pub rf_bits_per_warp: u64,
+    /// Register-file bits saved per core.
+    pub rf_bits_saved_per_core: u64,
+    /// GE per register-file bit (state the rule).
+    pub ge_per_rf_bit: f64,
+    /// GE saved per core.
+    pub ge_saved_per_core: f64,
+}
+
+/// The whole report.
+#[derive(Clone, Debug, Serialize)]
+pub struct CostReport {
+    /// Machine.
+    pub machine: String,
+    /// Cores.
+    pub cores: u32,
+    /// The datapath costed: CF and threshold.
+    pub cf: f64,
+    /// Threshold.
+    pub threshold: u32,
+    /// Input queue entries (split into two FIFOs).
+    pub input_queue: u32,
+    /// Counting rules.
+    pub rules: GateRules,
+    /// Per-core inventory.
+    pub per_core: Vec<CostedItem>,
+    /// Per-core totals.
+    pub per_core_register_bits: u32,
+    /// Per-core GE.
+    pub per_core_ge: f64,
+    /// Per-core transistors (GE x transistors per GE).
+    pub per_core_transistors: f64,
+    /// Whole-GPU register bits.
+    pub gpu_register_bits: u32,
+    /// Whole-GPU GE.
+    pub gpu_ge: f64,
+    /// Yosys synthesis of the Verilog twin (absent without Yosys).
+    pub yosys: Option<YosysStat>,
+    /// Why there is no Yosys column, if there is none.
+    pub yosys_note: Option<String>,
+    /// What WaSP saves.
+    pub savings: Savings,
+}
+
+/// Register-file parameters for the savings column.
+#[derive(Clone, Debug)]
+pub struct RfParams {
+    /// Threads per warp (a quad: 4).
+    pub threads_per_warp: u32,
+    /// Registers per thread.
+    pub registers_per_thread: u32,
+    /// Bits per register.
+    pub register_bits: u32,
+    /// GE per register-file bit.
+    pub ge_per_bit: f64,
+    /// Warps WaSP needs.
+    pub wasp_warps: u32,
+    /// Warps the baseline needs for the same performance.
+    pub baseline_warps: u32,
+    /// Provenance of the warp counts.
+    pub source: String,
+}
+
+impl RfParams {
+    /// For `cfg`: a quad warp of 4 threads with `core.registers_per_thread`
+    /// 32-bit registers each, a 6-transistor SRAM bit cell = 1.5 GE
+    /// (periphery not counted, so the saving is a lower bound), and the
+    /// paper's equivalence for the machine's pipeline width: at width 2,
+    /// WaSP with 32 warps matches the baseline with 48 (Section V-A and the
+    /// conclusions); at width 4, WaSP with 48 warps outperforms the best
+    /// baseline with 64.
+    pub fn for_config(cfg: &MachineConfig) -> Self {
+        let (wasp_warps, baseline_warps, source) = if cfg.core.pipeline_width >= 4 {
+            (
+                48,
+                64,
+                "paper, width 4: WaSP with 48 warps outperforms the baseline with 64",
+            )
+        } else {
+            (
+                32,
+                48,
+                "paper, width 2: WaSP with 32 warps matches the baseline with 48",
+            )
+        };
+        Self {
+            threads_per_warp: 4,
+            registers_per_thread: cfg.core.registers_per_thread,
+            register_bits: 32,
+            ge_per_bit: 1.5,
+            wasp_warps,
+            baseline_warps,
+            source: source.into(),
+        }
+    }
+}
+
+/// The Verilog twin shipped in the repository.
+pub fn verilog_twin() -> PathBuf {
+    PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../props/verilog/wasp_sched.v"
+    ))
+}
+
+/// Parse the last statistics block of a Yosys log.
+pub fn parse_yosys_stat(log: &str) -> Option<YosysStat> {
+    let start = log.rfind("Printing statistics")?;
+    let block = &log[start..];
+    let mut s = YosysStat::default();
+    let mut in_cells = false;
+    for line in block.lines() {
+        let t = line.trim();
+        if let Some(v) = t.strip_prefix("Number of cells:") {
+            s.cells = v.trim().parse().ok()?;
+            in_cells = true;
+            continue;
+        }
+        if let Some(v) = t.strip_prefix("Estimated number of transistors:") {
+            s.transistors = v.trim().parse().ok();
+            in_cells = false;
+            continue;
+        }
+        if in_cells {
+            let mut parts = t.split_whitespace();
+            match (parts.next(), parts.next(), parts.next()) {
+                (Some(name), Some(n), None) if name.starts_with('$') => {
+                    let n: u64 = n.parse().ok()?;
+                    if name.contains("DFF") {
+                        s.flip_flops += n;
+                    }
+                    s.cell_types.insert(name.to_string(), n);
+                }
+                _ => in_cells = !t.is_empty() && in_cells && t.starts_with('$'),
+            }
+        }
+    }
+    (s.cells > 0).then_some(s)
+}
+
+/// Run Yosys on `verilog` with the machine's parameters.
+pub fn run_yosys(verilog: &Path, params: &[(&str, i64)], top: &str) -> Result<YosysStat, String> {
+    if !verilog.exists() {
+        return Err(format!("{} not found", verilog.display()));
+    }
+    let chparam: String = params
+        .iter()
+        .map(|(k, v)| format!("chparam -set {k} {v} {top}; "))
+        .collect();
+    let script = format!(
+        "read_verilog {}; {chparam}synth -top {top}; stat; stat -tech cmos",
+        verilog.display()
+    );
+    let out = Command::new("yosys")
+        .arg("-p")
+        .arg(&script)
+        .output()
+        .map_err(|e| format!("cannot run yosys ({e}): install it with `apt-get install yosys`"))?;
+    let log = String::from_utf8_lossy(&out.stdout);
+    if !out.status.success() {
+        let tail: Vec<&str> = log.lines().rev().take(15).collect();
+        return Err(format!(
+            "yosys failed:\n{}{}",
+            tail.into_iter().rev().collect::<Vec<_>>().join("\n"),
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    let mut s = parse_yosys_stat(&log).ok_or("no statistics in the yosys log")?;
+    s.command = format!("yosys -p \"{script}\"");
+    Ok(s)
+}
+
+/// Build the report for `cfg`. `yosys`: whether to run Yosys.
+pub fn report(
+    cfg: &MachineConfig,
+    rules: GateRules,
+    rf: &RfParams,
+    yosys: bool,
+) -> Result<CostReport, String> {
+    let (threshold, cf) = match cfg.policy()? {
+        PolicySpec::Wasp { threshold, cf } => (threshold, cf),
+        _ => (4, 2.5),
+    };
+    let dp = WaspDatapath {
+        cf: Cf::from_f64(cf).ok_or("CF is not a multiple of 0.25 in 0..=7.75")?,
+        threshold: Threshold::new(threshold).ok_or("threshold does not fit 5 bits")?,
+    };
+    let mesh = Mesh::new(4).expect("mesh4");
+    let items = core_inventory(&dp, &mesh, cfg.core.input_queue);
+    let per_core: Vec<CostedItem> = items
+        .into_iter()
+        .map(|item| CostedItem {
+            register_bits: match item.part {
+                Part::Register { bits } => bits,
+                _ => 0,
+            },
+            ge: rules.ge(&item.part),
+            item,
+        })
+        .collect();
+    let bits: u32 = per_core.iter().map(|c| c.register_bits).sum();
+    let ge: f64 = per_core.iter().map(|c| c.ge).sum();
+    let (_, sched) = cfg.scheduler_cache();
+    let (ys, note) = if yosys {
+        let params = [
+            ("CAPACITY", sched.mshrs.min(31) as i64),
+            ("QUEUE_CAP", cfg.core.input_queue as i64),
+            ("CF_Q", dp.cf.quarters() as i64),
+            ("THRESHOLD", threshold as i64),
+        ];
+        match run_yosys(&verilog_twin(), &params, "wasp_sched") {
+            Ok(s) => (Some(s), None),
+            Err(e) => (None, Some(e)),
+        }
+    } else {
+        (None, Some("not run (--no-yosys)".into()))
+    };
+    let rf_bits =
+        rf.threads_per_warp as u64 * rf.registers_per_thread as u64 * rf.register_bits as u64;
+    let saved_warps = rf.baseline_warps.saturating_sub(rf.wasp_warps) as u64;
+    Ok(CostReport {
+        machine: cfg.name.clone(),
+        cores: cfg.gpu.cores,
+        cf: dp.cf.value(),
+        threshold,
+        input_queue: cfg.core.input_queue,
+        rules,
+        per_core_register_bits: bits,
+        per_core_ge: ge,
+        per_core_transistors: ge * rules.transistors_per_ge,
+        gpu_register_bits: bits * cfg.gpu.cores,
+        gpu_ge: ge * cfg.gpu.cores as f64,
+        per_core,
+        yosys: ys,
+        yosys_note: note,
+        savings: Savings {
+            wasp_warps: rf.wasp_warps,
+            baseline_warps: rf.baseline_warps,
+            source: rf.source.clone(),
+            rf_bits_per_warp: rf_bits,
+            rf_bits_saved_per_core: rf_bits * saved_warps,
+            ge_per_rf_bit: rf.ge_per_bit,
+            ge_saved_per_core: (rf_bits * saved_warps) as f64 * rf.ge_per_bit,
+        },
+    })
+}
+
+impl CostReport {
+    /// The report as a table.
+    pub fn to_table(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "WaSP hardware overhead: machine {}, {} cores, CF {}, threshold {}, input queue {}",
+            self.machine, self.cores, self.cf, self.threshold, self.input_queue
+        );
+        let _ = writeln!(s, "\n(a) inventory per core, from the RTL blocks");
+        let _ = writeln!(
+            s,
+            "{:<22}{:<52}{:<22}{:>6}{:>9}",
+            "block", "purpose", "part", "ff", "GE"
+        );
+        for c in &self.per_core {
+            let part = match c.item.part {
+                Part::Register { bits } => format!("register {bits}b"),
+                Part::Adder { bits } => format!("adder {bits}b"),
+                Part::Comparator { bits } => format!("comparator {bits}b"),
+                Part::ZeroDetect { bits } => format!("zero detect {bits} in"),
+                Part::Mux2 { bits } => format!("mux2 {bits}b"),
+            };
+            let _ = writeln!(
+                s,
+                "{:<22}{:<52}{:<22}{:>6}{:>9.1}",
+                c.item.block, c.item.purpose, part, c.register_bits, c.ge
+            );
+        }
+        let _ = writeln!(
+            s,
+            "per core: {} flip-flops, {:.0} GE, ~{:.0} transistors; per GPU ({} cores): {} flip-flops, {:.0} GE",
+            self.per_core_register_bits,
+            self.per_core_ge,
+            self.per_core_transistors,
+            self.cores,
+            self.gpu_register_bits,
+            self.gpu_ge
+        );
+        let r = &self.rules;
+        let _ = writeln!(
+            s,
+            "rules: flip-flop {} GE, full-adder bit {} GE, comparator bit {} GE, zero-detect input {} GE, mux2 bit {} GE, {} transistors/GE",
+            r.flip_flop, r.full_adder, r.comparator_bit, r.zero_detect_input, r.mux2_bit, r.transistors_per_ge
+        );
+        let _ = writeln!(s, "\n(b) the Verilog twin synthesized by Yosys (per core)");
+        match &self.yosys {
+            Some(y) => {
+                let _ = writeln!(s, "{:<28}{:>12}{:>12}", "", "inventory", "yosys");
+                let _ = writeln!(
+                    s,
+                    "{:<28}{:>12}{:>12}",
+                    "flip-flops", self.per_core_register_bits, y.flip_flops
+                );
+                let _ = writeln!(
+                    s,
+                    "{:<28}{:>12.0}{:>12}",
+                    "transistors",
+                    self.per_core_transistors,
+                    y.transistors
+                        .map(|t| t.to_string())
+                        .unwrap_or_else(|| "-".into())
+                );
+                let _ = writeln!(s, "{:<28}{:>12}{:>12}", "cells", "-", y.cells);
+                let types: Vec<String> = y
+                    .cell_types
+                    .iter()
+                    .map(|(k, v)| format!("{k} {v}"))
+                    .collect();
+                let _ = writeln!(s, "cell types: {}", types.join(", "));
+                let _ = writeln!(s, "re-derive with: {}", y.command);
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    "no Yosys numbers: {}",
+                    self.yosys_note.as_deref().unwrap_or("unknown")
+                );
+            }
+        }
+        let v = &self.savings;
+        let _ = writeln!(s, "\n(c) what it saves ({})", v.source);
+        let _ = writeln!(
+            s,
+            "register file per warp: {} bits; {} warps instead of {}: {} bits = {:.1} KiB per core, {:.0} GE at {} GE/bit",
+            v.rf_bits_per_warp,
+            v.wasp_warps,
+            v.baseline_warps,
+            v.rf_bits_saved_per_core,
+            v.rf_bits_saved_per_core as f64 / 8192.0,
+            v.ge_saved_per_core,
+            v.ge_per_rf_bit
+        );
+        let _ = writeln!(
+            s,
+            "WaSP costs {:.2}% of the register file it saves (per core: {:.0} GE against {:.0} GE)",
+            100.0 * self.per_core_ge / v.ge_saved_per_core.max(1.0),
+            self.per_core_ge,
+            v.ge_saved_per_core
+        );
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SAMPLE: &str = "4. Printing statistics.\n\n=== t ===\n\n   Number of wires:                 43\n   Number of cells:                 47\n     $_ANDNOT_                      16\n     $_AND_                          2\n     $_DFF_P_                        5\n     $_XOR_                          6\n\n   Estimated number of transistors:        392\n\nEnd of script.";
+
+    #[test]
+    fn parses_yosys_statistics() {
+        let s = parse_yosys_stat(SAMPLE).unwrap();
+        assert_eq!(s.cells, 47);
+        assert_eq!(s.flip_flops, 5);
+        assert_eq!(s.transistors, Some(392));
+        assert_eq!(s.cell_types["$_ANDNOT_"], 16);
+        assert_eq!(s.cell_types.len(), 4);
+        assert!(parse_yosys_stat("no statistics here").is_none());
+    }
+
+    #[test]
+    fn paper_machine_report() {
+        let r = report(
+            &MachineConfig::paper(),
+            GateRules::default(),
+            &RfParams::for_config(&MachineConfig::paper()),
+            false,
+        )
+        .unwrap();
+        // 5 + 7 + 5 (threshold) + 6 + 6 + 7 (queue pointers, occupancy).
+        assert_eq!(r.per_core_register_bits, 36);
+        assert_eq!(r.gpu_register_bits, 36 * 4);
+        // Width 4: 64 - 48 = 16 warps x 4 threads x 32 registers x 32 bits.
+        assert_eq!(r.savings.rf_bits_saved_per_core, 16 * 4 * 32 * 32);
+        let w2 = report(
+            &MachineConfig::paper_width2(),
+            GateRules::default(),
+            &RfParams::for_config(&MachineConfig::paper_width2()),
+            false,
+        )
+        .unwrap();
+        assert_eq!((w2.savings.wasp_warps, w2.savings.baseline_warps), (32, 48));
+        assert!(r.per_core_ge < r.savings.ge_saved_per_core / 50.0);
+        let t = r.to_table();
+        assert!(t.contains("free_mshrs") && t.contains("nonblocked_priority"));
+        assert!(t.contains("no Yosys numbers"));
+    }
+}

@@ -1,0 +1,65 @@
+//! `wasp cost`: the hardware-overhead report.
+
+use crate::run_cmd::emit;
+use crate::CliError;
+use clap::Args;
+use std::path::{Path, PathBuf};
+use wasp_rtl::cost::GateRules;
+use wasp_sim::config::MachineConfig;
+use wasp_sim::cost::{report, RfParams};
+
+/// Options of `wasp cost`.
+#[derive(Args, Debug, Clone)]
+pub struct CostArgs {
+    /// Machine configuration (TOML); default: the embedded paper.toml.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Do not run Yosys on the Verilog twin.
+    #[arg(long)]
+    pub no_yosys: bool,
+    /// Registers per thread (default: core.registers_per_thread).
+    #[arg(long)]
+    pub registers_per_thread: Option<u32>,
+    /// Warps the baseline needs to match WaSP (default: the paper's figure
+    /// for the machine's width: 48 at width 2, 64 at width 4).
+    #[arg(long)]
+    pub baseline_warps: Option<u32>,
+    /// Warps WaSP needs (default: the paper's 32 at width 2, 48 at width 4).
+    #[arg(long)]
+    pub wasp_warps: Option<u32>,
+    /// Write the report as JSON to FILE (`-`: stdout).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+}
+
+/// Run the command.
+pub fn run(args: &CostArgs) -> Result<(), CliError> {
+    let cfg = match &args.config {
+        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        None => MachineConfig::paper(),
+    };
+    let mut rf = RfParams::for_config(&cfg);
+    if let Some(r) = args.registers_per_thread {
+        rf.registers_per_thread = r;
+    }
+    if args.baseline_warps.is_some() || args.wasp_warps.is_some() {
+        rf.baseline_warps = args.baseline_warps.unwrap_or(rf.baseline_warps);
+        rf.wasp_warps = args.wasp_warps.unwrap_or(rf.wasp_warps);
+        rf.source = format!(
+            "given: WaSP with {} warps matches the baseline with {}",
+            rf.wasp_warps, rf.baseline_warps
+        );
+    }
+    let r = report(&cfg, GateRules::default(), &rf, !args.no_yosys).map_err(CliError::usage)?;
+    let json_stdout = args.json.as_ref().is_some_and(|p| p.as_os_str() == "-");
+    if let Some(p) = &args.json {
+        let text = serde_json::to_string_pretty(&r)
+            .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?
+            + "\n";
+        emit(p, &text)?;
+    }
+    if !json_stdout {
+        emit(Path::new("-"), &r.to_table())?;
+    }
+    Ok(())
+}
