@@ -154,6 +154,16 @@ impl<'t> Gpu<'t> {
         })
     }
 
+    /// The shader cores.
+    pub fn cores(&self) -> &[ShaderCore] {
+        &self.cores
+    }
+
+    /// The memory system.
+    pub fn mem(&self) -> &MemorySystem {
+        &self.mem
+    }
+
     /// Tiles rendered so far.
     pub fn tiles_done(&self) -> usize {
         self.tiles_done
@@ -529,6 +539,134 @@ mod tests {
         let mut keys: Vec<(u32, u32)> = recs.iter().map(|r| (r.tile, r.quad)).collect();
         keys.dedup();
         assert_eq!(keys.len(), recs.len());
+    }
+
+    mod random_machines {
+        use super::*;
+        use crate::trace::{Instr, TraceHeader};
+        use proptest::prelude::*;
+
+        /// A random trace of 8x8-pixel tiles (4x4 quads) whose texture
+        /// instructions draw from a small block pool, so misses merge.
+        fn arb_trace() -> impl Strategy<Value = Trace> {
+            let quad = (
+                prop::collection::vec((1u32..4, prop::collection::btree_set(0u64..24, 1..4)), 1..4),
+                any::<bool>(),
+            );
+            let tile = prop::collection::vec(prop::option::of(quad), 16);
+            prop::collection::vec(tile, 1..5).prop_map(|tiles| {
+                let mut b = Trace::builder(TraceHeader::new("random:proptest", 32, 32, 8)).unwrap();
+                for (ti, quads) in tiles.iter().enumerate() {
+                    let (tx, ty) = (ti as u32 % 4, ti as u32 / 4);
+                    let mut any = false;
+                    for (qi, q) in quads.iter().enumerate() {
+                        let Some((prog, tail_alu)) = q else { continue };
+                        if !any {
+                            b.begin_tile(tx, ty).unwrap();
+                            any = true;
+                        }
+                        let mut ops: Vec<Instr> = Vec::new();
+                        let blocks: Vec<Vec<u64>> = prog
+                            .iter()
+                            .map(|(_, s)| s.iter().map(|x| x + 1000 * ti as u64 % 3).collect())
+                            .collect();
+                        for ((alu, _), bl) in prog.iter().zip(&blocks) {
+                            ops.push(Instr::Alu(*alu));
+                            ops.push(Instr::Tex(bl));
+                        }
+                        if *tail_alu {
+                            ops.push(Instr::Alu(2));
+                        }
+                        b.quad(qi as u32 % 4, qi as u32 / 4, &ops).unwrap();
+                    }
+                    if any {
+                        b.end_tile().unwrap();
+                    }
+                }
+                if b.tile_count() == 0 {
+                    b.begin_tile(0, 0).unwrap();
+                    b.quad(0, 0, &[Instr::Alu(1)]).unwrap();
+                    b.end_tile().unwrap();
+                }
+                b.finish().unwrap()
+            })
+        }
+
+        fn arb_config() -> impl Strategy<Value = MachineConfig> {
+            (
+                1u32..=6,
+                1u32..=8,
+                1u32..=4,
+                1u32..=8,
+                0usize..4,
+                any::<bool>(),
+                1u32..=3,
+            )
+                .prop_map(|(mshrs, warps, width, queue, policy, l0, cores)| {
+                    let mut c = if l0 {
+                        MachineConfig::paper()
+                    } else {
+                        MachineConfig::paper_width2()
+                    };
+                    c.gpu.tile_size = 8;
+                    c.gpu.cores = cores;
+                    c.core.max_warps = warps;
+                    c.core.pipeline_width = width;
+                    c.core.input_queue = queue;
+                    c.l1.mshrs = mshrs.max(2);
+                    if let Some(l0) = c.l0.as_mut() {
+                        l0.mshrs = mshrs;
+                    }
+                    let t = mshrs - 1;
+                    c.scheduler.policy = ["baseline", "fullpriority", "freemshr:1", "wasp"][policy]
+                        .replace("wasp", &format!("wasp:{t}"));
+                    c.sim.watchdog_cycles = 20_000;
+                    c.validate().unwrap();
+                    c
+                })
+        }
+
+        proptest! {
+            #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+
+            /// Every cycle: no cache holds more MSHR entries than it has;
+            /// the run ends with every warp finished within a bound
+            /// (bounded liveness); a core starts no warp of a tile before
+            /// the previous tile's warps all finished (fill and drain).
+            #[test]
+            fn invariants_hold_on_random_machines(cfg in arb_config(), trace in arb_trace()) {
+                let mut gpu = Gpu::new(&cfg, &trace).unwrap();
+                gpu.record_warps();
+                let (_, sc) = cfg.scheduler_cache();
+                let instrs = trace.instr_count();
+                let bound = 200 + instrs * 400;
+                while !gpu.done() {
+                    gpu.step().unwrap();
+                    prop_assert!(gpu.cycle() <= bound, "no finish within {bound} cycles");
+                    for core in 0..cfg.gpu.cores as usize {
+                        let ev = gpu.mem().mshr_events(core);
+                        prop_assert!(ev.occupied <= sc.mshrs);
+                        prop_assert!(ev.outstanding <= ev.occupied);
+                    }
+                }
+                let records = gpu.take_records();
+                prop_assert_eq!(records.len(), trace.quad_count());
+                for core in 0..cfg.gpu.cores {
+                    let mut tiles: Vec<(u64, u64)> = Vec::new();
+                    let mut per_tile = std::collections::BTreeMap::<u32, (u64, u64)>::new();
+                    for r in records.iter().filter(|r| r.core == core) {
+                        let e = per_tile.entry(r.tile).or_insert((u64::MAX, 0));
+                        e.0 = e.0.min(r.launched);
+                        e.1 = e.1.max(r.finished);
+                    }
+                    tiles.extend(per_tile.values().copied());
+                    tiles.sort_unstable();
+                    for w in tiles.windows(2) {
+                        prop_assert!(w[0].1 <= w[1].0, "tile started before the previous drained: {:?}", w);
+                    }
+                }
+            }
+        }
     }
 
     #[test]
