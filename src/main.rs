@@ -4,6 +4,7 @@ mod bench_cmd;
 mod cost_cmd;
 mod example_cmd;
 mod run_cmd;
+mod scene_cmd;
 mod synth_cmd;
 
 use clap::{Parser, Subcommand};
@@ -61,6 +62,25 @@ enum Command {
     /// tracing off and on, and its growth with tile count and warp count.
     /// Build with --release for meaningful numbers.
     Bench(bench_cmd::BenchArgs),
+
+    /// List scene definitions (scenes/*.toml) and fetch real games' data.
+    ///
+    /// Game data (SuperTuxKart, OpenArena, Teeworlds, Frozen Bubble) comes
+    /// from Debian's packages into a cache outside the repository
+    /// ($WASP_SCENES, else ~/.cache/wasp/scenes); procedural scenes need
+    /// nothing.
+    Scenes(scene_cmd::ScenesArgs),
+
+    /// Rasterize a scene through the TBR front end and write the frame as
+    /// a PNG (real texel colours) with optional overlays (tile grid,
+    /// priority subset, per-quad heat map from a cycle-model run), and/or
+    /// save its trace for `wasp run --trace`.
+    Render(scene_cmd::RenderArgs),
+
+    /// Characterise scenes like the paper's Table I: memory-instruction
+    /// ratio, block reuse in tile, CF, Min_Estimate1/2 and the texture
+    /// footprint ratio of every priority subset, beside the paper's values.
+    Characterize(scene_cmd::CharacterizeArgs),
 }
 
 fn main() -> ExitCode {
@@ -72,6 +92,9 @@ fn main() -> ExitCode {
         Some(Command::Bench(args)) => bench_cmd::run(&args),
         Some(Command::Cost(args)) => cost_cmd::run(&args),
         Some(Command::Synth(args)) => synth_cmd::run(&args),
+        Some(Command::Scenes(args)) => scene_cmd::scenes(&args),
+        Some(Command::Render(args)) => scene_cmd::render(&args),
+        Some(Command::Characterize(args)) => scene_cmd::characterize(&args),
         None => example_cmd::run(&example_cmd::ExampleArgs::default()),
     };
     match result {

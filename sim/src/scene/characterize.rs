@@ -1,1 +1,379 @@
-//! characterize (in progress).
+//! Workload characterisation per scene, beside the paper's figures: the
+//! statistics of Table I and Section III-B ([`crate::trace::TraceStats`])
+//! and the texture footprint ratio of every priority subset (Figure 11's
+//! quantity, [`crate::trace::mean_footprint_ratio`]).
+//!
+//! The paper's figures come from ten Android games on TEAPOT; ours from the
+//! scenes named in each row (procedural ones say so). They are shown side
+//! by side to judge whether a scene is in the paper's range, never to tune
+//! anything towards it.
+
+use super::def::SceneDef;
+use super::raster::{rasterize_timed, Frame, RasterOptions};
+use super::{fetch, SceneError};
+#[cfg(test)]
+use crate::trace::mean_footprint_ratio;
+use crate::trace::Trace;
+use serde::Serialize;
+use std::fmt::Write as _;
+use wasp_rtl::subset::SubsetSpec;
+
+/// The footprint of one priority subset.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SubsetFootprint {
+    /// Subset name (`mesh4`, `top16`, ...).
+    pub subset: String,
+    /// Fraction of a tile's quads it selects.
+    pub size_ratio: f64,
+    /// Mean texture footprint ratio over tiles (warp-weighted).
+    pub footprint_ratio: f64,
+    /// The paper's value (Figure 11 / Section V-D), where it gives one.
+    pub paper: Option<f64>,
+}
+
+/// One scene's characterisation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Characterization {
+    /// Scene definition name.
+    pub scene: String,
+    /// Workload name in the trace (procedural scenes say so).
+    pub workload: String,
+    /// Frame width.
+    pub width: u32,
+    /// Frame height.
+    pub height: u32,
+    /// Tiles with at least one warp.
+    pub tiles: u64,
+    /// Warps (quad positions shaded).
+    pub warps: u64,
+    /// Warps per tile.
+    pub warps_per_tile: f64,
+    /// Surviving (triangle, quad) fragments; above `warps` where fragments
+    /// were merged into one warp.
+    pub fragments: u64,
+    /// fragments / warps.
+    pub fragments_per_warp: f64,
+    /// Quads rejected by early-Z.
+    pub rejected_early_z: u64,
+    /// Texture instructions / instructions (Table I).
+    pub mem_instr_ratio: f64,
+    /// Memory-block reuse in tile (Table I).
+    pub reuse: f64,
+    /// Distinct blocks per warp (Section III-B's CF).
+    pub cf: f64,
+    /// Blocks per texture instruction (repeats across instructions of a
+    /// warp counted).
+    pub blocks_per_tex_instr: f64,
+    /// Min_Estimate1 (Section III-B).
+    pub min_estimate1: f64,
+    /// Min_Estimate2 (Section III-B).
+    pub min_estimate2: f64,
+    /// Footprint ratio of each subset of [`SubsetSpec::all`].
+    pub footprints: Vec<SubsetFootprint>,
+    /// Seconds to rasterize (not part of the figures).
+    pub raster_seconds: f64,
+}
+
+/// The paper's value of a subset's footprint ratio, where stated.
+pub fn paper_footprint(spec: &SubsetSpec) -> Option<f64> {
+    match spec {
+        SubsetSpec::Top16 => Some(0.17),
+        SubsetSpec::HorizontalLines => Some(0.3),
+        SubsetSpec::VerticalLines => Some(0.4),
+        SubsetSpec::Mesh(2) => Some(0.9),
+        SubsetSpec::Mesh(4) => Some(0.59),
+        SubsetSpec::Random(_) => Some(0.56),
+        SubsetSpec::Mesh(_) => None,
+    }
+}
+
+/// [`mean_footprint_ratio`] of several subsets at once: each tile's unique
+/// blocks are sorted once instead of once per subset (same definition,
+/// same result; a test checks it).
+pub fn mean_footprint_ratios(trace: &Trace, specs: &[SubsetSpec]) -> Vec<f64> {
+    let side = trace.header().quads_per_side();
+    let sels: Vec<_> = specs.iter().map(|s| s.build(side)).collect();
+    let mut num = vec![0.0f64; specs.len()];
+    let mut den = 0.0f64;
+    let (mut all, mut chosen) = (Vec::new(), Vec::new());
+    for tile in trace.tiles() {
+        all.clear();
+        all.extend_from_slice(tile.block_accesses());
+        all.sort_unstable();
+        all.dedup();
+        if all.is_empty() {
+            continue;
+        }
+        let w = tile.quad_count() as f64;
+        den += w;
+        for (k, sel) in sels.iter().enumerate() {
+            chosen.clear();
+            for q in tile.quads().filter(|q| sel.is_priority(q.x(), q.y())) {
+                chosen.extend_from_slice(q.block_accesses());
+            }
+            chosen.sort_unstable();
+            chosen.dedup();
+            num[k] += w * chosen.len() as f64 / all.len() as f64;
+        }
+    }
+    num.iter()
+        .map(|n| if den == 0.0 { 0.0 } else { n / den })
+        .collect()
+}
+
+/// Characterise a rasterized frame.
+pub fn characterize(scene: &str, frame: &Frame, raster_seconds: f64) -> Characterization {
+    let s = frame.trace.stats();
+    let side = frame.trace.header().quads_per_side();
+    let specs = SubsetSpec::all();
+    let ratios = mean_footprint_ratios(&frame.trace, &specs);
+    let footprints = specs
+        .iter()
+        .zip(ratios)
+        .map(|(spec, footprint_ratio)| SubsetFootprint {
+            subset: spec.to_string(),
+            size_ratio: spec.build(side).size_ratio(side),
+            footprint_ratio,
+            paper: paper_footprint(spec),
+        })
+        .collect();
+    let ratio = |a: f64, b: f64| if b == 0.0 { 0.0 } else { a / b };
+    Characterization {
+        scene: scene.to_string(),
+        workload: s.workload.clone(),
+        width: frame.width,
+        height: frame.height,
+        tiles: s.tiles,
+        warps: s.warps,
+        warps_per_tile: s.warps_per_tile,
+        fragments: frame.stats.quads_shaded,
+        fragments_per_warp: ratio(frame.stats.quads_shaded as f64, s.warps as f64),
+        rejected_early_z: frame.stats.quads_rejected_early_z,
+        mem_instr_ratio: s.mem_instr_ratio,
+        reuse: s.reuse,
+        cf: s.cf,
+        blocks_per_tex_instr: ratio(s.block_accesses as f64, s.tex_instrs as f64),
+        min_estimate1: s.min_estimate1,
+        min_estimate2: s.min_estimate2,
+        footprints,
+        raster_seconds,
+    }
+}
+
+/// Load, rasterize (trace only, 64-pixel tiles; hidden-surface removal
+/// by a depth pre-pass if `depth_prepass`) and characterise a scene.
+pub fn characterize_def(
+    def: &SceneDef,
+    depth_prepass: bool,
+) -> Result<Characterization, SceneError> {
+    let scene = fetch::load_scene(def)?;
+    let opts = RasterOptions {
+        colour: false,
+        depth_prepass,
+        ..RasterOptions::default()
+    };
+    let (frame, secs) = rasterize_timed(&scene, def.width, def.height, &opts)?;
+    Ok(characterize(&def.name, &frame, secs))
+}
+
+/// The table: one row per figure, one column per scene, then the paper's.
+pub fn table(rows: &[Characterization]) -> String {
+    let mut lines: Vec<(String, Vec<String>, String)> = Vec::new();
+    let col = |f: &dyn Fn(&Characterization) -> String| rows.iter().map(f).collect::<Vec<_>>();
+    lines.push((
+        "workload".into(),
+        col(&|c| c.workload.clone()),
+        "10 Android games".into(),
+    ));
+    lines.push((
+        "frame".into(),
+        col(&|c| format!("{}x{}", c.width, c.height)),
+        "1960x768".into(),
+    ));
+    lines.push(("tiles".into(), col(&|c| c.tiles.to_string()), "-".into()));
+    lines.push((
+        "warps (quads)".into(),
+        col(&|c| c.warps.to_string()),
+        "-".into(),
+    ));
+    lines.push((
+        "warps per tile".into(),
+        col(&|c| format!("{:.1}", c.warps_per_tile)),
+        "<= 1024".into(),
+    ));
+    lines.push((
+        "fragments per warp".into(),
+        col(&|c| format!("{:.2}", c.fragments_per_warp)),
+        "1 (one warp each)".into(),
+    ));
+    lines.push((
+        "memory-instr ratio".into(),
+        col(&|c| format!("{:.3}", c.mem_instr_ratio)),
+        "0.07-0.26 (Table I)".into(),
+    ));
+    lines.push((
+        "block reuse in tile".into(),
+        col(&|c| format!("{:.1}", c.reuse)),
+        "3.3-22.9 (Table I)".into(),
+    ));
+    lines.push((
+        "CF (blocks/warp)".into(),
+        col(&|c| format!("{:.2}", c.cf)),
+        "2.5 mean (III-B)".into(),
+    ));
+    lines.push((
+        "blocks/tex instr".into(),
+        col(&|c| format!("{:.2}", c.blocks_per_tex_instr)),
+        "-".into(),
+    ));
+    lines.push((
+        "Min_Estimate1".into(),
+        col(&|c| format!("{:.3}", c.min_estimate1)),
+        "0.12 mean (III-B)".into(),
+    ));
+    lines.push((
+        "Min_Estimate2".into(),
+        col(&|c| format!("{:.3}", c.min_estimate2)),
+        "~1/16 (III-B)".into(),
+    ));
+    let subsets = rows.first().map(|r| r.footprints.len()).unwrap_or(0);
+    for i in 0..subsets {
+        let f0 = &rows[0].footprints[i];
+        let paper = match (f0.paper, f0.subset.as_str()) {
+            (Some(p), "mesh4") => format!("{p:.2} (Fig. 11; 0.64 in V-D)"),
+            (Some(p), _) => format!("{p:.2} (Fig. 11)"),
+            (None, _) => "lower than Mesh4".into(),
+        };
+        lines.push((
+            format!("footprint {} ({:.3})", f0.subset, f0.size_ratio),
+            col(&|c| format!("{:.3}", c.footprints[i].footprint_ratio)),
+            paper,
+        ));
+    }
+    let w0 = lines.iter().map(|l| l.0.len()).max().unwrap_or(0).max(6);
+    let widths: Vec<usize> = (0..rows.len())
+        .map(|i| {
+            lines
+                .iter()
+                .map(|l| l.1[i].len())
+                .chain(std::iter::once(rows[i].scene.len()))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let mut out = String::new();
+    let _ = write!(out, "{:<w0$}", "figure");
+    for (r, w) in rows.iter().zip(&widths) {
+        let _ = write!(out, "  {:>w$}", r.scene);
+    }
+    let _ = writeln!(out, "  paper");
+    for (name, vals, paper) in &lines {
+        let _ = write!(out, "{name:<w0$}");
+        for (v, w) in vals.iter().zip(&widths) {
+            let _ = write!(out, "  {v:>w$}");
+        }
+        let _ = writeln!(out, "  {paper}");
+    }
+    out
+}
+
+/// CSV: one line per scene.
+pub fn csv(rows: &[Characterization]) -> String {
+    let mut out = String::from(
+        "scene,workload,width,height,tiles,warps,warps_per_tile,fragments,fragments_per_warp,\
+         rejected_early_z,mem_instr_ratio,reuse,cf,blocks_per_tex_instr,min_estimate1,\
+         min_estimate2",
+    );
+    if let Some(r) = rows.first() {
+        for f in &r.footprints {
+            let _ = write!(out, ",footprint_{}", f.subset.replace(':', "_"));
+        }
+    }
+    out.push('\n');
+    for c in rows {
+        let _ = write!(
+            out,
+            "{},\"{}\",{},{},{},{},{:.3},{},{:.4},{},{:.5},{:.4},{:.4},{:.4},{:.5},{:.5}",
+            c.scene,
+            c.workload.replace('"', "'"),
+            c.width,
+            c.height,
+            c.tiles,
+            c.warps,
+            c.warps_per_tile,
+            c.fragments,
+            c.fragments_per_warp,
+            c.rejected_early_z,
+            c.mem_instr_ratio,
+            c.reuse,
+            c.cf,
+            c.blocks_per_tex_instr,
+            c.min_estimate1,
+            c.min_estimate2
+        );
+        for f in &c.footprints {
+            let _ = write!(out, ",{:.5}", f.footprint_ratio);
+        }
+        out.push('\n');
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::def::Game;
+
+    #[test]
+    fn table_and_csv_of_a_procedural_scene() {
+        let def = SceneDef {
+            name: "procedural-sprites".into(),
+            game: Game::Procedural,
+            map: "sprites".into(),
+            camera: "full".into(),
+            width: 256,
+            height: 128,
+            description: String::new(),
+            shader: None,
+        };
+        let c = characterize_def(&def, false).unwrap();
+        assert_eq!(c.footprints.len(), SubsetSpec::all().len());
+        assert!(c.workload.starts_with("procedural:"));
+        let t = table(std::slice::from_ref(&c));
+        assert!(
+            t.contains("memory-instr ratio") && t.contains("0.07-0.26"),
+            "{t}"
+        );
+        assert!(t.contains("footprint mesh4 (0.062)"), "{t}");
+        let v = csv(std::slice::from_ref(&c));
+        assert_eq!(v.lines().count(), 2);
+        assert_eq!(
+            v.lines().next().unwrap().split(',').count(),
+            v.lines().nth(1).unwrap().split(',').count()
+        );
+        let j = serde_json::to_value(&c).unwrap();
+        assert!(j["footprints"][0]["paper"].is_number());
+    }
+
+    #[test]
+    fn batched_footprints_equal_the_trace_module_definition() {
+        let scene = crate::scene::procedural::plane("ground", "standard").unwrap();
+        let f = crate::scene::raster::rasterize(
+            &scene,
+            320,
+            192,
+            &RasterOptions {
+                colour: false,
+                ..RasterOptions::default()
+            },
+        )
+        .unwrap();
+        let specs = SubsetSpec::all();
+        let got = mean_footprint_ratios(&f.trace, &specs);
+        for (spec, g) in specs.iter().zip(got) {
+            let sel = spec.build(32);
+            let want = mean_footprint_ratio(&f.trace, |x, y| sel.is_priority(x, y));
+            assert!((g - want).abs() < 1e-12, "{spec}: {g} vs {want}");
+        }
+    }
+}

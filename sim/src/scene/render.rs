@@ -1,1 +1,541 @@
-//! render (in progress).
+//! `wasp render`: the rasterized frame as a PNG with the real texel
+//! colours, and overlays that show what the cycle model sees.
+//!
+//! Overlays ([`Overlay`], parsed from the command line):
+//!
+//! * `grid` — the 64x64-pixel tile grid.
+//! * `subset[:SUBSET]` — tints the priority quads of a priority subset
+//!   (default `mesh4`; any of `mesh2|4|8|16`, `hlines`, `vlines`, `top16`,
+//!   `random[:seed]`), positions taken from the hardware selector itself.
+//! * `heat[:STAT]` — a per-quad heat map of a per-warp statistic of a cycle
+//!   model run on the frame's trace: `latency` (default: the mean memory
+//!   latency of the warp's texture instructions), `cycles` (launch to
+//!   finish) or `launch` (launch cycle after the tile's first launch, so
+//!   the launch order shows). Quads without a value keep a dimmed picture.
+//!   The colour scale runs from the minimum to the 99th percentile (above
+//!   it: red); a colour bar with the minimum, the 99th percentile and the
+//!   maximum is drawn bottom right.
+
+use super::raster::{rasterize_timed, Frame, RasterOptions};
+use super::{Scene, SceneError};
+use crate::config::MachineConfig;
+use crate::gpu::{simulate_recording, RunOptions, SimError, WarpRecord};
+use crate::stats::RunStats;
+use std::fmt;
+use std::path::Path;
+use std::str::FromStr;
+use wasp_rtl::subset::SubsetSpec;
+
+/// A per-warp statistic for the heat map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HeatStat {
+    /// Mean memory latency of the warp's texture instructions (cycles).
+    Latency,
+    /// Cycles from launch to finish.
+    Cycles,
+    /// Launch cycle after the first launch of its tile.
+    Launch,
+}
+
+impl HeatStat {
+    /// Legend label.
+    pub fn label(self) -> &'static str {
+        match self {
+            HeatStat::Latency => "MEM LATENCY (CYCLES)",
+            HeatStat::Cycles => "WARP CYCLES",
+            HeatStat::Launch => "LAUNCH CYCLE IN TILE",
+        }
+    }
+}
+
+/// One overlay drawn over the frame.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Overlay {
+    /// Tile grid lines.
+    Grid,
+    /// Tint the priority quads of this subset.
+    Subset(SubsetSpec),
+    /// Heat map of a per-warp statistic (needs a cycle-model run).
+    Heat(HeatStat),
+}
+
+impl FromStr for Overlay {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let lower = s.trim().to_ascii_lowercase();
+        let (head, arg) = match lower.split_once(':') {
+            Some((h, a)) => (h, Some(a)),
+            None => (lower.as_str(), None),
+        };
+        match (head, arg) {
+            ("grid", None) => Ok(Overlay::Grid),
+            ("subset", None) => Ok(Overlay::Subset(SubsetSpec::Mesh(4))),
+            ("subset", Some(a)) => a.parse().map(Overlay::Subset),
+            ("heat", None | Some("latency")) => Ok(Overlay::Heat(HeatStat::Latency)),
+            ("heat", Some("cycles")) => Ok(Overlay::Heat(HeatStat::Cycles)),
+            ("heat", Some("launch")) => Ok(Overlay::Heat(HeatStat::Launch)),
+            _ => Err(format!(
+                "unknown overlay `{s}` (expected grid, subset[:SUBSET] or \
+                 heat[:latency|cycles|launch])"
+            )),
+        }
+    }
+}
+
+impl fmt::Display for Overlay {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Overlay::Grid => f.write_str("grid"),
+            Overlay::Subset(s) => write!(f, "subset:{s}"),
+            Overlay::Heat(HeatStat::Latency) => f.write_str("heat:latency"),
+            Overlay::Heat(HeatStat::Cycles) => f.write_str("heat:cycles"),
+            Overlay::Heat(HeatStat::Launch) => f.write_str("heat:launch"),
+        }
+    }
+}
+
+/// Why a render failed.
+#[derive(Debug)]
+pub enum RenderError {
+    /// Loading or rasterizing the scene.
+    Scene(SceneError),
+    /// The cycle-model run for a heat map.
+    Sim(SimError),
+    /// Encoding or writing the picture.
+    Image(String),
+}
+
+impl fmt::Display for RenderError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RenderError::Scene(e) => write!(f, "{e}"),
+            RenderError::Sim(e) => write!(f, "cycle model: {e}"),
+            RenderError::Image(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for RenderError {}
+
+/// What to render.
+#[derive(Clone, Debug)]
+pub struct RenderRequest {
+    /// Overlays in drawing order.
+    pub overlays: Vec<Overlay>,
+    /// The machine (its tile size is the raster tile size; a heat map runs
+    /// on it).
+    pub config: MachineConfig,
+    /// Policy and other overrides of the heat map's run.
+    pub run: RunOptions,
+    /// Hidden-surface removal by a depth pre-pass (see
+    /// [`RasterOptions::depth_prepass`]).
+    pub depth_prepass: bool,
+}
+
+/// A rendered frame.
+#[derive(Debug)]
+pub struct Rendered {
+    /// The rasterized frame (trace, picture, counts).
+    pub frame: Frame,
+    /// The picture with overlays, RGBA8.
+    pub image: Vec<u8>,
+    /// Seconds the front end took.
+    pub raster_seconds: f64,
+    /// The cycle-model run, if a heat map needed one.
+    pub run: Option<RunStats>,
+    /// The heat map's value range, if drawn.
+    pub heat_range: Option<(f64, f64)>,
+}
+
+/// Rasterize `scene` at `width` x `height` and draw the overlays (running
+/// the cycle model if a heat map asks for it).
+pub fn render(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    req: &RenderRequest,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Rendered, RenderError> {
+    let opts = RasterOptions {
+        tile: req.config.gpu.tile_size,
+        depth_prepass: req.depth_prepass,
+        ..RasterOptions::default()
+    };
+    let (frame, raster_seconds) =
+        rasterize_timed(scene, width, height, &opts).map_err(RenderError::Scene)?;
+    let needs_run = req.overlays.iter().any(|o| matches!(o, Overlay::Heat(_)));
+    let (run, records) = if needs_run {
+        let mut run = req.run.clone();
+        run.record_warps = true;
+        let (stats, recs) = simulate_recording(&req.config, &frame.trace, &run, progress)
+            .map_err(RenderError::Sim)?;
+        (Some(stats), Some(recs))
+    } else {
+        (None, None)
+    };
+    let (image, heat_range) = compose(&frame, &req.overlays, records.as_deref());
+    Ok(Rendered {
+        frame,
+        image,
+        raster_seconds,
+        run,
+        heat_range,
+    })
+}
+
+/// The frame's picture with `overlays` drawn in order; heat maps use
+/// `records` (none: heat overlays are skipped). Returns the picture and
+/// the last heat map's value range.
+pub fn compose(
+    frame: &Frame,
+    overlays: &[Overlay],
+    records: Option<&[WarpRecord]>,
+) -> (Vec<u8>, Option<(f64, f64)>) {
+    let mut img = Canvas {
+        w: frame.width,
+        h: frame.height,
+        px: frame.image.clone(),
+    };
+    let tile = frame.trace.header().tile;
+    let side = tile / 2;
+    let mut range = None;
+    for o in overlays {
+        match o {
+            Overlay::Grid => {
+                for x in (tile..frame.width).step_by(tile as usize) {
+                    img.fill_rect(x, 0, 1, frame.height, [255, 230, 60], 0.75);
+                }
+                for y in (tile..frame.height).step_by(tile as usize) {
+                    img.fill_rect(0, y, frame.width, 1, [255, 230, 60], 0.75);
+                }
+            }
+            Overlay::Subset(spec) => {
+                let sel = spec.build(side);
+                for py in (0..frame.height).step_by(2) {
+                    for px in (0..frame.width).step_by(2) {
+                        let (qx, qy) = ((px % tile) / 2, (py % tile) / 2);
+                        if sel.is_priority(qx, qy) {
+                            img.fill_rect(px, py, 2, 2, [255, 30, 30], 0.7);
+                        }
+                    }
+                }
+            }
+            Overlay::Heat(stat) => {
+                if let Some(recs) = records {
+                    range = heat(&mut img, frame, recs, *stat);
+                }
+            }
+        }
+    }
+    (img.px, range)
+}
+
+/// Per-quad values of a statistic: (top-left pixel x, y, value).
+pub fn heat_values(frame: &Frame, records: &[WarpRecord], stat: HeatStat) -> Vec<(u32, u32, f64)> {
+    let tiles = frame.trace.tiles();
+    let t = frame.trace.header().tile;
+    let mut first_launch = vec![u64::MAX; tiles.len()];
+    for r in records {
+        if let Some(f) = first_launch.get_mut(r.tile as usize) {
+            *f = (*f).min(r.launched);
+        }
+    }
+    let mut out = Vec::with_capacity(records.len());
+    for r in records {
+        let Some(tile) = tiles.get(r.tile as usize) else {
+            continue;
+        };
+        let Some(q) = tile.quad(r.quad as usize) else {
+            continue;
+        };
+        let v = match stat {
+            HeatStat::Latency => r.mem_latency,
+            HeatStat::Cycles => Some(r.finished.saturating_sub(r.launched) as f64),
+            HeatStat::Launch => {
+                Some(r.launched.saturating_sub(first_launch[r.tile as usize]) as f64)
+            }
+        };
+        if let Some(v) = v.filter(|v| v.is_finite()) {
+            out.push((tile.tx() * t + 2 * q.x(), tile.ty() * t + 2 * q.y(), v));
+        }
+    }
+    out
+}
+
+fn heat(
+    img: &mut Canvas,
+    frame: &Frame,
+    records: &[WarpRecord],
+    stat: HeatStat,
+) -> Option<(f64, f64)> {
+    let vals = heat_values(frame, records, stat);
+    // Dim the picture: the heat reads on top of a grey frame.
+    for p in img.px.chunks_exact_mut(4) {
+        let l = (u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10;
+        let g = (l * 2 / 5) as u8;
+        p[0] = g;
+        p[1] = g;
+        p[2] = g;
+    }
+    if vals.is_empty() {
+        return None;
+    }
+    let mut sorted: Vec<f64> = vals.iter().map(|v| v.2).collect();
+    sorted.sort_unstable_by(f64::total_cmp);
+    let lo = sorted[0];
+    let hi = sorted[sorted.len() - 1];
+    // The colour scale ends at the 99th percentile (a few outliers would
+    // otherwise paint everything else one colour); above it is red.
+    let p99 = sorted[((sorted.len() - 1) as f64 * 0.99).round() as usize];
+    let top = if p99 > lo { p99 } else { hi };
+    let span = if top > lo { top - lo } else { 1.0 };
+    for &(x, y, v) in &vals {
+        let c = colour_map(((v - lo) / span) as f32);
+        img.fill_rect(x, y, 2, 2, c, 0.9);
+    }
+    legend(img, stat.label(), lo, top, hi);
+    Some((lo, hi))
+}
+
+/// Dark blue - blue - cyan - yellow - red.
+pub fn colour_map(t: f32) -> [u8; 3] {
+    const STOPS: [[f32; 3]; 5] = [
+        [0.05, 0.03, 0.35],
+        [0.10, 0.35, 0.90],
+        [0.10, 0.80, 0.70],
+        [0.95, 0.85, 0.15],
+        [0.85, 0.10, 0.05],
+    ];
+    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) } * 4.0;
+    let i = (t.floor() as usize).min(3);
+    let f = t - i as f32;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    let q = |k: usize| ((a[k] + (b[k] - a[k]) * f) * 255.0 + 0.5) as u8;
+    [q(0), q(1), q(2)]
+}
+
+fn fmt_value(v: f64) -> String {
+    if v.abs() >= 100.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.1}")
+    }
+}
+
+fn legend(img: &mut Canvas, label: &str, lo: f64, top: f64, hi: f64) {
+    let s = 2u32;
+    let bar_w = 320u32.min(img.w.saturating_sub(40));
+    let box_w = bar_w + 24;
+    let box_h = 14 + 6 * s + 16 + 6 * s + 12;
+    if img.w < box_w + 8 || img.h < box_h + 8 {
+        return;
+    }
+    let (x0, y0) = (img.w - box_w - 8, img.h - box_h - 8);
+    img.fill_rect(x0, y0, box_w, box_h, [0, 0, 0], 0.75);
+    img.text(x0 + 12, y0 + 6, label, s, [255, 255, 255]);
+    let by = y0 + 8 + 6 * s;
+    for i in 0..bar_w {
+        let c = colour_map(i as f32 / (bar_w - 1).max(1) as f32);
+        img.fill_rect(x0 + 12 + i, by, 1, 16, c, 1.0);
+    }
+    let ty = by + 20;
+    img.text(
+        x0 + 12,
+        ty,
+        &format!("MIN {}", fmt_value(lo)),
+        s,
+        [220, 220, 220],
+    );
+    let max = if top < hi {
+        format!("P99 {} MAX {}", fmt_value(top), fmt_value(hi))
+    } else {
+        format!("MAX {}", fmt_value(hi))
+    };
+    let mw = max.len() as u32 * 4 * s;
+    img.text(x0 + 12 + bar_w - mw, ty, &max, s, [220, 220, 220]);
+}
+
+/// An RGBA8 picture being drawn on.
+struct Canvas {
+    w: u32,
+    h: u32,
+    px: Vec<u8>,
+}
+
+impl Canvas {
+    fn fill_rect(&mut self, x: u32, y: u32, w: u32, h: u32, c: [u8; 3], alpha: f32) {
+        let (x1, y1) = ((x + w).min(self.w), (y + h).min(self.h));
+        for yy in y.min(self.h)..y1 {
+            for xx in x.min(self.w)..x1 {
+                let i = (yy as usize * self.w as usize + xx as usize) * 4;
+                for (p, &ck) in self.px[i..i + 3].iter_mut().zip(&c) {
+                    let d = f32::from(*p);
+                    *p = (d + (f32::from(ck) - d) * alpha + 0.5) as u8;
+                }
+                self.px[i + 3] = 255;
+            }
+        }
+    }
+
+    fn text(&mut self, x: u32, y: u32, text: &str, s: u32, c: [u8; 3]) {
+        for (i, ch) in text.chars().enumerate() {
+            let Some(g) = glyph(ch) else { continue };
+            let gx = x + i as u32 * 4 * s;
+            for (row, bits) in g.iter().enumerate() {
+                for col in 0..3u32 {
+                    if bits & (4 >> col) != 0 {
+                        self.fill_rect(gx + col * s, y + row as u32 * s, s, s, c, 1.0);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A 3x5 pixel font: five rows of three bits (bit 2 is the left column)
+/// for digits, A-Z (either case), space and `.-:()/%`.
+pub fn glyph(c: char) -> Option<[u8; 5]> {
+    let g = match c.to_ascii_uppercase() {
+        '0' => [7, 5, 5, 5, 7],
+        '1' => [2, 6, 2, 2, 7],
+        '2' => [7, 1, 7, 4, 7],
+        '3' => [7, 1, 7, 1, 7],
+        '4' => [5, 5, 7, 1, 1],
+        '5' => [7, 4, 7, 1, 7],
+        '6' => [7, 4, 7, 5, 7],
+        '7' => [7, 1, 1, 1, 1],
+        '8' => [7, 5, 7, 5, 7],
+        '9' => [7, 5, 7, 1, 7],
+        ' ' => [0, 0, 0, 0, 0],
+        '.' => [0, 0, 0, 0, 2],
+        '-' => [0, 0, 7, 0, 0],
+        ':' => [0, 2, 0, 2, 0],
+        '(' => [1, 2, 2, 2, 1],
+        ')' => [4, 2, 2, 2, 4],
+        '/' => [1, 1, 2, 4, 4],
+        '%' => [5, 1, 2, 4, 5],
+        'A' => [2, 5, 7, 5, 5],
+        'B' => [6, 5, 6, 5, 6],
+        'C' => [3, 4, 4, 4, 3],
+        'D' => [6, 5, 5, 5, 6],
+        'E' => [7, 4, 6, 4, 7],
+        'F' => [7, 4, 6, 4, 4],
+        'G' => [3, 4, 5, 5, 3],
+        'H' => [5, 5, 7, 5, 5],
+        'I' => [7, 2, 2, 2, 7],
+        'J' => [1, 1, 1, 5, 2],
+        'K' => [5, 5, 6, 5, 5],
+        'L' => [4, 4, 4, 4, 7],
+        'M' => [5, 7, 7, 5, 5],
+        'N' => [6, 5, 5, 5, 5],
+        'O' => [2, 5, 5, 5, 2],
+        'P' => [6, 5, 6, 4, 4],
+        'Q' => [2, 5, 5, 6, 3],
+        'R' => [6, 5, 6, 5, 5],
+        'S' => [3, 4, 2, 1, 6],
+        'T' => [7, 2, 2, 2, 2],
+        'U' => [5, 5, 5, 5, 7],
+        'V' => [5, 5, 5, 5, 2],
+        'W' => [5, 5, 7, 7, 5],
+        'X' => [5, 5, 2, 5, 5],
+        'Y' => [5, 5, 2, 2, 2],
+        'Z' => [7, 1, 2, 4, 7],
+        _ => return None,
+    };
+    Some(g)
+}
+
+/// The picture as PNG bytes.
+pub fn encode_png(rgba: &[u8], width: u32, height: u32) -> Result<Vec<u8>, RenderError> {
+    use image::ImageEncoder;
+    let mut out = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut out)
+        .write_image(rgba, width, height, image::ExtendedColorType::Rgba8)
+        .map_err(|e| RenderError::Image(format!("encoding PNG: {e}")))?;
+    Ok(out)
+}
+
+/// Write the picture as a PNG file.
+pub fn write_png(path: &Path, rgba: &[u8], width: u32, height: u32) -> Result<(), RenderError> {
+    let bytes = encode_png(rgba, width, height)?;
+    std::fs::write(path, bytes)
+        .map_err(|e| RenderError::Image(format!("cannot write {}: {e}", path.display())))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::procedural;
+
+    fn small_frame() -> Frame {
+        let scene = procedural::plane("ground", "lightmapped").unwrap();
+        super::super::raster::rasterize(&scene, 192, 128, &RasterOptions::default()).unwrap()
+    }
+
+    #[test]
+    fn png_decodes_with_the_frame_size() {
+        let f = small_frame();
+        let (img, _) = compose(&f, &[Overlay::Grid], None);
+        let png = encode_png(&img, f.width, f.height).unwrap();
+        let back = image::load_from_memory(&png).unwrap().to_rgba8();
+        assert_eq!((back.width(), back.height()), (192, 128));
+        assert_eq!(back.as_raw(), &img);
+        // The grid changed the pixels on the tile boundary only.
+        let i = (10 * 192 + 64) * 4;
+        assert_ne!(img[i..i + 3], f.image[i..i + 3]);
+        let j = (10 * 192 + 65) * 4;
+        assert_eq!(img[j..j + 4], f.image[j..j + 4]);
+    }
+
+    #[test]
+    fn heat_overlay_changes_pixels_and_subset_tints_mesh4() {
+        let f = small_frame();
+        let mut cfg = MachineConfig::paper();
+        cfg.gpu.tile_size = 64;
+        let (_, recs) =
+            simulate_recording(&cfg, &f.trace, &RunOptions::default(), &mut |_, _| {}).unwrap();
+        let (heat, range) = compose(&f, &[Overlay::Heat(HeatStat::Latency)], Some(&recs));
+        let (lo, hi) = range.expect("values");
+        assert!(lo >= 0.0 && hi > lo, "{lo} {hi}");
+        let changed = heat
+            .chunks_exact(4)
+            .zip(f.image.chunks_exact(4))
+            .filter(|(a, b)| a != b)
+            .count();
+        assert!(changed > (192 * 128) / 2, "{changed}");
+        let (sub, _) = compose(&f, &[Overlay::Subset(SubsetSpec::Mesh(4))], None);
+        // Quad (0, 0) of tile 0 is Mesh4 priority, quad (1, 0) is not.
+        assert_ne!(sub[0..4], f.image[0..4]);
+        assert_eq!(sub[8..12], f.image[8..12]);
+    }
+
+    #[test]
+    fn overlays_parse() {
+        assert_eq!("grid".parse::<Overlay>().unwrap(), Overlay::Grid);
+        assert_eq!(
+            "subset".parse::<Overlay>().unwrap(),
+            Overlay::Subset(SubsetSpec::Mesh(4))
+        );
+        assert_eq!(
+            "subset:top16".parse::<Overlay>().unwrap(),
+            Overlay::Subset(SubsetSpec::Top16)
+        );
+        assert_eq!(
+            "heat".parse::<Overlay>().unwrap(),
+            Overlay::Heat(HeatStat::Latency)
+        );
+        assert!("heat:colour".parse::<Overlay>().is_err());
+        assert!("subset:mesh3".parse::<Overlay>().is_err());
+        for o in ["grid", "subset:mesh2", "heat:launch", "heat:cycles"] {
+            assert_eq!(o.parse::<Overlay>().unwrap().to_string(), o);
+        }
+    }
+
+    #[test]
+    fn every_digit_and_letter_has_a_glyph() {
+        for c in ('0'..='9').chain('A'..='Z').chain('a'..='z') {
+            assert!(glyph(c).is_some(), "{c}");
+        }
+        assert!(glyph('~').is_none());
+    }
+}

@@ -1,1 +1,623 @@
-//! texture (in progress).
+//! The texture path: mip chains, the block-linear layout of the texture
+//! heap, level-of-detail selection, the texels a texture instruction of a
+//! quad touches, and filtered colours for the picture.
+//!
+//! # Layout
+//!
+//! * A 64-byte memory block (one cache line) holds a 4x4 block of RGBA8
+//!   texels (16 texels x 4 bytes).
+//! * Each texture gets a full mip chain, box-filtered (2x2 average) from
+//!   level 0 down to 1x1 (an odd edge drops its last row or column, a
+//!   1-texel edge stays 1).
+//! * Textures live in a texture heap starting at [`HEAP_BASE`] (256 MiB
+//!   into a 1 GiB memory, the paper's Table II size), each texture starting
+//!   on a 64 KiB boundary ([`TEXTURE_ALIGN`]), in scene order, so two
+//!   textures never share a block. Its levels follow one another, level 0
+//!   first; each level starts on a block boundary.
+//! * Inside a level, the grid of 4x4-texel blocks is padded to powers of
+//!   two (`pw` x `ph` blocks) and stored in Morton (Z) order: the level is
+//!   cut into squares of `2^k` x `2^k` blocks (`2^k = min(pw, ph)`), blocks
+//!   inside a square in Morton order (x in the even bits, y in the odd
+//!   bits), squares in row-major order. This is how GPUs swizzle textures
+//!   so that a 2D neighbourhood of texels maps to consecutive lines and
+//!   spreads over the cache sets (a row-major block order would map
+//!   vertically adjacent blocks of a 1024-texel-wide texture to the same set
+//!   of a 256-set cache).
+//!
+//! # Level of detail and filtering
+//!
+//! Per quad (2x2 pixels, pixel 0 top-left, 1 top-right, 2 bottom-left,
+//! 3 bottom-right) the derivatives are the differences of the pixels' UVs
+//! in texels of level 0 (one pair per quad, as hardware does; helper pixels
+//! outside the primitive take part with their extrapolated UVs):
+//! `lambda = log2(max(|d(uv)/dx|, |d(uv)/dy|))`, the standard rule of the
+//! OpenGL specification (isotropic, no anisotropic filtering).
+//!
+//! * **Nearest** (`NEAREST_MIPMAP_NEAREST`): level `round(lambda)` clamped
+//!   to the chain, the one texel containing the sample point.
+//! * **Bilinear** (`LINEAR_MIPMAP_NEAREST`): level `round(lambda)`, the 2x2
+//!   texels around the sample point (texel centres at half-integers).
+//! * **Trilinear** (`LINEAR_MIPMAP_LINEAR`): 2x2 texels at level
+//!   `floor(lambda)` and 2x2 at `floor(lambda) + 1`, 8 texels per pixel;
+//!   when magnifying (`lambda <= 0`) or at the last level, one level only
+//!   (the magnification filter is bilinear on level 0).
+//!
+//! Wrap mode per texture: repeat (texel index modulo the level's size) or
+//! clamp to edge. A texture instruction of a quad touches the union of the
+//! blocks of its 4 pixels' texels: [`TextureSet::quad_blocks`] gives them
+//! sorted and deduplicated, as block numbers (byte address / 64), which is
+//! what the trace lists.
+
+use super::{Filter, TexSample, Texture};
+
+/// Bytes of one memory block (cache line).
+pub const BLOCK_BYTES: u64 = 64;
+/// Texels along one edge of the texel block a memory block holds.
+pub const BLOCK_TEXELS: u32 = 4;
+/// Byte address of the texture heap.
+pub const HEAP_BASE: u64 = 0x1000_0000;
+/// Every texture starts on a multiple of this many bytes.
+pub const TEXTURE_ALIGN: u64 = 64 * 1024;
+
+/// One mip level: its texels and where its blocks are.
+#[derive(Clone, Debug)]
+pub struct MipLevel {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// Texels, RGBA8, row-major, top row first.
+    pub rgba: Vec<u8>,
+    /// Block number (byte address / 64) of the level's first block.
+    pub first_block: u64,
+    /// Blocks the level occupies (its padded block grid).
+    pub block_count: u64,
+    /// log2 of the padded block grid's width.
+    pw_log2: u32,
+    /// log2 of the Morton square edge in blocks.
+    k: u32,
+}
+
+impl MipLevel {
+    /// Block number of the block holding texel (`x`, `y`) (inside the level).
+    #[inline]
+    pub fn block_of(&self, x: u32, y: u32) -> u64 {
+        let (bx, by) = (x / BLOCK_TEXELS, y / BLOCK_TEXELS);
+        let mask = (1u32 << self.k) - 1;
+        let inner = morton2(bx & mask, by & mask);
+        let squares_per_row = 1u64 << (self.pw_log2 - self.k);
+        let square = u64::from(by >> self.k) * squares_per_row + u64::from(bx >> self.k);
+        self.first_block + (square << (2 * self.k)) + inner
+    }
+
+    /// Texel (`x`, `y`) as RGBA in 0..=1.
+    #[inline]
+    fn texel(&self, x: u32, y: u32) -> [f32; 4] {
+        let i = ((y as usize) * (self.width as usize) + x as usize) * 4;
+        let p = &self.rgba[i..i + 4];
+        [
+            f32::from(p[0]) / 255.0,
+            f32::from(p[1]) / 255.0,
+            f32::from(p[2]) / 255.0,
+            f32::from(p[3]) / 255.0,
+        ]
+    }
+}
+
+/// One texture in the heap: its mip chain and address range.
+#[derive(Clone, Debug)]
+pub struct HeapTexture {
+    /// Name (from the scene).
+    pub name: String,
+    /// Repeat (true) or clamp to edge.
+    pub repeat: bool,
+    /// Byte address of level 0.
+    pub base: u64,
+    /// Bytes of the whole chain (a multiple of 64).
+    pub bytes: u64,
+    /// Levels, level 0 first, down to 1x1.
+    pub levels: Vec<MipLevel>,
+}
+
+/// Every texture of a scene laid out in the texture heap.
+#[derive(Clone, Debug)]
+pub struct TextureSet {
+    textures: Vec<HeapTexture>,
+    end: u64,
+}
+
+/// Interleaves the low 16 bits of x (even bit positions) and y (odd).
+#[inline]
+fn morton2(x: u32, y: u32) -> u64 {
+    fn spread(v: u32) -> u64 {
+        let mut v = u64::from(v & 0xffff);
+        v = (v | (v << 8)) & 0x00ff_00ff;
+        v = (v | (v << 4)) & 0x0f0f_0f0f;
+        v = (v | (v << 2)) & 0x3333_3333;
+        v = (v | (v << 1)) & 0x5555_5555;
+        v
+    }
+    spread(x) | (spread(y) << 1)
+}
+
+/// The next level of a chain: 2x2 box filter.
+fn downsample(w: u32, h: u32, src: &[u8]) -> (u32, u32, Vec<u8>) {
+    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+    let mut out = vec![0u8; nw as usize * nh as usize * 4];
+    for y in 0..nh {
+        let y0 = (2 * y).min(h - 1) as usize;
+        let y1 = (2 * y + 1).min(h - 1) as usize;
+        for x in 0..nw {
+            let x0 = (2 * x).min(w - 1) as usize;
+            let x1 = (2 * x + 1).min(w - 1) as usize;
+            let o = (y as usize * nw as usize + x as usize) * 4;
+            for c in 0..4 {
+                let s = u32::from(src[(y0 * w as usize + x0) * 4 + c])
+                    + u32::from(src[(y0 * w as usize + x1) * 4 + c])
+                    + u32::from(src[(y1 * w as usize + x0) * 4 + c])
+                    + u32::from(src[(y1 * w as usize + x1) * 4 + c]);
+                out[o + c] = ((s + 2) / 4) as u8;
+            }
+        }
+    }
+    (nw, nh, out)
+}
+
+/// Where a texel coordinate lands in a level of `size` texels.
+#[inline]
+fn wrap(i: i64, size: u32, repeat: bool) -> u32 {
+    if repeat {
+        if size.is_power_of_two() {
+            // Two's complement: 2^64 is a multiple of size.
+            (i as u64 & u64::from(size - 1)) as u32
+        } else {
+            i.rem_euclid(i64::from(size)) as u32
+        }
+    } else {
+        i.clamp(0, i64::from(size) - 1) as u32
+    }
+}
+
+/// floor() as an integer without a libm call (the baseline x86-64 target
+/// has no rounding instruction); saturating far outside the i64 range,
+/// NaN to 0.
+#[inline]
+fn floor_i64(v: f64) -> i64 {
+    let i = v as i64;
+    i.saturating_sub(i64::from((i as f64) > v))
+}
+
+impl TextureSet {
+    /// Builds every texture's mip chain and places it in the heap. A texture
+    /// with a zero edge or a texel array of the wrong size is replaced by a
+    /// 1x1 magenta texture (the raster front end checks scenes before).
+    pub fn new(textures: &[Texture]) -> TextureSet {
+        let mut out = Vec::with_capacity(textures.len());
+        let mut addr = HEAP_BASE;
+        for t in textures {
+            let valid = t.width > 0
+                && t.height > 0
+                && t.rgba.len() == t.width as usize * t.height as usize * 4;
+            let (mut w, mut h, mut rgba) = if valid {
+                (t.width, t.height, t.rgba.clone())
+            } else {
+                (1, 1, vec![255, 0, 255, 255])
+            };
+            let base = addr;
+            let mut levels = Vec::new();
+            let mut block = base / BLOCK_BYTES;
+            loop {
+                let bw = w.div_ceil(BLOCK_TEXELS).next_power_of_two();
+                let bh = h.div_ceil(BLOCK_TEXELS).next_power_of_two();
+                let (pw_log2, ph_log2) = (bw.trailing_zeros(), bh.trailing_zeros());
+                let block_count = u64::from(bw) * u64::from(bh);
+                let next = if w > 1 || h > 1 {
+                    Some(downsample(w, h, &rgba))
+                } else {
+                    None
+                };
+                levels.push(MipLevel {
+                    width: w,
+                    height: h,
+                    rgba,
+                    first_block: block,
+                    block_count,
+                    pw_log2,
+                    k: pw_log2.min(ph_log2),
+                });
+                block += block_count;
+                match next {
+                    Some((nw, nh, n)) => {
+                        w = nw;
+                        h = nh;
+                        rgba = n;
+                    }
+                    None => break,
+                }
+            }
+            let bytes = block * BLOCK_BYTES - base;
+            addr = (block * BLOCK_BYTES).div_ceil(TEXTURE_ALIGN) * TEXTURE_ALIGN;
+            out.push(HeapTexture {
+                name: t.name.clone(),
+                repeat: t.repeat,
+                base,
+                bytes,
+                levels,
+            });
+        }
+        TextureSet {
+            textures: out,
+            end: addr,
+        }
+    }
+
+    /// The textures in scene order.
+    pub fn textures(&self) -> &[HeapTexture] {
+        &self.textures
+    }
+
+    /// Bytes of the heap in use (textures and their alignment padding).
+    pub fn heap_bytes(&self) -> u64 {
+        self.end - HEAP_BASE
+    }
+
+    /// The level of detail of a quad sampling `texture` at these UVs (pixel
+    /// 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right): log2 of the
+    /// larger texel footprint of a pixel step in x or y, in level-0 texels.
+    /// Negative when magnifying; `-inf` when the UVs do not change.
+    pub fn quad_lambda(&self, texture: usize, uvs: &[[f32; 2]; 4]) -> f32 {
+        let l0 = &self.textures[texture].levels[0];
+        let (w, h) = (l0.width as f32, l0.height as f32);
+        let dudx = (uvs[1][0] - uvs[0][0]) * w;
+        let dvdx = (uvs[1][1] - uvs[0][1]) * h;
+        let dudy = (uvs[2][0] - uvs[0][0]) * w;
+        let dvdy = (uvs[2][1] - uvs[0][1]) * h;
+        let rho2 = (dudx * dudx + dvdx * dvdx).max(dudy * dudy + dvdy * dvdy);
+        if rho2.is_nan() {
+            return 0.0;
+        }
+        0.5 * rho2.log2()
+    }
+
+    /// The mip levels a sample with this filter and lambda reads, and the
+    /// weight of the second level (0 when there is one level).
+    pub fn levels_for(&self, texture: usize, filter: Filter, lambda: f32) -> (usize, usize, f32) {
+        let last = self.textures[texture].levels.len() - 1;
+        match filter {
+            Filter::Nearest | Filter::Bilinear => {
+                let l = if lambda.is_nan() || lambda <= 0.5 {
+                    0
+                } else {
+                    ((lambda + 0.5).floor() as usize).min(last)
+                };
+                (l, l, 0.0)
+            }
+            Filter::Trilinear => {
+                if lambda.is_nan() || lambda <= 0.0 {
+                    (0, 0, 0.0)
+                } else {
+                    let f = lambda.floor();
+                    let l = (f as usize).min(last);
+                    if l == last {
+                        (l, l, 0.0)
+                    } else {
+                        (l, l + 1, lambda - f)
+                    }
+                }
+            }
+        }
+    }
+
+    /// The distinct blocks (block numbers = byte address / 64, sorted) that
+    /// the texture instruction `sample` of a quad whose pixels have these
+    /// UVs touches. `out` is cleared first.
+    pub fn quad_blocks(&self, sample: &TexSample, uvs: [[f32; 2]; 4], out: &mut Vec<u64>) {
+        self.quad_blocks_lambda(sample, uvs, out);
+    }
+
+    /// [`TextureSet::quad_blocks`], returning the quad's level of detail
+    /// (for [`TextureSet::sample_rgba`]).
+    pub fn quad_blocks_lambda(
+        &self,
+        sample: &TexSample,
+        uvs: [[f32; 2]; 4],
+        out: &mut Vec<u64>,
+    ) -> f32 {
+        out.clear();
+        let tex = &self.textures[sample.texture];
+        let lambda = self.quad_lambda(sample.texture, &uvs);
+        let (la, lb, _) = self.levels_for(sample.texture, sample.filter, lambda);
+        // Few distinct blocks per instruction: a linear membership test
+        // beats sorting the up to 32 raw ones.
+        let mut add = |b: u64| {
+            if !out.contains(&b) {
+                out.push(b);
+            }
+        };
+        let mut push_level = |level: &MipLevel| {
+            for uv in &uvs {
+                match sample.filter {
+                    Filter::Nearest => {
+                        let (x, y) = nearest(level, tex.repeat, *uv);
+                        add(level.block_of(x, y));
+                    }
+                    Filter::Bilinear | Filter::Trilinear => {
+                        let (x0, x1, y0, y1, _, _) = bilinear(level, tex.repeat, *uv);
+                        add(level.block_of(x0, y0));
+                        add(level.block_of(x1, y0));
+                        add(level.block_of(x0, y1));
+                        add(level.block_of(x1, y1));
+                    }
+                }
+            }
+        };
+        push_level(&tex.levels[la]);
+        if lb != la {
+            push_level(&tex.levels[lb]);
+        }
+        out.sort_unstable();
+        lambda
+    }
+
+    /// The filtered colour (RGBA in 0..=1) of `texture` at `uv` with this
+    /// filter and the quad's `lambda` (from [`TextureSet::quad_lambda`]).
+    pub fn sample_rgba(
+        &self,
+        texture: usize,
+        filter: Filter,
+        uv: [f32; 2],
+        lambda: f32,
+    ) -> [f32; 4] {
+        let tex = &self.textures[texture];
+        let (la, lb, t) = self.levels_for(texture, filter, lambda);
+        let one = |level: &MipLevel| match filter {
+            Filter::Nearest => {
+                let (x, y) = nearest(level, tex.repeat, uv);
+                level.texel(x, y)
+            }
+            Filter::Bilinear | Filter::Trilinear => {
+                let (x0, x1, y0, y1, fx, fy) = bilinear(level, tex.repeat, uv);
+                let (a, b) = (level.texel(x0, y0), level.texel(x1, y0));
+                let (c, d) = (level.texel(x0, y1), level.texel(x1, y1));
+                let mut o = [0.0f32; 4];
+                for i in 0..4 {
+                    let top = a[i] + (b[i] - a[i]) * fx;
+                    let bot = c[i] + (d[i] - c[i]) * fx;
+                    o[i] = top + (bot - top) * fy;
+                }
+                o
+            }
+        };
+        let a = one(&tex.levels[la]);
+        if lb == la || t <= 0.0 {
+            return a;
+        }
+        let b = one(&tex.levels[lb]);
+        let mut o = [0.0f32; 4];
+        for i in 0..4 {
+            o[i] = a[i] + (b[i] - a[i]) * t;
+        }
+        o
+    }
+}
+
+/// The texel containing the sample point.
+#[inline]
+fn nearest(level: &MipLevel, repeat: bool, uv: [f32; 2]) -> (u32, u32) {
+    let x = floor_i64(f64::from(uv[0]) * f64::from(level.width));
+    let y = floor_i64(f64::from(uv[1]) * f64::from(level.height));
+    (wrap(x, level.width, repeat), wrap(y, level.height, repeat))
+}
+
+/// The 2x2 texels around the sample point and the blend fractions.
+#[inline]
+fn bilinear(level: &MipLevel, repeat: bool, uv: [f32; 2]) -> (u32, u32, u32, u32, f32, f32) {
+    let x = f64::from(uv[0]) * f64::from(level.width) - 0.5;
+    let y = f64::from(uv[1]) * f64::from(level.height) - 0.5;
+    let (ix, iy) = (floor_i64(x), floor_i64(y));
+    (
+        wrap(ix, level.width, repeat),
+        wrap(ix.saturating_add(1), level.width, repeat),
+        wrap(iy, level.height, repeat),
+        wrap(iy.saturating_add(1), level.height, repeat),
+        (x - ix as f64) as f32,
+        (y - iy as f64) as f32,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tex(name: &str, w: u32, h: u32, repeat: bool) -> Texture {
+        let mut rgba = Vec::with_capacity((w * h * 4) as usize);
+        for y in 0..h {
+            for x in 0..w {
+                rgba.extend_from_slice(&[(x * 7) as u8, (y * 5) as u8, ((x ^ y) * 3) as u8, 255]);
+            }
+        }
+        Texture {
+            name: name.into(),
+            width: w,
+            height: h,
+            rgba,
+            repeat,
+        }
+    }
+
+    fn sample(filter: Filter) -> TexSample {
+        TexSample {
+            texture: 0,
+            uv_set: 0,
+            filter,
+        }
+    }
+
+    /// UVs of a quad at `origin` whose pixels step `step` texels in u (x) and
+    /// v (y) on a `size`-texel texture.
+    fn quad_uvs(origin: [f32; 2], step: f32, size: f32) -> [[f32; 2]; 4] {
+        let d = step / size;
+        let (u, v) = (origin[0], origin[1]);
+        [[u, v], [u + d, v], [u, v + d], [u + d, v + d]]
+    }
+
+    #[test]
+    fn mip_chain_goes_down_to_one_texel_and_is_box_filtered() {
+        let set = TextureSet::new(&[tex("a", 256, 64, true)]);
+        let levels = &set.textures()[0].levels;
+        let dims: Vec<(u32, u32)> = levels.iter().map(|l| (l.width, l.height)).collect();
+        assert_eq!(dims.first(), Some(&(256, 64)));
+        assert_eq!(dims.last(), Some(&(1, 1)));
+        assert_eq!(dims.len(), 9);
+        // Level 1 texel (0,0) averages level-0 texels (0..2, 0..2).
+        let l0 = &levels[0].rgba;
+        let w = 256usize;
+        let avg = (u32::from(l0[0])
+            + u32::from(l0[4])
+            + u32::from(l0[w * 4])
+            + u32::from(l0[w * 4 + 4])
+            + 2)
+            / 4;
+        assert_eq!(u32::from(levels[1].rgba[0]), avg);
+    }
+
+    #[test]
+    fn mip_selection_magnified_minified_and_at_distance() {
+        let set = TextureSet::new(&[tex("a", 256, 256, true)]);
+        // Magnified: a pixel step is half a texel.
+        let mag = set.quad_lambda(0, &quad_uvs([0.3, 0.3], 0.5, 256.0));
+        assert!((mag + 1.0).abs() < 1e-4, "{mag}");
+        assert_eq!(set.levels_for(0, Filter::Bilinear, mag).0, 0);
+        assert_eq!(set.levels_for(0, Filter::Trilinear, mag), (0, 0, 0.0));
+        // 1:1.
+        let one = set.quad_lambda(0, &quad_uvs([0.3, 0.3], 1.0, 256.0));
+        assert!(one.abs() < 1e-3, "{one}");
+        // Minified 4x: level 2.
+        let min = set.quad_lambda(0, &quad_uvs([0.3, 0.3], 4.0, 256.0));
+        assert!((min - 2.0).abs() < 1e-3, "{min}");
+        assert_eq!(set.levels_for(0, Filter::Bilinear, min).0, 2);
+        // At a distance on a tilted surface: the larger footprint (y) wins.
+        let far = [
+            [0.1, 0.1],
+            [0.1 + 2.0 / 256.0, 0.1],
+            [0.1, 0.1 + 24.0 / 256.0],
+            [0.1 + 2.0 / 256.0, 0.1 + 24.0 / 256.0],
+        ];
+        let lf = set.quad_lambda(0, &far);
+        assert!((lf - 24f32.log2()).abs() < 1e-3, "{lf}");
+        let (a, b, t) = set.levels_for(0, Filter::Trilinear, lf);
+        assert_eq!((a, b), (4, 5));
+        assert!(t > 0.5 && t < 0.6);
+        assert_eq!(set.levels_for(0, Filter::Bilinear, lf).0, 5);
+        // Beyond the chain: clamped to the 1x1 level.
+        assert_eq!(set.levels_for(0, Filter::Bilinear, 20.0).0, 8);
+        assert_eq!(set.levels_for(0, Filter::Trilinear, 20.0), (8, 8, 0.0));
+    }
+
+    #[test]
+    fn block_layout_one_block_per_4x4_texels_and_textures_never_share() {
+        let set = TextureSet::new(&[tex("a", 64, 64, true), tex("b", 100, 20, false)]);
+        let a = &set.textures()[0];
+        let b = &set.textures()[1];
+        assert_eq!(a.base, HEAP_BASE);
+        assert_eq!(b.base % TEXTURE_ALIGN, 0);
+        assert!(b.base >= a.base + a.bytes);
+        let l0 = &a.levels[0];
+        // All 16 texels of a 4x4 block are one line; neighbours are others.
+        for y in 4..8 {
+            for x in 8..12 {
+                assert_eq!(l0.block_of(x, y), l0.block_of(8, 4));
+            }
+        }
+        assert_ne!(l0.block_of(12, 4), l0.block_of(8, 4));
+        assert_ne!(l0.block_of(8, 8), l0.block_of(8, 4));
+        // Morton order: the 2x2 blocks of the top-left corner are consecutive.
+        let base = l0.first_block;
+        assert_eq!(l0.block_of(0, 0), base);
+        assert_eq!(l0.block_of(4, 0), base + 1);
+        assert_eq!(l0.block_of(0, 4), base + 2);
+        assert_eq!(l0.block_of(4, 4), base + 3);
+        // Every block of every level of every texture is distinct and inside
+        // its texture's range.
+        let mut all = Vec::new();
+        for (t, ht) in set.textures().iter().enumerate() {
+            let (lo, hi) = (ht.base / 64, (ht.base + ht.bytes) / 64);
+            for l in &ht.levels {
+                let mut mine = Vec::new();
+                for y in 0..l.height {
+                    for x in 0..l.width {
+                        let blk = l.block_of(x, y);
+                        assert!(blk >= lo && blk < hi, "texture {t}");
+                        mine.push(blk);
+                    }
+                }
+                mine.sort_unstable();
+                mine.dedup();
+                let expect = l.width.div_ceil(4) as usize * l.height.div_ceil(4) as usize;
+                assert_eq!(mine.len(), expect);
+                all.extend(mine);
+            }
+        }
+        let n = all.len();
+        all.sort_unstable();
+        all.dedup();
+        assert_eq!(all.len(), n, "no block shared between levels or textures");
+    }
+
+    #[test]
+    fn bilinear_trilinear_and_nearest_block_counts() {
+        let set = TextureSet::new(&[tex("a", 256, 256, true)]);
+        let mut out = Vec::new();
+        // A quad at 1.5 texels per pixel step, straddling block edges.
+        let uvs = quad_uvs([30.0 / 256.0, 62.0 / 256.0], 1.5, 256.0);
+        set.quad_blocks(&sample(Filter::Nearest), uvs, &mut out);
+        let nearest = out.len();
+        set.quad_blocks(&sample(Filter::Bilinear), uvs, &mut out);
+        let bil = out.clone();
+        set.quad_blocks(&sample(Filter::Trilinear), uvs, &mut out);
+        let tri = out.clone();
+        assert!(nearest >= 1 && nearest <= bil.len(), "{nearest} {bil:?}");
+        assert!(tri.len() > bil.len(), "trilinear {tri:?} bilinear {bil:?}");
+        // Sorted and distinct.
+        assert!(tri.windows(2).all(|w| w[0] < w[1]));
+        // One pixel inside a block, magnified: one block.
+        let inside = quad_uvs([5.5 / 256.0, 5.5 / 256.0], 0.25, 256.0);
+        set.quad_blocks(&sample(Filter::Bilinear), inside, &mut out);
+        assert_eq!(out.len(), 1);
+    }
+
+    #[test]
+    fn wrap_and_clamp_at_the_edge() {
+        let set = TextureSet::new(&[tex("r", 64, 64, true), tex("c", 64, 64, false)]);
+        let mut out = Vec::new();
+        let uvs = [[0.999, 0.5], [1.001, 0.5], [0.999, 0.51], [1.001, 0.51]];
+        let rep = TexSample {
+            texture: 0,
+            uv_set: 0,
+            filter: Filter::Bilinear,
+        };
+        set.quad_blocks(&rep, uvs, &mut out);
+        // Repeat reaches column 0's blocks.
+        let l0 = &set.textures()[0].levels[0];
+        assert!(out.contains(&l0.block_of(0, 32)));
+        assert!(out.contains(&l0.block_of(63, 32)));
+        let cl = TexSample { texture: 1, ..rep };
+        set.quad_blocks(&cl, uvs, &mut out);
+        let c0 = &set.textures()[1].levels[0];
+        assert!(!out.contains(&c0.block_of(0, 32)));
+        assert!(out.contains(&c0.block_of(63, 32)));
+    }
+
+    #[test]
+    fn colours_are_filtered_texels() {
+        let set = TextureSet::new(&[tex("a", 16, 16, false)]);
+        // At a texel centre, bilinear is the texel itself.
+        let c = set.sample_rgba(0, Filter::Bilinear, [2.5 / 16.0, 3.5 / 16.0], 0.0);
+        assert!((c[0] - 14.0 / 255.0).abs() < 1e-5 && (c[1] - 15.0 / 255.0).abs() < 1e-5);
+        // Halfway between two texels in x: the mean.
+        let c = set.sample_rgba(0, Filter::Bilinear, [3.0 / 16.0, 3.5 / 16.0], 0.0);
+        assert!((c[0] - 17.5 / 255.0).abs() < 1e-5, "{c:?}");
+        let n = set.sample_rgba(0, Filter::Nearest, [3.2 / 16.0, 3.5 / 16.0], 0.0);
+        assert!((n[0] - 21.0 / 255.0).abs() < 1e-5);
+    }
+}

@@ -1,0 +1,375 @@
+//! `wasp scenes`, `wasp render` and `wasp characterize`: real-game and
+//! procedural scenes through the TBR front end.
+
+use crate::run_cmd::emit;
+use crate::CliError;
+use clap::{Args, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::subset::SubsetSpec;
+use wasp_sim::config::MachineConfig;
+use wasp_sim::gpu::RunOptions;
+use wasp_sim::scene::characterize::{self, Characterization};
+use wasp_sim::scene::def::{self, Game, SceneDef};
+use wasp_sim::scene::fetch;
+use wasp_sim::scene::render::{self, Overlay, RenderRequest};
+
+/// Options of `wasp scenes`.
+#[derive(Args, Debug, Clone)]
+pub struct ScenesArgs {
+    #[command(subcommand)]
+    pub command: ScenesCommand,
+}
+
+/// `wasp scenes list|fetch`.
+#[derive(Subcommand, Debug, Clone)]
+pub enum ScenesCommand {
+    /// List the scene definitions (scenes/*.toml) and whether their game
+    /// data is in the cache.
+    List,
+    /// Download a game's Debian packages (apt-get download) and unpack
+    /// them (dpkg-deb) into the scene cache: $WASP_SCENES, else
+    /// $XDG_CACHE_HOME/wasp/scenes, else ~/.cache/wasp/scenes.
+    Fetch(FetchArgs),
+}
+
+/// Options of `wasp scenes fetch`.
+#[derive(Args, Debug, Clone)]
+pub struct FetchArgs {
+    /// Games: supertuxkart, openarena, teeworlds, frozen-bubble.
+    #[arg(value_name = "GAME", required_unless_present = "all")]
+    pub games: Vec<String>,
+    /// Every game.
+    #[arg(long, conflicts_with = "games")]
+    pub all: bool,
+}
+
+/// Options of `wasp render`.
+#[derive(Args, Debug, Clone)]
+pub struct RenderArgs {
+    /// Scene name (see `wasp scenes list`) or a scene definition file.
+    #[arg(value_name = "SCENE")]
+    pub scene: String,
+    /// Write the picture as PNG to FILE.
+    #[arg(long, value_name = "FILE")]
+    pub png: Option<PathBuf>,
+    /// Overlay, repeatable: grid, subset[:SUBSET] (default mesh4),
+    /// heat[:latency|cycles|launch] (runs the cycle model on the frame).
+    #[arg(long, value_name = "OVERLAY")]
+    pub overlay: Vec<Overlay>,
+    /// Save the frame's trace (for `wasp run --trace FILE`).
+    #[arg(long, value_name = "FILE")]
+    pub trace_out: Option<PathBuf>,
+    /// Machine configuration (TOML) for the tile size and heat-map runs;
+    /// default: the embedded configs/paper.toml.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Launch policy of the heat-map run (overrides scheduler.policy).
+    #[arg(long, value_name = "POLICY")]
+    pub policy: Option<PolicySpec>,
+    /// Priority subset of the heat-map run (overrides scheduler.subset).
+    #[arg(long, value_name = "SUBSET")]
+    pub subset: Option<SubsetSpec>,
+    /// Frame size WxH instead of the scene's.
+    #[arg(long, value_name = "WxH")]
+    pub size: Option<String>,
+    /// Write only this rectangle of the picture to the PNG: X,Y,W,H in
+    /// pixels (to look closely at a few tiles).
+    #[arg(long, value_name = "X,Y,W,H")]
+    pub crop: Option<String>,
+    /// Hidden-surface removal: a per-tile depth pre-pass over the opaque
+    /// triangles, so only visible opaque fragments are shaded (a tile-based
+    /// deferred renderer). Default: plain early-Z in submission order.
+    #[arg(long)]
+    pub depth_prepass: bool,
+    /// No progress bar.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Options of `wasp characterize`.
+#[derive(Args, Debug, Clone)]
+pub struct CharacterizeArgs {
+    /// Scenes (names or definition files); default: every scene whose data
+    /// is in the cache, the procedural ones included.
+    #[arg(value_name = "SCENE")]
+    pub scenes: Vec<String>,
+    /// Write the characterisation as JSON to FILE (`-`: standard output).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Write it as CSV to FILE (`-`: standard output).
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+    /// Hidden-surface removal by a depth pre-pass (see `wasp render`).
+    #[arg(long)]
+    pub depth_prepass: bool,
+}
+
+fn parse_game(s: &str) -> Result<Game, CliError> {
+    Game::ALL
+        .into_iter()
+        .find(|g| g.name() == s.to_ascii_lowercase())
+        .ok_or_else(|| {
+            let names: Vec<&str> = Game::ALL.iter().map(|g| g.name()).collect();
+            CliError::usage(format!(
+                "unknown game `{s}` (expected one of {})",
+                names.join(", ")
+            ))
+        })
+}
+
+fn scene_err(e: impl std::fmt::Display) -> CliError {
+    CliError::failed(e.to_string())
+}
+
+fn find_def(name: &str) -> Result<SceneDef, CliError> {
+    def::find(&def::scenes_dir(), name).map_err(|e| CliError::usage(e.to_string()))
+}
+
+/// Run `wasp scenes`.
+pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
+    match &args.command {
+        ScenesCommand::List => {
+            let defs = def::list(&def::scenes_dir()).map_err(scene_err)?;
+            println!(
+                "{:<28} {:<14} {:<18} {:<16} {:>10}  data",
+                "scene", "game", "map", "camera", "frame"
+            );
+            for d in &defs {
+                let data = if d.game == Game::Procedural {
+                    "built in".to_string()
+                } else if fetch::is_fetched(d.game) {
+                    "fetched".to_string()
+                } else {
+                    format!("not fetched (wasp scenes fetch {})", d.game)
+                };
+                println!(
+                    "{:<28} {:<14} {:<18} {:<16} {:>10}  {data}",
+                    d.name,
+                    d.game.name(),
+                    d.map,
+                    d.camera,
+                    format!("{}x{}", d.width, d.height)
+                );
+            }
+            println!("scene cache: {}", fetch::cache_dir().display());
+            Ok(())
+        }
+        ScenesCommand::Fetch(f) => {
+            let games: Vec<Game> = if f.all {
+                Game::ALL
+                    .into_iter()
+                    .filter(|g| *g != Game::Procedural)
+                    .collect()
+            } else {
+                f.games
+                    .iter()
+                    .map(|g| parse_game(g))
+                    .collect::<Result<_, _>>()?
+            };
+            for g in games {
+                let root =
+                    fetch::fetch(g, &mut |m| eprintln!("wasp: {g}: {m}")).map_err(scene_err)?;
+                if g != Game::Procedural {
+                    eprintln!("wasp: {g}: data in {}", root.display());
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
+    let bad = || CliError::usage(format!("--size `{s}`: expected WxH, e.g. 1960x768"));
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h) = (
+        w.trim().parse::<u32>().map_err(|_| bad())?,
+        h.trim().parse::<u32>().map_err(|_| bad())?,
+    );
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err(bad());
+    }
+    Ok((w, h))
+}
+
+/// Run `wasp render`.
+pub fn render(args: &RenderArgs) -> Result<(), CliError> {
+    if args.png.is_none() && args.trace_out.is_none() {
+        return Err(CliError::usage(
+            "nothing to write: give --png FILE and/or --trace-out FILE",
+        ));
+    }
+    let d = find_def(&args.scene)?;
+    let (w, h) = match &args.size {
+        Some(s) => parse_size(s)?,
+        None => (d.width, d.height),
+    };
+    let config = match &args.config {
+        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        None => MachineConfig::paper(),
+    };
+    let scene = fetch::load_scene(&d).map_err(scene_err)?;
+    let req = RenderRequest {
+        overlays: args.overlay.clone(),
+        config,
+        run: RunOptions {
+            policy: args.policy,
+            subset: args.subset.clone(),
+            ..RunOptions::default()
+        },
+        depth_prepass: args.depth_prepass,
+    };
+    let pb = if args.quiet || !std::io::stderr().is_terminal() {
+        ProgressBar::hidden()
+    } else {
+        let pb = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
+        pb.set_style(
+            ProgressStyle::with_template("{prefix:>14} [{bar:40}] {pos}/{len} tiles {elapsed}")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        pb.set_prefix("heat-map run");
+        pb
+    };
+    let mut progress = |done: usize, total: usize| {
+        pb.set_length(total as u64);
+        pb.set_position(done as u64);
+    };
+    let out = render::render(&scene, w, h, &req, &mut progress).map_err(scene_err)?;
+    pb.finish_and_clear();
+    let s = &out.frame.stats;
+    eprintln!(
+        "wasp: {} {}x{}: {} triangles ({} clipped), {} fragments in {} warps over {} tiles, \
+         {} quads rejected by early-Z; front end {:.3} s",
+        scene.name,
+        w,
+        h,
+        s.primitives,
+        s.clipped,
+        s.quads_shaded,
+        s.warps,
+        s.tiles,
+        s.quads_rejected_early_z,
+        out.raster_seconds
+    );
+    if let Some(run) = &out.run {
+        eprintln!("wasp: heat-map run ({}): {} cycles", run.policy, run.cycles);
+    }
+    if let Some((lo, hi)) = out.heat_range {
+        eprintln!("wasp: heat map range {lo:.1} to {hi:.1}");
+    }
+    if let Some(p) = &args.png {
+        let (img, cw, ch) = match &args.crop {
+            Some(c) => crop(&out.image, w, h, c)?,
+            None => (out.image.clone(), w, h),
+        };
+        render::write_png(p, &img, cw, ch).map_err(scene_err)?;
+        eprintln!("wasp: wrote {}", p.display());
+    }
+    if let Some(p) = &args.trace_out {
+        let file = std::fs::File::create(p)
+            .map_err(|e| CliError::failed(format!("cannot create {}: {e}", p.display())))?;
+        out.frame
+            .trace
+            .write(std::io::BufWriter::new(file))
+            .map_err(|e| CliError::failed(format!("writing {}: {e}", p.display())))?;
+        eprintln!(
+            "wasp: wrote {} (run it with `wasp run --trace {}`)",
+            p.display(),
+            p.display()
+        );
+    }
+    Ok(())
+}
+
+/// The rectangle `spec` (X,Y,W,H) of a `w` x `h` RGBA picture.
+fn crop(img: &[u8], w: u32, h: u32, spec: &str) -> Result<(Vec<u8>, u32, u32), CliError> {
+    let bad = || {
+        CliError::usage(format!(
+            "--crop `{spec}`: expected X,Y,W,H inside the {w}x{h} frame"
+        ))
+    };
+    let v: Vec<u32> = spec
+        .split(',')
+        .map(|t| t.trim().parse::<u32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad())?;
+    let [x, y, cw, ch] = v[..] else {
+        return Err(bad());
+    };
+    if cw == 0
+        || ch == 0
+        || x.checked_add(cw).map_or(true, |e| e > w)
+        || y.checked_add(ch).map_or(true, |e| e > h)
+    {
+        return Err(bad());
+    }
+    let mut out = Vec::with_capacity(cw as usize * ch as usize * 4);
+    for row in y..y + ch {
+        let s = (row as usize * w as usize + x as usize) * 4;
+        out.extend_from_slice(&img[s..s + cw as usize * 4]);
+    }
+    Ok((out, cw, ch))
+}
+
+/// Run `wasp characterize`.
+pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
+    let defs: Vec<SceneDef> = if args.scenes.is_empty() {
+        let all = def::list(&def::scenes_dir()).map_err(scene_err)?;
+        let (have, missing): (Vec<_>, Vec<_>) =
+            all.into_iter().partition(|d| fetch::is_fetched(d.game));
+        if !missing.is_empty() {
+            let names: Vec<&str> = missing.iter().map(|d| d.name.as_str()).collect();
+            eprintln!(
+                "wasp: skipping scenes without fetched data ({}); see `wasp scenes list`",
+                names.join(", ")
+            );
+        }
+        have
+    } else {
+        args.scenes
+            .iter()
+            .map(|s| find_def(s))
+            .collect::<Result<_, _>>()?
+    };
+    let mut rows: Vec<Characterization> = Vec::new();
+    let mut failed = Vec::new();
+    for d in &defs {
+        match characterize::characterize_def(d, args.depth_prepass) {
+            Ok(c) => rows.push(c),
+            Err(e) => {
+                eprintln!("wasp: {}: {e}", d.name);
+                failed.push(d.name.clone());
+            }
+        }
+    }
+    if rows.is_empty() {
+        return Err(CliError::failed("no scene could be characterised"));
+    }
+    let to_stdout = |p: &Option<PathBuf>| p.as_ref().is_some_and(|p| p.as_os_str() == "-");
+    if !to_stdout(&args.json) && !to_stdout(&args.csv) {
+        println!(
+            "Workload characterisation (ours: the scenes named in each column; paper: ten \
+             Android games on TEAPOT)"
+        );
+        print!("{}", characterize::table(&rows));
+    }
+    if let Some(p) = &args.json {
+        let text = serde_json::to_string_pretty(&rows)
+            .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?
+            + "\n";
+        emit(p, &text)?;
+    }
+    if let Some(p) = &args.csv {
+        emit(p, &characterize::csv(&rows))?;
+    }
+    if !failed.is_empty() {
+        return Err(CliError::failed(format!(
+            "could not characterise: {}",
+            failed.join(", ")
+        )));
+    }
+    Ok(())
+}
