@@ -1,0 +1,383 @@
+// wasp_sched.v -- the Verilog twin of wasp-rtl's LaunchScheduler
+// (rtl/src/scheduler.rs with the Mesh-k subset and the policies of
+// rtl/src/policy), synthesizable Verilog-2005.
+//
+// One block per wasp-rtl block, so that `synth` without -flatten reports
+// each block's cells separately:
+//
+//   wasp_mesh_cmp       subset/mesh.rs   Mesh-k comparator on the enqueue path
+//   wasp_split_queue    queue.rs         priority/regular occupancy counters
+//                                        sharing QUEUE_CAP slots
+//   wasp_free_mshr_reg  free_mshr.rs     5-bit free-MSHR register
+//   wasp_nonblocked_ctr nonblocked.rs    7-bit non-blocked priority counter
+//   wasp_cf_datapath    datapath.rs      x CF shift-add, 11-bit subtract, compare
+//   wasp_launch_select  policy/*.rs      baseline / fullpriority / freemshr-N / wasp
+//   wasp_sched          scheduler.rs     the above, one per core
+//
+// Configuration. Each constant is a parameter of the block that uses it
+// (so synthesis folds it: the shift-add keeps only the partial products of
+// the set bits of CF_Q). When the macro WASP_CFG_PORTS is defined, as the
+// formal wrapper does, the constants instead come from input ports cfg_*
+// (same logic, same source text), so that one proof covers every policy,
+// capacity, CF, threshold, N and queue capacity at once.
+//
+// Timing: cycle-exact with wasp-rtl under the call order of one cycle
+//     enqueue -> decide -> launch -> clock -> end_cycle
+//   * free_mshrs, nonblocked, prio_occ, reg_occ are register outputs (Q): the
+//     values at the start of the cycle, before this cycle's push and pop.
+//   * is_priority, push_accepted: the Mesh-k comparator on (qx, qy) (always 0
+//     for the baseline) and the capacity check: a push is refused iff
+//     prio_occ + reg_occ >= QUEUE_CAP (Q values: the push comes before the
+//     pop of the same cycle).
+//   * product, real_free, priority_over_regular: the datapath on the Q
+//     values of free_mshrs and nonblocked.
+//   * select: the policy's choice; a FIFO counts as non-empty if it held a
+//     warp at the start of the cycle or accepted one this cycle (a warp
+//     pushed in a cycle can launch in that cycle). launch = select when
+//     launch_enable, else 0 (0 none, 1 regular, 2 priority); it pops.
+//   * clock edge: occupancies load Q + push - pop; free_mshrs loads
+//     free - allocs + replies; nonblocked loads
+//     count + (launch == 2) + unblocked - blocked - finished. If either exact
+//     value leaves its register's range (free: 0..=capacity, counter:
+//     0..=127) `fault` is high in that cycle and BOTH registers hold (wasp-rtl
+//     returns RegisterFault and loads neither); the queue still pops/pushes.
+//   * rst (synchronous, active high): free_mshrs <= capacity, all else 0.
+
+`default_nettype none
+
+// ---------------------------------------------------------------------------
+// Mesh-k comparator: a quad is a priority warp iff the low MESH_BITS bits of
+// its in-tile quad x and y are zero (Mesh4: two bits each). The baseline
+// policy has no priority warps.
+module wasp_mesh_cmp #(
+    parameter integer MESH_BITS = 2,
+    parameter integer POLICY    = 3
+) (
+`ifdef WASP_CFG_PORTS
+    input  wire [1:0] cfg_policy,
+`endif
+    input  wire [4:0] qx,
+    input  wire [4:0] qy,
+    output wire       is_priority
+);
+`ifndef WASP_CFG_PORTS
+    wire [1:0] cfg_policy = POLICY;
+`endif
+    wire hit = (qx[MESH_BITS-1:0] == {MESH_BITS{1'b0}}) &&
+               (qy[MESH_BITS-1:0] == {MESH_BITS{1'b0}});
+    assign is_priority = (cfg_policy != 2'd0) && hit;
+endmodule
+
+// ---------------------------------------------------------------------------
+// The split input queue's bookkeeping: two occupancy counters drawing on
+// QUEUE_CAP shared slots. (The warp storage itself, one RAM with two
+// head/tail pointer pairs, is not modelled: the decision depends only on
+// which FIFO is non-empty.)
+module wasp_split_queue #(
+    parameter integer QUEUE_CAP = 64,
+    parameter integer OCC_W     = 7
+) (
+    input  wire             clk,
+    input  wire             rst,
+`ifdef WASP_CFG_PORTS
+    input  wire [OCC_W-1:0] cfg_queue_cap,
+`endif
+    input  wire             push_valid,
+    input  wire             push_priority,
+    input  wire             pop_priority,
+    input  wire             pop_regular,
+    output reg  [OCC_W-1:0] prio_occ,
+    output reg  [OCC_W-1:0] reg_occ,
+    output wire             push_accepted,
+    output wire             prio_waiting,   // after this cycle's push
+    output wire             reg_waiting
+);
+`ifndef WASP_CFG_PORTS
+    wire [OCC_W-1:0] cfg_queue_cap = QUEUE_CAP;
+`endif
+    wire [OCC_W:0] occ_sum = {1'b0, prio_occ} + {1'b0, reg_occ};
+    wire           full    = occ_sum >= {1'b0, cfg_queue_cap};
+    assign push_accepted = push_valid && !full;
+    wire push_p = push_accepted && push_priority;
+    wire push_r = push_accepted && !push_priority;
+    assign prio_waiting = (prio_occ != {OCC_W{1'b0}}) || push_p;
+    assign reg_waiting  = (reg_occ  != {OCC_W{1'b0}}) || push_r;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            prio_occ <= {OCC_W{1'b0}};
+            reg_occ  <= {OCC_W{1'b0}};
+        end else begin
+            prio_occ <= prio_occ + push_p - pop_priority;
+            reg_occ  <= reg_occ  + push_r - pop_regular;
+        end
+    end
+endmodule
+
+// ---------------------------------------------------------------------------
+// The 5-bit free-MSHR register: reset to the capacity, loads
+// free - allocs + replies. range_fault: that exact value is outside
+// 0..=capacity. It loads only when `load` (no fault in the whole block).
+module wasp_free_mshr_reg #(
+    parameter integer CAPACITY = 16,
+    parameter integer CNT_W    = 8
+) (
+    input  wire             clk,
+    input  wire             rst,
+`ifdef WASP_CFG_PORTS
+    input  wire [1:0]       cfg_policy,
+    input  wire [4:0]       cfg_capacity,
+`endif
+    input  wire [CNT_W-1:0] allocs,
+    input  wire [CNT_W-1:0] replies,
+    input  wire             load,
+    output reg  [4:0]       free_mshrs,
+    output wire             range_fault
+);
+`ifndef WASP_CFG_PORTS
+    wire [4:0] cfg_capacity = CAPACITY;
+`endif
+    // exact, signed, wide enough never to wrap
+    localparam integer EW = ((CNT_W > 5) ? CNT_W : 5) + 2;
+    wire signed [EW-1:0] next =
+          $signed({{(EW-5){1'b0}}, free_mshrs})
+        - $signed({{(EW-CNT_W){1'b0}}, allocs})
+        + $signed({{(EW-CNT_W){1'b0}}, replies});
+    assign range_fault = (next < 0) ||
+                         (next > $signed({{(EW-5){1'b0}}, cfg_capacity}));
+
+    always @(posedge clk) begin
+        if (rst)
+            free_mshrs <= cfg_capacity;
+        else if (load)
+            free_mshrs <= next[4:0];
+    end
+endmodule
+
+// ---------------------------------------------------------------------------
+// The 7-bit non-blocked priority-warp counter: loads
+// count + launched + unblocked - blocked - finished. range_fault: that exact
+// value is outside 0..=127.
+module wasp_nonblocked_ctr #(
+    parameter integer CNT_W = 8
+) (
+    input  wire             clk,
+    input  wire             rst,
+    input  wire             launched,
+    input  wire [CNT_W-1:0] blocked,
+    input  wire [CNT_W-1:0] unblocked,
+    input  wire [CNT_W-1:0] finished,
+    input  wire             load,
+    output reg  [6:0]       nonblocked,
+    output wire             range_fault
+);
+    localparam integer EW = ((CNT_W > 7) ? CNT_W : 7) + 3;
+    wire signed [EW-1:0] next =
+          $signed({{(EW-7){1'b0}}, nonblocked})
+        + $signed({{(EW-1){1'b0}}, launched})
+        + $signed({{(EW-CNT_W){1'b0}}, unblocked})
+        - $signed({{(EW-CNT_W){1'b0}}, blocked})
+        - $signed({{(EW-CNT_W){1'b0}}, finished});
+    assign range_fault = (next < 0) || (next > $signed({{(EW-8){1'b0}}, 8'd127}));
+
+    always @(posedge clk) begin
+        if (rst)
+            nonblocked <= 7'd0;
+        else if (load)
+            nonblocked <= next[6:0];
+    end
+endmodule
+
+// ---------------------------------------------------------------------------
+// The WaSP datapath: product = floor(CF x n) with CF = CF_Q / 4, as a
+// shift-add of n << i for each set bit i of CF_Q in a 12-bit accumulator,
+// then >> 2; real_free = free - product in 11-bit two's complement;
+// priority_over_regular = real_free > THRESHOLD (threshold zero-extended).
+module wasp_cf_datapath #(
+    parameter integer CF_Q      = 10,
+    parameter integer THRESHOLD = 4
+) (
+`ifdef WASP_CFG_PORTS
+    input  wire [4:0]  cfg_cf_q,
+    input  wire [4:0]  cfg_threshold,
+`endif
+    input  wire [4:0]  free_mshrs,
+    input  wire [6:0]  nonblocked,
+    output wire [9:0]  product,
+    output wire [10:0] real_free,
+    output wire        priority_over_regular
+);
+`ifndef WASP_CFG_PORTS
+    wire [4:0] cfg_cf_q      = CF_Q;
+    wire [4:0] cfg_threshold = THRESHOLD;
+`endif
+    wire [11:0] n   = {5'd0, nonblocked};
+    wire [11:0] pp0 = cfg_cf_q[0] ? n        : 12'd0;
+    wire [11:0] pp1 = cfg_cf_q[1] ? (n << 1) : 12'd0;
+    wire [11:0] pp2 = cfg_cf_q[2] ? (n << 2) : 12'd0;
+    wire [11:0] pp3 = cfg_cf_q[3] ? (n << 3) : 12'd0;
+    wire [11:0] pp4 = cfg_cf_q[4] ? (n << 4) : 12'd0;
+    wire [11:0] acc = pp0 + pp1 + pp2 + pp3 + pp4;
+    assign product = acc[11:2];
+    assign real_free = {6'd0, free_mshrs} - {1'b0, product};
+    assign priority_over_regular = $signed(real_free) > $signed({6'd0, cfg_threshold});
+endmodule
+
+// ---------------------------------------------------------------------------
+// The launch policy: which FIFO to launch from (0 none, 1 regular,
+// 2 priority). POLICY 0 baseline, 1 fullpriority, 2 freemshr-N
+// (free_mshrs >= N), 3 wasp (priority_over_regular).
+module wasp_launch_select #(
+    parameter integer POLICY     = 3,
+    parameter integer FREEMSHR_N = 10
+) (
+`ifdef WASP_CFG_PORTS
+    input  wire [1:0] cfg_policy,
+    input  wire [4:0] cfg_freemshr_n,
+`endif
+    input  wire       prio_waiting,
+    input  wire       reg_waiting,
+    input  wire [4:0] free_mshrs,
+    input  wire       priority_over_regular,
+    input  wire       launch_enable,
+    output wire [1:0] select,
+    output wire [1:0] launch
+);
+`ifndef WASP_CFG_PORTS
+    wire [1:0] cfg_policy     = POLICY;
+    wire [4:0] cfg_freemshr_n = FREEMSHR_N;
+`endif
+    wire prio_allowed =
+        (cfg_policy == 2'd1) ? 1'b1 :
+        (cfg_policy == 2'd2) ? (free_mshrs >= cfg_freemshr_n) :
+        (cfg_policy == 2'd3) ? priority_over_regular :
+                               1'b0;
+    assign select = (prio_waiting && prio_allowed) ? 2'd2 :
+                    reg_waiting                    ? 2'd1 :
+                                                     2'd0;
+    assign launch = launch_enable ? select : 2'd0;
+endmodule
+
+// ---------------------------------------------------------------------------
+// The launch scheduler of one core. Defaults: the paper's machine (16 MSHRs
+// at the L0, a 64-warp input queue, WaSP with CF = 2.5 and threshold 4,
+// Mesh4).
+module wasp_sched #(
+    parameter integer POLICY     = 3,   // 0 baseline, 1 fullpriority, 2 freemshr-N, 3 wasp
+    parameter integer CAPACITY   = 16,  // MSHR entries (0..31)
+    parameter integer QUEUE_CAP  = 64,  // shared input-queue slots
+    parameter integer CF_Q       = 10,  // CF in quarters (0..31): 10 = 2.5
+    parameter integer THRESHOLD  = 4,   // WaSP threshold (0..31)
+    parameter integer FREEMSHR_N = 10,  // FreeMSHR-N's N (0..31)
+    parameter integer MESH_BITS  = 2,   // Mesh-k, k = 2**MESH_BITS (1..4)
+    parameter integer CNT_W      = 8,   // width of the event counts
+    parameter integer OCC_W      = (QUEUE_CAP < 2) ? 1 : $clog2(QUEUE_CAP + 1)
+) (
+    input  wire             clk,
+    input  wire             rst,
+`ifdef WASP_CFG_PORTS
+    input  wire [1:0]       cfg_policy,
+    input  wire [4:0]       cfg_capacity,
+    input  wire [4:0]       cfg_cf_q,
+    input  wire [4:0]       cfg_threshold,
+    input  wire [4:0]       cfg_freemshr_n,
+    input  wire [OCC_W-1:0] cfg_queue_cap,
+`endif
+    input  wire             push_valid,
+    input  wire [4:0]       qx,
+    input  wire [4:0]       qy,
+    input  wire             launch_enable,
+    input  wire [CNT_W-1:0] mshr_allocs,
+    input  wire [CNT_W-1:0] mshr_replies,
+    input  wire [CNT_W-1:0] prio_blocked,
+    input  wire [CNT_W-1:0] prio_unblocked,
+    input  wire [CNT_W-1:0] prio_finished,
+    output wire [4:0]       free_mshrs,
+    output wire [6:0]       nonblocked,
+    output wire [OCC_W-1:0] prio_occ,
+    output wire [OCC_W-1:0] reg_occ,
+    output wire             is_priority,
+    output wire             push_accepted,
+    output wire [9:0]       product,
+    output wire [10:0]      real_free,
+    output wire             priority_over_regular,
+    output wire [1:0]       select,
+    output wire [1:0]       launch,
+    output wire             fault
+);
+    // Parameter checks: an out-of-range parameter instantiates a module that
+    // does not exist, so elaboration stops with its name as the message.
+    generate
+        if (CAPACITY < 0 || CAPACITY > 31)     wasp_sched_param_error_CAPACITY_must_be_0_to_31 e0 ();
+        if (CF_Q < 0 || CF_Q > 31)             wasp_sched_param_error_CF_Q_must_be_0_to_31 e1 ();
+        if (THRESHOLD < 0 || THRESHOLD > 31)   wasp_sched_param_error_THRESHOLD_must_be_0_to_31 e2 ();
+        if (FREEMSHR_N < 0 || FREEMSHR_N > 31) wasp_sched_param_error_FREEMSHR_N_must_be_0_to_31 e3 ();
+        if (MESH_BITS < 1 || MESH_BITS > 4)    wasp_sched_param_error_MESH_BITS_must_be_1_to_4 e4 ();
+        if (POLICY < 0 || POLICY > 3)          wasp_sched_param_error_POLICY_must_be_0_to_3 e5 ();
+        if (CNT_W < 1)                         wasp_sched_param_error_CNT_W_must_be_positive e6 ();
+        if (QUEUE_CAP < 0 || QUEUE_CAP >= (1 << OCC_W))
+                                               wasp_sched_param_error_QUEUE_CAP_must_fit_OCC_W e7 ();
+    endgenerate
+
+    wire prio_waiting, reg_waiting;
+    wire free_fault, nb_fault;
+    assign fault = free_fault || nb_fault;
+
+    wasp_mesh_cmp #(.MESH_BITS(MESH_BITS), .POLICY(POLICY)) u_mesh (
+`ifdef WASP_CFG_PORTS
+        .cfg_policy(cfg_policy),
+`endif
+        .qx(qx), .qy(qy), .is_priority(is_priority)
+    );
+
+    wasp_split_queue #(.QUEUE_CAP(QUEUE_CAP), .OCC_W(OCC_W)) u_queue (
+        .clk(clk), .rst(rst),
+`ifdef WASP_CFG_PORTS
+        .cfg_queue_cap(cfg_queue_cap),
+`endif
+        .push_valid(push_valid), .push_priority(is_priority),
+        .pop_priority(launch == 2'd2), .pop_regular(launch == 2'd1),
+        .prio_occ(prio_occ), .reg_occ(reg_occ),
+        .push_accepted(push_accepted),
+        .prio_waiting(prio_waiting), .reg_waiting(reg_waiting)
+    );
+
+    wasp_free_mshr_reg #(.CAPACITY(CAPACITY), .CNT_W(CNT_W)) u_free (
+        .clk(clk), .rst(rst),
+`ifdef WASP_CFG_PORTS
+        .cfg_capacity(cfg_capacity),
+`endif
+        .allocs(mshr_allocs), .replies(mshr_replies), .load(!fault),
+        .free_mshrs(free_mshrs), .range_fault(free_fault)
+    );
+
+    wasp_nonblocked_ctr #(.CNT_W(CNT_W)) u_nonblocked (
+        .clk(clk), .rst(rst),
+        .launched(launch == 2'd2),
+        .blocked(prio_blocked), .unblocked(prio_unblocked), .finished(prio_finished),
+        .load(!fault),
+        .nonblocked(nonblocked), .range_fault(nb_fault)
+    );
+
+    wasp_cf_datapath #(.CF_Q(CF_Q), .THRESHOLD(THRESHOLD)) u_datapath (
+`ifdef WASP_CFG_PORTS
+        .cfg_cf_q(cfg_cf_q), .cfg_threshold(cfg_threshold),
+`endif
+        .free_mshrs(free_mshrs), .nonblocked(nonblocked),
+        .product(product), .real_free(real_free),
+        .priority_over_regular(priority_over_regular)
+    );
+
+    wasp_launch_select #(.POLICY(POLICY), .FREEMSHR_N(FREEMSHR_N)) u_select (
+`ifdef WASP_CFG_PORTS
+        .cfg_policy(cfg_policy), .cfg_freemshr_n(cfg_freemshr_n),
+`endif
+        .prio_waiting(prio_waiting), .reg_waiting(reg_waiting),
+        .free_mshrs(free_mshrs),
+        .priority_over_regular(priority_over_regular),
+        .launch_enable(launch_enable),
+        .select(select), .launch(launch)
+    );
+endmodule
+
+`default_nettype wire
