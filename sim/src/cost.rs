@@ -208,7 +208,7 @@ pub fn run_yosys(verilog: &Path, params: &[(&str, i64)], top: &str) -> Result<Yo
         .map(|(k, v)| format!("chparam -set {k} {v} {top}; "))
         .collect();
     let script = format!(
-        "read_verilog {}; {chparam}synth -top {top}; stat; stat -tech cmos",
+        "read_verilog {}; {chparam}synth -flatten -top {top}; dffunmap; stat; stat -tech cmos",
         verilog.display()
     );
     let out = Command::new("yosys")
