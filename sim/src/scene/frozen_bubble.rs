@@ -1185,19 +1185,15 @@ mod tests {
         }
     }
 
+    /// The real data root in the scene cache (`$WASP_SCENES`, else the
+    /// user's cache directory): unpacked per game by `wasp scenes fetch`,
+    /// or per package by a manual `dpkg-deb -x`.
     fn real_data_root() -> Option<PathBuf> {
-        let mut roots = Vec::new();
-        if let Some(s) = std::env::var_os("WASP_SCENES") {
-            // `wasp scenes fetch` unpacks per game; a manual dpkg-deb -x per package.
-            roots.push(PathBuf::from(&s).join("frozen-bubble").join(DATA_SUBDIR));
-            roots.push(PathBuf::from(&s).join(PACKAGE).join(DATA_SUBDIR));
-        }
-        roots.push(
-            Path::new("/work/cache/scenes")
-                .join(PACKAGE)
-                .join(DATA_SUBDIR),
-        );
-        roots.into_iter().find(|r| r.join("data/levels").exists())
+        let cache = crate::scene::fetch::cache_dir();
+        ["frozen-bubble", PACKAGE]
+            .iter()
+            .map(|d| cache.join(d).join(DATA_SUBDIR))
+            .find(|r| r.join("data/levels").exists())
     }
 
     #[test]

@@ -1827,15 +1827,16 @@ textures/a/anim { { animMap 5 textures/a/f1.tga textures/a/f2.tga } }
         std::fs::remove_dir_all(&root).unwrap();
     }
 
-    fn real_root() -> Option<PathBuf> {
-        let mut bases = Vec::new();
-        if let Some(c) = std::env::var_os("WASP_SCENES") {
-            bases.push(PathBuf::from(c));
-        }
-        bases.push(PathBuf::from("/work/cache/scenes"));
-        let found = bases.iter().find_map(|b| find_data_root(b));
+    /// The real data root in the scene cache (`$WASP_SCENES`, else the
+    /// user's cache directory), if fetched.
+    pub(super) fn real_root() -> Option<PathBuf> {
+        let cache = crate::scene::fetch::cache_dir();
+        let found = find_data_root(&cache);
         if found.is_none() {
-            eprintln!("skipped: no OpenArena data under $WASP_SCENES or /work/cache/scenes ({DATA_DIRS:?}); run `wasp scenes fetch`");
+            eprintln!(
+                "skipped: no OpenArena data under {} ({DATA_DIRS:?}); run `wasp scenes fetch`",
+                cache.display()
+            );
         }
         found
     }
@@ -1998,13 +1999,7 @@ mod all_maps {
     #[test]
     #[ignore = "needs fetched game data: wasp scenes fetch openarena"]
     fn every_map_loads() {
-        let mut bases = Vec::new();
-        if let Some(c) = std::env::var_os("WASP_SCENES") {
-            bases.push(PathBuf::from(c));
-        }
-        bases.push(PathBuf::from("/work/cache/scenes"));
-        let Some(root) = bases.iter().find_map(|b| find_data_root(b)) else {
-            eprintln!("skipped: no OpenArena data under $WASP_SCENES or /work/cache/scenes");
+        let Some(root) = super::tests::real_root() else {
             return;
         };
         let mut fails = Vec::new();
