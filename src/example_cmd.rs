@@ -1,5 +1,6 @@
 //! `wasp example`: the paper's worked example.
 
+use crate::run_cmd::gtkw_path;
 use crate::CliError;
 use clap::Args;
 use std::fs::File;
@@ -92,13 +93,6 @@ pub fn run(args: &ExampleArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::failed(format!("writing to standard output: {e}")))?;
     }
     Ok(())
-}
-
-/// `FILE.gtkw` beside `FILE`.
-fn gtkw_path(vcd: &Path) -> PathBuf {
-    let mut s = vcd.as_os_str().to_owned();
-    s.push(".gtkw");
-    PathBuf::from(s)
 }
 
 fn create(path: &Path) -> Result<BufWriter<File>, CliError> {

@@ -172,7 +172,8 @@ pub fn emit(path: &Path, text: &str) -> Result<(), CliError> {
     }
 }
 
-fn gtkw_path(vcd: &Path) -> PathBuf {
+/// `FILE.gtkw` beside `FILE`.
+pub fn gtkw_path(vcd: &Path) -> PathBuf {
     let mut s = vcd.as_os_str().to_owned();
     s.push(".gtkw");
     PathBuf::from(s)
