@@ -1,4 +1,5 @@
-//! wasp-props: safety properties of the WaSP scheduler blocks of `wasp-rtl`.
+//! wasp-props: safety properties of the WaSP scheduler blocks of `wasp-rtl`
+//! and of the `wasp-sim` caches and GPU around them.
 //!
 //! Each property is a plain function over a block's inputs and state that
 //! returns `Result<(), Cex>` (a [`Cex`] names the property and carries the
@@ -62,6 +63,23 @@
 //! | [`subset::mesh_quad_exact`], [`subset::mesh_selects_one_over_k_squared`] | `subset::proofs::proof_mesh_quad_exact` (per quad; the count follows) | `subset::tests::exhaustive_mesh` | k in {2, 4, 8, 16} x every quad of a 32 x 32 tile: selected iff the low log2(k) bits of x and y are zero, 1024 / k^2 in all |
 //! | [`subset::selects_one_sixteenth`] | (none: enumeration over a tile) | `subset::tests::exhaustive_sixteenths` | hlines, vlines, top16, mesh4, random with 7 seeds, built directly and from `SubsetSpec`: 64 of 1024 quads each |
 //!
+//! # (f) A cache's MSHR file (`wasp-sim`)
+//!
+//! | body | harness | test twin | domain |
+//! |---|---|---|---|
+//! | [`mshr_file::cache_step`], [`mshr_file::cache_sequence`] | `mshr_file::proofs::proof_cache_sequence` (5 operations, 1..=3 MSHRs, 0..=1 merges, 1..=2 ports) | `mshr_file::tests::exhaustive_cache_sequences` | a one-set four-way cache with 1..=3 MSHRs x 0..=1 merged targets x 1..=2 ports, every sequence of up to 7 operations (access block 0/1/2, fill a pending block, next cycle): 798,282 steps against [`mshr_file::CacheModel`]; occupancy never above capacity, a full file refuses every access (hits included) and a refused access changes nothing, every lookup and fill as the model says |
+//!
+//! # (g)-(k) The assembled GPU (`wasp-sim`)
+//!
+//! | body | harness | test twin | domain |
+//! |---|---|---|---|
+//! | [`machine::machine_cycle`], [`machine::machine_end`] (via [`machine::run_checked`]) | `machine::proofs::proof_machine_two_quads` (one tile, two quads of any program, one core, one L0 MSHR, WaSP threshold 0) | `machine::tests::exhaustive_one_tile_up_to_three_quads`, `..._two_tiles_up_to_two_quads_each` | small GPUs ([`machine::SmallMachine`]: 8x8-pixel tiles, 1-2 cores, 1-3 warp slots, width 1-2, 1-2 scheduler-level MSHRs, every policy, Mesh2/Mesh4, L0 or not, ideal memory or not) on every trace of up to 3 quads in one tile (5 programs each: 155 traces x 7 machines) and of up to 2 quads in each of two tiles (900 traces x 3 machines), every cycle: (g) MSHR occupancy <= capacity at every cache, (h) free-MSHR register == capacity - outstanding, (i) non-blocked counter == unblocked priority warps in the slots, (j) fill and drain, (k) every warp finishes within `200 + 300 I` cycles (`I`: the trace's instructions) and every quad finishes exactly once |
+//!
+//! Planted bugs in `wasp-sim` that these catch (tried by hand): a core that
+//! releases its tile with warps still running ((j)), a dropped decrement of
+//! the non-blocked counter when a priority warp finishes ((i)), a cache that
+//! lets hits through with every MSHR occupied ((f)).
+//!
 //! # Random long runs
 //!
 //! `tests/scheduler_random.rs` drives [`scheduler::SchedulerCheck`] with
@@ -94,6 +112,8 @@
 pub mod cex;
 pub mod counters;
 pub mod datapath;
+pub mod machine;
+pub mod mshr_file;
 pub mod policy;
 pub mod queue;
 pub mod scheduler;

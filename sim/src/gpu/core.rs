@@ -43,6 +43,9 @@ use wasp_rtl::scheduler::LaunchScheduler;
 use wasp_rtl::subset::PrioritySubset;
 use wasp_waves::{Traceable, Tracer};
 
+mod observe;
+pub use observe::{CoreSnapshot, WarpView};
+
 /// A warp in a slot.
 #[derive(Clone, Copy, Debug, Default)]
 struct Warp {

@@ -8,7 +8,7 @@
 
 mod core;
 
-pub use self::core::{CoreParams, CoreStats, ShaderCore, WarpRecord};
+pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
 
 use crate::config::MachineConfig;
 use crate::mem::MemorySystem;

@@ -9,6 +9,9 @@ use super::stats::{CacheStats, CoreMemStats, MemStats};
 use std::collections::VecDeque;
 use wasp_waves::Tracer;
 
+mod observe;
+pub use observe::MshrFileView;
+
 /// What happened to one access presented by a core.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Access {

@@ -104,6 +104,6 @@ pub use cache::{Cache, Lookup};
 pub use config::{
     CacheConfig, DramConfig, MemConfig, MemConfigError, BLOCK_BYTES, FREE_MSHR_REGISTER_MAX,
 };
-pub use hierarchy::{Access, MemorySystem, MshrEvents};
+pub use hierarchy::{Access, MemorySystem, MshrEvents, MshrFileView};
 pub use mshr::MSHR_HOLD_CYCLES;
 pub use stats::{CacheStats, CoreMemStats, DramStats, MemStats};
