@@ -319,6 +319,10 @@ mod tests {
         let mult: Vec<&Item> = inv.iter().filter(|i| i.block == "cf_multiplier").collect();
         assert_eq!(mult.len(), 1);
         assert_eq!(mult[0].part, Part::Adder { bits: 11 });
+        // The descriptions name what a reader looks for.
+        let mesh = inv.iter().find(|i| i.block == "mesh_comparator").unwrap();
+        assert_eq!(mesh.purpose, "2-bit zero check of quad x and y (mesh4)");
+        assert_eq!(mult[0].purpose, "shift-add x2.5 (partial product 2)");
     }
 
     #[test]

@@ -53,3 +53,22 @@ impl fmt::Display for RegisterFault {
 }
 
 impl std::error::Error for RegisterFault {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn register_fault_reads_well() {
+        let f = RegisterFault {
+            register: "free_mshrs",
+            value: 31,
+            attempted: 32,
+            limit: 31,
+        };
+        assert_eq!(
+            f.to_string(),
+            "register `free_mshrs` would leave its range: 31 -> 32 (legal 0..=31)"
+        );
+    }
+}
