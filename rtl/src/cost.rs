@@ -338,6 +338,26 @@ mod tests {
     }
 
     #[test]
+    fn every_part_is_priced_by_its_rule() {
+        let r = GateRules::default();
+        assert_eq!(r.ge(&Part::Register { bits: 3 }), 18.0);
+        assert_eq!(r.ge(&Part::Adder { bits: 3 }), 18.0);
+        assert_eq!(r.ge(&Part::Comparator { bits: 3 }), 12.0);
+        assert_eq!(r.ge(&Part::ZeroDetect { bits: 3 }), 3.0);
+        assert_eq!(r.ge(&Part::Mux2 { bits: 3 }), 7.5);
+    }
+
+    #[test]
+    fn paper_core_totals() {
+        // The figures `wasp cost` reports for the paper's core (width 4,
+        // 64 warps, Mesh4, CF 2.5, threshold 4).
+        let r = GateRules::default();
+        let inv = core_inventory(&paper_datapath(4), &Mesh::new(4).unwrap(), 64);
+        assert_eq!(GateRules::register_bits(&inv), 36);
+        assert_eq!(r.total_ge(&inv), 591.0);
+    }
+
+    #[test]
     fn cf_one_needs_no_adder() {
         let dp = WaspDatapath {
             cf: Cf::ONE,
