@@ -59,6 +59,11 @@ struct Warp {
     blocked: bool,
     /// Blocks of the current texture instruction not yet returned.
     pending: u32,
+    /// Blocks of the current texture instruction (set when it is decoded).
+    tex_len: u32,
+    /// Index in the tile's block accesses of the next texture
+    /// instruction's first block.
+    blk: u32,
     /// Cycle the current texture instruction entered the LDST queue.
     tex_start: u64,
     /// Sum of the memory latencies of its texture instructions.
@@ -88,14 +93,15 @@ pub struct WarpRecord {
     pub finished: u64,
 }
 
-/// A texture instruction in the LDST unit.
+/// A texture instruction in the LDST unit: its blocks are
+/// `next..end` of the tile's block accesses.
 #[derive(Clone, Copy, Debug)]
 struct LdstEntry {
     slot: u8,
-    quad: u32,
-    op: u32,
     /// Next block to present.
     next: u32,
+    /// One past its last block.
+    end: u32,
 }
 
 /// Counters of one core.
@@ -167,6 +173,11 @@ pub struct ShaderCore {
     tile: Option<usize>,
     /// Next quad of the tile to rasterize.
     raster_next: u32,
+    /// Index of each quad's first block in the tile's block accesses
+    /// (the quads' accesses are laid out in quad order).
+    quad_blocks: Vec<u32>,
+    /// `quad_blocks` is still that of the previous tile.
+    quad_blocks_stale: bool,
     active: u32,
     rr: u32,
     prio: PriorityEvents,
@@ -235,6 +246,8 @@ impl ShaderCore {
             ldst: VecDeque::with_capacity(p.ldst_queue as usize),
             tile: None,
             raster_next: 0,
+            quad_blocks: Vec::new(),
+            quad_blocks_stale: true,
             active: 0,
             rr: 0,
             prio: PriorityEvents::default(),
@@ -255,6 +268,7 @@ impl ShaderCore {
         debug_assert!(self.tile.is_none());
         self.tile = Some(tile);
         self.raster_next = 0;
+        self.quad_blocks_stale = true;
         self.last_progress = now;
     }
 
@@ -277,12 +291,27 @@ impl ShaderCore {
             return;
         };
         let tile = &trace.tiles()[ti];
+        if self.quad_blocks_stale {
+            self.index_blocks(tile);
+        }
         self.wakeups(now, tile);
         self.raster(tile);
         self.launch(now, tile);
         self.issue(now, tile);
         self.ldst(now, tile, mem);
         self.stats.occupancy_sum += self.active as u64;
+    }
+
+    /// Where each quad's block accesses start in the tile's.
+    fn index_blocks(&mut self, tile: &Tile) {
+        self.quad_blocks.clear();
+        let mut at = 0u32;
+        for q in tile.quads() {
+            self.quad_blocks.push(at);
+            at += q.block_accesses().len() as u32;
+        }
+        debug_assert_eq!(at as usize, tile.block_accesses().len());
+        self.quad_blocks_stale = false;
     }
 
     fn progress(&mut self, now: u64) {
@@ -339,7 +368,10 @@ impl ShaderCore {
                         w.alu_left = n;
                         ready |= M::bit(s);
                     }
-                    Instr::Tex(_) => ready_tex |= M::bit(s),
+                    Instr::Tex(b) => {
+                        w.tex_len = b.len() as u32;
+                        ready_tex |= M::bit(s);
+                    }
                 }
             }
         }
@@ -413,6 +445,8 @@ impl ShaderCore {
                     priority,
                     blocked: false,
                     pending: 0,
+                    tex_len: 0,
+                    blk: self.quad_blocks[quad as usize],
                     tex_start: 0,
                     lat_sum: 0,
                     tex_done: 0,
@@ -468,18 +502,23 @@ impl ShaderCore {
                 ready &= !bit;
                 self.schedule(now, now + self.alu_latency, s);
             } else {
-                let q = tile.quad(w.quad as usize).expect("quad in tile");
-                let Some(Instr::Tex(blocks)) = q.entry(w.op as usize) else {
-                    unreachable!("ready_tex warps wait on a texture instruction")
-                };
-                w.pending = blocks.len() as u32;
+                let end = w.blk + w.tex_len;
+                debug_assert_eq!(
+                    tile.quad(w.quad as usize)
+                        .and_then(|q| q.entry(w.op as usize)),
+                    Some(Instr::Tex(
+                        &tile.block_accesses()[w.blk as usize..end as usize]
+                    )),
+                    "ready_tex warps wait on a texture instruction"
+                );
+                w.pending = w.tex_len;
                 w.tex_start = now;
                 self.ldst.push_back(LdstEntry {
                     slot: s as u8,
-                    quad: w.quad,
-                    op: w.op,
-                    next: 0,
+                    next: w.blk,
+                    end,
                 });
+                w.blk = end;
                 ready_tex &= !bit;
                 self.stats.tex_instructions += 1;
                 // One texture instruction enters the LDST unit per cycle.
@@ -503,13 +542,10 @@ impl ShaderCore {
     }
 
     fn ldst(&mut self, now: u64, tile: &Tile, mem: &mut MemorySystem) {
+        let blocks = tile.block_accesses();
         while let Some(e) = self.ldst.front_mut() {
-            let q = tile.quad(e.quad as usize).expect("quad in tile");
-            let Some(Instr::Tex(blocks)) = q.entry(e.op as usize) else {
-                unreachable!("LDST entries are texture instructions")
-            };
             let mut refused = false;
-            while (e.next as usize) < blocks.len() {
+            while e.next < e.end {
                 let r = mem.access(now, self.id, blocks[e.next as usize], e.slot as u32);
                 if !r.accepted() {
                     refused = true;
