@@ -25,6 +25,7 @@
 //! its data arrives. A blocked warp cannot issue: each warp's instructions
 //! depend on the previous one, so nothing else of it is fetched meanwhile.
 
+use crate::gpu::mask::SlotMask;
 use crate::gpu::SimError;
 use crate::mem::{Access, MemorySystem};
 use crate::trace::{Instr, Tile, Trace};
@@ -61,6 +62,11 @@ struct Warp {
     blocked: bool,
     /// Blocks of the current texture instruction not yet returned.
     pending: u32,
+    /// Blocks of the current texture instruction (set when it is decoded).
+    tex_len: u32,
+    /// Index in the tile's block accesses of the next texture
+    /// instruction's first block.
+    blk: u32,
     /// Cycle the current texture instruction entered the LDST queue.
     tex_start: u64,
     /// Sum of the memory latencies of its texture instructions.
@@ -90,14 +96,15 @@ pub struct WarpRecord {
     pub finished: u64,
 }
 
-/// A texture instruction in the LDST unit.
+/// A texture instruction in the LDST unit: its blocks are
+/// `next..end` of the tile's block accesses.
 #[derive(Clone, Copy, Debug)]
 struct LdstEntry {
     slot: u8,
-    quad: u32,
-    op: u32,
     /// Next block to present.
     next: u32,
+    /// One past its last block.
+    end: u32,
 }
 
 /// Counters of one core.
@@ -158,6 +165,8 @@ pub struct ShaderCore {
     ready: u128,
     /// Warps ready to issue a texture instruction (to the LDST queue).
     ready_tex: u128,
+    /// Every slot fits in a `u64` mask (the hot loops then use `u64`).
+    narrow: bool,
     /// Timing wheel of wake-ups: slot bitmasks by cycle modulo its size.
     wheel: Vec<u128>,
     /// Wake-ups further than the wheel reaches.
@@ -167,6 +176,11 @@ pub struct ShaderCore {
     tile: Option<usize>,
     /// Next quad of the tile to rasterize.
     raster_next: u32,
+    /// Index of each quad's first block in the tile's block accesses
+    /// (the quads' accesses are laid out in quad order).
+    quad_blocks: Vec<u32>,
+    /// `quad_blocks` is still that of the previous tile.
+    quad_blocks_stale: bool,
     active: u32,
     rr: u32,
     prio: PriorityEvents,
@@ -229,11 +243,14 @@ impl ShaderCore {
             },
             ready: 0,
             ready_tex: 0,
+            narrow: n <= 64,
             wheel: vec![0; WHEEL],
             far: BinaryHeap::new(),
             ldst: VecDeque::with_capacity(p.ldst_queue as usize),
             tile: None,
             raster_next: 0,
+            quad_blocks: Vec::new(),
+            quad_blocks_stale: true,
             active: 0,
             rr: 0,
             prio: PriorityEvents::default(),
@@ -254,6 +271,7 @@ impl ShaderCore {
         debug_assert!(self.tile.is_none());
         self.tile = Some(tile);
         self.raster_next = 0;
+        self.quad_blocks_stale = true;
         self.last_progress = now;
     }
 
@@ -276,12 +294,27 @@ impl ShaderCore {
             return;
         };
         let tile = &trace.tiles()[ti];
+        if self.quad_blocks_stale {
+            self.index_blocks(tile);
+        }
         self.wakeups(now, tile);
         self.raster(tile);
         self.launch(now, tile);
         self.issue(now, tile);
         self.ldst(now, tile, mem);
         self.stats.occupancy_sum += self.active as u64;
+    }
+
+    /// Where each quad's block accesses start in the tile's.
+    fn index_blocks(&mut self, tile: &Tile) {
+        self.quad_blocks.clear();
+        let mut at = 0u32;
+        for q in tile.quads() {
+            self.quad_blocks.push(at);
+            at += q.block_accesses().len() as u32;
+        }
+        debug_assert_eq!(at as usize, tile.block_accesses().len());
+        self.quad_blocks_stale = false;
     }
 
     fn progress(&mut self, now: u64) {
@@ -306,30 +339,47 @@ impl ShaderCore {
             self.far.pop();
             self.wheel[(t as usize) & (WHEEL - 1)] |= 1u128 << slot;
         }
+        if self.narrow {
+            self.wake_due::<u64>(now, tile);
+        } else {
+            self.wake_due::<u128>(now, tile);
+        }
+    }
+
+    /// The wake-ups due at `now`, on masks of width `M` (every slot fits).
+    #[inline(always)]
+    fn wake_due<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
         let i = (now as usize) & (WHEEL - 1);
-        let mut due = std::mem::take(&mut self.wheel[i]);
-        while due != 0 {
-            let s = due.trailing_zeros() as usize;
-            due &= due - 1;
+        let mut due = M::from_wide(std::mem::take(&mut self.wheel[i]));
+        let mut ready = M::ZERO;
+        let mut ready_tex = M::ZERO;
+        while due != M::ZERO {
+            let s = due.lowest();
+            due = due.without_lowest();
             let w = &mut self.slots[s];
             if w.op >= w.n_ops {
                 let w = *w;
                 self.finish(s, &w, now);
                 self.progress(now);
             } else if w.alu_left > 0 {
-                self.ready |= 1u128 << s;
+                ready |= M::bit(s);
             } else {
                 // Starting a new instruction entry: decode it once.
                 let q = tile.quad(w.quad as usize).expect("quad in tile");
                 match q.entry(w.op as usize).expect("op in program") {
                     Instr::Alu(n) => {
                         w.alu_left = n;
-                        self.ready |= 1u128 << s;
+                        ready |= M::bit(s);
                     }
-                    Instr::Tex(_) => self.ready_tex |= 1u128 << s,
+                    Instr::Tex(b) => {
+                        w.tex_len = b.len() as u32;
+                        ready_tex |= M::bit(s);
+                    }
                 }
             }
         }
+        self.ready |= ready.to_wide();
+        self.ready_tex |= ready_tex.to_wide();
     }
 
     fn finish(&mut self, s: usize, w: &Warp, now: u64) {
@@ -398,6 +448,8 @@ impl ShaderCore {
                     priority,
                     blocked: false,
                     pending: 0,
+                    tex_len: 0,
+                    blk: self.quad_blocks[quad as usize],
                     tex_start: 0,
                     lat_sum: 0,
                     tex_done: 0,
@@ -415,49 +467,76 @@ impl ShaderCore {
     }
 
     fn issue(&mut self, now: u64, tile: &Tile) {
+        if self.narrow {
+            self.issue_with::<u64>(now, tile);
+        } else {
+            self.issue_with::<u128>(now, tile);
+        }
+    }
+
+    /// Issue on masks of width `M` (every slot fits).
+    #[inline(always)]
+    fn issue_with<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
         let n = self.slots.len() as u32;
         let mut issued = 0;
         let tex_ok = self.ldst.len() < self.ldst_cap;
         let mut tex_taken = false;
-        let mut cand = self.ready | if tex_ok { self.ready_tex } else { 0 };
-        while issued < self.width && cand != 0 {
-            // Loose round-robin: the first candidate slot at or after `rr`.
-            let above = cand & (u128::MAX << self.rr);
-            let pick = if above != 0 { above } else { cand };
-            let s = pick.trailing_zeros() as usize;
-            let bit = 1u128 << s;
-            cand &= !bit;
+        let mut ready = M::from_wide(self.ready);
+        let mut ready_tex = M::from_wide(self.ready_tex);
+        let cand = ready | if tex_ok { ready_tex } else { M::ZERO };
+        // Loose round-robin: each pick is the first candidate slot at or
+        // after the slot past the previous pick (wrapping), starting at
+        // `rr`; that is the candidates in ascending order of the set
+        // rotated right by `rr`.
+        let rr = self.rr;
+        let mut rot = cand.rotate_right(rr);
+        let mut last = None;
+        while issued < self.width && rot != M::ZERO {
+            let k = rot.lowest();
+            rot = rot.without_lowest();
+            let s = (k + rr as usize) & (M::BITS as usize - 1);
+            let bit = M::bit(s);
             let w = &mut self.slots[s];
-            if self.ready & bit != 0 {
+            if ready & bit != M::ZERO {
                 w.alu_left -= 1;
                 if w.alu_left == 0 {
                     w.op += 1;
                 }
-                self.ready &= !bit;
+                ready &= !bit;
                 self.schedule(now, now + self.alu_latency, s);
             } else {
-                let q = tile.quad(w.quad as usize).expect("quad in tile");
-                let Some(Instr::Tex(blocks)) = q.entry(w.op as usize) else {
-                    unreachable!("ready_tex warps wait on a texture instruction")
-                };
-                w.pending = blocks.len() as u32;
+                let end = w.blk + w.tex_len;
+                debug_assert_eq!(
+                    tile.quad(w.quad as usize)
+                        .and_then(|q| q.entry(w.op as usize)),
+                    Some(Instr::Tex(
+                        &tile.block_accesses()[w.blk as usize..end as usize]
+                    )),
+                    "ready_tex warps wait on a texture instruction"
+                );
+                w.pending = w.tex_len;
                 w.tex_start = now;
                 self.ldst.push_back(LdstEntry {
                     slot: s as u8,
-                    quad: w.quad,
-                    op: w.op,
-                    next: 0,
+                    next: w.blk,
+                    end,
                 });
-                self.ready_tex &= !bit;
+                w.blk = end;
+                ready_tex &= !bit;
                 self.stats.tex_instructions += 1;
                 // One texture instruction enters the LDST unit per cycle.
                 tex_taken = true;
-                cand &= self.ready;
+                rot &= ready.rotate_right(rr);
             }
             self.stats.instructions += 1;
             issued += 1;
-            self.rr = (s as u32 + 1) % n.max(1);
+            last = Some(s as u32);
         }
+        if let Some(s) = last {
+            self.rr = if s + 1 >= n { 0 } else { s + 1 };
+        }
+        self.ready = ready.to_wide();
+        self.ready_tex = ready_tex.to_wide();
         self.signals.issued = issued;
         self.signals.tex_issued = tex_taken;
         if issued > 0 {
@@ -466,13 +545,10 @@ impl ShaderCore {
     }
 
     fn ldst(&mut self, now: u64, tile: &Tile, mem: &mut MemorySystem) {
+        let blocks = tile.block_accesses();
         while let Some(e) = self.ldst.front_mut() {
-            let q = tile.quad(e.quad as usize).expect("quad in tile");
-            let Some(Instr::Tex(blocks)) = q.entry(e.op as usize) else {
-                unreachable!("LDST entries are texture instructions")
-            };
             let mut refused = false;
-            while (e.next as usize) < blocks.len() {
+            while e.next < e.end {
                 let r = mem.access(now, self.id, blocks[e.next as usize], e.slot as u32);
                 if !r.accepted() {
                     refused = true;

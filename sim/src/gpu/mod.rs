@@ -7,6 +7,7 @@
 //! tile is rendered and the memory system is idle.
 
 mod core;
+mod mask;
 
 pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
 

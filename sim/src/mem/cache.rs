@@ -192,27 +192,36 @@ impl Cache {
         self.replied += 1;
         self.stats.fills += 1;
         let base = self.set_base(block);
-        let set = &self.tags[base..base + self.ways];
-        debug_assert!(!set.contains(&block), "fill of a block already present");
-        let way = match set.iter().position(|&t| t == INVALID) {
-            Some(w) => w,
-            None => {
-                let stamps = &self.last_use[base..base + self.ways];
-                let mut best = 0;
-                for (w, &s) in stamps.iter().enumerate() {
-                    if s < stamps[best] {
-                        best = w;
-                    }
-                }
-                best
+        debug_assert!(
+            !self.tags[base..base + self.ways].contains(&block),
+            "fill of a block already present"
+        );
+        // The victim: the first invalid way, else the least recently used.
+        // Invalid ways were never filled, so their stamp is still 0 while
+        // every valid way's is at least 1 (and distinct): one scan for the
+        // first smallest stamp finds both.
+        let stamps = &self.last_use[base..base + self.ways];
+        let mut way = 0;
+        let mut oldest = stamps[0];
+        for (w, &s) in stamps.iter().enumerate().skip(1) {
+            if s < oldest {
+                oldest = s;
+                way = w;
             }
-        };
+        }
+        debug_assert_eq!(
+            Some(way),
+            self.tags[base..base + self.ways]
+                .iter()
+                .position(|&t| t == INVALID)
+                .or(Some(way)),
+            "an invalid way is the victim when there is one"
+        );
         self.use_clock += 1;
         self.tags[base + way] = block;
         self.last_use[base + way] = self.use_clock;
-        let (targets, issued) = self.mshr.targets(e);
-        self.stats.miss_wait_sum += issued.iter().map(|&t| now - t).sum::<u64>();
-        targets
+        self.stats.miss_wait_sum += self.mshr.wait_sum(e, now);
+        self.mshr.targets(e).0
     }
 
     /// Whether the line of `block` is present (no side effect).

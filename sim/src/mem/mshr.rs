@@ -30,6 +30,8 @@ pub struct MshrFile {
     targets: Vec<u32>,
     /// Cycle each target was accepted, parallel to `targets`.
     issued: Vec<u64>,
+    /// Sum of the acceptance cycles of each entry's targets.
+    issued_sum: Vec<u64>,
     /// Pending entries as `(block, entry)`, unordered (swap-removed on fill).
     pending: Vec<(u64, u32)>,
     /// Free entries, used as a stack (deterministic reuse order).
@@ -61,6 +63,7 @@ impl MshrFile {
             count: vec![0; n],
             targets: vec![0; n * slots as usize],
             issued: vec![0; n * slots as usize],
+            issued_sum: vec![0; n],
             pending: Vec::with_capacity(n),
             free: (0..capacity).rev().collect(),
             held: VecDeque::with_capacity(n),
@@ -123,6 +126,7 @@ impl MshrFile {
         let slot = e * self.slots as usize + n as usize;
         self.targets[slot] = target;
         self.issued[slot] = now;
+        self.issued_sum[e] += now;
         self.count[e] = n + 1;
         Merge::Merged
     }
@@ -139,6 +143,7 @@ impl MshrFile {
         let slot = i * self.slots as usize;
         self.targets[slot] = target;
         self.issued[slot] = now;
+        self.issued_sum[i] = now;
         self.pending.push((block, e));
     }
 
@@ -168,6 +173,14 @@ impl MshrFile {
         (&self.targets[start..end], &self.issued[start..end])
     }
 
+    /// Sum over the targets of entry `e` of the cycles from their
+    /// acceptance to `now` (not before any of them).
+    #[inline]
+    pub fn wait_sum(&self, e: u32, now: u64) -> u64 {
+        let i = e as usize;
+        u64::from(self.count[i]) * now - self.issued_sum[i]
+    }
+
     /// Block of entry `e`.
     #[inline]
     pub fn block(&self, e: u32) -> u64 {
@@ -195,6 +208,7 @@ mod tests {
         let e = m.complete(10, 8).unwrap();
         assert_eq!(m.block(e), 10);
         assert_eq!(m.targets(e), (&[100, 101][..], &[1, 2][..]));
+        assert_eq!(m.wait_sum(e, 8), (8 - 1) + (8 - 2));
         assert!(!m.is_pending(10));
         assert_eq!((m.occupied(), m.outstanding()), (2, 1));
         // Held through cycle 9, free from 10.
