@@ -161,6 +161,25 @@ mod tests {
     }
 
     #[test]
+    fn traces_product_difference_and_decision() {
+        // 3 free, 2 non-blocked x 2.5 = 5: real -2 (11-bit two's complement
+        // 0x7fe), not above threshold 0.
+        let dp = WaspDatapath {
+            cf: Cf::PAPER,
+            threshold: Threshold::ZERO,
+        };
+        let out = dp.eval(FreeMshrs::new(3).unwrap(), n(2));
+        assert_eq!(
+            crate::recorder::signals_of(&out),
+            vec![
+                ("cf_product".to_string(), 10, 5),
+                ("real_free_mshrs".to_string(), 11, 0x7fe),
+                ("priority_over_regular".to_string(), 1, 0),
+            ]
+        );
+    }
+
+    #[test]
     fn paper_cf_is_the_papers_shift_add() {
         for v in 0..=127u32 {
             let paper = (v << 1) + (v >> 1);

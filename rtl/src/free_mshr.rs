@@ -109,6 +109,15 @@ mod tests {
     use super::*;
 
     #[test]
+    fn traces_its_register() {
+        let r = FreeMshrReg::with_capacity(13).unwrap();
+        assert_eq!(
+            crate::recorder::signals_of(&r),
+            vec![("free_mshrs".to_string(), 5, 13)]
+        );
+    }
+
+    #[test]
     fn allocate_and_release() {
         let r = FreeMshrReg::with_capacity(3).unwrap();
         let r = r

@@ -54,6 +54,43 @@ impl fmt::Display for RegisterFault {
 
 impl std::error::Error for RegisterFault {}
 
+/// A tracer that records every signal, for the blocks' tests.
+#[cfg(test)]
+pub(crate) mod recorder {
+    use wasp_waves::Tracer;
+
+    /// Every `signal` call as (scope path + name, width, value).
+    #[derive(Default)]
+    pub(crate) struct Recorder {
+        scope: Vec<String>,
+        pub(crate) signals: Vec<(String, u32, u64)>,
+    }
+
+    impl Tracer for Recorder {
+        fn push_scope(&mut self, name: &str) {
+            self.scope.push(name.to_string());
+        }
+        fn pop_scope(&mut self) {
+            self.scope.pop();
+        }
+        fn signal(&mut self, name: &str, width: u32, value: u64) {
+            let mut path = self.scope.join(".");
+            if !path.is_empty() {
+                path.push('.');
+            }
+            path.push_str(name);
+            self.signals.push((path, width, value));
+        }
+    }
+
+    /// The signals `block` names, in order.
+    pub(crate) fn signals_of(block: &impl wasp_waves::Traceable) -> Vec<(String, u32, u64)> {
+        let mut r = Recorder::default();
+        block.trace(&mut r);
+        r.signals
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -90,6 +90,20 @@ mod tests {
     use super::*;
 
     #[test]
+    fn traces_its_counter() {
+        let c = NonblockedCounter::reset()
+            .next(PriorityEvents {
+                launched: true,
+                ..Default::default()
+            })
+            .unwrap();
+        assert_eq!(
+            crate::recorder::signals_of(&c),
+            vec![("nonblocked_priority".to_string(), 7, 1)]
+        );
+    }
+
+    #[test]
     fn launch_block_unblock_finish() {
         let c = NonblockedCounter::reset();
         let c = c

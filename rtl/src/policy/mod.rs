@@ -218,4 +218,33 @@ mod tests {
         };
         assert!(bad_cf.build(16).unwrap_err().contains("0.25"));
     }
+
+    #[test]
+    fn freemshr_n_may_equal_the_mshrs() {
+        // N = every MSHR: priority warps launch when all are free.
+        assert!(PolicySpec::FreeMshr(16).build(16).is_ok());
+        assert!(PolicySpec::FreeMshr(0).build(1).is_ok());
+    }
+
+    #[test]
+    fn the_paper_name_freemshr10_is_an_alias() {
+        assert_eq!(
+            "Freemshr10".parse::<PolicySpec>().unwrap(),
+            PolicySpec::FreeMshr(10)
+        );
+    }
+
+    #[test]
+    fn which_policies_read_the_free_mshr_register() {
+        for (s, reads) in [
+            ("baseline", false),
+            ("fullpriority", false),
+            ("freemshr:3", true),
+            ("wasp:2", true),
+        ] {
+            let spec: PolicySpec = s.parse().unwrap();
+            assert_eq!(spec.reads_free_mshrs(), reads, "{s}");
+            assert_eq!(spec.build(8).unwrap().reads_free_mshrs(), reads, "{s}");
+        }
+    }
 }
