@@ -188,6 +188,37 @@ mod tests {
     use crate::subset::{Explicit, Mesh};
 
     #[test]
+    fn launch_signal_encoding_and_traced_signals() {
+        assert_eq!(launch_code(None), 0);
+        assert_eq!(launch_code(Some(QueueClass::Regular)), 1);
+        assert_eq!(launch_code(Some(QueueClass::Priority)), 2);
+        let mut s = LaunchScheduler::new(
+            4,
+            Box::new(Mesh::new(4).unwrap()),
+            FreeMshrReg::with_capacity(6).unwrap(),
+            PolicySpec::wasp(1).build(6).unwrap(),
+        );
+        s.enqueue(7, 0, 0).unwrap();
+        s.enqueue(8, 1, 0).unwrap();
+        let d = s.decide();
+        assert_eq!(s.launch(d, true), Some((7, QueueClass::Priority)));
+        let names: Vec<(String, u32, u64)> = crate::recorder::signals_of(&s);
+        assert_eq!(
+            names,
+            vec![
+                ("free_mshrs".to_string(), 5, 6),
+                ("nonblocked_priority".to_string(), 7, 0),
+                ("cf_product".to_string(), 10, 0),
+                ("real_free_mshrs".to_string(), 11, 6),
+                ("priority_over_regular".to_string(), 1, 1),
+                ("launch".to_string(), 2, 2),
+                ("prio_queue_occupancy".to_string(), 3, 0),
+                ("regular_queue_occupancy".to_string(), 3, 1),
+            ]
+        );
+    }
+
+    #[test]
     fn baseline_keeps_scanline_order_through_the_split_queue() {
         let mut s = LaunchScheduler::new(
             8,

@@ -238,6 +238,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn checked_arithmetic_and_text() {
+        let a = UInt::<5>::new(20).unwrap();
+        let b = UInt::<5>::new(11).unwrap();
+        assert_eq!(a.checked_add(b).map(UInt::get), Some(31));
+        assert_eq!(a.checked_add(UInt::new(12).unwrap()), None);
+        assert_eq!(b.checked_add(b).map(UInt::get), Some(22));
+        assert_eq!(a.checked_sub(b).map(UInt::get), Some(9));
+        assert_eq!(b.checked_sub(a), None);
+        assert_eq!(format!("{a:?} {a}"), "5'd20 20");
+        let n = SInt::<11>::new(-3).unwrap();
+        assert_eq!(format!("{n:?} {n}"), "11'sd-3 -3");
+        assert!(n.is_negative());
+        assert!(!SInt::<11>::new(0).unwrap().is_negative());
+        assert!(!SInt::<11>::new(1).unwrap().is_negative());
+    }
+
+    #[test]
     fn five_bit_register_range_and_edges() {
         assert_eq!(UInt::<5>::MAX.get(), 31);
         assert_eq!(UInt::<5>::new(31).map(|v| v.get()), Some(31));

@@ -220,6 +220,20 @@ mod tests {
     }
 
     #[test]
+    fn built_policies_name_themselves_as_parsed() {
+        for s in [
+            "baseline",
+            "fullpriority",
+            "freemshr:3",
+            "wasp:2",
+            "wasp:2:1.5",
+        ] {
+            let spec: PolicySpec = s.parse().unwrap();
+            assert_eq!(spec.build(8).unwrap().name(), s);
+        }
+    }
+
+    #[test]
     fn freemshr_n_may_equal_the_mshrs() {
         // N = every MSHR: priority warps launch when all are free.
         assert!(PolicySpec::FreeMshr(16).build(16).is_ok());

@@ -134,6 +134,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn every_papers_subset_is_listed_and_names_itself() {
+        let all = SubsetSpec::all();
+        let names: Vec<String> = all.iter().map(|s| s.to_string()).collect();
+        assert_eq!(
+            names,
+            ["top16", "hlines", "vlines", "mesh2", "mesh4", "mesh8", "mesh16", "random:1"]
+        );
+        for spec in all {
+            assert_eq!(spec.build(32).name(), spec.to_string());
+        }
+        assert_eq!(SubsetSpec::Random(77).build(32).name(), "random:77");
+        assert_eq!(Explicit::new([(1, 2)]).name(), "explicit");
+    }
+
+    #[test]
     fn every_paper_subset_selects_one_sixteenth_except_mesh_sizes() {
         for spec in SubsetSpec::all() {
             let s = spec.build(32);
