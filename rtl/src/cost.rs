@@ -345,6 +345,12 @@ mod tests {
         assert_eq!(r.ge(&Part::Comparator { bits: 3 }), 12.0);
         assert_eq!(r.ge(&Part::ZeroDetect { bits: 3 }), 3.0);
         assert_eq!(r.ge(&Part::Mux2 { bits: 3 }), 7.5);
+        // Rules are the user's to change: every rule scales its part.
+        let r = GateRules {
+            zero_detect_input: 2.0,
+            ..GateRules::default()
+        };
+        assert_eq!(r.ge(&Part::ZeroDetect { bits: 3 }), 6.0);
     }
 
     #[test]
