@@ -241,15 +241,17 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     pb.finish_and_clear();
     let s = &out.frame.stats;
     eprintln!(
-        "wasp: {} {}x{}: {} triangles ({} clipped), {} fragments in {} warps over {} tiles, \
-         {} quads rejected by early-Z; front end {:.3} s",
+        "wasp: {} {}x{}: {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
+         positions ({:.2} per position) over {} tiles, {} quads rejected by early-Z; front end \
+         {:.3} s",
         scene.name,
         w,
         h,
         s.primitives,
         s.clipped,
-        s.quads_shaded,
         s.warps,
+        s.positions,
+        s.warps as f64 / s.positions.max(1) as f64,
         s.tiles,
         s.quads_rejected_early_z,
         out.raster_seconds

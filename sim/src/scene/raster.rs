@@ -41,16 +41,19 @@
 //!    the triangle included (they feed the derivatives and take part in
 //!    the texture fetch, as in hardware).
 //!
-//! # Overdraw: one warp per quad position
+//! # Overdraw: one warp per fragment
 //!
-//! In hardware every surviving (triangle, quad) pair is its own warp. The
-//! trace format has one record per quad position per tile, in scanline
-//! order, so **all surviving fragments at a position are merged into one
-//! warp whose program is the concatenation of their shader programs in
-//! draw order** (ALU runs at the seams join into one run; each texture
-//! instruction keeps its own block list). The number of merged fragments
-//! is reported ([`RasterStats::quads_shaded`] vs
-//! [`RasterStats::warps`]) and written as a header note of the trace.
+//! As in hardware, every surviving (triangle, quad) fragment is its own
+//! warp, running its material's shader program. A tile's warps are emitted
+//! (trace format 2) in rasterization order, the order the rasterizer hands
+//! them to the shader core: triangles in draw order (above), each
+//! triangle's quads in scanline order. Where triangles overlap, a quad
+//! position therefore holds several warps ([`RasterStats::warps`] vs
+//! [`RasterStats::positions`]: the overdraw the shader core sees, also
+//! written as a header note of the trace). Early-Z decides which fragments
+//! survive, so a fragment hidden by one drawn *earlier* is never shaded,
+//! but one hidden by a later triangle is (`--depth-prepass` removes those
+//! too, as a deferred renderer would).
 //!
 //! # Picture
 //!
@@ -115,8 +118,8 @@ pub struct MaterialStats {
     pub blend: String,
     /// Input triangles.
     pub triangles: u64,
-    /// Surviving (triangle, quad) fragments it shaded.
-    pub quads_shaded: u64,
+    /// Surviving (triangle, quad) fragments it shaded: its warps.
+    pub warps: u64,
     /// Quads of its triangles rejected by early-Z.
     pub quads_rejected_early_z: u64,
     /// Pixels it shaded (surviving, inside the triangle).
@@ -146,11 +149,12 @@ pub struct RasterStats {
     pub quads_covered: u64,
     /// Of those, quads whose every covered pixel failed the depth test.
     pub quads_rejected_early_z: u64,
-    /// Surviving (triangle, quad) fragments: the warps of a hardware TBR.
-    pub quads_shaded: u64,
-    /// Quad positions with at least one surviving fragment: the trace's
-    /// warps (fragments at one position are merged).
+    /// Surviving (triangle, quad) fragments: the warps (quad records of the
+    /// trace), one per fragment as in a hardware TBR.
     pub warps: u64,
+    /// Quad positions with at least one surviving fragment (warps /
+    /// positions is the overdraw the shader cores see).
+    pub positions: u64,
     /// Pixels shaded (surviving, inside their triangle).
     pub pixels_shaded: u64,
     /// Per material, in scene order.
@@ -755,7 +759,7 @@ struct TileBuf {
     covered: u64,
     rejected: u64,
     pixels: u64,
-    /// Per material: fragments shaded, quads rejected, pixels.
+    /// Per material: fragments shaded (warps), quads rejected, pixels.
     per_material: Vec<[u64; 3]>,
 }
 
@@ -1053,6 +1057,8 @@ pub fn rasterize(
         .map(|_| TileBuf::new(t, scene.materials.len()))
         .collect();
     let side = t / 2;
+    // Quad positions of the current tile that hold a fragment.
+    let mut seen = vec![false; (side * side) as usize];
     for chunk in order.chunks(batch) {
         let work = |tiles: &[(u32, u32)], bs: &mut [TileBuf]| {
             for (&(tx, ty), b) in tiles.iter().zip(bs.iter_mut()) {
@@ -1072,10 +1078,10 @@ pub fn rasterize(
         for (&(tx, ty), b) in chunk.iter().zip(bufs.iter_mut()) {
             stats.quads_covered += b.covered;
             stats.quads_rejected_early_z += b.rejected;
-            stats.quads_shaded += b.frags.len() as u64;
+            stats.warps += b.frags.len() as u64;
             stats.pixels_shaded += b.pixels;
             for (m, c) in stats.materials.iter_mut().zip(&b.per_material) {
-                m.quads_shaded += c[0];
+                m.warps += c[0];
                 m.quads_rejected_early_z += c[1];
                 m.pixels += c[2];
             }
@@ -1094,20 +1100,19 @@ pub fn rasterize(
             if b.frags.is_empty() {
                 continue;
             }
-            // One warp per quad position, fragments in draw order.
-            b.frags.sort_by_key(|f| f.pos);
+            // One warp per fragment, in rasterization order (the order
+            // `raster_tile` produced them).
             let emit = |e: crate::trace::Problem| fail(format!("building the trace: {e}"));
             builder.begin_tile(tx, ty).map_err(emit)?;
             stats.tiles += 1;
-            let mut prev = u32::MAX;
             for f in &b.frags {
-                if f.pos != prev {
-                    builder
-                        .begin_quad(f.pos % side, f.pos / side)
-                        .map_err(emit)?;
-                    stats.warps += 1;
-                    prev = f.pos;
+                if !seen[f.pos as usize] {
+                    seen[f.pos as usize] = true;
+                    stats.positions += 1;
                 }
+                builder
+                    .begin_quad(f.pos % side, f.pos / side)
+                    .map_err(emit)?;
                 let mut r = f.range as usize;
                 for op in &scene.materials[f.material as usize].shader {
                     match op {
@@ -1124,20 +1129,28 @@ pub fn rasterize(
                 }
             }
             builder.end_tile().map_err(emit)?;
+            for f in &b.frags {
+                seen[f.pos as usize] = false;
+            }
         }
     }
     let note = format!(
         " rasterized by wasp scene::raster: {} triangles ({} clipped, {} culled), {} quads \
-         covered, {} rejected by early-Z, {} fragments shaded merged into {} warps (overdraw: \
-         the programs of all fragments at a quad position run as one warp, in draw order); \
-         texture heap {} KiB at {:#x}, 4x4-texel 64-byte blocks in Morton order",
+         covered, {} rejected by early-Z, {} fragments shaded, one warp each in \
+         rasterization order, at {} quad positions ({:.2} warps per position); texture heap \
+         {} KiB at {:#x}, 4x4-texel 64-byte blocks in Morton order",
         stats.primitives,
         stats.clipped,
         stats.culled_outside + stats.culled_back_faces,
         stats.quads_covered,
         stats.quads_rejected_early_z,
-        stats.quads_shaded,
         stats.warps,
+        stats.positions,
+        if stats.positions == 0 {
+            0.0
+        } else {
+            stats.warps as f64 / stats.positions as f64
+        },
         textures.heap_bytes() / 1024,
         super::texture::HEAP_BASE
     );
@@ -1285,11 +1298,16 @@ mod tests {
             [(0, 0), (1, 0), (0, 1), (1, 1), (2, 0)],
             "Morton order"
         );
-        // Every tile is fully covered: 32x32 quads each, one fragment each
-        // (the two triangles of a quad share the diagonal exactly once).
+        // Every tile is fully covered: 32x32 quad positions each, one warp
+        // each but where a rectangle's diagonal crosses a quad: both of its
+        // triangles shade a fragment there (each pixel exactly once).
+        let mut extra = 0;
         for tile in f.trace.tiles() {
-            assert_eq!(tile.quad_count(), 1024);
+            assert_eq!(tile.position_count(), 1024);
+            extra += tile.quad_count() - 1024;
         }
+        assert_eq!(extra as u64, f.stats.warps - f.stats.positions);
+        assert!(extra > 0);
         assert_eq!(f.stats.pixels_shaded, 256 * 128 + 192 * 64);
     }
 
@@ -1336,12 +1354,13 @@ mod tests {
             f.stats.materials[1].quads_rejected_early_z,
             f.stats.quads_rejected_early_z
         );
-        assert_eq!(f.stats.materials[1].quads_shaded, 0, "far square hidden");
-        assert_eq!(f.stats.warps, 64 * 64);
+        assert_eq!(f.stats.materials[1].warps, 0, "far square hidden");
+        assert_eq!(f.stats.positions, 64 * 64);
         // The near square's two triangles share a diagonal: the 64 quads it
-        // crosses hold one fragment of each (two warps in hardware, merged
-        // into one here).
-        assert_eq!(f.stats.quads_shaded, f.stats.warps + 64);
+        // crosses hold one fragment of each, two warps.
+        assert_eq!(f.stats.warps, f.stats.positions + 64);
+        assert_eq!(f.trace.quad_count() as u64, f.stats.warps);
+        assert_eq!(f.trace.stats().positions, f.stats.positions);
         // The same far square, but the near one alpha-blended: both shade.
         let scene = persp(
             vec![near, far],
@@ -1352,21 +1371,75 @@ mod tests {
         );
         let g = rasterize(&scene, 128, 128, &RasterOptions::default()).unwrap();
         assert_eq!(g.stats.quads_rejected_early_z, 0);
-        let far_quads = g.stats.materials[1].quads_shaded;
+        let far_quads = g.stats.materials[1].warps;
         assert!(far_quads > 0);
-        assert_eq!(g.stats.materials[0].quads_shaded, f.stats.quads_shaded);
-        assert_eq!(g.stats.warps, 64 * 64);
-        // Merged warps run both programs: 2 x 11 instructions.
-        let centre = g
+        assert_eq!(g.stats.materials[0].warps, f.stats.warps);
+        assert_eq!(g.stats.positions, 64 * 64);
+        assert_eq!(g.stats.warps, f.stats.warps + far_quads);
+        // Where the sprite covers the far square, the position holds two
+        // warps of one 11-instruction program each (never merged): the far
+        // square's first (opaque, drawn first), then the sprite's
+        // (blended, drawn last).
+        let tile = g
             .trace
             .tiles()
             .iter()
             .find(|t| t.tx() == 0 && t.ty() == 0)
-            .unwrap()
-            .quad_at(31, 31)
             .unwrap();
-        assert_eq!(centre.instr_count(), 22);
-        assert_eq!(centre.tex_count(), 2);
+        let at: Vec<_> = tile.quads_at(31, 31).collect();
+        assert_eq!(at.len(), 2);
+        for q in &at {
+            assert_eq!((q.instr_count(), q.tex_count()), (11, 1));
+        }
+        assert!(at[0].index() < at[1].index());
+    }
+
+    #[test]
+    fn warps_come_in_rasterization_order() {
+        // Two overlapping opaque squares (orthographic, the second nearer):
+        // the tile's warps are all quads of the first square's triangles in
+        // scanline order per triangle, then the second square's.
+        let scene = ortho_scene(
+            vec![
+                quad_mesh(0.0, 0.0, 16.0, 16.0, 0.0, 0),
+                quad_mesh(8.0, 8.0, 24.0, 24.0, 1.0, 1),
+            ],
+            vec![mat("a", Blend::Opaque, 0), mat("b", Blend::Opaque, 0)],
+            32.0,
+            32.0,
+        );
+        let f = rasterize(&scene, 32, 32, &RasterOptions::default()).unwrap();
+        let tile = &f.trace.tiles()[0];
+        let pos: Vec<(u32, u32)> = tile.quads().map(|q| (q.x(), q.y())).collect();
+        // Square a: 8x8 quads plus 8 on the shared diagonal; square b the
+        // same, 16 of its positions over a's.
+        assert_eq!(pos.len(), 2 * (64 + 8));
+        assert_eq!(f.stats.positions, 64 + 64 - 16);
+        // Each triangle's quads are in scanline order; where the order goes
+        // back, a new triangle starts: 4 triangles, 4 runs.
+        let runs = 1 + pos
+            .windows(2)
+            .filter(|w| (w[1].1, w[1].0) <= (w[0].1, w[0].0))
+            .count();
+        assert_eq!(runs, 4);
+        // Square a's warps (quads 0..8) all come before square b's (4..12).
+        assert!(pos[..72].iter().all(|&(x, y)| x < 8 && y < 8));
+        let in_b = |v: u32| (4..12).contains(&v);
+        assert!(pos[72..].iter().all(|&(x, y)| in_b(x) && in_b(y)));
+        // Threads do not change the trace.
+        for threads in [1, 3] {
+            let g = rasterize(
+                &scene,
+                32,
+                32,
+                &RasterOptions {
+                    threads,
+                    ..RasterOptions::default()
+                },
+            )
+            .unwrap();
+            assert_eq!(g.trace.to_text(), f.trace.to_text());
+        }
     }
 
     /// A tilted textured plane: y = -1, z from -1 to -20, uv = (x, -z).
@@ -1499,15 +1572,16 @@ mod tests {
         let f = rasterize(&scene, 32, 32, &RasterOptions::default()).unwrap();
         assert_eq!(f.stats.quads_rejected_early_z, 0);
         // 256 quads each, plus the 16 quads on each square's diagonal.
-        assert_eq!(f.stats.materials[0].quads_shaded, 16 * 16 + 16);
-        assert_eq!(f.stats.materials[1].quads_shaded, 16 * 16 + 16);
-        assert_eq!(f.stats.warps, 16 * 16);
+        assert_eq!(f.stats.materials[0].warps, 16 * 16 + 16);
+        assert_eq!(f.stats.materials[1].warps, 16 * 16 + 16);
+        assert_eq!(f.stats.positions, 16 * 16);
+        assert_eq!(f.stats.warps, 2 * (16 * 16 + 16));
         // With an opaque texture the cut-out hides the square behind.
         for px in scene.textures[0].rgba.chunks_exact_mut(4) {
             px[3] = 255;
         }
         let g = rasterize(&scene, 32, 32, &RasterOptions::default()).unwrap();
-        assert_eq!(g.stats.materials[1].quads_shaded, 0);
+        assert_eq!(g.stats.materials[1].warps, 0);
     }
 
     /// Timing of the front end on the procedural scenes at the paper's
