@@ -314,7 +314,10 @@ fn version_2_allows_repeats_in_any_order_and_version_1_does_not() {
     // The same records under version 1 break its order rule.
     let (line, p, _) = fail(&body1(records));
     assert_eq!(line, 6);
-    assert!(matches!(p, Problem::QuadOutOfOrder { x: 0, y: 0, .. }), "{p:?}");
+    assert!(
+        matches!(p, Problem::QuadOutOfOrder { x: 0, y: 0, .. }),
+        "{p:?}"
+    );
     // Version 1 still reads what it always read, into the same trace.
     let v1 = "tile 0 0\nq 0 0 a1\nq 1 0 t5\nq 0 1 a2\nend\n";
     let a = Trace::parse(&body1(v1), "x").unwrap();
@@ -353,9 +356,11 @@ fn every_malformation_is_reported_with_its_line() {
             1,
             |p| matches!(p, UnsupportedVersion(v) if v == "0"),
         ),
-        ("wasp-trace 02\n".into(), 1, |p| {
-            matches!(p, UnsupportedVersion(v) if v == "02")
-        }),
+        (
+            "wasp-trace 02\n".into(),
+            1,
+            |p| matches!(p, UnsupportedVersion(v) if v == "02"),
+        ),
         ("wasp-trace  2\n".into(), 1, |p| matches!(p, BadMagic(_))),
         ("wasp-trace\n".into(), 1, |p| matches!(p, BadMagic(_))),
         ("wasp-trace 1 x\n".into(), 1, |p| matches!(p, BadMagic(_))),
