@@ -161,6 +161,26 @@ pub struct RasterStats {
     pub materials: Vec<MaterialStats>,
 }
 
+/// Where the front end's time went: wall-clock seconds of each phase of
+/// [`rasterize`] (not part of the results, which never depend on time).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct RasterTimings {
+    /// Mip chains and the texture heap layout ([`TextureSet::new`]).
+    pub textures: f64,
+    /// Geometry (transform, clip, set-up) and binning into tiles.
+    pub geometry: f64,
+    /// Raster, early-Z, texturing, shading of the tiles and building the
+    /// trace.
+    pub tiles: f64,
+}
+
+impl RasterTimings {
+    /// All phases.
+    pub fn total(&self) -> f64 {
+        self.textures + self.geometry + self.tiles
+    }
+}
+
 /// A rasterized frame: the trace, the picture and the counts.
 #[derive(Clone, Debug)]
 pub struct Frame {
@@ -174,6 +194,8 @@ pub struct Frame {
     pub image: Vec<u8>,
     /// What the front end did.
     pub stats: RasterStats,
+    /// How long each phase took.
+    pub timings: RasterTimings,
 }
 
 /// A vertex in clip space with its attributes.
@@ -761,6 +783,13 @@ struct TileBuf {
     pixels: u64,
     /// Per material: fragments shaded (warps), quads rejected, pixels.
     per_material: Vec<[u64; 3]>,
+    /// Deferred colour: per pixel, 1 + the fragment whose colour the pixel
+    /// shows (the last opaque or alpha-tested fragment written there), 0
+    /// when the colour is already in `colour`; and that pixel's UVs.
+    pending: Vec<u32>,
+    pending_uv: Vec<[[f32; 2]; 2]>,
+    /// Per fragment, the level of detail of each texture instruction.
+    lambdas: Vec<[f32; 8]>,
 }
 
 impl TileBuf {
@@ -776,6 +805,23 @@ impl TileBuf {
             rejected: 0,
             pixels: 0,
             per_material: vec![[0; 3]; materials],
+            pending: vec![0; (tile * tile) as usize],
+            pending_uv: vec![[[0.0; 2]; 2]; (tile * tile) as usize],
+            lambdas: Vec::new(),
+        }
+    }
+
+    /// Shades the deferred pixel `at`, if any, into `colour`.
+    #[inline]
+    fn resolve(&mut self, ctx: &TileCtx, at: usize) {
+        let f = self.pending[at];
+        if f != 0 {
+            let frag = (f - 1) as usize;
+            let mat = &ctx.mats[self.frags[frag].material as usize];
+            let [uv, uv2] = &self.pending_uv[at];
+            let c = shade(ctx.textures, mat, uv, uv2, &self.lambdas[frag]);
+            self.colour[at] = [c[0], c[1], c[2], 1.0];
+            self.pending[at] = 0;
         }
     }
 }
@@ -806,6 +852,43 @@ fn coverage(s: &Setup, qx: u32, qy: u32, xend: u32, yend: u32) -> u8 {
     mask
 }
 
+/// The pixel columns `x0..x1` (x0 even, a quad boundary) narrowed to the
+/// quads a triangle can cover in the quad row starting at pixel row `qy`:
+/// from each edge function, the range of pixel centres on or inside it in
+/// either of the two rows, intersected over the edges, widened by a pixel
+/// on each side. A superset of the covered quads ([`coverage`] decides
+/// exactly), so the raster need not visit every quad of the bounding box.
+#[inline]
+fn row_span(s: &Setup, qy: u32, x0: u32, x1: u32) -> (u32, u32) {
+    let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+    for row in [qy, qy + 1] {
+        let cy = i64::from(row) * SUB + SUB / 2;
+        let (mut rlo, mut rhi) = (i64::MIN, i64::MAX);
+        for e in &s.edges {
+            let (a, v0) = (e[0], e[1] * cy + e[2]);
+            // Inside at pixel x: a (x SUB + SUB/2) + v0 >= 0.
+            let num = -v0 - a * (SUB / 2);
+            if a > 0 {
+                rlo = rlo.max(-((-num).div_euclid(a * SUB)));
+            } else if a < 0 {
+                rhi = rhi.min((-num).div_euclid(-a * SUB));
+            } else if v0 < 0 {
+                rlo = i64::MAX;
+            }
+        }
+        if rlo <= rhi {
+            lo = lo.min(rlo);
+            hi = hi.max(rhi);
+        }
+    }
+    if lo > hi {
+        return (x0, x0);
+    }
+    let start = lo.saturating_sub(1).clamp(i64::from(x0), i64::from(x1)) as u32 & !1;
+    let end = hi.saturating_add(2).clamp(i64::from(x0), i64::from(x1)) as u32;
+    (start.max(x0), end)
+}
+
 /// Rasterize, early-Z test, texture and shade the triangles `list` of tile
 /// (tx, ty) into `b`.
 fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
@@ -816,6 +899,8 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
     let side = t / 2;
     b.depth.fill(1.0);
     b.colour.fill(CLEAR);
+    b.pending.fill(0);
+    b.lambdas.clear();
     b.frags.clear();
     b.ranges.clear();
     b.pool.clear();
@@ -843,7 +928,8 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
             }
             let (x0, x1, y0, y1) = span(s);
             for qy in (y0..y1).step_by(2) {
-                for qx in (x0..x1).step_by(2) {
+                let (rx0, rx1) = row_span(s, qy, x0, x1);
+                for qx in (rx0..rx1).step_by(2) {
                     let mask = coverage(s, qx, qy, xend, yend);
                     for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
                         let (px, py) = (qx + (i & 1), qy + (i >> 1));
@@ -861,7 +947,8 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
         let mc = s.material as usize;
         let (x0, x1, y0, y1) = span(s);
         for qy in (y0..y1).step_by(2) {
-            for qx in (x0..x1).step_by(2) {
+            let (rx0, rx1) = row_span(s, qy, x0, x1);
+            for qx in (rx0..rx1).step_by(2) {
                 let mask = coverage(s, qx, qy, xend, yend);
                 if mask == 0 {
                     continue;
@@ -907,45 +994,60 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                     b.ranges.push((b.pool.len() as u32, b.scratch.len() as u32));
                     b.pool.extend_from_slice(&b.scratch);
                 }
+                let frag = b.frags.len() as u32;
                 b.frags.push(Frag {
                     pos: ((qy - oy) / 2) * side + (qx - ox) / 2,
                     material: s.material,
                     range: first,
                 });
-                // Colour, blending and depth writes.
-                let need_colour = ctx.colour || mat.blend == Blend::AlphaTest;
+                if ctx.colour {
+                    b.lambdas.push(lambdas);
+                }
+                // Depth writes and colour. An opaque or alpha-tested pixel's
+                // colour is deferred: only the last one written to a pixel
+                // shows, so it is shaded once, when a blended fragment needs
+                // it as the destination or at the end of the tile (same
+                // inputs, same colour as shading every fragment).
                 for i in (0..4u32).filter(|i| live & (1 << i) != 0) {
                     let (px, py) = (qx + (i & 1), qy + (i >> 1));
                     let at = ((py - oy) * t + px - ox) as usize;
                     let k = i as usize;
-                    let c = if need_colour {
-                        shade(ctx.textures, mat, &uv[k], &uv2[k], &lambdas)
-                    } else {
-                        [1.0; 4]
-                    };
-                    match mat.blend {
-                        Blend::Opaque => {
-                            b.depth[at] = z[k];
-                            b.colour[at] = [c[0], c[1], c[2], 1.0];
-                        }
+                    let write = match mat.blend {
+                        Blend::Opaque => true,
                         Blend::AlphaTest => {
-                            if c[3] >= 0.5 {
-                                b.depth[at] = z[k];
-                                b.colour[at] = [c[0], c[1], c[2], 1.0];
-                            }
+                            alpha(ctx.textures, mat, &uv[k], &uv2[k], &lambdas) >= 0.5
                         }
                         Blend::AlphaBlend => {
-                            let d = b.colour[at];
-                            let a = c[3];
-                            b.colour[at] = [
-                                c[0] * a + d[0] * (1.0 - a),
-                                c[1] * a + d[1] * (1.0 - a),
-                                c[2] * a + d[2] * (1.0 - a),
-                                1.0,
-                            ];
+                            if ctx.colour {
+                                b.resolve(ctx, at);
+                                let c = shade(ctx.textures, mat, &uv[k], &uv2[k], &lambdas);
+                                let d = b.colour[at];
+                                let a = c[3];
+                                b.colour[at] = [
+                                    c[0] * a + d[0] * (1.0 - a),
+                                    c[1] * a + d[1] * (1.0 - a),
+                                    c[2] * a + d[2] * (1.0 - a),
+                                    1.0,
+                                ];
+                            }
+                            false
+                        }
+                    };
+                    if write {
+                        b.depth[at] = z[k];
+                        if ctx.colour {
+                            b.pending[at] = frag + 1;
+                            b.pending_uv[at] = [uv[k], uv2[k]];
                         }
                     }
                 }
+            }
+        }
+    }
+    if ctx.colour {
+        for ly in 0..th {
+            for lx in 0..tw {
+                b.resolve(ctx, (ly * t + lx) as usize);
             }
         }
     }
@@ -983,7 +1085,10 @@ pub fn rasterize(
             .collect(),
         ..Default::default()
     };
+    let clock = std::time::Instant::now();
+    let mut timings = RasterTimings::default();
     let textures = TextureSet::new(&scene.textures);
+    timings.textures = clock.elapsed().as_secs_f64();
     let setups = geometry(scene, width, height, opts, &mut stats)?;
     let mats: Vec<MatInfo> = scene
         .materials
@@ -1021,6 +1126,8 @@ pub fn rasterize(
             }
         }
     }
+
+    timings.geometry = clock.elapsed().as_secs_f64() - timings.textures;
 
     // Raster pipeline, tile by tile in Z-order; tiles are independent, so
     // batches of them run on worker threads and are emitted in order.
@@ -1160,13 +1267,34 @@ pub fn rasterize(
     let trace = builder
         .finish()
         .map_err(|e| fail(format!("building the trace: {e}")))?;
+    timings.tiles = clock.elapsed().as_secs_f64() - timings.textures - timings.geometry;
     Ok(Frame {
         trace,
         width,
         height,
         image,
         stats,
+        timings,
     })
+}
+
+/// The alpha of one pixel, as [`shade`] gives it: the first texture
+/// sample's (1 without texture), without the other samples.
+#[inline]
+fn alpha(
+    textures: &TextureSet,
+    mat: &MatInfo,
+    uv: &[f32; 2],
+    uv2: &[f32; 2],
+    lambdas: &[f32; 8],
+) -> f32 {
+    match mat.tex.first() {
+        Some(smp) => {
+            let at = if smp.uv_set == 1 { uv2 } else { uv };
+            textures.sample_rgba(smp.texture, smp.filter, *at, lambdas[0])[3]
+        }
+        None => 1.0,
+    }
 }
 
 /// The colour of one pixel: the product of its shader's texture samples,
@@ -1309,6 +1437,58 @@ mod tests {
         assert_eq!(extra as u64, f.stats.warps - f.stats.positions);
         assert!(extra > 0);
         assert_eq!(f.stats.pixels_shaded, 256 * 128 + 192 * 64);
+    }
+
+    #[test]
+    fn row_spans_hold_every_covered_quad() {
+        // Triangles of every orientation and size, thin slivers included.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: f32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32 * m
+        };
+        let mut mesh = quad_mesh(0.0, 0.0, 1.0, 1.0, 0.0, 0);
+        mesh.positions.clear();
+        mesh.uv.clear();
+        mesh.indices.clear();
+        for t in 0..400u32 {
+            let (cx, cy, r) = (
+                next(96.0),
+                next(96.0),
+                next(if t % 4 == 0 { 4.0 } else { 60.0 }),
+            );
+            for _ in 0..3 {
+                mesh.positions
+                    .push([cx + next(2.0 * r) - r, cy + next(2.0 * r) - r, 0.0]);
+                mesh.uv.push([0.0, 0.0]);
+            }
+            mesh.indices.extend([3 * t, 3 * t + 1, 3 * t + 2]);
+        }
+        let scene = ortho_scene(vec![mesh], vec![mat("m", Blend::Opaque, 0)], 96.0, 96.0);
+        let mut stats = RasterStats {
+            materials: vec![MaterialStats::default()],
+            ..Default::default()
+        };
+        let setups = geometry(&scene, 96, 96, &RasterOptions::default(), &mut stats).unwrap();
+        assert!(setups.len() > 350);
+        let (mut visited, mut full) = (0u64, 0u64);
+        for s in &setups {
+            let (x0, x1) = (s.bbox[0] & !1, s.bbox[1]);
+            for qy in (s.bbox[2] & !1..s.bbox[3]).step_by(2) {
+                let (a, b) = row_span(s, qy, x0, x1);
+                assert!(a % 2 == 0 && x0 <= a && b <= x1.max(a));
+                for qx in (x0..x1).step_by(2) {
+                    full += 1;
+                    if coverage(s, qx, qy, 96, 96) != 0 {
+                        assert!(a <= qx && qx < b, "quad {qx},{qy} outside {a}..{b}");
+                    }
+                }
+                visited += u64::from(b.saturating_sub(a).div_ceil(2));
+            }
+        }
+        assert!(visited < full, "the spans skip quads: {visited} of {full}");
     }
 
     #[test]

@@ -134,6 +134,9 @@ pub struct RenderRequest {
     /// Hidden-surface removal by a depth pre-pass (see
     /// [`RasterOptions::depth_prepass`]).
     pub depth_prepass: bool,
+    /// Front-end worker threads ([`RasterOptions::threads`]; 0: one per
+    /// hardware thread).
+    pub threads: usize,
 }
 
 /// A rendered frame.
@@ -163,6 +166,7 @@ pub fn render(
     let opts = RasterOptions {
         tile: req.config.gpu.tile_size,
         depth_prepass: req.depth_prepass,
+        threads: req.threads,
         ..RasterOptions::default()
     };
     let (frame, raster_seconds) =
@@ -551,6 +555,7 @@ mod tests {
             height: 8,
             image: vec![0; 16 * 8 * 4],
             stats: Default::default(),
+            timings: Default::default(),
         };
         let rec = |quad: u32, lat: Option<f64>, launched: u64| WarpRecord {
             tile: 0,
