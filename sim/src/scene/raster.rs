@@ -756,13 +756,15 @@ struct MatInfo {
     blend: Blend,
     /// Texture instructions in program order.
     tex: Vec<super::TexSample>,
+    /// The whole program.
+    shader: Vec<ShaderOp>,
 }
 
 /// What every tile's rasterization reads.
 struct TileCtx<'a> {
     setups: &'a [Setup],
     mats: &'a [MatInfo],
-    textures: &'a TextureSet,
+    textures: &'a TextureSet<'a>,
     tile: u32,
     width: u32,
     height: u32,
@@ -790,6 +792,13 @@ struct TileBuf {
     pending_uv: Vec<[[f32; 2]; 2]>,
     /// Per fragment, the level of detail of each texture instruction.
     lambdas: Vec<[f32; 8]>,
+    /// Distinct quad positions of the fragments.
+    positions: u64,
+    /// Per quad position, whether a fragment is there (all false between
+    /// tiles).
+    seen: Vec<bool>,
+    /// The tile's trace records (None: no fragment survived).
+    part: Result<Option<Trace>, crate::trace::Problem>,
 }
 
 impl TileBuf {
@@ -808,6 +817,9 @@ impl TileBuf {
             pending: vec![0; (tile * tile) as usize],
             pending_uv: vec![[[0.0; 2]; 2]; (tile * tile) as usize],
             lambdas: Vec::new(),
+            positions: 0,
+            seen: vec![false; (tile / 2 * (tile / 2)) as usize],
+            part: Ok(None),
         }
     }
 
@@ -1053,6 +1065,49 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
     }
 }
 
+/// The trace records of the tile `b` holds: one warp per fragment, in
+/// rasterization order (the order [`raster_tile`] produced them), as a
+/// one-tile trace with `header`'s frame; counts its quad positions.
+fn build_tile(
+    ctx: &TileCtx,
+    header: &TraceHeader,
+    tx: u32,
+    ty: u32,
+    b: &mut TileBuf,
+) -> Result<Option<Trace>, crate::trace::Problem> {
+    b.positions = 0;
+    if b.frags.is_empty() {
+        return Ok(None);
+    }
+    let side = ctx.tile / 2;
+    let mut builder = Trace::builder(header.clone())?;
+    builder.begin_tile(tx, ty)?;
+    for f in &b.frags {
+        if !b.seen[f.pos as usize] {
+            b.seen[f.pos as usize] = true;
+            b.positions += 1;
+        }
+        builder.begin_quad(f.pos % side, f.pos / side)?;
+        let mut r = f.range as usize;
+        for op in &ctx.mats[f.material as usize].shader {
+            match op {
+                ShaderOp::Alu(0) => {}
+                ShaderOp::Alu(n) => builder.alu(*n)?,
+                ShaderOp::Tex(_) => {
+                    let (start, len) = b.ranges[r];
+                    r += 1;
+                    builder.tex(&b.pool[start as usize..(start + len) as usize])?;
+                }
+            }
+        }
+    }
+    for f in &b.frags {
+        b.seen[f.pos as usize] = false;
+    }
+    builder.end_tile()?;
+    builder.finish().map(Some)
+}
+
 /// Rasterize `scene` into a `width` x `height` frame.
 pub fn rasterize(
     scene: &Scene,
@@ -1087,7 +1142,12 @@ pub fn rasterize(
     };
     let clock = std::time::Instant::now();
     let mut timings = RasterTimings::default();
-    let textures = TextureSet::new(&scene.textures);
+    let threads = match opts.threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n,
+    }
+    .clamp(1, 64);
+    let textures = TextureSet::with_threads(&scene.textures, threads);
     timings.textures = clock.elapsed().as_secs_f64();
     let setups = geometry(scene, width, height, opts, &mut stats)?;
     let mats: Vec<MatInfo> = scene
@@ -1105,6 +1165,7 @@ pub fn rasterize(
             MatInfo {
                 blend: m.blend,
                 tex,
+                shader: m.shader.clone(),
             }
         })
         .collect();
@@ -1154,38 +1215,40 @@ pub fn rasterize(
         .into_iter()
         .filter(|&(tx, ty)| !lists[(ty * tiles_x + tx) as usize].is_empty())
         .collect();
-    let threads = match opts.threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
-    }
-    .clamp(1, 64);
-    let batch = threads * 4;
-    let mut bufs: Vec<TileBuf> = (0..batch.min(order.len().max(1)))
-        .map(|_| TileBuf::new(t, scene.materials.len()))
+    // Tiles are handed out one at a time (costs vary a lot), each worker
+    // building its tile's trace records too; results are used in order.
+    let batch = threads * 16;
+    let bufs: Vec<std::sync::Mutex<TileBuf>> = (0..batch.min(order.len().max(1)))
+        .map(|_| std::sync::Mutex::new(TileBuf::new(t, scene.materials.len())))
         .collect();
-    let side = t / 2;
-    // Quad positions of the current tile that hold a fragment.
-    let mut seen = vec![false; (side * side) as usize];
+    let part_header = builder.header().clone();
     for chunk in order.chunks(batch) {
-        let work = |tiles: &[(u32, u32)], bs: &mut [TileBuf]| {
-            for (&(tx, ty), b) in tiles.iter().zip(bs.iter_mut()) {
-                raster_tile(&ctx, tx, ty, &lists[(ty * tiles_x + tx) as usize], b);
-            }
+        let next = std::sync::atomic::AtomicUsize::new(0);
+        let work = || loop {
+            let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let Some(&(tx, ty)) = chunk.get(i) else {
+                break;
+            };
+            let mut b = bufs[i].lock().unwrap_or_else(|e| e.into_inner());
+            raster_tile(&ctx, tx, ty, &lists[(ty * tiles_x + tx) as usize], &mut b);
+            b.part = build_tile(&ctx, &part_header, tx, ty, &mut b);
         };
         if threads > 1 && chunk.len() > 1 {
-            let per = chunk.len().div_ceil(threads);
             std::thread::scope(|sc| {
-                for (tiles, bs) in chunk.chunks(per).zip(bufs.chunks_mut(per)) {
-                    sc.spawn(move || work(tiles, bs));
+                for _ in 1..threads.min(chunk.len()) {
+                    sc.spawn(work);
                 }
+                work();
             });
         } else {
-            work(chunk, &mut bufs);
+            work();
         }
-        for (&(tx, ty), b) in chunk.iter().zip(bufs.iter_mut()) {
+        for (&(tx, ty), b) in chunk.iter().zip(&bufs) {
+            let mut b = b.lock().unwrap_or_else(|e| e.into_inner());
             stats.quads_covered += b.covered;
             stats.quads_rejected_early_z += b.rejected;
             stats.warps += b.frags.len() as u64;
+            stats.positions += b.positions;
             stats.pixels_shaded += b.pixels;
             for (m, c) in stats.materials.iter_mut().zip(&b.per_material) {
                 m.warps += c[0];
@@ -1204,40 +1267,13 @@ pub fn rasterize(
                     }
                 }
             }
-            if b.frags.is_empty() {
-                continue;
-            }
-            // One warp per fragment, in rasterization order (the order
-            // `raster_tile` produced them).
-            let emit = |e: crate::trace::Problem| fail(format!("building the trace: {e}"));
-            builder.begin_tile(tx, ty).map_err(emit)?;
-            stats.tiles += 1;
-            for f in &b.frags {
-                if !seen[f.pos as usize] {
-                    seen[f.pos as usize] = true;
-                    stats.positions += 1;
-                }
+            let part = std::mem::replace(&mut b.part, Ok(None))
+                .map_err(|e| fail(format!("building the trace: {e}")))?;
+            if let Some(part) = part {
+                stats.tiles += 1;
                 builder
-                    .begin_quad(f.pos % side, f.pos / side)
-                    .map_err(emit)?;
-                let mut r = f.range as usize;
-                for op in &scene.materials[f.material as usize].shader {
-                    match op {
-                        ShaderOp::Alu(0) => {}
-                        ShaderOp::Alu(n) => builder.alu(*n).map_err(emit)?,
-                        ShaderOp::Tex(_) => {
-                            let (start, len) = b.ranges[r];
-                            r += 1;
-                            builder
-                                .tex(&b.pool[start as usize..(start + len) as usize])
-                                .map_err(emit)?;
-                        }
-                    }
-                }
-            }
-            builder.end_tile().map_err(emit)?;
-            for f in &b.frags {
-                seen[f.pos as usize] = false;
+                    .append(part)
+                    .map_err(|e| fail(format!("building the trace: {e}")))?;
             }
         }
     }
@@ -1291,7 +1327,7 @@ fn alpha(
     match mat.tex.first() {
         Some(smp) => {
             let at = if smp.uv_set == 1 { uv2 } else { uv };
-            textures.sample_rgba(smp.texture, smp.filter, *at, lambdas[0])[3]
+            textures.sample_alpha(smp.texture, smp.filter, *at, lambdas[0])
         }
         None => 1.0,
     }

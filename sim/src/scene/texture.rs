@@ -49,6 +49,7 @@
 //! what the trace lists.
 
 use super::{Filter, TexSample, Texture};
+use std::borrow::Cow;
 
 /// Bytes of one memory block (cache line).
 pub const BLOCK_BYTES: u64 = 64;
@@ -61,13 +62,14 @@ pub const TEXTURE_ALIGN: u64 = 64 * 1024;
 
 /// One mip level: its texels and where its blocks are.
 #[derive(Clone, Debug)]
-pub struct MipLevel {
+pub struct MipLevel<'a> {
     /// Width in texels.
     pub width: u32,
     /// Height in texels.
     pub height: u32,
-    /// Texels, RGBA8, row-major, top row first.
-    pub rgba: Vec<u8>,
+    /// Texels, RGBA8, row-major, top row first (level 0 borrowed from the
+    /// scene's texture).
+    pub rgba: Cow<'a, [u8]>,
     /// Block number (byte address / 64) of the level's first block.
     pub first_block: u64,
     /// Blocks the level occupies (its padded block grid).
@@ -78,7 +80,7 @@ pub struct MipLevel {
     k: u32,
 }
 
-impl MipLevel {
+impl MipLevel<'_> {
     /// Block number of the block holding texel (`x`, `y`) (inside the level).
     #[inline]
     pub fn block_of(&self, x: u32, y: u32) -> u64 {
@@ -88,6 +90,13 @@ impl MipLevel {
         let squares_per_row = 1u64 << (self.pw_log2 - self.k);
         let square = u64::from(by >> self.k) * squares_per_row + u64::from(bx >> self.k);
         self.first_block + (square << (2 * self.k)) + inner
+    }
+
+    /// Alpha of texel (`x`, `y`) in 0..=1.
+    #[inline]
+    fn texel_alpha(&self, x: u32, y: u32) -> f32 {
+        let i = ((y as usize) * (self.width as usize) + x as usize) * 4;
+        f32::from(self.rgba[i + 3]) / 255.0
     }
 
     /// Texel (`x`, `y`) as RGBA in 0..=1.
@@ -106,7 +115,7 @@ impl MipLevel {
 
 /// One texture in the heap: its mip chain and address range.
 #[derive(Clone, Debug)]
-pub struct HeapTexture {
+pub struct HeapTexture<'a> {
     /// Name (from the scene).
     pub name: String,
     /// Repeat (true) or clamp to edge.
@@ -116,13 +125,13 @@ pub struct HeapTexture {
     /// Bytes of the whole chain (a multiple of 64).
     pub bytes: u64,
     /// Levels, level 0 first, down to 1x1.
-    pub levels: Vec<MipLevel>,
+    pub levels: Vec<MipLevel<'a>>,
 }
 
 /// Every texture of a scene laid out in the texture heap.
 #[derive(Clone, Debug)]
-pub struct TextureSet {
-    textures: Vec<HeapTexture>,
+pub struct TextureSet<'a> {
+    textures: Vec<HeapTexture<'a>>,
     end: u64,
 }
 
@@ -187,35 +196,82 @@ fn floor_i64(v: f64) -> i64 {
     i.saturating_sub(i64::from((i as f64) > v))
 }
 
-impl TextureSet {
+/// The mip chain of one texture, level 0 borrowed: (width, height, texels)
+/// per level, down to 1x1. A texture with a zero edge or a texel array of
+/// the wrong size becomes a 1x1 magenta texture.
+fn mip_chain(t: &Texture) -> Vec<(u32, u32, Cow<'_, [u8]>)> {
+    let valid =
+        t.width > 0 && t.height > 0 && t.rgba.len() == t.width as usize * t.height as usize * 4;
+    let mut chain: Vec<(u32, u32, Cow<'_, [u8]>)> = vec![if valid {
+        (t.width, t.height, Cow::Borrowed(&t.rgba[..]))
+    } else {
+        (1, 1, Cow::Owned(vec![255, 0, 255, 255]))
+    }];
+    loop {
+        let (w, h, rgba) = chain.last().expect("level 0");
+        if *w == 1 && *h == 1 {
+            return chain;
+        }
+        let (nw, nh, next) = downsample(*w, *h, rgba);
+        chain.push((nw, nh, Cow::Owned(next)));
+    }
+}
+
+impl<'a> TextureSet<'a> {
     /// Builds every texture's mip chain and places it in the heap. A texture
     /// with a zero edge or a texel array of the wrong size is replaced by a
     /// 1x1 magenta texture (the raster front end checks scenes before).
-    pub fn new(textures: &[Texture]) -> TextureSet {
+    pub fn new(textures: &'a [Texture]) -> TextureSet<'a> {
+        TextureSet::with_threads(textures, 1)
+    }
+
+    /// [`TextureSet::new`], building the mip chains on up to `threads`
+    /// threads (the result does not depend on it).
+    pub fn with_threads(textures: &'a [Texture], threads: usize) -> TextureSet<'a> {
+        // Largest textures first, dealt round-robin, so threads get similar
+        // work; each chain lands in its texture's slot.
+        let mut order: Vec<usize> = (0..textures.len()).collect();
+        order.sort_by_key(|&i| std::cmp::Reverse(textures[i].rgba.len()));
+        let threads = threads.clamp(1, textures.len().max(1));
+        let mut chains: Vec<Vec<(u32, u32, Cow<'a, [u8]>)>> = vec![Vec::new(); textures.len()];
+        if threads == 1 {
+            for (i, t) in textures.iter().enumerate() {
+                chains[i] = mip_chain(t);
+            }
+        } else {
+            let built: Vec<Vec<(usize, Vec<(u32, u32, Cow<'a, [u8]>)>)>> =
+                std::thread::scope(|sc| {
+                    let handles: Vec<_> = (0..threads)
+                        .map(|k| {
+                            let mine: Vec<usize> =
+                                order.iter().copied().skip(k).step_by(threads).collect();
+                            sc.spawn(move || {
+                                mine.into_iter()
+                                    .map(|i| (i, mip_chain(&textures[i])))
+                                    .collect::<Vec<_>>()
+                            })
+                        })
+                        .collect();
+                    handles
+                        .into_iter()
+                        .map(|h| h.join().expect("mip chain thread"))
+                        .collect()
+                });
+            for (i, chain) in built.into_iter().flatten() {
+                chains[i] = chain;
+            }
+        }
         let mut out = Vec::with_capacity(textures.len());
         let mut addr = HEAP_BASE;
-        for t in textures {
-            let valid = t.width > 0
-                && t.height > 0
-                && t.rgba.len() == t.width as usize * t.height as usize * 4;
-            let (mut w, mut h, mut rgba) = if valid {
-                (t.width, t.height, t.rgba.clone())
-            } else {
-                (1, 1, vec![255, 0, 255, 255])
-            };
+        for (t, chain) in textures.iter().zip(chains) {
             let base = addr;
-            let mut levels = Vec::new();
+            let mut levels = Vec::with_capacity(chain.len());
             let mut block = base / BLOCK_BYTES;
-            loop {
+            for (w, h, rgba) in chain {
                 let bw = w.div_ceil(BLOCK_TEXELS).next_power_of_two();
                 let bh = h.div_ceil(BLOCK_TEXELS).next_power_of_two();
                 let (pw_log2, ph_log2) = (bw.trailing_zeros(), bh.trailing_zeros());
                 let block_count = u64::from(bw) * u64::from(bh);
-                let next = if w > 1 || h > 1 {
-                    Some(downsample(w, h, &rgba))
-                } else {
-                    None
-                };
                 levels.push(MipLevel {
                     width: w,
                     height: h,
@@ -226,14 +282,6 @@ impl TextureSet {
                     k: pw_log2.min(ph_log2),
                 });
                 block += block_count;
-                match next {
-                    Some((nw, nh, n)) => {
-                        w = nw;
-                        h = nh;
-                        rgba = n;
-                    }
-                    None => break,
-                }
             }
             let bytes = block * BLOCK_BYTES - base;
             addr = (block * BLOCK_BYTES).div_ceil(TEXTURE_ALIGN) * TEXTURE_ALIGN;
@@ -252,7 +300,7 @@ impl TextureSet {
     }
 
     /// The textures in scene order.
-    pub fn textures(&self) -> &[HeapTexture] {
+    pub fn textures(&self) -> &[HeapTexture<'a>] {
         &self.textures
     }
 
@@ -327,29 +375,37 @@ impl TextureSet {
         let tex = &self.textures[sample.texture];
         let lambda = self.quad_lambda(sample.texture, &uvs);
         let (la, lb, _) = self.levels_for(sample.texture, sample.filter, lambda);
-        // Few distinct blocks per instruction: a linear membership test
-        // beats sorting the up to 32 raw ones.
-        let mut add = |b: u64| {
-            if !out.contains(&b) {
-                out.push(b);
-            }
-        };
+        // A block holds the texels of one (x / 4, y / 4) cell of its level,
+        // so the distinct cells the texels fall in (few: at most 16 per
+        // level) give the distinct blocks; levels never share a block.
         let mut push_level = |level: &MipLevel| {
+            let mut cells = [0u64; 16];
+            let mut n = 0;
+            let mut add = |x: u32, y: u32| {
+                let key = u64::from(x / BLOCK_TEXELS) | (u64::from(y / BLOCK_TEXELS) << 32);
+                if !cells[..n].contains(&key) {
+                    cells[n] = key;
+                    n += 1;
+                }
+            };
             for uv in &uvs {
                 match sample.filter {
                     Filter::Nearest => {
                         let (x, y) = nearest(level, tex.repeat, *uv);
-                        add(level.block_of(x, y));
+                        add(x, y);
                     }
                     Filter::Bilinear | Filter::Trilinear => {
                         let (x0, x1, y0, y1, _, _) = bilinear(level, tex.repeat, *uv);
-                        add(level.block_of(x0, y0));
-                        add(level.block_of(x1, y0));
-                        add(level.block_of(x0, y1));
-                        add(level.block_of(x1, y1));
+                        add(x0, y0);
+                        add(x1, y0);
+                        add(x0, y1);
+                        add(x1, y1);
                     }
                 }
             }
+            out.extend(cells[..n].iter().map(|&k| {
+                level.block_of((k as u32) * BLOCK_TEXELS, ((k >> 32) as u32) * BLOCK_TEXELS)
+            }));
         };
         push_level(&tex.levels[la]);
         if lb != la {
@@ -399,10 +455,37 @@ impl TextureSet {
         }
         o
     }
+
+    /// `sample_rgba(texture, filter, uv, lambda)[3]`, the same value, without
+    /// the colour channels.
+    pub fn sample_alpha(&self, texture: usize, filter: Filter, uv: [f32; 2], lambda: f32) -> f32 {
+        let tex = &self.textures[texture];
+        let (la, lb, t) = self.levels_for(texture, filter, lambda);
+        let one = |level: &MipLevel| match filter {
+            Filter::Nearest => {
+                let (x, y) = nearest(level, tex.repeat, uv);
+                level.texel_alpha(x, y)
+            }
+            Filter::Bilinear | Filter::Trilinear => {
+                let (x0, x1, y0, y1, fx, fy) = bilinear(level, tex.repeat, uv);
+                let (a, b) = (level.texel_alpha(x0, y0), level.texel_alpha(x1, y0));
+                let (c, d) = (level.texel_alpha(x0, y1), level.texel_alpha(x1, y1));
+                let top = a + (b - a) * fx;
+                let bot = c + (d - c) * fx;
+                top + (bot - top) * fy
+            }
+        };
+        let a = one(&tex.levels[la]);
+        if lb == la || t <= 0.0 {
+            return a;
+        }
+        let b = one(&tex.levels[lb]);
+        a + (b - a) * t
+    }
 }
 
 /// The texel containing the sample point.
-#[inline]
+#[inline(always)]
 fn nearest(level: &MipLevel, repeat: bool, uv: [f32; 2]) -> (u32, u32) {
     let x = floor_i64(f64::from(uv[0]) * f64::from(level.width));
     let y = floor_i64(f64::from(uv[1]) * f64::from(level.height));
@@ -410,7 +493,7 @@ fn nearest(level: &MipLevel, repeat: bool, uv: [f32; 2]) -> (u32, u32) {
 }
 
 /// The 2x2 texels around the sample point and the blend fractions.
-#[inline]
+#[inline(always)]
 fn bilinear(level: &MipLevel, repeat: bool, uv: [f32; 2]) -> (u32, u32, u32, u32, f32, f32) {
     let x = f64::from(uv[0]) * f64::from(level.width) - 0.5;
     let y = f64::from(uv[1]) * f64::from(level.height) - 0.5;
@@ -463,7 +546,8 @@ mod tests {
 
     #[test]
     fn mip_chain_goes_down_to_one_texel_and_is_box_filtered() {
-        let set = TextureSet::new(&[tex("a", 256, 64, true)]);
+        let texs = [tex("a", 256, 64, true)];
+        let set = TextureSet::new(&texs);
         let levels = &set.textures()[0].levels;
         let dims: Vec<(u32, u32)> = levels.iter().map(|l| (l.width, l.height)).collect();
         assert_eq!(dims.first(), Some(&(256, 64)));
@@ -483,7 +567,8 @@ mod tests {
 
     #[test]
     fn mip_selection_magnified_minified_and_at_distance() {
-        let set = TextureSet::new(&[tex("a", 256, 256, true)]);
+        let texs = [tex("a", 256, 256, true)];
+        let set = TextureSet::new(&texs);
         // Magnified: a pixel step is half a texel.
         let mag = set.quad_lambda(0, &quad_uvs([0.3, 0.3], 0.5, 256.0));
         assert!((mag + 1.0).abs() < 1e-4, "{mag}");
@@ -516,7 +601,8 @@ mod tests {
 
     #[test]
     fn block_layout_one_block_per_4x4_texels_and_textures_never_share() {
-        let set = TextureSet::new(&[tex("a", 64, 64, true), tex("b", 100, 20, false)]);
+        let texs = [tex("a", 64, 64, true), tex("b", 100, 20, false)];
+        let set = TextureSet::new(&texs);
         let a = &set.textures()[0];
         let b = &set.textures()[1];
         assert_eq!(a.base, HEAP_BASE);
@@ -566,7 +652,8 @@ mod tests {
 
     #[test]
     fn bilinear_trilinear_and_nearest_block_counts() {
-        let set = TextureSet::new(&[tex("a", 256, 256, true)]);
+        let texs = [tex("a", 256, 256, true)];
+        let set = TextureSet::new(&texs);
         let mut out = Vec::new();
         // A quad at 1.5 texels per pixel step, straddling block edges.
         let uvs = quad_uvs([30.0 / 256.0, 62.0 / 256.0], 1.5, 256.0);
@@ -588,7 +675,8 @@ mod tests {
 
     #[test]
     fn wrap_and_clamp_at_the_edge() {
-        let set = TextureSet::new(&[tex("r", 64, 64, true), tex("c", 64, 64, false)]);
+        let texs = [tex("r", 64, 64, true), tex("c", 64, 64, false)];
+        let set = TextureSet::new(&texs);
         let mut out = Vec::new();
         let uvs = [[0.999, 0.5], [1.001, 0.5], [0.999, 0.51], [1.001, 0.51]];
         let rep = TexSample {
@@ -609,8 +697,48 @@ mod tests {
     }
 
     #[test]
+    fn threads_and_alpha_only_sampling_change_nothing() {
+        let mut texs = [
+            tex("a", 64, 32, true),
+            tex("b", 100, 20, false),
+            tex("c", 1, 1, true),
+            tex("d", 256, 256, true),
+        ];
+        for t in &mut texs {
+            for (i, px) in t.rgba.chunks_exact_mut(4).enumerate() {
+                px[3] = (i * 37 % 251) as u8;
+            }
+        }
+        let one = TextureSet::new(&texs);
+        for threads in [2, 3, 8] {
+            let many = TextureSet::with_threads(&texs, threads);
+            assert_eq!(many.heap_bytes(), one.heap_bytes());
+            for (a, b) in one.textures().iter().zip(many.textures()) {
+                assert_eq!(
+                    (a.base, a.bytes, a.levels.len()),
+                    (b.base, b.bytes, b.levels.len())
+                );
+                for (la, lb) in a.levels.iter().zip(&b.levels) {
+                    assert_eq!(la.rgba, lb.rgba);
+                    assert_eq!(la.first_block, lb.first_block);
+                }
+            }
+        }
+        for t in 0..texs.len() {
+            for filter in [Filter::Nearest, Filter::Bilinear, Filter::Trilinear] {
+                for (uv, lambda) in [([0.3, 0.7], -1.0), ([1.37, -0.2], 1.6), ([0.01, 0.99], 4.3)] {
+                    let c = one.sample_rgba(t, filter, uv, lambda);
+                    let a = one.sample_alpha(t, filter, uv, lambda);
+                    assert_eq!(a.to_bits(), c[3].to_bits(), "{t} {filter:?} {uv:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn colours_are_filtered_texels() {
-        let set = TextureSet::new(&[tex("a", 16, 16, false)]);
+        let texs = [tex("a", 16, 16, false)];
+        let set = TextureSet::new(&texs);
         // At a texel centre, bilinear is the texel itself.
         let c = set.sample_rgba(0, Filter::Bilinear, [2.5 / 16.0, 3.5 / 16.0], 0.0);
         assert!((c[0] - 14.0 / 255.0).abs() < 1e-5 && (c[1] - 15.0 / 255.0).abs() < 1e-5);

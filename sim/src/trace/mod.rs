@@ -798,6 +798,54 @@ impl TraceBuilder {
         Ok(())
     }
 
+    /// Moves the tiles of `part`, a trace of the same frame and tile size
+    /// (built, say, on another thread), to the end of this one. Fails,
+    /// changing nothing, if a tile is open, the frame or tile size differ,
+    /// a tile of `part` is already here (or twice in `part`), or this
+    /// builder requires scanline order and a tile of `part` breaks it.
+    pub fn append(&mut self, part: Trace) -> Result<(), Problem> {
+        if let Some(t) = &self.open {
+            return Err(Problem::TileNotClosed { tx: t.tx, ty: t.ty });
+        }
+        let (h, p) = (&self.header, &part.header);
+        if (h.frame_w, h.frame_h, h.tile) != (p.frame_w, p.frame_h, p.tile) {
+            return Err(Problem::FrameMismatch {
+                found: (p.frame_w, p.frame_h, p.tile),
+                expected: (h.frame_w, h.frame_h, h.tile),
+            });
+        }
+        let mut new = HashSet::new();
+        for tile in &part.tiles {
+            if self.seen.contains(&(tile.tx, tile.ty)) || !new.insert((tile.tx, tile.ty)) {
+                return Err(Problem::DuplicateTile {
+                    tx: tile.tx,
+                    ty: tile.ty,
+                });
+            }
+            if self.scanline_order {
+                for w in tile.quads.windows(2) {
+                    let (a, b) = ((w[0].y, w[0].x), (w[1].y, w[1].x));
+                    if a >= b {
+                        let (x, y) = (u32::from(b.1), u32::from(b.0));
+                        return Err(if a == b {
+                            Problem::DuplicateQuad { x, y }
+                        } else {
+                            Problem::QuadOutOfOrder {
+                                x,
+                                y,
+                                prev_x: u32::from(a.1),
+                                prev_y: u32::from(a.0),
+                            }
+                        });
+                    }
+                }
+            }
+        }
+        self.seen.extend(new);
+        self.tiles.extend(part.tiles);
+        Ok(())
+    }
+
     /// The finished trace; fails if a tile is still open.
     pub fn finish(self) -> Result<Trace, Problem> {
         if let Some(t) = &self.open {
@@ -1019,6 +1067,13 @@ pub enum Problem {
     TooManyBlocks(usize),
     /// A tile whose pools would exceed 2^32 - 1 entries.
     TileTooLarge,
+    /// Tiles of another frame or tile size (builder only).
+    FrameMismatch {
+        /// Their frame width, height and tile size.
+        found: (u32, u32, u32),
+        /// This trace's.
+        expected: (u32, u32, u32),
+    },
 }
 
 impl fmt::Display for Problem {
@@ -1196,6 +1251,12 @@ impl fmt::Display for Problem {
             TileTooLarge => write!(
                 f,
                 "tile too large (expected fewer than 2^32 instruction entries and blocks)"
+            ),
+            FrameMismatch { found, expected } => write!(
+                f,
+                "tiles of a {}x{} frame with {}-pixel tiles (expected {}x{} with {}-pixel \
+                 tiles)",
+                found.0, found.1, found.2, expected.0, expected.1, expected.2
             ),
         }
     }

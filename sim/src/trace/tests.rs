@@ -755,6 +755,52 @@ fn builder_merges_alu_runs_and_rejects_without_changing_state() {
 }
 
 #[test]
+fn builder_appends_tiles_built_elsewhere() {
+    let part = |tx: u32, quads: &[(u32, u32)]| {
+        let mut b = Trace::builder(TraceHeader::new("part", 128, 64, 64)).unwrap();
+        b.begin_tile(tx, 0).unwrap();
+        for &(x, y) in quads {
+            b.quad(x, y, &[Instr::Alu(x + 1)]).unwrap();
+        }
+        b.end_tile().unwrap();
+        b.finish().unwrap()
+    };
+    let mut b = Trace::builder(TraceHeader::new("w", 128, 64, 64)).unwrap();
+    b.append(part(1, &[(3, 0), (1, 0), (3, 0)])).unwrap();
+    b.append(part(0, &[(0, 0)])).unwrap();
+    assert_eq!(
+        b.append(part(1, &[(0, 0)])),
+        Err(Problem::DuplicateTile { tx: 1, ty: 0 })
+    );
+    let other = Trace::builder(TraceHeader::new("w", 64, 64, 64))
+        .unwrap()
+        .finish()
+        .unwrap();
+    assert!(matches!(
+        b.append(other),
+        Err(Problem::FrameMismatch { .. })
+    ));
+    b.begin_tile(0, 0).unwrap_err(); // already appended
+    let t = b.finish().unwrap();
+    assert_eq!(t.header().workload, "w");
+    let order: Vec<(u32, usize)> = t.tiles().iter().map(|t| (t.tx(), t.quad_count())).collect();
+    assert_eq!(order, vec![(1, 3), (0, 1)]);
+    // A version-1 builder checks the appended tiles' order.
+    let mut b = Trace::builder(TraceHeader::new("w", 128, 64, 64)).unwrap();
+    b.require_scanline_order();
+    assert_eq!(
+        b.append(part(1, &[(3, 0), (1, 0)])),
+        Err(Problem::QuadOutOfOrder {
+            x: 1,
+            y: 0,
+            prev_x: 3,
+            prev_y: 0
+        })
+    );
+    b.append(part(1, &[(1, 0), (3, 0)])).unwrap();
+}
+
+#[test]
 fn builder_allows_repeats_unless_scanline_order_is_required() {
     let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
     b.begin_tile(0, 0).unwrap();
