@@ -1147,7 +1147,18 @@ pub fn rasterize(
         n => n,
     }
     .clamp(1, 64);
-    let textures = TextureSet::with_threads(&scene.textures, threads);
+    // Alpha-tested materials' first textures (whose alpha the test reads).
+    let mut alpha_tested = vec![false; scene.textures.len()];
+    for m in scene
+        .materials
+        .iter()
+        .filter(|m| m.blend == Blend::AlphaTest)
+    {
+        if let Some(ShaderOp::Tex(s)) = m.shader.iter().find(|op| matches!(op, ShaderOp::Tex(_))) {
+            alpha_tested[s.texture] = true;
+        }
+    }
+    let textures = TextureSet::with_threads(&scene.textures, threads, &alpha_tested);
     timings.textures = clock.elapsed().as_secs_f64();
     let setups = geometry(scene, width, height, opts, &mut stats)?;
     let mats: Vec<MatInfo> = scene
