@@ -1082,6 +1082,12 @@ fn build_tile(
     let side = ctx.tile / 2;
     let mut builder = Trace::builder(header.clone())?;
     builder.begin_tile(tx, ty)?;
+    let entries: usize = b
+        .frags
+        .iter()
+        .map(|f| ctx.mats[f.material as usize].shader.len())
+        .sum();
+    builder.reserve(b.frags.len(), entries, b.pool.len());
     for f in &b.frags {
         if !b.seen[f.pos as usize] {
             b.seen[f.pos as usize] = true;

@@ -637,6 +637,17 @@ impl TraceBuilder {
         Ok(())
     }
 
+    /// Reserves room in the open tile for this many more quads, instruction
+    /// entries and block numbers (a hint: saves reallocating while it
+    /// grows; no effect without an open tile).
+    pub fn reserve(&mut self, quads: usize, entries: usize, blocks: usize) {
+        if let Some(t) = &mut self.open {
+            t.quads.reserve_exact(quads);
+            t.ops.reserve_exact(entries);
+            t.blocks.reserve_exact(blocks);
+        }
+    }
+
     /// Opens quad (x, y) of the open tile, closing the previous quad.
     pub fn begin_quad(&mut self, x: u32, y: u32) -> Result<(), Problem> {
         let header = &self.header;
@@ -790,9 +801,19 @@ impl TraceBuilder {
             Some(_) => {}
         }
         let mut tile = self.open.take().expect("open tile");
-        tile.quads.shrink_to_fit();
-        tile.ops.shrink_to_fit();
-        tile.blocks.shrink_to_fit();
+        // Free a grown vector's slack (a copy), not a few spare entries.
+        for (len, cap) in [
+            (tile.quads.len(), tile.quads.capacity()),
+            (tile.ops.len(), tile.ops.capacity()),
+            (tile.blocks.len(), tile.blocks.capacity()),
+        ] {
+            if cap > len + len / 8 + 16 {
+                tile.quads.shrink_to_fit();
+                tile.ops.shrink_to_fit();
+                tile.blocks.shrink_to_fit();
+                break;
+            }
+        }
         self.seen.insert((tile.tx, tile.ty));
         self.tiles.push(tile);
         Ok(())
