@@ -324,6 +324,12 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     }
     best.trace = clock.lap();
     if args.timings {
+        if args.png.is_none() {
+            best.png.wall = 0.0;
+        }
+        if args.trace_out.is_none() {
+            best.trace.wall = 0.0;
+        }
         print_timings(&scene.name, w, h, args.repeat, &best);
     }
     Ok(())
@@ -431,10 +437,10 @@ fn print_timings(scene: &str, w: u32, h: u32, repeat: u32, t: &PhaseTimes) {
         t.render.wall,
         cpu(t.render),
     );
-    if t.png.wall > 0.0005 {
+    if t.png.wall > 0.0 {
         line("PNG encode and write", t.png.wall, String::new());
     }
-    if t.trace.wall > 0.0005 {
+    if t.trace.wall > 0.0 {
         line("trace write", t.trace.wall, String::new());
     }
     println!("  (wall-clock seconds; CPU: the whole process, all threads)");

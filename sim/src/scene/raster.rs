@@ -62,8 +62,22 @@
 //! instruction says with the quad's level of detail; alpha comes from the
 //! first sample. Alpha-tested pixels with alpha below 0.5 are discarded;
 //! alpha-blended ones are blended over (`src * a + dst * (1 - a)`).
+//!
+//! # Speed
+//!
+//! Tiles are independent: worker threads ([`RasterOptions::threads`]) take
+//! them one at a time and build their trace records; the results are
+//! joined in Z-order, so the trace and picture never depend on the thread
+//! count. Each quad row of a triangle visits only the span its edges allow.
+//! Opaque and alpha-tested colours are shaded once per pixel, for the
+//! fragment that ends up visible (when a blended fragment needs the colour
+//! below it, or at the end of the tile), not once per fragment; the alpha
+//! test reads an alpha-only copy of its texture. Mip chains are built in
+//! parallel, only for textures a set-up triangle samples (the others keep
+//! their heap layout). [`Frame::timings`] says where the time went (`wasp
+//! render --timings`).
 
-use super::texture::TextureSet;
+use super::texture::{TextureSet, TextureUse};
 use super::{Blend, Camera, Scene, SceneError, ShaderOp, Vec3};
 use crate::trace::{Trace, TraceHeader};
 use serde::Serialize;
@@ -84,8 +98,8 @@ pub struct RasterOptions {
     /// Cull back faces (clockwise in normalized device coordinates).
     pub cull_back_faces: bool,
     /// Compute the picture (off: the trace only, faster; the image is the
-    /// clear colour). Alpha-tested surfaces need colours for their depth
-    /// writes, so their texels are always sampled.
+    /// clear colour). Alpha-tested surfaces need their alpha for their
+    /// depth writes, so it is always sampled.
     pub colour: bool,
     /// Hidden-surface removal by a per-tile depth pre-pass over the opaque
     /// triangles (as tile-based deferred renderers do): only the nearest
@@ -1153,20 +1167,34 @@ pub fn rasterize(
         n => n,
     }
     .clamp(1, 64);
-    // Alpha-tested materials' first textures (whose alpha the test reads).
-    let mut alpha_tested = vec![false; scene.textures.len()];
-    for m in scene
-        .materials
-        .iter()
-        .filter(|m| m.blend == Blend::AlphaTest)
-    {
-        if let Some(ShaderOp::Tex(s)) = m.shader.iter().find(|op| matches!(op, ShaderOp::Tex(_))) {
-            alpha_tested[s.texture] = true;
+    let setups = geometry(scene, width, height, opts, &mut stats)?;
+    timings.geometry = clock.elapsed().as_secs_f64();
+    // Textures: only those of materials a set-up triangle uses are sampled;
+    // an alpha test reads its material's first texture's alpha.
+    let tex_clock = std::time::Instant::now();
+    let mut uses = vec![
+        TextureUse {
+            sampled: false,
+            alpha_tested: false,
+        };
+        scene.textures.len()
+    ];
+    let mut used_mat = vec![false; scene.materials.len()];
+    for s in &setups {
+        used_mat[s.material as usize] = true;
+    }
+    for (m, _) in scene.materials.iter().zip(&used_mat).filter(|(_, &u)| u) {
+        let mut first = true;
+        for op in &m.shader {
+            if let ShaderOp::Tex(s) = op {
+                uses[s.texture].sampled = true;
+                uses[s.texture].alpha_tested |= first && m.blend == Blend::AlphaTest;
+                first = false;
+            }
         }
     }
-    let textures = TextureSet::with_threads(&scene.textures, threads, &alpha_tested);
-    timings.textures = clock.elapsed().as_secs_f64();
-    let setups = geometry(scene, width, height, opts, &mut stats)?;
+    let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
+    timings.textures = tex_clock.elapsed().as_secs_f64();
     let mats: Vec<MatInfo> = scene
         .materials
         .iter()
@@ -1205,6 +1233,7 @@ pub fn rasterize(
         }
     }
 
+    // Geometry includes the binning.
     timings.geometry = clock.elapsed().as_secs_f64() - timings.textures;
 
     // Raster pipeline, tile by tile in Z-order; tiles are independent, so

@@ -100,18 +100,20 @@ impl MipLevel<'_> {
     fn texel_alpha(&self, x: u32, y: u32) -> f32 {
         let i = (y as usize) * (self.width as usize) + x as usize;
         let a = if self.alpha.is_empty() {
-            self.rgba[i * 4 + 3]
+            self.rgba.get(i * 4 + 3)
         } else {
-            self.alpha[i]
+            self.alpha.get(i)
         };
-        f32::from(a) / 255.0
+        f32::from(a.copied().unwrap_or(0)) / 255.0
     }
 
     /// Texel (`x`, `y`) as RGBA in 0..=1.
     #[inline]
     fn texel(&self, x: u32, y: u32) -> [f32; 4] {
         let i = ((y as usize) * (self.width as usize) + x as usize) * 4;
-        let p = &self.rgba[i..i + 4];
+        let Some(p) = self.rgba.get(i..i + 4) else {
+            return [0.0; 4]; // a texture without texels (never sampled)
+        };
         [
             f32::from(p[0]) / 255.0,
             f32::from(p[1]) / 255.0,
@@ -231,10 +233,31 @@ fn floor_i64(v: f64) -> i64 {
     i.saturating_sub(i64::from((i as f64) > v))
 }
 
+/// How the front end uses a texture ([`TextureSet::with_threads`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureUse {
+    /// Whether any visible triangle samples it (if not, its levels beyond
+    /// 0 keep their size and place in the heap but get no texels).
+    pub sampled: bool,
+    /// Whether an alpha test reads its alpha (then its levels get an
+    /// alpha-only copy).
+    pub alpha_tested: bool,
+}
+
+impl Default for TextureUse {
+    fn default() -> Self {
+        TextureUse {
+            sampled: true,
+            alpha_tested: false,
+        }
+    }
+}
+
 /// The mip chain of one texture, level 0 borrowed: (width, height, texels)
-/// per level, down to 1x1. A texture with a zero edge or a texel array of
-/// the wrong size becomes a 1x1 magenta texture.
-fn mip_chain(t: &Texture) -> Vec<(u32, u32, Cow<'_, [u8]>)> {
+/// per level, down to 1x1; without `texels`, the levels beyond 0 are sizes
+/// only (empty texels). A texture with a zero edge or a texel array of the
+/// wrong size becomes a 1x1 magenta texture.
+fn mip_chain(t: &Texture, texels: bool) -> Vec<(u32, u32, Cow<'_, [u8]>)> {
     let valid =
         t.width > 0 && t.height > 0 && t.rgba.len() == t.width as usize * t.height as usize * 4;
     let mut chain: Vec<(u32, u32, Cow<'_, [u8]>)> = vec![if valid {
@@ -247,8 +270,13 @@ fn mip_chain(t: &Texture) -> Vec<(u32, u32, Cow<'_, [u8]>)> {
         if *w == 1 && *h == 1 {
             return chain;
         }
-        let (nw, nh, next) = downsample(*w, *h, rgba);
-        chain.push((nw, nh, Cow::Owned(next)));
+        if texels {
+            let (nw, nh, next) = downsample(*w, *h, rgba);
+            chain.push((nw, nh, Cow::Owned(next)));
+        } else {
+            let (nw, nh) = ((*w / 2).max(1), (*h / 2).max(1));
+            chain.push((nw, nh, Cow::Owned(Vec::new())));
+        }
     }
 }
 
@@ -261,14 +289,18 @@ impl<'a> TextureSet<'a> {
     }
 
     /// [`TextureSet::new`], building the mip chains on up to `threads`
-    /// threads (the result does not depend on it), with an alpha-only copy
-    /// of every level of the textures `alpha_tested` marks (it speeds up
-    /// [`TextureSet::sample_alpha`], same results).
+    /// threads (the result does not depend on it), as `uses` says (default
+    /// for textures beyond its end): an alpha-only copy of every level of
+    /// alpha-tested textures (it speeds up [`TextureSet::sample_alpha`],
+    /// same results), and no texels beyond level 0 for textures never
+    /// sampled (same layout, so the same block addresses; sampling one
+    /// anyway gives transparent black).
     pub fn with_threads(
         textures: &'a [Texture],
         threads: usize,
-        alpha_tested: &[bool],
+        uses: &[TextureUse],
     ) -> TextureSet<'a> {
+        let use_of = |i: usize| uses.get(i).copied().unwrap_or_default();
         // Largest textures first, dealt round-robin, so threads get similar
         // work; each chain lands in its texture's slot.
         let mut order: Vec<usize> = (0..textures.len()).collect();
@@ -277,7 +309,7 @@ impl<'a> TextureSet<'a> {
         let mut chains: Vec<Vec<(u32, u32, Cow<'a, [u8]>)>> = vec![Vec::new(); textures.len()];
         if threads == 1 {
             for (i, t) in textures.iter().enumerate() {
-                chains[i] = mip_chain(t);
+                chains[i] = mip_chain(t, use_of(i).sampled);
             }
         } else {
             let built: Vec<Vec<(usize, Vec<(u32, u32, Cow<'a, [u8]>)>)>> =
@@ -288,7 +320,7 @@ impl<'a> TextureSet<'a> {
                                 order.iter().copied().skip(k).step_by(threads).collect();
                             sc.spawn(move || {
                                 mine.into_iter()
-                                    .map(|i| (i, mip_chain(&textures[i])))
+                                    .map(|i| (i, mip_chain(&textures[i], use_of(i).sampled)))
                                     .collect::<Vec<_>>()
                             })
                         })
@@ -305,7 +337,7 @@ impl<'a> TextureSet<'a> {
         let mut out = Vec::with_capacity(textures.len());
         let mut addr = HEAP_BASE;
         for (i, (t, chain)) in textures.iter().zip(chains).enumerate() {
-            let with_alpha = alpha_tested.get(i).copied().unwrap_or(false);
+            let with_alpha = use_of(i).alpha_tested && use_of(i).sampled;
             let base = addr;
             let mut levels = Vec::with_capacity(chain.len());
             let mut block = base / BLOCK_BYTES;
@@ -770,7 +802,35 @@ mod tests {
             }
         }
         let one = TextureSet::new(&texs);
-        let alpha = TextureSet::with_threads(&texs, 2, &[true, false, true, true]);
+        let u = |alpha_tested| TextureUse {
+            sampled: true,
+            alpha_tested,
+        };
+        let alpha = TextureSet::with_threads(&texs, 2, &[u(true), u(false), u(true), u(true)]);
+        // Unsampled textures: the same layout, no texels beyond level 0.
+        let bare = TextureSet::with_threads(
+            &texs,
+            2,
+            &[TextureUse {
+                sampled: false,
+                alpha_tested: true,
+            }],
+        );
+        for (a, b) in one.textures().iter().zip(bare.textures()) {
+            assert_eq!(
+                (a.base, a.bytes, a.levels.len()),
+                (b.base, b.bytes, b.levels.len())
+            );
+        }
+        assert!(bare.textures()[0].levels[1].rgba.is_empty());
+        assert_eq!(
+            bare.textures()[1].levels[1].rgba,
+            one.textures()[1].levels[1].rgba
+        );
+        assert_eq!(
+            bare.sample_rgba(0, Filter::Trilinear, [0.3, 0.3], 2.5),
+            [0.0; 4]
+        );
         for threads in [2, 3, 8] {
             let many = TextureSet::with_threads(&texs, threads, &[]);
             assert_eq!(many.heap_bytes(), one.heap_bytes());
