@@ -1026,6 +1026,9 @@ fn decode_image(path: &Path, max_side: u32) -> Result<(u32, u32, Vec<u8>), Scene
     Ok((w, h, rgba.into_raw()))
 }
 
+/// A decoded image: width, height, RGBA8 texels.
+type Image = (u32, u32, Vec<u8>);
+
 /// Decodes the image files `paths` ([`decode_image`]) on up to `threads`
 /// threads, results in `paths` order; a file named twice is decoded once.
 /// The first error in `paths` order, if any.
@@ -1033,7 +1036,7 @@ fn decode_images(
     paths: &[PathBuf],
     max_side: u32,
     threads: usize,
-) -> Result<Vec<(u32, u32, Vec<u8>)>, SceneError> {
+) -> Result<Vec<Image>, SceneError> {
     let mut unique: Vec<&PathBuf> = paths.iter().collect();
     unique.sort();
     unique.dedup();
@@ -1049,7 +1052,7 @@ fn decode_images(
         }
     };
     let threads = threads.clamp(1, unique.len().max(1));
-    let mut results: Vec<(usize, Result<(u32, u32, Vec<u8>), SceneError>)> = if threads > 1 {
+    let mut results: Vec<(usize, Result<Image, SceneError>)> = if threads > 1 {
         std::thread::scope(|sc| {
             let others: Vec<_> = (1..threads).map(|_| sc.spawn(work)).collect();
             let mut all = work();
@@ -1062,7 +1065,7 @@ fn decode_images(
         work()
     };
     results.sort_by_key(|r| r.0);
-    let mut decoded: Vec<Option<Result<(u32, u32, Vec<u8>), SceneError>>> =
+    let mut decoded: Vec<Option<Result<Image, SceneError>>> =
         results.into_iter().map(|r| Some(r.1)).collect();
     let slot: Vec<usize> = paths
         .iter()

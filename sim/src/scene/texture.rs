@@ -253,11 +253,14 @@ impl Default for TextureUse {
     }
 }
 
+/// Mip levels as (width, height, texels).
+type Chain<'a> = Vec<(u32, u32, Cow<'a, [u8]>)>;
+
 /// The mip chain of one texture, level 0 borrowed: (width, height, texels)
 /// per level, down to 1x1; without `texels`, the levels beyond 0 are sizes
 /// only (empty texels). A texture with a zero edge or a texel array of the
 /// wrong size becomes a 1x1 magenta texture.
-fn mip_chain(t: &Texture, texels: bool) -> Vec<(u32, u32, Cow<'_, [u8]>)> {
+fn mip_chain(t: &Texture, texels: bool) -> Chain<'_> {
     let valid =
         t.width > 0 && t.height > 0 && t.rgba.len() == t.width as usize * t.height as usize * 4;
     let mut chain: Vec<(u32, u32, Cow<'_, [u8]>)> = vec![if valid {
@@ -306,30 +309,29 @@ impl<'a> TextureSet<'a> {
         let mut order: Vec<usize> = (0..textures.len()).collect();
         order.sort_by_key(|&i| std::cmp::Reverse(textures[i].rgba.len()));
         let threads = threads.clamp(1, textures.len().max(1));
-        let mut chains: Vec<Vec<(u32, u32, Cow<'a, [u8]>)>> = vec![Vec::new(); textures.len()];
+        let mut chains: Vec<Chain<'a>> = vec![Vec::new(); textures.len()];
         if threads == 1 {
             for (i, t) in textures.iter().enumerate() {
                 chains[i] = mip_chain(t, use_of(i).sampled);
             }
         } else {
-            let built: Vec<Vec<(usize, Vec<(u32, u32, Cow<'a, [u8]>)>)>> =
-                std::thread::scope(|sc| {
-                    let handles: Vec<_> = (0..threads)
-                        .map(|k| {
-                            let mine: Vec<usize> =
-                                order.iter().copied().skip(k).step_by(threads).collect();
-                            sc.spawn(move || {
-                                mine.into_iter()
-                                    .map(|i| (i, mip_chain(&textures[i], use_of(i).sampled)))
-                                    .collect::<Vec<_>>()
-                            })
+            let built: Vec<Vec<(usize, Chain<'a>)>> = std::thread::scope(|sc| {
+                let handles: Vec<_> = (0..threads)
+                    .map(|k| {
+                        let mine: Vec<usize> =
+                            order.iter().copied().skip(k).step_by(threads).collect();
+                        sc.spawn(move || {
+                            mine.into_iter()
+                                .map(|i| (i, mip_chain(&textures[i], use_of(i).sampled)))
+                                .collect::<Vec<_>>()
                         })
-                        .collect();
-                    handles
-                        .into_iter()
-                        .map(|h| h.join().expect("mip chain thread"))
-                        .collect()
-                });
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().expect("mip chain thread"))
+                    .collect()
+            });
             for (i, chain) in built.into_iter().flatten() {
                 chains[i] = chain;
             }
