@@ -201,6 +201,22 @@ fn tiny_trace_round_trips_through_the_writer() {
 }
 
 #[test]
+fn the_example_of_format_md_parses_with_a_repeated_position() {
+    let md = include_str!("../../../tests/traces/FORMAT.md");
+    let start = md.find("```text\n").unwrap() + "```text\n".len();
+    let text = &md[start..start + md[start..].find("```").unwrap()];
+    let t = Trace::parse(text, "FORMAT.md").unwrap();
+    let tile = &t.tiles()[0];
+    assert_eq!((tile.quad_count(), tile.position_count()), (3, 2));
+    assert_eq!(tile.quads_at(0, 0).count(), 2);
+    // The module documentation repeats the same example.
+    let doc = include_str!("mod.rs");
+    for line in text.lines() {
+        assert!(doc.contains(&format!("//! {line}\n")), "{line}");
+    }
+}
+
+#[test]
 fn overdraw_trace_keeps_repeated_positions_in_file_order() {
     let t = Trace::read(OVERDRAW).unwrap();
     assert_eq!(t.header().workload, "hand:overdraw");
