@@ -84,6 +84,20 @@ pub struct RenderArgs {
     /// deferred renderer). Default: plain early-Z in submission order.
     #[arg(long)]
     pub depth_prepass: bool,
+    /// Print where the time went: loading the scene (parsing meshes,
+    /// decoding textures) and the front end (mip chains, geometry and
+    /// binning, raster + early-Z + texturing + shading + trace), wall-clock
+    /// and CPU seconds. Needs no --png or --trace-out.
+    #[arg(long)]
+    pub timings: bool,
+    /// Worker threads of the front end (0: one per hardware thread). The
+    /// picture and the trace do not depend on it.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub threads: usize,
+    /// With --timings: load and rasterize N times and report the best
+    /// (fastest) time of each phase (the frame is the same every time).
+    #[arg(long, value_name = "N", default_value_t = 1, requires = "timings")]
+    pub repeat: u32,
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
@@ -196,10 +210,13 @@ fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
 
 /// Run `wasp render`.
 pub fn render(args: &RenderArgs) -> Result<(), CliError> {
-    if args.png.is_none() && args.trace_out.is_none() {
+    if args.png.is_none() && args.trace_out.is_none() && !args.timings {
         return Err(CliError::usage(
-            "nothing to write: give --png FILE and/or --trace-out FILE",
+            "nothing to write: give --png FILE and/or --trace-out FILE (or --timings)",
         ));
+    }
+    if args.repeat == 0 {
+        return Err(CliError::usage("--repeat 0: expected at least 1"));
     }
     let d = find_def(&args.scene)?;
     let (w, h) = match &args.size {
@@ -210,7 +227,10 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
         None => MachineConfig::paper(),
     };
-    let scene = fetch::load_scene(&d).map_err(scene_err)?;
+    let mut best = PhaseTimes::default();
+    let clock = Stopwatch::start();
+    let mut scene = fetch::load_scene(&d).map_err(scene_err)?;
+    best.load = clock.lap();
     let req = RenderRequest {
         overlays: args.overlay.clone(),
         config,
@@ -220,6 +240,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             ..RunOptions::default()
         },
         depth_prepass: args.depth_prepass,
+        threads: args.threads,
     };
     let pb = if args.quiet || !std::io::stderr().is_terminal() {
         ProgressBar::hidden()
@@ -237,19 +258,37 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         pb.set_length(total as u64);
         pb.set_position(done as u64);
     };
-    let out = render::render(&scene, w, h, &req, &mut progress).map_err(scene_err)?;
+    let clock = Stopwatch::start();
+    let mut out = render::render(&scene, w, h, &req, &mut progress).map_err(scene_err)?;
+    best.render = clock.lap();
+    best.raster = out.frame.timings;
     pb.finish_and_clear();
+    for _ in 1..args.repeat {
+        // The same work again; results are deterministic, times are not.
+        let clock = Stopwatch::start();
+        scene = fetch::load_scene(&d).map_err(scene_err)?;
+        best.load = best.load.min(clock.lap());
+        let clock = Stopwatch::start();
+        out = render::render(&scene, w, h, &req, &mut |_, _| {}).map_err(scene_err)?;
+        best.render = best.render.min(clock.lap());
+        let t = &out.frame.timings;
+        best.raster.textures = best.raster.textures.min(t.textures);
+        best.raster.geometry = best.raster.geometry.min(t.geometry);
+        best.raster.tiles = best.raster.tiles.min(t.tiles);
+    }
     let s = &out.frame.stats;
     eprintln!(
-        "wasp: {} {}x{}: {} triangles ({} clipped), {} fragments in {} warps over {} tiles, \
-         {} quads rejected by early-Z; front end {:.3} s",
+        "wasp: {} {}x{}: {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
+         positions ({:.2} per position) over {} tiles, {} quads rejected by early-Z; front end \
+         {:.3} s",
         scene.name,
         w,
         h,
         s.primitives,
         s.clipped,
-        s.quads_shaded,
         s.warps,
+        s.positions,
+        s.warps as f64 / s.positions.max(1) as f64,
         s.tiles,
         s.quads_rejected_early_z,
         out.raster_seconds
@@ -260,6 +299,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     if let Some((lo, hi)) = out.heat_range {
         eprintln!("wasp: heat map range {lo:.1} to {hi:.1}");
     }
+    let clock = Stopwatch::start();
     if let Some(p) = &args.png {
         let (img, cw, ch) = match &args.crop {
             Some(c) => crop(&out.image, w, h, c)?,
@@ -268,6 +308,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         render::write_png(p, &img, cw, ch).map_err(scene_err)?;
         eprintln!("wasp: wrote {}", p.display());
     }
+    best.png = clock.lap();
     if let Some(p) = &args.trace_out {
         let file = std::fs::File::create(p)
             .map_err(|e| CliError::failed(format!("cannot create {}: {e}", p.display())))?;
@@ -281,7 +322,128 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             p.display()
         );
     }
+    best.trace = clock.lap();
+    if args.timings {
+        if args.png.is_none() {
+            best.png.wall = 0.0;
+        }
+        if args.trace_out.is_none() {
+            best.trace.wall = 0.0;
+        }
+        print_timings(&scene.name, w, h, args.repeat, &best);
+    }
     Ok(())
+}
+
+/// Wall-clock and CPU seconds (CPU: of the whole process, all threads).
+#[derive(Clone, Copy, Debug, Default)]
+struct Times {
+    wall: f64,
+    cpu: Option<f64>,
+}
+
+impl Times {
+    /// The better of two measurements: the one with less wall time.
+    fn min(self, o: Times) -> Times {
+        if o.wall < self.wall {
+            o
+        } else {
+            self
+        }
+    }
+}
+
+struct Stopwatch {
+    start: std::time::Instant,
+    cpu: Option<f64>,
+}
+
+impl Stopwatch {
+    fn start() -> Stopwatch {
+        Stopwatch {
+            start: std::time::Instant::now(),
+            cpu: process_cpu_seconds(),
+        }
+    }
+
+    /// Time since the start.
+    fn lap(&self) -> Times {
+        let cpu_now = process_cpu_seconds();
+        Times {
+            wall: self.start.elapsed().as_secs_f64(),
+            cpu: self.cpu.zip(cpu_now).map(|(a, b)| (b - a).max(0.0)),
+        }
+    }
+}
+
+/// User + system CPU seconds of this process (all threads), from
+/// /proc/self/stat (Linux; None elsewhere). Clock ticks of 1/100 s, the
+/// Linux USER_HZ.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name (which may hold blanks) in parentheses:
+    // state is the 1st, utime the 12th, stime the 13th.
+    let after = stat.rsplit_once(')')?.1;
+    let f: Vec<&str> = after.split_whitespace().collect();
+    let tick = |i: usize| f.get(i)?.parse::<f64>().ok();
+    Some((tick(11)? + tick(12)?) / 100.0)
+}
+
+/// The best times of `wasp render --timings`.
+#[derive(Clone, Copy, Debug, Default)]
+struct PhaseTimes {
+    load: Times,
+    render: Times,
+    raster: wasp_sim::scene::raster::RasterTimings,
+    png: Times,
+    trace: Times,
+}
+
+fn print_timings(scene: &str, w: u32, h: u32, repeat: u32, t: &PhaseTimes) {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let cpu = |x: Times| x.cpu.map_or(String::new(), |c| format!("  (CPU {c:.3} s)"));
+    let of = if repeat > 1 {
+        format!("best of {repeat}")
+    } else {
+        "one run".to_string()
+    };
+    let line = |what: &str, secs: f64, extra: String| {
+        println!("  {what:<48} {secs:>7.3} s{extra}");
+    };
+    println!("front-end timings of {scene} at {w}x{h} ({of}; {threads} hardware threads):");
+    line(
+        "load: parse meshes, decode textures",
+        t.load.wall,
+        cpu(t.load),
+    );
+    line("raster + texture", t.raster.total(), String::new());
+    line(
+        "  mip chains and texture heap",
+        t.raster.textures,
+        String::new(),
+    );
+    line(
+        "  geometry, clipping, binning",
+        t.raster.geometry,
+        String::new(),
+    );
+    line(
+        "  tiles: raster, early-Z, texture, shade, trace",
+        t.raster.tiles,
+        String::new(),
+    );
+    line(
+        "render call (raster + texture and overlays)",
+        t.render.wall,
+        cpu(t.render),
+    );
+    if t.png.wall > 0.0 {
+        line("PNG encode and write", t.png.wall, String::new());
+    }
+    if t.trace.wall > 0.0 {
+        line("trace write", t.trace.wall, String::new());
+    }
+    println!("  (wall-clock seconds; CPU: the whole process, all threads)");
 }
 
 /// The rectangle `spec` (X,Y,W,H) of a `w` x `h` RGBA picture.

@@ -7,6 +7,19 @@
 //! scenes named in each row (procedural ones say so). They are shown side
 //! by side to judge whether a scene is in the paper's range, never to tune
 //! anything towards it.
+//!
+//! A warp is one shaded (primitive, quad) fragment, as in the hardware the
+//! paper models, so with overdraw a tile holds more warps than quad
+//! positions (up to 1024 positions, any number of warps). The definitions
+//! then read: CF is the distinct blocks one fragment's shader touches;
+//! Min_Estimate1 is a tile's unique blocks over its fragments (overdraw
+//! lowers it: more warps share one footprint); Min_Estimate2 = Min_Estimate1
+//! / CF. A priority subset selects quad *positions* (the hardware selector
+//! looks at the quad's coordinates), hence every fragment at a selected
+//! position: its size ratio is the fraction of a tile's positions, and its
+//! warp ratio the fraction of the warps it actually selects (above the size
+//! ratio where overdraw is heavier at its positions). Its footprint ratio
+//! is the distinct blocks of the selected warps over the tile's.
 
 use super::def::SceneDef;
 use super::raster::{rasterize_timed, Frame, RasterOptions};
@@ -23,8 +36,10 @@ use wasp_rtl::subset::SubsetSpec;
 pub struct SubsetFootprint {
     /// Subset name (`mesh4`, `top16`, ...).
     pub subset: String,
-    /// Fraction of a tile's quads it selects.
+    /// Fraction of a tile's quad positions it selects.
     pub size_ratio: f64,
+    /// Fraction of the warps (fragments) it selects, over the whole frame.
+    pub warp_ratio: f64,
     /// Mean texture footprint ratio over tiles (warp-weighted).
     pub footprint_ratio: f64,
     /// The paper's value (Figure 11 / Section V-D), where it gives one.
@@ -44,15 +59,14 @@ pub struct Characterization {
     pub height: u32,
     /// Tiles with at least one warp.
     pub tiles: u64,
-    /// Warps (quad positions shaded).
+    /// Warps: surviving (triangle, quad) fragments, one warp each.
     pub warps: u64,
     /// Warps per tile.
     pub warps_per_tile: f64,
-    /// Surviving (triangle, quad) fragments; above `warps` where fragments
-    /// were merged into one warp.
-    pub fragments: u64,
-    /// fragments / warps.
-    pub fragments_per_warp: f64,
+    /// Quad positions with at least one warp (summed over tiles).
+    pub positions: u64,
+    /// warps / positions: fragments per shaded quad position (overdraw).
+    pub warps_per_position: f64,
     /// Quads rejected by early-Z.
     pub rejected_early_z: u64,
     /// Texture instructions / instructions (Table I).
@@ -91,9 +105,29 @@ pub fn paper_footprint(spec: &SubsetSpec) -> Option<f64> {
 /// blocks are sorted once instead of once per subset (same definition,
 /// same result; a test checks it).
 pub fn mean_footprint_ratios(trace: &Trace, specs: &[SubsetSpec]) -> Vec<f64> {
+    subset_ratios(trace, specs).0
+}
+
+/// Per subset: the mean footprint ratio (as [`mean_footprint_ratios`]) and
+/// the fraction of the trace's warps at its positions.
+pub fn subset_ratios(trace: &Trace, specs: &[SubsetSpec]) -> (Vec<f64>, Vec<f64>) {
     let side = trace.header().quads_per_side();
     let sels: Vec<_> = specs.iter().map(|s| s.build(side)).collect();
     let mut num = vec![0.0f64; specs.len()];
+    let mut selected = vec![0u64; specs.len()];
+    for (k, sel) in sels.iter().enumerate() {
+        selected[k] = trace
+            .tiles()
+            .iter()
+            .flat_map(|t| t.quads())
+            .filter(|q| sel.is_priority(q.x(), q.y()))
+            .count() as u64;
+    }
+    let warps = trace.quad_count() as f64;
+    let warp_ratios = selected
+        .iter()
+        .map(|&n| if warps == 0.0 { 0.0 } else { n as f64 / warps })
+        .collect();
     let mut den = 0.0f64;
     let (mut all, mut chosen) = (Vec::new(), Vec::new());
     for tile in trace.tiles() {
@@ -116,9 +150,11 @@ pub fn mean_footprint_ratios(trace: &Trace, specs: &[SubsetSpec]) -> Vec<f64> {
             num[k] += w * chosen.len() as f64 / all.len() as f64;
         }
     }
-    num.iter()
+    let footprints = num
+        .iter()
         .map(|n| if den == 0.0 { 0.0 } else { n / den })
-        .collect()
+        .collect();
+    (footprints, warp_ratios)
 }
 
 /// Characterise a rasterized frame.
@@ -126,13 +162,15 @@ pub fn characterize(scene: &str, frame: &Frame, raster_seconds: f64) -> Characte
     let s = frame.trace.stats();
     let side = frame.trace.header().quads_per_side();
     let specs = SubsetSpec::all();
-    let ratios = mean_footprint_ratios(&frame.trace, &specs);
+    let (ratios, warp_ratios) = subset_ratios(&frame.trace, &specs);
     let footprints = specs
         .iter()
         .zip(ratios)
-        .map(|(spec, footprint_ratio)| SubsetFootprint {
+        .zip(warp_ratios)
+        .map(|((spec, footprint_ratio), warp_ratio)| SubsetFootprint {
             subset: spec.to_string(),
             size_ratio: spec.build(side).size_ratio(side),
+            warp_ratio,
             footprint_ratio,
             paper: paper_footprint(spec),
         })
@@ -146,8 +184,8 @@ pub fn characterize(scene: &str, frame: &Frame, raster_seconds: f64) -> Characte
         tiles: s.tiles,
         warps: s.warps,
         warps_per_tile: s.warps_per_tile,
-        fragments: frame.stats.quads_shaded,
-        fragments_per_warp: ratio(frame.stats.quads_shaded as f64, s.warps as f64),
+        positions: s.positions,
+        warps_per_position: s.warps_per_position,
         rejected_early_z: frame.stats.quads_rejected_early_z,
         mem_instr_ratio: s.mem_instr_ratio,
         reuse: s.reuse,
@@ -192,19 +230,24 @@ pub fn table(rows: &[Characterization]) -> String {
     ));
     lines.push(("tiles".into(), col(&|c| c.tiles.to_string()), "-".into()));
     lines.push((
-        "warps (quads)".into(),
+        "warps (fragments)".into(),
         col(&|c| c.warps.to_string()),
         "-".into(),
     ));
     lines.push((
         "warps per tile".into(),
         col(&|c| format!("{:.1}", c.warps_per_tile)),
-        "<= 1024".into(),
+        "-".into(),
     ));
     lines.push((
-        "fragments per warp".into(),
-        col(&|c| format!("{:.2}", c.fragments_per_warp)),
-        "1 (one warp each)".into(),
+        "quad positions".into(),
+        col(&|c| c.positions.to_string()),
+        "-".into(),
+    ));
+    lines.push((
+        "warps per position".into(),
+        col(&|c| format!("{:.2}", c.warps_per_position)),
+        "-".into(),
     ));
     lines.push((
         "memory-instr ratio".into(),
@@ -280,13 +323,16 @@ pub fn table(rows: &[Characterization]) -> String {
 /// CSV: one line per scene.
 pub fn csv(rows: &[Characterization]) -> String {
     let mut out = String::from(
-        "scene,workload,width,height,tiles,warps,warps_per_tile,fragments,fragments_per_warp,\
+        "scene,workload,width,height,tiles,warps,warps_per_tile,positions,warps_per_position,\
          rejected_early_z,mem_instr_ratio,reuse,cf,blocks_per_tex_instr,min_estimate1,\
          min_estimate2",
     );
     if let Some(r) = rows.first() {
         for f in &r.footprints {
             let _ = write!(out, ",footprint_{}", f.subset.replace(':', "_"));
+        }
+        for f in &r.footprints {
+            let _ = write!(out, ",warp_ratio_{}", f.subset.replace(':', "_"));
         }
     }
     out.push('\n');
@@ -301,8 +347,8 @@ pub fn csv(rows: &[Characterization]) -> String {
             c.tiles,
             c.warps,
             c.warps_per_tile,
-            c.fragments,
-            c.fragments_per_warp,
+            c.positions,
+            c.warps_per_position,
             c.rejected_early_z,
             c.mem_instr_ratio,
             c.reuse,
@@ -313,6 +359,9 @@ pub fn csv(rows: &[Characterization]) -> String {
         );
         for f in &c.footprints {
             let _ = write!(out, ",{:.5}", f.footprint_ratio);
+        }
+        for f in &c.footprints {
+            let _ = write!(out, ",{:.5}", f.warp_ratio);
         }
         out.push('\n');
     }
@@ -353,6 +402,13 @@ mod tests {
         );
         let j = serde_json::to_value(&c).unwrap();
         assert!(j["footprints"][0]["paper"].is_number());
+        // Sprites over a backdrop: overdraw, one warp per fragment.
+        assert!(c.warps > c.positions, "{} {}", c.warps, c.positions);
+        assert!((c.warps_per_position - c.warps as f64 / c.positions as f64).abs() < 1e-12);
+        assert!(t.contains("warps per position"), "{t}");
+        for f in &c.footprints {
+            assert!(f.warp_ratio > 0.0 && f.warp_ratio < 1.0, "{f:?}");
+        }
     }
 
     #[test]
@@ -369,11 +425,20 @@ mod tests {
         )
         .unwrap();
         let specs = SubsetSpec::all();
-        let got = mean_footprint_ratios(&f.trace, &specs);
-        for (spec, g) in specs.iter().zip(got) {
+        let (got, warp_ratios) = subset_ratios(&f.trace, &specs);
+        assert_eq!(got, mean_footprint_ratios(&f.trace, &specs));
+        for ((spec, g), w) in specs.iter().zip(got).zip(warp_ratios) {
             let sel = spec.build(32);
             let want = mean_footprint_ratio(&f.trace, |x, y| sel.is_priority(x, y));
             assert!((g - want).abs() < 1e-12, "{spec}: {g} vs {want}");
+            let n = f
+                .trace
+                .tiles()
+                .iter()
+                .flat_map(|t| t.quads())
+                .filter(|q| sel.is_priority(q.x(), q.y()))
+                .count();
+            assert!((w - n as f64 / f.trace.quad_count() as f64).abs() < 1e-12);
         }
     }
 }

@@ -1007,7 +1007,8 @@ mod tests {
             s.mem_instr_ratio
         );
         // Every quad of the frame is shaded (ground, blocks and sky).
-        assert_eq!(s.warps, s.frame_quads);
+        assert_eq!(s.positions, s.frame_quads);
+        assert!(s.warps >= s.positions);
         let side = 32;
         let ratio = |spec: SubsetSpec| {
             let sel = spec.build(side);
@@ -1049,12 +1050,14 @@ mod tests {
     }
 
     #[test]
-    fn sprites_overdraw_is_merged_and_ratio_is_the_sprite_template() {
+    fn sprites_overdraw_is_one_warp_per_fragment_and_ratio_is_the_sprite_template() {
         let scene = load(&def("sprites", 960, 384)).unwrap();
         let f = rasterize(&scene, 960, 384, &no_colour()).unwrap();
         let s = f.trace.stats();
-        assert_eq!(s.warps, s.frame_quads, "the backdrop covers the frame");
-        assert!(f.stats.quads_shaded > f.stats.warps, "overdraw merged");
+        assert_eq!(s.positions, s.frame_quads, "the backdrop covers the frame");
+        assert!(s.warps > s.positions, "overdraw: positions repeat");
+        assert_eq!(s.warps, f.stats.warps);
+        assert_eq!(s.positions, f.stats.positions);
         let want = shader::mem_ratio(&shader::sprite(0, Filter::Bilinear));
         assert!((s.mem_instr_ratio - want).abs() < 1e-12);
         // Painter's order: the blended layers are never rejected.

@@ -41,16 +41,19 @@
 //!    the triangle included (they feed the derivatives and take part in
 //!    the texture fetch, as in hardware).
 //!
-//! # Overdraw: one warp per quad position
+//! # Overdraw: one warp per fragment
 //!
-//! In hardware every surviving (triangle, quad) pair is its own warp. The
-//! trace format has one record per quad position per tile, in scanline
-//! order, so **all surviving fragments at a position are merged into one
-//! warp whose program is the concatenation of their shader programs in
-//! draw order** (ALU runs at the seams join into one run; each texture
-//! instruction keeps its own block list). The number of merged fragments
-//! is reported ([`RasterStats::quads_shaded`] vs
-//! [`RasterStats::warps`]) and written as a header note of the trace.
+//! As in hardware, every surviving (triangle, quad) fragment is its own
+//! warp, running its material's shader program. A tile's warps are emitted
+//! (trace format 2) in rasterization order, the order the rasterizer hands
+//! them to the shader core: triangles in draw order (above), each
+//! triangle's quads in scanline order. Where triangles overlap, a quad
+//! position therefore holds several warps ([`RasterStats::warps`] vs
+//! [`RasterStats::positions`]: the overdraw the shader core sees, also
+//! written as a header note of the trace). Early-Z decides which fragments
+//! survive, so a fragment hidden by one drawn *earlier* is never shaded,
+//! but one hidden by a later triangle is (`--depth-prepass` removes those
+//! too, as a deferred renderer would).
 //!
 //! # Picture
 //!
@@ -59,8 +62,22 @@
 //! instruction says with the quad's level of detail; alpha comes from the
 //! first sample. Alpha-tested pixels with alpha below 0.5 are discarded;
 //! alpha-blended ones are blended over (`src * a + dst * (1 - a)`).
+//!
+//! # Speed
+//!
+//! Tiles are independent: worker threads ([`RasterOptions::threads`]) take
+//! them one at a time and build their trace records; the results are
+//! joined in Z-order, so the trace and picture never depend on the thread
+//! count. Each quad row of a triangle visits only the span its edges allow.
+//! Opaque and alpha-tested colours are shaded once per pixel, for the
+//! fragment that ends up visible (when a blended fragment needs the colour
+//! below it, or at the end of the tile), not once per fragment; the alpha
+//! test reads an alpha-only copy of its texture. Mip chains are built in
+//! parallel, only for textures a set-up triangle samples (the others keep
+//! their heap layout). [`Frame::timings`] says where the time went (`wasp
+//! render --timings`).
 
-use super::texture::TextureSet;
+use super::texture::{TextureSet, TextureUse};
 use super::{Blend, Camera, Scene, SceneError, ShaderOp, Vec3};
 use crate::trace::{Trace, TraceHeader};
 use serde::Serialize;
@@ -81,8 +98,8 @@ pub struct RasterOptions {
     /// Cull back faces (clockwise in normalized device coordinates).
     pub cull_back_faces: bool,
     /// Compute the picture (off: the trace only, faster; the image is the
-    /// clear colour). Alpha-tested surfaces need colours for their depth
-    /// writes, so their texels are always sampled.
+    /// clear colour). Alpha-tested surfaces need their alpha for their
+    /// depth writes, so it is always sampled.
     pub colour: bool,
     /// Hidden-surface removal by a per-tile depth pre-pass over the opaque
     /// triangles (as tile-based deferred renderers do): only the nearest
@@ -115,8 +132,8 @@ pub struct MaterialStats {
     pub blend: String,
     /// Input triangles.
     pub triangles: u64,
-    /// Surviving (triangle, quad) fragments it shaded.
-    pub quads_shaded: u64,
+    /// Surviving (triangle, quad) fragments it shaded: its warps.
+    pub warps: u64,
     /// Quads of its triangles rejected by early-Z.
     pub quads_rejected_early_z: u64,
     /// Pixels it shaded (surviving, inside the triangle).
@@ -146,15 +163,36 @@ pub struct RasterStats {
     pub quads_covered: u64,
     /// Of those, quads whose every covered pixel failed the depth test.
     pub quads_rejected_early_z: u64,
-    /// Surviving (triangle, quad) fragments: the warps of a hardware TBR.
-    pub quads_shaded: u64,
-    /// Quad positions with at least one surviving fragment: the trace's
-    /// warps (fragments at one position are merged).
+    /// Surviving (triangle, quad) fragments: the warps (quad records of the
+    /// trace), one per fragment as in a hardware TBR.
     pub warps: u64,
+    /// Quad positions with at least one surviving fragment (warps /
+    /// positions is the overdraw the shader cores see).
+    pub positions: u64,
     /// Pixels shaded (surviving, inside their triangle).
     pub pixels_shaded: u64,
     /// Per material, in scene order.
     pub materials: Vec<MaterialStats>,
+}
+
+/// Where the front end's time went: wall-clock seconds of each phase of
+/// [`rasterize`] (not part of the results, which never depend on time).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct RasterTimings {
+    /// Mip chains and the texture heap layout ([`TextureSet::new`]).
+    pub textures: f64,
+    /// Geometry (transform, clip, set-up) and binning into tiles.
+    pub geometry: f64,
+    /// Raster, early-Z, texturing, shading of the tiles and building the
+    /// trace.
+    pub tiles: f64,
+}
+
+impl RasterTimings {
+    /// All phases.
+    pub fn total(&self) -> f64 {
+        self.textures + self.geometry + self.tiles
+    }
 }
 
 /// A rasterized frame: the trace, the picture and the counts.
@@ -170,6 +208,8 @@ pub struct Frame {
     pub image: Vec<u8>,
     /// What the front end did.
     pub stats: RasterStats,
+    /// How long each phase took.
+    pub timings: RasterTimings,
 }
 
 /// A vertex in clip space with its attributes.
@@ -730,13 +770,15 @@ struct MatInfo {
     blend: Blend,
     /// Texture instructions in program order.
     tex: Vec<super::TexSample>,
+    /// The whole program.
+    shader: Vec<ShaderOp>,
 }
 
 /// What every tile's rasterization reads.
 struct TileCtx<'a> {
     setups: &'a [Setup],
     mats: &'a [MatInfo],
-    textures: &'a TextureSet,
+    textures: &'a TextureSet<'a>,
     tile: u32,
     width: u32,
     height: u32,
@@ -755,8 +797,22 @@ struct TileBuf {
     covered: u64,
     rejected: u64,
     pixels: u64,
-    /// Per material: fragments shaded, quads rejected, pixels.
+    /// Per material: fragments shaded (warps), quads rejected, pixels.
     per_material: Vec<[u64; 3]>,
+    /// Deferred colour: per pixel, 1 + the fragment whose colour the pixel
+    /// shows (the last opaque or alpha-tested fragment written there), 0
+    /// when the colour is already in `colour`; and that pixel's UVs.
+    pending: Vec<u32>,
+    pending_uv: Vec<[[f32; 2]; 2]>,
+    /// Per fragment, the level of detail of each texture instruction.
+    lambdas: Vec<[f32; 8]>,
+    /// Distinct quad positions of the fragments.
+    positions: u64,
+    /// Per quad position, whether a fragment is there (all false between
+    /// tiles).
+    seen: Vec<bool>,
+    /// The tile's trace records (None: no fragment survived).
+    part: Result<Option<Trace>, crate::trace::Problem>,
 }
 
 impl TileBuf {
@@ -772,6 +828,26 @@ impl TileBuf {
             rejected: 0,
             pixels: 0,
             per_material: vec![[0; 3]; materials],
+            pending: vec![0; (tile * tile) as usize],
+            pending_uv: vec![[[0.0; 2]; 2]; (tile * tile) as usize],
+            lambdas: Vec::new(),
+            positions: 0,
+            seen: vec![false; (tile / 2 * (tile / 2)) as usize],
+            part: Ok(None),
+        }
+    }
+
+    /// Shades the deferred pixel `at`, if any, into `colour`.
+    #[inline]
+    fn resolve(&mut self, ctx: &TileCtx, at: usize) {
+        let f = self.pending[at];
+        if f != 0 {
+            let frag = (f - 1) as usize;
+            let mat = &ctx.mats[self.frags[frag].material as usize];
+            let [uv, uv2] = &self.pending_uv[at];
+            let c = shade(ctx.textures, mat, uv, uv2, &self.lambdas[frag]);
+            self.colour[at] = [c[0], c[1], c[2], 1.0];
+            self.pending[at] = 0;
         }
     }
 }
@@ -802,6 +878,43 @@ fn coverage(s: &Setup, qx: u32, qy: u32, xend: u32, yend: u32) -> u8 {
     mask
 }
 
+/// The pixel columns `x0..x1` (x0 even, a quad boundary) narrowed to the
+/// quads a triangle can cover in the quad row starting at pixel row `qy`:
+/// from each edge function, the range of pixel centres on or inside it in
+/// either of the two rows, intersected over the edges, widened by a pixel
+/// on each side. A superset of the covered quads ([`coverage`] decides
+/// exactly), so the raster need not visit every quad of the bounding box.
+#[inline]
+fn row_span(s: &Setup, qy: u32, x0: u32, x1: u32) -> (u32, u32) {
+    let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+    for row in [qy, qy + 1] {
+        let cy = i64::from(row) * SUB + SUB / 2;
+        let (mut rlo, mut rhi) = (i64::MIN, i64::MAX);
+        for e in &s.edges {
+            let (a, v0) = (e[0], e[1] * cy + e[2]);
+            // Inside at pixel x: a (x SUB + SUB/2) + v0 >= 0.
+            let num = -v0 - a * (SUB / 2);
+            if a > 0 {
+                rlo = rlo.max(-((-num).div_euclid(a * SUB)));
+            } else if a < 0 {
+                rhi = rhi.min((-num).div_euclid(-a * SUB));
+            } else if v0 < 0 {
+                rlo = i64::MAX;
+            }
+        }
+        if rlo <= rhi {
+            lo = lo.min(rlo);
+            hi = hi.max(rhi);
+        }
+    }
+    if lo > hi {
+        return (x0, x0);
+    }
+    let start = lo.saturating_sub(1).clamp(i64::from(x0), i64::from(x1)) as u32 & !1;
+    let end = hi.saturating_add(2).clamp(i64::from(x0), i64::from(x1)) as u32;
+    (start.max(x0), end)
+}
+
 /// Rasterize, early-Z test, texture and shade the triangles `list` of tile
 /// (tx, ty) into `b`.
 fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
@@ -812,6 +925,8 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
     let side = t / 2;
     b.depth.fill(1.0);
     b.colour.fill(CLEAR);
+    b.pending.fill(0);
+    b.lambdas.clear();
     b.frags.clear();
     b.ranges.clear();
     b.pool.clear();
@@ -839,7 +954,8 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
             }
             let (x0, x1, y0, y1) = span(s);
             for qy in (y0..y1).step_by(2) {
-                for qx in (x0..x1).step_by(2) {
+                let (rx0, rx1) = row_span(s, qy, x0, x1);
+                for qx in (rx0..rx1).step_by(2) {
                     let mask = coverage(s, qx, qy, xend, yend);
                     for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
                         let (px, py) = (qx + (i & 1), qy + (i >> 1));
@@ -857,7 +973,8 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
         let mc = s.material as usize;
         let (x0, x1, y0, y1) = span(s);
         for qy in (y0..y1).step_by(2) {
-            for qx in (x0..x1).step_by(2) {
+            let (rx0, rx1) = row_span(s, qy, x0, x1);
+            for qx in (rx0..rx1).step_by(2) {
                 let mask = coverage(s, qx, qy, xend, yend);
                 if mask == 0 {
                     continue;
@@ -903,48 +1020,112 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                     b.ranges.push((b.pool.len() as u32, b.scratch.len() as u32));
                     b.pool.extend_from_slice(&b.scratch);
                 }
+                let frag = b.frags.len() as u32;
                 b.frags.push(Frag {
                     pos: ((qy - oy) / 2) * side + (qx - ox) / 2,
                     material: s.material,
                     range: first,
                 });
-                // Colour, blending and depth writes.
-                let need_colour = ctx.colour || mat.blend == Blend::AlphaTest;
+                if ctx.colour {
+                    b.lambdas.push(lambdas);
+                }
+                // Depth writes and colour. An opaque or alpha-tested pixel's
+                // colour is deferred: only the last one written to a pixel
+                // shows, so it is shaded once, when a blended fragment needs
+                // it as the destination or at the end of the tile (same
+                // inputs, same colour as shading every fragment).
                 for i in (0..4u32).filter(|i| live & (1 << i) != 0) {
                     let (px, py) = (qx + (i & 1), qy + (i >> 1));
                     let at = ((py - oy) * t + px - ox) as usize;
                     let k = i as usize;
-                    let c = if need_colour {
-                        shade(ctx.textures, mat, &uv[k], &uv2[k], &lambdas)
-                    } else {
-                        [1.0; 4]
-                    };
-                    match mat.blend {
-                        Blend::Opaque => {
-                            b.depth[at] = z[k];
-                            b.colour[at] = [c[0], c[1], c[2], 1.0];
-                        }
+                    let write = match mat.blend {
+                        Blend::Opaque => true,
                         Blend::AlphaTest => {
-                            if c[3] >= 0.5 {
-                                b.depth[at] = z[k];
-                                b.colour[at] = [c[0], c[1], c[2], 1.0];
-                            }
+                            alpha(ctx.textures, mat, &uv[k], &uv2[k], &lambdas) >= 0.5
                         }
                         Blend::AlphaBlend => {
-                            let d = b.colour[at];
-                            let a = c[3];
-                            b.colour[at] = [
-                                c[0] * a + d[0] * (1.0 - a),
-                                c[1] * a + d[1] * (1.0 - a),
-                                c[2] * a + d[2] * (1.0 - a),
-                                1.0,
-                            ];
+                            if ctx.colour {
+                                b.resolve(ctx, at);
+                                let c = shade(ctx.textures, mat, &uv[k], &uv2[k], &lambdas);
+                                let d = b.colour[at];
+                                let a = c[3];
+                                b.colour[at] = [
+                                    c[0] * a + d[0] * (1.0 - a),
+                                    c[1] * a + d[1] * (1.0 - a),
+                                    c[2] * a + d[2] * (1.0 - a),
+                                    1.0,
+                                ];
+                            }
+                            false
+                        }
+                    };
+                    if write {
+                        b.depth[at] = z[k];
+                        if ctx.colour {
+                            b.pending[at] = frag + 1;
+                            b.pending_uv[at] = [uv[k], uv2[k]];
                         }
                     }
                 }
             }
         }
     }
+    if ctx.colour {
+        for ly in 0..th {
+            for lx in 0..tw {
+                b.resolve(ctx, (ly * t + lx) as usize);
+            }
+        }
+    }
+}
+
+/// The trace records of the tile `b` holds: one warp per fragment, in
+/// rasterization order (the order [`raster_tile`] produced them), as a
+/// one-tile trace with `header`'s frame; counts its quad positions.
+fn build_tile(
+    ctx: &TileCtx,
+    header: &TraceHeader,
+    tx: u32,
+    ty: u32,
+    b: &mut TileBuf,
+) -> Result<Option<Trace>, crate::trace::Problem> {
+    b.positions = 0;
+    if b.frags.is_empty() {
+        return Ok(None);
+    }
+    let side = ctx.tile / 2;
+    let mut builder = Trace::builder(header.clone())?;
+    builder.begin_tile(tx, ty)?;
+    let entries: usize = b
+        .frags
+        .iter()
+        .map(|f| ctx.mats[f.material as usize].shader.len())
+        .sum();
+    builder.reserve(b.frags.len(), entries, b.pool.len());
+    for f in &b.frags {
+        if !b.seen[f.pos as usize] {
+            b.seen[f.pos as usize] = true;
+            b.positions += 1;
+        }
+        builder.begin_quad(f.pos % side, f.pos / side)?;
+        let mut r = f.range as usize;
+        for op in &ctx.mats[f.material as usize].shader {
+            match op {
+                ShaderOp::Alu(0) => {}
+                ShaderOp::Alu(n) => builder.alu(*n)?,
+                ShaderOp::Tex(_) => {
+                    let (start, len) = b.ranges[r];
+                    r += 1;
+                    builder.tex(&b.pool[start as usize..(start + len) as usize])?;
+                }
+            }
+        }
+    }
+    for f in &b.frags {
+        b.seen[f.pos as usize] = false;
+    }
+    builder.end_tile()?;
+    builder.finish().map(Some)
 }
 
 /// Rasterize `scene` into a `width` x `height` frame.
@@ -979,8 +1160,41 @@ pub fn rasterize(
             .collect(),
         ..Default::default()
     };
-    let textures = TextureSet::new(&scene.textures);
+    let clock = std::time::Instant::now();
+    let mut timings = RasterTimings::default();
+    let threads = match opts.threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n,
+    }
+    .clamp(1, 64);
     let setups = geometry(scene, width, height, opts, &mut stats)?;
+    timings.geometry = clock.elapsed().as_secs_f64();
+    // Textures: only those of materials a set-up triangle uses are sampled;
+    // an alpha test reads its material's first texture's alpha.
+    let tex_clock = std::time::Instant::now();
+    let mut uses = vec![
+        TextureUse {
+            sampled: false,
+            alpha_tested: false,
+        };
+        scene.textures.len()
+    ];
+    let mut used_mat = vec![false; scene.materials.len()];
+    for s in &setups {
+        used_mat[s.material as usize] = true;
+    }
+    for (m, _) in scene.materials.iter().zip(&used_mat).filter(|(_, &u)| u) {
+        let mut first = true;
+        for op in &m.shader {
+            if let ShaderOp::Tex(s) = op {
+                uses[s.texture].sampled = true;
+                uses[s.texture].alpha_tested |= first && m.blend == Blend::AlphaTest;
+                first = false;
+            }
+        }
+    }
+    let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
+    timings.textures = tex_clock.elapsed().as_secs_f64();
     let mats: Vec<MatInfo> = scene
         .materials
         .iter()
@@ -996,6 +1210,7 @@ pub fn rasterize(
             MatInfo {
                 blend: m.blend,
                 tex,
+                shader: m.shader.clone(),
             }
         })
         .collect();
@@ -1017,6 +1232,9 @@ pub fn rasterize(
             }
         }
     }
+
+    // Geometry includes the binning.
+    timings.geometry = clock.elapsed().as_secs_f64() - timings.textures;
 
     // Raster pipeline, tile by tile in Z-order; tiles are independent, so
     // batches of them run on worker threads and are emitted in order.
@@ -1043,39 +1261,43 @@ pub fn rasterize(
         .into_iter()
         .filter(|&(tx, ty)| !lists[(ty * tiles_x + tx) as usize].is_empty())
         .collect();
-    let threads = match opts.threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
-    }
-    .clamp(1, 64);
-    let batch = threads * 4;
-    let mut bufs: Vec<TileBuf> = (0..batch.min(order.len().max(1)))
-        .map(|_| TileBuf::new(t, scene.materials.len()))
+    // Tiles are handed out one at a time (costs vary a lot), each worker
+    // building its tile's trace records too; results are used in order.
+    let batch = threads * 16;
+    let bufs: Vec<std::sync::Mutex<TileBuf>> = (0..batch.min(order.len().max(1)))
+        .map(|_| std::sync::Mutex::new(TileBuf::new(t, scene.materials.len())))
         .collect();
-    let side = t / 2;
+    let part_header = builder.header().clone();
     for chunk in order.chunks(batch) {
-        let work = |tiles: &[(u32, u32)], bs: &mut [TileBuf]| {
-            for (&(tx, ty), b) in tiles.iter().zip(bs.iter_mut()) {
-                raster_tile(&ctx, tx, ty, &lists[(ty * tiles_x + tx) as usize], b);
-            }
+        let next = std::sync::atomic::AtomicUsize::new(0);
+        let work = || loop {
+            let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let Some(&(tx, ty)) = chunk.get(i) else {
+                break;
+            };
+            let mut b = bufs[i].lock().unwrap_or_else(|e| e.into_inner());
+            raster_tile(&ctx, tx, ty, &lists[(ty * tiles_x + tx) as usize], &mut b);
+            b.part = build_tile(&ctx, &part_header, tx, ty, &mut b);
         };
         if threads > 1 && chunk.len() > 1 {
-            let per = chunk.len().div_ceil(threads);
             std::thread::scope(|sc| {
-                for (tiles, bs) in chunk.chunks(per).zip(bufs.chunks_mut(per)) {
-                    sc.spawn(move || work(tiles, bs));
+                for _ in 1..threads.min(chunk.len()) {
+                    sc.spawn(work);
                 }
+                work();
             });
         } else {
-            work(chunk, &mut bufs);
+            work();
         }
-        for (&(tx, ty), b) in chunk.iter().zip(bufs.iter_mut()) {
+        for (&(tx, ty), b) in chunk.iter().zip(&bufs) {
+            let mut b = b.lock().unwrap_or_else(|e| e.into_inner());
             stats.quads_covered += b.covered;
             stats.quads_rejected_early_z += b.rejected;
-            stats.quads_shaded += b.frags.len() as u64;
+            stats.warps += b.frags.len() as u64;
+            stats.positions += b.positions;
             stats.pixels_shaded += b.pixels;
             for (m, c) in stats.materials.iter_mut().zip(&b.per_material) {
-                m.quads_shaded += c[0];
+                m.warps += c[0];
                 m.quads_rejected_early_z += c[1];
                 m.pixels += c[2];
             }
@@ -1091,53 +1313,33 @@ pub fn rasterize(
                     }
                 }
             }
-            if b.frags.is_empty() {
-                continue;
+            let part = std::mem::replace(&mut b.part, Ok(None))
+                .map_err(|e| fail(format!("building the trace: {e}")))?;
+            if let Some(part) = part {
+                stats.tiles += 1;
+                builder
+                    .append(part)
+                    .map_err(|e| fail(format!("building the trace: {e}")))?;
             }
-            // One warp per quad position, fragments in draw order.
-            b.frags.sort_by_key(|f| f.pos);
-            let emit = |e: crate::trace::Problem| fail(format!("building the trace: {e}"));
-            builder.begin_tile(tx, ty).map_err(emit)?;
-            stats.tiles += 1;
-            let mut prev = u32::MAX;
-            for f in &b.frags {
-                if f.pos != prev {
-                    builder
-                        .begin_quad(f.pos % side, f.pos / side)
-                        .map_err(emit)?;
-                    stats.warps += 1;
-                    prev = f.pos;
-                }
-                let mut r = f.range as usize;
-                for op in &scene.materials[f.material as usize].shader {
-                    match op {
-                        ShaderOp::Alu(0) => {}
-                        ShaderOp::Alu(n) => builder.alu(*n).map_err(emit)?,
-                        ShaderOp::Tex(_) => {
-                            let (start, len) = b.ranges[r];
-                            r += 1;
-                            builder
-                                .tex(&b.pool[start as usize..(start + len) as usize])
-                                .map_err(emit)?;
-                        }
-                    }
-                }
-            }
-            builder.end_tile().map_err(emit)?;
         }
     }
     let note = format!(
         " rasterized by wasp scene::raster: {} triangles ({} clipped, {} culled), {} quads \
-         covered, {} rejected by early-Z, {} fragments shaded merged into {} warps (overdraw: \
-         the programs of all fragments at a quad position run as one warp, in draw order); \
-         texture heap {} KiB at {:#x}, 4x4-texel 64-byte blocks in Morton order",
+         covered, {} rejected by early-Z, {} fragments shaded, one warp each in \
+         rasterization order, at {} quad positions ({:.2} warps per position); texture heap \
+         {} KiB at {:#x}, 4x4-texel 64-byte blocks in Morton order",
         stats.primitives,
         stats.clipped,
         stats.culled_outside + stats.culled_back_faces,
         stats.quads_covered,
         stats.quads_rejected_early_z,
-        stats.quads_shaded,
         stats.warps,
+        stats.positions,
+        if stats.positions == 0 {
+            0.0
+        } else {
+            stats.warps as f64 / stats.positions as f64
+        },
         textures.heap_bytes() / 1024,
         super::texture::HEAP_BASE
     );
@@ -1147,13 +1349,34 @@ pub fn rasterize(
     let trace = builder
         .finish()
         .map_err(|e| fail(format!("building the trace: {e}")))?;
+    timings.tiles = clock.elapsed().as_secs_f64() - timings.textures - timings.geometry;
     Ok(Frame {
         trace,
         width,
         height,
         image,
         stats,
+        timings,
     })
+}
+
+/// The alpha of one pixel, as [`shade`] gives it: the first texture
+/// sample's (1 without texture), without the other samples.
+#[inline]
+fn alpha(
+    textures: &TextureSet,
+    mat: &MatInfo,
+    uv: &[f32; 2],
+    uv2: &[f32; 2],
+    lambdas: &[f32; 8],
+) -> f32 {
+    match mat.tex.first() {
+        Some(smp) => {
+            let at = if smp.uv_set == 1 { uv2 } else { uv };
+            textures.sample_alpha(smp.texture, smp.filter, *at, lambdas[0])
+        }
+        None => 1.0,
+    }
 }
 
 /// The colour of one pixel: the product of its shader's texture samples,
@@ -1285,12 +1508,69 @@ mod tests {
             [(0, 0), (1, 0), (0, 1), (1, 1), (2, 0)],
             "Morton order"
         );
-        // Every tile is fully covered: 32x32 quads each, one fragment each
-        // (the two triangles of a quad share the diagonal exactly once).
+        // Every tile is fully covered: 32x32 quad positions each, one warp
+        // each but where a rectangle's diagonal crosses a quad: both of its
+        // triangles shade a fragment there (each pixel exactly once).
+        let mut extra = 0;
         for tile in f.trace.tiles() {
-            assert_eq!(tile.quad_count(), 1024);
+            assert_eq!(tile.position_count(), 1024);
+            extra += tile.quad_count() - 1024;
         }
+        assert_eq!(extra as u64, f.stats.warps - f.stats.positions);
+        assert!(extra > 0);
         assert_eq!(f.stats.pixels_shaded, 256 * 128 + 192 * 64);
+    }
+
+    #[test]
+    fn row_spans_hold_every_covered_quad() {
+        // Triangles of every orientation and size, thin slivers included.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: f32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32 * m
+        };
+        let mut mesh = quad_mesh(0.0, 0.0, 1.0, 1.0, 0.0, 0);
+        mesh.positions.clear();
+        mesh.uv.clear();
+        mesh.indices.clear();
+        for t in 0..400u32 {
+            let (cx, cy, r) = (
+                next(96.0),
+                next(96.0),
+                next(if t % 4 == 0 { 4.0 } else { 60.0 }),
+            );
+            for _ in 0..3 {
+                mesh.positions
+                    .push([cx + next(2.0 * r) - r, cy + next(2.0 * r) - r, 0.0]);
+                mesh.uv.push([0.0, 0.0]);
+            }
+            mesh.indices.extend([3 * t, 3 * t + 1, 3 * t + 2]);
+        }
+        let scene = ortho_scene(vec![mesh], vec![mat("m", Blend::Opaque, 0)], 96.0, 96.0);
+        let mut stats = RasterStats {
+            materials: vec![MaterialStats::default()],
+            ..Default::default()
+        };
+        let setups = geometry(&scene, 96, 96, &RasterOptions::default(), &mut stats).unwrap();
+        assert!(setups.len() > 350);
+        let (mut visited, mut full) = (0u64, 0u64);
+        for s in &setups {
+            let (x0, x1) = (s.bbox[0] & !1, s.bbox[1]);
+            for qy in (s.bbox[2] & !1..s.bbox[3]).step_by(2) {
+                let (a, b) = row_span(s, qy, x0, x1);
+                assert!(a % 2 == 0 && x0 <= a && b <= x1.max(a));
+                for qx in (x0..x1).step_by(2) {
+                    full += 1;
+                    if coverage(s, qx, qy, 96, 96) != 0 {
+                        assert!(a <= qx && qx < b, "quad {qx},{qy} outside {a}..{b}");
+                    }
+                }
+                visited += u64::from(b.saturating_sub(a).div_ceil(2));
+            }
+        }
+        assert!(visited < full, "the spans skip quads: {visited} of {full}");
     }
 
     #[test]
@@ -1336,12 +1616,13 @@ mod tests {
             f.stats.materials[1].quads_rejected_early_z,
             f.stats.quads_rejected_early_z
         );
-        assert_eq!(f.stats.materials[1].quads_shaded, 0, "far square hidden");
-        assert_eq!(f.stats.warps, 64 * 64);
+        assert_eq!(f.stats.materials[1].warps, 0, "far square hidden");
+        assert_eq!(f.stats.positions, 64 * 64);
         // The near square's two triangles share a diagonal: the 64 quads it
-        // crosses hold one fragment of each (two warps in hardware, merged
-        // into one here).
-        assert_eq!(f.stats.quads_shaded, f.stats.warps + 64);
+        // crosses hold one fragment of each, two warps.
+        assert_eq!(f.stats.warps, f.stats.positions + 64);
+        assert_eq!(f.trace.quad_count() as u64, f.stats.warps);
+        assert_eq!(f.trace.stats().positions, f.stats.positions);
         // The same far square, but the near one alpha-blended: both shade.
         let scene = persp(
             vec![near, far],
@@ -1352,21 +1633,75 @@ mod tests {
         );
         let g = rasterize(&scene, 128, 128, &RasterOptions::default()).unwrap();
         assert_eq!(g.stats.quads_rejected_early_z, 0);
-        let far_quads = g.stats.materials[1].quads_shaded;
+        let far_quads = g.stats.materials[1].warps;
         assert!(far_quads > 0);
-        assert_eq!(g.stats.materials[0].quads_shaded, f.stats.quads_shaded);
-        assert_eq!(g.stats.warps, 64 * 64);
-        // Merged warps run both programs: 2 x 11 instructions.
-        let centre = g
+        assert_eq!(g.stats.materials[0].warps, f.stats.warps);
+        assert_eq!(g.stats.positions, 64 * 64);
+        assert_eq!(g.stats.warps, f.stats.warps + far_quads);
+        // Where the sprite covers the far square, the position holds two
+        // warps of one 11-instruction program each (never merged): the far
+        // square's first (opaque, drawn first), then the sprite's
+        // (blended, drawn last).
+        let tile = g
             .trace
             .tiles()
             .iter()
             .find(|t| t.tx() == 0 && t.ty() == 0)
-            .unwrap()
-            .quad_at(31, 31)
             .unwrap();
-        assert_eq!(centre.instr_count(), 22);
-        assert_eq!(centre.tex_count(), 2);
+        let at: Vec<_> = tile.quads_at(31, 31).collect();
+        assert_eq!(at.len(), 2);
+        for q in &at {
+            assert_eq!((q.instr_count(), q.tex_count()), (11, 1));
+        }
+        assert!(at[0].index() < at[1].index());
+    }
+
+    #[test]
+    fn warps_come_in_rasterization_order() {
+        // Two overlapping opaque squares (orthographic, the second nearer):
+        // the tile's warps are all quads of the first square's triangles in
+        // scanline order per triangle, then the second square's.
+        let scene = ortho_scene(
+            vec![
+                quad_mesh(0.0, 0.0, 16.0, 16.0, 0.0, 0),
+                quad_mesh(8.0, 8.0, 24.0, 24.0, 1.0, 1),
+            ],
+            vec![mat("a", Blend::Opaque, 0), mat("b", Blend::Opaque, 0)],
+            32.0,
+            32.0,
+        );
+        let f = rasterize(&scene, 32, 32, &RasterOptions::default()).unwrap();
+        let tile = &f.trace.tiles()[0];
+        let pos: Vec<(u32, u32)> = tile.quads().map(|q| (q.x(), q.y())).collect();
+        // Square a: 8x8 quads plus 8 on the shared diagonal; square b the
+        // same, 16 of its positions over a's.
+        assert_eq!(pos.len(), 2 * (64 + 8));
+        assert_eq!(f.stats.positions, 64 + 64 - 16);
+        // Each triangle's quads are in scanline order; where the order goes
+        // back, a new triangle starts: 4 triangles, 4 runs.
+        let runs = 1 + pos
+            .windows(2)
+            .filter(|w| (w[1].1, w[1].0) <= (w[0].1, w[0].0))
+            .count();
+        assert_eq!(runs, 4);
+        // Square a's warps (quads 0..8) all come before square b's (4..12).
+        assert!(pos[..72].iter().all(|&(x, y)| x < 8 && y < 8));
+        let in_b = |v: u32| (4..12).contains(&v);
+        assert!(pos[72..].iter().all(|&(x, y)| in_b(x) && in_b(y)));
+        // Threads do not change the trace.
+        for threads in [1, 3] {
+            let g = rasterize(
+                &scene,
+                32,
+                32,
+                &RasterOptions {
+                    threads,
+                    ..RasterOptions::default()
+                },
+            )
+            .unwrap();
+            assert_eq!(g.trace.to_text(), f.trace.to_text());
+        }
     }
 
     /// A tilted textured plane: y = -1, z from -1 to -20, uv = (x, -z).
@@ -1499,15 +1834,16 @@ mod tests {
         let f = rasterize(&scene, 32, 32, &RasterOptions::default()).unwrap();
         assert_eq!(f.stats.quads_rejected_early_z, 0);
         // 256 quads each, plus the 16 quads on each square's diagonal.
-        assert_eq!(f.stats.materials[0].quads_shaded, 16 * 16 + 16);
-        assert_eq!(f.stats.materials[1].quads_shaded, 16 * 16 + 16);
-        assert_eq!(f.stats.warps, 16 * 16);
+        assert_eq!(f.stats.materials[0].warps, 16 * 16 + 16);
+        assert_eq!(f.stats.materials[1].warps, 16 * 16 + 16);
+        assert_eq!(f.stats.positions, 16 * 16);
+        assert_eq!(f.stats.warps, 2 * (16 * 16 + 16));
         // With an opaque texture the cut-out hides the square behind.
         for px in scene.textures[0].rgba.chunks_exact_mut(4) {
             px[3] = 255;
         }
         let g = rasterize(&scene, 32, 32, &RasterOptions::default()).unwrap();
-        assert_eq!(g.stats.materials[1].quads_shaded, 0);
+        assert_eq!(g.stats.materials[1].warps, 0);
     }
 
     /// Timing of the front end on the procedural scenes at the paper's

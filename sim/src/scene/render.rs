@@ -11,7 +11,11 @@
 //!   model run on the frame's trace: `latency` (default: the mean memory
 //!   latency of the warp's texture instructions), `cycles` (launch to
 //!   finish) or `launch` (launch cycle after the tile's first launch, so
-//!   the launch order shows). Quads without a value keep a dimmed picture.
+//!   the launch order shows). With overdraw a quad position holds several
+//!   warps (one per fragment): the map shows the **mean** of their values
+//!   (the legend says `MEAN ... PER QUAD`), so a position is as hot as its
+//!   typical warp; the range and percentiles are over these per-position
+//!   means. Quads without a value keep a dimmed picture.
 //!   The colour scale runs from the minimum to the 99th percentile (above
 //!   it: red); a colour bar with the minimum, the 99th percentile and the
 //!   maximum is drawn bottom right.
@@ -41,9 +45,9 @@ impl HeatStat {
     /// Legend label.
     pub fn label(self) -> &'static str {
         match self {
-            HeatStat::Latency => "MEM LATENCY (CYCLES)",
-            HeatStat::Cycles => "WARP CYCLES",
-            HeatStat::Launch => "LAUNCH CYCLE IN TILE",
+            HeatStat::Latency => "MEAN MEM LATENCY PER QUAD (CYCLES)",
+            HeatStat::Cycles => "MEAN WARP CYCLES PER QUAD",
+            HeatStat::Launch => "MEAN LAUNCH CYCLE IN TILE PER QUAD",
         }
     }
 }
@@ -130,6 +134,9 @@ pub struct RenderRequest {
     /// Hidden-surface removal by a depth pre-pass (see
     /// [`RasterOptions::depth_prepass`]).
     pub depth_prepass: bool,
+    /// Front-end worker threads ([`RasterOptions::threads`]; 0: one per
+    /// hardware thread).
+    pub threads: usize,
 }
 
 /// A rendered frame.
@@ -159,6 +166,7 @@ pub fn render(
     let opts = RasterOptions {
         tile: req.config.gpu.tile_size,
         depth_prepass: req.depth_prepass,
+        threads: req.threads,
         ..RasterOptions::default()
     };
     let (frame, raster_seconds) =
@@ -230,8 +238,33 @@ pub fn compose(
     (img.px, range)
 }
 
-/// Per-quad values of a statistic: (top-left pixel x, y, value).
+/// Per-quad values of a statistic: (top-left pixel x, y, value), one per
+/// quad position with a value, in scanline order of the frame; the value is
+/// the mean over the position's warps that have one (in record order, so
+/// the result is deterministic).
 pub fn heat_values(frame: &Frame, records: &[WarpRecord], stat: HeatStat) -> Vec<(u32, u32, f64)> {
+    let mut per_warp = warp_values(frame, records, stat);
+    // Stable: a position's values stay in record order.
+    per_warp.sort_by_key(|&(x, y, _)| (y, x));
+    let mut out: Vec<(u32, u32, f64)> = Vec::new();
+    let mut n = 0u32;
+    for (x, y, v) in per_warp {
+        match out.last_mut() {
+            Some(last) if (last.0, last.1) == (x, y) => {
+                n += 1;
+                last.2 += (v - last.2) / f64::from(n);
+            }
+            _ => {
+                out.push((x, y, v));
+                n = 1;
+            }
+        }
+    }
+    out
+}
+
+/// One value per warp with a value: (top-left pixel x, y, value).
+fn warp_values(frame: &Frame, records: &[WarpRecord], stat: HeatStat) -> Vec<(u32, u32, f64)> {
     let tiles = frame.trace.tiles();
     let t = frame.trace.header().tile;
     let mut first_launch = vec![u64::MAX; tiles.len()];
@@ -507,6 +540,45 @@ mod tests {
         // Quad (0, 0) of tile 0 is Mesh4 priority, quad (1, 0) is not.
         assert_ne!(sub[0..4], f.image[0..4]);
         assert_eq!(sub[8..12], f.image[8..12]);
+    }
+
+    #[test]
+    fn heat_values_are_the_mean_over_the_warps_of_a_position() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/traces/overdraw.trace"
+        );
+        let trace = crate::trace::Trace::read(path).unwrap();
+        let frame = Frame {
+            trace,
+            width: 16,
+            height: 8,
+            image: vec![0; 16 * 8 * 4],
+            stats: Default::default(),
+            timings: Default::default(),
+        };
+        let rec = |quad: u32, lat: Option<f64>, launched: u64| WarpRecord {
+            tile: 0,
+            quad,
+            core: 0,
+            priority: false,
+            mem_latency: lat,
+            launched,
+            finished: launched + 100,
+        };
+        // Quads 5 and 6 share position (1, 1); 2 and 4 share (0, 1).
+        let recs = [
+            rec(6, Some(30.0), 9),
+            rec(0, Some(7.0), 1),
+            rec(5, Some(10.0), 5),
+            rec(2, None, 2),
+            rec(4, Some(4.0), 3),
+        ];
+        let v = heat_values(&frame, &recs, HeatStat::Latency);
+        assert_eq!(v, vec![(0, 0, 7.0), (0, 2, 4.0), (2, 2, 20.0)]);
+        let l = heat_values(&frame, &recs, HeatStat::Launch);
+        assert_eq!(l, vec![(0, 0, 0.0), (0, 2, 1.5), (2, 2, 6.0)]);
+        assert!(HeatStat::Latency.label().starts_with("MEAN"));
     }
 
     #[test]

@@ -1026,6 +1026,69 @@ fn decode_image(path: &Path, max_side: u32) -> Result<(u32, u32, Vec<u8>), Scene
     Ok((w, h, rgba.into_raw()))
 }
 
+/// A decoded image: width, height, RGBA8 texels.
+type Image = (u32, u32, Vec<u8>);
+
+/// Decodes the image files `paths` ([`decode_image`]) on up to `threads`
+/// threads, results in `paths` order; a file named twice is decoded once.
+/// The first error in `paths` order, if any.
+fn decode_images(
+    paths: &[PathBuf],
+    max_side: u32,
+    threads: usize,
+) -> Result<Vec<Image>, SceneError> {
+    let mut unique: Vec<&PathBuf> = paths.iter().collect();
+    unique.sort();
+    unique.dedup();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let work = || {
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let Some(p) = unique.get(i) else {
+                return done;
+            };
+            done.push((i, decode_image(p, max_side)));
+        }
+    };
+    let threads = threads.clamp(1, unique.len().max(1));
+    let mut results: Vec<(usize, Result<Image, SceneError>)> = if threads > 1 {
+        std::thread::scope(|sc| {
+            let others: Vec<_> = (1..threads).map(|_| sc.spawn(work)).collect();
+            let mut all = work();
+            for h in others {
+                all.extend(h.join().expect("image decoding thread"));
+            }
+            all
+        })
+    } else {
+        work()
+    };
+    results.sort_by_key(|r| r.0);
+    let mut decoded: Vec<Option<Result<Image, SceneError>>> =
+        results.into_iter().map(|r| Some(r.1)).collect();
+    let slot: Vec<usize> = paths
+        .iter()
+        .map(|p| unique.binary_search(&p).expect("every path is in the list"))
+        .collect();
+    let mut uses = vec![0usize; unique.len()];
+    for &i in &slot {
+        uses[i] += 1;
+    }
+    slot.iter()
+        .map(|&i| {
+            uses[i] -= 1;
+            // The last use takes the texels; earlier ones copy them.
+            let r = if uses[i] == 0 {
+                decoded[i].take()
+            } else {
+                decoded[i].clone()
+            };
+            r.expect("decoded")
+        })
+        .collect()
+}
+
 // ---------------------------------------------------------------------------
 // The loader
 
@@ -1052,7 +1115,10 @@ struct Builder<'a> {
     eye: Vec3,
     cam_right: Vec3,
     cam_up: Vec3,
+    /// Textures, their texels decoded at the end ([`decode_images`]).
     textures: Vec<Texture>,
+    /// The image file of each texture.
+    tex_paths: Vec<PathBuf>,
     tex_ids: HashMap<(PathBuf, bool), usize>,
     materials: Vec<Material>,
     mat_ids: HashMap<(MatKey, u8), usize>,
@@ -1096,19 +1162,20 @@ impl Builder<'_> {
         if let Some(&i) = self.tex_ids.get(&key) {
             return Ok(i);
         }
-        let (width, height, rgba) = decode_image(path, MAX_TEXTURE_SIDE)?;
         let name = path
             .strip_prefix(self.root)
             .unwrap_or(path)
             .to_string_lossy()
             .into_owned();
+        // Decoded later, all at once on several threads.
         self.textures.push(Texture {
             name,
-            width,
-            height,
-            rgba,
+            width: 0,
+            height: 0,
+            rgba: Vec::new(),
             repeat,
         });
+        self.tex_paths.push(path.to_path_buf());
         let i = self.textures.len() - 1;
         self.tex_ids.insert(key, i);
         Ok(i)
@@ -1568,6 +1635,7 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
         cam_right: [1.0, 0.0, 0.0],
         cam_up: [0.0, 1.0, 0.0],
         textures: Vec::new(),
+        tex_paths: Vec::new(),
         tex_ids: HashMap::new(),
         materials: Vec::new(),
         mat_ids: HashMap::new(),
@@ -1620,6 +1688,11 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
     all.extend(sky);
     all.extend(blended);
     let tris: usize = all.iter().map(|m| m.indices.len() / 3).sum();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let images = decode_images(&b.tex_paths, MAX_TEXTURE_SIDE, threads)?;
+    for (t, (width, height, rgba)) in b.textures.iter_mut().zip(images) {
+        (t.width, t.height, t.rgba) = (width, height, rgba);
+    }
     let mut missing = std::mem::take(&mut b.missing);
     missing.sort();
     missing.dedup();
@@ -1937,6 +2010,39 @@ mod tests {
         assert!(!condition_holds(Some("isTrackReverse")));
         assert!(!condition_holds(Some("isLocked(gp1)")));
         assert!(!condition_holds(Some("false")));
+    }
+
+    #[test]
+    fn images_decode_in_order_once_each_on_any_number_of_threads() {
+        let dir = std::env::temp_dir().join(format!("wasp-stk-decode-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut paths = Vec::new();
+        for (i, name) in ["a.png", "b.png", "c.png"].iter().enumerate() {
+            let p = dir.join(name);
+            image::RgbaImage::from_pixel(2 + i as u32, 3, image::Rgba([i as u8, 2, 3, 255]))
+                .save(&p)
+                .unwrap();
+            paths.push(p);
+        }
+        let list = vec![
+            paths[1].clone(),
+            paths[0].clone(),
+            paths[1].clone(),
+            paths[2].clone(),
+        ];
+        let one = decode_images(&list, 1024, 1).unwrap();
+        assert_eq!(
+            one.iter().map(|d| (d.0, d.2[0])).collect::<Vec<_>>(),
+            vec![(3, 1), (2, 0), (3, 1), (4, 2)]
+        );
+        for threads in [2, 4] {
+            assert_eq!(decode_images(&list, 1024, threads).unwrap(), one);
+        }
+        // The first failure in list order is the error.
+        let bad = vec![paths[0].clone(), dir.join("x.png"), dir.join("y.png")];
+        let e = decode_images(&bad, 1024, 3).unwrap_err();
+        assert!(e.to_string().contains("x.png"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// A whole synthetic track on disk: scene.xml with the track model, a

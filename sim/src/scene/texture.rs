@@ -49,6 +49,7 @@
 //! what the trace lists.
 
 use super::{Filter, TexSample, Texture};
+use std::borrow::Cow;
 
 /// Bytes of one memory block (cache line).
 pub const BLOCK_BYTES: u64 = 64;
@@ -61,13 +62,14 @@ pub const TEXTURE_ALIGN: u64 = 64 * 1024;
 
 /// One mip level: its texels and where its blocks are.
 #[derive(Clone, Debug)]
-pub struct MipLevel {
+pub struct MipLevel<'a> {
     /// Width in texels.
     pub width: u32,
     /// Height in texels.
     pub height: u32,
-    /// Texels, RGBA8, row-major, top row first.
-    pub rgba: Vec<u8>,
+    /// Texels, RGBA8, row-major, top row first (level 0 borrowed from the
+    /// scene's texture).
+    pub rgba: Cow<'a, [u8]>,
     /// Block number (byte address / 64) of the level's first block.
     pub first_block: u64,
     /// Blocks the level occupies (its padded block grid).
@@ -76,9 +78,12 @@ pub struct MipLevel {
     pw_log2: u32,
     /// log2 of the Morton square edge in blocks.
     k: u32,
+    /// The alpha channel alone (empty unless asked for): a 4x denser copy
+    /// for the alpha test, which reads alpha only.
+    alpha: Vec<u8>,
 }
 
-impl MipLevel {
+impl MipLevel<'_> {
     /// Block number of the block holding texel (`x`, `y`) (inside the level).
     #[inline]
     pub fn block_of(&self, x: u32, y: u32) -> u64 {
@@ -90,11 +95,25 @@ impl MipLevel {
         self.first_block + (square << (2 * self.k)) + inner
     }
 
+    /// Alpha of texel (`x`, `y`) in 0..=1.
+    #[inline]
+    fn texel_alpha(&self, x: u32, y: u32) -> f32 {
+        let i = (y as usize) * (self.width as usize) + x as usize;
+        let a = if self.alpha.is_empty() {
+            self.rgba.get(i * 4 + 3)
+        } else {
+            self.alpha.get(i)
+        };
+        f32::from(a.copied().unwrap_or(0)) / 255.0
+    }
+
     /// Texel (`x`, `y`) as RGBA in 0..=1.
     #[inline]
     fn texel(&self, x: u32, y: u32) -> [f32; 4] {
         let i = ((y as usize) * (self.width as usize) + x as usize) * 4;
-        let p = &self.rgba[i..i + 4];
+        let Some(p) = self.rgba.get(i..i + 4) else {
+            return [0.0; 4]; // a texture without texels (never sampled)
+        };
         [
             f32::from(p[0]) / 255.0,
             f32::from(p[1]) / 255.0,
@@ -106,7 +125,7 @@ impl MipLevel {
 
 /// One texture in the heap: its mip chain and address range.
 #[derive(Clone, Debug)]
-pub struct HeapTexture {
+pub struct HeapTexture<'a> {
     /// Name (from the scene).
     pub name: String,
     /// Repeat (true) or clamp to edge.
@@ -116,13 +135,13 @@ pub struct HeapTexture {
     /// Bytes of the whole chain (a multiple of 64).
     pub bytes: u64,
     /// Levels, level 0 first, down to 1x1.
-    pub levels: Vec<MipLevel>,
+    pub levels: Vec<MipLevel<'a>>,
 }
 
 /// Every texture of a scene laid out in the texture heap.
 #[derive(Clone, Debug)]
-pub struct TextureSet {
-    textures: Vec<HeapTexture>,
+pub struct TextureSet<'a> {
+    textures: Vec<HeapTexture<'a>>,
     end: u64,
 }
 
@@ -142,6 +161,33 @@ fn morton2(x: u32, y: u32) -> u64 {
 
 /// The next level of a chain: 2x2 box filter.
 fn downsample(w: u32, h: u32, src: &[u8]) -> (u32, u32, Vec<u8>) {
+    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+    if w >= 2 && h >= 2 {
+        // Every output texel has its 2x2 source texels (an odd last row or
+        // column is dropped): rows at a time, no clamping.
+        let (sw, ow) = (w as usize * 4, nw as usize * 4);
+        let mut out = Vec::with_capacity(ow * nh as usize);
+        for y in 0..nh as usize {
+            let r0 = &src[2 * y * sw..2 * y * sw + sw];
+            let r1 = &src[(2 * y + 1) * sw..(2 * y + 1) * sw + sw];
+            for (a, b) in r0.chunks_exact(8).zip(r1.chunks_exact(8)).take(nw as usize) {
+                for c in 0..4 {
+                    let s = u32::from(a[c])
+                        + u32::from(a[4 + c])
+                        + u32::from(b[c])
+                        + u32::from(b[4 + c]);
+                    out.push(((s + 2) / 4) as u8);
+                }
+            }
+        }
+        return (nw, nh, out);
+    }
+    downsample_clamped(w, h, src)
+}
+
+/// [`downsample`] for any size: source coordinates clamped to the edge (a
+/// 1-texel edge stays 1).
+fn downsample_clamped(w: u32, h: u32, src: &[u8]) -> (u32, u32, Vec<u8>) {
     let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
     let mut out = vec![0u8; nw as usize * nh as usize * 4];
     for y in 0..nh {
@@ -187,34 +233,125 @@ fn floor_i64(v: f64) -> i64 {
     i.saturating_sub(i64::from((i as f64) > v))
 }
 
-impl TextureSet {
+/// How the front end uses a texture ([`TextureSet::with_threads`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureUse {
+    /// Whether any visible triangle samples it (if not, its levels beyond
+    /// 0 keep their size and place in the heap but get no texels).
+    pub sampled: bool,
+    /// Whether an alpha test reads its alpha (then its levels get an
+    /// alpha-only copy).
+    pub alpha_tested: bool,
+}
+
+impl Default for TextureUse {
+    fn default() -> Self {
+        TextureUse {
+            sampled: true,
+            alpha_tested: false,
+        }
+    }
+}
+
+/// Mip levels as (width, height, texels).
+type Chain<'a> = Vec<(u32, u32, Cow<'a, [u8]>)>;
+
+/// The mip chain of one texture, level 0 borrowed: (width, height, texels)
+/// per level, down to 1x1; without `texels`, the levels beyond 0 are sizes
+/// only (empty texels). A texture with a zero edge or a texel array of the
+/// wrong size becomes a 1x1 magenta texture.
+fn mip_chain(t: &Texture, texels: bool) -> Chain<'_> {
+    let valid =
+        t.width > 0 && t.height > 0 && t.rgba.len() == t.width as usize * t.height as usize * 4;
+    let mut chain: Vec<(u32, u32, Cow<'_, [u8]>)> = vec![if valid {
+        (t.width, t.height, Cow::Borrowed(&t.rgba[..]))
+    } else {
+        (1, 1, Cow::Owned(vec![255, 0, 255, 255]))
+    }];
+    loop {
+        let (w, h, rgba) = chain.last().expect("level 0");
+        if *w == 1 && *h == 1 {
+            return chain;
+        }
+        if texels {
+            let (nw, nh, next) = downsample(*w, *h, rgba);
+            chain.push((nw, nh, Cow::Owned(next)));
+        } else {
+            let (nw, nh) = ((*w / 2).max(1), (*h / 2).max(1));
+            chain.push((nw, nh, Cow::Owned(Vec::new())));
+        }
+    }
+}
+
+impl<'a> TextureSet<'a> {
     /// Builds every texture's mip chain and places it in the heap. A texture
     /// with a zero edge or a texel array of the wrong size is replaced by a
     /// 1x1 magenta texture (the raster front end checks scenes before).
-    pub fn new(textures: &[Texture]) -> TextureSet {
+    pub fn new(textures: &'a [Texture]) -> TextureSet<'a> {
+        TextureSet::with_threads(textures, 1, &[])
+    }
+
+    /// [`TextureSet::new`], building the mip chains on up to `threads`
+    /// threads (the result does not depend on it), as `uses` says (default
+    /// for textures beyond its end): an alpha-only copy of every level of
+    /// alpha-tested textures (it speeds up [`TextureSet::sample_alpha`],
+    /// same results), and no texels beyond level 0 for textures never
+    /// sampled (same layout, so the same block addresses; sampling one
+    /// anyway gives transparent black).
+    pub fn with_threads(
+        textures: &'a [Texture],
+        threads: usize,
+        uses: &[TextureUse],
+    ) -> TextureSet<'a> {
+        let use_of = |i: usize| uses.get(i).copied().unwrap_or_default();
+        // Largest textures first, dealt round-robin, so threads get similar
+        // work; each chain lands in its texture's slot.
+        let mut order: Vec<usize> = (0..textures.len()).collect();
+        order.sort_by_key(|&i| std::cmp::Reverse(textures[i].rgba.len()));
+        let threads = threads.clamp(1, textures.len().max(1));
+        let mut chains: Vec<Chain<'a>> = vec![Vec::new(); textures.len()];
+        if threads == 1 {
+            for (i, t) in textures.iter().enumerate() {
+                chains[i] = mip_chain(t, use_of(i).sampled);
+            }
+        } else {
+            let built: Vec<Vec<(usize, Chain<'a>)>> = std::thread::scope(|sc| {
+                let handles: Vec<_> = (0..threads)
+                    .map(|k| {
+                        let mine: Vec<usize> =
+                            order.iter().copied().skip(k).step_by(threads).collect();
+                        sc.spawn(move || {
+                            mine.into_iter()
+                                .map(|i| (i, mip_chain(&textures[i], use_of(i).sampled)))
+                                .collect::<Vec<_>>()
+                        })
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().expect("mip chain thread"))
+                    .collect()
+            });
+            for (i, chain) in built.into_iter().flatten() {
+                chains[i] = chain;
+            }
+        }
         let mut out = Vec::with_capacity(textures.len());
         let mut addr = HEAP_BASE;
-        for t in textures {
-            let valid = t.width > 0
-                && t.height > 0
-                && t.rgba.len() == t.width as usize * t.height as usize * 4;
-            let (mut w, mut h, mut rgba) = if valid {
-                (t.width, t.height, t.rgba.clone())
-            } else {
-                (1, 1, vec![255, 0, 255, 255])
-            };
+        for (i, (t, chain)) in textures.iter().zip(chains).enumerate() {
+            let with_alpha = use_of(i).alpha_tested && use_of(i).sampled;
             let base = addr;
-            let mut levels = Vec::new();
+            let mut levels = Vec::with_capacity(chain.len());
             let mut block = base / BLOCK_BYTES;
-            loop {
+            for (w, h, rgba) in chain {
                 let bw = w.div_ceil(BLOCK_TEXELS).next_power_of_two();
                 let bh = h.div_ceil(BLOCK_TEXELS).next_power_of_two();
                 let (pw_log2, ph_log2) = (bw.trailing_zeros(), bh.trailing_zeros());
                 let block_count = u64::from(bw) * u64::from(bh);
-                let next = if w > 1 || h > 1 {
-                    Some(downsample(w, h, &rgba))
+                let alpha = if with_alpha {
+                    rgba.chunks_exact(4).map(|p| p[3]).collect()
                 } else {
-                    None
+                    Vec::new()
                 };
                 levels.push(MipLevel {
                     width: w,
@@ -224,16 +361,9 @@ impl TextureSet {
                     block_count,
                     pw_log2,
                     k: pw_log2.min(ph_log2),
+                    alpha,
                 });
                 block += block_count;
-                match next {
-                    Some((nw, nh, n)) => {
-                        w = nw;
-                        h = nh;
-                        rgba = n;
-                    }
-                    None => break,
-                }
             }
             let bytes = block * BLOCK_BYTES - base;
             addr = (block * BLOCK_BYTES).div_ceil(TEXTURE_ALIGN) * TEXTURE_ALIGN;
@@ -252,7 +382,7 @@ impl TextureSet {
     }
 
     /// The textures in scene order.
-    pub fn textures(&self) -> &[HeapTexture] {
+    pub fn textures(&self) -> &[HeapTexture<'a>] {
         &self.textures
     }
 
@@ -327,29 +457,37 @@ impl TextureSet {
         let tex = &self.textures[sample.texture];
         let lambda = self.quad_lambda(sample.texture, &uvs);
         let (la, lb, _) = self.levels_for(sample.texture, sample.filter, lambda);
-        // Few distinct blocks per instruction: a linear membership test
-        // beats sorting the up to 32 raw ones.
-        let mut add = |b: u64| {
-            if !out.contains(&b) {
-                out.push(b);
-            }
-        };
+        // A block holds the texels of one (x / 4, y / 4) cell of its level,
+        // so the distinct cells the texels fall in (few: at most 16 per
+        // level) give the distinct blocks; levels never share a block.
         let mut push_level = |level: &MipLevel| {
+            let mut cells = [0u64; 16];
+            let mut n = 0;
+            let mut add = |x: u32, y: u32| {
+                let key = u64::from(x / BLOCK_TEXELS) | (u64::from(y / BLOCK_TEXELS) << 32);
+                if !cells[..n].contains(&key) {
+                    cells[n] = key;
+                    n += 1;
+                }
+            };
             for uv in &uvs {
                 match sample.filter {
                     Filter::Nearest => {
                         let (x, y) = nearest(level, tex.repeat, *uv);
-                        add(level.block_of(x, y));
+                        add(x, y);
                     }
                     Filter::Bilinear | Filter::Trilinear => {
                         let (x0, x1, y0, y1, _, _) = bilinear(level, tex.repeat, *uv);
-                        add(level.block_of(x0, y0));
-                        add(level.block_of(x1, y0));
-                        add(level.block_of(x0, y1));
-                        add(level.block_of(x1, y1));
+                        add(x0, y0);
+                        add(x1, y0);
+                        add(x0, y1);
+                        add(x1, y1);
                     }
                 }
             }
+            out.extend(cells[..n].iter().map(|&k| {
+                level.block_of((k as u32) * BLOCK_TEXELS, ((k >> 32) as u32) * BLOCK_TEXELS)
+            }));
         };
         push_level(&tex.levels[la]);
         if lb != la {
@@ -399,10 +537,37 @@ impl TextureSet {
         }
         o
     }
+
+    /// `sample_rgba(texture, filter, uv, lambda)[3]`, the same value, without
+    /// the colour channels.
+    pub fn sample_alpha(&self, texture: usize, filter: Filter, uv: [f32; 2], lambda: f32) -> f32 {
+        let tex = &self.textures[texture];
+        let (la, lb, t) = self.levels_for(texture, filter, lambda);
+        let one = |level: &MipLevel| match filter {
+            Filter::Nearest => {
+                let (x, y) = nearest(level, tex.repeat, uv);
+                level.texel_alpha(x, y)
+            }
+            Filter::Bilinear | Filter::Trilinear => {
+                let (x0, x1, y0, y1, fx, fy) = bilinear(level, tex.repeat, uv);
+                let (a, b) = (level.texel_alpha(x0, y0), level.texel_alpha(x1, y0));
+                let (c, d) = (level.texel_alpha(x0, y1), level.texel_alpha(x1, y1));
+                let top = a + (b - a) * fx;
+                let bot = c + (d - c) * fx;
+                top + (bot - top) * fy
+            }
+        };
+        let a = one(&tex.levels[la]);
+        if lb == la || t <= 0.0 {
+            return a;
+        }
+        let b = one(&tex.levels[lb]);
+        a + (b - a) * t
+    }
 }
 
 /// The texel containing the sample point.
-#[inline]
+#[inline(always)]
 fn nearest(level: &MipLevel, repeat: bool, uv: [f32; 2]) -> (u32, u32) {
     let x = floor_i64(f64::from(uv[0]) * f64::from(level.width));
     let y = floor_i64(f64::from(uv[1]) * f64::from(level.height));
@@ -410,7 +575,7 @@ fn nearest(level: &MipLevel, repeat: bool, uv: [f32; 2]) -> (u32, u32) {
 }
 
 /// The 2x2 texels around the sample point and the blend fractions.
-#[inline]
+#[inline(always)]
 fn bilinear(level: &MipLevel, repeat: bool, uv: [f32; 2]) -> (u32, u32, u32, u32, f32, f32) {
     let x = f64::from(uv[0]) * f64::from(level.width) - 0.5;
     let y = f64::from(uv[1]) * f64::from(level.height) - 0.5;
@@ -463,7 +628,8 @@ mod tests {
 
     #[test]
     fn mip_chain_goes_down_to_one_texel_and_is_box_filtered() {
-        let set = TextureSet::new(&[tex("a", 256, 64, true)]);
+        let texs = [tex("a", 256, 64, true)];
+        let set = TextureSet::new(&texs);
         let levels = &set.textures()[0].levels;
         let dims: Vec<(u32, u32)> = levels.iter().map(|l| (l.width, l.height)).collect();
         assert_eq!(dims.first(), Some(&(256, 64)));
@@ -483,7 +649,8 @@ mod tests {
 
     #[test]
     fn mip_selection_magnified_minified_and_at_distance() {
-        let set = TextureSet::new(&[tex("a", 256, 256, true)]);
+        let texs = [tex("a", 256, 256, true)];
+        let set = TextureSet::new(&texs);
         // Magnified: a pixel step is half a texel.
         let mag = set.quad_lambda(0, &quad_uvs([0.3, 0.3], 0.5, 256.0));
         assert!((mag + 1.0).abs() < 1e-4, "{mag}");
@@ -516,7 +683,8 @@ mod tests {
 
     #[test]
     fn block_layout_one_block_per_4x4_texels_and_textures_never_share() {
-        let set = TextureSet::new(&[tex("a", 64, 64, true), tex("b", 100, 20, false)]);
+        let texs = [tex("a", 64, 64, true), tex("b", 100, 20, false)];
+        let set = TextureSet::new(&texs);
         let a = &set.textures()[0];
         let b = &set.textures()[1];
         assert_eq!(a.base, HEAP_BASE);
@@ -566,7 +734,8 @@ mod tests {
 
     #[test]
     fn bilinear_trilinear_and_nearest_block_counts() {
-        let set = TextureSet::new(&[tex("a", 256, 256, true)]);
+        let texs = [tex("a", 256, 256, true)];
+        let set = TextureSet::new(&texs);
         let mut out = Vec::new();
         // A quad at 1.5 texels per pixel step, straddling block edges.
         let uvs = quad_uvs([30.0 / 256.0, 62.0 / 256.0], 1.5, 256.0);
@@ -588,7 +757,8 @@ mod tests {
 
     #[test]
     fn wrap_and_clamp_at_the_edge() {
-        let set = TextureSet::new(&[tex("r", 64, 64, true), tex("c", 64, 64, false)]);
+        let texs = [tex("r", 64, 64, true), tex("c", 64, 64, false)];
+        let set = TextureSet::new(&texs);
         let mut out = Vec::new();
         let uvs = [[0.999, 0.5], [1.001, 0.5], [0.999, 0.51], [1.001, 0.51]];
         let rep = TexSample {
@@ -609,8 +779,91 @@ mod tests {
     }
 
     #[test]
+    fn row_downsampling_equals_the_clamped_one() {
+        for (w, h) in [(2, 2), (5, 3), (7, 9), (64, 33), (3, 2), (1, 6), (6, 1)] {
+            let src: Vec<u8> = (0..w * h * 4).map(|i| (i * 73 % 256) as u8).collect();
+            assert_eq!(
+                downsample(w, h, &src),
+                downsample_clamped(w, h, &src),
+                "{w}x{h}"
+            );
+        }
+    }
+
+    #[test]
+    fn threads_and_alpha_only_sampling_change_nothing() {
+        let mut texs = [
+            tex("a", 64, 32, true),
+            tex("b", 100, 20, false),
+            tex("c", 1, 1, true),
+            tex("d", 256, 256, true),
+        ];
+        for t in &mut texs {
+            for (i, px) in t.rgba.chunks_exact_mut(4).enumerate() {
+                px[3] = (i * 37 % 251) as u8;
+            }
+        }
+        let one = TextureSet::new(&texs);
+        let u = |alpha_tested| TextureUse {
+            sampled: true,
+            alpha_tested,
+        };
+        let alpha = TextureSet::with_threads(&texs, 2, &[u(true), u(false), u(true), u(true)]);
+        // Unsampled textures: the same layout, no texels beyond level 0.
+        let bare = TextureSet::with_threads(
+            &texs,
+            2,
+            &[TextureUse {
+                sampled: false,
+                alpha_tested: true,
+            }],
+        );
+        for (a, b) in one.textures().iter().zip(bare.textures()) {
+            assert_eq!(
+                (a.base, a.bytes, a.levels.len()),
+                (b.base, b.bytes, b.levels.len())
+            );
+        }
+        assert!(bare.textures()[0].levels[1].rgba.is_empty());
+        assert_eq!(
+            bare.textures()[1].levels[1].rgba,
+            one.textures()[1].levels[1].rgba
+        );
+        assert_eq!(
+            bare.sample_rgba(0, Filter::Trilinear, [0.3, 0.3], 2.5),
+            [0.0; 4]
+        );
+        for threads in [2, 3, 8] {
+            let many = TextureSet::with_threads(&texs, threads, &[]);
+            assert_eq!(many.heap_bytes(), one.heap_bytes());
+            for (a, b) in one.textures().iter().zip(many.textures()) {
+                assert_eq!(
+                    (a.base, a.bytes, a.levels.len()),
+                    (b.base, b.bytes, b.levels.len())
+                );
+                for (la, lb) in a.levels.iter().zip(&b.levels) {
+                    assert_eq!(la.rgba, lb.rgba);
+                    assert_eq!(la.first_block, lb.first_block);
+                }
+            }
+        }
+        for t in 0..texs.len() {
+            for filter in [Filter::Nearest, Filter::Bilinear, Filter::Trilinear] {
+                for (uv, lambda) in [([0.3, 0.7], -1.0), ([1.37, -0.2], 1.6), ([0.01, 0.99], 4.3)] {
+                    let c = one.sample_rgba(t, filter, uv, lambda);
+                    let a = one.sample_alpha(t, filter, uv, lambda);
+                    assert_eq!(a.to_bits(), c[3].to_bits(), "{t} {filter:?} {uv:?}");
+                    let b = alpha.sample_alpha(t, filter, uv, lambda);
+                    assert_eq!(b.to_bits(), c[3].to_bits(), "{t} {filter:?} {uv:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn colours_are_filtered_texels() {
-        let set = TextureSet::new(&[tex("a", 16, 16, false)]);
+        let texs = [tex("a", 16, 16, false)];
+        let set = TextureSet::new(&texs);
         // At a texel centre, bilinear is the texel itself.
         let c = set.sample_rgba(0, Filter::Bilinear, [2.5 / 16.0, 3.5 / 16.0], 0.0);
         assert!((c[0] - 14.0 / 255.0).abs() < 1e-5 && (c[1] - 15.0 / 255.0).abs() < 1e-5);

@@ -1,7 +1,7 @@
 //! The wasp trace: the shaded quads of one frame, tile by tile, and the
 //! instructions each quad's shader executes — the input of the cycle model.
 //!
-//! # Format `wasp-trace 1`
+//! # Format `wasp-trace 2` (and `wasp-trace 1`)
 //!
 //! (The same text is in `tests/traces/FORMAT.md`.)
 //!
@@ -11,21 +11,22 @@
 //! character. Example:
 //!
 //! ```text
-//! wasp-trace 1
+//! wasp-trace 2
 //! # free comment lines
 //! workload synthetic:texmap scale=1 mem=0.15 seed=7
 //! frame 1960 768 tile 64
 //! tile 0 0
 //! q 0 0 a3 t1a40,1a41 a2 t1a40
 //! q 1 0 a5
+//! q 0 0 a2 t2b00
 //! end
 //! tile 1 0
 //! q 0 0 t1a48 a4
 //! end
 //! ```
 //!
-//! * **Line 1** is exactly `wasp-trace 1`: the magic word and the format
-//!   version. A reader rejects any other version.
+//! * **Line 1** is exactly `wasp-trace 2` (or `wasp-trace 1`, below): the
+//!   magic word and the format version. A reader rejects any other version.
 //! * **Comments**: a line whose first non-blank character is `#` is a
 //!   comment; blank lines are ignored. Both may appear anywhere after line 1.
 //!   Comments before the `frame` line are the header *notes*: a reader
@@ -41,15 +42,19 @@
 //!     ceil(W/T) x ceil(H/T) tiles; a tile holds (T/2) x (T/2) quads of 2x2
 //!     pixels (32 x 32 for the paper's 64-pixel tiles).
 //! * **Tile record**: `tile TX TY` (tile column and row, inside the frame),
-//!   then one `q` line per shaded quad, then `end` alone on its line. A tile
+//!   then one `q` line per warp, then `end` alone on its line. A tile
 //!   appears at most once and holds at least one quad. Tiles appear in
 //!   traversal order (the front end emits Z-order; a reader does not check
 //!   the order).
-//! * **Quad**: `q X Y INSTR...` — X, Y are the in-tile quad column and row
-//!   (0 to T/2-1); the quad's top-left pixel (TX*T + 2X, TY*T + 2Y) lies
-//!   inside the frame. Quads of a tile appear in rasterization (scanline)
-//!   order, strictly increasing in (Y, X), so at most once each. The cycle
-//!   model launches quads in file order, one quad = one warp.
+//! * **Quad**: `q X Y INSTR...` — one warp: one shaded (primitive, quad)
+//!   fragment. X, Y are the in-tile quad column and row (0 to T/2-1); the
+//!   quad's top-left pixel (TX*T + 2X, TY*T + 2Y) lies inside the frame.
+//!   The quads of a tile appear in rasterization order, the order the
+//!   cycle model launches them: primitives in draw order, each primitive's
+//!   quads in scanline order. A position repeats once per fragment shaded
+//!   there (overdraw). A reader checks no order: a record does not name its
+//!   primitive, and any sequence of positions is the rasterization order
+//!   of some sequence of primitives.
 //! * **Instructions**, at least one per quad, in program order:
 //!   * `aN` — a run of N ALU instructions (decimal, 1 to 2^31-1). Two runs
 //!     are never adjacent: write `a5`, not `a3 a2`.
@@ -59,6 +64,13 @@
 //!     comma-separated without blanks: 1 to 1024 blocks, distinct within the
 //!     instruction, in the order the texture unit requests them.
 //! * Decimal numbers are ASCII digits without sign and must fit their range.
+//!
+//! **Version 1** (`wasp-trace 1`) is the same except that the quads of a
+//! tile appear in scanline order, strictly increasing in (Y, X), so each
+//! position at most once (fragments at one position had to be merged into
+//! one warp). A reader accepts version 1 with this rule enforced. Every
+//! version-1 trace is a version-2 trace, so a writer always writes version
+//! 2: reading a version-1 file and writing it back changes line 1 only.
 //!
 //! A reader rejects any other input with an error `file:line: what was wrong
 //! (expected what)`, e.g. `scene.trace:7: quad 40 3 outside the tile
@@ -70,7 +82,8 @@
 //! [`Trace`] holds a [`TraceHeader`] and the [`Tile`]s in file order. A tile
 //! keeps its quads, instructions and block numbers in three flat vectors (no
 //! allocation per quad or instruction), so a tile is self-contained and a
-//! full 1960x768 frame (about 376k quads) stays small. [`QuadRef`] views one
+//! full 1960x768 frame (about 376k quad positions, a few million fragments
+//! with overdraw) stays small. [`QuadRef`] views one
 //! quad; [`Instr`] is one run-length instruction entry. Build traces with
 //! [`TraceBuilder`], which enforces every rule of the format, so whatever it
 //! builds the writer writes and the reader reads back identically.
@@ -88,8 +101,11 @@ use std::fmt;
 
 /// The magic word on line 1.
 pub const MAGIC: &str = "wasp-trace";
-/// The format version this module reads and writes.
-pub const FORMAT_VERSION: u32 = 1;
+/// The format version this module writes (and reads).
+pub const FORMAT_VERSION: u32 = 2;
+/// The older version this module also reads: one quad per position, in
+/// scanline order.
+pub const FORMAT_VERSION_1: u32 = 1;
 /// Largest frame width or height, in pixels.
 pub const MAX_FRAME_DIM: u32 = 65_536;
 /// Largest tile edge, in pixels.
@@ -245,8 +261,26 @@ impl Tile {
     }
 
     /// Number of quads (warps) in the tile; at least 1 in a built trace.
+    /// With overdraw several warps share a quad position.
     pub fn quad_count(&self) -> usize {
         self.quads.len()
+    }
+
+    /// Number of distinct quad positions the tile's warps occupy (at most
+    /// `quad_count`, equal to it in a version-1 trace).
+    pub fn position_count(&self) -> usize {
+        let mut seen = vec![0u64; 1024];
+        let mut n = 0;
+        for q in &self.quads {
+            // x, y < 256: a 65536-bit set.
+            let i = (usize::from(q.y) << 8) | usize::from(q.x);
+            let (word, bit) = (i / 64, 1u64 << (i % 64));
+            if seen[word] & bit == 0 {
+                seen[word] |= bit;
+                n += 1;
+            }
+        }
+        n
     }
 
     /// The `i`-th quad in launch order.
@@ -258,13 +292,16 @@ impl Tile {
         })
     }
 
-    /// The quad at in-tile position (x, y), if shaded.
+    /// The first quad (in launch order) at in-tile position (x, y), if
+    /// shaded.
     pub fn quad_at(&self, x: u32, y: u32) -> Option<QuadRef<'_>> {
-        let key = (y, x);
-        self.quads
-            .binary_search_by_key(&key, |q| (u32::from(q.y), u32::from(q.x)))
-            .ok()
-            .and_then(|i| self.quad(i))
+        self.quads_at(x, y).next()
+    }
+
+    /// Every quad at in-tile position (x, y), in launch order (one per
+    /// fragment shaded there).
+    pub fn quads_at(&self, x: u32, y: u32) -> impl Iterator<Item = QuadRef<'_>> + '_ {
+        self.quads().filter(move |q| q.x() == x && q.y() == y)
     }
 
     /// The quads in launch order.
@@ -515,7 +552,8 @@ impl Trace {
     }
 }
 
-/// Builds a [`Trace`] step by step, enforcing every rule of the format.
+/// Builds a [`Trace`] step by step, enforcing every rule of the format
+/// (version 2: quad positions may repeat, in any order).
 ///
 /// A call that returns an error changes nothing, so a caller may report it
 /// and stop. `begin_quad` closes the previous quad, `end_tile` the tile.
@@ -525,6 +563,8 @@ pub struct TraceBuilder {
     tiles: Vec<Tile>,
     seen: HashSet<(u32, u32)>,
     open: Option<Tile>,
+    /// Version 1's rule: quads in strictly increasing scanline order.
+    scanline_order: bool,
 }
 
 impl TraceBuilder {
@@ -536,7 +576,15 @@ impl TraceBuilder {
             tiles: Vec::new(),
             seen: HashSet::new(),
             open: None,
+            scanline_order: false,
         })
+    }
+
+    /// Enforces version 1's rule from now on: the quads of a tile in
+    /// strictly increasing scanline order, each position at most once (the
+    /// reader of `wasp-trace 1` files uses it).
+    pub fn require_scanline_order(&mut self) {
+        self.scanline_order = true;
     }
 
     /// The header being built.
@@ -589,6 +637,17 @@ impl TraceBuilder {
         Ok(())
     }
 
+    /// Reserves room in the open tile for this many more quads, instruction
+    /// entries and block numbers (a hint: saves reallocating while it
+    /// grows; no effect without an open tile).
+    pub fn reserve(&mut self, quads: usize, entries: usize, blocks: usize) {
+        if let Some(t) = &mut self.open {
+            t.quads.reserve_exact(quads);
+            t.ops.reserve_exact(entries);
+            t.blocks.reserve_exact(blocks);
+        }
+    }
+
     /// Opens quad (x, y) of the open tile, closing the previous quad.
     pub fn begin_quad(&mut self, x: u32, y: u32) -> Result<(), Problem> {
         let header = &self.header;
@@ -613,7 +672,7 @@ impl TraceBuilder {
                 py: u64::from(tile.ty) * u64::from(header.tile) + 2 * u64::from(y),
             });
         }
-        if let Some(prev) = tile.quads.last() {
+        if let Some(prev) = tile.quads.last().filter(|_| self.scanline_order) {
             let (px, py) = (u32::from(prev.x), u32::from(prev.y));
             if (y, x) == (py, px) {
                 return Err(Problem::DuplicateQuad { x, y });
@@ -742,11 +801,69 @@ impl TraceBuilder {
             Some(_) => {}
         }
         let mut tile = self.open.take().expect("open tile");
-        tile.quads.shrink_to_fit();
-        tile.ops.shrink_to_fit();
-        tile.blocks.shrink_to_fit();
+        // Free a grown vector's slack (a copy), not a few spare entries.
+        for (len, cap) in [
+            (tile.quads.len(), tile.quads.capacity()),
+            (tile.ops.len(), tile.ops.capacity()),
+            (tile.blocks.len(), tile.blocks.capacity()),
+        ] {
+            if cap > len + len / 8 + 16 {
+                tile.quads.shrink_to_fit();
+                tile.ops.shrink_to_fit();
+                tile.blocks.shrink_to_fit();
+                break;
+            }
+        }
         self.seen.insert((tile.tx, tile.ty));
         self.tiles.push(tile);
+        Ok(())
+    }
+
+    /// Moves the tiles of `part`, a trace of the same frame and tile size
+    /// (built, say, on another thread), to the end of this one. Fails,
+    /// changing nothing, if a tile is open, the frame or tile size differ,
+    /// a tile of `part` is already here (or twice in `part`), or this
+    /// builder requires scanline order and a tile of `part` breaks it.
+    pub fn append(&mut self, part: Trace) -> Result<(), Problem> {
+        if let Some(t) = &self.open {
+            return Err(Problem::TileNotClosed { tx: t.tx, ty: t.ty });
+        }
+        let (h, p) = (&self.header, &part.header);
+        if (h.frame_w, h.frame_h, h.tile) != (p.frame_w, p.frame_h, p.tile) {
+            return Err(Problem::FrameMismatch {
+                found: (p.frame_w, p.frame_h, p.tile),
+                expected: (h.frame_w, h.frame_h, h.tile),
+            });
+        }
+        let mut new = HashSet::new();
+        for tile in &part.tiles {
+            if self.seen.contains(&(tile.tx, tile.ty)) || !new.insert((tile.tx, tile.ty)) {
+                return Err(Problem::DuplicateTile {
+                    tx: tile.tx,
+                    ty: tile.ty,
+                });
+            }
+            if self.scanline_order {
+                for w in tile.quads.windows(2) {
+                    let (a, b) = ((w[0].y, w[0].x), (w[1].y, w[1].x));
+                    if a >= b {
+                        let (x, y) = (u32::from(b.1), u32::from(b.0));
+                        return Err(if a == b {
+                            Problem::DuplicateQuad { x, y }
+                        } else {
+                            Problem::QuadOutOfOrder {
+                                x,
+                                y,
+                                prev_x: u32::from(a.1),
+                                prev_y: u32::from(a.0),
+                            }
+                        });
+                    }
+                }
+            }
+        }
+        self.seen.extend(new);
+        self.tiles.extend(part.tiles);
         Ok(())
     }
 
@@ -797,7 +914,7 @@ pub enum Problem {
     InvalidUtf8,
     /// A line holds a control character other than tab.
     ControlCharacter,
-    /// Line 1 is not `wasp-trace 1`.
+    /// Line 1 is not `wasp-trace 2` or `wasp-trace 1`.
     BadMagic(String),
     /// Line 1 names another format version.
     UnsupportedVersion(String),
@@ -923,14 +1040,14 @@ pub enum Problem {
         /// Its top-left pixel row.
         py: u64,
     },
-    /// A quad appears twice in a tile.
+    /// A quad appears twice in a tile (version 1 only).
     DuplicateQuad {
         /// Quad column.
         x: u32,
         /// Quad row.
         y: u32,
     },
-    /// A quad before its predecessor in scanline order.
+    /// A quad before its predecessor in scanline order (version 1 only).
     QuadOutOfOrder {
         /// Quad column.
         x: u32,
@@ -971,6 +1088,13 @@ pub enum Problem {
     TooManyBlocks(usize),
     /// A tile whose pools would exceed 2^32 - 1 entries.
     TileTooLarge,
+    /// Tiles of another frame or tile size (builder only).
+    FrameMismatch {
+        /// Their frame width, height and tile size.
+        found: (u32, u32, u32),
+        /// This trace's.
+        expected: (u32, u32, u32),
+    },
 }
 
 impl fmt::Display for Problem {
@@ -979,7 +1103,8 @@ impl fmt::Display for Problem {
         match self {
             EmptyInput => write!(
                 f,
-                "empty input (expected `{MAGIC} {FORMAT_VERSION}` on line 1)"
+                "empty input (expected `{MAGIC} {FORMAT_VERSION}` or `{MAGIC} \
+                 {FORMAT_VERSION_1}` on line 1)"
             ),
             InvalidUtf8 => write!(f, "invalid UTF-8 (expected UTF-8 text)"),
             ControlCharacter => write!(
@@ -988,12 +1113,14 @@ impl fmt::Display for Problem {
             ),
             BadMagic(s) => write!(
                 f,
-                "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION}` on line 1)",
+                "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION}` or `{MAGIC} \
+                 {FORMAT_VERSION_1}` on line 1)",
                 clip(s)
             ),
             UnsupportedVersion(v) => write!(
                 f,
-                "unsupported format version `{}` (expected {FORMAT_VERSION})",
+                "unsupported format version `{}` (expected {FORMAT_VERSION} or \
+                 {FORMAT_VERSION_1})",
                 clip(v)
             ),
             MissingHeader { missing, found } => write!(
@@ -1093,7 +1220,8 @@ impl fmt::Display for Problem {
             ),
             DuplicateQuad { x, y } => write!(
                 f,
-                "quad {x} {y} appears twice in the tile (expected each quad at most once)"
+                "quad {x} {y} appears twice in the tile (expected each quad at most once in \
+                 format {FORMAT_VERSION_1}; format {FORMAT_VERSION} allows repeats)"
             ),
             QuadOutOfOrder {
                 x,
@@ -1102,8 +1230,8 @@ impl fmt::Display for Problem {
                 prev_y,
             } => write!(
                 f,
-                "quad {x} {y} after quad {prev_x} {prev_y} (expected scanline order: y, then \
-                 x increasing)"
+                "quad {x} {y} after quad {prev_x} {prev_y} (expected scanline order in \
+                 format {FORMAT_VERSION_1}: y, then x increasing)"
             ),
             EmptyQuad { x, y } => write!(
                 f,
@@ -1144,6 +1272,12 @@ impl fmt::Display for Problem {
             TileTooLarge => write!(
                 f,
                 "tile too large (expected fewer than 2^32 instruction entries and blocks)"
+            ),
+            FrameMismatch { found, expected } => write!(
+                f,
+                "tiles of a {}x{} frame with {}-pixel tiles (expected {}x{} with {}-pixel \
+                 tiles)",
+                found.0, found.1, found.2, expected.0, expected.1, expected.2
             ),
         }
     }

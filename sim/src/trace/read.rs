@@ -1,8 +1,9 @@
-//! The reader of `wasp-trace 1` text (see the module documentation).
+//! The reader of `wasp-trace 2` and `wasp-trace 1` text (see the module
+//! documentation).
 
 use super::{
-    Problem, Trace, TraceBuilder, TraceError, TraceHeader, FORMAT_VERSION, MAGIC, MAX_ALU_RUN,
-    MAX_TEX_BLOCKS,
+    Problem, Trace, TraceBuilder, TraceError, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1, MAGIC,
+    MAX_ALU_RUN, MAX_TEX_BLOCKS,
 };
 use std::path::Path;
 
@@ -57,12 +58,13 @@ impl Trace {
         }
         let (_, first) = lines.next().expect("split yields at least one piece");
         check_line(first).map_err(|p| err(1, p))?;
-        check_magic(first).map_err(|p| err(1, p))?;
+        let version = check_magic(first).map_err(|p| err(1, p))?;
 
         let mut parser = Parser {
             notes: Vec::new(),
             workload: None,
             builder: None,
+            scanline_order: version == FORMAT_VERSION_1,
         };
         let mut last_line = 1;
         for (n, line) in lines {
@@ -83,15 +85,23 @@ fn check_line(line: &str) -> Result<(), Problem> {
     Ok(())
 }
 
-fn check_magic(line: &str) -> Result<(), Problem> {
+/// The version line 1 names: [`FORMAT_VERSION`] or [`FORMAT_VERSION_1`].
+fn check_magic(line: &str) -> Result<u32, Problem> {
+    for v in [FORMAT_VERSION, FORMAT_VERSION_1] {
+        if line == format!("{MAGIC} {v}") {
+            return Ok(v);
+        }
+    }
     let fields: Vec<&str> = tokens(line).collect();
-    if fields.len() == 2 && fields[0] == MAGIC && fields[1] != FORMAT_VERSION.to_string() {
+    if fields.len() == 2
+        && fields[0] == MAGIC
+        && ![FORMAT_VERSION, FORMAT_VERSION_1]
+            .iter()
+            .any(|v| fields[1] == v.to_string())
+    {
         return Err(Problem::UnsupportedVersion(fields[1].to_string()));
     }
-    if line != format!("{MAGIC} {FORMAT_VERSION}") {
-        return Err(Problem::BadMagic(line.to_string()));
-    }
-    Ok(())
+    Err(Problem::BadMagic(line.to_string()))
 }
 
 fn tokens(line: &str) -> impl Iterator<Item = &str> {
@@ -103,6 +113,8 @@ struct Parser {
     workload: Option<String>,
     /// Present once the `frame` line has been read.
     builder: Option<TraceBuilder>,
+    /// A version-1 file: quads in strictly increasing scanline order.
+    scanline_order: bool,
 }
 
 const FRAME_USAGE: &str = "frame W H tile T";
@@ -201,7 +213,11 @@ impl Parser {
         let t = dec_u32(fields[4], "tile size", u64::from(super::MAX_TILE_SIZE))?;
         let mut header = TraceHeader::new(workload, w, h, t);
         header.notes = self.notes.clone();
-        self.builder = Some(TraceBuilder::new(header)?);
+        let mut builder = TraceBuilder::new(header)?;
+        if self.scanline_order {
+            builder.require_scanline_order();
+        }
+        self.builder = Some(builder);
         Ok(())
     }
 

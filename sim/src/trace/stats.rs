@@ -1,9 +1,14 @@
 //! Workload characterisation: the statistics of the paper's Table I and
 //! Section III-B, per tile and per trace.
 //!
-//! Definitions (a warp is a quad; a block is a 64-byte memory block; all
-//! block counts are per tile, a block touched in two tiles counts in both):
+//! Definitions (a warp is a quad record of the trace: one shaded
+//! (primitive, quad) fragment, so with overdraw several warps share a quad
+//! position; a block is a 64-byte memory block; all block counts are per
+//! tile, a block touched in two tiles counts in both):
 //!
+//! * **positions** of a tile = distinct quad positions its warps occupy;
+//!   **warps per position** = warps / positions (the overdraw the cores
+//!   see; 1 for a version-1 trace).
 //! * **memory-instruction ratio** = texture instructions / all instructions
 //!   (ALU runs counted by length). Table I's "Memory-Instr ratio".
 //! * **warp blocks** of a tile = sum over its warps of the number of distinct
@@ -19,6 +24,8 @@
 //!   equals 1 / reuse.
 //! * **texture footprint ratio** of a subset of a tile's warps = distinct
 //!   blocks the subset touches / unique blocks of the tile (Section III-B).
+//!   A priority subset selects quad *positions*, so it selects every warp
+//!   (fragment) at a selected position.
 //!
 //! A ratio whose denominator is zero is 0, except the footprint ratio of a
 //! tile without blocks, which is 1 (the empty footprint is fully covered).
@@ -43,6 +50,8 @@ pub struct TileStats {
     pub ty: u32,
     /// Quads (warps).
     pub warps: u64,
+    /// Distinct quad positions of the warps.
+    pub positions: u64,
     /// Instructions, ALU runs counted by length.
     pub instrs: u64,
     /// Texture instructions.
@@ -82,6 +91,7 @@ impl TileStats {
             tx: tile.tx(),
             ty: tile.ty(),
             warps: tile.quad_count() as u64,
+            positions: tile.position_count() as u64,
             instrs,
             tex_instrs: tex,
             block_accesses: tile.block_accesses().len() as u64,
@@ -125,9 +135,14 @@ pub struct TraceStats {
     pub tiles: u64,
     /// Quads (warps).
     pub warps: u64,
+    /// Sum over tiles of the distinct quad positions of their warps.
+    pub positions: u64,
+    /// warps / positions: fragments shaded per covered quad position.
+    pub warps_per_position: f64,
     /// Quads the frame could shade (top-left pixel inside the frame).
     pub frame_quads: u64,
-    /// warps / frame_quads.
+    /// positions / frame_quads: the fraction of the frame's quad
+    /// positions shaded at least once.
     pub coverage: f64,
     /// warps / tiles.
     pub warps_per_tile: f64,
@@ -162,6 +177,7 @@ impl TraceStats {
         let tiles = trace.tile_stats();
         let sum = |f: fn(&TileStats) -> u64| tiles.iter().map(f).sum::<u64>();
         let warps = sum(|t| t.warps);
+        let positions = sum(|t| t.positions);
         let instrs = sum(|t| t.instrs);
         let tex = sum(|t| t.tex_instrs);
         let warp_blocks = sum(|t| t.warp_blocks);
@@ -185,8 +201,10 @@ impl TraceStats {
             workload: trace.header().workload.clone(),
             tiles: tiles.len() as u64,
             warps,
+            positions,
+            warps_per_position: ratio(warps as f64, positions as f64),
             frame_quads,
-            coverage: ratio(warps as f64, frame_quads as f64),
+            coverage: ratio(positions as f64, frame_quads as f64),
             warps_per_tile: ratio(warps as f64, tiles.len() as f64),
             instrs,
             tex_instrs: tex,

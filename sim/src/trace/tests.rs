@@ -2,6 +2,10 @@ use super::*;
 use proptest::prelude::*;
 
 const TINY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/traces/tiny.trace");
+const OVERDRAW: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../tests/traces/overdraw.trace"
+);
 const SYNTH_SMALL: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../tests/traces/synthetic-small.trace"
@@ -97,6 +101,7 @@ fn tiny_trace_statistics_match_hand_computation() {
             tx: 0,
             ty: 0,
             warps: 16,
+            positions: 16,
             instrs: 16 * 9,
             tex_instrs: 32,
             block_accesses: 36 + 16,
@@ -121,6 +126,8 @@ fn tiny_trace_statistics_match_hand_computation() {
         (75, 18, 18)
     );
     assert!(close(s.coverage, 26.0 / 32.0));
+    assert_eq!(s.positions, 26);
+    assert!(close(s.warps_per_position, 1.0));
     assert!(close(s.mem_instr_ratio, 42.0 / 224.0));
     assert!(close(s.cf, 75.0 / 26.0));
     assert!(close(s.min_estimate1, 18.0 / 26.0));
@@ -161,9 +168,14 @@ fn synthetic_small_trace_contents() {
     let q = tiles[0].quad(0).unwrap();
     assert_eq!((q.x(), q.y()), SYNTH_SMALL_Q0_POS);
     assert_eq!(q.instrs().collect::<Vec<_>>(), synth_small_q0_instrs());
-    // The writer reproduces the file byte for byte.
+    // The file is version 1; the writer reproduces it byte for byte but
+    // for line 1 (it writes version 2, a superset).
     let text = std::fs::read_to_string(SYNTH_SMALL).unwrap();
-    assert_eq!(t.to_text(), text);
+    assert!(text.starts_with("wasp-trace 1\n"));
+    assert_eq!(
+        t.to_text(),
+        text.replacen("wasp-trace 1\n", "wasp-trace 2\n", 1)
+    );
 }
 
 // Pinned from tests/traces/synthetic-small.trace (tile 0 0 misses quads
@@ -182,9 +194,64 @@ fn synth_small_q0_instrs() -> Vec<Instr<'static>> {
 fn tiny_trace_round_trips_through_the_writer() {
     let t = Trace::read(TINY).unwrap();
     let text = t.to_text();
-    assert!(text.starts_with("wasp-trace 1\n# tiny.trace"));
+    // Read as version 1, written as version 2, the same records.
+    assert!(text.starts_with("wasp-trace 2\n# tiny.trace"));
     assert!(text.contains("\nq 1 1 a2 t1a00,1a01,1a10,1a11 a4 t2000 a1\n"));
     assert_eq!(Trace::parse(&text, "rt").unwrap(), t);
+}
+
+#[test]
+fn the_example_of_format_md_parses_with_a_repeated_position() {
+    let md = include_str!("../../../tests/traces/FORMAT.md");
+    let start = md.find("```text\n").unwrap() + "```text\n".len();
+    let text = &md[start..start + md[start..].find("```").unwrap()];
+    let t = Trace::parse(text, "FORMAT.md").unwrap();
+    let tile = &t.tiles()[0];
+    assert_eq!((tile.quad_count(), tile.position_count()), (3, 2));
+    assert_eq!(tile.quads_at(0, 0).count(), 2);
+    // The module documentation repeats the same example.
+    let doc = include_str!("mod.rs");
+    for line in text.lines() {
+        assert!(doc.contains(&format!("//! {line}\n")), "{line}");
+    }
+}
+
+#[test]
+fn overdraw_trace_keeps_repeated_positions_in_file_order() {
+    let t = Trace::read(OVERDRAW).unwrap();
+    assert_eq!(t.header().workload, "hand:overdraw");
+    let tiles = t.tiles();
+    assert_eq!(tiles.len(), 2);
+    let t0 = &tiles[0];
+    let positions: Vec<(u32, u32)> = t0.quads().map(|q| (q.x(), q.y())).collect();
+    // Triangle A covers row 0 and (0, 1); triangle B, drawn next, covers
+    // (1, 0), (0, 1), (1, 1); sprite C, blended last, (1, 1) again.
+    assert_eq!(
+        positions,
+        vec![(0, 0), (1, 0), (0, 1), (1, 0), (0, 1), (1, 1), (1, 1)]
+    );
+    assert_eq!((t0.quad_count(), t0.position_count()), (7, 4));
+    let at: Vec<usize> = t0.quads_at(1, 1).map(|q| q.index()).collect();
+    assert_eq!(at, vec![5, 6]);
+    assert_eq!(t0.quad_at(1, 0).unwrap().index(), 1, "the first one");
+    assert_eq!(t0.quad(6).unwrap().block_accesses(), &[0x5000]);
+    assert!(t0.quad_at(2, 2).is_none());
+    let s = t.stats();
+    assert_eq!((s.warps, s.positions), (9, 6));
+    assert!(close(s.warps_per_position, 1.5));
+    assert!(close(s.coverage, 6.0 / 32.0));
+    let s0 = t0.stats();
+    // Warp blocks: A's 3 warps 1+1+1... counted per record.
+    assert_eq!((s0.warps, s0.positions, s0.unique_blocks), (7, 4, 6));
+    assert_eq!(s0.warp_blocks, 1 + 2 + 1 + 1 + 2 + 2 + 1);
+    // A priority subset selects positions, so every fragment there.
+    assert!(close(
+        footprint_ratio(t0, |x, y| (x, y) == (1, 1)),
+        3.0 / 6.0
+    ));
+    // Written back byte for byte (it is version 2 and canonical).
+    let file = std::fs::read_to_string(OVERDRAW).unwrap();
+    assert_eq!(t.to_text(), file);
 }
 
 #[test]
@@ -198,7 +265,8 @@ fn read_reports_missing_file() {
 
 // ---------------------------------------------------------------- errors
 
-const HEAD: &str = "wasp-trace 1\nworkload w\nframe 100 70 tile 64\n";
+const HEAD: &str = "wasp-trace 2\nworkload w\nframe 100 70 tile 64\n";
+const HEAD1: &str = "wasp-trace 1\nworkload w\nframe 100 70 tile 64\n";
 
 /// Parses `text` and returns (line, problem, message) of the error.
 fn fail(text: &str) -> (usize, Problem, String) {
@@ -216,6 +284,10 @@ fn fail(text: &str) -> (usize, Problem, String) {
 
 fn body(s: &str) -> String {
     format!("{HEAD}{s}")
+}
+
+fn body1(s: &str) -> String {
+    format!("{HEAD1}{s}")
 }
 
 #[test]
@@ -242,6 +314,40 @@ fn minimal_traces_parse() {
 }
 
 #[test]
+fn version_2_allows_repeats_in_any_order_and_version_1_does_not() {
+    let records = "tile 0 0\nq 1 1 a1\nq 0 0 a1\nq 1 1 t5\nq 1 1 a3\nend\n";
+    let t = Trace::parse(&body(records), "x").unwrap();
+    let tile = &t.tiles()[0];
+    let got: Vec<(u32, u32, u64)> = tile
+        .quads()
+        .map(|q| (q.x(), q.y(), q.instr_count()))
+        .collect();
+    assert_eq!(got, vec![(1, 1, 1), (0, 0, 1), (1, 1, 1), (1, 1, 3)]);
+    assert_eq!(tile.position_count(), 2);
+    // Three warps at (1, 1), never merged: the `a1` and `a3` stay apart.
+    assert_eq!(tile.quads_at(1, 1).count(), 3);
+    assert_eq!(t.to_text(), body(records));
+    // The same records under version 1 break its order rule.
+    let (line, p, _) = fail(&body1(records));
+    assert_eq!(line, 6);
+    assert!(
+        matches!(p, Problem::QuadOutOfOrder { x: 0, y: 0, .. }),
+        "{p:?}"
+    );
+    // Version 1 still reads what it always read, into the same trace.
+    let v1 = "tile 0 0\nq 0 0 a1\nq 1 0 t5\nq 0 1 a2\nend\n";
+    let a = Trace::parse(&body1(v1), "x").unwrap();
+    let b = Trace::parse(&body(v1), "x").unwrap();
+    assert_eq!(a, b);
+    assert_eq!(a.to_text(), body(v1));
+    // Version 2 keeps every other rule.
+    let (_, p, _) = fail(&body("tile 0 0\nq 1 1 a1\nq 1 1\nend\n"));
+    assert!(matches!(p, Problem::EmptyQuad { x: 1, y: 1 }), "{p:?}");
+    let (_, p, _) = fail(&body("tile 0 0\nq 1 1 a1\nq 1 32 a1\nend\n"));
+    assert!(matches!(p, Problem::QuadOutsideTile { .. }), "{p:?}");
+}
+
+#[test]
 fn every_malformation_is_reported_with_its_line() {
     use Problem::*;
     type Case = (String, usize, fn(&Problem) -> bool);
@@ -257,10 +363,21 @@ fn every_malformation_is_reported_with_its_line() {
             )
         }),
         (
-            "wasp-trace 2\n".into(),
+            "wasp-trace 3\n".into(),
             1,
-            |p| matches!(p, UnsupportedVersion(v) if v == "2"),
+            |p| matches!(p, UnsupportedVersion(v) if v == "3"),
         ),
+        (
+            "wasp-trace 0\n".into(),
+            1,
+            |p| matches!(p, UnsupportedVersion(v) if v == "0"),
+        ),
+        (
+            "wasp-trace 02\n".into(),
+            1,
+            |p| matches!(p, UnsupportedVersion(v) if v == "02"),
+        ),
+        ("wasp-trace  2\n".into(), 1, |p| matches!(p, BadMagic(_))),
         ("wasp-trace\n".into(), 1, |p| matches!(p, BadMagic(_))),
         ("wasp-trace 1 x\n".into(), 1, |p| matches!(p, BadMagic(_))),
         (" wasp-trace 1\n".into(), 1, |p| matches!(p, BadMagic(_))),
@@ -450,10 +567,11 @@ fn every_malformation_is_reported_with_its_line() {
         (body("tile 0 1\nq 0 3 a1\n"), 5, |p| {
             matches!(p, QuadOutsideFrame { py: 70, .. })
         }),
-        (body("tile 0 0\nq 1 0 a1\nq 1 0 a1\n"), 6, |p| {
+        // Version 1 only: scanline order, each position once.
+        (body1("tile 0 0\nq 1 0 a1\nq 1 0 a1\n"), 6, |p| {
             matches!(p, DuplicateQuad { x: 1, y: 0 })
         }),
-        (body("tile 0 0\nq 1 1 a1\nq 2 0 a1\n"), 6, |p| {
+        (body1("tile 0 0\nq 1 1 a1\nq 2 0 a1\n"), 6, |p| {
             matches!(
                 p,
                 QuadOutOfOrder {
@@ -563,7 +681,19 @@ fn error_messages_read_well() {
     let (_, _, msg) = fail("wasp-trace 3\n");
     assert_eq!(
         msg,
-        "x.trace:1: unsupported format version `3` (expected 1)"
+        "x.trace:1: unsupported format version `3` (expected 2 or 1)"
+    );
+    let (_, _, msg) = fail(&body1("tile 0 0\nq 1 0 a1\nq 1 0 a2\n"));
+    assert_eq!(
+        msg,
+        "x.trace:6: quad 1 0 appears twice in the tile (expected each quad at most once in \
+         format 1; format 2 allows repeats)"
+    );
+    let (_, _, msg) = fail(&body1("tile 0 0\nq 1 1 a1\nq 2 0 a1\n"));
+    assert_eq!(
+        msg,
+        "x.trace:6: quad 2 0 after quad 1 1 (expected scanline order in format 1: y, then x \
+         increasing)"
     );
     let (_, _, msg) = fail(&body("tile 0 0\nq 0 0 t1,1\n"));
     assert_eq!(
@@ -604,15 +734,6 @@ fn builder_merges_alu_runs_and_rejects_without_changing_state() {
         b.alu(MAX_ALU_RUN),
         Err(Problem::AluRunTooLong(1 + 0x7fff_ffff))
     );
-    assert_eq!(
-        b.begin_quad(0, 0),
-        Err(Problem::QuadOutOfOrder {
-            x: 0,
-            y: 0,
-            prev_x: 0,
-            prev_y: 1
-        })
-    );
     b.quad(1, 1, &[Instr::Tex(&[7]), Instr::Alu(4)]).unwrap();
     assert_eq!(
         b.finish().unwrap_err(),
@@ -647,6 +768,86 @@ fn builder_merges_alu_runs_and_rejects_without_changing_state() {
     assert_eq!(t.tiles()[0].quad(1).unwrap().block_accesses(), &[7]);
     assert_eq!(t.instr_count(), 7 + 5);
     assert_eq!(t.tex_count(), 2);
+}
+
+#[test]
+fn builder_appends_tiles_built_elsewhere() {
+    let part = |tx: u32, quads: &[(u32, u32)]| {
+        let mut b = Trace::builder(TraceHeader::new("part", 128, 64, 64)).unwrap();
+        b.begin_tile(tx, 0).unwrap();
+        for &(x, y) in quads {
+            b.quad(x, y, &[Instr::Alu(x + 1)]).unwrap();
+        }
+        b.end_tile().unwrap();
+        b.finish().unwrap()
+    };
+    let mut b = Trace::builder(TraceHeader::new("w", 128, 64, 64)).unwrap();
+    b.append(part(1, &[(3, 0), (1, 0), (3, 0)])).unwrap();
+    b.append(part(0, &[(0, 0)])).unwrap();
+    assert_eq!(
+        b.append(part(1, &[(0, 0)])),
+        Err(Problem::DuplicateTile { tx: 1, ty: 0 })
+    );
+    let other = Trace::builder(TraceHeader::new("w", 64, 64, 64))
+        .unwrap()
+        .finish()
+        .unwrap();
+    assert!(matches!(
+        b.append(other),
+        Err(Problem::FrameMismatch { .. })
+    ));
+    b.begin_tile(0, 0).unwrap_err(); // already appended
+    let t = b.finish().unwrap();
+    assert_eq!(t.header().workload, "w");
+    let order: Vec<(u32, usize)> = t.tiles().iter().map(|t| (t.tx(), t.quad_count())).collect();
+    assert_eq!(order, vec![(1, 3), (0, 1)]);
+    // A version-1 builder checks the appended tiles' order.
+    let mut b = Trace::builder(TraceHeader::new("w", 128, 64, 64)).unwrap();
+    b.require_scanline_order();
+    assert_eq!(
+        b.append(part(1, &[(3, 0), (1, 0)])),
+        Err(Problem::QuadOutOfOrder {
+            x: 1,
+            y: 0,
+            prev_x: 3,
+            prev_y: 0
+        })
+    );
+    b.append(part(1, &[(1, 0), (3, 0)])).unwrap();
+}
+
+#[test]
+fn builder_allows_repeats_unless_scanline_order_is_required() {
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    b.begin_tile(0, 0).unwrap();
+    b.quad(0, 1, &[Instr::Alu(1)]).unwrap();
+    b.quad(0, 1, &[Instr::Alu(2)]).unwrap();
+    b.quad(0, 0, &[Instr::Alu(3)]).unwrap();
+    b.end_tile().unwrap();
+    let t = b.finish().unwrap();
+    let counts: Vec<u64> = t.tiles()[0].quads().map(|q| q.instr_count()).collect();
+    assert_eq!(counts, vec![1, 2, 3], "never merged, never reordered");
+
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    b.require_scanline_order();
+    b.begin_tile(0, 0).unwrap();
+    b.quad(0, 1, &[Instr::Alu(1)]).unwrap();
+    assert_eq!(
+        b.begin_quad(0, 1),
+        Err(Problem::DuplicateQuad { x: 0, y: 1 })
+    );
+    assert_eq!(
+        b.begin_quad(0, 0),
+        Err(Problem::QuadOutOfOrder {
+            x: 0,
+            y: 0,
+            prev_x: 0,
+            prev_y: 1
+        })
+    );
+    b.quad(1, 1, &[Instr::Alu(1)]).unwrap();
+    b.end_tile().unwrap();
+    assert_eq!(b.finish().unwrap().quad_count(), 2);
 }
 
 #[test]
@@ -685,8 +886,10 @@ fn builder_rejects_bad_headers() {
 /// An instruction of a generated quad: (ALU run, no blocks) or (0, blocks).
 type SpecInstr = (u32, Vec<u64>);
 
-/// A strategy for arbitrary valid traces, built through the builder.
-fn arb_trace() -> impl Strategy<Value = Trace> {
+/// A strategy for arbitrary valid traces, built through the builder:
+/// version-2 traces (positions in any order, repeats) or, with
+/// `scanline`, traces that are also valid version 1.
+fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
     let header = (
         1u32..300,
         1u32..200,
@@ -723,7 +926,7 @@ fn arb_trace() -> impl Strategy<Value = Trace> {
             );
             (Just(hd), tiles)
         })
-        .prop_map(|(hd, tiles)| {
+        .prop_map(move |(hd, tiles)| {
             let (nx, ny, side) = (hd.tiles_x(), hd.tiles_y(), hd.quads_per_side());
             let mut b = Trace::builder(hd).unwrap();
             for (tx, ty, quads) in tiles {
@@ -736,8 +939,15 @@ fn arb_trace() -> impl Strategy<Value = Trace> {
                     .map(|(x, y, q)| (x % side, y % side, q))
                     .filter(|&(x, y, _)| b.header().quad_in_frame(tx, ty, x, y))
                     .collect();
-                placed.sort_by_key(|&(x, y, _)| (y, x));
-                placed.dedup_by_key(|&mut (x, y, _)| (x, y));
+                if scanline {
+                    placed.sort_by_key(|&(x, y, _)| (y, x));
+                    placed.dedup_by_key(|&mut (x, y, _)| (x, y));
+                } else if placed.len() > 2 {
+                    // Overdraw: repeat a position (a later fragment there).
+                    let (x, y, _) = placed[0];
+                    let q = placed[1].2.clone();
+                    placed.push((x, y, q));
+                }
                 if placed.is_empty() {
                     placed.push((0, 0, vec![(1, vec![])]));
                 }
@@ -756,6 +966,10 @@ fn arb_trace() -> impl Strategy<Value = Trace> {
             }
             b.finish().unwrap()
         })
+}
+
+fn arb_trace() -> impl Strategy<Value = Trace> {
+    prop_oneof![arb_trace_v(false), arb_trace_v(true)]
 }
 
 /// Mutations of a valid trace text: some keep it valid, most break it.
@@ -823,6 +1037,12 @@ proptest! {
     }
 
     #[test]
+    fn scanline_traces_read_the_same_as_version_1(t in arb_trace_v(true)) {
+        let text = t.to_text().replacen("wasp-trace 2\n", "wasp-trace 1\n", 1);
+        prop_assert_eq!(Trace::parse(&text, "v1").unwrap(), t);
+    }
+
+    #[test]
     fn random_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..400)) {
         let _ = Trace::parse_bytes(&bytes, "r");
         let mut prefixed = HEAD.as_bytes().to_vec();
@@ -867,6 +1087,8 @@ proptest! {
     fn statistics_are_consistent(t in arb_trace()) {
         let s = t.stats();
         prop_assert_eq!(s.warps as usize, t.quad_count());
+        prop_assert!(s.positions <= s.warps && s.positions >= s.tiles);
+        prop_assert!(s.coverage <= 1.0);
         prop_assert_eq!(s.instrs, t.instr_count());
         prop_assert!(s.warp_blocks >= s.tile_unique_blocks);
         prop_assert!(s.block_accesses >= s.warp_blocks);

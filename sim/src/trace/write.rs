@@ -1,11 +1,12 @@
-//! The writer of `wasp-trace 1` text.
+//! The writer of `wasp-trace 2` text (every trace, whatever version it was
+//! read from: version 2 accepts every version-1 trace).
 
 use super::{Instr, Trace, FORMAT_VERSION, MAGIC};
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
 impl Trace {
-    /// Writes the trace as `wasp-trace 1` text: line 1, the header notes as
+    /// Writes the trace as `wasp-trace 2` text: line 1, the header notes as
     /// `#` lines, the header, then each tile record. Hex is lowercase without
     /// leading zeros. `Trace::parse` of the output gives back `self`.
     pub fn write(&self, mut out: impl Write) -> io::Result<()> {
@@ -48,7 +49,7 @@ impl Trace {
         out.flush()
     }
 
-    /// The trace as `wasp-trace 1` text.
+    /// The trace as `wasp-trace 2` text.
     pub fn to_text(&self) -> String {
         let mut out = Vec::new();
         self.write(&mut out).expect("writing to a Vec cannot fail");

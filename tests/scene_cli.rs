@@ -1,0 +1,122 @@
+//! Whole-program tests of `wasp render` with the procedural scenes (no game
+//! data needed) and of running a format-2 trace with repeated positions.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use wasp_sim::config::MachineConfig;
+use wasp_sim::trace::Trace;
+
+fn wasp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .args(args)
+        .output()
+        .expect("run wasp")
+}
+
+fn ok(o: &Output) -> String {
+    assert!(
+        o.status.success(),
+        "wasp failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("wasp-scene-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn rendered_traces_are_format_2_with_one_warp_per_fragment_for_any_thread_count() {
+    let d = dir("threads");
+    let mut texts = Vec::new();
+    for threads in ["1", "3", "0"] {
+        let p = d.join(format!("sprites-{threads}.trace"));
+        let o = wasp(&[
+            "render",
+            "procedural-sprites",
+            "--size",
+            "320x192",
+            "--threads",
+            threads,
+            "-q",
+            "--trace-out",
+            p.to_str().unwrap(),
+        ]);
+        ok(&o);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("warps (one per fragment)"), "{err}");
+        texts.push(std::fs::read_to_string(&p).unwrap());
+    }
+    assert!(
+        texts.iter().all(|t| t == &texts[0]),
+        "thread count changed the trace"
+    );
+    assert!(texts[0].starts_with("wasp-trace 2\n"));
+    let t = Trace::parse(&texts[0], "sprites").unwrap();
+    let s = t.stats();
+    // Sprites blended over a backdrop: positions repeat.
+    assert!(
+        s.warps > s.positions,
+        "{} warps at {} positions",
+        s.warps,
+        s.positions
+    );
+    assert_eq!(s.positions, s.frame_quads);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn render_timings_split_load_and_raster() {
+    let out = ok(&wasp(&[
+        "render",
+        "procedural-plane",
+        "--size",
+        "192x128",
+        "--timings",
+        "--repeat",
+        "2",
+        "-q",
+    ]));
+    for want in [
+        "best of 2",
+        "load: parse meshes, decode textures",
+        "raster + texture",
+        "mip chains",
+        "tiles: raster, early-Z",
+    ] {
+        assert!(out.contains(want), "{want}: {out}");
+    }
+    assert!(!out.contains("PNG"), "nothing written: {out}");
+    let o = wasp(&["render", "procedural-plane", "--timings", "--repeat", "0"]);
+    assert!(!o.status.success());
+    let o = wasp(&["render", "procedural-plane"]);
+    assert!(!o.status.success(), "nothing to write or time");
+}
+
+#[test]
+fn the_cycle_model_runs_repeated_positions_as_separate_warps() {
+    let d = dir("overdraw");
+    let mut c = MachineConfig::paper();
+    c.gpu.tile_size = 8;
+    let cfg = d.join("tile8.toml");
+    std::fs::write(&cfg, c.to_toml()).unwrap();
+    let trace = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/traces/overdraw.trace");
+    let out = ok(&wasp(&[
+        "run",
+        "-q",
+        "--json",
+        "-",
+        "--trace",
+        trace,
+        "--config",
+        cfg.to_str().unwrap(),
+    ]));
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["warps"], 9, "{v}");
+    assert_eq!(v["workload"], "hand:overdraw");
+    let _ = std::fs::remove_dir_all(&d);
+}
