@@ -131,7 +131,7 @@ impl Cache {
     /// Present one access for `block` in cycle `now`. `target` is stored in
     /// the MSHR entry on a (primary or secondary) miss and handed back by
     /// [`Cache::fill`].
-    #[inline]
+    #[inline(always)]
     pub fn access(&mut self, now: u64, block: u64, target: u32) -> Lookup {
         self.advance(now);
         if self.ports_used >= self.cfg.ports {
