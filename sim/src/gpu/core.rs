@@ -175,8 +175,10 @@ pub struct ShaderCore {
     ready_tex: u128,
     /// Every slot fits in a `u64` mask (the hot loops then use `u64`).
     narrow: bool,
-    /// Timing wheel of wake-ups: slot bitmasks by cycle modulo its size.
-    wheel: [u128; WHEEL],
+    /// Timing wheel of wake-ups: slot bitmasks by cycle modulo its size,
+    /// as two 64-bit halves (slots 0-63, 64-127): setting a bit is then a
+    /// 64-bit shift.
+    wheel: [[u64; 2]; WHEEL],
     /// Wake-ups further than the wheel reaches.
     far: BinaryHeap<Reverse<(u64, u8)>>,
     ldst: VecDeque<LdstEntry>,
@@ -253,7 +255,7 @@ impl ShaderCore {
             ready: 0,
             ready_tex: 0,
             narrow: n <= 64,
-            wheel: [0; WHEEL],
+            wheel: [[0; 2]; WHEEL],
             far: BinaryHeap::new(),
             ldst: VecDeque::with_capacity(p.ldst_queue as usize),
             tile: None,
@@ -334,7 +336,7 @@ impl ShaderCore {
     #[inline]
     fn schedule(&mut self, now: u64, at: u64, slot: usize) {
         if at - now < WHEEL as u64 {
-            self.wheel[(at as usize) & (WHEEL - 1)] |= 1u128 << slot;
+            self.wheel[(at as usize) & (WHEEL - 1)][(slot >> 6) & 1] |= 1u64 << (slot & 63);
         } else {
             self.far.push(Reverse((at, slot as u8)));
         }
@@ -346,7 +348,8 @@ impl ShaderCore {
                 break;
             }
             self.far.pop();
-            self.wheel[(t as usize) & (WHEEL - 1)] |= 1u128 << slot;
+            let slot = slot as usize;
+            self.wheel[(t as usize) & (WHEEL - 1)][(slot >> 6) & 1] |= 1u64 << (slot & 63);
         }
         if self.narrow {
             self.wake_due::<u64>(now, tile);
@@ -359,7 +362,8 @@ impl ShaderCore {
     #[inline(always)]
     fn wake_due<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
         let i = (now as usize) & (WHEEL - 1);
-        let mut due = M::from_wide(std::mem::take(&mut self.wheel[i]));
+        let [lo, hi] = std::mem::take(&mut self.wheel[i]);
+        let mut due = M::from_wide(u128::from(lo) | u128::from(hi) << 64);
         let mut ready = M::ZERO;
         let mut ready_tex = M::ZERO;
         while due != M::ZERO {
