@@ -1,4 +1,15 @@
 //! `wasp bench`: simulated core-cycles per second.
+//!
+//! How to read it: each row is one point, the best of `--repeats` samples;
+//! a sample runs the point's simulation from reset, whole, as many times as
+//! fills `--min-seconds` (column `runs`), so even short workloads are timed
+//! over a long enough span. `seconds` and `core-cycles/s` are wall time per
+//! run and its rate; `cpu-cc/s` is the rate over the thread's own on-CPU
+//! time (Linux), which a loaded machine disturbs much less: compare rates
+//! with it. Rows `tracing` (modes off, hooks, visitor, vcd, sampled in
+//! turns) price tracing on one workload; the last line is the hook's
+//! overhead with tracing off (hooks vs off), by both measures. Rows `tiles`
+//! and `warps` show how the rate changes with the workload and warp slots.
 
 use crate::run_cmd::emit;
 use crate::CliError;
@@ -9,6 +20,16 @@ use wasp_sim::config::MachineConfig;
 
 /// Options of `wasp bench`.
 #[derive(Args, Debug, Clone)]
+#[command(after_long_help = "\
+Reading the table: every row is the best of --repeats samples; a sample \
+simulates the point's workload from reset, whole, as many times as it takes \
+to fill --min-seconds (column runs), and reports time per run. seconds and \
+core-cycles/s are wall time; cpu-cc/s is core-cycles per second of the \
+thread's on-CPU time (Linux), far less disturbed by other load: compare \
+that. The tracing rows (off, hooks, visitor, vcd) are sampled in turns; \
+the last line gives the tracing hook's overhead with tracing off (hooks \
+path vs hook-free path) by wall and by CPU time. The tiles and warps rows \
+show the rate against workload size and warp slots (tracing off).")]
 pub struct BenchArgs {
     /// Machine configuration (TOML); default: the embedded paper.toml.
     #[arg(long, value_name = "FILE")]
@@ -20,9 +41,13 @@ pub struct BenchArgs {
     /// generated 8x4-tile workload.
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
-    /// Runs per point; the fastest is kept.
+    /// Samples per point; the fastest is kept.
     #[arg(long, default_value_t = 3)]
     pub repeats: usize,
+    /// Least time of one sample, in seconds: whole runs are repeated until
+    /// it has passed.
+    #[arg(long, value_name = "SECONDS", default_value_t = bench::MIN_SAMPLE_SECONDS)]
+    pub min_seconds: f64,
     /// Write the points as JSON to FILE (`-`: stdout).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -38,8 +63,17 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         eprintln!("wasp bench: this is a debug build; measure with `cargo run --release -- bench`");
     }
     eprintln!(
-        "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10}{:>16}",
-        "point", "mode", "tiles", "warps", "cycles", "core-cycles", "seconds", "core-cycles/s"
+        "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10}{:>16}{:>6}{:>14}",
+        "point",
+        "mode",
+        "tiles",
+        "warps",
+        "cycles",
+        "core-cycles",
+        "seconds",
+        "core-cycles/s",
+        "runs",
+        "cpu-cc/s"
     );
     let trace = match &args.trace {
         Some(p) => {
@@ -47,30 +81,46 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         }
         None => None,
     };
-    let points = bench::run(&cfg, args.scale, args.repeats, trace.as_ref(), &mut |p| {
-        eprintln!(
-            "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10.3}{:>16.0}",
-            p.label,
-            format!("{:?}", p.mode).to_lowercase(),
-            p.tiles,
-            p.max_warps,
-            p.cycles,
-            p.core_cycles,
-            p.seconds,
-            p.core_cycles_per_second
-        );
-    })
+    if !(args.min_seconds.is_finite() && args.min_seconds >= 0.0) {
+        return Err(CliError::usage(
+            "--min-seconds must be a non-negative number".to_string(),
+        ));
+    }
+    let points = bench::run(
+        &cfg,
+        args.scale,
+        args.repeats,
+        args.min_seconds,
+        trace.as_ref(),
+        &mut |p| {
+            let cpu = p
+                .core_cycles_per_cpu_second
+                .map_or("-".to_string(), |r| format!("{r:.0}"));
+            eprintln!(
+                "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10.4}{:>16.0}{:>6}{:>14}",
+                p.label,
+                format!("{:?}", p.mode).to_lowercase(),
+                p.tiles,
+                p.max_warps,
+                p.cycles,
+                p.core_cycles,
+                p.seconds,
+                p.core_cycles_per_second,
+                p.runs_per_sample,
+                cpu
+            );
+        },
+    )
     .map_err(|e| CliError::failed(e.to_string()))?;
-    let rate = |m: bench::Mode| {
-        points
-            .iter()
-            .find(|p| p.label == "tracing" && p.mode == m)
-            .map(|p| p.seconds)
-    };
-    if let (Some(off), Some(hooks)) = (rate(bench::Mode::Off), rate(bench::Mode::Hooks)) {
+    let point = |m: bench::Mode| points.iter().find(|p| p.label == "tracing" && p.mode == m);
+    if let (Some(off), Some(hooks)) = (point(bench::Mode::Off), point(bench::Mode::Hooks)) {
+        let cpu = match (off.cpu_seconds, hooks.cpu_seconds) {
+            (Some(o), Some(h)) => format!(", {:+.2}% by CPU time", 100.0 * (h / o - 1.0)),
+            _ => String::new(),
+        };
         eprintln!(
-            "tracing hook overhead with tracing off: {:+.2}% (hooks path vs hook-free path)",
-            100.0 * (hooks / off - 1.0)
+            "tracing hook overhead with tracing off: {:+.2}% by wall time{cpu} (hooks path vs hook-free path)",
+            100.0 * (hooks.seconds / off.seconds - 1.0)
         );
     }
     if let Some(p) = &args.json {

@@ -1,8 +1,15 @@
 //! `wasp bench`: simulation speed in simulated core-cycles per second.
 //!
-//! Measured, never asserted: the numbers go to the README. Each point runs
-//! the same simulation several times and keeps the fastest (least
-//! disturbed) run. Modes:
+//! Measured, never asserted: the numbers go to the README. A *sample* of a
+//! point simulates its workload from reset as many whole times as it takes
+//! to fill at least [`MIN_SAMPLE_SECONDS`] (every run is simulated in full;
+//! nothing is reused between runs), and its rate is the core-cycles of
+//! those runs over their time. Each point keeps its best of `repeats`
+//! samples (the least disturbed one), by wall time and, separately, by the
+//! thread's on-CPU time (Linux: `/proc/thread-self/schedstat`), which does
+//! not count the time the thread waited for a CPU on a loaded machine. The
+//! four tracing modes are sampled in turns (off, hooks, visitor, vcd, off,
+//! ...) so that a slow spell of the machine hits them alike. Modes:
 //! - `off`: the hook-free clock path (`Gpu::step`), what `wasp run` uses
 //!   without `--vcd`;
 //! - `hooks`: the traced clock path with no sink (the hook compiled in,
@@ -16,7 +23,7 @@ use crate::gpu::{Gpu, RunOptions, SimError};
 use crate::synth::{generate, GenParams};
 use crate::trace::Trace;
 use serde::Serialize;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 use wasp_waves::{NullTracer, VcdSink};
 
 /// How the clock is driven.
@@ -31,6 +38,15 @@ pub enum Mode {
     Visitor,
     /// Full VCD output into a byte sink.
     Vcd,
+}
+
+/// Least time one sample of a point spends simulating.
+pub const MIN_SAMPLE_SECONDS: f64 = 0.5;
+
+/// Nanoseconds this thread has spent on a CPU, where the OS tells (Linux).
+fn thread_cpu_ns() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    s.split_whitespace().next()?.parse().ok()
 }
 
 /// One measurement.
@@ -48,10 +64,113 @@ pub struct Point {
     pub cycles: u64,
     /// Simulated core-cycles (cycles x cores).
     pub core_cycles: u64,
-    /// Best wall time in seconds.
+    /// Wall time of one run in the best sample, in seconds.
     pub seconds: f64,
-    /// Core-cycles per second.
+    /// Core-cycles per second of wall time, best sample.
     pub core_cycles_per_second: f64,
+    /// Whole runs in each sample.
+    pub runs_per_sample: u64,
+    /// Samples taken (the best is kept).
+    pub samples: usize,
+    /// On-CPU time of one run in the best sample by that measure, in
+    /// seconds (when the OS reports it).
+    pub cpu_seconds: Option<f64>,
+    /// Core-cycles per second of on-CPU time, best sample.
+    pub core_cycles_per_cpu_second: Option<f64>,
+}
+
+/// Best times of a point so far.
+#[derive(Clone, Copy, Debug)]
+struct Best {
+    cycles: u64,
+    runs: u64,
+    samples: usize,
+    /// Seconds per run, best sample.
+    wall: f64,
+    cpu: Option<f64>,
+}
+
+impl Best {
+    fn point(&self, label: &str, mode: Mode, tiles: usize, max_warps: u32, cores: u64) -> Point {
+        let cc = self.cycles * cores;
+        Point {
+            label: label.into(),
+            mode,
+            tiles,
+            max_warps,
+            cycles: self.cycles,
+            core_cycles: cc,
+            seconds: self.wall,
+            core_cycles_per_second: cc as f64 / self.wall,
+            runs_per_sample: self.runs,
+            samples: self.samples,
+            cpu_seconds: self.cpu,
+            core_cycles_per_cpu_second: self.cpu.map(|c| cc as f64 / c),
+        }
+    }
+}
+
+/// One sample: whole runs of `trace` in `mode` until `min` has passed
+/// (at least one run; `runs` fixes the count instead when given). Returns
+/// the cycles of one run, the runs, and the wall and on-CPU seconds per run.
+fn sample(
+    cfg: &MachineConfig,
+    trace: &Trace,
+    mode: Mode,
+    min: Duration,
+    runs: Option<u64>,
+) -> Result<(u64, u64, f64, Option<f64>), SimError> {
+    let cpu0 = thread_cpu_ns();
+    let start = Instant::now();
+    let mut n = 0u64;
+    let mut cycles;
+    loop {
+        let (c, _) = time_run(cfg, trace, mode, 1)?;
+        cycles = c;
+        n += 1;
+        match runs {
+            Some(r) if n >= r => break,
+            Some(_) => {}
+            None if start.elapsed() >= min => break,
+            None => {}
+        }
+    }
+    let wall = start.elapsed().as_secs_f64() / n as f64;
+    let cpu = match (cpu0, thread_cpu_ns()) {
+        (Some(a), Some(b)) if b > a => Some((b - a) as f64 * 1e-9 / n as f64),
+        _ => None,
+    };
+    Ok((cycles, n, wall, cpu))
+}
+
+/// Best of `repeats` samples of each of `jobs`, sampled in turns.
+fn measure(
+    jobs: &[(&MachineConfig, &Trace, Mode)],
+    repeats: usize,
+    min: Duration,
+) -> Result<Vec<Best>, SimError> {
+    let mut best: Vec<Option<Best>> = vec![None; jobs.len()];
+    for _ in 0..repeats.max(1) {
+        for (i, &(cfg, trace, mode)) in jobs.iter().enumerate() {
+            // The first sample sets the run count; later ones repeat it.
+            let runs = best[i].map(|b| b.runs);
+            let (cycles, runs, wall, cpu) = sample(cfg, trace, mode, min, runs)?;
+            let b = best[i].get_or_insert(Best {
+                cycles,
+                runs,
+                samples: 0,
+                wall,
+                cpu,
+            });
+            b.samples += 1;
+            b.wall = b.wall.min(wall);
+            b.cpu = match (b.cpu, cpu) {
+                (Some(x), Some(y)) => Some(x.min(y)),
+                (x, y) => x.or(y),
+            };
+        }
+    }
+    Ok(best.into_iter().map(|b| b.expect("sampled")).collect())
 }
 
 fn time_run(
@@ -111,14 +230,17 @@ pub fn workload(cfg: &MachineConfig, tiles_x: u32, tiles_y: u32) -> Result<Trace
 
 /// The whole benchmark: tracing modes on one workload, then growth with
 /// tile count and warp count (tracing off). `scale` multiplies the
-/// workload sizes (1 = the default sizes).
+/// workload sizes (1 = the default sizes); `min_seconds` is the least time
+/// of one sample (see [`MIN_SAMPLE_SECONDS`]).
 pub fn run(
     cfg: &MachineConfig,
     scale: u32,
     repeats: usize,
+    min_seconds: f64,
     trace: Option<&Trace>,
     report: &mut dyn FnMut(&Point),
 ) -> Result<Vec<Point>, SimError> {
+    let min = Duration::from_secs_f64(min_seconds.max(0.0));
     let cfg = RunOptions::default().apply(cfg)?;
     let cores = cfg.gpu.cores as u64;
     let mut points = Vec::new();
@@ -135,55 +257,37 @@ pub fn run(
             &generated
         }
     };
-    for mode in [Mode::Off, Mode::Hooks, Mode::Visitor, Mode::Vcd] {
-        let (cycles, secs) = time_run(&cfg, base, mode, repeats)?;
-        push(
-            Point {
-                label: "tracing".into(),
-                mode,
-                tiles: base.tiles().len(),
-                max_warps: cfg.core.max_warps,
-                cycles,
-                core_cycles: cycles * cores,
-                seconds: secs,
-                core_cycles_per_second: (cycles * cores) as f64 / secs,
-            },
-            &mut points,
+    let modes = [Mode::Off, Mode::Hooks, Mode::Visitor, Mode::Vcd];
+    let jobs: Vec<_> = modes.iter().map(|&m| (&cfg, base, m)).collect();
+    for (b, &mode) in measure(&jobs, repeats, min)?.iter().zip(&modes) {
+        let p = b.point(
+            "tracing",
+            mode,
+            base.tiles().len(),
+            cfg.core.max_warps,
+            cores,
         );
+        push(p, &mut points);
     }
     for (tx, ty) in [(2 * s, 2), (4 * s, 4), (8 * s, 8)] {
         let t = workload(&cfg, tx, ty)?;
-        let (cycles, secs) = time_run(&cfg, &t, Mode::Off, repeats)?;
-        push(
-            Point {
-                label: "tiles".into(),
-                mode: Mode::Off,
-                tiles: t.tiles().len(),
-                max_warps: cfg.core.max_warps,
-                cycles,
-                core_cycles: cycles * cores,
-                seconds: secs,
-                core_cycles_per_second: (cycles * cores) as f64 / secs,
-            },
-            &mut points,
+        let b = measure(&[(&cfg, &t, Mode::Off)], repeats, min)?[0];
+        let p = b.point(
+            "tiles",
+            Mode::Off,
+            t.tiles().len(),
+            cfg.core.max_warps,
+            cores,
         );
+        push(p, &mut points);
     }
     for warps in [32u32, 64, 128] {
         let mut c = cfg.clone();
         c.core.max_warps = warps;
         c.validate().map_err(SimError::Config)?;
-        let (cycles, secs) = time_run(&c, base, Mode::Off, repeats)?;
+        let b = measure(&[(&c, base, Mode::Off)], repeats, min)?[0];
         push(
-            Point {
-                label: "warps".into(),
-                mode: Mode::Off,
-                tiles: base.tiles().len(),
-                max_warps: warps,
-                cycles,
-                core_cycles: cycles * cores,
-                seconds: secs,
-                core_cycles_per_second: (cycles * cores) as f64 / secs,
-            },
+            b.point("warps", Mode::Off, base.tiles().len(), warps, cores),
             &mut points,
         );
     }
@@ -206,5 +310,31 @@ mod tests {
             cycles.iter().all(|&c| c == cycles[0] && c > 0),
             "{cycles:?}"
         );
+    }
+
+    #[test]
+    fn samples_repeat_whole_runs_and_keep_the_best() {
+        let cfg = MachineConfig::paper();
+        let t = workload(&cfg, 1, 1).unwrap();
+        let one = time_run(&cfg, &t, Mode::Off, 1).unwrap().0;
+        // A fixed run count is honoured; a time floor takes at least one run.
+        let (c, n, wall, _) = sample(&cfg, &t, Mode::Off, Duration::ZERO, Some(3)).unwrap();
+        assert_eq!((c, n), (one, 3));
+        assert!(wall > 0.0);
+        let (_, n, _, _) = sample(&cfg, &t, Mode::Off, Duration::ZERO, None).unwrap();
+        assert_eq!(n, 1);
+        let b = measure(
+            &[(&cfg, &t, Mode::Off), (&cfg, &t, Mode::Hooks)],
+            2,
+            Duration::from_millis(5),
+        )
+        .unwrap();
+        for x in &b {
+            assert_eq!((x.cycles, x.samples), (one, 2));
+            assert!(x.runs >= 1 && x.wall > 0.0);
+        }
+        let p = b[0].point("tracing", Mode::Off, 1, 64, 4);
+        assert_eq!(p.core_cycles, one * 4);
+        assert!((p.core_cycles_per_second - (one * 4) as f64 / p.seconds).abs() < 1e-6);
     }
 }

@@ -37,6 +37,11 @@ const FREE_MSHR_MAX: u32 = (1 << FREE_MSHR_BITS) - 1;
 
 /// Size of the wake-up timing wheel (a power of two, in cycles).
 const WHEEL: usize = 64;
+
+/// Warp slots a core can have (the slot masks' width). The slot array
+/// always has this many entries, so that indexing it with a slot number
+/// masked to this power of two needs no bounds check.
+const MAX_SLOTS: usize = 128;
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::LaunchPolicy;
 use wasp_rtl::queue::QueueClass;
@@ -159,7 +164,10 @@ pub struct ShaderCore {
     /// read it).
     track_mshrs: bool,
     /// Warp slots; a slot holds a warp when its bit in `free_slots` is 0.
-    slots: Vec<Warp>,
+    /// Only the first `n_slots` are used.
+    slots: Box<[Warp; MAX_SLOTS]>,
+    /// Warp slots of the core.
+    n_slots: usize,
     free_slots: u128,
     /// Warps ready to issue an ALU instruction.
     ready: u128,
@@ -167,8 +175,10 @@ pub struct ShaderCore {
     ready_tex: u128,
     /// Every slot fits in a `u64` mask (the hot loops then use `u64`).
     narrow: bool,
-    /// Timing wheel of wake-ups: slot bitmasks by cycle modulo its size.
-    wheel: Vec<u128>,
+    /// Timing wheel of wake-ups: slot bitmasks by cycle modulo its size,
+    /// as two 64-bit halves (slots 0-63, 64-127): setting a bit is then a
+    /// 64-bit shift.
+    wheel: [[u64; 2]; WHEEL],
     /// Wake-ups further than the wheel reaches.
     far: BinaryHeap<Reverse<(u64, u8)>>,
     ldst: VecDeque<LdstEntry>,
@@ -225,7 +235,7 @@ impl ShaderCore {
         let track_mshrs = policy.reads_free_mshrs();
         let free = FreeMshrReg::with_capacity(p.sched_mshrs.min(FREE_MSHR_MAX))
             .expect("capacity clamped to the register");
-        let n = p.max_warps.min(128) as usize;
+        let n = (p.max_warps as usize).min(MAX_SLOTS);
         Self {
             id,
             width: p.width,
@@ -235,7 +245,8 @@ impl ShaderCore {
             raster_rate: p.raster_rate,
             sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy),
             track_mshrs,
-            slots: vec![Warp::default(); n],
+            slots: Box::new([Warp::default(); MAX_SLOTS]),
+            n_slots: n,
             free_slots: if n == 128 {
                 u128::MAX
             } else {
@@ -244,7 +255,7 @@ impl ShaderCore {
             ready: 0,
             ready_tex: 0,
             narrow: n <= 64,
-            wheel: vec![0; WHEEL],
+            wheel: [[0; 2]; WHEEL],
             far: BinaryHeap::new(),
             ldst: VecDeque::with_capacity(p.ldst_queue as usize),
             tile: None,
@@ -325,7 +336,7 @@ impl ShaderCore {
     #[inline]
     fn schedule(&mut self, now: u64, at: u64, slot: usize) {
         if at - now < WHEEL as u64 {
-            self.wheel[(at as usize) & (WHEEL - 1)] |= 1u128 << slot;
+            self.wheel[(at as usize) & (WHEEL - 1)][(slot >> 6) & 1] |= 1u64 << (slot & 63);
         } else {
             self.far.push(Reverse((at, slot as u8)));
         }
@@ -337,7 +348,8 @@ impl ShaderCore {
                 break;
             }
             self.far.pop();
-            self.wheel[(t as usize) & (WHEEL - 1)] |= 1u128 << slot;
+            let slot = slot as usize;
+            self.wheel[(t as usize) & (WHEEL - 1)][(slot >> 6) & 1] |= 1u64 << (slot & 63);
         }
         if self.narrow {
             self.wake_due::<u64>(now, tile);
@@ -350,13 +362,14 @@ impl ShaderCore {
     #[inline(always)]
     fn wake_due<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
         let i = (now as usize) & (WHEEL - 1);
-        let mut due = M::from_wide(std::mem::take(&mut self.wheel[i]));
+        let [lo, hi] = std::mem::take(&mut self.wheel[i]);
+        let mut due = M::from_wide(u128::from(lo) | u128::from(hi) << 64);
         let mut ready = M::ZERO;
         let mut ready_tex = M::ZERO;
         while due != M::ZERO {
             let s = due.lowest();
             due = due.without_lowest();
-            let w = &mut self.slots[s];
+            let w = &mut self.slots[s % MAX_SLOTS];
             if w.op >= w.n_ops {
                 let w = *w;
                 self.finish(s, &w, now);
@@ -440,7 +453,7 @@ impl ShaderCore {
                     .quad(quad as usize)
                     .expect("quad in tile")
                     .entry_count() as u32;
-                self.slots[s] = Warp {
+                self.slots[s % MAX_SLOTS] = Warp {
                     quad,
                     op: 0,
                     n_ops,
@@ -477,7 +490,7 @@ impl ShaderCore {
     /// Issue on masks of width `M` (every slot fits).
     #[inline(always)]
     fn issue_with<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
-        let n = self.slots.len() as u32;
+        let n = self.n_slots as u32;
         let mut issued = 0;
         let tex_ok = self.ldst.len() < self.ldst_cap;
         let mut tex_taken = false;
@@ -496,7 +509,7 @@ impl ShaderCore {
             rot = rot.without_lowest();
             let s = (k + rr as usize) & (M::BITS as usize - 1);
             let bit = M::bit(s);
-            let w = &mut self.slots[s];
+            let w = &mut self.slots[s % MAX_SLOTS];
             if ready & bit != M::ZERO {
                 w.alu_left -= 1;
                 if w.alu_left == 0 {
@@ -558,7 +571,7 @@ impl ShaderCore {
                 self.signals.ldst_presented += 1;
                 self.last_progress = now;
                 if matches!(r, Access::Miss | Access::SecondaryMiss) {
-                    let w = &mut self.slots[e.slot as usize];
+                    let w = &mut self.slots[e.slot as usize % MAX_SLOTS];
                     if !w.blocked {
                         w.blocked = true;
                         if w.priority {
@@ -676,7 +689,7 @@ impl ShaderCore {
                 )
             })
             .unwrap_or_else(|| "no tile".into());
-        let blocked = (0..self.slots.len())
+        let blocked = (0..self.n_slots)
             .filter(|&s| self.free_slots & (1u128 << s) == 0 && self.slots[s].blocked)
             .count();
         format!(
@@ -714,7 +727,7 @@ impl Traceable for ShaderCore {
         t.push_scope("scheduler");
         self.sched.trace(t);
         t.pop_scope();
-        let sw = (usize::BITS - self.slots.len().leading_zeros()).max(1);
+        let sw = (usize::BITS - self.n_slots.leading_zeros()).max(1);
         t.signal("warps_active", sw, self.active as u64);
         t.signal(
             "warps_ready",

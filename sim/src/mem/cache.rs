@@ -131,7 +131,7 @@ impl Cache {
     /// Present one access for `block` in cycle `now`. `target` is stored in
     /// the MSHR entry on a (primary or secondary) miss and handed back by
     /// [`Cache::fill`].
-    #[inline]
+    #[inline(always)]
     pub fn access(&mut self, now: u64, block: u64, target: u32) -> Lookup {
         self.advance(now);
         if self.ports_used >= self.cfg.ports {
@@ -322,17 +322,11 @@ impl Cache {
     }
 }
 
-/// Way of `set` holding `block`. Scans every way without an early exit
-/// (a tag match is a CAM in hardware; here it avoids a data-dependent branch).
+/// Way of `set` holding `block` (tags are distinct within a set: a line
+/// is allocated only by the fill of a block not present).
 #[inline]
 fn find_way(set: &[u64], block: u64) -> Option<usize> {
-    let mut found = usize::MAX;
-    for (w, &t) in set.iter().enumerate() {
-        if t == block {
-            found = w;
-        }
-    }
-    (found != usize::MAX).then_some(found)
+    set.iter().position(|&t| t == block)
 }
 
 /// Bits needed to hold every value in `0..=max` (at least 1).

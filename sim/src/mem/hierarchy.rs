@@ -234,7 +234,7 @@ impl MemorySystem {
     /// returned by [`take_completions`](Self::take_completions) exactly once
     /// if the access is accepted; a refused access leaves no trace but its
     /// counters and must be presented again. Panics if `core` is out of range.
-    #[inline]
+    #[inline(always)]
     pub fn access(&mut self, now: u64, core: usize, block: u64, tag: u32) -> Access {
         debug_assert!(now >= self.now, "access in a past cycle");
         self.now = now;

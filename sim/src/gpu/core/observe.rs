@@ -49,7 +49,7 @@ impl ShaderCore {
     /// Read the core's observable state (see [`CoreSnapshot`]).
     pub fn snapshot(&self) -> CoreSnapshot {
         use wasp_rtl::queue::QueueClass;
-        let warps = (0..self.slots.len())
+        let warps = (0..self.n_slots)
             .filter(|&s| self.free_slots & (1 << s) == 0)
             .map(|s| {
                 let w = &self.slots[s];
@@ -74,7 +74,7 @@ impl ShaderCore {
             tracks_free_mshrs: self.track_mshrs,
             nonblocked: self.sched.nonblocked().count().get(),
             active: self.active,
-            slots: self.slots.len(),
+            slots: self.n_slots,
             warps,
             ldst: self.ldst.len(),
         }
