@@ -91,6 +91,13 @@
 //! the runs are not vacuous (launches, full queue, no free MSHR, priority
 //! warps held back).
 //!
+//! `tests/sim_models.rs` does the same around the scheduler: a
+//! `proptest-state-machine` test drives a `wasp-sim` cache with up to 400
+//! random operations against [`mshr_file::CacheModel`] (property (f)), and
+//! a proptest runs random small GPUs (1-2 cores, 1-4 warp slots, every
+//! policy, L0 or not) on random traces of up to two tiles of eight quads
+//! (positions may repeat), checking (g)-(k) every cycle.
+//!
 //! # Limits of the models
 //!
 //! The priority-warp model allows at most [`counters::MAX_PRIORITY_WARPS`]

@@ -160,28 +160,70 @@ fn lookup_code(l: Lookup) -> i64 {
     }
 }
 
+impl CacheModel {
+    /// Apply `op` to the model alone; returns the lookup an access gets.
+    /// A fill of a block with no pending miss changes nothing.
+    pub fn step(&mut self, op: CacheOp) -> Option<Lookup> {
+        match op {
+            CacheOp::Tick => {
+                self.now += 1;
+                self.ports_used = 0;
+                let now = self.now;
+                self.held.retain(|&free_at| free_at > now);
+                None
+            }
+            CacheOp::Access(block) => {
+                let got = self.expect(block);
+                let target = self.next_target;
+                match got {
+                    Lookup::Hit => self.ports_used += 1,
+                    Lookup::Secondary => {
+                        self.ports_used += 1;
+                        *self.pending.get_mut(&block).expect("pending") += 1;
+                        self.waiting.entry(block).or_default().push(target);
+                        self.next_target += 1;
+                    }
+                    Lookup::Miss => {
+                        self.ports_used += 1;
+                        self.pending.insert(block, 1);
+                        self.waiting.insert(block, vec![target]);
+                        self.next_target += 1;
+                    }
+                    Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy => {}
+                }
+                Some(got)
+            }
+            CacheOp::Fill(block) => {
+                if self.pending.remove(&block).is_some() {
+                    self.waiting.remove(&block);
+                    self.lines.insert(block);
+                    self.held.push(self.now + 1 + MSHR_HOLD_CYCLES);
+                }
+                None
+            }
+        }
+    }
+}
+
 /// Apply `op` to the cache and the model and compare them (see the module
 /// documentation).
 pub fn cache_step(cache: &mut Cache, model: &mut CacheModel, op: CacheOp) -> Result<(), Cex> {
     let cap = i64::from(model.capacity);
     match op {
         CacheOp::Tick => {
-            model.now += 1;
-            model.ports_used = 0;
-            let now = model.now;
-            model.held.retain(|&free_at| free_at > now);
-            cache.advance(now);
+            model.step(op);
+            cache.advance(model.now);
         }
         CacheOp::Access(block) => {
-            let want = model.expect(block);
             let full_before = cache.mshr_occupied() >= cache.mshr_capacity();
             let before = observable(cache);
-            let target = model.next_target;
-            let got = cache.access(model.now, block, target);
+            let (now, target) = (model.now, model.next_target);
+            let want = model.step(op).expect("an access has a lookup");
+            let got = cache.access(now, block, target);
             let cex = |what| {
                 Cex::new(PROP, what)
                     .with("capacity", cap)
-                    .with("cycle", model.now as i64)
+                    .with("cycle", now as i64)
                     .with("block", block as i64)
                     .with("expected", lookup_code(want))
                     .with("observed", lookup_code(got))
@@ -196,28 +238,12 @@ pub fn cache_step(cache: &mut Cache, model: &mut CacheModel, op: CacheOp) -> Res
                     cex("a refused access changed the cache")
                 })?;
             }
-            match got {
-                Lookup::Hit => model.ports_used += 1,
-                Lookup::Secondary => {
-                    model.ports_used += 1;
-                    *model.pending.get_mut(&block).expect("pending") += 1;
-                    model.waiting.entry(block).or_default().push(target);
-                    model.next_target += 1;
-                }
-                Lookup::Miss => {
-                    model.ports_used += 1;
-                    model.pending.insert(block, 1);
-                    model.waiting.insert(block, vec![target]);
-                    model.next_target += 1;
-                }
-                Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy => {}
-            }
         }
         CacheOp::Fill(block) => {
-            if model.pending.remove(&block).is_none() {
+            let Some(want) = model.waiting.get(&block).cloned() else {
                 return Ok(());
-            }
-            let want = model.waiting.remove(&block).unwrap_or_default();
+            };
+            model.step(op);
             let got = cache.fill(model.now, block).to_vec();
             ensure(got == want, || {
                 Cex::new(PROP, "a fill handed back other targets than waited")
@@ -225,8 +251,6 @@ pub fn cache_step(cache: &mut Cache, model: &mut CacheModel, op: CacheOp) -> Res
                     .with("expected", want.len() as i64)
                     .with("observed", got.len() as i64)
             })?;
-            model.lines.insert(block);
-            model.held.push(model.now + 1 + MSHR_HOLD_CYCLES);
         }
     }
     let (occ, out) = (cache.mshr_occupied(), cache.mshr_outstanding());
