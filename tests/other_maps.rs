@@ -11,17 +11,14 @@
 //! cargo test --release --test other_maps -- --ignored
 //! ```
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
+
+mod common;
+use common::scratch;
 
 fn wasp() -> Command {
     Command::new(env!("CARGO_BIN_EXE_wasp"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("wasp-other-maps-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn json_u64(v: &serde_json::Value, key: &str) -> u64 {
@@ -34,7 +31,7 @@ fn json_u64(v: &serde_json::Value, key: &str) -> u64 {
 /// trace and a PNG, run the trace with two policies, and check what the
 /// runs report.
 fn end_to_end(game: &str, map: &str, camera: &str) {
-    let dir = scratch(&format!("{game}-{map}"));
+    let dir = scratch("other-maps", &format!("{game}-{map}"));
     let scene = dir.join("scene.toml");
     std::fs::write(
         &scene,

@@ -2,35 +2,15 @@
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::trace::Trace;
 use wasp_waves::readback;
 
-fn wasp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_wasp"))
-        .args(args)
-        .output()
-        .expect("run wasp")
-}
-
-fn ok(o: &Output) -> String {
-    assert!(
-        o.status.success(),
-        "wasp failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{ok, stderr, wasp};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("wasp-run-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch("run", name)
 }
 
 fn tiny_trace() -> String {

@@ -3,30 +3,14 @@
 
 use serde_json::Value;
 use std::path::PathBuf;
-use std::process::{Command, Output};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::trace::Trace;
 
-fn wasp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_wasp"))
-        .args(args)
-        .output()
-        .expect("run wasp")
-}
-
-fn ok(o: &Output) -> String {
-    assert!(
-        o.status.success(),
-        "wasp failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
+mod common;
+use common::{ok, wasp};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("wasp-scene-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch("scene", name)
 }
 
 #[test]

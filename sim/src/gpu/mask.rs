@@ -37,64 +37,46 @@ pub(crate) trait SlotMask:
     fn rotate_right(self, n: u32) -> Self;
 }
 
-impl SlotMask for u64 {
-    const ZERO: Self = 0;
-    const BITS: u32 = 64;
-    #[inline(always)]
-    fn bit(s: usize) -> Self {
-        1 << s
-    }
-    #[inline(always)]
-    fn from_wide(m: u128) -> Self {
-        debug_assert!(m >> 64 == 0, "slot above 63 in a 64-slot mask");
-        m as u64
-    }
-    #[inline(always)]
-    fn to_wide(self) -> u128 {
-        u128::from(self)
-    }
-    #[inline(always)]
-    fn lowest(self) -> usize {
-        self.trailing_zeros() as usize
-    }
-    #[inline(always)]
-    fn without_lowest(self) -> Self {
-        self & self.wrapping_sub(1)
-    }
-    #[inline(always)]
-    fn rotate_right(self, n: u32) -> Self {
-        u64::rotate_right(self, n)
-    }
+/// `SlotMask` for a primitive unsigned integer: the same bit operations,
+/// only the conversion from the 128-bit form differs.
+macro_rules! slot_mask {
+    ($t:ty, |$m:ident| $from_wide:expr) => {
+        impl SlotMask for $t {
+            const ZERO: Self = 0;
+            const BITS: u32 = <$t>::BITS;
+            #[inline(always)]
+            fn bit(s: usize) -> Self {
+                1 << s
+            }
+            #[inline(always)]
+            fn from_wide($m: u128) -> Self {
+                $from_wide
+            }
+            #[inline(always)]
+            fn to_wide(self) -> u128 {
+                u128::from(self)
+            }
+            #[inline(always)]
+            fn lowest(self) -> usize {
+                self.trailing_zeros() as usize
+            }
+            #[inline(always)]
+            fn without_lowest(self) -> Self {
+                self & self.wrapping_sub(1)
+            }
+            #[inline(always)]
+            fn rotate_right(self, n: u32) -> Self {
+                <$t>::rotate_right(self, n)
+            }
+        }
+    };
 }
 
-impl SlotMask for u128 {
-    const ZERO: Self = 0;
-    const BITS: u32 = 128;
-    #[inline(always)]
-    fn bit(s: usize) -> Self {
-        1 << s
-    }
-    #[inline(always)]
-    fn from_wide(m: u128) -> Self {
-        m
-    }
-    #[inline(always)]
-    fn to_wide(self) -> u128 {
-        self
-    }
-    #[inline(always)]
-    fn lowest(self) -> usize {
-        self.trailing_zeros() as usize
-    }
-    #[inline(always)]
-    fn without_lowest(self) -> Self {
-        self & self.wrapping_sub(1)
-    }
-    #[inline(always)]
-    fn rotate_right(self, n: u32) -> Self {
-        u128::rotate_right(self, n)
-    }
-}
+slot_mask!(u64, |m| {
+    debug_assert!(m >> 64 == 0, "slot above 63 in a 64-slot mask");
+    m as u64
+});
+slot_mask!(u128, |m| m);
 
 /// The slots of `m` in round-robin order from slot `start`: every slot at
 /// or above `start` ascending, then the ones below it ascending. (What the
