@@ -906,22 +906,14 @@ fn coverage(s: &Setup, qx: u32, qy: u32, xend: u32, yend: u32) -> u8 {
 /// exactly), so the raster need not visit every quad of the bounding box.
 #[inline]
 fn row_span(s: &Setup, qy: u32, x0: u32, x1: u32) -> (u32, u32) {
+    span_of(&[row_cover(s, qy), row_cover(s, qy + 1)], x0, x1)
+}
+
+/// [`row_span`] from the two rows' covered ranges ([`row_cover`]).
+#[inline]
+fn span_of(cover: &[(i64, i64); 2], x0: u32, x1: u32) -> (u32, u32) {
     let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-    for row in [qy, qy + 1] {
-        let cy = i64::from(row) * SUB + SUB / 2;
-        let (mut rlo, mut rhi) = (i64::MIN, i64::MAX);
-        for e in &s.edges {
-            let (a, v0) = (e[0], e[1] * cy + e[2]);
-            // Inside at pixel x: a (x SUB + SUB/2) + v0 >= 0.
-            let num = -v0 - a * (SUB / 2);
-            if a > 0 {
-                rlo = rlo.max(-((-num).div_euclid(a * SUB)));
-            } else if a < 0 {
-                rhi = rhi.min((-num).div_euclid(-a * SUB));
-            } else if v0 < 0 {
-                rlo = i64::MAX;
-            }
-        }
+    for &(rlo, rhi) in cover {
         if rlo <= rhi {
             lo = lo.min(rlo);
             hi = hi.max(rhi);
@@ -960,15 +952,15 @@ fn row_cover(s: &Setup, row: u32) -> (i64, i64) {
 /// How many quads of the quad row starting at pixel row `qy`, with their
 /// top-left pixel in columns `xa..xb` (xa even), [`coverage`] finds covered
 /// (pixels at or beyond (xend, yend) excluded), from the exact covered
-/// ranges of the two pixel rows rather than quad by quad.
-fn covered_quads(s: &Setup, qy: u32, xa: u32, xb: u32, xend: u32, yend: u32) -> u64 {
+/// ranges of the two pixel rows (`cover`: [`row_cover`] of rows qy and
+/// qy + 1) rather than quad by quad.
+fn covered_quads(cover: &[(i64, i64); 2], qy: u32, xa: u32, xb: u32, xend: u32, yend: u32) -> u64 {
     if xa >= xb {
         return 0;
     }
     // Quad k holds pixels 2k and 2k + 1; the segment holds quads ka..=kb.
     let (ka, kb) = (i64::from(xa / 2), i64::from((xb - 1) / 2));
-    let quads = |row: u32| {
-        let (lo, hi) = row_cover(s, row);
+    let quads = |(lo, hi): (i64, i64)| {
         let (lo, hi) = (lo.max(i64::from(xa)), hi.min(i64::from(xend) - 1));
         if lo > hi {
             return None;
@@ -976,8 +968,8 @@ fn covered_quads(s: &Setup, qy: u32, xa: u32, xb: u32, xend: u32, yend: u32) -> 
         let (a, b) = (lo.div_euclid(2).max(ka), hi.div_euclid(2).min(kb));
         (a <= b).then_some((a, b))
     };
-    let top = quads(qy);
-    let bottom = if qy + 1 < yend { quads(qy + 1) } else { None };
+    let top = quads(cover[0]);
+    let bottom = if qy + 1 < yend { quads(cover[1]) } else { None };
     let len = |(a, b): (i64, i64)| (b - a + 1) as u64;
     match (top, bottom) {
         (None, None) => 0,
@@ -1159,7 +1151,8 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
         let mc = s.material as usize;
         let (x0, x1, y0, y1) = span(s);
         for qy in (y0..y1).step_by(2) {
-            let (rx0, rx1) = row_span(s, qy, x0, x1);
+            let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
+            let (rx0, rx1) = span_of(&cover, x0, x1);
             // The row in segments of one coarse-depth block each.
             let mut xa = rx0;
             while xa < rx1 {
@@ -1174,7 +1167,7 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                     let lb =
                         depth_lower_bound(s, seg.0, xb.min(xend - 1), qy, (qy + 1).min(yend - 1));
                     if b.coarse.hidden(&b.depth, seg.0 - ox, qy - oy, lb) {
-                        let n = covered_quads(s, qy, seg.0, xb, xend, yend);
+                        let n = covered_quads(&cover, qy, seg.0, xb, xend, yend);
                         b.covered += n;
                         b.rejected += n;
                         b.rejected_hiz += n;
@@ -2366,7 +2359,8 @@ mod tests {
                         .step_by(2)
                         .filter(|&qx| coverage(s, qx, qy, xend, yend) != 0)
                         .count() as u64;
-                    assert_eq!(covered_quads(s, qy, seg, xb, xend, yend), want);
+                    let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
+                    assert_eq!(covered_quads(&cover, qy, seg, xb, xend, yend), want);
                     covered += want;
                     let (xl, yl) = ((xb + 1).min(xend - 1), (qy + 1).min(yend - 1));
                     let lb = depth_lower_bound(s, seg, xl, qy, yl);
