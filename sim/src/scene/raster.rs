@@ -69,6 +69,14 @@
 //! them one at a time and build their trace records; the results are
 //! joined in Z-order, so the trace and picture never depend on the thread
 //! count. Each quad row of a triangle visits only the span its edges allow.
+//! Hierarchical Z, as TBR hardware has it: per block of 8x2 pixels (the
+//! quads of a quad row in a block column) the tile keeps an upper bound of
+//! its stored depths, recomputed lazily after writes; a triangle whose
+//! nearest depth over the block is farther than that bound fails the
+//! depth test at every pixel there, so its quads in the block are rejected
+//! (and counted, exactly, from the edges' covered ranges) without testing
+//! them one by one ([`RasterStats::quads_rejected_hiz`]; the results are
+//! the same as testing every quad).
 //! Opaque and alpha-tested colours are shaded once per pixel, for the
 //! fragment that ends up visible (when a blended fragment needs the colour
 //! below it, or at the end of the tile), not once per fragment; the alpha
@@ -163,6 +171,9 @@ pub struct RasterStats {
     pub quads_covered: u64,
     /// Of those, quads whose every covered pixel failed the depth test.
     pub quads_rejected_early_z: u64,
+    /// Of those, quads the hierarchical (coarse) depth test rejected
+    /// without testing their pixels (the rest were tested pixel by pixel).
+    pub quads_rejected_hiz: u64,
     /// Surviving (triangle, quad) fragments: the warps (quad records of the
     /// trace), one per fragment as in a hardware TBR.
     pub warps: u64,
@@ -784,6 +795,9 @@ struct TileCtx<'a> {
     height: u32,
     colour: bool,
     prepass: bool,
+    /// Reject quads by the tile's coarse depth before testing them one by
+    /// one (the same results; off only to check that in tests).
+    hiz: bool,
 }
 
 /// One tile's working state and results, reused from tile to tile.
@@ -796,7 +810,11 @@ struct TileBuf {
     scratch: Vec<u64>,
     covered: u64,
     rejected: u64,
+    /// Of `rejected`, those the coarse depth rejected.
+    rejected_hiz: u64,
     pixels: u64,
+    /// The depth buffer's coarse bounds.
+    coarse: CoarseDepth,
     /// Per material: fragments shaded (warps), quads rejected, pixels.
     per_material: Vec<[u64; 3]>,
     /// Deferred colour: per pixel, 1 + the fragment whose colour the pixel
@@ -826,7 +844,9 @@ impl TileBuf {
             scratch: Vec::with_capacity(64),
             covered: 0,
             rejected: 0,
+            rejected_hiz: 0,
             pixels: 0,
+            coarse: CoarseDepth::new(tile),
             per_material: vec![[0; 3]; materials],
             pending: vec![0; (tile * tile) as usize],
             pending_uv: vec![[[0.0; 2]; 2]; (tile * tile) as usize],
@@ -886,22 +906,14 @@ fn coverage(s: &Setup, qx: u32, qy: u32, xend: u32, yend: u32) -> u8 {
 /// exactly), so the raster need not visit every quad of the bounding box.
 #[inline]
 fn row_span(s: &Setup, qy: u32, x0: u32, x1: u32) -> (u32, u32) {
+    span_of(&[row_cover(s, qy), row_cover(s, qy + 1)], x0, x1)
+}
+
+/// [`row_span`] from the two rows' covered ranges ([`row_cover`]).
+#[inline]
+fn span_of(cover: &[(i64, i64); 2], x0: u32, x1: u32) -> (u32, u32) {
     let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-    for row in [qy, qy + 1] {
-        let cy = i64::from(row) * SUB + SUB / 2;
-        let (mut rlo, mut rhi) = (i64::MIN, i64::MAX);
-        for e in &s.edges {
-            let (a, v0) = (e[0], e[1] * cy + e[2]);
-            // Inside at pixel x: a (x SUB + SUB/2) + v0 >= 0.
-            let num = -v0 - a * (SUB / 2);
-            if a > 0 {
-                rlo = rlo.max(-((-num).div_euclid(a * SUB)));
-            } else if a < 0 {
-                rhi = rhi.min((-num).div_euclid(-a * SUB));
-            } else if v0 < 0 {
-                rlo = i64::MAX;
-            }
-        }
+    for &(rlo, rhi) in cover {
         if rlo <= rhi {
             lo = lo.min(rlo);
             hi = hi.max(rhi);
@@ -913,6 +925,167 @@ fn row_span(s: &Setup, qy: u32, x0: u32, x1: u32) -> (u32, u32) {
     let start = lo.saturating_sub(1).clamp(i64::from(x0), i64::from(x1)) as u32 & !1;
     let end = hi.saturating_add(2).clamp(i64::from(x0), i64::from(x1)) as u32;
     (start.max(x0), end)
+}
+
+/// The pixel columns whose centres are on or inside all three edges of `s`
+/// in pixel row `row`: an inclusive range, empty when lo > hi. Exact: the
+/// same integer test as [`coverage`], solved for x.
+#[inline]
+fn row_cover(s: &Setup, row: u32) -> (i64, i64) {
+    let cy = i64::from(row) * SUB + SUB / 2;
+    let (mut lo, mut hi) = (i64::MIN, i64::MAX);
+    for e in &s.edges {
+        let (a, v0) = (e[0], e[1] * cy + e[2]);
+        // Inside at pixel x: a (x SUB + SUB/2) + v0 >= 0.
+        let num = -v0 - a * (SUB / 2);
+        if a > 0 {
+            lo = lo.max(-((-num).div_euclid(a * SUB)));
+        } else if a < 0 {
+            hi = hi.min((-num).div_euclid(-a * SUB));
+        } else if v0 < 0 {
+            lo = i64::MAX;
+        }
+    }
+    (lo, hi)
+}
+
+/// How many quads of the quad row starting at pixel row `qy`, with their
+/// top-left pixel in columns `xa..xb` (xa even), [`coverage`] finds covered
+/// (pixels at or beyond (xend, yend) excluded), from the exact covered
+/// ranges of the two pixel rows (`cover`: [`row_cover`] of rows qy and
+/// qy + 1) rather than quad by quad.
+fn covered_quads(cover: &[(i64, i64); 2], qy: u32, xa: u32, xb: u32, xend: u32, yend: u32) -> u64 {
+    if xa >= xb {
+        return 0;
+    }
+    // Quad k holds pixels 2k and 2k + 1; the segment holds quads ka..=kb.
+    let (ka, kb) = (i64::from(xa / 2), i64::from((xb - 1) / 2));
+    let quads = |(lo, hi): (i64, i64)| {
+        let (lo, hi) = (lo.max(i64::from(xa)), hi.min(i64::from(xend) - 1));
+        if lo > hi {
+            return None;
+        }
+        let (a, b) = (lo.div_euclid(2).max(ka), hi.div_euclid(2).min(kb));
+        (a <= b).then_some((a, b))
+    };
+    let top = quads(cover[0]);
+    let bottom = if qy + 1 < yend { quads(cover[1]) } else { None };
+    let len = |(a, b): (i64, i64)| (b - a + 1) as u64;
+    match (top, bottom) {
+        (None, None) => 0,
+        (Some(r), None) | (None, Some(r)) => len(r),
+        (Some(r), Some(q)) => {
+            let common = (r.0.max(q.0), r.1.min(q.1));
+            len(r) + len(q) - if common.0 <= common.1 { len(common) } else { 0 }
+        }
+    }
+}
+
+/// A lower bound of the depth [`Setup::depth_at`] gives at every pixel
+/// centre of columns `xa..=xb` and rows `ya..=yb` (NaN if the plane is not
+/// finite). The plane's minimum over the rectangle is at a corner; the
+/// bound allows for the rounding of evaluating the plane in f64 (far more
+/// than it can be), and rounding to f32 keeps the order.
+#[inline]
+fn depth_lower_bound(s: &Setup, xa: u32, xb: u32, ya: u32, yb: u32) -> f32 {
+    let p = &s.planes[0];
+    let dx = |x: u32| f64::from(x) + 0.5 - s.origin[0];
+    let dy = |y: u32| f64::from(y) + 0.5 - s.origin[1];
+    let (dxa, dxb, dya, dyb) = (dx(xa), dx(xb), dy(ya), dy(yb));
+    let x = if p[1] >= 0.0 { dxa } else { dxb };
+    let y = if p[2] >= 0.0 { dya } else { dyb };
+    let v = p[0] + p[1] * x + p[2] * y;
+    let size =
+        p[0].abs() + p[1].abs() * dxa.abs().max(dxb.abs()) + p[2].abs() * dya.abs().max(dyb.abs());
+    (v - size * 1e-12) as f32
+}
+
+/// Hierarchical (coarse) depth of a tile: per block of
+/// [`CoarseDepth::BLOCK_W`] x 2 pixels (the quads of one quad row in a
+/// block column), an upper bound of the depths stored at its pixels. A
+/// triangle whose depth is above a block's bound at every pixel fails the
+/// early-Z test (`<=`) at every pixel of it, so its quads there are
+/// rejected without testing them one by one. Depths only decrease, so the
+/// bound stays an upper bound as they change; a block written since its
+/// bound was computed is marked and recomputed only when the stale bound
+/// fails to reject.
+struct CoarseDepth {
+    /// Tile edge in pixels.
+    tile: u32,
+    /// Blocks per block row.
+    cols: u32,
+    /// Per block, an upper bound of its stored depths.
+    max: Vec<f32>,
+    /// Per block, whether a depth changed since `max` was computed.
+    dirty: Vec<bool>,
+}
+
+impl CoarseDepth {
+    /// Block width in pixels (even: whole quads).
+    const BLOCK_W: u32 = 8;
+
+    fn new(tile: u32) -> CoarseDepth {
+        let cols = tile.div_ceil(Self::BLOCK_W);
+        let n = (cols * tile.div_ceil(2)) as usize;
+        CoarseDepth {
+            tile,
+            cols,
+            max: vec![1.0; n],
+            dirty: vec![false; n],
+        }
+    }
+
+    /// Every depth back to 1 (a cleared depth buffer).
+    fn clear(&mut self) {
+        self.max.fill(1.0);
+        self.dirty.fill(false);
+    }
+
+    /// Every block recomputed before its next use (after writes not
+    /// reported by [`CoarseDepth::wrote`]).
+    fn invalidate(&mut self) {
+        self.dirty.fill(true);
+    }
+
+    /// The block of tile pixel (lx, ly).
+    #[inline]
+    fn block(&self, lx: u32, ly: u32) -> usize {
+        ((ly / 2) * self.cols + lx / Self::BLOCK_W) as usize
+    }
+
+    /// Tile pixel (lx, ly) got a new depth.
+    #[inline]
+    fn wrote(&mut self, lx: u32, ly: u32) {
+        let k = self.block(lx, ly);
+        self.dirty[k] = true;
+    }
+
+    /// Whether a triangle whose depth is at least `z` at every pixel it
+    /// covers in the block of tile pixel (lx, ly) fails the depth test at
+    /// all of them against `depth` (the tile's depth buffer).
+    #[inline]
+    fn hidden(&mut self, depth: &[f32], lx: u32, ly: u32, z: f32) -> bool {
+        let k = self.block(lx, ly);
+        if z > self.max[k] {
+            return true;
+        }
+        if !self.dirty[k] {
+            return false;
+        }
+        let (x0, y0) = (lx / Self::BLOCK_W * Self::BLOCK_W, ly / 2 * 2);
+        let x1 = (x0 + Self::BLOCK_W).min(self.tile);
+        let t = self.tile as usize;
+        let mut m = f32::NEG_INFINITY;
+        for y in y0..y0 + 2 {
+            let row = y as usize * t;
+            for &d in &depth[row + x0 as usize..row + x1 as usize] {
+                m = m.max(d);
+            }
+        }
+        self.max[k] = m;
+        self.dirty[k] = false;
+        z > m
+    }
 }
 
 /// Rasterize, early-Z test, texture and shade the triangles `list` of tile
@@ -932,6 +1105,8 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
     b.pool.clear();
     b.covered = 0;
     b.rejected = 0;
+    b.rejected_hiz = 0;
+    b.coarse.clear();
     b.pixels = 0;
     b.per_material.iter_mut().for_each(|c| *c = [0; 3]);
     // The quads of a triangle inside the tile: (x0, x1, y0, y1), x0 and
@@ -967,103 +1142,131 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
             }
         }
     }
+    if ctx.prepass {
+        b.coarse.invalidate();
+    }
     for &si in list {
         let s = &ctx.setups[si as usize];
         let mat = &ctx.mats[s.material as usize];
         let mc = s.material as usize;
         let (x0, x1, y0, y1) = span(s);
         for qy in (y0..y1).step_by(2) {
-            let (rx0, rx1) = row_span(s, qy, x0, x1);
-            for qx in (rx0..rx1).step_by(2) {
-                let mask = coverage(s, qx, qy, xend, yend);
-                if mask == 0 {
-                    continue;
-                }
-                b.covered += 1;
-                // Early-Z on the covered pixels.
-                let mut z = [0.0f32; 4];
-                let mut live = 0u8;
-                for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
-                    let (px, py) = (qx + (i & 1), qy + (i >> 1));
-                    z[i as usize] = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
-                    if z[i as usize] <= b.depth[((py - oy) * t + px - ox) as usize] {
-                        live |= 1 << i;
+            let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
+            let (rx0, rx1) = span_of(&cover, x0, x1);
+            // The row in segments of one coarse-depth block each.
+            let mut xa = rx0;
+            while xa < rx1 {
+                let xb =
+                    (ox + ((xa - ox) / CoarseDepth::BLOCK_W + 1) * CoarseDepth::BLOCK_W).min(rx1);
+                let seg = (xa, xb);
+                xa = xb;
+                if ctx.hiz {
+                    // Hierarchical Z: the segment's pixels span columns
+                    // seg.0..xb (the last quad's second pixel at xb when
+                    // xb is odd) and rows qy, qy + 1, within the tile.
+                    let lb =
+                        depth_lower_bound(s, seg.0, xb.min(xend - 1), qy, (qy + 1).min(yend - 1));
+                    if b.coarse.hidden(&b.depth, seg.0 - ox, qy - oy, lb) {
+                        let n = covered_quads(&cover, qy, seg.0, xb, xend, yend);
+                        b.covered += n;
+                        b.rejected += n;
+                        b.rejected_hiz += n;
+                        b.per_material[mc][1] += n;
+                        continue;
                     }
                 }
-                if live == 0 {
-                    b.rejected += 1;
-                    b.per_material[mc][1] += 1;
-                    continue;
-                }
-                let npix = u64::from(live.count_ones());
-                b.pixels += npix;
-                b.per_material[mc][0] += 1;
-                b.per_material[mc][2] += npix;
-                // UVs at all 4 pixel centres (helper pixels included).
-                let mut uv = [[0.0f32; 2]; 4];
-                let mut uv2 = [[0.0f32; 2]; 4];
-                for i in 0..4u32 {
-                    let (px, py) = (qx + (i & 1), qy + (i >> 1));
-                    let (a, c) = s.uvs_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
-                    uv[i as usize] = a;
-                    uv2[i as usize] = c;
-                }
-                // Texture instructions: the quad's blocks.
-                let first = b.ranges.len() as u32;
-                let mut lambdas = [0.0f32; 8];
-                for (k, smp) in mat.tex.iter().enumerate() {
-                    let set = if smp.uv_set == 1 { &uv2 } else { &uv };
-                    let lambda = ctx.textures.quad_blocks_lambda(smp, *set, &mut b.scratch);
-                    if k < lambdas.len() {
-                        lambdas[k] = lambda;
+                for qx in (seg.0..seg.1).step_by(2) {
+                    let mask = coverage(s, qx, qy, xend, yend);
+                    if mask == 0 {
+                        continue;
                     }
-                    b.ranges.push((b.pool.len() as u32, b.scratch.len() as u32));
-                    b.pool.extend_from_slice(&b.scratch);
-                }
-                let frag = b.frags.len() as u32;
-                b.frags.push(Frag {
-                    pos: ((qy - oy) / 2) * side + (qx - ox) / 2,
-                    material: s.material,
-                    range: first,
-                });
-                if ctx.colour {
-                    b.lambdas.push(lambdas);
-                }
-                // Depth writes and colour. An opaque or alpha-tested pixel's
-                // colour is deferred: only the last one written to a pixel
-                // shows, so it is shaded once, when a blended fragment needs
-                // it as the destination or at the end of the tile (same
-                // inputs, same colour as shading every fragment).
-                for i in (0..4u32).filter(|i| live & (1 << i) != 0) {
-                    let (px, py) = (qx + (i & 1), qy + (i >> 1));
-                    let at = ((py - oy) * t + px - ox) as usize;
-                    let k = i as usize;
-                    let write = match mat.blend {
-                        Blend::Opaque => true,
-                        Blend::AlphaTest => {
-                            alpha(ctx.textures, mat, &uv[k], &uv2[k], &lambdas) >= 0.5
+                    b.covered += 1;
+                    // Early-Z on the covered pixels.
+                    let mut z = [0.0f32; 4];
+                    let mut live = 0u8;
+                    for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
+                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+                        z[i as usize] = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
+                        if z[i as usize] <= b.depth[((py - oy) * t + px - ox) as usize] {
+                            live |= 1 << i;
                         }
-                        Blend::AlphaBlend => {
-                            if ctx.colour {
-                                b.resolve(ctx, at);
-                                let c = shade(ctx.textures, mat, &uv[k], &uv2[k], &lambdas);
-                                let d = b.colour[at];
-                                let a = c[3];
-                                b.colour[at] = [
-                                    c[0] * a + d[0] * (1.0 - a),
-                                    c[1] * a + d[1] * (1.0 - a),
-                                    c[2] * a + d[2] * (1.0 - a),
-                                    1.0,
-                                ];
+                    }
+                    if live == 0 {
+                        b.rejected += 1;
+                        b.per_material[mc][1] += 1;
+                        continue;
+                    }
+                    let npix = u64::from(live.count_ones());
+                    b.pixels += npix;
+                    b.per_material[mc][0] += 1;
+                    b.per_material[mc][2] += npix;
+                    // UVs at all 4 pixel centres (helper pixels included).
+                    let mut uv = [[0.0f32; 2]; 4];
+                    let mut uv2 = [[0.0f32; 2]; 4];
+                    for i in 0..4u32 {
+                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+                        let (a, c) = s.uvs_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
+                        uv[i as usize] = a;
+                        uv2[i as usize] = c;
+                    }
+                    // Texture instructions: the quad's blocks.
+                    let first = b.ranges.len() as u32;
+                    let mut lambdas = [0.0f32; 8];
+                    for (k, smp) in mat.tex.iter().enumerate() {
+                        let set = if smp.uv_set == 1 { &uv2 } else { &uv };
+                        let lambda = ctx.textures.quad_blocks_lambda(smp, *set, &mut b.scratch);
+                        if k < lambdas.len() {
+                            lambdas[k] = lambda;
+                        }
+                        b.ranges.push((b.pool.len() as u32, b.scratch.len() as u32));
+                        b.pool.extend_from_slice(&b.scratch);
+                    }
+                    let frag = b.frags.len() as u32;
+                    b.frags.push(Frag {
+                        pos: ((qy - oy) / 2) * side + (qx - ox) / 2,
+                        material: s.material,
+                        range: first,
+                    });
+                    if ctx.colour {
+                        b.lambdas.push(lambdas);
+                    }
+                    // Depth writes and colour. An opaque or alpha-tested pixel's
+                    // colour is deferred: only the last one written to a pixel
+                    // shows, so it is shaded once, when a blended fragment needs
+                    // it as the destination or at the end of the tile (same
+                    // inputs, same colour as shading every fragment).
+                    for i in (0..4u32).filter(|i| live & (1 << i) != 0) {
+                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+                        let at = ((py - oy) * t + px - ox) as usize;
+                        let k = i as usize;
+                        let write = match mat.blend {
+                            Blend::Opaque => true,
+                            Blend::AlphaTest => {
+                                alpha(ctx.textures, mat, &uv[k], &uv2[k], &lambdas) >= 0.5
                             }
-                            false
-                        }
-                    };
-                    if write {
-                        b.depth[at] = z[k];
-                        if ctx.colour {
-                            b.pending[at] = frag + 1;
-                            b.pending_uv[at] = [uv[k], uv2[k]];
+                            Blend::AlphaBlend => {
+                                if ctx.colour {
+                                    b.resolve(ctx, at);
+                                    let c = shade(ctx.textures, mat, &uv[k], &uv2[k], &lambdas);
+                                    let d = b.colour[at];
+                                    let a = c[3];
+                                    b.colour[at] = [
+                                        c[0] * a + d[0] * (1.0 - a),
+                                        c[1] * a + d[1] * (1.0 - a),
+                                        c[2] * a + d[2] * (1.0 - a),
+                                        1.0,
+                                    ];
+                                }
+                                false
+                            }
+                        };
+                        if write {
+                            b.depth[at] = z[k];
+                            b.coarse.wrote(px - ox, py - oy);
+                            if ctx.colour {
+                                b.pending[at] = frag + 1;
+                                b.pending_uv[at] = [uv[k], uv2[k]];
+                            }
                         }
                     }
                 }
@@ -1134,6 +1337,18 @@ pub fn rasterize(
     width: u32,
     height: u32,
     opts: &RasterOptions,
+) -> Result<Frame, SceneError> {
+    rasterize_with(scene, width, height, opts, true)
+}
+
+/// [`rasterize`], with or without the hierarchical depth test (`hiz`; the
+/// results are the same, [`RasterStats::quads_rejected_hiz`] aside).
+fn rasterize_with(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    opts: &RasterOptions,
+    hiz: bool,
 ) -> Result<Frame, SceneError> {
     let fail = |m: String| SceneError::in_file(&scene.name, m);
     if width == 0 || height == 0 || width > 16384 || height > 16384 {
@@ -1256,6 +1471,7 @@ pub fn rasterize(
         height,
         colour: opts.colour,
         prepass: opts.depth_prepass,
+        hiz,
     };
     let order: Vec<(u32, u32)> = crate::synth::z_order(tiles_x, tiles_y)
         .into_iter()
@@ -1293,6 +1509,7 @@ pub fn rasterize(
             let mut b = b.lock().unwrap_or_else(|e| e.into_inner());
             stats.quads_covered += b.covered;
             stats.quads_rejected_early_z += b.rejected;
+            stats.quads_rejected_hiz += b.rejected_hiz;
             stats.warps += b.frags.len() as u64;
             stats.positions += b.positions;
             stats.pixels_shaded += b.pixels;
@@ -1914,5 +2131,248 @@ mod tests {
         })];
         let e = rasterize(&scene, 8, 8, &RasterOptions::default()).unwrap_err();
         assert!(e.message.contains("texture 3"), "{e}");
+    }
+
+    /// A perspective scene of random triangles of every blend mode at
+    /// random depths, with exact copies drawn again (depth ties) and a
+    /// texture whose alpha test discards half the texels.
+    fn random_scene(seed: u64, n: u32) -> Scene {
+        let mut seed = seed;
+        let mut next = |m: f32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32 * m
+        };
+        let mut tex = checker("c", 64);
+        for px in tex.rgba.chunks_exact_mut(4) {
+            px[3] = px[0];
+        }
+        let mut meshes: Vec<Mesh> = Vec::new();
+        for t in 0..n {
+            let material = (t % 5) as usize % 3;
+            let mesh = if t % 7 == 6 && !meshes.is_empty() {
+                // A copy of an earlier triangle: the same depths.
+                let k = next(meshes.len() as f32) as usize % meshes.len();
+                Mesh {
+                    material,
+                    ..meshes[k].clone()
+                }
+            } else {
+                let (cx, cy, z, r) = (
+                    next(16.0) - 8.0,
+                    next(12.0) - 6.0,
+                    -2.0 - next(30.0),
+                    next(9.0),
+                );
+                let mut positions = Vec::new();
+                for _ in 0..3 {
+                    positions.push([
+                        cx + next(2.0 * r) - r,
+                        cy + next(2.0 * r) - r,
+                        z + next(4.0) - 2.0,
+                    ]);
+                }
+                Mesh {
+                    positions,
+                    uv: vec![[0.0, 0.0], [1.0, 0.0], [0.5, 1.0]],
+                    uv2: None,
+                    indices: vec![0, 1, 2],
+                    material,
+                }
+            };
+            meshes.push(mesh);
+        }
+        Scene {
+            name: "test:random".into(),
+            source: "unit test".into(),
+            meshes,
+            materials: vec![
+                mat("opaque", Blend::Opaque, 0),
+                mat("tested", Blend::AlphaTest, 0),
+                mat("blended", Blend::AlphaBlend, 0),
+            ],
+            textures: vec![tex],
+            camera: Camera::Perspective {
+                eye: [0.0, 0.0, 0.0],
+                target: [0.0, 0.0, -1.0],
+                up: [0.0, 1.0, 0.0],
+                fov_y_deg: 60.0,
+                near: 0.5,
+                far: 40.0,
+            },
+        }
+    }
+
+    fn trace_bytes(f: &Frame) -> Vec<u8> {
+        let mut out = Vec::new();
+        f.trace.write(&mut out).unwrap();
+        out
+    }
+
+    #[test]
+    fn hierarchical_z_changes_no_result() {
+        let mut rejected = 0;
+        for (seed, (w, h), tile, prepass) in [
+            (1u64, (200u32, 150u32), 64u32, false),
+            (2, (200, 150), 64, true),
+            (3, (97, 61), 10, false),
+            (4, (128, 96), 6, false),
+            (5, (130, 70), 16, true),
+        ] {
+            let scene = random_scene(0x9e37_79b9_7f4a_7c15 ^ seed, 300);
+            let opts = RasterOptions {
+                tile,
+                depth_prepass: prepass,
+                threads: 1,
+                ..Default::default()
+            };
+            let fast = rasterize_with(&scene, w, h, &opts, true).unwrap();
+            let slow = rasterize_with(&scene, w, h, &opts, false).unwrap();
+            assert_eq!(slow.stats.quads_rejected_hiz, 0);
+            assert!(fast.stats.quads_rejected_hiz <= fast.stats.quads_rejected_early_z);
+            rejected += fast.stats.quads_rejected_hiz;
+            assert_eq!(trace_bytes(&fast), trace_bytes(&slow), "seed {seed}");
+            assert!(fast.image == slow.image, "seed {seed}: picture differs");
+            let stats = RasterStats {
+                quads_rejected_hiz: 0,
+                ..fast.stats.clone()
+            };
+            assert_eq!(stats, slow.stats, "seed {seed}");
+            assert!(
+                slow.stats.quads_rejected_early_z > 0,
+                "seed {seed}: no overdraw"
+            );
+        }
+        assert!(rejected > 0, "the coarse test rejected nothing");
+    }
+
+    #[test]
+    fn hidden_triangles_are_rejected_coarsely_and_visible_ones_are_not() {
+        let persp = |meshes: Vec<Mesh>| Scene {
+            name: "test:hiz".into(),
+            source: "unit test".into(),
+            meshes,
+            materials: vec![
+                mat("near", Blend::Opaque, 0),
+                mat("far", Blend::Opaque, 0),
+                mat("nearer", Blend::Opaque, 0),
+                mat("tie", Blend::Opaque, 0),
+            ],
+            textures: vec![checker("c", 64)],
+            camera: Camera::Perspective {
+                eye: [0.0, 0.0, 0.0],
+                target: [0.0, 0.0, -1.0],
+                up: [0.0, 1.0, 0.0],
+                fov_y_deg: 60.0,
+                near: 0.1,
+                far: 100.0,
+            },
+        };
+        // The near square fills the frame; the far one behind it is
+        // hidden, the tie (the near square again: a later triangle at the
+        // same depth wins) and then the nearer one in front are not.
+        let near = quad_mesh(-5.0, -5.0, 5.0, 5.0, -2.0, 0);
+        let far = quad_mesh(-1.0, -1.0, 1.0, 1.0, -10.0, 1);
+        let nearer = quad_mesh(-0.5, -0.5, 0.5, 0.5, -1.5, 2);
+        let tie = Mesh {
+            material: 3,
+            ..near.clone()
+        };
+        let scene = persp(vec![near, far, tie, nearer]);
+        let f = rasterize(&scene, 128, 128, &RasterOptions::default()).unwrap();
+        let m = &f.stats.materials;
+        assert!(m[1].quads_rejected_early_z > 0);
+        assert_eq!(m[1].warps, 0);
+        assert!(m[2].warps > 0 && m[3].warps > 0);
+        assert_eq!(m[2].quads_rejected_early_z, 0);
+        assert_eq!(m[3].quads_rejected_early_z, 0);
+        assert_eq!(m[3].warps, m[0].warps);
+        assert_eq!(
+            f.stats.quads_rejected_hiz, m[1].quads_rejected_early_z,
+            "every hidden quad of the far square, nothing else, rejected coarsely"
+        );
+        let g = rasterize_with(&scene, 128, 128, &RasterOptions::default(), false).unwrap();
+        assert_eq!(trace_bytes(&f), trace_bytes(&g));
+        assert_eq!(
+            g.stats.quads_rejected_early_z,
+            f.stats.quads_rejected_early_z
+        );
+    }
+
+    #[test]
+    fn coarse_depth_bounds_its_blocks() {
+        let t = 16u32;
+        let mut depth = vec![1.0f32; (t * t) as usize];
+        let mut c = CoarseDepth::new(t);
+        assert!(!c.hidden(&depth, 3, 1, 1.0), "a tie passes");
+        assert!(c.hidden(&depth, 3, 1, 1.5));
+        // Block (0..8, 0..2): all but one pixel nearer.
+        for y in 0..2 {
+            for x in 0..8 {
+                if (x, y) != (7, 1) {
+                    depth[(y * t + x) as usize] = 0.25;
+                    c.wrote(x, y);
+                }
+            }
+        }
+        assert!(!c.hidden(&depth, 0, 0, 0.5), "pixel (7, 1) is still at 1");
+        depth[(t + 7) as usize] = 0.5;
+        c.wrote(7, 1);
+        assert!(!c.hidden(&depth, 6, 1, 0.5), "tie with the farthest pixel");
+        assert!(c.hidden(&depth, 6, 1, 0.51));
+        // Other blocks keep their bounds.
+        assert!(!c.hidden(&depth, 8, 0, 0.9));
+        assert!(!c.hidden(&depth, 0, 2, 0.9));
+        // A stale bound is still an upper bound; clear starts over.
+        depth[0] = 0.1;
+        assert!(c.hidden(&depth, 0, 0, 0.6));
+        c.clear();
+        assert!(!c.hidden(&depth, 0, 0, 0.6));
+        // A tile edge that is not a multiple of the block width.
+        let mut c = CoarseDepth::new(6);
+        let depth = vec![0.5f32; 36];
+        c.invalidate();
+        assert!(c.hidden(&depth, 5, 5, 0.75));
+        assert!(!c.hidden(&depth, 5, 5, 0.5));
+    }
+
+    #[test]
+    fn covered_quads_and_depth_bounds_match_the_quad_by_quad_test() {
+        let scene = random_scene(0x51ed_270b_3d9a_4c1f, 400);
+        let mut stats = RasterStats {
+            materials: vec![MaterialStats::default(); 3],
+            ..Default::default()
+        };
+        let (w, h) = (150u32, 100u32);
+        let setups = geometry(&scene, w, h, &RasterOptions::default(), &mut stats).unwrap();
+        assert!(setups.len() > 300);
+        let mut covered = 0;
+        for (k, s) in setups.iter().enumerate() {
+            // Clip rectangles like a tile's, at odd edges too.
+            let (xend, yend) = (w - (k as u32 % 3), h - (k as u32 % 5));
+            let (x0, x1) = (s.bbox[0] & !1, s.bbox[1].min(xend));
+            for qy in (s.bbox[2] & !1..s.bbox[3].min(yend)).step_by(2) {
+                for seg in (x0..x1.max(x0)).step_by(8) {
+                    let xb = (seg + 8).min(x1);
+                    let want = (seg..xb)
+                        .step_by(2)
+                        .filter(|&qx| coverage(s, qx, qy, xend, yend) != 0)
+                        .count() as u64;
+                    let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
+                    assert_eq!(covered_quads(&cover, qy, seg, xb, xend, yend), want);
+                    covered += want;
+                    let (xl, yl) = ((xb + 1).min(xend - 1), (qy + 1).min(yend - 1));
+                    let lb = depth_lower_bound(s, seg, xl, qy, yl);
+                    for y in qy..=yl {
+                        for x in seg..=xl {
+                            let z = s.depth_at(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                            assert!(lb <= z, "bound {lb} above depth {z}");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(covered > 1000);
     }
 }

@@ -463,8 +463,9 @@ impl<'a> TextureSet<'a> {
         let mut push_level = |level: &MipLevel| {
             let mut cells = [0u64; 16];
             let mut n = 0;
-            let mut add = |x: u32, y: u32| {
-                let key = u64::from(x / BLOCK_TEXELS) | (u64::from(y / BLOCK_TEXELS) << 32);
+            // By cell: (cx, cy) as a key.
+            let mut add = |cx: u32, cy: u32| {
+                let key = u64::from(cx) | (u64::from(cy) << 32);
                 if !cells[..n].contains(&key) {
                     cells[n] = key;
                     n += 1;
@@ -474,14 +475,25 @@ impl<'a> TextureSet<'a> {
                 match sample.filter {
                     Filter::Nearest => {
                         let (x, y) = nearest(level, tex.repeat, *uv);
-                        add(x, y);
+                        add(x / BLOCK_TEXELS, y / BLOCK_TEXELS);
                     }
                     Filter::Bilinear | Filter::Trilinear => {
+                        // The 2x2 texels span one cell in x unless they
+                        // straddle a cell edge (or wrap), and so in y: only
+                        // the distinct cells are looked up.
                         let (x0, x1, y0, y1, _, _) = bilinear(level, tex.repeat, *uv);
-                        add(x0, y0);
-                        add(x1, y0);
-                        add(x0, y1);
-                        add(x1, y1);
+                        let (cx0, cx1) = (x0 / BLOCK_TEXELS, x1 / BLOCK_TEXELS);
+                        let (cy0, cy1) = (y0 / BLOCK_TEXELS, y1 / BLOCK_TEXELS);
+                        add(cx0, cy0);
+                        if cx1 != cx0 {
+                            add(cx1, cy0);
+                        }
+                        if cy1 != cy0 {
+                            add(cx0, cy1);
+                            if cx1 != cx0 {
+                                add(cx1, cy1);
+                            }
+                        }
                     }
                 }
             }
