@@ -85,7 +85,7 @@
 //! their heap layout). [`Frame::timings`] says where the time went (`wasp
 //! render --timings`).
 
-use super::texture::{TextureSet, TextureUse};
+use super::texture::{QuadTexels, TextureSet, TextureUse};
 use super::{Blend, Camera, Scene, SceneError, ShaderOp, Vec3};
 use crate::trace::{Trace, TraceHeader};
 use serde::Serialize;
@@ -1212,9 +1212,19 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                     // Texture instructions: the quad's blocks.
                     let first = b.ranges.len() as u32;
                     let mut lambdas = [0.0f32; 8];
+                    // An alpha test reads the first sample's alpha at the
+                    // texels its blocks were found from.
+                    let alpha_tested = mat.blend == Blend::AlphaTest;
+                    let mut texels = None;
                     for (k, smp) in mat.tex.iter().enumerate() {
                         let set = if smp.uv_set == 1 { &uv2 } else { &uv };
-                        let lambda = ctx.textures.quad_blocks_lambda(smp, *set, &mut b.scratch);
+                        let lambda = if k == 0 && alpha_tested {
+                            let q = texels.insert(QuadTexels::default());
+                            ctx.textures
+                                .quad_blocks_texels(smp, *set, &mut b.scratch, q)
+                        } else {
+                            ctx.textures.quad_blocks_lambda(smp, *set, &mut b.scratch)
+                        };
                         if k < lambdas.len() {
                             lambdas[k] = lambda;
                         }
@@ -1242,7 +1252,11 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                         let write = match mat.blend {
                             Blend::Opaque => true,
                             Blend::AlphaTest => {
-                                alpha(ctx.textures, mat, &uv[k], &uv2[k], &lambdas) >= 0.5
+                                // Without texture, alpha 1 (as `shade`).
+                                texels
+                                    .as_ref()
+                                    .map_or(1.0, |q| ctx.textures.quad_alpha(q, k))
+                                    >= 0.5
                             }
                             Blend::AlphaBlend => {
                                 if ctx.colour {
@@ -1575,25 +1589,6 @@ fn rasterize_with(
         stats,
         timings,
     })
-}
-
-/// The alpha of one pixel, as [`shade`] gives it: the first texture
-/// sample's (1 without texture), without the other samples.
-#[inline]
-fn alpha(
-    textures: &TextureSet,
-    mat: &MatInfo,
-    uv: &[f32; 2],
-    uv2: &[f32; 2],
-    lambdas: &[f32; 8],
-) -> f32 {
-    match mat.tex.first() {
-        Some(smp) => {
-            let at = if smp.uv_set == 1 { uv2 } else { uv };
-            textures.sample_alpha(smp.texture, smp.filter, *at, lambdas[0])
-        }
-        None => 1.0,
-    }
 }
 
 /// The colour of one pixel: the product of its shader's texture samples,

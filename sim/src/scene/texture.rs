@@ -453,14 +453,38 @@ impl<'a> TextureSet<'a> {
         uvs: [[f32; 2]; 4],
         out: &mut Vec<u64>,
     ) -> f32 {
+        self.quad_blocks_with(sample, uvs, out, None)
+    }
+
+    /// [`TextureSet::quad_blocks_lambda`], also keeping in `texels` where
+    /// each pixel reads (for [`TextureSet::quad_alpha`], so an alpha test
+    /// does not find the texels again).
+    pub fn quad_blocks_texels(
+        &self,
+        sample: &TexSample,
+        uvs: [[f32; 2]; 4],
+        out: &mut Vec<u64>,
+        texels: &mut QuadTexels,
+    ) -> f32 {
+        self.quad_blocks_with(sample, uvs, out, Some(texels))
+    }
+
+    fn quad_blocks_with(
+        &self,
+        sample: &TexSample,
+        uvs: [[f32; 2]; 4],
+        out: &mut Vec<u64>,
+        mut texels: Option<&mut QuadTexels>,
+    ) -> f32 {
         out.clear();
         let tex = &self.textures[sample.texture];
         let lambda = self.quad_lambda(sample.texture, &uvs);
-        let (la, lb, _) = self.levels_for(sample.texture, sample.filter, lambda);
+        let levels = self.levels_for(sample.texture, sample.filter, lambda);
+        let (la, lb, _) = levels;
         // A block holds the texels of one (x / 4, y / 4) cell of its level,
         // so the distinct cells the texels fall in (few: at most 16 per
         // level) give the distinct blocks; levels never share a block.
-        let mut push_level = |level: &MipLevel| {
+        let mut push_level = |level: &MipLevel, slot: usize| {
             let mut cells = [0u64; 16];
             let mut n = 0;
             // By cell: (cx, cy) as a key.
@@ -471,42 +495,56 @@ impl<'a> TextureSet<'a> {
                     n += 1;
                 }
             };
-            for uv in &uvs {
-                match sample.filter {
-                    Filter::Nearest => {
-                        let (x, y) = nearest(level, tex.repeat, *uv);
-                        add(x / BLOCK_TEXELS, y / BLOCK_TEXELS);
+            for (i, uv) in uvs.iter().enumerate() {
+                // The 2x2 texels span one cell in x unless they straddle a
+                // cell edge (or wrap), and so in y: only the distinct cells
+                // are looked up (nearest: one texel, x1 = x0, y1 = y0).
+                let f = footprint(level, sample.filter, tex.repeat, *uv);
+                let (cx0, cx1) = (f.x0 / BLOCK_TEXELS, f.x1 / BLOCK_TEXELS);
+                let (cy0, cy1) = (f.y0 / BLOCK_TEXELS, f.y1 / BLOCK_TEXELS);
+                add(cx0, cy0);
+                if cx1 != cx0 {
+                    add(cx1, cy0);
+                }
+                if cy1 != cy0 {
+                    add(cx0, cy1);
+                    if cx1 != cx0 {
+                        add(cx1, cy1);
                     }
-                    Filter::Bilinear | Filter::Trilinear => {
-                        // The 2x2 texels span one cell in x unless they
-                        // straddle a cell edge (or wrap), and so in y: only
-                        // the distinct cells are looked up.
-                        let (x0, x1, y0, y1, _, _) = bilinear(level, tex.repeat, *uv);
-                        let (cx0, cx1) = (x0 / BLOCK_TEXELS, x1 / BLOCK_TEXELS);
-                        let (cy0, cy1) = (y0 / BLOCK_TEXELS, y1 / BLOCK_TEXELS);
-                        add(cx0, cy0);
-                        if cx1 != cx0 {
-                            add(cx1, cy0);
-                        }
-                        if cy1 != cy0 {
-                            add(cx0, cy1);
-                            if cx1 != cx0 {
-                                add(cx1, cy1);
-                            }
-                        }
-                    }
+                }
+                if let Some(q) = texels.as_deref_mut() {
+                    q.px[slot][i] = f;
                 }
             }
             out.extend(cells[..n].iter().map(|&k| {
                 level.block_of((k as u32) * BLOCK_TEXELS, ((k >> 32) as u32) * BLOCK_TEXELS)
             }));
         };
-        push_level(&tex.levels[la]);
+        push_level(&tex.levels[la], 0);
         if lb != la {
-            push_level(&tex.levels[lb]);
+            push_level(&tex.levels[lb], 1);
+        }
+        if let Some(q) = texels {
+            q.texture = sample.texture;
+            q.filter = sample.filter;
+            q.levels = levels;
         }
         out.sort_unstable();
         lambda
+    }
+
+    /// The alpha of pixel `pixel` (0..4) of the quad whose texels
+    /// [`TextureSet::quad_blocks_texels`] kept in `q`: the same value as
+    /// `sample_alpha` of that pixel's UV with the quad's lambda.
+    pub fn quad_alpha(&self, q: &QuadTexels, pixel: usize) -> f32 {
+        let levels = &self.textures[q.texture].levels;
+        let (la, lb, t) = q.levels;
+        let a = footprint_alpha(&levels[la], q.filter, &q.px[0][pixel]);
+        if lb == la || t <= 0.0 {
+            return a;
+        }
+        let b = footprint_alpha(&levels[lb], q.filter, &q.px[1][pixel]);
+        a + (b - a) * t
     }
 
     /// The filtered colour (RGBA in 0..=1) of `texture` at `uv` with this
@@ -555,19 +593,8 @@ impl<'a> TextureSet<'a> {
     pub fn sample_alpha(&self, texture: usize, filter: Filter, uv: [f32; 2], lambda: f32) -> f32 {
         let tex = &self.textures[texture];
         let (la, lb, t) = self.levels_for(texture, filter, lambda);
-        let one = |level: &MipLevel| match filter {
-            Filter::Nearest => {
-                let (x, y) = nearest(level, tex.repeat, uv);
-                level.texel_alpha(x, y)
-            }
-            Filter::Bilinear | Filter::Trilinear => {
-                let (x0, x1, y0, y1, fx, fy) = bilinear(level, tex.repeat, uv);
-                let (a, b) = (level.texel_alpha(x0, y0), level.texel_alpha(x1, y0));
-                let (c, d) = (level.texel_alpha(x0, y1), level.texel_alpha(x1, y1));
-                let top = a + (b - a) * fx;
-                let bot = c + (d - c) * fx;
-                top + (bot - top) * fy
-            }
+        let one = |level: &MipLevel| {
+            footprint_alpha(level, filter, &footprint(level, filter, tex.repeat, uv))
         };
         let a = one(&tex.levels[la]);
         if lb == la || t <= 0.0 {
@@ -575,6 +602,86 @@ impl<'a> TextureSet<'a> {
         }
         let b = one(&tex.levels[lb]);
         a + (b - a) * t
+    }
+}
+
+/// The texels one pixel's sample reads in one level: the 2x2 texels
+/// x0..=x1, y0..=y1 (x1, y1 wrapped or clamped) and the blend fractions;
+/// nearest: the one texel (x0, y0) = (x1, y1), fractions 0.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Footprint {
+    x0: u32,
+    x1: u32,
+    y0: u32,
+    y1: u32,
+    fx: f32,
+    fy: f32,
+}
+
+/// Where the 4 pixels of a quad read one texture instruction
+/// ([`TextureSet::quad_blocks_texels`]), for [`TextureSet::quad_alpha`].
+#[derive(Clone, Copy, Debug)]
+pub struct QuadTexels {
+    texture: usize,
+    filter: Filter,
+    /// The levels and the second one's weight ([`TextureSet::levels_for`]).
+    levels: (usize, usize, f32),
+    /// Per level read (first, second), per pixel.
+    px: [[Footprint; 4]; 2],
+}
+
+impl Default for QuadTexels {
+    fn default() -> Self {
+        QuadTexels {
+            texture: 0,
+            filter: Filter::Nearest,
+            levels: (0, 0, 0.0),
+            px: [[Footprint::default(); 4]; 2],
+        }
+    }
+}
+
+/// The texels a sample with `filter` at `uv` reads in `level`.
+#[inline(always)]
+fn footprint(level: &MipLevel, filter: Filter, repeat: bool, uv: [f32; 2]) -> Footprint {
+    match filter {
+        Filter::Nearest => {
+            let (x, y) = nearest(level, repeat, uv);
+            Footprint {
+                x0: x,
+                x1: x,
+                y0: y,
+                y1: y,
+                fx: 0.0,
+                fy: 0.0,
+            }
+        }
+        Filter::Bilinear | Filter::Trilinear => {
+            let (x0, x1, y0, y1, fx, fy) = bilinear(level, repeat, uv);
+            Footprint {
+                x0,
+                x1,
+                y0,
+                y1,
+                fx,
+                fy,
+            }
+        }
+    }
+}
+
+/// The filtered alpha of a footprint in `level`.
+#[inline(always)]
+fn footprint_alpha(level: &MipLevel, filter: Filter, f: &Footprint) -> f32 {
+    match filter {
+        Filter::Nearest => level.texel_alpha(f.x0, f.y0),
+        Filter::Bilinear | Filter::Trilinear => {
+            let (a, b) = (level.texel_alpha(f.x0, f.y0), level.texel_alpha(f.x1, f.y0));
+            let (c, d) = (level.texel_alpha(f.x0, f.y1), level.texel_alpha(f.x1, f.y1));
+            let top = a + (b - a) * f.fx;
+            let bot = c + (d - c) * f.fx;
+            top + (bot - top) * f.fy
+        }
     }
 }
 
@@ -884,5 +991,38 @@ mod tests {
         assert!((c[0] - 17.5 / 255.0).abs() < 1e-5, "{c:?}");
         let n = set.sample_rgba(0, Filter::Nearest, [3.2 / 16.0, 3.5 / 16.0], 0.0);
         assert!((n[0] - 21.0 / 255.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn quad_alpha_is_sample_alpha_at_the_quads_texels() {
+        let mut texs = [tex("a", 64, 32, true), tex("b", 100, 20, false)];
+        for t in &mut texs {
+            for (i, px) in t.rgba.chunks_exact_mut(4).enumerate() {
+                px[3] = (i * 37 % 251) as u8;
+            }
+        }
+        let set = TextureSet::new(&texs);
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        let mut q = QuadTexels::default();
+        for texture in 0..texs.len() {
+            for filter in [Filter::Nearest, Filter::Bilinear, Filter::Trilinear] {
+                let smp = TexSample {
+                    texture,
+                    uv_set: 0,
+                    filter,
+                };
+                for (origin, step) in [([0.3, 0.7], 0.4), ([1.37, -0.2], 3.1), ([0.99, 0.01], 11.0)]
+                {
+                    let uvs = quad_uvs(origin, step, 64.0);
+                    let lambda = set.quad_blocks_texels(&smp, uvs, &mut a, &mut q);
+                    assert_eq!(lambda, set.quad_blocks_lambda(&smp, uvs, &mut b));
+                    assert_eq!(a, b);
+                    for (i, uv) in uvs.iter().enumerate() {
+                        let want = set.sample_alpha(texture, filter, *uv, lambda);
+                        assert_eq!(set.quad_alpha(&q, i).to_bits(), want.to_bits());
+                    }
+                }
+            }
+        }
     }
 }
