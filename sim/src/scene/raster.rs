@@ -334,6 +334,20 @@ impl Setup {
         (a, b)
     }
 
+    /// Perspective-correct uv at pixel position (x, y): the same as
+    /// `uvs_at(x, y).0`, without uv2.
+    #[inline]
+    fn uv_at(&self, x: f64, y: f64) -> [f32; 2] {
+        let dx = x - self.origin[0];
+        let dy = y - self.origin[1];
+        let ev = |p: &[f64; 3]| p[0] + p[1] * dx + p[2] * dy;
+        let w = 1.0 / ev(&self.planes[1]).max(0.5 * self.min_inv_w);
+        [
+            (ev(&self.planes[2]) * w) as f32,
+            (ev(&self.planes[3]) * w) as f32,
+        ]
+    }
+
     /// Perspective-correct attributes at pixel position (x, y) (pixel
     /// centres are at half-integers): depth, uv, uv2.
     #[inline]
@@ -1203,11 +1217,16 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                     // UVs at all 4 pixel centres (helper pixels included).
                     let mut uv = [[0.0f32; 2]; 4];
                     let mut uv2 = [[0.0f32; 2]; 4];
+                    // (uv2 only when a sample reads it.)
+                    let with_uv2 = mat.tex.iter().any(|smp| smp.uv_set == 1);
                     for i in 0..4u32 {
                         let (px, py) = (qx + (i & 1), qy + (i >> 1));
-                        let (a, c) = s.uvs_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
-                        uv[i as usize] = a;
-                        uv2[i as usize] = c;
+                        let (x, y) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+                        if with_uv2 {
+                            (uv[i as usize], uv2[i as usize]) = s.uvs_at(x, y);
+                        } else {
+                            uv[i as usize] = s.uv_at(x, y);
+                        }
                     }
                     // Texture instructions: the quad's blocks.
                     let first = b.ranges.len() as u32;
