@@ -1660,6 +1660,18 @@ mod tests {
     use super::*;
     use crate::scene::{Filter, Material, Mesh, TexSample, Texture};
 
+    /// A camera at the origin looking down -z, y up.
+    fn look_down_z(fov_y_deg: f32, near: f32, far: f32) -> Camera {
+        Camera::Perspective {
+            eye: [0.0, 0.0, 0.0],
+            target: [0.0, 0.0, -1.0],
+            up: [0.0, 1.0, 0.0],
+            fov_y_deg,
+            near,
+            far,
+        }
+    }
+
     fn checker(name: &str, n: u32) -> Texture {
         let mut rgba = Vec::new();
         for y in 0..n {
@@ -1826,14 +1838,7 @@ mod tests {
             meshes,
             materials,
             textures: vec![checker("c", 64)],
-            camera: Camera::Perspective {
-                eye: [0.0, 0.0, 0.0],
-                target: [0.0, 0.0, -1.0],
-                up: [0.0, 1.0, 0.0],
-                fov_y_deg: 60.0,
-                near: 0.1,
-                far: 100.0,
-            },
+            camera: look_down_z(60.0, 0.1, 100.0),
         };
         let near = quad_mesh(-5.0, -5.0, 5.0, 5.0, -2.0, 0);
         let far = quad_mesh(-1.0, -1.0, 1.0, 1.0, -10.0, 1);
@@ -1954,14 +1959,7 @@ mod tests {
             }],
             materials: vec![mat("ground", Blend::Opaque, 0)],
             textures: vec![checker("c", 64)],
-            camera: Camera::Perspective {
-                eye: [0.0, 0.0, 0.0],
-                target: [0.0, 0.0, -1.0],
-                up: [0.0, 1.0, 0.0],
-                fov_y_deg: 90.0,
-                near: 0.1,
-                far: 100.0,
-            },
+            camera: look_down_z(90.0, 0.1, 100.0),
         }
     }
 
@@ -2207,14 +2205,7 @@ mod tests {
                 mat("blended", Blend::AlphaBlend, 0),
             ],
             textures: vec![tex],
-            camera: Camera::Perspective {
-                eye: [0.0, 0.0, 0.0],
-                target: [0.0, 0.0, -1.0],
-                up: [0.0, 1.0, 0.0],
-                fov_y_deg: 60.0,
-                near: 0.5,
-                far: 40.0,
-            },
+            camera: look_down_z(60.0, 0.5, 40.0),
         }
     }
 
@@ -2274,14 +2265,7 @@ mod tests {
                 mat("tie", Blend::Opaque, 0),
             ],
             textures: vec![checker("c", 64)],
-            camera: Camera::Perspective {
-                eye: [0.0, 0.0, 0.0],
-                target: [0.0, 0.0, -1.0],
-                up: [0.0, 1.0, 0.0],
-                fov_y_deg: 60.0,
-                near: 0.1,
-                far: 100.0,
-            },
+            camera: look_down_z(60.0, 0.1, 100.0),
         };
         // The near square fills the frame; the far one behind it is
         // hidden, the tie (the near square again: a later triangle at the
