@@ -25,6 +25,7 @@ pub mod shader;
 pub mod supertuxkart;
 pub mod teeworlds;
 pub mod texture;
+mod vec3;
 
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -78,6 +78,7 @@
 //! default `cg_fov 90` horizontal at 4:3), near [`NEAR`], far [`FAR`].
 
 use super::def::SceneDef;
+use super::vec3::{cross, dot, sub};
 use super::{
     shader, Blend, Camera, Filter, Material, Mesh, Scene, SceneError, Texture, Vec2, Vec3,
 };
@@ -936,22 +937,6 @@ fn biquadratic(c: &[BspVertex; 9], s: f32, t: f32) -> BspVertex {
         }
     }
     v
-}
-
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: Vec3, b: Vec3) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// A face's triangles as (vertices, indices), counter-clockwise seen from

@@ -114,6 +114,8 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
+use super::vec3::{add, cross, len, normalize, scale, sub};
+
 /// Where the data root may be, relative to `$WASP_SCENES`: the package
 /// unpacked into `supertuxkart/` (`wasp scenes fetch`) or into
 /// `supertuxkart-data/`.
@@ -510,39 +512,6 @@ fn mat_mul(a: &[[f32; 3]; 3], b: &[[f32; 3]; 3]) -> [[f32; 3]; 3] {
         }
     }
     o
-}
-
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn add(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn scale(a: Vec3, s: f32) -> Vec3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-fn len(a: Vec3) -> f32 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
-}
-
-fn normalize(a: Vec3) -> Vec3 {
-    let l = len(a);
-    if l > 1e-12 {
-        scale(a, 1.0 / l)
-    } else {
-        [0.0, 0.0, 1.0]
-    }
-}
-
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// SuperTuxKart (left-handed) to wasp (right-handed) coordinates.
@@ -2373,7 +2342,13 @@ pub(crate) mod preview {
                     .map(|&i| {
                         let d = sub(mesh.positions[i as usize], eye);
                         let uv = mesh.uv[i as usize];
-                        [dot3(d, r), dot3(d, u), dot3(d, f), uv[0], uv[1]]
+                        [
+                            super::super::vec3::dot(d, r),
+                            super::super::vec3::dot(d, u),
+                            super::super::vec3::dot(d, f),
+                            uv[0],
+                            uv[1],
+                        ]
                     })
                     .collect();
                 // Clip against z >= near.
@@ -2480,9 +2455,5 @@ pub(crate) mod preview {
             img.put_pixel((i % w) as u32, (i / w) as u32, image::Rgb(*c));
         }
         img.save(out).unwrap();
-    }
-
-    fn dot3(a: Vec3, b: Vec3) -> f32 {
-        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
     }
 }
