@@ -12,14 +12,9 @@
 //! ```
 
 use std::path::Path;
-use std::process::Command;
 
 mod common;
-use common::scratch;
-
-fn wasp() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_wasp"))
-}
+use common::{scratch, stderr, wasp};
 
 fn json_u64(v: &serde_json::Value, key: &str) -> u64 {
     v[key]
@@ -42,32 +37,23 @@ fn end_to_end(game: &str, map: &str, camera: &str) {
     .unwrap();
     let trace = dir.join("frame.trace");
     let png = dir.join("frame.png");
-    let out = wasp()
-        .args(["render", "-q"])
-        .arg(&scene)
-        .arg("--trace-out")
-        .arg(&trace)
-        .arg("--png")
-        .arg(&png)
-        .output()
-        .unwrap();
+    let (scene, trace, png) = (path(&scene), path(&trace), path(&png));
+    let out = wasp(&["render", "-q", scene, "--trace-out", trace, "--png", png]);
     assert!(
         out.status.success(),
         "render {game} {map}: {}",
-        String::from_utf8_lossy(&out.stderr)
+        stderr(&out)
     );
-    assert_png(&png);
+    assert_png(Path::new(png));
     let mut cycles = Vec::new();
     for policy in ["baseline", "wasp:4"] {
-        let out = wasp()
-            .args(["run", "-q", "--policy", policy, "--json", "-", "--trace"])
-            .arg(&trace)
-            .output()
-            .unwrap();
+        let out = wasp(&[
+            "run", "-q", "--policy", policy, "--json", "-", "--trace", trace,
+        ]);
         assert!(
             out.status.success(),
             "run {game} {map} {policy}: {}",
-            String::from_utf8_lossy(&out.stderr)
+            stderr(&out)
         );
         let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         let warps = json_u64(&v, "warps");
@@ -83,6 +69,10 @@ fn end_to_end(game: &str, map: &str, camera: &str) {
     }
     assert!(cycles.iter().all(|&c| c > 1000));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().expect("a UTF-8 temporary path")
 }
 
 fn assert_png(p: &Path) {
