@@ -62,6 +62,14 @@ for cfg in w128 w32; do
   done
 done
 
+# Every priority subset, under WaSP and Fullpriority.
+for sub in mesh2 mesh8 mesh16 hlines vlines top16 random:99; do
+  for pol in wasp:4 fullpriority; do
+    jobs+=("paper-plane-${pol//:/_}-${sub//:/_}.json|--config $D/in/paper.toml --trace $D/in/plane.trace --policy $pol --subset $sub")
+  done
+done
+jobs+=("width2-sprites-wasp_2_1.5-mesh8.json|--config $D/in/width2.toml --trace $D/in/sprites.trace --policy wasp:2:1.5 --subset mesh8")
+
 printf '%s\n' "${jobs[@]}" | xargs -P 2 -I{} bash -c '
   name=${1%%|*}; args=${1#*|}
   "$2" run -q $args --json "$3/$name" > /dev/null' _ {} "$W" "$out"
