@@ -179,6 +179,12 @@ pub struct ShaderCore {
     /// as two 64-bit halves (slots 0-63, 64-127): setting a bit is then a
     /// 64-bit shift.
     wheel: [[u64; 2]; WHEEL],
+    /// The same wheel for warps in the middle of an ALU run: their next
+    /// instruction is known to be another ALU one, so at their cycle they
+    /// join the ready set as a whole mask, with no per-warp look.
+    wheel_ready: [[u64; 2]; WHEEL],
+    /// `alu_latency` reaches inside the wheels.
+    alu_on_wheel: bool,
     /// Wake-ups further than the wheel reaches.
     far: BinaryHeap<Reverse<(u64, u8)>>,
     ldst: VecDeque<LdstEntry>,
@@ -256,6 +262,8 @@ impl ShaderCore {
             ready_tex: 0,
             narrow: n <= 64,
             wheel: [[0; 2]; WHEEL],
+            wheel_ready: [[0; 2]; WHEEL],
+            alu_on_wheel: (p.alu_latency as usize) < WHEEL,
             far: BinaryHeap::new(),
             ldst: VecDeque::with_capacity(p.ldst_queue as usize),
             tile: None,
@@ -362,6 +370,8 @@ impl ShaderCore {
     #[inline(always)]
     fn wake_due<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
         let i = (now as usize) & (WHEEL - 1);
+        let [lo, hi] = std::mem::take(&mut self.wheel_ready[i]);
+        self.ready |= u128::from(lo) | u128::from(hi) << 64;
         let [lo, hi] = std::mem::take(&mut self.wheel[i]);
         let mut due = M::from_wide(u128::from(lo) | u128::from(hi) << 64);
         let mut ready = M::ZERO;
@@ -512,11 +522,17 @@ impl ShaderCore {
             let w = &mut self.slots[s % MAX_SLOTS];
             if ready & bit != M::ZERO {
                 w.alu_left -= 1;
+                ready &= !bit;
                 if w.alu_left == 0 {
                     w.op += 1;
+                    self.schedule(now, now + self.alu_latency, s);
+                } else if self.alu_on_wheel {
+                    // Mid-run: ready again at its cycle, nothing to decide.
+                    let at = (now + self.alu_latency) as usize & (WHEEL - 1);
+                    self.wheel_ready[at][(s >> 6) & 1] |= 1u64 << (s & 63);
+                } else {
+                    self.schedule(now, now + self.alu_latency, s);
                 }
-                ready &= !bit;
-                self.schedule(now, now + self.alu_latency, s);
             } else {
                 let end = w.blk + w.tex_len;
                 debug_assert_eq!(
