@@ -28,7 +28,7 @@
 use crate::gpu::mask::SlotMask;
 use crate::gpu::SimError;
 use crate::mem::{Access, MemorySystem};
-use crate::trace::{Instr, Tile, Trace};
+use crate::trace::{OpKind, Tile, Trace};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
@@ -57,9 +57,10 @@ pub use observe::{CoreSnapshot, WarpView};
 struct Warp {
     /// Index of its quad in the tile.
     quad: u32,
-    /// Current instruction entry.
+    /// Current instruction entry, as an index in the tile's instruction
+    /// pool.
     op: u32,
-    /// Instruction entries of its program.
+    /// One past its last instruction entry in the pool.
     n_ops: u32,
     /// ALU instructions left in the current ALU run (0: not started).
     alu_left: u32,
@@ -192,11 +193,6 @@ pub struct ShaderCore {
     tile: Option<usize>,
     /// Next quad of the tile to rasterize.
     raster_next: u32,
-    /// Index of each quad's first block in the tile's block accesses
-    /// (the quads' accesses are laid out in quad order).
-    quad_blocks: Vec<u32>,
-    /// `quad_blocks` is still that of the previous tile.
-    quad_blocks_stale: bool,
     active: u32,
     rr: u32,
     prio: PriorityEvents,
@@ -268,8 +264,6 @@ impl ShaderCore {
             ldst: VecDeque::with_capacity(p.ldst_queue as usize),
             tile: None,
             raster_next: 0,
-            quad_blocks: Vec::new(),
-            quad_blocks_stale: true,
             active: 0,
             rr: 0,
             prio: PriorityEvents::default(),
@@ -290,7 +284,6 @@ impl ShaderCore {
         debug_assert!(self.tile.is_none());
         self.tile = Some(tile);
         self.raster_next = 0;
-        self.quad_blocks_stale = true;
         self.last_progress = now;
     }
 
@@ -313,27 +306,12 @@ impl ShaderCore {
             return;
         };
         let tile = &trace.tiles()[ti];
-        if self.quad_blocks_stale {
-            self.index_blocks(tile);
-        }
         self.wakeups(now, tile);
         self.raster(tile);
         self.launch(now, tile);
         self.issue(now, tile);
         self.ldst(now, tile, mem);
         self.stats.occupancy_sum += self.active as u64;
-    }
-
-    /// Where each quad's block accesses start in the tile's.
-    fn index_blocks(&mut self, tile: &Tile) {
-        self.quad_blocks.clear();
-        let mut at = 0u32;
-        for q in tile.quads() {
-            self.quad_blocks.push(at);
-            at += q.block_accesses().len() as u32;
-        }
-        debug_assert_eq!(at as usize, tile.block_accesses().len());
-        self.quad_blocks_stale = false;
     }
 
     fn progress(&mut self, now: u64) {
@@ -388,14 +366,13 @@ impl ShaderCore {
                 ready |= M::bit(s);
             } else {
                 // Starting a new instruction entry: decode it once.
-                let q = tile.quad(w.quad as usize).expect("quad in tile");
-                match q.entry(w.op as usize).expect("op in program") {
-                    Instr::Alu(n) => {
+                match tile.op_kind(w.op as usize).expect("op in program") {
+                    OpKind::Alu(n) => {
                         w.alu_left = n;
                         ready |= M::bit(s);
                     }
-                    Instr::Tex(b) => {
-                        w.tex_len = b.len() as u32;
+                    OpKind::Tex(len) => {
+                        w.tex_len = len;
                         ready_tex |= M::bit(s);
                     }
                 }
@@ -459,20 +436,17 @@ impl ShaderCore {
                 let s = self.free_slots.trailing_zeros() as usize;
                 self.free_slots &= !(1u128 << s);
                 let priority = class == QueueClass::Priority;
-                let n_ops = tile
-                    .quad(quad as usize)
-                    .expect("quad in tile")
-                    .entry_count() as u32;
+                let span = tile.quad_span(quad as usize).expect("quad in tile");
                 self.slots[s % MAX_SLOTS] = Warp {
                     quad,
-                    op: 0,
-                    n_ops,
+                    op: span.op_start,
+                    n_ops: span.op_start + span.op_len,
                     alu_left: 0,
                     priority,
                     blocked: false,
                     pending: 0,
                     tex_len: 0,
-                    blk: self.quad_blocks[quad as usize],
+                    blk: span.block_start,
                     tex_start: 0,
                     lat_sum: 0,
                     tex_done: 0,
@@ -536,11 +510,8 @@ impl ShaderCore {
             } else {
                 let end = w.blk + w.tex_len;
                 debug_assert_eq!(
-                    tile.quad(w.quad as usize)
-                        .and_then(|q| q.entry(w.op as usize)),
-                    Some(Instr::Tex(
-                        &tile.block_accesses()[w.blk as usize..end as usize]
-                    )),
+                    tile.op_kind(w.op as usize),
+                    Some(OpKind::Tex(w.tex_len)),
                     "ready_tex warps wait on a texture instruction"
                 );
                 w.pending = w.tex_len;

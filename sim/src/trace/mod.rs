@@ -229,6 +229,29 @@ enum Op {
     },
 }
 
+/// An instruction entry as the shader core's hot path reads it: the
+/// entry's kind and length, without borrowing its block list (the core
+/// walks a quad's blocks in order, so it knows where they start).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum OpKind {
+    /// A run of this many ALU instructions.
+    Alu(u32),
+    /// A texture instruction touching this many blocks.
+    Tex(u32),
+}
+
+/// Where a quad's program and block accesses lie in its tile's pools
+/// (see [`Tile::op_kind`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct QuadSpan {
+    /// Index of its first instruction entry.
+    pub op_start: u32,
+    /// Its instruction entries.
+    pub op_len: u32,
+    /// Index of its first block access in [`Tile::block_accesses`].
+    pub block_start: u32,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct QuadRec {
     x: u16,
@@ -284,6 +307,26 @@ impl Tile {
     }
 
     /// The `i`-th quad in launch order.
+    /// Where quad `i`'s program and block accesses lie in the tile's pools.
+    #[inline]
+    pub(crate) fn quad_span(&self, i: usize) -> Option<QuadSpan> {
+        self.quads.get(i).map(|r| QuadSpan {
+            op_start: r.op_start,
+            op_len: r.op_len,
+            block_start: r.block_start,
+        })
+    }
+
+    /// Entry `i` of the tile's instruction pool (a quad's entries are
+    /// `op_start..op_start + op_len` of its [`QuadSpan`]).
+    #[inline]
+    pub(crate) fn op_kind(&self, i: usize) -> Option<OpKind> {
+        self.ops.get(i).map(|&op| match op {
+            Op::Alu(n) => OpKind::Alu(n),
+            Op::Tex { len, .. } => OpKind::Tex(len),
+        })
+    }
+
     pub fn quad(&self, i: usize) -> Option<QuadRef<'_>> {
         self.quads.get(i).map(|rec| QuadRef {
             tile: self,
