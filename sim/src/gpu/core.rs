@@ -193,6 +193,8 @@ pub struct ShaderCore {
     tile: Option<usize>,
     /// Next quad of the tile to rasterize.
     raster_next: u32,
+    /// Quads of the current tile.
+    tile_quads: u32,
     active: u32,
     rr: u32,
     prio: PriorityEvents,
@@ -264,6 +266,7 @@ impl ShaderCore {
             ldst: VecDeque::with_capacity(p.ldst_queue as usize),
             tile: None,
             raster_next: 0,
+            tile_quads: 0,
             active: 0,
             rr: 0,
             prio: PriorityEvents::default(),
@@ -280,10 +283,11 @@ impl ShaderCore {
     }
 
     /// Give the core a tile (it must be idle).
-    pub fn assign_tile(&mut self, tile: usize, now: u64) {
+    pub fn assign_tile(&mut self, tile: usize, quads: usize, now: u64) {
         debug_assert!(self.tile.is_none());
         self.tile = Some(tile);
         self.raster_next = 0;
+        self.tile_quads = quads as u32;
         self.last_progress = now;
     }
 
@@ -409,7 +413,7 @@ impl ShaderCore {
     }
 
     fn raster(&mut self, tile: &Tile) {
-        let n = tile.quad_count() as u32;
+        let n = self.tile_quads;
         for _ in 0..self.raster_rate {
             if self.raster_next >= n || self.sched.queue().is_full() {
                 break;
@@ -642,13 +646,12 @@ impl ShaderCore {
     /// End of cycle: forget per-cycle signals; release the tile when every
     /// warp of it has finished (fill and drain). Returns whether a tile
     /// finished.
-    pub fn end_cycle(&mut self, trace: &Trace) -> bool {
+    pub fn end_cycle(&mut self) -> bool {
         self.sched.end_cycle();
-        let Some(ti) = self.tile else {
+        if self.tile.is_none() {
             return false;
-        };
-        let n = trace.tiles()[ti].quad_count() as u32;
-        if self.raster_next == n
+        }
+        if self.raster_next == self.tile_quads
             && self.sched.queue().is_empty()
             && self.active == 0
             && self.ldst.is_empty()

@@ -211,7 +211,7 @@ impl<'t> Gpu<'t> {
         let tiles = self.trace.tiles();
         for c in self.cores.iter_mut() {
             if c.idle() && self.next_tile < tiles.len() {
-                c.assign_tile(self.next_tile, now);
+                c.assign_tile(self.next_tile, tiles[self.next_tile].quad_count(), now);
                 self.next_tile += 1;
             }
             c.evaluate(now, self.trace, &mut self.mem);
@@ -226,7 +226,7 @@ impl<'t> Gpu<'t> {
                 self.trace_signals(s);
                 s.end_cycle().map_err(SimError::Io)?;
                 for c in self.cores.iter_mut() {
-                    self.tiles_done += usize::from(c.end_cycle(self.trace));
+                    self.tiles_done += usize::from(c.end_cycle());
                 }
             }
             _ => {
@@ -234,7 +234,7 @@ impl<'t> Gpu<'t> {
                 // its completions directly.
                 for c in self.cores.iter_mut() {
                     c.complete(now, &mut self.mem, &mut self.scratch)?;
-                    self.tiles_done += usize::from(c.end_cycle(self.trace));
+                    self.tiles_done += usize::from(c.end_cycle());
                 }
             }
         }
