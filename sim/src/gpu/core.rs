@@ -476,75 +476,101 @@ impl ShaderCore {
     }
 
     /// Issue on masks of width `M` (every slot fits).
+    ///
+    /// The picks are found first (one bit scan each; an ALU pick only
+    /// counts its run down), then the ALU picks are put on the wake-up
+    /// wheels as whole masks: those with more of their run to go on the
+    /// ready wheel, those that ended it on the wheel that looks at them.
     #[inline(always)]
     fn issue_with<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
-        let n = self.n_slots as u32;
-        let mut issued = 0;
         let tex_ok = self.ldst.len() < self.ldst_cap;
-        let mut tex_taken = false;
-        let mut ready = M::from_wide(self.ready);
-        let mut ready_tex = M::from_wide(self.ready_tex);
-        let cand = ready | if tex_ok { ready_tex } else { M::ZERO };
+        let ready = M::from_wide(self.ready);
+        let cand = ready
+            | if tex_ok {
+                M::from_wide(self.ready_tex)
+            } else {
+                M::ZERO
+            };
         // Loose round-robin: each pick is the first candidate slot at or
         // after the slot past the previous pick (wrapping), starting at
         // `rr`; that is the candidates in ascending order of the set
         // rotated right by `rr`.
         let rr = self.rr;
         let mut rot = cand.rotate_right(rr);
-        let mut last = None;
+        let mut issued = 0;
+        let mut last = 0;
+        let mut alu = M::ZERO;
+        let mut run_end = M::ZERO;
+        let mut tex = None;
         while issued < self.width && rot != M::ZERO {
-            let k = rot.lowest();
+            let s = (rot.lowest() + rr as usize) & (M::BITS as usize - 1);
             rot = rot.without_lowest();
-            let s = (k + rr as usize) & (M::BITS as usize - 1);
             let bit = M::bit(s);
-            let w = &mut self.slots[s % MAX_SLOTS];
             if ready & bit != M::ZERO {
+                let w = &mut self.slots[s % MAX_SLOTS];
                 w.alu_left -= 1;
-                ready &= !bit;
+                alu |= bit;
                 if w.alu_left == 0 {
                     w.op += 1;
-                    self.schedule(now, now + self.alu_latency, s);
-                } else if self.alu_on_wheel {
-                    // Mid-run: ready again at its cycle, nothing to decide.
-                    let at = (now + self.alu_latency) as usize & (WHEEL - 1);
-                    self.wheel_ready[at][(s >> 6) & 1] |= 1u64 << (s & 63);
-                } else {
-                    self.schedule(now, now + self.alu_latency, s);
+                    run_end |= bit;
                 }
             } else {
-                let end = w.blk + w.tex_len;
-                debug_assert_eq!(
-                    tile.op_kind(w.op as usize),
-                    Some(OpKind::Tex(w.tex_len)),
-                    "ready_tex warps wait on a texture instruction"
-                );
-                w.pending = w.tex_len;
-                w.tex_start = now;
-                self.ldst.push_back(LdstEntry {
-                    slot: s as u8,
-                    next: w.blk,
-                    end,
-                });
-                w.blk = end;
-                ready_tex &= !bit;
-                self.stats.tex_instructions += 1;
                 // One texture instruction enters the LDST unit per cycle.
-                tex_taken = true;
+                tex = Some(s);
                 rot &= ready.rotate_right(rr);
             }
-            self.stats.instructions += 1;
             issued += 1;
-            last = Some(s as u32);
+            last = s as u32;
         }
-        if let Some(s) = last {
-            self.rr = if s + 1 >= n { 0 } else { s + 1 };
-        }
-        self.ready = ready.to_wide();
-        self.ready_tex = ready_tex.to_wide();
         self.signals.issued = issued;
-        self.signals.tex_issued = tex_taken;
-        if issued > 0 {
-            self.progress(now);
+        self.signals.tex_issued = tex.is_some();
+        if issued == 0 {
+            return;
+        }
+        self.rr = if last + 1 >= self.n_slots as u32 {
+            0
+        } else {
+            last + 1
+        };
+        self.stats.instructions += u64::from(issued);
+        self.progress(now);
+        self.ready = (ready & !alu).to_wide();
+        let at = now + self.alu_latency;
+        if self.alu_on_wheel {
+            let i = (at as usize) & (WHEEL - 1);
+            let mid = (alu & !run_end).to_wide();
+            let end = run_end.to_wide();
+            // Mid-run warps are ready again at `at`, nothing to decide.
+            self.wheel_ready[i][0] |= mid as u64;
+            self.wheel_ready[i][1] |= (mid >> 64) as u64;
+            self.wheel[i][0] |= end as u64;
+            self.wheel[i][1] |= (end >> 64) as u64;
+        } else {
+            let mut m = alu;
+            while m != M::ZERO {
+                let s = m.lowest();
+                m = m.without_lowest();
+                self.schedule(now, at, s);
+            }
+        }
+        if let Some(s) = tex {
+            let w = &mut self.slots[s % MAX_SLOTS];
+            let end = w.blk + w.tex_len;
+            debug_assert_eq!(
+                tile.op_kind(w.op as usize),
+                Some(OpKind::Tex(w.tex_len)),
+                "ready_tex warps wait on a texture instruction"
+            );
+            w.pending = w.tex_len;
+            w.tex_start = now;
+            self.ldst.push_back(LdstEntry {
+                slot: s as u8,
+                next: w.blk,
+                end,
+            });
+            w.blk = end;
+            self.ready_tex &= !(1u128 << s);
+            self.stats.tex_instructions += 1;
         }
     }
 
