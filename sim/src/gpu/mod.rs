@@ -396,6 +396,7 @@ pub fn simulate_traced<S: CycleSink>(
 mod tests {
     use super::*;
     use crate::synth::{generate, GenParams};
+    use crate::trace::{Instr, TraceHeader};
 
     fn tiny() -> Trace {
         let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/traces/tiny.trace");
@@ -449,6 +450,45 @@ mod tests {
                 .sum();
             assert_eq!(l0.accesses, accesses, "{p}");
             assert_eq!(l0.hits + l0.misses + l0.secondary_misses, accesses);
+        }
+    }
+
+    /// One warp running ALU runs alone: each instruction waits the ALU
+    /// latency for the previous one, on the wake-up wheels or beyond them
+    /// (latencies of 64 cycles and more take the far queue), and a run
+    /// split in two entries costs the same as one.
+    #[test]
+    fn a_lone_warp_waits_the_alu_latency_per_instruction() {
+        let lone = |program: &[Instr]| {
+            let mut b = Trace::builder(TraceHeader::new("lone", 8, 8, 8)).unwrap();
+            b.begin_tile(0, 0).unwrap();
+            b.quad(0, 0, program).unwrap();
+            b.end_tile().unwrap();
+            b.finish().unwrap()
+        };
+        let one = lone(&[Instr::Alu(5)]);
+        let split = lone(&[Instr::Alu(2), Instr::Alu(3)]);
+        for latency in [1u32, 4, 63, 64, 65, 200] {
+            let mut cfg = cfg_for(&one);
+            cfg.core.alu_latency = latency;
+            cfg.validate().unwrap();
+            for t in [&one, &split] {
+                let mut gpu = Gpu::new(&cfg, t).unwrap();
+                gpu.record_warps();
+                while !gpu.done() {
+                    gpu.step().unwrap();
+                }
+                let r = gpu.take_records();
+                assert_eq!(r.len(), 1);
+                // Issue the cycle after launch, then 5 instructions each
+                // followed by the latency; the finish is seen at the
+                // last wake-up.
+                assert_eq!(
+                    r[0].finished - r[0].launched,
+                    1 + 5 * u64::from(latency),
+                    "alu_latency {latency}"
+                );
+            }
         }
     }
 
@@ -556,7 +596,6 @@ mod tests {
 
     mod random_machines {
         use super::*;
-        use crate::trace::{Instr, TraceHeader};
         use proptest::prelude::*;
 
         /// A random trace of 8x8-pixel tiles (4x4 quads) whose texture
