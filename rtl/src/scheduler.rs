@@ -12,7 +12,7 @@
 //!
 //! A decision in cycle t therefore sees the events of cycles up to t-1.
 
-use crate::datapath::DatapathOut;
+use crate::datapath::{DatapathOut, WaspDatapath};
 use crate::free_mshr::{FreeMshrReg, MshrEvents};
 use crate::nonblocked::{NonblockedCounter, PriorityEvents};
 use crate::policy::{LaunchPolicy, LaunchView};
@@ -47,6 +47,11 @@ pub struct LaunchScheduler<T> {
     free_mshrs: FreeMshrReg,
     nonblocked: NonblockedCounter,
     policy: Box<dyn LaunchPolicy>,
+    // The policy's constants, read once at construction: a policy is
+    // fixed wiring (its methods take `&self` and the scheduler owns it), so
+    // they cannot change, and the per-cycle paths need not ask it again.
+    uses_priority_queue: bool,
+    datapath: Option<WaspDatapath>,
     // Signals of the current cycle, for the waveform.
     decision: LaunchDecision,
     launched: Option<QueueClass>,
@@ -65,6 +70,8 @@ impl<T: Copy> LaunchScheduler<T> {
             subset,
             free_mshrs,
             nonblocked: NonblockedCounter::reset(),
+            uses_priority_queue: policy.uses_priority_queue(),
+            datapath: policy.datapath(),
             policy,
             decision: LaunchDecision {
                 select: None,
@@ -97,7 +104,7 @@ impl<T: Copy> LaunchScheduler<T> {
     /// Which class the subset comparator gives the quad at (`qx`, `qy`)
     /// under this policy (always regular for the baseline).
     pub fn classify(&self, qx: u32, qy: u32) -> QueueClass {
-        if self.policy.uses_priority_queue() && self.subset.is_priority(qx, qy) {
+        if self.uses_priority_queue && self.subset.is_priority(qx, qy) {
             QueueClass::Priority
         } else {
             QueueClass::Regular
@@ -118,8 +125,7 @@ impl<T: Copy> LaunchScheduler<T> {
     /// Phase 1: the policy's choice from the current register values.
     pub fn decide(&mut self) -> LaunchDecision {
         let datapath = self
-            .policy
-            .datapath()
+            .datapath
             .map(|dp| dp.eval(self.free_mshrs.free(), self.nonblocked.count()));
         let view = LaunchView {
             priority_waiting: self.queue.has(QueueClass::Priority),
