@@ -15,7 +15,7 @@
 use crate::datapath::{DatapathOut, WaspDatapath};
 use crate::free_mshr::{FreeMshrReg, MshrEvents};
 use crate::nonblocked::{NonblockedCounter, PriorityEvents};
-use crate::policy::{LaunchPolicy, LaunchView};
+use crate::policy::{LaunchPolicy, LaunchView, PriorityGate};
 use crate::queue::{QueueClass, SplitQueue};
 use crate::subset::{PrioritySubset, SubsetTable};
 use crate::RegisterFault;
@@ -56,6 +56,7 @@ pub struct LaunchScheduler<T> {
     // they cannot change, and the per-cycle paths need not ask it again.
     uses_priority_queue: bool,
     datapath: Option<WaspDatapath>,
+    gate: PriorityGate,
     // Signals of the current cycle, for the waveform.
     decision: LaunchDecision,
     launched: Option<QueueClass>,
@@ -82,6 +83,7 @@ impl<T: Copy> LaunchScheduler<T> {
             nonblocked: NonblockedCounter::reset(),
             uses_priority_queue: policy.uses_priority_queue(),
             datapath: policy.datapath(),
+            gate: policy.gate(),
             policy,
             decision: LaunchDecision {
                 select: None,
@@ -148,7 +150,7 @@ impl<T: Copy> LaunchScheduler<T> {
             free_mshrs: self.free_mshrs.free(),
             datapath,
         };
-        let select = self.policy.select(&view);
+        let select = self.gate.select(&view);
         let decision = LaunchDecision { select, datapath };
         self.decision = decision;
         decision
