@@ -169,7 +169,8 @@ impl<T: Copy> LaunchScheduler<T> {
     /// launch of this cycle (if any) is added to `prio` here.
     pub fn clock(&mut self, mshr: MshrEvents, prio: PriorityEvents) -> Result<(), RegisterFault> {
         let prio = PriorityEvents {
-            launched: prio.launched || self.launched == Some(QueueClass::Priority),
+            // An OR gate (`|`, no short circuit: both inputs are ready).
+            launched: prio.launched | (self.launched == Some(QueueClass::Priority)),
             ..prio
         };
         let free = self.free_mshrs.next(mshr)?;
