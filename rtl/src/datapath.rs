@@ -12,6 +12,12 @@
 //! CF = 2.5 that is `((n << 1) + (n << 3)) >> 2 = (n << 1) + (n >> 1)
 //! = floor(2.5 n)`, the paper's circuit.
 //!
+//! The shift-add sums `n << i` over the set bits `i` of `q` modulo 2^12,
+//! which is `n x q` modulo 2^12: [`WaspDatapath::eval`] computes it as one
+//! multiplication ([`multiply`]), and [`shift_add_multiply`] keeps the
+//! partial products as the reference; the tests check the two agree for
+//! every 7-bit count and 5-bit `q`.
+//!
 //! Truncating the product is exact for the decision: `free - T` is an
 //! integer, and for an integer `x` and a real `y`, `x > y` iff
 //! `x > floor(y)`. The subtractor is 11 bits wide, two's complement: the
@@ -104,7 +110,7 @@ impl WaspDatapath {
     /// Evaluate the datapath on the two register outputs.
     #[inline]
     pub fn eval(&self, free: FreeMshrs, nonblocked: NonblockedCount) -> DatapathOut {
-        let product = shift_add_multiply(nonblocked, self.cf);
+        let product = multiply(nonblocked, self.cf);
         let real_free = subtract(free, product);
         DatapathOut {
             product,
@@ -125,6 +131,16 @@ pub fn shift_add_multiply(n: NonblockedCount, cf: Cf) -> UInt<PRODUCT_BITS> {
             acc = acc.wrapping_add(n_acc.shl(i));
         }
     }
+    UInt::<PRODUCT_BITS>::masked(acc.shr(2).get())
+}
+
+/// `floor(n x q / 4)` in closed form: the 12-bit accumulator holds
+/// `n x q mod 2^12`, shifted right by two. The same function as
+/// [`shift_add_multiply`] (a sum of the partial products `n << i` over the
+/// set bits of `q` is `n x q`, and both reduce modulo 2^12).
+#[inline]
+pub fn multiply(n: NonblockedCount, cf: Cf) -> UInt<PRODUCT_BITS> {
+    let acc = UInt::<ACC_BITS>::masked(n.get() * cf.0.get());
     UInt::<PRODUCT_BITS>::masked(acc.shr(2).get())
 }
 
@@ -187,6 +203,20 @@ mod tests {
         }
         assert_eq!(Cf::PAPER.value(), 2.5);
         assert_eq!(Cf::PAPER.partial_products(), 2);
+    }
+
+    #[test]
+    fn closed_form_product_is_the_shift_add_everywhere() {
+        for q in 0..=31u32 {
+            let cf = Cf::from_quarters(q).unwrap();
+            for v in 0..=NonblockedCount::MAX.get() {
+                assert_eq!(
+                    multiply(n(v), cf),
+                    shift_add_multiply(n(v), cf),
+                    "n={v} q={q}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -76,7 +76,9 @@ impl FreeMshrReg {
     #[inline]
     pub fn next(&self, ev: MshrEvents) -> Result<Self, RegisterFault> {
         let v = self.free.get() as i32 - ev.allocs as i32 + ev.replies as i32;
-        if v < 0 || v > self.capacity.get() as i32 {
+        // `v < 0 || v > capacity` as one unsigned compare: a negative `v`
+        // reads as at least 2^31, above any 5-bit capacity.
+        if v as u32 > self.capacity.get() {
             return Err(RegisterFault {
                 register: "free_mshrs",
                 value: self.free.get(),
@@ -171,5 +173,45 @@ mod tests {
             allocs: 0,
             replies: 1
         }));
+    }
+
+    /// `next` as first written, with a signed two-sided range check.
+    fn next_two_sided(r: &FreeMshrReg, ev: MshrEvents) -> Result<FreeMshrReg, RegisterFault> {
+        let v = r.free().get() as i32 - ev.allocs as i32 + ev.replies as i32;
+        if v < 0 || v > r.capacity().get() as i32 {
+            return Err(RegisterFault {
+                register: "free_mshrs",
+                value: r.free().get(),
+                attempted: v,
+                limit: r.capacity().get(),
+            });
+        }
+        Ok(FreeMshrReg {
+            free: FreeMshrs::masked(v as u32),
+            capacity: r.capacity(),
+        })
+    }
+
+    #[test]
+    fn one_sided_range_check_equals_the_two_sided_one_everywhere() {
+        // Every reachable register state and every event pair.
+        for cap in 0..=FreeMshrs::MAX.get() {
+            for free in 0..=cap {
+                let r = FreeMshrReg::with_capacity(cap)
+                    .unwrap()
+                    .next(MshrEvents {
+                        allocs: (cap - free) as u8,
+                        replies: 0,
+                    })
+                    .unwrap();
+                assert_eq!(r.free().get(), free);
+                for allocs in 0..=u8::MAX {
+                    for replies in 0..=u8::MAX {
+                        let ev = MshrEvents { allocs, replies };
+                        assert_eq!(r.next(ev), next_two_sided(&r, ev), "{r:?} {ev:?}");
+                    }
+                }
+            }
+        }
     }
 }

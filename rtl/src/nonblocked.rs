@@ -63,8 +63,10 @@ impl NonblockedCounter {
         let v = self.count.get() as i32 + ev.launched as i32 + ev.unblocked as i32
             - ev.blocked as i32
             - ev.finished as i32;
-        match NonblockedCount::new(v.max(0) as u32) {
-            Some(c) if v >= 0 => Ok(Self { count: c }),
+        // A negative `v` reads as at least 2^31 unsigned, so the 7-bit range
+        // check refuses it too.
+        match NonblockedCount::new(v as u32) {
+            Some(c) => Ok(Self { count: c }),
             _ => Err(RegisterFault {
                 register: "nonblocked_priority",
                 value: self.count.get(),
@@ -164,5 +166,57 @@ mod tests {
             .unwrap_err();
         assert_eq!(e.attempted, 128);
         assert_eq!(e.limit, 127);
+    }
+
+    /// `next` as first written: clamp at zero, then a separate sign check.
+    fn next_clamped(
+        c: NonblockedCounter,
+        ev: PriorityEvents,
+    ) -> Result<NonblockedCounter, RegisterFault> {
+        let v = c.count().get() as i32 + ev.launched as i32 + ev.unblocked as i32
+            - ev.blocked as i32
+            - ev.finished as i32;
+        match NonblockedCount::new(v.max(0) as u32) {
+            Some(count) if v >= 0 => Ok(NonblockedCounter { count }),
+            _ => Err(RegisterFault {
+                register: "nonblocked_priority",
+                value: c.count().get(),
+                attempted: v,
+                limit: NonblockedCount::MAX.get(),
+            }),
+        }
+    }
+
+    #[test]
+    fn unsigned_range_check_equals_the_clamped_one_everywhere() {
+        // Every counter value against every launch, unblock and block
+        // count, and every finish count on its own (blocks and finishes
+        // enter the sum the same way).
+        for v in 0..=NonblockedCount::MAX.get() {
+            let c = NonblockedCounter {
+                count: NonblockedCount::new(v).unwrap(),
+            };
+            for launched in [false, true] {
+                for unblocked in 0..=u8::MAX {
+                    for blocked in 0..=u8::MAX {
+                        let ev = PriorityEvents {
+                            launched,
+                            blocked,
+                            unblocked,
+                            finished: 0,
+                        };
+                        assert_eq!(c.next(ev), next_clamped(c, ev), "{c:?} {ev:?}");
+                    }
+                }
+                for finished in 0..=u8::MAX {
+                    let ev = PriorityEvents {
+                        launched,
+                        finished,
+                        ..Default::default()
+                    };
+                    assert_eq!(c.next(ev), next_clamped(c, ev), "{c:?} {ev:?}");
+                }
+            }
+        }
     }
 }

@@ -12,12 +12,12 @@
 //!
 //! A decision in cycle t therefore sees the events of cycles up to t-1.
 
-use crate::datapath::DatapathOut;
+use crate::datapath::{DatapathOut, WaspDatapath};
 use crate::free_mshr::{FreeMshrReg, MshrEvents};
 use crate::nonblocked::{NonblockedCounter, PriorityEvents};
-use crate::policy::{LaunchPolicy, LaunchView};
+use crate::policy::{LaunchPolicy, LaunchView, PriorityGate};
 use crate::queue::{QueueClass, SplitQueue};
-use crate::subset::PrioritySubset;
+use crate::subset::{PrioritySubset, SubsetTable};
 use crate::RegisterFault;
 use wasp_waves::{Traceable, Tracer};
 
@@ -44,9 +44,19 @@ pub struct LaunchDecision {
 pub struct LaunchScheduler<T> {
     queue: SplitQueue<T>,
     subset: Box<dyn PrioritySubset>,
+    // The subset comparator's answers for in-tile coordinates, with the
+    // policy's use of the priority FIFO folded in (empty for the baseline):
+    // `classify` without a virtual call.
+    priority_table: SubsetTable,
     free_mshrs: FreeMshrReg,
     nonblocked: NonblockedCounter,
     policy: Box<dyn LaunchPolicy>,
+    // The policy's constants, read once at construction: a policy is
+    // fixed wiring (its methods take `&self` and the scheduler owns it), so
+    // they cannot change, and the per-cycle paths need not ask it again.
+    uses_priority_queue: bool,
+    datapath: Option<WaspDatapath>,
+    gate: PriorityGate,
     // Signals of the current cycle, for the waveform.
     decision: LaunchDecision,
     launched: Option<QueueClass>,
@@ -60,11 +70,20 @@ impl<T: Copy> LaunchScheduler<T> {
         free_mshrs: FreeMshrReg,
         policy: Box<dyn LaunchPolicy>,
     ) -> Self {
+        let priority_table = if policy.uses_priority_queue() {
+            SubsetTable::of(subset.as_ref())
+        } else {
+            SubsetTable::empty()
+        };
         Self {
             queue: SplitQueue::new(queue_capacity),
             subset,
+            priority_table,
             free_mshrs,
             nonblocked: NonblockedCounter::reset(),
+            uses_priority_queue: policy.uses_priority_queue(),
+            datapath: policy.datapath(),
+            gate: policy.gate(),
             policy,
             decision: LaunchDecision {
                 select: None,
@@ -96,8 +115,13 @@ impl<T: Copy> LaunchScheduler<T> {
 
     /// Which class the subset comparator gives the quad at (`qx`, `qy`)
     /// under this policy (always regular for the baseline).
+    #[inline]
     pub fn classify(&self, qx: u32, qy: u32) -> QueueClass {
-        if self.policy.uses_priority_queue() && self.subset.is_priority(qx, qy) {
+        let priority = match self.priority_table.get(qx, qy) {
+            Some(p) => p,
+            None => self.uses_priority_queue && self.subset.is_priority(qx, qy),
+        };
+        if priority {
             QueueClass::Priority
         } else {
             QueueClass::Regular
@@ -118,8 +142,7 @@ impl<T: Copy> LaunchScheduler<T> {
     /// Phase 1: the policy's choice from the current register values.
     pub fn decide(&mut self) -> LaunchDecision {
         let datapath = self
-            .policy
-            .datapath()
+            .datapath
             .map(|dp| dp.eval(self.free_mshrs.free(), self.nonblocked.count()));
         let view = LaunchView {
             priority_waiting: self.queue.has(QueueClass::Priority),
@@ -127,9 +150,10 @@ impl<T: Copy> LaunchScheduler<T> {
             free_mshrs: self.free_mshrs.free(),
             datapath,
         };
-        let select = self.policy.select(&view);
-        self.decision = LaunchDecision { select, datapath };
-        self.decision
+        let select = self.gate.select(&view);
+        let decision = LaunchDecision { select, datapath };
+        self.decision = decision;
+        decision
     }
 
     /// Phase 1, continued: pop the chosen warp, when the core can take one
@@ -145,7 +169,8 @@ impl<T: Copy> LaunchScheduler<T> {
     /// launch of this cycle (if any) is added to `prio` here.
     pub fn clock(&mut self, mshr: MshrEvents, prio: PriorityEvents) -> Result<(), RegisterFault> {
         let prio = PriorityEvents {
-            launched: prio.launched || self.launched == Some(QueueClass::Priority),
+            // An OR gate (`|`, no short circuit: both inputs are ready).
+            launched: prio.launched | (self.launched == Some(QueueClass::Priority)),
             ..prio
         };
         let free = self.free_mshrs.next(mshr)?;
@@ -295,6 +320,39 @@ mod tests {
         let d = s.decide();
         assert!(!d.datapath.unwrap().priority_over_regular);
         assert_eq!(s.launch(d, true), Some((1, QueueClass::Regular)));
+    }
+
+    #[test]
+    fn classify_is_the_policy_gate_and_the_subset_comparator_everywhere() {
+        use crate::subset::SubsetSpec;
+        for policy in ["baseline", "fullpriority", "freemshr:2", "wasp:1"] {
+            let spec: PolicySpec = policy.parse().unwrap();
+            let subsets = || {
+                let mut v: Vec<Box<dyn PrioritySubset>> =
+                    SubsetSpec::all().iter().map(|s| s.build(32)).collect();
+                v.push(Box::new(Explicit::new([(0, 0), (33, 1), (2, 40)])));
+                v
+            };
+            for (subset, reference) in subsets().into_iter().zip(subsets()) {
+                let name = subset.name();
+                let s = LaunchScheduler::<u32>::new(
+                    4,
+                    subset,
+                    FreeMshrReg::with_capacity(4).unwrap(),
+                    spec.build(4).unwrap(),
+                );
+                for y in (0..48).chain([u32::MAX]) {
+                    for x in (0..48).chain([u32::MAX]) {
+                        let want = if spec != PolicySpec::Baseline && reference.is_priority(x, y) {
+                            QueueClass::Priority
+                        } else {
+                            QueueClass::Regular
+                        };
+                        assert_eq!(s.classify(x, y), want, "{policy} {name} ({x},{y})");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

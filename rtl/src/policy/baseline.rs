@@ -4,8 +4,7 @@
 //! no priority warps: every warp goes to the regular FIFO, so the split
 //! queue is the baseline's single FIFO.
 
-use super::{LaunchPolicy, LaunchView};
-use crate::queue::QueueClass;
+use super::{LaunchPolicy, PriorityGate};
 
 /// The scanline baseline.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -18,7 +17,9 @@ impl LaunchPolicy for Baseline {
     fn uses_priority_queue(&self) -> bool {
         false
     }
-    fn select(&self, v: &LaunchView) -> Option<QueueClass> {
-        v.regular_waiting.then_some(QueueClass::Regular)
+    /// Closed: the next regular warp, if one waits (and none ever waits in
+    /// the priority FIFO).
+    fn gate(&self) -> PriorityGate {
+        PriorityGate::Closed
     }
 }

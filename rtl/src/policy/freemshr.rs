@@ -3,9 +3,8 @@
 //! The paper's Freemshr10 is N = 10. Unlike WaSP it ignores the misses that
 //! priority warps already in the core are about to make.
 
-use super::{LaunchPolicy, LaunchView};
+use super::{LaunchPolicy, PriorityGate};
 use crate::free_mshr::FreeMshrs;
-use crate::queue::QueueClass;
 
 /// FreeMSHR-N.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,13 +26,8 @@ impl LaunchPolicy for FreeMshrN {
     fn reads_free_mshrs(&self) -> bool {
         true
     }
-    fn select(&self, v: &LaunchView) -> Option<QueueClass> {
-        if v.priority_waiting && v.free_mshrs >= self.n {
-            Some(QueueClass::Priority)
-        } else if v.regular_waiting {
-            Some(QueueClass::Regular)
-        } else {
-            None
-        }
+    /// Open while `free_mshrs >= N`.
+    fn gate(&self) -> PriorityGate {
+        PriorityGate::FreeMshrsAtLeast(self.n)
     }
 }

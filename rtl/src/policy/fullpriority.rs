@@ -1,7 +1,6 @@
 //! Fullpriority: every priority warp of a tile before any regular warp.
 
-use super::{LaunchPolicy, LaunchView};
-use crate::queue::QueueClass;
+use super::{LaunchPolicy, PriorityGate};
 
 /// The paper's Fullpriority heuristic.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -11,13 +10,8 @@ impl LaunchPolicy for FullPriority {
     fn name(&self) -> String {
         "fullpriority".into()
     }
-    fn select(&self, v: &LaunchView) -> Option<QueueClass> {
-        if v.priority_waiting {
-            Some(QueueClass::Priority)
-        } else if v.regular_waiting {
-            Some(QueueClass::Regular)
-        } else {
-            None
-        }
+    /// Open: a waiting priority warp always goes first.
+    fn gate(&self) -> PriorityGate {
+        PriorityGate::Open
     }
 }

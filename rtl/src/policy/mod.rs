@@ -3,6 +3,12 @@
 //! Every policy decides from the same inputs the hardware has in the cycle
 //! of the launch: whether each FIFO holds a warp, the free-MSHR register, and
 //! the decision datapath's outputs. One file per policy.
+//!
+//! All four share one launch rule and differ only in its gate
+//! ([`PriorityGate`]): a priority warp if one waits and the gate is open,
+//! else a regular warp if one waits, else nothing. A policy names its gate;
+//! [`LaunchPolicy::select`] is the rule around it. The scheduler reads the
+//! gate once when it is built and evaluates the rule itself each cycle.
 
 mod baseline;
 mod freemshr;
@@ -33,6 +39,46 @@ pub struct LaunchView {
     pub datapath: Option<DatapathOut>,
 }
 
+/// When a waiting priority warp may launch (ahead of any regular warp).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PriorityGate {
+    /// Never: the policy has no priority warps (the baseline).
+    Closed,
+    /// Always (Fullpriority).
+    Open,
+    /// While the free-MSHR register holds at least N (FreeMSHR-N).
+    FreeMshrsAtLeast(FreeMshrs),
+    /// While the decision datapath says `Real_freeMSHRs > threshold`
+    /// (WaSP); closed when the view has no datapath output.
+    Datapath,
+}
+
+impl PriorityGate {
+    /// Whether the gate is open in the cycle `v` describes.
+    #[inline]
+    pub fn is_open(self, v: &LaunchView) -> bool {
+        match self {
+            PriorityGate::Closed => false,
+            PriorityGate::Open => true,
+            PriorityGate::FreeMshrsAtLeast(n) => v.free_mshrs >= n,
+            PriorityGate::Datapath => v.datapath.is_some_and(|d| d.priority_over_regular),
+        }
+    }
+
+    /// The launch rule: the priority FIFO if a warp waits there and the gate
+    /// is open, else the regular FIFO if a warp waits there, else nothing.
+    #[inline]
+    pub fn select(self, v: &LaunchView) -> Option<QueueClass> {
+        if v.priority_waiting && self.is_open(v) {
+            Some(QueueClass::Priority)
+        } else if v.regular_waiting {
+            Some(QueueClass::Regular)
+        } else {
+            None
+        }
+    }
+}
+
 /// A warp launch policy.
 pub trait LaunchPolicy: fmt::Debug + Send + Sync {
     /// Name as used on the command line (`baseline`, `wasp:4`, ...).
@@ -53,8 +99,16 @@ pub trait LaunchPolicy: fmt::Debug + Send + Sync {
     fn datapath(&self) -> Option<WaspDatapath> {
         None
     }
-    /// Which FIFO to launch from this cycle, or `None` to launch nothing.
-    fn select(&self, v: &LaunchView) -> Option<QueueClass>;
+    /// When a waiting priority warp may launch. A policy is fixed wiring:
+    /// the gate never changes.
+    fn gate(&self) -> PriorityGate;
+    /// Which FIFO to launch from this cycle, or `None` to launch nothing:
+    /// the shared launch rule ([`PriorityGate::select`]) around this
+    /// policy's gate. Policies do not override it (the scheduler evaluates
+    /// the rule on the gate directly).
+    fn select(&self, v: &LaunchView) -> Option<QueueClass> {
+        self.gate().select(v)
+    }
 }
 
 /// A policy named on the command line or in a config file.
@@ -230,6 +284,75 @@ mod tests {
         ] {
             let spec: PolicySpec = s.parse().unwrap();
             assert_eq!(spec.build(8).unwrap().name(), s);
+        }
+    }
+
+    /// Each policy's `select` as it was written out per policy before the
+    /// rule was shared.
+    fn select_as_written(spec: &PolicySpec, v: &LaunchView) -> Option<QueueClass> {
+        let regular = || v.regular_waiting.then_some(QueueClass::Regular);
+        match *spec {
+            PolicySpec::Baseline => v.regular_waiting.then_some(QueueClass::Regular),
+            PolicySpec::FullPriority => {
+                if v.priority_waiting {
+                    Some(QueueClass::Priority)
+                } else {
+                    regular()
+                }
+            }
+            PolicySpec::FreeMshr(n) => {
+                if v.priority_waiting && v.free_mshrs.get() >= n {
+                    Some(QueueClass::Priority)
+                } else {
+                    regular()
+                }
+            }
+            PolicySpec::Wasp { .. } => {
+                if v.priority_waiting && v.datapath.is_some_and(|d| d.priority_over_regular) {
+                    Some(QueueClass::Priority)
+                } else {
+                    regular()
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn gated_rule_is_each_policys_select_on_every_view() {
+        let mut specs = vec![PolicySpec::Baseline, PolicySpec::FullPriority];
+        specs.extend((0..=31).map(PolicySpec::FreeMshr));
+        for threshold in [0, 1, 4, 30] {
+            for cf in [0.0, 1.0, 2.5, 7.75] {
+                specs.push(PolicySpec::Wasp { threshold, cf });
+            }
+        }
+        for spec in &specs {
+            let policy = spec.build(31).unwrap();
+            for free in 0..=FreeMshrs::MAX.get() {
+                let free_mshrs = FreeMshrs::new(free).unwrap();
+                for nb in 0..=crate::nonblocked::NonblockedCount::MAX.get() {
+                    let nb = crate::nonblocked::NonblockedCount::new(nb).unwrap();
+                    let dp = policy.datapath().map(|d| d.eval(free_mshrs, nb));
+                    for datapath in [dp, None] {
+                        for (priority_waiting, regular_waiting) in
+                            [(false, false), (false, true), (true, false), (true, true)]
+                        {
+                            let v = LaunchView {
+                                priority_waiting,
+                                regular_waiting,
+                                free_mshrs,
+                                datapath,
+                            };
+                            assert_eq!(
+                                policy.select(&v),
+                                select_as_written(spec, &v),
+                                "{spec} {v:?}"
+                            );
+                            assert_eq!(policy.gate().select(&v), policy.select(&v));
+                        }
+                    }
+                }
+            }
         }
     }
 

@@ -8,9 +8,8 @@
 //! once the priority warps in the core block or finish and the misses are
 //! answered, `Real_freeMSHRs` returns to the capacity.
 
-use super::{LaunchPolicy, LaunchView};
+use super::{LaunchPolicy, PriorityGate};
 use crate::datapath::WaspDatapath;
-use crate::queue::QueueClass;
 
 /// The WaSP launch rule.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,13 +36,8 @@ impl LaunchPolicy for Wasp {
     fn datapath(&self) -> Option<WaspDatapath> {
         Some(self.datapath)
     }
-    fn select(&self, v: &LaunchView) -> Option<QueueClass> {
-        if v.priority_waiting && v.datapath.is_some_and(|d| d.priority_over_regular) {
-            Some(QueueClass::Priority)
-        } else if v.regular_waiting {
-            Some(QueueClass::Regular)
-        } else {
-            None
-        }
+    /// Open while the datapath's `priority_over_regular` is set.
+    fn gate(&self) -> PriorityGate {
+        PriorityGate::Datapath
     }
 }

@@ -22,6 +22,10 @@ use std::fmt;
 use std::str::FromStr;
 
 /// Decides whether a quad is a priority warp.
+///
+/// A selector is combinational: `is_priority` is a pure function of the
+/// coordinates (the scheduler reads it once per coordinate into a
+/// [`SubsetTable`]).
 pub trait PrioritySubset: fmt::Debug + Send + Sync {
     /// Short name as used on the command line (`mesh4`, `hlines`, ...).
     fn name(&self) -> String;
@@ -38,6 +42,51 @@ pub trait PrioritySubset: fmt::Debug + Send + Sync {
             }
         }
         n as f64 / (side as f64 * side as f64)
+    }
+}
+
+/// Side of the coordinate square a [`SubsetTable`] covers: every 5-bit
+/// in-tile quad coordinate (a 64 x 64-pixel tile is 32 x 32 quads).
+pub const TABLE_SIDE: u32 = 1 << mesh::QUAD_COORD_BITS;
+
+/// A selector's truth table over the in-tile coordinates `0..32` on each
+/// axis, read once from the selector. Row `y` holds the 32 answers for
+/// `x = 0..32` as bits, bit `x` set when the quad is a priority warp, so a
+/// look-up is one shift and one AND. Coordinates outside the square are not
+/// in the table; [`SubsetTable::get`] says so with `None`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SubsetTable {
+    rows: [u32; TABLE_SIDE as usize],
+}
+
+impl SubsetTable {
+    /// The table of `subset`: `TABLE_SIDE`^2 calls of `is_priority`.
+    pub fn of(subset: &dyn PrioritySubset) -> Self {
+        let mut rows = [0u32; TABLE_SIDE as usize];
+        for (y, row) in (0..TABLE_SIDE).zip(rows.iter_mut()) {
+            for x in 0..TABLE_SIDE {
+                *row |= (subset.is_priority(x, y) as u32) << x;
+            }
+        }
+        Self { rows }
+    }
+
+    /// The table that selects nothing.
+    pub const fn empty() -> Self {
+        Self {
+            rows: [0; TABLE_SIDE as usize],
+        }
+    }
+
+    /// The selector's answer for (`qx`, `qy`), or `None` outside the
+    /// table's square.
+    #[inline]
+    pub fn get(&self, qx: u32, qy: u32) -> Option<bool> {
+        if (qx | qy) < TABLE_SIDE {
+            Some((self.rows[qy as usize] >> qx) & 1 == 1)
+        } else {
+            None
+        }
     }
 }
 
@@ -158,6 +207,34 @@ mod tests {
             };
             assert_eq!(s.size_ratio(32), want, "{spec}");
         }
+    }
+
+    #[test]
+    fn table_answers_as_the_selector_inside_its_square_and_none_outside() {
+        let mut subsets: Vec<Box<dyn PrioritySubset>> =
+            SubsetSpec::all().iter().map(|s| s.build(32)).collect();
+        subsets.push(SubsetSpec::Random(9).build(16));
+        subsets.push(Box::new(Explicit::new([
+            (0, 0),
+            (31, 31),
+            (3, 17),
+            (40, 2),
+        ])));
+        for s in &subsets {
+            let t = SubsetTable::of(s.as_ref());
+            for y in 0..TABLE_SIDE + 8 {
+                for x in 0..TABLE_SIDE + 8 {
+                    let want = (x < TABLE_SIDE && y < TABLE_SIDE).then(|| s.is_priority(x, y));
+                    assert_eq!(t.get(x, y), want, "{} ({x},{y})", s.name());
+                }
+            }
+            for far in [64, 1 << 16, u32::MAX] {
+                assert_eq!(t.get(far, 0), None);
+                assert_eq!(t.get(0, far), None);
+            }
+        }
+        let e = SubsetTable::empty();
+        assert!((0..32).all(|i| e.get(i, 31 - i) == Some(false)));
     }
 
     #[test]
