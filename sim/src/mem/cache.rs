@@ -133,10 +133,18 @@ impl Cache {
     /// [`Cache::fill`].
     #[inline(always)]
     pub fn access(&mut self, now: u64, block: u64, target: u32) -> Lookup {
+        self.access_entry(now, block, target).0
+    }
+
+    /// [`Cache::access`], also returning the MSHR entry allocated when the
+    /// lookup is [`Lookup::Miss`] (meaningless otherwise), for
+    /// [`Cache::fill_entry`].
+    #[inline(always)]
+    pub fn access_entry(&mut self, now: u64, block: u64, target: u32) -> (Lookup, u32) {
         self.advance(now);
         if self.ports_used >= self.cfg.ports {
             self.stats.port_busy += 1;
-            return Lookup::PortBusy;
+            return (Lookup::PortBusy, 0);
         }
         if self.mshr.is_full() {
             if !self.stalled {
@@ -144,7 +152,7 @@ impl Cache {
                 self.stats.stall_cycles += 1;
             }
             self.stats.stall_refusals += 1;
-            return Lookup::Stall;
+            return (Lookup::Stall, 0);
         }
         let base = self.set_base(block);
         if let Some(w) = find_way(&self.tags[base..base + self.ways], block) {
@@ -154,26 +162,26 @@ impl Cache {
             self.hits_now += 1;
             self.stats.accesses += 1;
             self.stats.hits += 1;
-            return Lookup::Hit;
+            return (Lookup::Hit, 0);
         }
         match self.mshr.merge(block, target, now) {
             Merge::Merged => {
                 self.ports_used += 1;
                 self.stats.accesses += 1;
                 self.stats.secondary_misses += 1;
-                Lookup::Secondary
+                (Lookup::Secondary, 0)
             }
             Merge::Full => {
                 self.stats.merge_stalls += 1;
-                Lookup::MergeFull
+                (Lookup::MergeFull, 0)
             }
             Merge::NotPending => {
-                self.mshr.allocate(block, target, now);
+                let e = self.mshr.allocate(block, target, now);
                 self.ports_used += 1;
                 self.allocated += 1;
                 self.stats.accesses += 1;
                 self.stats.misses += 1;
-                Lookup::Miss
+                (Lookup::Miss, e)
             }
         }
     }
@@ -184,11 +192,21 @@ impl Cache {
     /// for `block` (which the hierarchy never does).
     #[inline]
     pub fn fill(&mut self, now: u64, block: u64) -> &[u32] {
-        self.advance(now);
-        let Some(e) = self.mshr.complete(block, now) else {
+        let Some(e) = self.mshr.find(block) else {
             debug_assert!(false, "fill of block {block} without a pending miss");
+            self.advance(now);
             return &[];
         };
+        self.fill_entry(now, e)
+    }
+
+    /// [`Cache::fill`] of the block of MSHR entry `e`, which must be pending
+    /// (as returned by [`Cache::access_entry`] for a miss not yet filled):
+    /// no search for the entry.
+    #[inline]
+    pub fn fill_entry(&mut self, now: u64, e: u32) -> &[u32] {
+        self.advance(now);
+        let block = self.mshr.complete(e, now);
         self.replied += 1;
         self.stats.fills += 1;
         let base = self.set_base(block);
@@ -221,13 +239,19 @@ impl Cache {
         self.tags[base + way] = block;
         self.last_use[base + way] = self.use_clock;
         self.stats.miss_wait_sum += self.mshr.wait_sum(e, now);
-        self.mshr.targets(e).0
+        self.mshr.targets(e)
     }
 
     /// Whether the line of `block` is present (no side effect).
     pub fn contains(&self, block: u64) -> bool {
         let base = self.set_base(block);
         find_way(&self.tags[base..base + self.ways], block).is_some()
+    }
+
+    /// Block of MSHR entry `e`, which must be pending.
+    #[inline]
+    pub fn pending_block(&self, e: u32) -> u64 {
+        self.mshr.block(e)
     }
 
     /// Whether a miss for `block` is awaiting its reply.

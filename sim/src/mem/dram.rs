@@ -31,6 +31,8 @@ struct Queued {
     /// Cycle of the L2 miss.
     missed: u64,
     block: u64,
+    /// The L2's MSHR entry for the block, handed back with the reply.
+    entry: u32,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -39,7 +41,7 @@ struct InFlight {
     at: u64,
     /// Acceptance order, to break ties between the two FIFOs.
     seq: u64,
-    block: u64,
+    entry: u32,
 }
 
 /// Main memory.
@@ -94,16 +96,17 @@ impl Dram {
         )
     }
 
-    /// An L2 primary miss on `block` in cycle `now`.
+    /// An L2 primary miss on `block` in cycle `now`, for the L2's MSHR
+    /// entry `entry` (returned with the reply).
     #[inline]
-    pub fn request(&mut self, now: u64, block: u64) {
+    pub fn request(&mut self, now: u64, block: u64, entry: u32) {
         self.stats.requests += 1;
         if self.ideal {
             let seq = self.next_seq();
             self.row_hits.push_back(InFlight {
                 at: now,
                 seq,
-                block,
+                entry,
             });
             return;
         }
@@ -111,6 +114,7 @@ impl Dram {
             ready: now + 1,
             missed: now,
             block,
+            entry,
         });
         self.stats.max_queue = self.stats.max_queue.max(self.queue.len() as u64);
     }
@@ -146,7 +150,7 @@ impl Dram {
             let f = InFlight {
                 at,
                 seq,
-                block: q.block,
+                entry: q.entry,
             };
             if row_hit {
                 self.row_hits.push_back(f);
@@ -157,9 +161,9 @@ impl Dram {
     }
 
     /// The next reply due by cycle `now`, if any, in (reply cycle, acceptance)
-    /// order.
+    /// order: the `entry` of its request.
     #[inline]
-    pub fn pop_reply(&mut self, now: u64) -> Option<u64> {
+    pub fn pop_reply(&mut self, now: u64) -> Option<u32> {
         let due = |q: &VecDeque<InFlight>| q.front().filter(|f| f.at <= now).map(|f| (f.at, f.seq));
         let from_hits = match (due(&self.row_hits), due(&self.row_misses)) {
             (None, None) => return None,
@@ -172,7 +176,7 @@ impl Dram {
         } else {
             &mut self.row_misses
         };
-        q.pop_front().map(|f| f.block)
+        q.pop_front().map(|f| f.entry)
     }
 
     /// Nothing queued or in flight.
@@ -240,12 +244,13 @@ mod tests {
         let mut i = 0;
         for now in 0..1000 {
             while i < reqs.len() && reqs[i].0 == now {
-                d.request(now, reqs[i].1);
+                // The entry handed back is the request's index.
+                d.request(now, reqs[i].1, i as u32);
                 i += 1;
             }
             d.accept(now);
-            while let Some(b) = d.pop_reply(now) {
-                out.push((now, b));
+            while let Some(e) = d.pop_reply(now) {
+                out.push((now, reqs[e as usize].1));
             }
         }
         assert!(d.is_idle());

@@ -79,13 +79,17 @@ struct Request {
     /// First cycle it may be presented.
     ready: u64,
     block: u64,
+    /// The requesting cache's MSHR entry for the block.
+    entry: u32,
 }
 
-/// A block arriving at a level from below at a given cycle.
+/// A reply of the L1 arriving at the L0 at a given cycle, for the L0's MSHR
+/// entry `entry` (the L0 requests carry their entry, which the L1 keeps as
+/// its target).
 #[derive(Debug, Clone, Copy)]
 struct Delivery {
     at: u64,
-    block: u64,
+    entry: u32,
 }
 
 /// A core's private levels and the queues around them.
@@ -243,22 +247,23 @@ impl MemorySystem {
             Some(l0) => (l0, &mut c.to_l1),
             None => (&mut c.l1, &mut c.to_l2),
         };
-        match first.access(now, block, tag) {
-            Lookup::Hit => {
+        match first.access_entry(now, block, tag) {
+            (Lookup::Hit, _) => {
                 let at = now + u64::from(first.config().hit_latency) - 1;
                 complete(&mut c.completing, &mut c.ready, now, at, tag);
                 Access::Hit
             }
-            Lookup::Miss => {
+            (Lookup::Miss, entry) => {
                 queue.push_back(Request {
                     ready: now + 1,
                     block,
+                    entry,
                 });
                 Access::Miss
             }
-            Lookup::Secondary => Access::SecondaryMiss,
-            Lookup::Stall | Lookup::MergeFull => Access::Stall,
-            Lookup::PortBusy => Access::PortBusy,
+            (Lookup::Secondary, _) => Access::SecondaryMiss,
+            (Lookup::Stall | Lookup::MergeFull, _) => Access::Stall,
+            (Lookup::PortBusy, _) => Access::PortBusy,
         }
     }
 
@@ -292,17 +297,19 @@ impl MemorySystem {
                     if r.ready > now {
                         break;
                     }
-                    match c.l1.access(now, r.block, 0) {
-                        Lookup::Hit => c.to_l0.push_back(Delivery {
+                    // The L1's target is the L0 entry to fill.
+                    match c.l1.access_entry(now, r.block, r.entry) {
+                        (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
                             at: l1_reply,
-                            block: r.block,
+                            entry: r.entry,
                         }),
-                        Lookup::Miss => c.to_l2.push_back(Request {
+                        (Lookup::Miss, entry) => c.to_l2.push_back(Request {
                             ready: now + 1,
                             block: r.block,
+                            entry,
                         }),
-                        Lookup::Secondary => {}
-                        Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy => break,
+                        (Lookup::Secondary, _) => {}
+                        (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
                     }
                     c.to_l1.pop_front();
                 }
@@ -334,16 +341,16 @@ impl MemorySystem {
                     continue;
                 }
                 let core = if k == 0 { n - 1 } else { k - 1 } as u32;
-                match self.l2.access(now, r.block, core) {
-                    Lookup::Hit => self.to_l1.push_back(L2Reply {
+                match self.l2.access_entry(now, r.block, core) {
+                    (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
                         at: l2_reply,
                         core,
                         block: r.block,
                     }),
-                    Lookup::Miss => self.dram.request(now, r.block),
-                    Lookup::Secondary => {}
-                    Lookup::PortBusy => break 'arbitrate,
-                    Lookup::Stall | Lookup::MergeFull => {
+                    (Lookup::Miss, entry) => self.dram.request(now, r.block, entry),
+                    (Lookup::Secondary, _) => {}
+                    (Lookup::PortBusy, _) => break 'arbitrate,
+                    (Lookup::Stall | Lookup::MergeFull, _) => {
                         c.l2_blocked = true;
                         continue;
                     }
@@ -355,8 +362,9 @@ impl MemorySystem {
 
         // Main memory: accept, then fill the L2 with the replies due now.
         self.dram.accept(now);
-        while let Some(block) = self.dram.pop_reply(now) {
-            for &core in self.l2.fill(now, block) {
+        while let Some(entry) = self.dram.pop_reply(now) {
+            let block = self.l2.pending_block(entry);
+            for &core in self.l2.fill_entry(now, entry) {
                 self.to_l1.push_back(L2Reply {
                     at: l2_reply,
                     core,
@@ -378,9 +386,9 @@ impl MemorySystem {
             let at = now + u64::from(c.l1.config().hit_latency) - 1;
             let targets = c.l1.fill(now, r.block);
             if has_l0 {
-                // Each target is one L0 request (one per L0 miss).
-                for _ in targets {
-                    c.to_l0.push_back(Delivery { at, block: r.block });
+                // Each target is the MSHR entry of one L0 miss.
+                for &entry in targets {
+                    c.to_l0.push_back(Delivery { at, entry });
                 }
             } else {
                 for &tag in targets {
@@ -401,7 +409,7 @@ impl MemorySystem {
                         break;
                     }
                     c.to_l0.pop_front();
-                    for &tag in l0.fill(now, d.block) {
+                    for &tag in l0.fill_entry(now, d.entry) {
                         complete(&mut c.completing, &mut c.ready, now, at, tag);
                     }
                 }
