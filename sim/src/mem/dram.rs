@@ -18,13 +18,13 @@
 
 use super::cache::bits_for;
 use super::config::{DramConfig, BLOCK_BYTES};
+use super::ring::Ring;
 use super::stats::DramStats;
-use std::collections::VecDeque;
 use wasp_waves::Tracer;
 
 const NO_ROW: u64 = u64::MAX;
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Queued {
     /// First cycle the request may be accepted.
     ready: u64,
@@ -35,7 +35,7 @@ struct Queued {
     entry: u32,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct InFlight {
     /// Cycle the reply reaches the L2.
     at: u64,
@@ -52,9 +52,9 @@ pub struct Dram {
     blocks_per_row: u64,
     /// Open row of each bank ([`NO_ROW`] before the first access).
     open_row: Vec<u64>,
-    queue: VecDeque<Queued>,
-    row_hits: VecDeque<InFlight>,
-    row_misses: VecDeque<InFlight>,
+    queue: Ring<Queued>,
+    row_hits: Ring<InFlight>,
+    row_misses: Ring<InFlight>,
     seq: u64,
     /// Bound on requests in the memory at once (the L2's MSHR count), for
     /// signal widths.
@@ -75,9 +75,9 @@ impl Dram {
             ideal,
             blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
             open_row: vec![NO_ROW; cfg.banks as usize],
-            queue: VecDeque::with_capacity(n),
-            row_hits: VecDeque::with_capacity(n),
-            row_misses: VecDeque::with_capacity(n),
+            queue: Ring::with_capacity(n),
+            row_hits: Ring::with_capacity(n),
+            row_misses: Ring::with_capacity(n),
             seq: 0,
             max_outstanding,
             cycle: 0,
@@ -164,7 +164,7 @@ impl Dram {
     /// order: the `entry` of its request.
     #[inline]
     pub fn pop_reply(&mut self, now: u64) -> Option<u32> {
-        let due = |q: &VecDeque<InFlight>| q.front().filter(|f| f.at <= now).map(|f| (f.at, f.seq));
+        let due = |q: &Ring<InFlight>| q.front().filter(|f| f.at <= now).map(|f| (f.at, f.seq));
         let from_hits = match (due(&self.row_hits), due(&self.row_misses)) {
             (None, None) => return None,
             (Some(_), None) => true,

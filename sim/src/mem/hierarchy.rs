@@ -5,8 +5,8 @@
 use super::cache::{bits_for, Cache, Lookup};
 use super::config::{MemConfig, MemConfigError};
 use super::dram::Dram;
+use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
-use std::collections::VecDeque;
 use wasp_waves::Tracer;
 
 mod observe;
@@ -74,7 +74,7 @@ impl MshrEvents {
 }
 
 /// A request waiting to be presented to the next level.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Request {
     /// First cycle it may be presented.
     ready: u64,
@@ -86,7 +86,7 @@ struct Request {
 /// A reply of the L1 arriving at the L0 at a given cycle, for the L0's MSHR
 /// entry `entry` (the L0 requests carry their entry, which the L1 keeps as
 /// its target).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Delivery {
     at: u64,
     entry: u32,
@@ -98,13 +98,13 @@ struct CoreMem {
     l0: Option<Cache>,
     l1: Cache,
     /// L0 primary misses waiting to be presented to the L1 (only with L0).
-    to_l1: VecDeque<Request>,
+    to_l1: Ring<Request>,
     /// L1 primary misses waiting to be presented to the L2.
-    to_l2: VecDeque<Request>,
+    to_l2: Ring<Request>,
     /// Replies of the L1 travelling to the L0 (only with L0).
-    to_l0: VecDeque<Delivery>,
+    to_l0: Ring<Delivery>,
     /// Tags and the cycle they complete, in completion-cycle order.
-    completing: VecDeque<(u64, u32)>,
+    completing: Ring<(u64, u32)>,
     /// Tags completed and not yet taken.
     ready: Vec<u32>,
     /// The L2 refused this core's head request this cycle (arbitration scratch).
@@ -135,7 +135,7 @@ impl CoreMem {
 /// into `ready` when due now and nothing earlier is waiting, else in order.
 #[inline]
 fn complete(
-    completing: &mut VecDeque<(u64, u32)>,
+    completing: &mut Ring<(u64, u32)>,
     ready: &mut Vec<u32>,
     now: u64,
     at: u64,
@@ -149,7 +149,7 @@ fn complete(
 }
 
 /// L2 reply to the L1 of a core.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
     at: u64,
     core: u32,
@@ -177,7 +177,7 @@ pub struct MemorySystem {
     cores: Vec<CoreMem>,
     l2: Cache,
     /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
-    to_l1: VecDeque<L2Reply>,
+    to_l1: Ring<L2Reply>,
     dram: Dram,
     /// Last cycle seen.
     now: u64,
@@ -204,10 +204,10 @@ impl MemorySystem {
             cores.push(CoreMem {
                 l0,
                 l1: Cache::new(&cfg.l1)?,
-                to_l1: VecDeque::with_capacity(l0_mshrs),
-                to_l2: VecDeque::with_capacity(l1_mshrs),
-                to_l0: VecDeque::with_capacity(l0_mshrs),
-                completing: VecDeque::with_capacity(completing),
+                to_l1: Ring::with_capacity(l0_mshrs),
+                to_l2: Ring::with_capacity(l1_mshrs),
+                to_l0: Ring::with_capacity(l0_mshrs),
+                completing: Ring::with_capacity(completing),
                 ready: Vec::with_capacity(completing),
                 l2_blocked: false,
             });
@@ -216,7 +216,7 @@ impl MemorySystem {
             cfg: cfg.clone(),
             cores,
             l2: Cache::new(&cfg.l2)?,
-            to_l1: VecDeque::with_capacity(n_cores * cfg.l1.mshrs as usize),
+            to_l1: Ring::with_capacity(n_cores * cfg.l1.mshrs as usize),
             dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
             now: 0,
             ticks: 0,

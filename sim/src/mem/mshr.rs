@@ -7,13 +7,27 @@
 //! `r + 1`) -> free again from cycle `r + 2`.
 //!
 //! Storage is flat and preallocated: no allocation after construction.
-//! Lookups by block are linear searches over the pending entries' blocks,
-//! kept dense (a handful to a few dozen, like the CAM of a hardware MSHR
-//! file). An owner that remembers the entry [`MshrFile::allocate`] returned
-//! completes it by index, with no search.
+//! Lookups by block are linear searches over the pending entries, kept dense
+//! (a handful to a few dozen, like the CAM of a hardware MSHR file). An owner
+//! that remembers the entry [`MshrFile::allocate`] returned completes it by
+//! index, with no search. Entries not pending wait in one ring, free ones
+//! first, then held ones in fill order: freeing a held entry moves no data.
 
 /// Cycles an entry stays occupied after the cycle of its reply.
 pub const MSHR_HOLD_CYCLES: u64 = 1;
+
+/// Per-entry state.
+#[derive(Debug, Clone, Copy, Default)]
+struct Entry {
+    /// Sum of the acceptance cycles of the entry's targets.
+    issued_sum: u64,
+    /// First cycle the entry is free again (meaningful while held).
+    free_at: u64,
+    /// Targets recorded.
+    count: u32,
+    /// Position in `pending` (meaningful while pending).
+    pos: u32,
+}
 
 /// One MSHR file.
 #[derive(Debug, Clone)]
@@ -21,32 +35,25 @@ pub struct MshrFile {
     capacity: u32,
     /// Targets per entry: the primary miss plus `max_merged` secondary ones.
     slots: u32,
-    /// Targets recorded in each entry.
-    count: Box<[u32]>,
+    entries: Box<[Entry]>,
     /// `capacity * slots` target values (their meaning belongs to the cache's
     /// owner: a core's tag, an MSHR entry of the level above, a core number).
     targets: Box<[u32]>,
-    /// Sum of the acceptance cycles of each entry's targets.
-    issued_sum: Box<[u64]>,
-    /// Blocks of the pending entries in `pending_block[..outstanding]`,
-    /// unordered (swap-removed on completion), their entries alongside in
-    /// `pending_entry`.
-    pending_block: Box<[u64]>,
-    pending_entry: Box<[u32]>,
-    /// Position in `pending_block` of each pending entry.
-    pending_pos: Box<[u32]>,
+    /// The pending entries as `(block, entry)` in `pending[..outstanding]`,
+    /// unordered (swap-removed on completion).
+    pending: Box<[(u64, u32)]>,
     outstanding: u32,
-    /// Free entries in `free[..free_len]`, used as a stack (deterministic
-    /// reuse order).
-    free: Box<[u32]>,
-    free_len: u32,
-    /// Held entries as `(first cycle free, entry)`, a ring of `held_len`
-    /// entries from `held_head`, in fill order, hence sorted.
-    held: Box<[(u64, u32)]>,
-    held_head: u32,
-    held_len: u32,
+    /// Every entry not pending, in a ring of power-of-two length from
+    /// `head`: first the `free` free entries (allocated from the front),
+    /// then the `held` held ones in fill order, hence in `free_at` order (a
+    /// completed entry joins the back; a released one just changes side).
+    order: Box<[u32]>,
+    head: u32,
+    free: u32,
+    held: u32,
+    /// `free_at` of the oldest held entry, `u64::MAX` when none is held.
+    next_release: u64,
 }
-
 /// Result of trying to merge a secondary miss.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Merge {
@@ -63,40 +70,51 @@ impl MshrFile {
     pub fn new(capacity: u32, max_merged: u32) -> Self {
         let slots = max_merged + 1;
         let n = capacity as usize;
+        let mut order = vec![0; n.next_power_of_two()];
+        for (e, o) in order.iter_mut().take(n).enumerate() {
+            *o = e as u32;
+        }
         MshrFile {
             capacity,
             slots,
-            count: vec![0; n].into(),
+            entries: vec![Entry::default(); n].into(),
             targets: vec![0; n * slots as usize].into(),
-            issued_sum: vec![0; n].into(),
-            pending_block: vec![0; n].into(),
-            pending_entry: vec![0; n].into(),
-            pending_pos: vec![0; n].into(),
+            pending: vec![(0, 0); n].into(),
             outstanding: 0,
-            free: (0..capacity).rev().collect(),
-            free_len: capacity,
-            held: vec![(0, 0); n].into(),
-            held_head: 0,
-            held_len: 0,
+            order: order.into(),
+            head: 0,
+            free: capacity,
+            held: 0,
+            next_release: u64::MAX,
         }
+    }
+
+    /// Index in `order` of the `k`-th entry from `head`.
+    #[inline]
+    fn ring(&self, k: u32) -> usize {
+        (self.head + k) as usize & (self.order.len() - 1)
     }
 
     /// Free every held entry whose hold has ended by cycle `now`.
     #[inline]
     pub fn release(&mut self, now: u64) {
-        while self.held_len > 0 {
-            let (at, e) = self.held[self.held_head as usize];
-            if at > now {
-                break;
-            }
-            self.held_head += 1;
-            if self.held_head == self.capacity {
-                self.held_head = 0;
-            }
-            self.held_len -= 1;
-            self.free[self.free_len as usize] = e;
-            self.free_len += 1;
+        if now >= self.next_release {
+            self.release_due(now);
         }
+    }
+
+    fn release_due(&mut self, now: u64) {
+        while self.held > 0 {
+            let e = self.order[self.ring(self.free)];
+            let at = self.entries[e as usize].free_at;
+            if at > now {
+                self.next_release = at;
+                return;
+            }
+            self.free += 1;
+            self.held -= 1;
+        }
+        self.next_release = u64::MAX;
     }
 
     /// Number of entries.
@@ -108,7 +126,7 @@ impl MshrFile {
     /// Entries occupied (pending or held).
     #[inline]
     pub fn occupied(&self) -> u32 {
-        self.capacity - self.free_len
+        self.capacity - self.free
     }
 
     /// Entries awaiting their reply.
@@ -120,110 +138,118 @@ impl MshrFile {
     /// No entry can be allocated.
     #[inline]
     pub fn is_full(&self) -> bool {
-        self.free_len == 0
+        self.free == 0
+    }
+
+    /// Position in `pending` of the entry pending for `block`, if any.
+    #[inline(always)]
+    fn position(&self, block: u64) -> Option<usize> {
+        self.pending[..self.outstanding as usize]
+            .iter()
+            .position(|&(b, _)| b == block)
     }
 
     /// The pending entry for `block`, if any.
     #[inline]
     pub fn find(&self, block: u64) -> Option<u32> {
-        let pending = &self.pending_block[..self.outstanding as usize];
-        let pos = pending.iter().position(|&b| b == block)?;
-        Some(self.pending_entry[pos])
+        self.position(block).map(|p| self.pending[p].1)
     }
 
     /// Whether an entry is pending for `block`.
     #[inline]
     pub fn is_pending(&self, block: u64) -> bool {
-        self.find(block).is_some()
+        self.position(block).is_some()
     }
 
     /// Block of pending entry `e`.
     #[inline]
     pub fn block(&self, e: u32) -> u64 {
-        let pos = self.pending_pos[e as usize] as usize;
-        debug_assert!(pos < self.outstanding as usize && self.pending_entry[pos] == e);
-        self.pending_block[pos]
+        let (block, entry) = self.pending[self.entries[e as usize].pos as usize];
+        debug_assert_eq!(entry, e, "entry {e} is not pending");
+        block
     }
 
     /// Add a secondary-miss target to the pending entry of `block`, if any.
-    #[inline]
+    #[inline(always)]
     pub fn merge(&mut self, block: u64, target: u32, now: u64) -> Merge {
-        let Some(e) = self.find(block) else {
+        let Some(p) = self.position(block) else {
             return Merge::NotPending;
         };
-        let e = e as usize;
-        let n = self.count[e];
+        let e = self.pending[p].1 as usize;
+        let entry = &mut self.entries[e];
+        let n = entry.count;
         if n >= self.slots {
             return Merge::Full;
         }
+        entry.count = n + 1;
+        entry.issued_sum += now;
         self.targets[e * self.slots as usize + n as usize] = target;
-        self.issued_sum[e] += now;
-        self.count[e] = n + 1;
         Merge::Merged
     }
 
     /// Allocate an entry for a primary miss on `block` and return it. The
     /// caller has checked that the file is not full and no entry is pending
     /// for `block`.
-    #[inline]
+    #[inline(always)]
     pub fn allocate(&mut self, block: u64, target: u32, now: u64) -> u32 {
         debug_assert!(!self.is_pending(block));
-        assert!(self.free_len > 0, "MSHR allocate on a full file");
-        self.free_len -= 1;
-        let e = self.free[self.free_len as usize];
-        let i = e as usize;
-        self.count[i] = 1;
-        self.targets[i * self.slots as usize] = target;
-        self.issued_sum[i] = now;
+        assert!(self.free > 0, "MSHR allocate on a full file");
+        let e = self.order[self.ring(0)];
+        self.head = (self.head + 1) & (self.order.len() as u32 - 1);
+        self.free -= 1;
         let pos = self.outstanding;
-        self.pending_block[pos as usize] = block;
-        self.pending_entry[pos as usize] = e;
-        self.pending_pos[i] = pos;
+        self.entries[e as usize] = Entry {
+            issued_sum: now,
+            free_at: 0,
+            count: 1,
+            pos,
+        };
+        self.targets[e as usize * self.slots as usize] = target;
+        self.pending[pos as usize] = (block, e);
         self.outstanding = pos + 1;
         e
     }
 
     /// The reply for pending entry `e` arrived in cycle `now`: the entry
     /// becomes held until `now + MSHR_HOLD_CYCLES` (inclusive). Returns its
-    /// block; its targets are then read with [`MshrFile::targets`].
+    /// block; its targets are then read with [`MshrFile::targets`]. Replies
+    /// must come in cycle order.
     #[inline]
     pub fn complete(&mut self, e: u32, now: u64) -> u64 {
-        let pos = self.pending_pos[e as usize] as usize;
-        debug_assert!(pos < self.outstanding as usize && self.pending_entry[pos] == e);
-        let block = self.pending_block[pos];
-        // Swap-remove position `pos` of the dense pending list.
-        self.outstanding -= 1;
-        let last = self.outstanding as usize;
-        let moved = self.pending_entry[last];
-        self.pending_block[pos] = self.pending_block[last];
-        self.pending_entry[pos] = moved;
-        self.pending_pos[moved as usize] = pos as u32;
-        // Fills come in cycle order, so the ring stays sorted.
         let free_at = now + 1 + MSHR_HOLD_CYCLES;
-        debug_assert!(self.held_len < self.capacity);
-        let mut tail = self.held_head + self.held_len;
-        if tail >= self.capacity {
-            tail -= self.capacity;
+        let entry = &mut self.entries[e as usize];
+        let pos = entry.pos as usize;
+        entry.free_at = free_at;
+        let (block, pe) = self.pending[pos];
+        debug_assert_eq!(pe, e, "entry {e} is not pending");
+        // Swap-remove position `pos` of the pending list.
+        self.outstanding -= 1;
+        let last = self.pending[self.outstanding as usize];
+        self.pending[pos] = last;
+        self.entries[last.1 as usize].pos = pos as u32;
+        // Join the held entries at the back of the ring.
+        let back = self.ring(self.free + self.held);
+        self.order[back] = e;
+        if self.held == 0 {
+            self.next_release = free_at;
         }
-        self.held[tail as usize] = (free_at, e);
-        self.held_len += 1;
+        self.held += 1;
         block
     }
 
     /// The targets of entry `e`, in acceptance order (primary first).
     #[inline]
     pub fn targets(&self, e: u32) -> &[u32] {
-        let i = e as usize;
-        let start = i * self.slots as usize;
-        &self.targets[start..start + self.count[i] as usize]
+        let start = e as usize * self.slots as usize;
+        &self.targets[start..start + self.entries[e as usize].count as usize]
     }
 
     /// Sum over the targets of entry `e` of the cycles from their
     /// acceptance to `now` (not before any of them).
     #[inline]
     pub fn wait_sum(&self, e: u32, now: u64) -> u64 {
-        let i = e as usize;
-        u64::from(self.count[i]) * now - self.issued_sum[i]
+        let entry = &self.entries[e as usize];
+        u64::from(entry.count) * now - entry.issued_sum
     }
 }
 
