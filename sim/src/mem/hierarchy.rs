@@ -134,13 +134,7 @@ impl CoreMem {
 /// Record that `tag` completes in cycle `at` (never before `now`): straight
 /// into `ready` when due now and nothing earlier is waiting, else in order.
 #[inline]
-fn complete(
-    completing: &mut Ring<(u64, u32)>,
-    ready: &mut Vec<u32>,
-    now: u64,
-    at: u64,
-    tag: u32,
-) {
+fn complete(completing: &mut Ring<(u64, u32)>, ready: &mut Vec<u32>, now: u64, at: u64, tag: u32) {
     if at <= now && completing.is_empty() {
         ready.push(tag);
     } else {
