@@ -22,6 +22,10 @@
 //! Replacement: the victim is an invalid way if any, else the least recently
 //! used line of the set (lines are allocated only at fill, so a pending miss
 //! never owns a way; the LRU valid line is evicted whatever is pending).
+//!
+//! Speed: a small counting filter over the blocks present or pending lets
+//! most primary misses of a small cache skip the tag and MSHR searches; it
+//! changes no decision.
 
 use super::config::{CacheConfig, MemConfigError};
 use super::mshr::{Merge, MshrFile};
@@ -31,6 +35,15 @@ use wasp_waves::Tracer;
 /// Tag value of an invalid way (no block number reaches it: block numbers are
 /// byte addresses divided by 64).
 const INVALID: u64 = u64::MAX;
+
+/// Buckets of the presence filter (see `Cache::filter`).
+const FILTER_BUCKETS: usize = 64;
+
+/// Bucket of `block` in the presence filter.
+#[inline(always)]
+fn bucket(block: u64) -> usize {
+    (block % FILTER_BUCKETS as u64) as usize
+}
 
 /// What a cache did with one access.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -69,6 +82,11 @@ pub struct Cache {
     /// Last-use stamp of each way, from `use_clock`.
     last_use: Vec<u64>,
     use_clock: u64,
+    /// Presence filter: per bucket of block numbers, the blocks of the bucket
+    /// that have a line or a pending MSHR entry. An access whose bucket is
+    /// empty is a primary miss without searching the set or the MSHRs (most
+    /// primary misses of a small cache like the L0).
+    filter: [u32; FILTER_BUCKETS],
     mshr: MshrFile,
     /// The cycle the per-cycle fields below describe.
     cycle: u64,
@@ -93,6 +111,7 @@ impl Cache {
             tags: vec![INVALID; sets * ways],
             last_use: vec![0; sets * ways],
             use_clock: 0,
+            filter: [0; FILTER_BUCKETS],
             mshr: MshrFile::new(cfg.mshrs, cfg.max_merged),
             cycle: 0,
             ports_used: 0,
@@ -133,10 +152,18 @@ impl Cache {
     /// [`Cache::fill`].
     #[inline(always)]
     pub fn access(&mut self, now: u64, block: u64, target: u32) -> Lookup {
+        self.access_entry(now, block, target).0
+    }
+
+    /// [`Cache::access`], also returning the MSHR entry allocated when the
+    /// lookup is [`Lookup::Miss`] (meaningless otherwise), for
+    /// [`Cache::fill_entry`].
+    #[inline(always)]
+    pub fn access_entry(&mut self, now: u64, block: u64, target: u32) -> (Lookup, u32) {
         self.advance(now);
         if self.ports_used >= self.cfg.ports {
             self.stats.port_busy += 1;
-            return Lookup::PortBusy;
+            return (Lookup::PortBusy, 0);
         }
         if self.mshr.is_full() {
             if !self.stalled {
@@ -144,38 +171,42 @@ impl Cache {
                 self.stats.stall_cycles += 1;
             }
             self.stats.stall_refusals += 1;
-            return Lookup::Stall;
+            return (Lookup::Stall, 0);
         }
-        let base = self.set_base(block);
-        if let Some(w) = find_way(&self.tags[base..base + self.ways], block) {
-            self.use_clock += 1;
-            self.last_use[base + w] = self.use_clock;
-            self.ports_used += 1;
-            self.hits_now += 1;
-            self.stats.accesses += 1;
-            self.stats.hits += 1;
-            return Lookup::Hit;
-        }
-        match self.mshr.merge(block, target, now) {
-            Merge::Merged => {
+        let bucket = bucket(block);
+        if self.filter[bucket] != 0 {
+            let base = self.set_base(block);
+            if let Some(w) = find_way(&self.tags[base..base + self.ways], block) {
+                self.use_clock += 1;
+                self.last_use[base + w] = self.use_clock;
                 self.ports_used += 1;
+                self.hits_now += 1;
                 self.stats.accesses += 1;
-                self.stats.secondary_misses += 1;
-                Lookup::Secondary
+                self.stats.hits += 1;
+                return (Lookup::Hit, 0);
             }
-            Merge::Full => {
-                self.stats.merge_stalls += 1;
-                Lookup::MergeFull
-            }
-            Merge::NotPending => {
-                self.mshr.allocate(block, target, now);
-                self.ports_used += 1;
-                self.allocated += 1;
-                self.stats.accesses += 1;
-                self.stats.misses += 1;
-                Lookup::Miss
+            match self.mshr.merge(block, target, now) {
+                Merge::Merged => {
+                    self.ports_used += 1;
+                    self.stats.accesses += 1;
+                    self.stats.secondary_misses += 1;
+                    return (Lookup::Secondary, 0);
+                }
+                Merge::Full => {
+                    self.stats.merge_stalls += 1;
+                    return (Lookup::MergeFull, 0);
+                }
+                Merge::NotPending => {}
             }
         }
+        debug_assert!(!self.contains(block) && !self.mshr.is_pending(block));
+        let e = self.mshr.allocate(block, target, now);
+        self.filter[bucket] += 1;
+        self.ports_used += 1;
+        self.allocated += 1;
+        self.stats.accesses += 1;
+        self.stats.misses += 1;
+        (Lookup::Miss, e)
     }
 
     /// The reply for `block` arrived in cycle `now`: write the line (evicting
@@ -184,11 +215,21 @@ impl Cache {
     /// for `block` (which the hierarchy never does).
     #[inline]
     pub fn fill(&mut self, now: u64, block: u64) -> &[u32] {
-        self.advance(now);
-        let Some(e) = self.mshr.complete(block, now) else {
+        let Some(e) = self.mshr.find(block) else {
             debug_assert!(false, "fill of block {block} without a pending miss");
+            self.advance(now);
             return &[];
         };
+        self.fill_entry(now, e)
+    }
+
+    /// [`Cache::fill`] of the block of MSHR entry `e`, which must be pending
+    /// (as returned by [`Cache::access_entry`] for a miss not yet filled):
+    /// no search for the entry.
+    #[inline]
+    pub fn fill_entry(&mut self, now: u64, e: u32) -> &[u32] {
+        self.advance(now);
+        let block = self.mshr.complete(e, now);
         self.replied += 1;
         self.stats.fills += 1;
         let base = self.set_base(block);
@@ -218,16 +259,27 @@ impl Cache {
             "an invalid way is the victim when there is one"
         );
         self.use_clock += 1;
+        // The new block is already counted in the filter (since its miss).
+        let evicted = self.tags[base + way];
+        if evicted != INVALID {
+            self.filter[bucket(evicted)] -= 1;
+        }
         self.tags[base + way] = block;
         self.last_use[base + way] = self.use_clock;
         self.stats.miss_wait_sum += self.mshr.wait_sum(e, now);
-        self.mshr.targets(e).0
+        self.mshr.targets(e)
     }
 
     /// Whether the line of `block` is present (no side effect).
     pub fn contains(&self, block: u64) -> bool {
         let base = self.set_base(block);
         find_way(&self.tags[base..base + self.ways], block).is_some()
+    }
+
+    /// Block of MSHR entry `e`, which must be pending.
+    #[inline]
+    pub fn pending_block(&self, e: u32) -> u64 {
+        self.mshr.block(e)
     }
 
     /// Whether a miss for `block` is awaiting its reply.
@@ -448,6 +500,33 @@ pub(crate) mod tests {
         assert_eq!(c.access(now, 1, 0), Lookup::Miss);
         c.fill(now + 1, 1); // evicts 0 (2 was used later)
         assert!(c.contains(1) && c.contains(2) && !c.contains(0));
+    }
+
+    #[test]
+    fn filter_counts_every_line_and_pending_block() {
+        // 2 sets x 2 ways; blocks 1 and 65 share a filter bucket.
+        let mut c = Cache::new(&cfg(256, 2, 4, 2, 4)).unwrap();
+        let count = |c: &Cache, b: u64| c.filter[bucket(b)];
+        assert_eq!(c.access(1, 1, 0), Lookup::Miss);
+        assert_eq!(count(&c, 1), 1);
+        // Same bucket, other block: searched, still a primary miss.
+        assert_eq!(c.access(1, 65, 1), Lookup::Miss);
+        assert_eq!(c.access(1, 65, 2), Lookup::Secondary);
+        assert_eq!(count(&c, 65), 2);
+        c.fill(2, 1);
+        c.fill(2, 65);
+        assert_eq!(count(&c, 1), 2, "filled lines stay counted");
+        assert_eq!(c.access(3, 65, 3), Lookup::Hit);
+        // Blocks 3 and 5 evict 1 and 65 from set 1 (LRU order 1, 65).
+        assert_eq!(c.access(3, 3, 4), Lookup::Miss);
+        assert_eq!(c.access(3, 5, 5), Lookup::Miss);
+        c.fill(4, 3);
+        assert_eq!((count(&c, 1), count(&c, 3)), (1, 1));
+        c.fill(4, 5);
+        assert_eq!((count(&c, 1), count(&c, 3), count(&c, 5)), (0, 1, 1));
+        assert!(!c.contains(1) && !c.contains(65));
+        assert_eq!(c.access(6, 65, 6), Lookup::Miss);
+        assert_eq!(c.filter.iter().sum::<u32>(), 3);
     }
 
     #[test]

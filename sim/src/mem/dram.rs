@@ -18,28 +18,30 @@
 
 use super::cache::bits_for;
 use super::config::{DramConfig, BLOCK_BYTES};
+use super::ring::Ring;
 use super::stats::DramStats;
-use std::collections::VecDeque;
 use wasp_waves::Tracer;
 
 const NO_ROW: u64 = u64::MAX;
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Queued {
     /// First cycle the request may be accepted.
     ready: u64,
     /// Cycle of the L2 miss.
     missed: u64,
     block: u64,
+    /// The L2's MSHR entry for the block, handed back with the reply.
+    entry: u32,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct InFlight {
     /// Cycle the reply reaches the L2.
     at: u64,
     /// Acceptance order, to break ties between the two FIFOs.
     seq: u64,
-    block: u64,
+    entry: u32,
 }
 
 /// Main memory.
@@ -50,9 +52,9 @@ pub struct Dram {
     blocks_per_row: u64,
     /// Open row of each bank ([`NO_ROW`] before the first access).
     open_row: Vec<u64>,
-    queue: VecDeque<Queued>,
-    row_hits: VecDeque<InFlight>,
-    row_misses: VecDeque<InFlight>,
+    queue: Ring<Queued>,
+    row_hits: Ring<InFlight>,
+    row_misses: Ring<InFlight>,
     seq: u64,
     /// Bound on requests in the memory at once (the L2's MSHR count), for
     /// signal widths.
@@ -73,9 +75,9 @@ impl Dram {
             ideal,
             blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
             open_row: vec![NO_ROW; cfg.banks as usize],
-            queue: VecDeque::with_capacity(n),
-            row_hits: VecDeque::with_capacity(n),
-            row_misses: VecDeque::with_capacity(n),
+            queue: Ring::with_capacity(n),
+            row_hits: Ring::with_capacity(n),
+            row_misses: Ring::with_capacity(n),
             seq: 0,
             max_outstanding,
             cycle: 0,
@@ -94,16 +96,17 @@ impl Dram {
         )
     }
 
-    /// An L2 primary miss on `block` in cycle `now`.
+    /// An L2 primary miss on `block` in cycle `now`, for the L2's MSHR
+    /// entry `entry` (returned with the reply).
     #[inline]
-    pub fn request(&mut self, now: u64, block: u64) {
+    pub fn request(&mut self, now: u64, block: u64, entry: u32) {
         self.stats.requests += 1;
         if self.ideal {
             let seq = self.next_seq();
             self.row_hits.push_back(InFlight {
                 at: now,
                 seq,
-                block,
+                entry,
             });
             return;
         }
@@ -111,6 +114,7 @@ impl Dram {
             ready: now + 1,
             missed: now,
             block,
+            entry,
         });
         self.stats.max_queue = self.stats.max_queue.max(self.queue.len() as u64);
     }
@@ -146,7 +150,7 @@ impl Dram {
             let f = InFlight {
                 at,
                 seq,
-                block: q.block,
+                entry: q.entry,
             };
             if row_hit {
                 self.row_hits.push_back(f);
@@ -157,10 +161,10 @@ impl Dram {
     }
 
     /// The next reply due by cycle `now`, if any, in (reply cycle, acceptance)
-    /// order.
+    /// order: the `entry` of its request.
     #[inline]
-    pub fn pop_reply(&mut self, now: u64) -> Option<u64> {
-        let due = |q: &VecDeque<InFlight>| q.front().filter(|f| f.at <= now).map(|f| (f.at, f.seq));
+    pub fn pop_reply(&mut self, now: u64) -> Option<u32> {
+        let due = |q: &Ring<InFlight>| q.front().filter(|f| f.at <= now).map(|f| (f.at, f.seq));
         let from_hits = match (due(&self.row_hits), due(&self.row_misses)) {
             (None, None) => return None,
             (Some(_), None) => true,
@@ -172,7 +176,7 @@ impl Dram {
         } else {
             &mut self.row_misses
         };
-        q.pop_front().map(|f| f.block)
+        q.pop_front().map(|f| f.entry)
     }
 
     /// Nothing queued or in flight.
@@ -240,12 +244,13 @@ mod tests {
         let mut i = 0;
         for now in 0..1000 {
             while i < reqs.len() && reqs[i].0 == now {
-                d.request(now, reqs[i].1);
+                // The entry handed back is the request's index.
+                d.request(now, reqs[i].1, i as u32);
                 i += 1;
             }
             d.accept(now);
-            while let Some(b) = d.pop_reply(now) {
-                out.push((now, b));
+            while let Some(e) = d.pop_reply(now) {
+                out.push((now, reqs[e as usize].1));
             }
         }
         assert!(d.is_idle());

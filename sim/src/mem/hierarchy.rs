@@ -5,8 +5,8 @@
 use super::cache::{bits_for, Cache, Lookup};
 use super::config::{MemConfig, MemConfigError};
 use super::dram::Dram;
+use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
-use std::collections::VecDeque;
 use wasp_waves::Tracer;
 
 mod observe;
@@ -74,18 +74,22 @@ impl MshrEvents {
 }
 
 /// A request waiting to be presented to the next level.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Request {
     /// First cycle it may be presented.
     ready: u64,
     block: u64,
+    /// The requesting cache's MSHR entry for the block.
+    entry: u32,
 }
 
-/// A block arriving at a level from below at a given cycle.
-#[derive(Debug, Clone, Copy)]
+/// A reply of the L1 arriving at the L0 at a given cycle, for the L0's MSHR
+/// entry `entry` (the L0 requests carry their entry, which the L1 keeps as
+/// its target).
+#[derive(Debug, Clone, Copy, Default)]
 struct Delivery {
     at: u64,
-    block: u64,
+    entry: u32,
 }
 
 /// A core's private levels and the queues around them.
@@ -94,13 +98,13 @@ struct CoreMem {
     l0: Option<Cache>,
     l1: Cache,
     /// L0 primary misses waiting to be presented to the L1 (only with L0).
-    to_l1: VecDeque<Request>,
+    to_l1: Ring<Request>,
     /// L1 primary misses waiting to be presented to the L2.
-    to_l2: VecDeque<Request>,
+    to_l2: Ring<Request>,
     /// Replies of the L1 travelling to the L0 (only with L0).
-    to_l0: VecDeque<Delivery>,
+    to_l0: Ring<Delivery>,
     /// Tags and the cycle they complete, in completion-cycle order.
-    completing: VecDeque<(u64, u32)>,
+    completing: Ring<(u64, u32)>,
     /// Tags completed and not yet taken.
     ready: Vec<u32>,
     /// The L2 refused this core's head request this cycle (arbitration scratch).
@@ -130,13 +134,7 @@ impl CoreMem {
 /// Record that `tag` completes in cycle `at` (never before `now`): straight
 /// into `ready` when due now and nothing earlier is waiting, else in order.
 #[inline]
-fn complete(
-    completing: &mut VecDeque<(u64, u32)>,
-    ready: &mut Vec<u32>,
-    now: u64,
-    at: u64,
-    tag: u32,
-) {
+fn complete(completing: &mut Ring<(u64, u32)>, ready: &mut Vec<u32>, now: u64, at: u64, tag: u32) {
     if at <= now && completing.is_empty() {
         ready.push(tag);
     } else {
@@ -145,7 +143,7 @@ fn complete(
 }
 
 /// L2 reply to the L1 of a core.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
     at: u64,
     core: u32,
@@ -173,7 +171,7 @@ pub struct MemorySystem {
     cores: Vec<CoreMem>,
     l2: Cache,
     /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
-    to_l1: VecDeque<L2Reply>,
+    to_l1: Ring<L2Reply>,
     dram: Dram,
     /// Last cycle seen.
     now: u64,
@@ -200,10 +198,10 @@ impl MemorySystem {
             cores.push(CoreMem {
                 l0,
                 l1: Cache::new(&cfg.l1)?,
-                to_l1: VecDeque::with_capacity(l0_mshrs),
-                to_l2: VecDeque::with_capacity(l1_mshrs),
-                to_l0: VecDeque::with_capacity(l0_mshrs),
-                completing: VecDeque::with_capacity(completing),
+                to_l1: Ring::with_capacity(l0_mshrs),
+                to_l2: Ring::with_capacity(l1_mshrs),
+                to_l0: Ring::with_capacity(l0_mshrs),
+                completing: Ring::with_capacity(completing),
                 ready: Vec::with_capacity(completing),
                 l2_blocked: false,
             });
@@ -212,7 +210,7 @@ impl MemorySystem {
             cfg: cfg.clone(),
             cores,
             l2: Cache::new(&cfg.l2)?,
-            to_l1: VecDeque::with_capacity(n_cores * cfg.l1.mshrs as usize),
+            to_l1: Ring::with_capacity(n_cores * cfg.l1.mshrs as usize),
             dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
             now: 0,
             ticks: 0,
@@ -243,22 +241,23 @@ impl MemorySystem {
             Some(l0) => (l0, &mut c.to_l1),
             None => (&mut c.l1, &mut c.to_l2),
         };
-        match first.access(now, block, tag) {
-            Lookup::Hit => {
+        match first.access_entry(now, block, tag) {
+            (Lookup::Hit, _) => {
                 let at = now + u64::from(first.config().hit_latency) - 1;
                 complete(&mut c.completing, &mut c.ready, now, at, tag);
                 Access::Hit
             }
-            Lookup::Miss => {
+            (Lookup::Miss, entry) => {
                 queue.push_back(Request {
                     ready: now + 1,
                     block,
+                    entry,
                 });
                 Access::Miss
             }
-            Lookup::Secondary => Access::SecondaryMiss,
-            Lookup::Stall | Lookup::MergeFull => Access::Stall,
-            Lookup::PortBusy => Access::PortBusy,
+            (Lookup::Secondary, _) => Access::SecondaryMiss,
+            (Lookup::Stall | Lookup::MergeFull, _) => Access::Stall,
+            (Lookup::PortBusy, _) => Access::PortBusy,
         }
     }
 
@@ -292,17 +291,19 @@ impl MemorySystem {
                     if r.ready > now {
                         break;
                     }
-                    match c.l1.access(now, r.block, 0) {
-                        Lookup::Hit => c.to_l0.push_back(Delivery {
+                    // The L1's target is the L0 entry to fill.
+                    match c.l1.access_entry(now, r.block, r.entry) {
+                        (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
                             at: l1_reply,
-                            block: r.block,
+                            entry: r.entry,
                         }),
-                        Lookup::Miss => c.to_l2.push_back(Request {
+                        (Lookup::Miss, entry) => c.to_l2.push_back(Request {
                             ready: now + 1,
                             block: r.block,
+                            entry,
                         }),
-                        Lookup::Secondary => {}
-                        Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy => break,
+                        (Lookup::Secondary, _) => {}
+                        (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
                     }
                     c.to_l1.pop_front();
                 }
@@ -334,16 +335,16 @@ impl MemorySystem {
                     continue;
                 }
                 let core = if k == 0 { n - 1 } else { k - 1 } as u32;
-                match self.l2.access(now, r.block, core) {
-                    Lookup::Hit => self.to_l1.push_back(L2Reply {
+                match self.l2.access_entry(now, r.block, core) {
+                    (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
                         at: l2_reply,
                         core,
                         block: r.block,
                     }),
-                    Lookup::Miss => self.dram.request(now, r.block),
-                    Lookup::Secondary => {}
-                    Lookup::PortBusy => break 'arbitrate,
-                    Lookup::Stall | Lookup::MergeFull => {
+                    (Lookup::Miss, entry) => self.dram.request(now, r.block, entry),
+                    (Lookup::Secondary, _) => {}
+                    (Lookup::PortBusy, _) => break 'arbitrate,
+                    (Lookup::Stall | Lookup::MergeFull, _) => {
                         c.l2_blocked = true;
                         continue;
                     }
@@ -355,8 +356,9 @@ impl MemorySystem {
 
         // Main memory: accept, then fill the L2 with the replies due now.
         self.dram.accept(now);
-        while let Some(block) = self.dram.pop_reply(now) {
-            for &core in self.l2.fill(now, block) {
+        while let Some(entry) = self.dram.pop_reply(now) {
+            let block = self.l2.pending_block(entry);
+            for &core in self.l2.fill_entry(now, entry) {
                 self.to_l1.push_back(L2Reply {
                     at: l2_reply,
                     core,
@@ -378,9 +380,9 @@ impl MemorySystem {
             let at = now + u64::from(c.l1.config().hit_latency) - 1;
             let targets = c.l1.fill(now, r.block);
             if has_l0 {
-                // Each target is one L0 request (one per L0 miss).
-                for _ in targets {
-                    c.to_l0.push_back(Delivery { at, block: r.block });
+                // Each target is the MSHR entry of one L0 miss.
+                for &entry in targets {
+                    c.to_l0.push_back(Delivery { at, entry });
                 }
             } else {
                 for &tag in targets {
@@ -401,7 +403,7 @@ impl MemorySystem {
                         break;
                     }
                     c.to_l0.pop_front();
-                    for &tag in l0.fill(now, d.block) {
+                    for &tag in l0.fill_entry(now, d.entry) {
                         complete(&mut c.completing, &mut c.ready, now, at, tag);
                     }
                 }

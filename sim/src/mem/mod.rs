@@ -98,6 +98,7 @@ pub mod config;
 pub mod dram;
 pub mod hierarchy;
 pub mod mshr;
+mod ring;
 pub mod stats;
 
 pub use cache::{Cache, Lookup};

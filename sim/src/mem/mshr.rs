@@ -7,13 +7,27 @@
 //! `r + 1`) -> free again from cycle `r + 2`.
 //!
 //! Storage is flat and preallocated: no allocation after construction.
-//! Lookups are linear searches over the pending entries (a handful to a few
-//! dozen, like the CAM of a hardware MSHR file).
-
-use std::collections::VecDeque;
+//! Lookups by block are linear searches over the pending entries, kept dense
+//! (a handful to a few dozen, like the CAM of a hardware MSHR file). An owner
+//! that remembers the entry [`MshrFile::allocate`] returned completes it by
+//! index, with no search. Entries not pending wait in one ring, free ones
+//! first, then held ones in fill order: freeing a held entry moves no data.
 
 /// Cycles an entry stays occupied after the cycle of its reply.
 pub const MSHR_HOLD_CYCLES: u64 = 1;
+
+/// Per-entry state.
+#[derive(Debug, Clone, Copy, Default)]
+struct Entry {
+    /// Sum of the acceptance cycles of the entry's targets.
+    issued_sum: u64,
+    /// First cycle the entry is free again (meaningful while held).
+    free_at: u64,
+    /// Targets recorded.
+    count: u32,
+    /// Position in `pending` (meaningful while pending).
+    pos: u32,
+}
 
 /// One MSHR file.
 #[derive(Debug, Clone)]
@@ -21,25 +35,25 @@ pub struct MshrFile {
     capacity: u32,
     /// Targets per entry: the primary miss plus `max_merged` secondary ones.
     slots: u32,
-    /// Block of each entry (meaningful while pending or held).
-    block: Vec<u64>,
-    /// Targets recorded in each entry.
-    count: Vec<u32>,
+    entries: Box<[Entry]>,
     /// `capacity * slots` target values (their meaning belongs to the cache's
-    /// owner: a core's tag, a core number, ...).
-    targets: Vec<u32>,
-    /// Cycle each target was accepted, parallel to `targets`.
-    issued: Vec<u64>,
-    /// Sum of the acceptance cycles of each entry's targets.
-    issued_sum: Vec<u64>,
-    /// Pending entries as `(block, entry)`, unordered (swap-removed on fill).
-    pending: Vec<(u64, u32)>,
-    /// Free entries, used as a stack (deterministic reuse order).
-    free: Vec<u32>,
-    /// Held entries as `(first cycle free, entry)`, in fill order, hence sorted.
-    held: VecDeque<(u64, u32)>,
+    /// owner: a core's tag, an MSHR entry of the level above, a core number).
+    targets: Box<[u32]>,
+    /// The pending entries as `(block, entry)` in `pending[..outstanding]`,
+    /// unordered (swap-removed on completion).
+    pending: Box<[(u64, u32)]>,
+    outstanding: u32,
+    /// Every entry not pending, in a ring of power-of-two length from
+    /// `head`: first the `free` free entries (allocated from the front),
+    /// then the `held` held ones in fill order, hence in `free_at` order (a
+    /// completed entry joins the back; a released one just changes side).
+    order: Box<[u32]>,
+    head: u32,
+    free: u32,
+    held: u32,
+    /// `free_at` of the oldest held entry, `u64::MAX` when none is held.
+    next_release: u64,
 }
-
 /// Result of trying to merge a secondary miss.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Merge {
@@ -56,30 +70,51 @@ impl MshrFile {
     pub fn new(capacity: u32, max_merged: u32) -> Self {
         let slots = max_merged + 1;
         let n = capacity as usize;
+        let mut order = vec![0; n.next_power_of_two()];
+        for (e, o) in order.iter_mut().take(n).enumerate() {
+            *o = e as u32;
+        }
         MshrFile {
             capacity,
             slots,
-            block: vec![0; n],
-            count: vec![0; n],
-            targets: vec![0; n * slots as usize],
-            issued: vec![0; n * slots as usize],
-            issued_sum: vec![0; n],
-            pending: Vec::with_capacity(n),
-            free: (0..capacity).rev().collect(),
-            held: VecDeque::with_capacity(n),
+            entries: vec![Entry::default(); n].into(),
+            targets: vec![0; n * slots as usize].into(),
+            pending: vec![(0, 0); n].into(),
+            outstanding: 0,
+            order: order.into(),
+            head: 0,
+            free: capacity,
+            held: 0,
+            next_release: u64::MAX,
         }
+    }
+
+    /// Index in `order` of the `k`-th entry from `head`.
+    #[inline]
+    fn ring(&self, k: u32) -> usize {
+        (self.head + k) as usize & (self.order.len() - 1)
     }
 
     /// Free every held entry whose hold has ended by cycle `now`.
     #[inline]
     pub fn release(&mut self, now: u64) {
-        while let Some(&(at, e)) = self.held.front() {
-            if at > now {
-                break;
-            }
-            self.held.pop_front();
-            self.free.push(e);
+        if now >= self.next_release {
+            self.release_due(now);
         }
+    }
+
+    fn release_due(&mut self, now: u64) {
+        while self.held > 0 {
+            let e = self.order[self.ring(self.free)];
+            let at = self.entries[e as usize].free_at;
+            if at > now {
+                self.next_release = at;
+                return;
+            }
+            self.free += 1;
+            self.held -= 1;
+        }
+        self.next_release = u64::MAX;
     }
 
     /// Number of entries.
@@ -91,100 +126,130 @@ impl MshrFile {
     /// Entries occupied (pending or held).
     #[inline]
     pub fn occupied(&self) -> u32 {
-        self.capacity - self.free.len() as u32
+        self.capacity - self.free
     }
 
     /// Entries awaiting their reply.
     #[inline]
     pub fn outstanding(&self) -> u32 {
-        self.pending.len() as u32
+        self.outstanding
     }
 
     /// No entry can be allocated.
     #[inline]
     pub fn is_full(&self) -> bool {
-        self.free.is_empty()
+        self.free == 0
+    }
+
+    /// Position in `pending` of the entry pending for `block`, if any.
+    #[inline(always)]
+    fn position(&self, block: u64) -> Option<usize> {
+        self.pending[..self.outstanding as usize]
+            .iter()
+            .position(|&(b, _)| b == block)
+    }
+
+    /// The pending entry for `block`, if any.
+    #[inline]
+    pub fn find(&self, block: u64) -> Option<u32> {
+        self.position(block).map(|p| self.pending[p].1)
     }
 
     /// Whether an entry is pending for `block`.
     #[inline]
     pub fn is_pending(&self, block: u64) -> bool {
-        self.pending.iter().any(|&(b, _)| b == block)
+        self.position(block).is_some()
+    }
+
+    /// Block of pending entry `e`.
+    #[inline]
+    pub fn block(&self, e: u32) -> u64 {
+        let (block, entry) = self.pending[self.entries[e as usize].pos as usize];
+        debug_assert_eq!(entry, e, "entry {e} is not pending");
+        block
     }
 
     /// Add a secondary-miss target to the pending entry of `block`, if any.
-    #[inline]
+    #[inline(always)]
     pub fn merge(&mut self, block: u64, target: u32, now: u64) -> Merge {
-        let Some(&(_, e)) = self.pending.iter().find(|&&(b, _)| b == block) else {
+        let Some(p) = self.position(block) else {
             return Merge::NotPending;
         };
-        let e = e as usize;
-        let n = self.count[e];
+        let e = self.pending[p].1 as usize;
+        let entry = &mut self.entries[e];
+        let n = entry.count;
         if n >= self.slots {
             return Merge::Full;
         }
-        let slot = e * self.slots as usize + n as usize;
-        self.targets[slot] = target;
-        self.issued[slot] = now;
-        self.issued_sum[e] += now;
-        self.count[e] = n + 1;
+        entry.count = n + 1;
+        entry.issued_sum += now;
+        self.targets[e * self.slots as usize + n as usize] = target;
         Merge::Merged
     }
 
-    /// Allocate an entry for a primary miss on `block`. The caller has checked
-    /// that the file is not full and no entry is pending for `block`.
-    #[inline]
-    pub fn allocate(&mut self, block: u64, target: u32, now: u64) {
+    /// Allocate an entry for a primary miss on `block` and return it. The
+    /// caller has checked that the file is not full and no entry is pending
+    /// for `block`.
+    #[inline(always)]
+    pub fn allocate(&mut self, block: u64, target: u32, now: u64) -> u32 {
         debug_assert!(!self.is_pending(block));
-        let e = self.free.pop().expect("MSHR allocate on a full file");
-        let i = e as usize;
-        self.block[i] = block;
-        self.count[i] = 1;
-        let slot = i * self.slots as usize;
-        self.targets[slot] = target;
-        self.issued[slot] = now;
-        self.issued_sum[i] = now;
-        self.pending.push((block, e));
+        assert!(self.free > 0, "MSHR allocate on a full file");
+        let e = self.order[self.ring(0)];
+        self.head = (self.head + 1) & (self.order.len() as u32 - 1);
+        self.free -= 1;
+        let pos = self.outstanding;
+        self.entries[e as usize] = Entry {
+            issued_sum: now,
+            free_at: 0,
+            count: 1,
+            pos,
+        };
+        self.targets[e as usize * self.slots as usize] = target;
+        self.pending[pos as usize] = (block, e);
+        self.outstanding = pos + 1;
+        e
     }
 
-    /// The reply for `block` arrived in cycle `now`: the entry becomes held
-    /// until `now + MSHR_HOLD_CYCLES` (inclusive). Returns the entry, whose
-    /// targets are then read with [`MshrFile::targets`], or `None` when no
-    /// entry was pending for `block`.
+    /// The reply for pending entry `e` arrived in cycle `now`: the entry
+    /// becomes held until `now + MSHR_HOLD_CYCLES` (inclusive). Returns its
+    /// block; its targets are then read with [`MshrFile::targets`]. Replies
+    /// must come in cycle order.
     #[inline]
-    pub fn complete(&mut self, block: u64, now: u64) -> Option<u32> {
-        let pos = self.pending.iter().position(|&(b, _)| b == block)?;
-        let (_, e) = self.pending.swap_remove(pos);
-        debug_assert!(self
-            .held
-            .back()
-            .map_or(true, |&(at, _)| at <= now + 1 + MSHR_HOLD_CYCLES));
-        self.held.push_back((now + 1 + MSHR_HOLD_CYCLES, e));
-        Some(e)
+    pub fn complete(&mut self, e: u32, now: u64) -> u64 {
+        let free_at = now + 1 + MSHR_HOLD_CYCLES;
+        let entry = &mut self.entries[e as usize];
+        let pos = entry.pos as usize;
+        entry.free_at = free_at;
+        let (block, pe) = self.pending[pos];
+        debug_assert_eq!(pe, e, "entry {e} is not pending");
+        // Swap-remove position `pos` of the pending list.
+        self.outstanding -= 1;
+        let last = self.pending[self.outstanding as usize];
+        self.pending[pos] = last;
+        self.entries[last.1 as usize].pos = pos as u32;
+        // Join the held entries at the back of the ring.
+        let back = self.ring(self.free + self.held);
+        self.order[back] = e;
+        if self.held == 0 {
+            self.next_release = free_at;
+        }
+        self.held += 1;
+        block
     }
 
-    /// The targets of entry `e` and the cycles they were accepted, in
-    /// acceptance order (primary first).
+    /// The targets of entry `e`, in acceptance order (primary first).
     #[inline]
-    pub fn targets(&self, e: u32) -> (&[u32], &[u64]) {
-        let i = e as usize;
-        let start = i * self.slots as usize;
-        let end = start + self.count[i] as usize;
-        (&self.targets[start..end], &self.issued[start..end])
+    pub fn targets(&self, e: u32) -> &[u32] {
+        let start = e as usize * self.slots as usize;
+        &self.targets[start..start + self.entries[e as usize].count as usize]
     }
 
     /// Sum over the targets of entry `e` of the cycles from their
     /// acceptance to `now` (not before any of them).
     #[inline]
     pub fn wait_sum(&self, e: u32, now: u64) -> u64 {
-        let i = e as usize;
-        u64::from(self.count[i]) * now - self.issued_sum[i]
-    }
-
-    /// Block of entry `e`.
-    #[inline]
-    pub fn block(&self, e: u32) -> u64 {
-        self.block[e as usize]
+        let entry = &self.entries[e as usize];
+        u64::from(entry.count) * now - entry.issued_sum
     }
 }
 
@@ -196,20 +261,22 @@ mod tests {
     fn allocate_merge_complete_release() {
         let mut m = MshrFile::new(2, 1);
         assert_eq!((m.occupied(), m.outstanding(), m.is_full()), (0, 0, false));
-        m.allocate(10, 100, 1);
+        let a = m.allocate(10, 100, 1);
         assert!(m.is_pending(10));
+        assert_eq!(m.find(10), Some(a));
         assert_eq!(m.merge(10, 101, 2), Merge::Merged);
         assert_eq!(m.merge(10, 102, 3), Merge::Full);
         assert_eq!(m.merge(11, 103, 3), Merge::NotPending);
-        m.allocate(11, 104, 3);
+        let b = m.allocate(11, 104, 3);
+        assert_ne!(a, b);
         assert!(m.is_full());
         assert_eq!(m.outstanding(), 2);
 
-        let e = m.complete(10, 8).unwrap();
-        assert_eq!(m.block(e), 10);
-        assert_eq!(m.targets(e), (&[100, 101][..], &[1, 2][..]));
-        assert_eq!(m.wait_sum(e, 8), (8 - 1) + (8 - 2));
+        assert_eq!(m.complete(a, 8), 10);
+        assert_eq!(m.targets(a), &[100, 101]);
+        assert_eq!(m.wait_sum(a, 8), (8 - 1) + (8 - 2));
         assert!(!m.is_pending(10));
+        assert_eq!(m.find(11), Some(b));
         assert_eq!((m.occupied(), m.outstanding()), (2, 1));
         // Held through cycle 9, free from 10.
         m.release(9);
@@ -217,7 +284,34 @@ mod tests {
         m.release(10);
         assert!(!m.is_full());
         assert_eq!(m.occupied(), 1);
-        assert_eq!(m.complete(10, 11), None);
+        assert_eq!(m.find(10), None);
+    }
+
+    #[test]
+    fn completing_out_of_order_keeps_every_other_entry_findable() {
+        let mut m = MshrFile::new(4, 0);
+        let e: Vec<u32> = [5u64, 6, 7, 8]
+            .iter()
+            .map(|&b| m.allocate(b, b as u32, 0))
+            .collect();
+        assert_eq!(m.complete(e[1], 1), 6);
+        assert_eq!(m.complete(e[0], 1), 5);
+        assert_eq!((m.find(7), m.find(8)), (Some(e[2]), Some(e[3])));
+        assert_eq!((m.find(5), m.find(6)), (None, None));
+        // The held ring wraps: free two, allocate two, complete all.
+        m.release(3);
+        assert_eq!(m.occupied(), 2);
+        let f = m.allocate(9, 9, 3);
+        let g = m.allocate(10, 10, 3);
+        for (x, b) in [(e[3], 8), (f, 9), (e[2], 7), (g, 10)] {
+            assert_eq!(m.complete(x, 4), b);
+            assert_eq!(m.targets(x), &[b as u32]);
+        }
+        assert_eq!((m.outstanding(), m.occupied()), (0, 4));
+        m.release(5);
+        assert!(m.is_full());
+        m.release(6);
+        assert_eq!(m.occupied(), 0);
     }
 
     #[test]
@@ -225,18 +319,15 @@ mod tests {
         let run = || {
             let mut m = MshrFile::new(3, 0);
             let mut order = Vec::new();
+            let mut e = Vec::new();
             for (i, b) in [5u64, 6, 7].into_iter().enumerate() {
-                m.allocate(b, i as u32, 0);
+                e.push(m.allocate(b, i as u32, 0));
             }
-            m.complete(6, 1);
-            m.complete(5, 1);
+            m.complete(e[1], 1);
+            m.complete(e[0], 1);
             m.release(3);
-            m.allocate(8, 9, 3);
-            m.allocate(9, 9, 3);
-            for b in [8, 9] {
-                let e = m.complete(b, 4).unwrap();
-                order.push(e);
-            }
+            order.push(m.allocate(8, 9, 3));
+            order.push(m.allocate(9, 9, 3));
             order
         };
         assert_eq!(run(), run());

@@ -1,0 +1,127 @@
+//! A FIFO of `Copy` items in a ring buffer of power-of-two capacity: the
+//! queues between the levels of the hierarchy and in the DRAM.
+//!
+//! Like a `VecDeque` restricted to `push_back` / `front` / `pop_front`, with
+//! cheaper index arithmetic (a mask instead of a wrap test). Created at the
+//! queue's bound, it never allocates in steady state; a push beyond the
+//! capacity doubles it (never expected, but never a failure).
+
+/// A FIFO ring buffer.
+#[derive(Debug, Clone)]
+pub(crate) struct Ring<T> {
+    /// Storage; its length is a power of two.
+    buf: Box<[T]>,
+    /// Index of the front item in `buf`.
+    head: usize,
+    len: usize,
+}
+
+impl<T: Copy + Default> Ring<T> {
+    /// An empty ring holding at least `n` items before it grows.
+    pub(crate) fn with_capacity(n: usize) -> Self {
+        Ring {
+            buf: vec![T::default(); n.max(1).next_power_of_two()].into(),
+            head: 0,
+            len: 0,
+        }
+    }
+
+    /// Items queued.
+    #[inline]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Nothing queued.
+    #[inline]
+    pub(crate) fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The oldest item.
+    #[inline]
+    pub(crate) fn front(&self) -> Option<&T> {
+        if self.len == 0 {
+            None
+        } else {
+            Some(&self.buf[self.head])
+        }
+    }
+
+    /// Append `x`.
+    #[inline]
+    pub(crate) fn push_back(&mut self, x: T) {
+        if self.len == self.buf.len() {
+            self.grow();
+        }
+        let i = (self.head + self.len) & (self.buf.len() - 1);
+        self.buf[i] = x;
+        self.len += 1;
+    }
+
+    /// Remove and return the oldest item.
+    #[inline]
+    pub(crate) fn pop_front(&mut self) -> Option<T> {
+        if self.len == 0 {
+            return None;
+        }
+        let x = self.buf[self.head];
+        self.head = (self.head + 1) & (self.buf.len() - 1);
+        self.len -= 1;
+        Some(x)
+    }
+
+    /// Double the capacity, keeping the order.
+    #[cold]
+    #[inline(never)]
+    fn grow(&mut self) {
+        let n = self.buf.len();
+        let mut buf = vec![T::default(); 2 * n];
+        for (k, slot) in buf.iter_mut().take(self.len).enumerate() {
+            *slot = self.buf[(self.head + k) & (n - 1)];
+        }
+        self.buf = buf.into();
+        self.head = 0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::VecDeque;
+
+    #[test]
+    fn behaves_like_a_vecdeque_through_wraps_and_growth() {
+        let mut r: Ring<u32> = Ring::with_capacity(3);
+        let mut d: VecDeque<u32> = VecDeque::new();
+        let mut x = 12345u32;
+        for i in 0..5000u32 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            // Mostly balanced, with bursts that force growth.
+            let pushes = if i % 500 == 0 { 9 } else { x % 3 };
+            for k in 0..pushes {
+                r.push_back(i * 10 + k);
+                d.push_back(i * 10 + k);
+            }
+            for _ in 0..(x >> 8) % 3 {
+                assert_eq!(r.pop_front(), d.pop_front());
+            }
+            assert_eq!(r.front(), d.front());
+            assert_eq!((r.len(), r.is_empty()), (d.len(), d.is_empty()));
+        }
+        while let Some(v) = d.pop_front() {
+            assert_eq!(r.pop_front(), Some(v));
+        }
+        assert_eq!(r.pop_front(), None);
+        assert!(r.buf.len() > 4, "the bursts made it grow");
+    }
+
+    #[test]
+    fn capacity_is_the_next_power_of_two() {
+        assert_eq!(Ring::<u8>::with_capacity(0).buf.len(), 1);
+        assert_eq!(Ring::<u8>::with_capacity(16).buf.len(), 16);
+        assert_eq!(Ring::<u8>::with_capacity(17).buf.len(), 32);
+    }
+}
