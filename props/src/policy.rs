@@ -148,7 +148,7 @@ pub fn wasp_priority_only_above_threshold(
             free_mshrs: free,
             datapath: Some(out),
         };
-        let got = policy.select(&view);
+        let got = (&policy as &dyn LaunchPolicy).select(&view);
         let cex = |what| {
             Cex::new(PROP, what)
                 .with("free", f)
@@ -186,7 +186,7 @@ pub fn wasp_without_datapath_never_priority(
     regular_waiting: bool,
 ) -> Result<(), Cex> {
     let policy = Wasp::new(WaspDatapath { cf, threshold });
-    let got = policy.select(&LaunchView {
+    let got = (&policy as &dyn LaunchPolicy).select(&LaunchView {
         priority_waiting,
         regular_waiting,
         free_mshrs: free,

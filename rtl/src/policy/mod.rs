@@ -7,7 +7,7 @@
 //! All four share one launch rule and differ only in its gate
 //! ([`PriorityGate`]): a priority warp if one waits and the gate is open,
 //! else a regular warp if one waits, else nothing. A policy names its gate;
-//! [`LaunchPolicy::select`] is the rule around it. The scheduler reads the
+//! [`PriorityGate::select`] is the rule around it. The scheduler reads the
 //! gate once when it is built and evaluates the rule itself each cycle.
 
 mod baseline;
@@ -102,11 +102,15 @@ pub trait LaunchPolicy: fmt::Debug + Send + Sync {
     /// When a waiting priority warp may launch. A policy is fixed wiring:
     /// the gate never changes.
     fn gate(&self) -> PriorityGate;
+}
+
+impl dyn LaunchPolicy + '_ {
     /// Which FIFO to launch from this cycle, or `None` to launch nothing:
     /// the shared launch rule ([`PriorityGate::select`]) around this
-    /// policy's gate. Policies do not override it (the scheduler evaluates
-    /// the rule on the gate directly).
-    fn select(&self, v: &LaunchView) -> Option<QueueClass> {
+    /// policy's gate. Not a trait method, so no policy can decide otherwise
+    /// than the gate it names (the scheduler evaluates the rule on the gate
+    /// directly).
+    pub fn select(&self, v: &LaunchView) -> Option<QueueClass> {
         self.gate().select(v)
     }
 }
