@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Host instructions per simulated core-cycle of `Gpu::step` on the bench
+# workload (the 8x4-tile synthetic frame of `wasp bench`, paper machine),
+# counted by callgrind: deterministic, unaffected by machine load, so it can
+# compare two builds where wall-clock timing on a shared machine cannot.
+#
+#   scripts/icount.sh [WASP_BINARY]     (default: target/release/wasp)
+#
+# Prints the count, then the inclusive cost per core-cycle of the functions
+# callgrind sees (inlined code is charged to its caller). Needs valgrind.
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+bin=$(realpath "${1:-$repo/target/release/wasp}")
+command -v valgrind > /dev/null || { echo "icount: valgrind is not installed" >&2; exit 1; }
+out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
+"$bin" synth --frame 512x256 --seed 1 --out "$out/bench.trace" > /dev/null
+valgrind --tool=callgrind --callgrind-out-file="$out/cg" \
+  --toggle-collect='wasp_sim::gpu::Gpu::step' \
+  "$bin" run -q --trace "$out/bench.trace" --json "$out/run.json" > /dev/null 2> "$out/log"
+python3 - "$out" <<'PY'
+import json, re, subprocess, sys
+out = sys.argv[1]
+run = json.load(open(f"{out}/run.json"))
+cc = run["cycles"] * 4  # the paper machine's four cores
+total = next(int(l.split()[1]) for l in open(f"{out}/cg") if l.startswith(("summary:", "totals:")))
+print(f"instr/core-cycle: {total / cc:.1f}  ({total} instructions, {cc} core-cycles)")
+ann = subprocess.run(["callgrind_annotate", "--inclusive=yes", f"{out}/cg"],
+                     capture_output=True, text=True).stdout
+# A function appears once per source file of code inlined into it; its
+# inclusive cost is the largest of those rows.
+best = {}
+for line in ann.splitlines():
+    m = re.match(r"\s*([\d,]+) \(\s*[\d.]+%\)\s+(\S+):(wasp_\S+)", line)
+    if m:
+        n = int(m.group(1).replace(",", ""))
+        best[m.group(3)] = max(best.get(m.group(3), 0), n)
+for f, n in sorted(best.items(), key=lambda x: -x[1]):
+    if n / cc >= 5:
+        print(f"{n / cc:8.1f}  {f}")
+PY
