@@ -18,7 +18,8 @@ valgrind --tool=callgrind --callgrind-out-file="$out/cg" \
   --toggle-collect='wasp_sim::gpu::Gpu::step' \
   "$bin" run -q --trace "$out/bench.trace" --json "$out/run.json" > /dev/null 2> "$out/log"
 python3 - "$out" <<'PY'
-import json, re, subprocess, sys
+import json, re, signal, subprocess, sys
+signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 out = sys.argv[1]
 run = json.load(open(f"{out}/run.json"))
 cc = run["cycles"] * 4  # the paper machine's four cores
