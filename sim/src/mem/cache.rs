@@ -287,19 +287,12 @@ impl Cache {
         self.mshr.is_pending(block)
     }
 
-    /// Add this cycle's MSHR occupancy to the integrals and count the cycle;
-    /// called once per cycle after the cycle's fills. (An owner may skip
-    /// cycles with no entry occupied, which add nothing to the integrals, and
-    /// then set `cycles` itself, as [`MemorySystem`](super::MemorySystem)
-    /// does.)
+    /// Free the MSHR entries whose hold has ended by cycle `now`, leaving
+    /// the per-cycle values alone: what [`Cache::advance`] does for the
+    /// MSHR occupancy, for an owner that reads it every cycle.
     #[inline]
-    pub fn sample(&mut self, now: u64) {
-        self.advance(now);
-        let held = u64::from(self.mshr.occupied());
-        self.stats.mshr_held_sum += held;
-        self.stats.mshr_outstanding_sum += u64::from(self.mshr.outstanding());
-        self.stats.mshr_full_cycles += u64::from(self.mshr.is_full());
-        self.stats.cycles += 1;
+    pub fn release(&mut self, now: u64) {
+        self.mshr.release(now);
     }
 
     /// MSHR entries.
@@ -344,10 +337,27 @@ impl Cache {
         self.cycle
     }
 
-    /// Counters so far.
+    /// Event counters so far; the MSHR occupancy integrals and `cycles`
+    /// read as zero here (see [`Cache::stats_until`]).
     #[inline]
     pub fn stats(&self) -> &CacheStats {
         &self.stats
+    }
+
+    /// Every counter, with the MSHR occupancy integrals over the cycles
+    /// before `end` (each cycle's occupancy after that cycle's accesses and
+    /// fills) and `cycles` set to `cycles`. `end` is the cycle after the
+    /// last one the owner has finished; it must not be before the cycle of
+    /// any access or fill so far, except accesses of cycle `end` itself.
+    pub fn stats_until(&self, end: u64, cycles: u64) -> CacheStats {
+        let i = self.mshr.integrals(end);
+        CacheStats {
+            mshr_held_sum: i.occupied,
+            mshr_outstanding_sum: i.outstanding,
+            mshr_full_cycles: i.full,
+            cycles,
+            ..self.stats
+        }
     }
 
     /// Signals of this cache in cycle `now`: MSHR entries occupied and
@@ -545,19 +555,24 @@ pub(crate) mod tests {
 
     #[test]
     fn occupancy_integral() {
-        let mut c = Cache::new(&cfg(512, 2, 4, 4, 4)).unwrap();
+        let mut c = Cache::new(&cfg(512, 2, 2, 4, 4)).unwrap();
         c.access(1, 1, 0);
-        c.sample(1);
-        c.access(2, 2, 0);
-        c.sample(2);
-        c.fill(3, 1);
-        c.sample(3); // 1 outstanding, 2 held
-        c.sample(4); // entry of 1 held through 4
-        c.sample(5); // freed
-        let s = c.stats();
+        c.access(2, 2, 0); // full from 2
+        c.fill(3, 1); // cycle 3: 1 outstanding, 2 held
+                      // cycle 4: the entry of 1 held through 4
+        let s = c.stats_until(6, 5); // cycle 5: freed
         assert_eq!(s.mshr_outstanding_sum, 1 + 2 + 1 + 1 + 1);
         assert_eq!(s.mshr_held_sum, 1 + 2 + 2 + 2 + 1);
+        assert_eq!(s.mshr_full_cycles, 3);
         assert_eq!(s.cycles, 5);
+        // Mid-way, and with an access of the cycle `end` itself.
+        let s = c.stats_until(4, 3);
+        assert_eq!((s.mshr_outstanding_sum, s.mshr_held_sum), (4, 5));
+        c.access(6, 3, 0);
+        let s = c.stats_until(6, 5);
+        assert_eq!((s.mshr_held_sum, s.mshr_full_cycles), (8, 3));
+        assert_eq!(c.stats_until(7, 6).mshr_held_sum, 10);
+        assert_eq!(c.stats().mshr_held_sum, 0, "event counters only");
     }
 
     /// The paper's worked example (Section III): a single-level cache with

@@ -180,6 +180,9 @@ pub struct MemorySystem {
     now: u64,
     /// Calls of `tick` so far (the `cycles` of every cache's stats).
     ticks: u64,
+    /// The cycle after the last tick (0 before the first): the end of the
+    /// cycles the MSHR occupancy integrals of [`stats`](Self::stats) cover.
+    ticked_until: u64,
 }
 
 impl MemorySystem {
@@ -218,6 +221,7 @@ impl MemorySystem {
             dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
             now: 0,
             ticks: 0,
+            ticked_until: 0,
         })
     }
 
@@ -274,6 +278,7 @@ impl MemorySystem {
         debug_assert!(now >= self.now, "tick in a past cycle");
         self.now = now;
         self.ticks += 1;
+        self.ticked_until = now + 1;
         let has_l0 = self.cfg.l0.is_some();
         let n = self.cores.len();
 
@@ -372,9 +377,8 @@ impl MemorySystem {
                 });
             }
         }
-        if self.l2.mshr_occupied() > 0 {
-            self.l2.sample(now);
-        }
+        // Keep the L2's MSHR occupancy current for its readers.
+        self.l2.release(now);
 
         // L2 replies fill the L1s.
         while let Some(&r) = self.to_l1.front() {
@@ -413,12 +417,6 @@ impl MemorySystem {
                         complete(&mut c.completing, &mut c.ready, now, at, tag);
                     }
                 }
-                if l0.mshr_occupied() > 0 {
-                    l0.sample(now);
-                }
-            }
-            if c.l1.mshr_occupied() > 0 {
-                c.l1.sample(now);
             }
             while let Some(&(at, tag)) = c.completing.front() {
                 if at > now {
@@ -475,11 +473,10 @@ impl MemorySystem {
 
     /// Counters of every level so far.
     pub fn stats(&self) -> MemStats {
-        // Idle caches are not sampled; every cache lives through every tick.
-        let with_cycles = |c: &Cache| CacheStats {
-            cycles: self.ticks,
-            ..*c.stats()
-        };
+        // Every cache lives through every tick. The occupancy integrals run
+        // through the last tick; cycles not ticked were idle (nothing
+        // occupied) and add nothing.
+        let with_cycles = |c: &Cache| c.stats_until(self.ticked_until, self.ticks);
         let per_core: Vec<CoreMemStats> = self
             .cores
             .iter()
