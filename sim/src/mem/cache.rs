@@ -226,7 +226,7 @@ impl Cache {
     /// [`Cache::fill`] of the block of MSHR entry `e`, which must be pending
     /// (as returned by [`Cache::access_entry`] for a miss not yet filled):
     /// no search for the entry.
-    #[inline]
+    #[inline(always)]
     pub fn fill_entry(&mut self, now: u64, e: u32) -> &[u32] {
         self.advance(now);
         let block = self.mshr.complete(e, now);
