@@ -261,7 +261,7 @@ impl MshrFile {
     /// becomes held until `now + MSHR_HOLD_CYCLES` (inclusive). Returns its
     /// block; its targets are then read with [`MshrFile::targets`]. Replies
     /// must come in cycle order.
-    #[inline]
+    #[inline(always)]
     pub fn complete(&mut self, e: u32, now: u64) -> u64 {
         let free_at = now + 1 + MSHR_HOLD_CYCLES;
         let entry = &mut self.entries[e as usize];
