@@ -142,6 +142,22 @@ fn complete(completing: &mut Ring<(u64, u32)>, ready: &mut Vec<u32>, now: u64, a
     }
 }
 
+/// The L1's reply for L0 MSHR entry `entry` reaches the L0 in cycle `now`:
+/// fill it, and its targets complete after the L0's hit latency.
+#[inline(always)]
+fn fill_l0(
+    l0: &mut Cache,
+    completing: &mut Ring<(u64, u32)>,
+    ready: &mut Vec<u32>,
+    now: u64,
+    entry: u32,
+) {
+    let at = now + u64::from(l0.config().hit_latency) - 1;
+    for &tag in l0.fill_entry(now, entry) {
+        complete(completing, ready, now, at, tag);
+    }
+}
+
 /// L2 reply to the L1 of a core.
 #[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
@@ -273,7 +289,10 @@ impl MemorySystem {
     /// take L0 requests, the L2 takes L1 requests (round robin over cores),
     /// the DRAM accepts requests, then replies due at `now` fill the L2, the
     /// L1s and the L0s in that order, and tags completing at `now` become
-    /// available to [`take_completions`](Self::take_completions).
+    /// available to [`take_completions`](Self::take_completions). (An L1
+    /// hit whose reply is due at `now` with no earlier reply queued for its
+    /// L0 fills the L0 as soon as it is found: no L0 access happens within a
+    /// tick and the L0's fills keep their order, so nothing can tell.)
     pub fn tick(&mut self, now: u64) {
         debug_assert!(now >= self.now, "tick in a past cycle");
         self.now = now;
@@ -309,6 +328,14 @@ impl MemorySystem {
                         }
                         // The L1's target is the L0 entry to fill.
                         match c.l1.access_entry(now, r.block, r.entry) {
+                            // Due now with nothing ahead of it in `to_l0`:
+                            // fill the L0 at once, in the same order as
+                            // through the queue.
+                            (Lookup::Hit, _) if l1_reply <= now && c.to_l0.is_empty() => {
+                                if let Some(l0) = c.l0.as_mut() {
+                                    fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
+                                }
+                            }
                             (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
                                 at: l1_reply,
                                 entry: r.entry,
@@ -407,15 +434,12 @@ impl MemorySystem {
                 continue;
             }
             if let Some(l0) = c.l0.as_mut() {
-                let at = now + u64::from(l0.config().hit_latency) - 1;
                 while let Some(&d) = c.to_l0.front() {
                     if d.at > now {
                         break;
                     }
                     c.to_l0.pop_front();
-                    for &tag in l0.fill_entry(now, d.entry) {
-                        complete(&mut c.completing, &mut c.ready, now, at, tag);
-                    }
+                    fill_l0(l0, &mut c.completing, &mut c.ready, now, d.entry);
                 }
             }
             while let Some(&(at, tag)) = c.completing.front() {
