@@ -25,7 +25,8 @@
 //!
 //! Speed: a small counting filter over the blocks present or pending lets
 //! most primary misses of a small cache skip the tag and MSHR searches; it
-//! changes no decision.
+//! changes no decision. Each set keeps its valid ways in recency order (a
+//! doubly linked list), so the LRU victim is found without a scan.
 
 use super::config::{CacheConfig, MemConfigError};
 use super::mshr::{Merge, MshrFile};
@@ -79,9 +80,10 @@ pub struct Cache {
     ways: usize,
     /// `sets * ways` tags (the full block number), [`INVALID`] when empty.
     tags: Vec<u64>,
-    /// Last-use stamp of each way, from `use_clock`.
-    last_use: Vec<u64>,
-    use_clock: u64,
+    /// Recency order of each set's valid ways.
+    order: Vec<SetOrder>,
+    /// `sets * ways` links of that order.
+    links: Vec<Link>,
     /// Presence filter: per bucket of block numbers, the blocks of the bucket
     /// that have a line or a pending MSHR entry. An access whose bucket is
     /// empty is a primary miss without searching the set or the MSHRs (most
@@ -109,8 +111,8 @@ impl Cache {
             set_mask: sets as u64 - 1,
             ways,
             tags: vec![INVALID; sets * ways],
-            last_use: vec![0; sets * ways],
-            use_clock: 0,
+            order: vec![SetOrder::default(); sets],
+            links: vec![Link::default(); sets * ways],
             filter: [0; FILTER_BUCKETS],
             mshr: MshrFile::new(cfg.mshrs, cfg.max_merged),
             cycle: 0,
@@ -175,10 +177,10 @@ impl Cache {
         }
         let bucket = bucket(block);
         if self.filter[bucket] != 0 {
-            let base = self.set_base(block);
+            let set = self.set_of(block);
+            let base = set * self.ways;
             if let Some(w) = find_way(&self.tags[base..base + self.ways], block) {
-                self.use_clock += 1;
-                self.last_use[base + w] = self.use_clock;
+                self.touch(set, base, w as u32);
                 self.ports_used += 1;
                 self.hits_now += 1;
                 self.stats.accesses += 1;
@@ -226,30 +228,38 @@ impl Cache {
     /// [`Cache::fill`] of the block of MSHR entry `e`, which must be pending
     /// (as returned by [`Cache::access_entry`] for a miss not yet filled):
     /// no search for the entry.
-    #[inline]
+    #[inline(always)]
     pub fn fill_entry(&mut self, now: u64, e: u32) -> &[u32] {
         self.advance(now);
         let block = self.mshr.complete(e, now);
         self.replied += 1;
         self.stats.fills += 1;
-        let base = self.set_base(block);
+        let set = self.set_of(block);
+        let base = set * self.ways;
         debug_assert!(
             !self.tags[base..base + self.ways].contains(&block),
             "fill of a block already present"
         );
         // The victim: the first invalid way, else the least recently used.
-        // Invalid ways were never filled, so their stamp is still 0 while
-        // every valid way's is at least 1 (and distinct): one scan for the
-        // first smallest stamp finds both.
-        let stamps = &self.last_use[base..base + self.ways];
-        let mut way = 0;
-        let mut oldest = stamps[0];
-        for (w, &s) in stamps.iter().enumerate().skip(1) {
-            if s < oldest {
-                oldest = s;
-                way = w;
+        // Lines are never invalidated and each fill takes the first invalid
+        // way, so the valid ways are `0..valid`.
+        let o = self.order[set];
+        let way = if (o.valid as usize) < self.ways {
+            let w = o.valid;
+            self.order[set].valid = w + 1;
+            if w == 0 {
+                self.order[set].mru = 0;
+                self.order[set].lru = 0;
+            } else {
+                self.links[base + o.mru as usize].newer = w;
+                self.links[base + w as usize].older = o.mru;
+                self.order[set].mru = w;
             }
-        }
+            w as usize
+        } else {
+            self.touch(set, base, o.lru);
+            o.lru as usize
+        };
         debug_assert_eq!(
             Some(way),
             self.tags[base..base + self.ways]
@@ -258,14 +268,12 @@ impl Cache {
                 .or(Some(way)),
             "an invalid way is the victim when there is one"
         );
-        self.use_clock += 1;
         // The new block is already counted in the filter (since its miss).
         let evicted = self.tags[base + way];
         if evicted != INVALID {
             self.filter[bucket(evicted)] -= 1;
         }
         self.tags[base + way] = block;
-        self.last_use[base + way] = self.use_clock;
         self.stats.miss_wait_sum += self.mshr.wait_sum(e, now);
         self.mshr.targets(e)
     }
@@ -287,19 +295,12 @@ impl Cache {
         self.mshr.is_pending(block)
     }
 
-    /// Add this cycle's MSHR occupancy to the integrals and count the cycle;
-    /// called once per cycle after the cycle's fills. (An owner may skip
-    /// cycles with no entry occupied, which add nothing to the integrals, and
-    /// then set `cycles` itself, as [`MemorySystem`](super::MemorySystem)
-    /// does.)
+    /// Free the MSHR entries whose hold has ended by cycle `now`, leaving
+    /// the per-cycle values alone: what [`Cache::advance`] does for the
+    /// MSHR occupancy, for an owner that reads it every cycle.
     #[inline]
-    pub fn sample(&mut self, now: u64) {
-        self.advance(now);
-        let held = u64::from(self.mshr.occupied());
-        self.stats.mshr_held_sum += held;
-        self.stats.mshr_outstanding_sum += u64::from(self.mshr.outstanding());
-        self.stats.mshr_full_cycles += u64::from(self.mshr.is_full());
-        self.stats.cycles += 1;
+    pub fn release(&mut self, now: u64) {
+        self.mshr.release(now);
     }
 
     /// MSHR entries.
@@ -344,10 +345,27 @@ impl Cache {
         self.cycle
     }
 
-    /// Counters so far.
+    /// Event counters so far; the MSHR occupancy integrals and `cycles`
+    /// read as zero here (see [`Cache::stats_until`]).
     #[inline]
     pub fn stats(&self) -> &CacheStats {
         &self.stats
+    }
+
+    /// Every counter, with the MSHR occupancy integrals over the cycles
+    /// before `end` (each cycle's occupancy after that cycle's accesses and
+    /// fills) and `cycles` set to `cycles`. `end` is the cycle after the
+    /// last one the owner has finished; it must not be before the cycle of
+    /// any access or fill so far, except accesses of cycle `end` itself.
+    pub fn stats_until(&self, end: u64, cycles: u64) -> CacheStats {
+        let i = self.mshr.integrals(end);
+        CacheStats {
+            mshr_held_sum: i.occupied,
+            mshr_outstanding_sum: i.outstanding,
+            mshr_full_cycles: i.full,
+            cycles,
+            ..self.stats
+        }
     }
 
     /// Signals of this cache in cycle `now`: MSHR entries occupied and
@@ -372,6 +390,51 @@ impl Cache {
     fn set_base(&self, block: u64) -> usize {
         (block & self.set_mask) as usize * self.ways
     }
+
+    #[inline]
+    fn set_of(&self, block: u64) -> usize {
+        (block & self.set_mask) as usize
+    }
+
+    /// Make valid way `w` of `set` (whose ways start at `base`) the most
+    /// recently used.
+    #[inline(always)]
+    fn touch(&mut self, set: usize, base: usize, w: u32) {
+        let o = &mut self.order[set];
+        if o.mru == w {
+            return;
+        }
+        // Unlink `w` (it has a newer neighbour: it is not the MRU) ...
+        let Link { older, newer } = self.links[base + w as usize];
+        self.links[base + newer as usize].older = older;
+        if o.lru == w {
+            o.lru = newer;
+        } else {
+            self.links[base + older as usize].newer = newer;
+        }
+        // ... and put it first.
+        self.links[base + o.mru as usize].newer = w;
+        self.links[base + w as usize].older = o.mru;
+        o.mru = w;
+    }
+}
+
+/// The valid ways of one set, `0..valid`, from the most (`mru`) to the least
+/// (`lru`) recently used through [`Link`]s; `mru` and `lru` are meaningful
+/// once `valid > 0`.
+#[derive(Debug, Clone, Copy, Default)]
+struct SetOrder {
+    mru: u32,
+    lru: u32,
+    valid: u32,
+}
+
+/// Neighbours of a valid way in its set's recency order (way indices; the
+/// `newer` of the MRU and the `older` of the LRU are meaningless).
+#[derive(Debug, Clone, Copy, Default)]
+struct Link {
+    older: u32,
+    newer: u32,
 }
 
 /// Way of `set` holding `block` (tags are distinct within a set: a line
@@ -543,21 +606,76 @@ pub(crate) mod tests {
         assert!(c.contains(6) && c.contains(5) && !c.contains(4));
     }
 
+    /// Replacement follows a plain LRU model (a recency list per set) on a
+    /// random script of hits, misses and out-of-order fills.
+    #[test]
+    fn replacement_is_lru_per_set() {
+        let mut x = 0x2545_f491_u32;
+        let mut rnd = |n: u32| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x % n
+        };
+        // 2 sets x 4 ways, room for every miss in flight.
+        let mut c = Cache::new(&cfg(512, 4, 64, 64, 64)).unwrap();
+        let mut model: Vec<Vec<u64>> = vec![Vec::new(); 2];
+        let mut pending: Vec<u64> = Vec::new();
+        let mut evictions = 0;
+        for now in 1..4000u64 {
+            for _ in 0..rnd(3) {
+                let block = u64::from(rnd(24));
+                let set = &mut model[(block % 2) as usize];
+                match c.access(now, block, 0) {
+                    Lookup::Hit => {
+                        let p = set.iter().position(|&b| b == block).unwrap();
+                        set.remove(p);
+                        set.insert(0, block);
+                    }
+                    Lookup::Miss => pending.push(block),
+                    l => assert_eq!(l, Lookup::Secondary),
+                }
+            }
+            for _ in 0..rnd(3) {
+                if !pending.is_empty() {
+                    let block = pending.swap_remove(rnd(pending.len() as u32) as usize);
+                    c.fill(now, block);
+                    let set = &mut model[(block % 2) as usize];
+                    if set.len() == 4 {
+                        set.pop();
+                        evictions += 1;
+                    }
+                    set.insert(0, block);
+                }
+            }
+            for b in 0..24 {
+                let want = model[(b % 2) as usize].contains(&b);
+                assert_eq!(c.contains(b), want, "block {b} at {now}");
+            }
+        }
+        assert!(evictions > 500);
+    }
+
     #[test]
     fn occupancy_integral() {
-        let mut c = Cache::new(&cfg(512, 2, 4, 4, 4)).unwrap();
+        let mut c = Cache::new(&cfg(512, 2, 2, 4, 4)).unwrap();
         c.access(1, 1, 0);
-        c.sample(1);
-        c.access(2, 2, 0);
-        c.sample(2);
-        c.fill(3, 1);
-        c.sample(3); // 1 outstanding, 2 held
-        c.sample(4); // entry of 1 held through 4
-        c.sample(5); // freed
-        let s = c.stats();
+        c.access(2, 2, 0); // full from 2
+        c.fill(3, 1); // cycle 3: 1 outstanding, 2 held
+                      // cycle 4: the entry of 1 held through 4
+        let s = c.stats_until(6, 5); // cycle 5: freed
         assert_eq!(s.mshr_outstanding_sum, 1 + 2 + 1 + 1 + 1);
         assert_eq!(s.mshr_held_sum, 1 + 2 + 2 + 2 + 1);
+        assert_eq!(s.mshr_full_cycles, 3);
         assert_eq!(s.cycles, 5);
+        // Mid-way, and with an access of the cycle `end` itself.
+        let s = c.stats_until(4, 3);
+        assert_eq!((s.mshr_outstanding_sum, s.mshr_held_sum), (4, 5));
+        c.access(6, 3, 0);
+        let s = c.stats_until(6, 5);
+        assert_eq!((s.mshr_held_sum, s.mshr_full_cycles), (8, 3));
+        assert_eq!(c.stats_until(7, 6).mshr_held_sum, 10);
+        assert_eq!(c.stats().mshr_held_sum, 0, "event counters only");
     }
 
     /// The paper's worked example (Section III): a single-level cache with

@@ -107,8 +107,8 @@ struct CoreMem {
     completing: Ring<(u64, u32)>,
     /// Tags completed and not yet taken.
     ready: Vec<u32>,
-    /// The L2 refused this core's head request this cycle (arbitration scratch).
-    l2_blocked: bool,
+    /// Not quiet at the start of the current tick (tick scratch).
+    active: bool,
 }
 
 impl CoreMem {
@@ -142,6 +142,22 @@ fn complete(completing: &mut Ring<(u64, u32)>, ready: &mut Vec<u32>, now: u64, a
     }
 }
 
+/// The L1's reply for L0 MSHR entry `entry` reaches the L0 in cycle `now`:
+/// fill it, and its targets complete after the L0's hit latency.
+#[inline(always)]
+fn fill_l0(
+    l0: &mut Cache,
+    completing: &mut Ring<(u64, u32)>,
+    ready: &mut Vec<u32>,
+    now: u64,
+    entry: u32,
+) {
+    let at = now + u64::from(l0.config().hit_latency) - 1;
+    for &tag in l0.fill_entry(now, entry) {
+        complete(completing, ready, now, at, tag);
+    }
+}
+
 /// L2 reply to the L1 of a core.
 #[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
@@ -172,11 +188,17 @@ pub struct MemorySystem {
     l2: Cache,
     /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
     to_l1: Ring<L2Reply>,
+    /// Cores taking part in the L2 arbitration of the current tick, in
+    /// round-robin order (tick scratch, `cores` long at most).
+    l2_order: Vec<u32>,
     dram: Dram,
     /// Last cycle seen.
     now: u64,
     /// Calls of `tick` so far (the `cycles` of every cache's stats).
     ticks: u64,
+    /// The cycle after the last tick (0 before the first): the end of the
+    /// cycles the MSHR occupancy integrals of [`stats`](Self::stats) cover.
+    ticked_until: u64,
 }
 
 impl MemorySystem {
@@ -203,7 +225,7 @@ impl MemorySystem {
                 to_l0: Ring::with_capacity(l0_mshrs),
                 completing: Ring::with_capacity(completing),
                 ready: Vec::with_capacity(completing),
-                l2_blocked: false,
+                active: false,
             });
         }
         Ok(MemorySystem {
@@ -211,9 +233,11 @@ impl MemorySystem {
             cores,
             l2: Cache::new(&cfg.l2)?,
             to_l1: Ring::with_capacity(n_cores * cfg.l1.mshrs as usize),
+            l2_order: Vec::with_capacity(n_cores),
             dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
             now: 0,
             ticks: 0,
+            ticked_until: 0,
         })
     }
 
@@ -265,76 +289,89 @@ impl MemorySystem {
     /// take L0 requests, the L2 takes L1 requests (round robin over cores),
     /// the DRAM accepts requests, then replies due at `now` fill the L2, the
     /// L1s and the L0s in that order, and tags completing at `now` become
-    /// available to [`take_completions`](Self::take_completions).
+    /// available to [`take_completions`](Self::take_completions). (An L1
+    /// hit whose reply is due at `now` with no earlier reply queued for its
+    /// L0 fills the L0 as soon as it is found: no L0 access happens within a
+    /// tick and the L0's fills keep their order, so nothing can tell.)
     pub fn tick(&mut self, now: u64) {
         debug_assert!(now >= self.now, "tick in a past cycle");
         self.now = now;
         self.ticks += 1;
+        self.ticked_until = now + 1;
         let has_l0 = self.cfg.l0.is_some();
         let n = self.cores.len();
 
-        // L0 -> L1 requests. A quiet core (no MSHR occupied, nothing queued
-        // or completing) has nothing to do this cycle and is skipped.
-        let mut l2_candidates = 0;
-        for c in &mut self.cores {
-            c.l2_blocked = false;
-            if c.is_quiet() {
-                continue;
-            }
-            if let Some(l0) = c.l0.as_mut() {
-                l0.advance(now);
-            }
-            c.l1.advance(now);
-            if has_l0 {
-                let l1_reply = now + u64::from(c.l1.config().hit_latency) - 1;
-                while let Some(&r) = c.to_l1.front() {
-                    if r.ready > now {
-                        break;
+        // L0 -> L1 requests, over the cores in round-robin order from core
+        // `now % cores` (their private levels are independent; the order is
+        // that of the L2 arbitration below). A quiet core (no MSHR occupied,
+        // nothing queued or completing) has nothing to do this cycle and is
+        // skipped; it stays quiet through the tick (an L2 reply only goes to
+        // a core with an L1 MSHR entry pending), so `active` serves the
+        // whole tick. Cores whose L2 request is ready are the arbitration's
+        // candidates, kept in `l2_order`.
+        let first = (now % n as u64) as usize;
+        self.l2_order.clear();
+        let mut k = first;
+        for _ in 0..n {
+            let c = &mut self.cores[k];
+            c.active = !c.is_quiet();
+            if c.active {
+                if let Some(l0) = c.l0.as_mut() {
+                    l0.advance(now);
+                }
+                c.l1.advance(now);
+                if has_l0 {
+                    let l1_reply = now + u64::from(c.l1.config().hit_latency) - 1;
+                    while let Some(&r) = c.to_l1.front() {
+                        if r.ready > now {
+                            break;
+                        }
+                        // The L1's target is the L0 entry to fill.
+                        match c.l1.access_entry(now, r.block, r.entry) {
+                            // Due now with nothing ahead of it in `to_l0`:
+                            // fill the L0 at once, in the same order as
+                            // through the queue.
+                            (Lookup::Hit, _) if l1_reply <= now && c.to_l0.is_empty() => {
+                                if let Some(l0) = c.l0.as_mut() {
+                                    fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
+                                }
+                            }
+                            (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
+                                at: l1_reply,
+                                entry: r.entry,
+                            }),
+                            (Lookup::Miss, entry) => c.to_l2.push_back(Request {
+                                ready: now + 1,
+                                block: r.block,
+                                entry,
+                            }),
+                            (Lookup::Secondary, _) => {}
+                            (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
+                        }
+                        c.to_l1.pop_front();
                     }
-                    // The L1's target is the L0 entry to fill.
-                    match c.l1.access_entry(now, r.block, r.entry) {
-                        (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
-                            at: l1_reply,
-                            entry: r.entry,
-                        }),
-                        (Lookup::Miss, entry) => c.to_l2.push_back(Request {
-                            ready: now + 1,
-                            block: r.block,
-                            entry,
-                        }),
-                        (Lookup::Secondary, _) => {}
-                        (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
-                    }
-                    c.to_l1.pop_front();
+                }
+                if c.to_l2.front().is_some_and(|r| r.ready <= now) {
+                    self.l2_order.push(k as u32);
                 }
             }
-            l2_candidates += usize::from(c.to_l2.front().is_some_and(|r| r.ready <= now));
+            k = if k + 1 == n { 0 } else { k + 1 };
         }
 
         // L1 -> L2 requests, round robin over cores (core `now % cores` first,
         // so the order does not depend on which cycles were ticked), one head
         // per core per round, until the L2's ports are used or no head can go.
-        let first = if l2_candidates > 0 {
-            (now % n as u64) as usize
-        } else {
-            0
-        };
+        // A core leaves the rounds when the L2 refuses its head (MSHRs full
+        // or merge full) or its next head is not ready.
         let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
-        let mut progress = l2_candidates > 0;
-        'arbitrate: while progress {
-            progress = false;
-            let mut k = first;
-            for _ in 0..n {
-                let c = &mut self.cores[k];
-                k = if k + 1 >= n { 0 } else { k + 1 };
-                if c.l2_blocked {
-                    continue;
-                }
-                let Some(&r) = c.to_l2.front() else { continue };
-                if r.ready > now {
-                    continue;
-                }
-                let core = if k == 0 { n - 1 } else { k - 1 } as u32;
+        'arbitrate: while !self.l2_order.is_empty() {
+            let mut kept = 0;
+            for i in 0..self.l2_order.len() {
+                let core = self.l2_order[i];
+                let c = &mut self.cores[core as usize];
+                let Some(&r) = c.to_l2.front() else {
+                    unreachable!("an L2 candidate has a request")
+                };
                 match self.l2.access_entry(now, r.block, core) {
                     (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
                         at: l2_reply,
@@ -344,14 +381,15 @@ impl MemorySystem {
                     (Lookup::Miss, entry) => self.dram.request(now, r.block, entry),
                     (Lookup::Secondary, _) => {}
                     (Lookup::PortBusy, _) => break 'arbitrate,
-                    (Lookup::Stall | Lookup::MergeFull, _) => {
-                        c.l2_blocked = true;
-                        continue;
-                    }
+                    (Lookup::Stall | Lookup::MergeFull, _) => continue,
                 }
                 c.to_l2.pop_front();
-                progress = true;
+                if c.to_l2.front().is_some_and(|r| r.ready <= now) {
+                    self.l2_order[kept] = core;
+                    kept += 1;
+                }
             }
+            self.l2_order.truncate(kept);
         }
 
         // Main memory: accept, then fill the L2 with the replies due now.
@@ -366,9 +404,8 @@ impl MemorySystem {
                 });
             }
         }
-        if self.l2.mshr_occupied() > 0 {
-            self.l2.sample(now);
-        }
+        // Keep the L2's MSHR occupancy current for its readers.
+        self.l2.release(now);
 
         // L2 replies fill the L1s.
         while let Some(&r) = self.to_l1.front() {
@@ -393,26 +430,17 @@ impl MemorySystem {
 
         // L1 replies fill the L0s; tags due now complete.
         for c in &mut self.cores {
-            if c.is_quiet() {
+            if !c.active {
                 continue;
             }
             if let Some(l0) = c.l0.as_mut() {
-                let at = now + u64::from(l0.config().hit_latency) - 1;
                 while let Some(&d) = c.to_l0.front() {
                     if d.at > now {
                         break;
                     }
                     c.to_l0.pop_front();
-                    for &tag in l0.fill_entry(now, d.entry) {
-                        complete(&mut c.completing, &mut c.ready, now, at, tag);
-                    }
+                    fill_l0(l0, &mut c.completing, &mut c.ready, now, d.entry);
                 }
-                if l0.mshr_occupied() > 0 {
-                    l0.sample(now);
-                }
-            }
-            if c.l1.mshr_occupied() > 0 {
-                c.l1.sample(now);
             }
             while let Some(&(at, tag)) = c.completing.front() {
                 if at > now {
@@ -469,11 +497,10 @@ impl MemorySystem {
 
     /// Counters of every level so far.
     pub fn stats(&self) -> MemStats {
-        // Idle caches are not sampled; every cache lives through every tick.
-        let with_cycles = |c: &Cache| CacheStats {
-            cycles: self.ticks,
-            ..*c.stats()
-        };
+        // Every cache lives through every tick. The occupancy integrals run
+        // through the last tick; cycles not ticked were idle (nothing
+        // occupied) and add nothing.
+        let with_cycles = |c: &Cache| c.stats_until(self.ticked_until, self.ticks);
         let per_core: Vec<CoreMemStats> = self
             .cores
             .iter()

@@ -12,6 +12,15 @@
 //! that remembers the entry [`MshrFile::allocate`] returned completes it by
 //! index, with no search. Entries not pending wait in one ring, free ones
 //! first, then held ones in fill order: freeing a held entry moves no data.
+//!
+//! Occupancy integrals (entries occupied, entries outstanding, cycles full,
+//! summed over cycles) are kept per event rather than per cycle: an entry
+//! allocated in cycle `a` and filled in `r` is outstanding `r - a` cycles
+//! (kept as sums of the `r` and the `a`) and occupied `1 + MSHR_HOLD_CYCLES`
+//! more; a full period is added when it ends, at the first release.
+//! [`MshrFile::integrals`] adds what is still running. A cycle's occupancy is
+//! counted after all of that cycle's events (allocations, fills, releases),
+//! as an owner sampling it at the end of every cycle would.
 
 /// Cycles an entry stays occupied after the cycle of its reply.
 pub const MSHR_HOLD_CYCLES: u64 = 1;
@@ -53,7 +62,30 @@ pub struct MshrFile {
     held: u32,
     /// `free_at` of the oldest held entry, `u64::MAX` when none is held.
     next_release: u64,
+    /// Sum of the allocation cycles of every entry allocated so far
+    /// (wrapping, like `fill_sum`: only differences are used).
+    alloc_sum: u64,
+    /// Sum of the fill cycles of every entry filled so far.
+    fill_sum: u64,
+    /// Entries filled so far.
+    filled: u64,
+    /// Cycles full, over the full periods that have ended.
+    full_cycles: u64,
+    /// First cycle of the current full period (meaningful while full).
+    full_since: u64,
 }
+
+/// Occupancy of an MSHR file summed over cycles, see [`MshrFile::integrals`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Integrals {
+    /// Sum over cycles of the entries occupied (pending or held).
+    pub occupied: u64,
+    /// Sum over cycles of the entries awaiting their reply.
+    pub outstanding: u64,
+    /// Cycles with every entry occupied.
+    pub full: u64,
+}
+
 /// Result of trying to merge a secondary miss.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Merge {
@@ -86,6 +118,11 @@ impl MshrFile {
             free: capacity,
             held: 0,
             next_release: u64::MAX,
+            alloc_sum: 0,
+            fill_sum: 0,
+            filled: 0,
+            full_cycles: 0,
+            full_since: 0,
         }
     }
 
@@ -104,6 +141,12 @@ impl MshrFile {
     }
 
     fn release_due(&mut self, now: u64) {
+        if self.free == 0 {
+            // The full period ends with the first release, due at
+            // `next_release`. (Saturating: a caller releasing late, after
+            // allocating in a later cycle, must not wrap the count.)
+            self.full_cycles += self.next_release.saturating_sub(self.full_since);
+        }
         while self.held > 0 {
             let e = self.order[self.ring(self.free)];
             let at = self.entries[e as usize].free_at;
@@ -197,6 +240,9 @@ impl MshrFile {
         let e = self.order[self.ring(0)];
         self.head = (self.head + 1) & (self.order.len() as u32 - 1);
         self.free -= 1;
+        if self.free == 0 {
+            self.full_since = now;
+        }
         let pos = self.outstanding;
         self.entries[e as usize] = Entry {
             issued_sum: now,
@@ -207,6 +253,7 @@ impl MshrFile {
         self.targets[e as usize * self.slots as usize] = target;
         self.pending[pos as usize] = (block, e);
         self.outstanding = pos + 1;
+        self.alloc_sum = self.alloc_sum.wrapping_add(now);
         e
     }
 
@@ -214,12 +261,14 @@ impl MshrFile {
     /// becomes held until `now + MSHR_HOLD_CYCLES` (inclusive). Returns its
     /// block; its targets are then read with [`MshrFile::targets`]. Replies
     /// must come in cycle order.
-    #[inline]
+    #[inline(always)]
     pub fn complete(&mut self, e: u32, now: u64) -> u64 {
         let free_at = now + 1 + MSHR_HOLD_CYCLES;
         let entry = &mut self.entries[e as usize];
         let pos = entry.pos as usize;
         entry.free_at = free_at;
+        self.fill_sum = self.fill_sum.wrapping_add(now);
+        self.filled += 1;
         let (block, pe) = self.pending[pos];
         debug_assert_eq!(pe, e, "entry {e} is not pending");
         // Swap-remove position `pos` of the pending list.
@@ -250,6 +299,37 @@ impl MshrFile {
     pub fn wait_sum(&self, e: u32, now: u64) -> u64 {
         let entry = &self.entries[e as usize];
         u64::from(entry.count) * now - entry.issued_sum
+    }
+
+    /// Occupancy summed over the cycles before `end`, each cycle counted
+    /// after its events. `end` must not be before the cycle of any call made
+    /// so far but may be before allocations of cycle `end` itself (which
+    /// then add nothing); cycles before `end` not given to any call count
+    /// the occupancy left by the last call before them.
+    pub fn integrals(&self, end: u64) -> Integrals {
+        // Outstanding: `r - a` per filled entry, `end - a` per pending one.
+        let outstanding = self
+            .fill_sum
+            .wrapping_add(u64::from(self.outstanding).wrapping_mul(end))
+            .wrapping_sub(self.alloc_sum);
+        // Occupied beyond that: the hold of every filled entry, the part
+        // before `end` for those still held (the file is freed lazily, so
+        // some of them may be due already).
+        let hold = 1 + MSHR_HOLD_CYCLES;
+        let mut occupied = outstanding + (self.filled - u64::from(self.held)) * hold;
+        for k in self.free..self.free + self.held {
+            let free_at = self.entries[self.order[self.ring(k)] as usize].free_at;
+            occupied += hold - free_at.saturating_sub(end).min(hold);
+        }
+        let mut full = self.full_cycles;
+        if self.free == 0 {
+            full += self.next_release.min(end).saturating_sub(self.full_since);
+        }
+        Integrals {
+            occupied,
+            outstanding,
+            full,
+        }
     }
 }
 
@@ -312,6 +392,49 @@ mod tests {
         assert!(m.is_full());
         m.release(6);
         assert_eq!(m.occupied(), 0);
+    }
+
+    /// The per-event integrals equal sampling every cycle after its events,
+    /// at every cycle, on a random script (releases lazily late too).
+    #[test]
+    fn integrals_match_per_cycle_sampling() {
+        let mut x = 0x9e37_79b9_u32;
+        let mut rnd = |n: u32| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x % n
+        };
+        let mut m = MshrFile::new(4, 2);
+        let mut pending: Vec<u32> = Vec::new();
+        let mut sampled = Integrals::default();
+        let mut next_block = 0;
+        for now in 1..3000u64 {
+            // Sometimes the file is not touched in a cycle at all.
+            if rnd(4) != 0 {
+                m.release(now);
+                for _ in 0..rnd(3) {
+                    if !m.is_full() {
+                        next_block += 1;
+                        pending.push(m.allocate(next_block, 0, now));
+                    }
+                }
+                for _ in 0..rnd(3) {
+                    if !pending.is_empty() {
+                        let e = pending.swap_remove(rnd(pending.len() as u32) as usize);
+                        m.complete(e, now);
+                    }
+                }
+            }
+            // What a sampler advancing the file every cycle would see.
+            let mut seen = m.clone();
+            seen.release(now);
+            sampled.occupied += u64::from(seen.occupied());
+            sampled.outstanding += u64::from(seen.outstanding());
+            sampled.full += u64::from(seen.is_full());
+            assert_eq!(m.integrals(now + 1), sampled, "cycle {now}");
+        }
+        assert!(sampled.full > 100 && sampled.outstanding > 1000);
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! Counters of the memory hierarchy.
 //!
 //! Every counter is a plain `u64` updated on the event it names; the MSHR
-//! occupancy integrals are sampled once per [`tick`](super::MemorySystem::tick),
-//! after that cycle's fills. Summing over cores adds every field, so
+//! occupancy integrals count, for every ticked cycle, the occupancy after that
+//! cycle's accesses and fills (kept per MSHR entry as it is filled and freed,
+//! not per cycle; a cycle not ticked is idle and adds nothing). Summing over cores adds every field, so
 //! `cycles` of a summed level is core-cycles and the averages stay per cache.
 
 use serde::{Deserialize, Serialize};
