@@ -617,13 +617,14 @@ impl ShaderCore {
         mem.take_completions(self.id, scratch);
         for &tag in scratch.iter() {
             let s = tag as usize;
-            if self.free_slots & (1u128 << s) != 0 {
+            let w = &mut self.slots[s % MAX_SLOTS];
+            // An empty slot, or a warp with every block already back.
+            if w.pending == 0 || s >= MAX_SLOTS {
                 return Err(SimError::Internal(format!(
-                    "core {}: completion for empty slot {s} at cycle {now}",
+                    "core {}: completion for slot {s}, which waits for no block, at cycle {now}",
                     self.id
                 )));
             }
-            let w = &mut self.slots[s];
             w.pending -= 1;
             if w.pending == 0 {
                 let lat = now - w.tex_start;
@@ -639,6 +640,8 @@ impl ShaderCore {
                 let at = now + self.texture_latency.max(1);
                 self.schedule(now, at, s);
             }
+        }
+        if !scratch.is_empty() {
             self.last_progress = now;
         }
         let ev = mem.mshr_events(self.id);
