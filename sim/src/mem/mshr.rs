@@ -262,12 +262,11 @@ impl MshrFile {
             self.full_since = now;
         }
         let pos = self.outstanding;
-        self.entries[e as usize] = Entry {
-            issued_sum: now,
-            free_at: 0,
-            count: 1,
-            pos,
-        };
+        // (`free_at` is set when the entry is filled.)
+        let entry = &mut self.entries[e as usize];
+        entry.issued_sum = now;
+        entry.count = 1;
+        entry.pos = pos;
         self.targets[e as usize * self.slots as usize] = target;
         self.pending[pos as usize] = (block, e);
         self.outstanding = pos + 1;
