@@ -316,10 +316,14 @@ impl MemorySystem {
             let c = &mut self.cores[k];
             c.active = !c.is_quiet();
             if c.active {
+                // Only the MSHR occupancy must be current for the readers;
+                // the per-cycle values move to `now` with the first access
+                // or fill of the cycle (readers check the cycle they
+                // describe, and read zero before it).
                 if let Some(l0) = c.l0.as_mut() {
-                    l0.advance(now);
+                    l0.release(now);
                 }
-                c.l1.advance(now);
+                c.l1.release(now);
                 if has_l0 {
                     let l1_reply = now + u64::from(c.l1.config().hit_latency) - 1;
                     while let Some(&r) = c.to_l1.front() {

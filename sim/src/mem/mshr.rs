@@ -8,7 +8,10 @@
 //!
 //! Storage is flat and preallocated: no allocation after construction.
 //! Lookups by block are linear searches over the pending entries, kept dense
-//! (a handful to a few dozen, like the CAM of a hardware MSHR file). An owner
+//! (a handful to a few dozen, like the CAM of a hardware MSHR file), behind a
+//! counting filter: a block whose bucket has no pending entry is not pending,
+//! without a search (most lookups of a large, busy file like the L2's find
+//! nothing). An owner
 //! that remembers the entry [`MshrFile::allocate`] returned completes it by
 //! index, with no search. Entries not pending wait in one ring, free ones
 //! first, then held ones in fill order: freeing a held entry moves no data.
@@ -24,6 +27,15 @@
 
 /// Cycles an entry stays occupied after the cycle of its reply.
 pub const MSHR_HOLD_CYCLES: u64 = 1;
+
+/// Buckets of the pending filter (a power of two).
+const PENDING_BUCKETS: usize = 256;
+
+/// Bucket of `block` in the pending filter.
+#[inline(always)]
+fn pending_bucket(block: u64) -> usize {
+    block as usize & (PENDING_BUCKETS - 1)
+}
 
 /// Per-entry state.
 #[derive(Debug, Clone, Copy, Default)]
@@ -52,6 +64,8 @@ pub struct MshrFile {
     /// unordered (swap-removed on completion).
     pending: Box<[(u64, u32)]>,
     outstanding: u32,
+    /// Per bucket of block numbers, the pending entries of the bucket.
+    pending_filter: Box<[u32; PENDING_BUCKETS]>,
     /// Every entry not pending, in a ring of power-of-two length from
     /// `head`: first the `free` free entries (allocated from the front),
     /// then the `held` held ones in fill order, hence in `free_at` order (a
@@ -113,6 +127,7 @@ impl MshrFile {
             targets: vec![0; n * slots as usize].into(),
             pending: vec![(0, 0); n].into(),
             outstanding: 0,
+            pending_filter: Box::new([0; PENDING_BUCKETS]),
             order: order.into(),
             head: 0,
             free: capacity,
@@ -187,6 +202,9 @@ impl MshrFile {
     /// Position in `pending` of the entry pending for `block`, if any.
     #[inline(always)]
     fn position(&self, block: u64) -> Option<usize> {
+        if self.pending_filter[pending_bucket(block)] == 0 {
+            return None;
+        }
         self.pending[..self.outstanding as usize]
             .iter()
             .position(|&(b, _)| b == block)
@@ -244,15 +262,15 @@ impl MshrFile {
             self.full_since = now;
         }
         let pos = self.outstanding;
-        self.entries[e as usize] = Entry {
-            issued_sum: now,
-            free_at: 0,
-            count: 1,
-            pos,
-        };
+        // (`free_at` is set when the entry is filled.)
+        let entry = &mut self.entries[e as usize];
+        entry.issued_sum = now;
+        entry.count = 1;
+        entry.pos = pos;
         self.targets[e as usize * self.slots as usize] = target;
         self.pending[pos as usize] = (block, e);
         self.outstanding = pos + 1;
+        self.pending_filter[pending_bucket(block)] += 1;
         self.alloc_sum = self.alloc_sum.wrapping_add(now);
         e
     }
@@ -271,6 +289,7 @@ impl MshrFile {
         self.filled += 1;
         let (block, pe) = self.pending[pos];
         debug_assert_eq!(pe, e, "entry {e} is not pending");
+        self.pending_filter[pending_bucket(block)] -= 1;
         // Swap-remove position `pos` of the pending list.
         self.outstanding -= 1;
         let last = self.pending[self.outstanding as usize];
@@ -392,6 +411,28 @@ mod tests {
         assert!(m.is_full());
         m.release(6);
         assert_eq!(m.occupied(), 0);
+    }
+
+    #[test]
+    fn blocks_sharing_a_filter_bucket_are_told_apart() {
+        let n = PENDING_BUCKETS as u64;
+        let mut m = MshrFile::new(3, 1);
+        assert_eq!(pending_bucket(3), pending_bucket(3 + n));
+        let a = m.allocate(3, 30, 0);
+        assert_eq!((m.find(3), m.find(3 + n)), (Some(a), None));
+        assert_eq!(m.merge(3 + n, 31, 0), Merge::NotPending);
+        let b = m.allocate(3 + n, 32, 0);
+        assert_eq!(m.merge(3 + n, 33, 0), Merge::Merged);
+        assert_eq!(m.complete(a, 1), 3);
+        // The bucket still counts block 3 + n, and only it.
+        assert_eq!((m.find(3), m.find(3 + n)), (None, Some(b)));
+        assert_eq!(m.merge(3, 34, 1), Merge::NotPending);
+        assert_eq!(m.complete(b, 2), 3 + n);
+        assert_eq!(m.targets(b), &[32, 33]);
+        assert!(!m.is_pending(3) && !m.is_pending(3 + n));
+        // A block is pending again after its entry was filled.
+        let c = m.allocate(3, 35, 2);
+        assert_eq!(m.find(3), Some(c));
     }
 
     /// The per-event integrals equal sampling every cycle after its events,
