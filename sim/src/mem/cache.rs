@@ -610,13 +610,8 @@ pub(crate) mod tests {
     /// random script of hits, misses and out-of-order fills.
     #[test]
     fn replacement_is_lru_per_set() {
-        let mut x = 0x2545_f491_u32;
-        let mut rnd = |n: u32| {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x % n
-        };
+        let mut rng = crate::rng::Rng::new(0x2545_f491);
+        let mut rnd = |n: u32| rng.below(u64::from(n)) as u32;
         // 2 sets x 4 ways, room for every miss in flight.
         let mut c = Cache::new(&cfg(512, 4, 64, 64, 64)).unwrap();
         let mut model: Vec<Vec<u64>> = vec![Vec::new(); 2];

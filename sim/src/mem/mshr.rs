@@ -439,13 +439,8 @@ mod tests {
     /// at every cycle, on a random script (releases lazily late too).
     #[test]
     fn integrals_match_per_cycle_sampling() {
-        let mut x = 0x9e37_79b9_u32;
-        let mut rnd = |n: u32| {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x % n
-        };
+        let mut rng = crate::rng::Rng::new(0x9e37_79b9);
+        let mut rnd = |n: u32| rng.below(u64::from(n)) as u32;
         let mut m = MshrFile::new(4, 2);
         let mut pending: Vec<u32> = Vec::new();
         let mut sampled = Integrals::default();

@@ -94,11 +94,9 @@ mod tests {
     fn behaves_like_a_vecdeque_through_wraps_and_growth() {
         let mut r: Ring<u32> = Ring::with_capacity(3);
         let mut d: VecDeque<u32> = VecDeque::new();
-        let mut x = 12345u32;
+        let mut rng = crate::rng::Rng::new(12345);
         for i in 0..5000u32 {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
+            let x = rng.next_u64() as u32;
             // Mostly balanced, with bursts that force growth.
             let pushes = if i % 500 == 0 { 9 } else { x % 3 };
             for k in 0..pushes {
