@@ -184,8 +184,6 @@ pub struct ShaderCore {
     /// instruction is known to be another ALU one, so at their cycle they
     /// join the ready set as a whole mask, with no per-warp look.
     wheel_ready: [[u64; 2]; WHEEL],
-    /// `alu_latency` reaches inside the wheels.
-    alu_on_wheel: bool,
     /// Wake-ups further than the wheel reaches.
     far: BinaryHeap<Reverse<(u64, u8)>>,
     ldst: VecDeque<LdstEntry>,
@@ -261,7 +259,6 @@ impl ShaderCore {
             narrow: n <= 64,
             wheel: [[0; 2]; WHEEL],
             wheel_ready: [[0; 2]; WHEEL],
-            alu_on_wheel: (p.alu_latency as usize) < WHEEL,
             far: BinaryHeap::new(),
             ldst: VecDeque::with_capacity(p.ldst_queue as usize),
             tile: None,
@@ -536,7 +533,7 @@ impl ShaderCore {
         self.progress(now);
         self.ready = (ready & !alu).to_wide();
         let at = now + self.alu_latency;
-        if self.alu_on_wheel {
+        if self.alu_latency < WHEEL as u64 {
             let i = (at as usize) & (WHEEL - 1);
             let mid = (alu & !run_end).to_wide();
             let end = run_end.to_wide();
