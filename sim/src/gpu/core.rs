@@ -186,7 +186,11 @@ pub struct ShaderCore {
     wheel_ready: [[u64; 2]; WHEEL],
     /// Wake-ups further than the wheel reaches.
     far: BinaryHeap<Reverse<(u64, u8)>>,
-    ldst: VecDeque<LdstEntry>,
+    /// The LDST unit's texture instructions, `ldst_len` of them: the
+    /// oldest, whose blocks are being presented, then the others in order.
+    ldst_cur: LdstEntry,
+    ldst_wait: VecDeque<LdstEntry>,
+    ldst_len: usize,
     /// Index of the current tile in the trace.
     tile: Option<usize>,
     /// Next quad of the tile to rasterize.
@@ -260,7 +264,13 @@ impl ShaderCore {
             wheel: [[0; 2]; WHEEL],
             wheel_ready: [[0; 2]; WHEEL],
             far: BinaryHeap::new(),
-            ldst: VecDeque::with_capacity(p.ldst_queue as usize),
+            ldst_cur: LdstEntry {
+                slot: 0,
+                next: 0,
+                end: 0,
+            },
+            ldst_wait: VecDeque::with_capacity(p.ldst_queue as usize),
+            ldst_len: 0,
             tile: None,
             raster_next: 0,
             tile_quads: 0,
@@ -480,7 +490,7 @@ impl ShaderCore {
     /// ready wheel, those that ended it on the wheel that looks at them.
     #[inline(always)]
     fn issue_with<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
-        let tex_ok = self.ldst.len() < self.ldst_cap;
+        let tex_ok = self.ldst_len < self.ldst_cap;
         let ready = M::from_wide(self.ready);
         let cand = ready
             | if tex_ok {
@@ -560,11 +570,17 @@ impl ShaderCore {
             );
             w.pending = w.tex_len;
             w.tex_start = now;
-            self.ldst.push_back(LdstEntry {
+            let e = LdstEntry {
                 slot: s as u8,
                 next: w.blk,
                 end,
-            });
+            };
+            if self.ldst_len == 0 {
+                self.ldst_cur = e;
+            } else {
+                self.ldst_wait.push_back(e);
+            }
+            self.ldst_len += 1;
             w.blk = end;
             self.ready_tex &= !(1u128 << s);
             self.stats.tex_instructions += 1;
@@ -572,14 +588,17 @@ impl ShaderCore {
     }
 
     fn ldst(&mut self, now: u64, tile: &Tile, mem: &mut MemorySystem) {
+        if self.ldst_len == 0 {
+            return;
+        }
         let blocks = tile.block_accesses();
-        while let Some(e) = self.ldst.front_mut() {
-            let mut refused = false;
+        loop {
+            let e = &mut self.ldst_cur;
             while e.next < e.end {
                 let r = mem.access(now, self.id, blocks[e.next as usize], e.slot as u32);
                 if !r.accepted() {
-                    refused = true;
-                    break;
+                    self.signals.ldst_refused = true;
+                    return;
                 }
                 e.next += 1;
                 self.signals.ldst_presented += 1;
@@ -594,11 +613,11 @@ impl ShaderCore {
                     }
                 }
             }
-            if refused {
-                self.signals.ldst_refused = true;
-                break;
+            self.ldst_len -= 1;
+            match self.ldst_wait.pop_front() {
+                Some(n) => self.ldst_cur = n,
+                None => return,
             }
-            self.ldst.pop_front();
         }
     }
 
@@ -680,7 +699,7 @@ impl ShaderCore {
         if self.raster_next == self.tile_quads
             && self.sched.queue().is_empty()
             && self.active == 0
-            && self.ldst.is_empty()
+            && self.ldst_len == 0
         {
             self.tile = None;
             self.stats.tiles += 1;
@@ -716,7 +735,7 @@ impl ShaderCore {
             (self.ready | self.ready_tex).count_ones(),
             self.sched.queue().occupancy(QueueClass::Priority),
             self.sched.queue().occupancy(QueueClass::Regular),
-            self.ldst.len(),
+            self.ldst_len,
             self.sched.free_mshrs().free(),
             self.sched.nonblocked().count(),
         )
@@ -753,7 +772,7 @@ impl Traceable for ShaderCore {
         t.signal("issued", 5, self.signals.issued.min(31) as u64);
         t.bit("tex_issued", self.signals.tex_issued);
         let lw = (usize::BITS - self.ldst_cap.leading_zeros()).max(1);
-        t.signal("ldst_occupancy", lw, self.ldst.len() as u64);
+        t.signal("ldst_occupancy", lw, self.ldst_len as u64);
         t.signal(
             "ldst_presented",
             4,

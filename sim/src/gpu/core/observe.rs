@@ -76,7 +76,7 @@ impl ShaderCore {
             active: self.active,
             slots: self.n_slots,
             warps,
-            ldst: self.ldst.len(),
+            ldst: self.ldst_len,
         }
     }
 }
