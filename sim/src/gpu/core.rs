@@ -62,8 +62,6 @@ struct Warp {
     op: u32,
     /// One past its last instruction entry in the pool.
     n_ops: u32,
-    /// ALU instructions left in the current ALU run (0: not started).
-    alu_left: u32,
     priority: bool,
     blocked: bool,
     /// Blocks of the current texture instruction not yet returned.
@@ -167,6 +165,10 @@ pub struct ShaderCore {
     /// Warp slots; a slot holds a warp when its bit in `free_slots` is 0.
     /// Only the first `n_slots` are used.
     slots: Box<[Warp; MAX_SLOTS]>,
+    /// Per slot, the ALU instructions left in the warp's current ALU run
+    /// (0: not started), apart from the rest of the warp: the issue stage
+    /// counts a run down without touching the warp.
+    alu_left: Box<[u32; MAX_SLOTS]>,
     /// Warp slots of the core.
     n_slots: usize,
     free_slots: u128,
@@ -252,6 +254,7 @@ impl ShaderCore {
             sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy),
             track_mshrs,
             slots: Box::new([Warp::default(); MAX_SLOTS]),
+            alu_left: Box::new([0; MAX_SLOTS]),
             n_slots: n,
             free_slots: if n == 128 {
                 u128::MAX
@@ -373,13 +376,13 @@ impl ShaderCore {
                 let w = *w;
                 self.finish(s, &w, now);
                 self.progress(now);
-            } else if w.alu_left > 0 {
+            } else if self.alu_left[s % MAX_SLOTS] > 0 {
                 ready |= M::bit(s);
             } else {
                 // Starting a new instruction entry: decode it once.
                 match tile.op_kind(w.op as usize).expect("op in program") {
                     OpKind::Alu(n) => {
-                        w.alu_left = n;
+                        self.alu_left[s % MAX_SLOTS] = n;
                         ready |= M::bit(s);
                     }
                     OpKind::Tex(len) => {
@@ -448,11 +451,11 @@ impl ShaderCore {
                 self.free_slots &= !(1u128 << s);
                 let priority = class == QueueClass::Priority;
                 let span = tile.quad_span(quad as usize).expect("quad in tile");
+                self.alu_left[s % MAX_SLOTS] = 0;
                 self.slots[s % MAX_SLOTS] = Warp {
                     quad,
                     op: span.op_start,
                     n_ops: span.op_start + span.op_len,
-                    alu_left: 0,
                     priority,
                     blocked: false,
                     pending: 0,
@@ -514,11 +517,11 @@ impl ShaderCore {
             rot = rot.without_lowest();
             let bit = M::bit(s);
             if ready & bit != M::ZERO {
-                let w = &mut self.slots[s % MAX_SLOTS];
-                w.alu_left -= 1;
+                let left = &mut self.alu_left[s % MAX_SLOTS];
+                *left -= 1;
                 alu |= bit;
-                if w.alu_left == 0 {
-                    w.op += 1;
+                if *left == 0 {
+                    self.slots[s % MAX_SLOTS].op += 1;
                     run_end |= bit;
                 }
             } else {
