@@ -57,8 +57,10 @@ pub use observe::{CoreSnapshot, WarpView};
 struct Warp {
     /// Index of its quad in the tile.
     quad: u32,
-    /// Current instruction entry, as an index in the tile's instruction
-    /// pool.
+    /// Next instruction entry to start, as an index in the tile's
+    /// instruction pool (the one in progress is `op - 1`): a wake-up with no
+    /// ALU run under way starts entry `op`, or finishes the warp past its
+    /// last.
     op: u32,
     /// One past its last instruction entry in the pool.
     n_ops: u32,
@@ -372,12 +374,13 @@ impl ShaderCore {
             let s = due.lowest();
             due = due.without_lowest();
             let w = &mut self.slots[s % MAX_SLOTS];
-            if w.op >= w.n_ops {
+            if self.alu_left[s % MAX_SLOTS] > 0 {
+                // In an ALU run (a latency beyond the wheels' reach).
+                ready |= M::bit(s);
+            } else if w.op >= w.n_ops {
                 let w = *w;
                 self.finish(s, &w, now);
                 self.progress(now);
-            } else if self.alu_left[s % MAX_SLOTS] > 0 {
-                ready |= M::bit(s);
             } else {
                 // Starting a new instruction entry: decode it once.
                 match tile.op_kind(w.op as usize).expect("op in program") {
@@ -390,6 +393,7 @@ impl ShaderCore {
                         ready_tex |= M::bit(s);
                     }
                 }
+                w.op += 1;
             }
         }
         self.ready |= ready.to_wide();
@@ -520,10 +524,7 @@ impl ShaderCore {
                 let left = &mut self.alu_left[s % MAX_SLOTS];
                 *left -= 1;
                 alu |= bit;
-                if *left == 0 {
-                    self.slots[s % MAX_SLOTS].op += 1;
-                    run_end |= bit;
-                }
+                run_end |= M::bit_if(s, *left == 0);
             } else {
                 // One texture instruction enters the LDST unit per cycle.
                 tex = Some(s);
@@ -567,7 +568,7 @@ impl ShaderCore {
             let w = &mut self.slots[s % MAX_SLOTS];
             let end = w.blk + w.tex_len;
             debug_assert_eq!(
-                tile.op_kind(w.op as usize),
+                tile.op_kind(w.op as usize - 1),
                 Some(OpKind::Tex(w.tex_len)),
                 "ready_tex warps wait on a texture instruction"
             );
@@ -649,7 +650,6 @@ impl ShaderCore {
                 let lat = now - w.tex_start;
                 w.lat_sum += lat;
                 w.tex_done += 1;
-                w.op += 1;
                 if w.blocked {
                     w.blocked = false;
                     if w.priority {

@@ -24,6 +24,9 @@ pub(crate) trait SlotMask:
     const BITS: u32;
     /// The set `{s}` (`s < BITS`).
     fn bit(s: usize) -> Self;
+    /// The set `{s}` if `on`, else the empty set (`s < BITS`), without a
+    /// branch.
+    fn bit_if(s: usize, on: bool) -> Self;
     /// The low `BITS` bits of a `u128` set (the caller guarantees that no
     /// higher bit is set).
     fn from_wide(m: u128) -> Self;
@@ -47,6 +50,10 @@ macro_rules! slot_mask {
             #[inline(always)]
             fn bit(s: usize) -> Self {
                 1 << s
+            }
+            #[inline(always)]
+            fn bit_if(s: usize, on: bool) -> Self {
+                <$t>::from(on) << s
             }
             #[inline(always)]
             fn from_wide($m: u128) -> Self {
