@@ -8,13 +8,19 @@
 #
 # Prints the count, then the inclusive cost per core-cycle of the functions
 # callgrind sees (inlined code is charged to its caller). Needs valgrind.
+# With ICOUNT_SIM=1 it also runs callgrind's branch predictor and cache
+# models and prints mispredicted branches and L1 data misses per core-cycle
+# (a simple model of the host, but deterministic: wall-clock timing on a
+# shared machine cannot see a 3% change).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 bin=$(realpath "${1:-$repo/target/release/wasp}")
 command -v valgrind > /dev/null || { echo "icount: valgrind is not installed" >&2; exit 1; }
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 "$bin" synth --frame 512x256 --seed 1 --out "$out/bench.trace" > /dev/null
-valgrind --tool=callgrind --callgrind-out-file="$out/cg" \
+sim=()
+[ "${ICOUNT_SIM:-0}" = 1 ] && sim=(--branch-sim=yes --cache-sim=yes)
+valgrind --tool=callgrind "${sim[@]}" --callgrind-out-file="$out/cg" \
   --toggle-collect='wasp_sim::gpu::Gpu::step' \
   "$bin" run -q --trace "$out/bench.trace" --json "$out/run.json" > /dev/null 2> "$out/log"
 python3 - "$out" <<'PY'
@@ -23,8 +29,15 @@ signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 out = sys.argv[1]
 run = json.load(open(f"{out}/run.json"))
 cc = run["cycles"] * 4  # the paper machine's four cores
-total = next(int(l.split()[1]) for l in open(f"{out}/cg") if l.startswith(("summary:", "totals:")))
+lines = open(f"{out}/cg").read().splitlines()
+names = next(l.split()[1:] for l in lines if l.startswith("events:"))
+values = next(l.split()[1:] for l in lines if l.startswith(("summary:", "totals:")))
+ev = dict(zip(names, map(int, values)))
+total = ev["Ir"]
 print(f"instr/core-cycle: {total / cc:.1f}  ({total} instructions, {cc} core-cycles)")
+if "Bcm" in ev:
+    print(f"mispredicted branches/core-cycle: {(ev['Bcm'] + ev['Bim']) / cc:.2f}  "
+          f"L1 data misses/core-cycle: {(ev['D1mr'] + ev['D1mw']) / cc:.2f}")
 ann = subprocess.run(["callgrind_annotate", "--inclusive=yes", f"{out}/cg"],
                      capture_output=True, text=True).stdout
 # A function appears once per source file of code inlined into it; its
