@@ -153,8 +153,25 @@ fn fill_l0(
     entry: u32,
 ) {
     let at = now + u64::from(l0.config().hit_latency) - 1;
-    for &tag in l0.fill_entry(now, entry) {
-        complete(completing, ready, now, at, tag);
+    complete_all(completing, ready, now, at, l0.fill_entry(now, entry));
+}
+
+/// [`complete`] for each of `tags` in order, deciding once: after the first
+/// tag goes to `ready` (or to `completing`) so do the others.
+#[inline(always)]
+fn complete_all(
+    completing: &mut Ring<(u64, u32)>,
+    ready: &mut Vec<u32>,
+    now: u64,
+    at: u64,
+    tags: &[u32],
+) {
+    if at <= now && completing.is_empty() {
+        ready.extend(tags.iter().copied());
+    } else {
+        for &tag in tags {
+            completing.push_back((at, tag));
+        }
     }
 }
 
@@ -426,9 +443,7 @@ impl MemorySystem {
                     c.to_l0.push_back(Delivery { at, entry });
                 }
             } else {
-                for &tag in targets {
-                    complete(&mut c.completing, &mut c.ready, now, at, tag);
-                }
+                complete_all(&mut c.completing, &mut c.ready, now, at, targets);
             }
         }
 
