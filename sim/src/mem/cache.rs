@@ -39,7 +39,7 @@ use wasp_waves::Tracer;
 const INVALID: u64 = u64::MAX;
 
 /// Buckets of the presence filter (see `Cache::filter`).
-const FILTER_BUCKETS: usize = 64;
+const FILTER_BUCKETS: usize = 256;
 
 /// Bucket of `block` in the presence filter.
 #[inline(always)]
@@ -567,32 +567,33 @@ pub(crate) mod tests {
 
     #[test]
     fn filter_counts_every_line() {
-        // 2 sets x 2 ways; blocks 1 and 65 share a filter bucket.
+        // 2 sets x 2 ways; blocks 1 and `far` share a filter bucket (and set 1).
+        let far = 1 + FILTER_BUCKETS as u64;
         let mut c = Cache::new(&cfg(256, 2, 4, 2, 4)).unwrap();
         let count = |c: &Cache, b: u64| c.filter[bucket(b)];
         assert_eq!(c.access(1, 1, 0), Lookup::Miss);
         assert_eq!(count(&c, 1), 0, "a pending block has no line");
         // Same bucket, other block: still a primary miss, then merged.
-        assert_eq!(c.access(1, 65, 1), Lookup::Miss);
-        assert_eq!(c.access(1, 65, 2), Lookup::Secondary);
-        assert_eq!(count(&c, 65), 0);
+        assert_eq!(c.access(1, far, 1), Lookup::Miss);
+        assert_eq!(c.access(1, far, 2), Lookup::Secondary);
+        assert_eq!(count(&c, far), 0);
         c.fill(2, 1);
-        assert_eq!(count(&c, 65), 1);
+        assert_eq!(count(&c, far), 1);
         // A line in the bucket, the other block pending: searched, merged.
-        assert_eq!(c.access(2, 65, 7), Lookup::Secondary);
-        c.fill(2, 65);
+        assert_eq!(c.access(2, far, 7), Lookup::Secondary);
+        c.fill(2, far);
         assert_eq!(count(&c, 1), 2, "filled lines are counted");
-        assert_eq!(c.access(3, 65, 3), Lookup::Hit);
-        // Blocks 3 and 5 evict 1 and 65 from set 1 (LRU order 1, 65).
+        assert_eq!(c.access(3, far, 3), Lookup::Hit);
+        // Blocks 3 and 5 evict 1 and `far` from set 1 (LRU order 1, `far`).
         assert_eq!(c.access(3, 3, 4), Lookup::Miss);
         assert_eq!(c.access(3, 5, 5), Lookup::Miss);
         c.fill(4, 3);
         assert_eq!((count(&c, 1), count(&c, 3)), (1, 1));
         c.fill(4, 5);
         assert_eq!((count(&c, 1), count(&c, 3), count(&c, 5)), (0, 1, 1));
-        assert!(!c.contains(1) && !c.contains(65));
-        assert_eq!(c.access(6, 65, 6), Lookup::Miss);
-        // The lines of blocks 3 and 5; pending 65 is not counted.
+        assert!(!c.contains(1) && !c.contains(far));
+        assert_eq!(c.access(6, far, 6), Lookup::Miss);
+        // The lines of blocks 3 and 5; pending `far` is not counted.
         assert_eq!(c.filter.iter().sum::<u32>(), 2);
     }
 
