@@ -318,19 +318,22 @@ impl MemorySystem {
         let has_l0 = self.cfg.l0.is_some();
         let n = self.cores.len();
 
-        // L0 -> L1 requests, over the cores in round-robin order from core
-        // `now % cores` (their private levels are independent; the order is
-        // that of the L2 arbitration below). A quiet core (no MSHR occupied,
+        // L0 -> L1 requests, over the cores (their private levels are
+        // independent). A quiet core (no MSHR occupied,
         // nothing queued or completing) has nothing to do this cycle and is
         // skipped; it stays quiet through the tick (an L2 reply only goes to
         // a core with an L1 MSHR entry pending), so `active` serves the
         // whole tick. Cores whose L2 request is ready are the arbitration's
-        // candidates, kept in `l2_order`.
+        // candidates, kept in `l2_order` in round-robin order from core
+        // `now % cores`.
         let first = (now % n as u64) as usize;
         self.l2_order.clear();
-        let mut k = first;
-        for _ in 0..n {
-            let c = &mut self.cores[k];
+        // Candidates before core `first` in index order, moved behind the
+        // others at the end.
+        let mut wrapped = 0;
+        // Some core has an L1 reply or a tag completing still queued.
+        let mut late = false;
+        for (k, c) in self.cores.iter_mut().enumerate() {
             c.active = !c.is_quiet();
             if c.active {
                 // Only the MSHR occupancy must be current for the readers;
@@ -374,9 +377,15 @@ impl MemorySystem {
                 }
                 if c.to_l2.front().is_some_and(|r| r.ready <= now) {
                     self.l2_order.push(k as u32);
+                    if k < first {
+                        wrapped += 1;
+                    }
                 }
+                late |= !c.to_l0.is_empty() | !c.completing.is_empty();
             }
-            k = if k + 1 == n { 0 } else { k + 1 };
+        }
+        if wrapped > 0 {
+            self.l2_order.rotate_left(wrapped);
         }
 
         // L1 -> L2 requests, round robin over cores (core `now % cores` first,
@@ -437,6 +446,7 @@ impl MemorySystem {
             let c = &mut self.cores[r.core as usize];
             let at = now + u64::from(c.l1.config().hit_latency) - 1;
             let targets = c.l1.fill(now, r.block);
+            late = true;
             if has_l0 {
                 // Each target is the MSHR entry of one L0 miss.
                 for &entry in targets {
@@ -448,6 +458,9 @@ impl MemorySystem {
         }
 
         // L1 replies fill the L0s; tags due now complete.
+        if !late {
+            return;
+        }
         for c in &mut self.cores {
             if !c.active {
                 continue;
