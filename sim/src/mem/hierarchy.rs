@@ -372,7 +372,7 @@ impl MemorySystem {
                             (Lookup::Secondary, _) => {}
                             (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
                         }
-                        c.to_l1.pop_front();
+                        c.to_l1.drop_front();
                     }
                 }
                 if c.to_l2.front().is_some_and(|r| r.ready <= now) {
@@ -413,7 +413,7 @@ impl MemorySystem {
                     (Lookup::PortBusy, _) => break 'arbitrate,
                     (Lookup::Stall | Lookup::MergeFull, _) => continue,
                 }
-                c.to_l2.pop_front();
+                c.to_l2.drop_front();
                 if c.to_l2.front().is_some_and(|r| r.ready <= now) {
                     self.l2_order[kept] = core;
                     kept += 1;
@@ -438,11 +438,7 @@ impl MemorySystem {
         self.l2.release(now);
 
         // L2 replies fill the L1s.
-        while let Some(&r) = self.to_l1.front() {
-            if r.at > now {
-                break;
-            }
-            self.to_l1.pop_front();
+        while let Some(r) = self.to_l1.pop_front_if(|r| r.at <= now) {
             let c = &mut self.cores[r.core as usize];
             let at = now + u64::from(c.l1.config().hit_latency) - 1;
             let targets = c.l1.fill(now, r.block);
@@ -466,19 +462,11 @@ impl MemorySystem {
                 continue;
             }
             if let Some(l0) = c.l0.as_mut() {
-                while let Some(&d) = c.to_l0.front() {
-                    if d.at > now {
-                        break;
-                    }
-                    c.to_l0.pop_front();
+                while let Some(d) = c.to_l0.pop_front_if(|d| d.at <= now) {
                     fill_l0(l0, &mut c.completing, &mut c.ready, now, d.entry);
                 }
             }
-            while let Some(&(at, tag)) = c.completing.front() {
-                if at > now {
-                    break;
-                }
-                c.completing.pop_front();
+            while let Some((_, tag)) = c.completing.pop_front_if(|&(at, _)| at <= now) {
                 c.ready.push(tag);
             }
         }
