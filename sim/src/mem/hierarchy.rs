@@ -333,6 +333,9 @@ impl MemorySystem {
         let mut wrapped = 0;
         // Some core has an L1 reply or a tag completing still queued.
         let mut late = false;
+        // An L1 hit of this tick is due at `l1_reply`, now when `l1_direct`.
+        let l1_reply = now + u64::from(self.cfg.l1.hit_latency) - 1;
+        let l1_direct = l1_reply <= now;
         for (k, c) in self.cores.iter_mut().enumerate() {
             c.active = !c.is_quiet();
             if c.active {
@@ -340,12 +343,9 @@ impl MemorySystem {
                 // the per-cycle values move to `now` with the first access
                 // or fill of the cycle (readers check the cycle they
                 // describe, and read zero before it).
+                c.l1.release(now);
                 if let Some(l0) = c.l0.as_mut() {
                     l0.release(now);
-                }
-                c.l1.release(now);
-                if has_l0 {
-                    let l1_reply = now + u64::from(c.l1.config().hit_latency) - 1;
                     while let Some(&r) = c.to_l1.front() {
                         if r.ready > now {
                             break;
@@ -355,10 +355,8 @@ impl MemorySystem {
                             // Due now with nothing ahead of it in `to_l0`:
                             // fill the L0 at once, in the same order as
                             // through the queue.
-                            (Lookup::Hit, _) if l1_reply <= now && c.to_l0.is_empty() => {
-                                if let Some(l0) = c.l0.as_mut() {
-                                    fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
-                                }
+                            (Lookup::Hit, _) if l1_direct && c.to_l0.is_empty() => {
+                                fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
                             }
                             (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
                                 at: l1_reply,
