@@ -23,9 +23,10 @@
 //! used line of the set (lines are allocated only at fill, so a pending miss
 //! never owns a way; the LRU valid line is evicted whatever is pending).
 //!
-//! Speed: a small counting filter over the blocks present or pending lets
-//! most primary misses of a small cache skip the tag and MSHR searches; it
-//! changes no decision. Each set keeps its valid ways in recency order (a
+//! Speed: a small counting filter over the blocks present lets most misses
+//! of a small cache skip the tag search, and the MSHR file's own filter over
+//! the pending blocks lets most primary misses skip the MSHR search; they
+//! change no decision. Each set keeps its valid ways in recency order (a
 //! doubly linked list), so the LRU victim is found without a scan.
 
 use super::config::{CacheConfig, MemConfigError};
@@ -38,7 +39,7 @@ use wasp_waves::Tracer;
 const INVALID: u64 = u64::MAX;
 
 /// Buckets of the presence filter (see `Cache::filter`).
-const FILTER_BUCKETS: usize = 64;
+const FILTER_BUCKETS: usize = 256;
 
 /// Bucket of `block` in the presence filter.
 #[inline(always)]
@@ -85,9 +86,9 @@ pub struct Cache {
     /// `sets * ways` links of that order.
     links: Vec<Link>,
     /// Presence filter: per bucket of block numbers, the blocks of the bucket
-    /// that have a line or a pending MSHR entry. An access whose bucket is
-    /// empty is a primary miss without searching the set or the MSHRs (most
-    /// primary misses of a small cache like the L0).
+    /// that have a line. An access whose bucket is empty is a miss without
+    /// searching the set (most misses of a small cache like the L0, primary
+    /// or secondary: a pending block has no line).
     filter: [u32; FILTER_BUCKETS],
     mshr: MshrFile,
     /// The cycle the per-cycle fields below describe.
@@ -175,8 +176,7 @@ impl Cache {
             self.stats.stall_refusals += 1;
             return (Lookup::Stall, 0);
         }
-        let bucket = bucket(block);
-        if self.filter[bucket] != 0 {
+        if self.filter[bucket(block)] != 0 {
             let set = self.set_of(block);
             let base = set * self.ways;
             if let Some(w) = find_way(&self.tags[base..base + self.ways], block) {
@@ -187,23 +187,23 @@ impl Cache {
                 self.stats.hits += 1;
                 return (Lookup::Hit, 0);
             }
-            match self.mshr.merge(block, target, now) {
-                Merge::Merged => {
-                    self.ports_used += 1;
-                    self.stats.accesses += 1;
-                    self.stats.secondary_misses += 1;
-                    return (Lookup::Secondary, 0);
-                }
-                Merge::Full => {
-                    self.stats.merge_stalls += 1;
-                    return (Lookup::MergeFull, 0);
-                }
-                Merge::NotPending => {}
-            }
         }
-        debug_assert!(!self.contains(block) && !self.mshr.is_pending(block));
+        debug_assert!(!self.contains(block));
+        match self.mshr.merge(block, target, now) {
+            Merge::Merged => {
+                self.ports_used += 1;
+                self.stats.accesses += 1;
+                self.stats.secondary_misses += 1;
+                return (Lookup::Secondary, 0);
+            }
+            Merge::Full => {
+                self.stats.merge_stalls += 1;
+                return (Lookup::MergeFull, 0);
+            }
+            Merge::NotPending => {}
+        }
+        debug_assert!(!self.mshr.is_pending(block));
         let e = self.mshr.allocate(block, target, now);
-        self.filter[bucket] += 1;
         self.ports_used += 1;
         self.allocated += 1;
         self.stats.accesses += 1;
@@ -268,11 +268,11 @@ impl Cache {
                 .or(Some(way)),
             "an invalid way is the victim when there is one"
         );
-        // The new block is already counted in the filter (since its miss).
         let evicted = self.tags[base + way];
         if evicted != INVALID {
             self.filter[bucket(evicted)] -= 1;
         }
+        self.filter[bucket(block)] += 1;
         self.tags[base + way] = block;
         self.stats.miss_wait_sum += self.mshr.wait_sum(e, now);
         self.mshr.targets(e)
@@ -566,30 +566,35 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn filter_counts_every_line_and_pending_block() {
-        // 2 sets x 2 ways; blocks 1 and 65 share a filter bucket.
+    fn filter_counts_every_line() {
+        // 2 sets x 2 ways; blocks 1 and `far` share a filter bucket (and set 1).
+        let far = 1 + FILTER_BUCKETS as u64;
         let mut c = Cache::new(&cfg(256, 2, 4, 2, 4)).unwrap();
         let count = |c: &Cache, b: u64| c.filter[bucket(b)];
         assert_eq!(c.access(1, 1, 0), Lookup::Miss);
-        assert_eq!(count(&c, 1), 1);
-        // Same bucket, other block: searched, still a primary miss.
-        assert_eq!(c.access(1, 65, 1), Lookup::Miss);
-        assert_eq!(c.access(1, 65, 2), Lookup::Secondary);
-        assert_eq!(count(&c, 65), 2);
+        assert_eq!(count(&c, 1), 0, "a pending block has no line");
+        // Same bucket, other block: still a primary miss, then merged.
+        assert_eq!(c.access(1, far, 1), Lookup::Miss);
+        assert_eq!(c.access(1, far, 2), Lookup::Secondary);
+        assert_eq!(count(&c, far), 0);
         c.fill(2, 1);
-        c.fill(2, 65);
-        assert_eq!(count(&c, 1), 2, "filled lines stay counted");
-        assert_eq!(c.access(3, 65, 3), Lookup::Hit);
-        // Blocks 3 and 5 evict 1 and 65 from set 1 (LRU order 1, 65).
+        assert_eq!(count(&c, far), 1);
+        // A line in the bucket, the other block pending: searched, merged.
+        assert_eq!(c.access(2, far, 7), Lookup::Secondary);
+        c.fill(2, far);
+        assert_eq!(count(&c, 1), 2, "filled lines are counted");
+        assert_eq!(c.access(3, far, 3), Lookup::Hit);
+        // Blocks 3 and 5 evict 1 and `far` from set 1 (LRU order 1, `far`).
         assert_eq!(c.access(3, 3, 4), Lookup::Miss);
         assert_eq!(c.access(3, 5, 5), Lookup::Miss);
         c.fill(4, 3);
         assert_eq!((count(&c, 1), count(&c, 3)), (1, 1));
         c.fill(4, 5);
         assert_eq!((count(&c, 1), count(&c, 3), count(&c, 5)), (0, 1, 1));
-        assert!(!c.contains(1) && !c.contains(65));
-        assert_eq!(c.access(6, 65, 6), Lookup::Miss);
-        assert_eq!(c.filter.iter().sum::<u32>(), 3);
+        assert!(!c.contains(1) && !c.contains(far));
+        assert_eq!(c.access(6, far, 6), Lookup::Miss);
+        // The lines of blocks 3 and 5; pending `far` is not counted.
+        assert_eq!(c.filter.iter().sum::<u32>(), 2);
     }
 
     #[test]

@@ -131,7 +131,7 @@ impl Dram {
             if q.ready > now {
                 break;
             }
-            self.queue.pop_front();
+            self.queue.drop_front();
             self.accepted_now += 1;
             let (bank, row) = self.bank_row(q.block);
             let row_hit = self.open_row[bank] == row;

@@ -153,8 +153,25 @@ fn fill_l0(
     entry: u32,
 ) {
     let at = now + u64::from(l0.config().hit_latency) - 1;
-    for &tag in l0.fill_entry(now, entry) {
-        complete(completing, ready, now, at, tag);
+    complete_all(completing, ready, now, at, l0.fill_entry(now, entry));
+}
+
+/// [`complete`] for each of `tags` in order, deciding once: after the first
+/// tag goes to `ready` (or to `completing`) so do the others.
+#[inline(always)]
+fn complete_all(
+    completing: &mut Ring<(u64, u32)>,
+    ready: &mut Vec<u32>,
+    now: u64,
+    at: u64,
+    tags: &[u32],
+) {
+    if at <= now && completing.is_empty() {
+        ready.extend(tags.iter().copied());
+    } else {
+        for &tag in tags {
+            completing.push_back((at, tag));
+        }
     }
 }
 
@@ -301,31 +318,34 @@ impl MemorySystem {
         let has_l0 = self.cfg.l0.is_some();
         let n = self.cores.len();
 
-        // L0 -> L1 requests, over the cores in round-robin order from core
-        // `now % cores` (their private levels are independent; the order is
-        // that of the L2 arbitration below). A quiet core (no MSHR occupied,
+        // L0 -> L1 requests, over the cores (their private levels are
+        // independent). A quiet core (no MSHR occupied,
         // nothing queued or completing) has nothing to do this cycle and is
         // skipped; it stays quiet through the tick (an L2 reply only goes to
         // a core with an L1 MSHR entry pending), so `active` serves the
         // whole tick. Cores whose L2 request is ready are the arbitration's
-        // candidates, kept in `l2_order`.
+        // candidates, kept in `l2_order` in round-robin order from core
+        // `now % cores`.
         let first = (now % n as u64) as usize;
         self.l2_order.clear();
-        let mut k = first;
-        for _ in 0..n {
-            let c = &mut self.cores[k];
+        // Candidates before core `first` in index order, moved behind the
+        // others at the end.
+        let mut wrapped = 0;
+        // Some core has an L1 reply or a tag completing still queued.
+        let mut late = false;
+        // An L1 hit of this tick is due at `l1_reply`, now when `l1_direct`.
+        let l1_reply = now + u64::from(self.cfg.l1.hit_latency) - 1;
+        let l1_direct = l1_reply <= now;
+        for (k, c) in self.cores.iter_mut().enumerate() {
             c.active = !c.is_quiet();
             if c.active {
                 // Only the MSHR occupancy must be current for the readers;
                 // the per-cycle values move to `now` with the first access
                 // or fill of the cycle (readers check the cycle they
                 // describe, and read zero before it).
+                c.l1.release(now);
                 if let Some(l0) = c.l0.as_mut() {
                     l0.release(now);
-                }
-                c.l1.release(now);
-                if has_l0 {
-                    let l1_reply = now + u64::from(c.l1.config().hit_latency) - 1;
                     while let Some(&r) = c.to_l1.front() {
                         if r.ready > now {
                             break;
@@ -335,10 +355,8 @@ impl MemorySystem {
                             // Due now with nothing ahead of it in `to_l0`:
                             // fill the L0 at once, in the same order as
                             // through the queue.
-                            (Lookup::Hit, _) if l1_reply <= now && c.to_l0.is_empty() => {
-                                if let Some(l0) = c.l0.as_mut() {
-                                    fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
-                                }
+                            (Lookup::Hit, _) if l1_direct && c.to_l0.is_empty() => {
+                                fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
                             }
                             (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
                                 at: l1_reply,
@@ -352,14 +370,20 @@ impl MemorySystem {
                             (Lookup::Secondary, _) => {}
                             (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
                         }
-                        c.to_l1.pop_front();
+                        c.to_l1.drop_front();
                     }
                 }
                 if c.to_l2.front().is_some_and(|r| r.ready <= now) {
                     self.l2_order.push(k as u32);
+                    if k < first {
+                        wrapped += 1;
+                    }
                 }
+                late |= !c.to_l0.is_empty() | !c.completing.is_empty();
             }
-            k = if k + 1 == n { 0 } else { k + 1 };
+        }
+        if wrapped > 0 {
+            self.l2_order.rotate_left(wrapped);
         }
 
         // L1 -> L2 requests, round robin over cores (core `now % cores` first,
@@ -387,7 +411,7 @@ impl MemorySystem {
                     (Lookup::PortBusy, _) => break 'arbitrate,
                     (Lookup::Stall | Lookup::MergeFull, _) => continue,
                 }
-                c.to_l2.pop_front();
+                c.to_l2.drop_front();
                 if c.to_l2.front().is_some_and(|r| r.ready <= now) {
                     self.l2_order[kept] = core;
                     kept += 1;
@@ -412,45 +436,35 @@ impl MemorySystem {
         self.l2.release(now);
 
         // L2 replies fill the L1s.
-        while let Some(&r) = self.to_l1.front() {
-            if r.at > now {
-                break;
-            }
-            self.to_l1.pop_front();
+        while let Some(r) = self.to_l1.pop_front_if(|r| r.at <= now) {
             let c = &mut self.cores[r.core as usize];
             let at = now + u64::from(c.l1.config().hit_latency) - 1;
             let targets = c.l1.fill(now, r.block);
+            late = true;
             if has_l0 {
                 // Each target is the MSHR entry of one L0 miss.
                 for &entry in targets {
                     c.to_l0.push_back(Delivery { at, entry });
                 }
             } else {
-                for &tag in targets {
-                    complete(&mut c.completing, &mut c.ready, now, at, tag);
-                }
+                complete_all(&mut c.completing, &mut c.ready, now, at, targets);
             }
         }
 
         // L1 replies fill the L0s; tags due now complete.
+        if !late {
+            return;
+        }
         for c in &mut self.cores {
             if !c.active {
                 continue;
             }
             if let Some(l0) = c.l0.as_mut() {
-                while let Some(&d) = c.to_l0.front() {
-                    if d.at > now {
-                        break;
-                    }
-                    c.to_l0.pop_front();
+                while let Some(d) = c.to_l0.pop_front_if(|d| d.at <= now) {
                     fill_l0(l0, &mut c.completing, &mut c.ready, now, d.entry);
                 }
             }
-            while let Some(&(at, tag)) = c.completing.front() {
-                if at > now {
-                    break;
-                }
-                c.completing.pop_front();
+            while let Some((_, tag)) = c.completing.pop_front_if(|&(at, _)| at <= now) {
                 c.ready.push(tag);
             }
         }

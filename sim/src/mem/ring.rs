@@ -71,6 +71,29 @@ impl<T: Copy + Default> Ring<T> {
         Some(x)
     }
 
+    /// Remove and return the oldest item if `due` holds for it.
+    #[inline(always)]
+    pub(crate) fn pop_front_if(&mut self, due: impl FnOnce(&T) -> bool) -> Option<T> {
+        if self.len == 0 {
+            return None;
+        }
+        let x = self.buf[self.head];
+        if !due(&x) {
+            return None;
+        }
+        self.drop_front();
+        Some(x)
+    }
+
+    /// Remove the oldest item, which the caller has seen through
+    /// [`Ring::front`] (the ring is not empty).
+    #[inline(always)]
+    pub(crate) fn drop_front(&mut self) {
+        debug_assert!(self.len > 0, "drop_front of an empty ring");
+        self.head = (self.head + 1) & (self.buf.len() - 1);
+        self.len -= 1;
+    }
+
     /// Double the capacity, keeping the order.
     #[cold]
     #[inline(never)]
@@ -103,8 +126,23 @@ mod tests {
                 r.push_back(i * 10 + k);
                 d.push_back(i * 10 + k);
             }
-            for _ in 0..(x >> 8) % 3 {
-                assert_eq!(r.pop_front(), d.pop_front());
+            for j in 0..(x >> 8) % 3 {
+                match (x >> 12).wrapping_add(j) % 3 {
+                    0 => assert_eq!(r.pop_front(), d.pop_front()),
+                    1 => {
+                        // Pops only even items.
+                        let want = d.front().filter(|&&v| v % 2 == 0).copied();
+                        if want.is_some() {
+                            d.pop_front();
+                        }
+                        assert_eq!(r.pop_front_if(|&v| v % 2 == 0), want);
+                    }
+                    _ => {
+                        if d.pop_front().is_some() {
+                            r.drop_front();
+                        }
+                    }
+                }
             }
             assert_eq!(r.front(), d.front());
             assert_eq!((r.len(), r.is_empty()), (d.len(), d.is_empty()));
