@@ -130,6 +130,7 @@ impl<T: Copy> LaunchScheduler<T> {
 
     /// Enqueue a warp from the rasterizer; `Err(ticket)` back if the queue
     /// is full. Returns the class it was put in.
+    #[inline]
     pub fn enqueue(&mut self, ticket: T, qx: u32, qy: u32) -> Result<QueueClass, T> {
         let class = self.classify(qx, qy);
         if self.queue.push(class, ticket) {
