@@ -173,4 +173,16 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn bit_if_is_the_bit_or_nothing() {
+        for s in 0..128 {
+            assert_eq!(u128::bit_if(s, true), 1u128 << s);
+            assert_eq!(u128::bit_if(s, false), 0);
+            if s < 64 {
+                assert_eq!(u64::bit_if(s, true), u64::bit(s));
+                assert_eq!(u64::bit_if(s, false), 0);
+            }
+        }
+    }
 }
