@@ -24,6 +24,11 @@ if [ "$mode" = record ]; then
     sed -e 's/^tile_size = 64 /tile_size = 8  /' "$D/in/$c.toml" > "$D/in/$c-t8.toml"
     grep -q '^tile_size = 8 ' "$D/in/$c-t8.toml"
   done
+  # ALU and texture latencies beyond the core's 64-cycle wake-up wheel.
+  sed -e 's/^alu_latency = 4 /alu_latency = 70/' -e 's/^texture_latency = 4 /texture_latency = 80/' \
+    "$repo/configs/paper.toml" > "$D/in/slow.toml"
+  grep -q '^alu_latency = 70' "$D/in/slow.toml"
+  grep -q '^texture_latency = 80' "$D/in/slow.toml"
   grep -q '^max_warps = 128' "$D/in/w128.toml"
   grep -q '^max_warps = 32 ' "$D/in/w32.toml"
   cp "$repo/tests/traces/tiny.trace" "$D/in/tiny.trace"
@@ -67,6 +72,9 @@ for sub in mesh2 mesh8 mesh16 hlines vlines top16 random:99; do
   for pol in wasp:4 fullpriority; do
     jobs+=("paper-plane-${pol//:/_}-${sub//:/_}.json|--config $D/in/paper.toml --trace $D/in/plane.trace --policy $pol --subset $sub")
   done
+done
+for pol in baseline wasp:4; do
+  jobs+=("slow-small-${pol//:/_}.json|--config $D/in/slow.toml --trace $D/in/small.trace --policy $pol")
 done
 jobs+=("width2-sprites-wasp_2_1.5-mesh8.json|--config $D/in/width2.toml --trace $D/in/sprites.trace --policy wasp:2:1.5 --subset mesh8")
 
