@@ -131,17 +131,6 @@ impl CoreMem {
     }
 }
 
-/// Record that `tag` completes in cycle `at` (never before `now`): straight
-/// into `ready` when due now and nothing earlier is waiting, else in order.
-#[inline]
-fn complete(completing: &mut Ring<(u64, u32)>, ready: &mut Vec<u32>, now: u64, at: u64, tag: u32) {
-    if at <= now && completing.is_empty() {
-        ready.push(tag);
-    } else {
-        completing.push_back((at, tag));
-    }
-}
-
 /// The L1's reply for L0 MSHR entry `entry` reaches the L0 in cycle `now`:
 /// fill it, and its targets complete after the L0's hit latency.
 #[inline(always)]
@@ -156,8 +145,10 @@ fn fill_l0(
     complete_all(completing, ready, now, at, l0.fill_entry(now, entry));
 }
 
-/// [`complete`] for each of `tags` in order, deciding once: after the first
-/// tag goes to `ready` (or to `completing`) so do the others.
+/// Record that `tags` complete in cycle `at` (never before `now`), in
+/// order: straight into `ready` when due now and nothing earlier is
+/// waiting, else behind what waits. One decision serves them all: after
+/// the first tag goes to `ready` (or to `completing`) so do the others.
 #[inline(always)]
 fn complete_all(
     completing: &mut Ring<(u64, u32)>,
@@ -285,7 +276,7 @@ impl MemorySystem {
         match first.access_entry(now, block, tag) {
             (Lookup::Hit, _) => {
                 let at = now + u64::from(first.config().hit_latency) - 1;
-                complete(&mut c.completing, &mut c.ready, now, at, tag);
+                complete_all(&mut c.completing, &mut c.ready, now, at, &[tag]);
                 Access::Hit
             }
             (Lookup::Miss, entry) => {
