@@ -10,6 +10,10 @@
 //! turns) price tracing on one workload; the last line is the hook's
 //! overhead with tracing off (hooks vs off), by both measures. Rows `tiles`
 //! and `warps` show how the rate changes with the workload and warp slots.
+//! `median` is the median sample's rate (by on-CPU time) and `spread` how
+//! much slower the slowest sample was than the fastest: a difference
+//! between points smaller than their spread is noise, and a warning says
+//! so when a spread passes 10%.
 
 use crate::run_cmd::emit;
 use crate::CliError;
@@ -29,7 +33,9 @@ thread's on-CPU time (Linux), far less disturbed by other load: compare \
 that. The tracing rows (off, hooks, visitor, vcd) are sampled in turns; \
 the last line gives the tracing hook's overhead with tracing off (hooks \
 path vs hook-free path) by wall and by CPU time. The tiles and warps rows \
-show the rate against workload size and warp slots (tracing off).")]
+show the rate against workload size and warp slots (tracing off). median \
+is the median sample's cpu-cc/s and spread how much slower the slowest \
+sample was than the fastest: differences smaller than the spread are noise.")]
 pub struct BenchArgs {
     /// Machine configuration (TOML); default: the embedded paper.toml.
     #[arg(long, value_name = "FILE")]
@@ -53,6 +59,9 @@ pub struct BenchArgs {
     pub json: Option<PathBuf>,
 }
 
+/// A spread of samples above this is worth a warning.
+const NOISY: f64 = 0.10;
+
 /// Run the benchmark.
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     let cfg = match &args.config {
@@ -63,7 +72,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         eprintln!("wasp bench: this is a debug build; measure with `cargo run --release -- bench`");
     }
     eprintln!(
-        "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10}{:>16}{:>6}{:>14}",
+        "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10}{:>16}{:>6}{:>14}{:>14}{:>8}",
         "point",
         "mode",
         "tiles",
@@ -73,7 +82,9 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         "seconds",
         "core-cycles/s",
         "runs",
-        "cpu-cc/s"
+        "cpu-cc/s",
+        "median",
+        "spread"
     );
     let trace = match &args.trace {
         Some(p) => {
@@ -97,7 +108,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
                 .core_cycles_per_cpu_second
                 .map_or("-".to_string(), |r| format!("{r:.0}"));
             eprintln!(
-                "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10.4}{:>16.0}{:>6}{:>14}",
+                "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10.4}{:>16.0}{:>6}{:>14}{:>14.0}{:>7.1}%",
                 p.label,
                 format!("{:?}", p.mode).to_lowercase(),
                 p.tiles,
@@ -107,7 +118,9 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
                 p.seconds,
                 p.core_cycles_per_second,
                 p.runs_per_sample,
-                cpu
+                cpu,
+                p.median_core_cycles_per_second,
+                100.0 * p.spread
             );
         },
     )
@@ -122,6 +135,17 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
             "tracing hook overhead with tracing off: {:+.2}% by wall time{cpu} (hooks path vs hook-free path)",
             100.0 * (hooks.seconds / off.seconds - 1.0)
         );
+    }
+    if let Some(worst) = points.iter().max_by(|a, b| a.spread.total_cmp(&b.spread)) {
+        if worst.spread > NOISY {
+            eprintln!(
+                "wasp bench: the samples of one point differ by up to {:.0}% ({} {}): this machine is busy or noisy, \
+                 and differences smaller than that are not measured; compare medians, or re-run with more --repeats",
+                100.0 * worst.spread,
+                worst.label,
+                format!("{:?}", worst.mode).to_lowercase()
+            );
+        }
     }
     if let Some(p) = &args.json {
         let text = serde_json::to_string_pretty(&points)

@@ -77,10 +77,19 @@ pub struct Point {
     pub cpu_seconds: Option<f64>,
     /// Core-cycles per second of on-CPU time, best sample.
     pub core_cycles_per_cpu_second: Option<f64>,
+    /// Core-cycles per second of on-CPU time (wall time where the OS does
+    /// not report it), the median sample.
+    pub median_core_cycles_per_second: f64,
+    /// How far the samples of the point scatter: the slowest sample's time
+    /// per run over the fastest's, minus 1 (by on-CPU time where the OS
+    /// reports it, else wall time). On a quiet machine a few percent; a
+    /// difference between two points smaller than their spread is not
+    /// measured.
+    pub spread: f64,
 }
 
 /// Best times of a point so far.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Best {
     cycles: u64,
     runs: u64,
@@ -88,11 +97,20 @@ struct Best {
     /// Seconds per run, best sample.
     wall: f64,
     cpu: Option<f64>,
+    /// Seconds per run of every sample, on-CPU where known, else wall.
+    each: Vec<f64>,
 }
 
 impl Best {
     fn point(&self, label: &str, mode: Mode, tiles: usize, max_warps: u32, cores: u64) -> Point {
         let cc = self.cycles * cores;
+        let mut each = self.each.clone();
+        each.sort_by(f64::total_cmp);
+        let (fast, slow) = (each[0], each[each.len() - 1]);
+        // The median sample's time (the mean of the middle two for an even
+        // count).
+        let n = each.len();
+        let mid = (each[(n - 1) / 2] + each[n / 2]) / 2.0;
         Point {
             label: label.into(),
             mode,
@@ -106,6 +124,8 @@ impl Best {
             samples: self.samples,
             cpu_seconds: self.cpu,
             core_cycles_per_cpu_second: self.cpu.map(|c| cc as f64 / c),
+            median_core_cycles_per_second: cc as f64 / mid,
+            spread: slow / fast - 1.0,
         }
     }
 }
@@ -153,7 +173,7 @@ fn measure(
     for _ in 0..repeats.max(1) {
         for (i, &(cfg, trace, mode)) in jobs.iter().enumerate() {
             // The first sample sets the run count; later ones repeat it.
-            let runs = best[i].map(|b| b.runs);
+            let runs = best[i].as_ref().map(|b| b.runs);
             let (cycles, runs, wall, cpu) = sample(cfg, trace, mode, min, runs)?;
             let b = best[i].get_or_insert(Best {
                 cycles,
@@ -161,8 +181,10 @@ fn measure(
                 samples: 0,
                 wall,
                 cpu,
+                each: Vec::new(),
             });
             b.samples += 1;
+            b.each.push(cpu.unwrap_or(wall));
             b.wall = b.wall.min(wall);
             b.cpu = match (b.cpu, cpu) {
                 (Some(x), Some(y)) => Some(x.min(y)),
@@ -271,7 +293,7 @@ pub fn run(
     }
     for (tx, ty) in [(2 * s, 2), (4 * s, 4), (8 * s, 8)] {
         let t = workload(&cfg, tx, ty)?;
-        let b = measure(&[(&cfg, &t, Mode::Off)], repeats, min)?[0];
+        let b = measure(&[(&cfg, &t, Mode::Off)], repeats, min)?.remove(0);
         let p = b.point(
             "tiles",
             Mode::Off,
@@ -285,7 +307,7 @@ pub fn run(
         let mut c = cfg.clone();
         c.core.max_warps = warps;
         c.validate().map_err(SimError::Config)?;
-        let b = measure(&[(&c, base, Mode::Off)], repeats, min)?[0];
+        let b = measure(&[(&c, base, Mode::Off)], repeats, min)?.remove(0);
         push(
             b.point("warps", Mode::Off, base.tiles().len(), warps, cores),
             &mut points,
@@ -297,6 +319,33 @@ pub fn run(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn spread_and_median_come_from_every_sample() {
+        // Three samples of 1, 2 and 4 seconds per run (by CPU time) of a
+        // 100-cycle run on 4 cores: the median is 2 s, the slowest is 4x
+        // the fastest; the best figures stay the fastest sample's.
+        let b = Best {
+            cycles: 100,
+            runs: 1,
+            samples: 3,
+            wall: 1.5,
+            cpu: Some(1.0),
+            each: vec![4.0, 1.0, 2.0],
+        };
+        let p = b.point("tracing", Mode::Off, 1, 64, 4);
+        assert_eq!(p.median_core_cycles_per_second, 400.0 / 2.0);
+        assert_eq!(p.spread, 3.0);
+        assert_eq!(p.core_cycles_per_cpu_second, Some(400.0));
+        // An even count takes the mean of the middle two.
+        let b = Best {
+            each: vec![1.0, 3.0],
+            ..b
+        };
+        let p = b.point("tracing", Mode::Off, 1, 64, 4);
+        assert_eq!(p.median_core_cycles_per_second, 200.0);
+        assert_eq!(p.spread, 2.0);
+    }
 
     #[test]
     fn every_mode_simulates_the_same_cycles() {
@@ -335,6 +384,8 @@ mod tests {
         }
         let p = b[0].point("tracing", Mode::Off, 1, 64, 4);
         assert_eq!(p.core_cycles, one * 4);
+        assert_eq!(b[0].each.len(), 2);
+        assert!(p.spread >= 0.0 && p.median_core_cycles_per_second > 0.0);
         assert!((p.core_cycles_per_second - (one * 4) as f64 / p.seconds).abs() < 1e-6);
     }
 }
