@@ -93,7 +93,6 @@ pub struct Point {
 struct Best {
     cycles: u64,
     runs: u64,
-    samples: usize,
     /// Seconds per run, best sample.
     wall: f64,
     cpu: Option<f64>,
@@ -121,7 +120,7 @@ impl Best {
             seconds: self.wall,
             core_cycles_per_second: cc as f64 / self.wall,
             runs_per_sample: self.runs,
-            samples: self.samples,
+            samples: self.each.len(),
             cpu_seconds: self.cpu,
             core_cycles_per_cpu_second: self.cpu.map(|c| cc as f64 / c),
             median_core_cycles_per_second: cc as f64 / mid,
@@ -178,12 +177,10 @@ fn measure(
             let b = best[i].get_or_insert(Best {
                 cycles,
                 runs,
-                samples: 0,
                 wall,
                 cpu,
                 each: Vec::new(),
             });
-            b.samples += 1;
             b.each.push(cpu.unwrap_or(wall));
             b.wall = b.wall.min(wall);
             b.cpu = match (b.cpu, cpu) {
@@ -328,7 +325,6 @@ mod tests {
         let b = Best {
             cycles: 100,
             runs: 1,
-            samples: 3,
             wall: 1.5,
             cpu: Some(1.0),
             each: vec![4.0, 1.0, 2.0],
@@ -379,7 +375,7 @@ mod tests {
         )
         .unwrap();
         for x in &b {
-            assert_eq!((x.cycles, x.samples), (one, 2));
+            assert_eq!((x.cycles, x.each.len()), (one, 2));
             assert!(x.runs >= 1 && x.wall > 0.0);
         }
         let p = b[0].point("tracing", Mode::Off, 1, 64, 4);
