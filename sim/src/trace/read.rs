@@ -39,13 +39,13 @@ impl Trace {
 
     /// Parses trace text; `source` names the input in errors. Never panics.
     pub fn parse(text: &str, source: &str) -> Result<Trace, TraceError> {
-        let mut lines = text.split('\n').enumerate().map(|(i, l)| {
+        // Lines end at '\n' (the last one may not), and a '\r' before the
+        // end of a line is part of the line ending.
+        let mut lines = text.split_inclusive('\n').enumerate().map(|(i, l)| {
+            let l = l.strip_suffix('\n').unwrap_or(l);
             let l = l.strip_suffix('\r').unwrap_or(l);
             (i + 1, l)
         });
-        // `split` yields one empty piece after a final newline: not a line.
-        let ends_with_newline = text.ends_with('\n');
-        let line_count = text.split('\n').count() - usize::from(ends_with_newline);
         let err = |line: usize, problem: Problem| TraceError::Malformed {
             source: source.to_string(),
             line,
@@ -61,6 +61,9 @@ impl Trace {
         let version = check_magic(first).map_err(|p| err(1, p))?;
 
         let mut parser = Parser {
+            fields: Vec::new(),
+            instrs: Vec::new(),
+            blocks: Vec::new(),
             notes: Vec::new(),
             workload: None,
             builder: None,
@@ -68,9 +71,6 @@ impl Trace {
         };
         let mut last_line = 1;
         for (n, line) in lines {
-            if n > line_count {
-                break;
-            }
             last_line = n;
             parser.line(line).map_err(|p| err(n, p))?;
         }
@@ -79,7 +79,11 @@ impl Trace {
 }
 
 fn check_line(line: &str) -> Result<(), Problem> {
-    if line.chars().any(|c| c.is_control() && c != '\t') {
+    // `char::is_control` is U+0000-U+001F and U+007F-U+009F. The ASCII ones
+    // are single bytes; only a line with other characters needs the
+    // character-wise look for the rest.
+    let ascii_control = line.bytes().any(|b| (b < 0x20 && b != b'\t') || b == 0x7f);
+    if ascii_control || (!line.is_ascii() && line.chars().any(|c| c.is_control() && c != '\t')) {
         return Err(Problem::ControlCharacter);
     }
     Ok(())
@@ -104,11 +108,22 @@ fn check_magic(line: &str) -> Result<u32, Problem> {
     Err(Problem::BadMagic(line.to_string()))
 }
 
+/// The blank-separated fields of a line. Only spaces and tabs separate:
+/// every other ASCII whitespace character is a control character, which
+/// [`check_line`] refuses before a line is split.
 fn tokens(line: &str) -> impl Iterator<Item = &str> {
-    line.split([' ', '\t']).filter(|t| !t.is_empty())
+    debug_assert!(check_line(line).is_ok());
+    line.split_ascii_whitespace()
 }
 
-struct Parser {
+struct Parser<'a> {
+    /// The fields of the current line (kept to reuse its allocation).
+    fields: Vec<&'a str>,
+    /// The instructions of the current quad line, checked before any is
+    /// given to the builder, and the block numbers of its texture
+    /// instructions (kept to reuse their allocations).
+    instrs: Vec<Tok>,
+    blocks: Vec<u64>,
     notes: Vec<String>,
     workload: Option<String>,
     /// Present once the `frame` line has been read.
@@ -120,8 +135,8 @@ struct Parser {
 const FRAME_USAGE: &str = "frame W H tile T";
 const TILE_USAGE: &str = "tile TX TY";
 
-impl Parser {
-    fn line(&mut self, line: &str) -> Result<(), Problem> {
+impl<'a> Parser<'a> {
+    fn line(&mut self, line: &'a str) -> Result<(), Problem> {
         check_line(line)?;
         let trimmed = line.trim_start_matches([' ', '\t']);
         if let Some(comment) = trimmed.strip_prefix('#') {
@@ -131,13 +146,22 @@ impl Parser {
             }
             return Ok(());
         }
-        let fields: Vec<&str> = tokens(line).collect();
+        let mut fields = std::mem::take(&mut self.fields);
+        fields.clear();
+        fields.extend(tokens(line));
+        let r = self.directive(trimmed, &fields);
+        self.fields = fields;
+        r
+    }
+
+    /// A line that is not a comment, split into `fields`.
+    fn directive(&mut self, trimmed: &str, fields: &[&str]) -> Result<(), Problem> {
         let Some(&directive) = fields.first() else {
             return Ok(()); // blank line
         };
         match directive {
             "workload" => self.workload_line(trimmed),
-            "frame" => self.frame_line(&fields),
+            "frame" => self.frame_line(fields),
             "tile" => {
                 let b = self.body(directive)?;
                 if fields.len() != 3 {
@@ -152,8 +176,14 @@ impl Parser {
                 b.begin_tile(tx, ty)
             }
             "q" => {
-                let b = self.body(directive)?;
-                quad_line(b, &fields)
+                let mut instrs = std::mem::take(&mut self.instrs);
+                let mut blocks = std::mem::take(&mut self.blocks);
+                let r = self
+                    .body(directive)
+                    .and_then(|b| quad_line(b, fields, &mut instrs, &mut blocks));
+                self.instrs = instrs;
+                self.blocks = blocks;
+                r
             }
             "end" => {
                 let b = self.body(directive)?;
@@ -251,7 +281,14 @@ impl Parser {
     }
 }
 
-fn quad_line(b: &mut TraceBuilder, fields: &[&str]) -> Result<(), Problem> {
+/// A `q X Y INSTR...` line. `instrs` and `blocks` are scratch space (their
+/// contents on entry are ignored).
+fn quad_line(
+    b: &mut TraceBuilder,
+    fields: &[&str],
+    instrs: &mut Vec<Tok>,
+    blocks: &mut Vec<u64>,
+) -> Result<(), Problem> {
     if b.open_tile().is_none() {
         return Err(Problem::QuadWithoutTile);
     }
@@ -269,10 +306,11 @@ fn quad_line(b: &mut TraceBuilder, fields: &[&str]) -> Result<(), Problem> {
     }
     // Check every instruction token before touching the builder, so an
     // error leaves no half-built quad behind.
-    let mut instrs = Vec::with_capacity(fields.len() - 3);
+    instrs.clear();
+    blocks.clear();
     let mut prev_alu: Option<u32> = None;
     for tok in &fields[3..] {
-        let instr = instr_token(tok)?;
+        let instr = instr_token(tok, blocks)?;
         match instr {
             Tok::Alu(n) => {
                 if let Some(first) = prev_alu {
@@ -285,21 +323,30 @@ fn quad_line(b: &mut TraceBuilder, fields: &[&str]) -> Result<(), Problem> {
         instrs.push(instr);
     }
     b.begin_quad(x, y)?;
-    for instr in &instrs {
-        match instr {
-            Tok::Alu(n) => b.alu(*n)?,
-            Tok::Tex(blocks) => b.tex(blocks)?,
+    let mut start = 0;
+    for instr in instrs.iter() {
+        match *instr {
+            Tok::Alu(n) => b.alu(n)?,
+            Tok::Tex(len) => {
+                b.tex(&blocks[start..start + len])?;
+                start += len;
+            }
         }
     }
     Ok(())
 }
 
+/// One checked instruction token.
 enum Tok {
     Alu(u32),
-    Tex(Vec<u64>),
+    /// A texture instruction: its block numbers are the next this many of
+    /// the line's block scratch.
+    Tex(usize),
 }
 
-fn instr_token(tok: &str) -> Result<Tok, Problem> {
+/// Checks one instruction token; a texture instruction's block numbers
+/// are appended to `blocks`.
+fn instr_token(tok: &str, blocks: &mut Vec<u64>) -> Result<Tok, Problem> {
     if let Some(n) = tok.strip_prefix('a') {
         if n.is_empty() || !n.bytes().all(|c| c.is_ascii_digit()) {
             return Err(Problem::BadInstr(tok.to_string()));
@@ -314,17 +361,30 @@ fn instr_token(tok: &str) -> Result<Tok, Problem> {
         if list.is_empty() {
             return Err(Problem::TexNoBlock);
         }
-        let mut blocks = Vec::new();
-        for item in list.split(',') {
+        let start = blocks.len();
+        // The comma-separated items of `list`, by byte position (a comma
+        // is one byte in UTF-8).
+        let bytes = list.as_bytes();
+        let mut from = 0;
+        loop {
+            let to = bytes[from..]
+                .iter()
+                .position(|&c| c == b',')
+                .map_or(bytes.len(), |k| from + k);
+            let item = &list[from..to];
             if item.is_empty() {
                 return Err(Problem::EmptyBlockEntry(tok.to_string()));
             }
-            if blocks.len() == MAX_TEX_BLOCKS {
+            if blocks.len() - start == MAX_TEX_BLOCKS {
                 return Err(Problem::TooManyBlocks(list.split(',').count()));
             }
             blocks.push(hex(item)?);
+            if to == bytes.len() {
+                break;
+            }
+            from = to + 1;
         }
-        return Ok(Tok::Tex(blocks));
+        return Ok(Tok::Tex(blocks.len() - start));
     }
     Err(Problem::BadInstr(tok.to_string()))
 }
@@ -367,7 +427,140 @@ fn hex(tok: &str) -> Result<u64, Problem> {
             found: tok.to_string(),
         });
     }
-    u64::from_str_radix(tok, 16).map_err(|_| Problem::BadHex {
-        found: tok.to_string(),
-    })
+    // At most 16 checked digits: no overflow.
+    Ok(tok.bytes().fold(0, |v, c| {
+        let d = match c {
+            b'0'..=b'9' => c - b'0',
+            b'a'..=b'f' => c - b'a' + 10,
+            _ => c - b'A' + 10,
+        };
+        v << 4 | u64::from(d)
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    //! The reader's fast forms against the plain ones they replace.
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The lines of `text` as the reader numbers them, the plain way: split
+    /// at '\n', drop the empty piece after a final '\n', strip one '\r'.
+    fn lines_reference(text: &str) -> Vec<&str> {
+        let mut v: Vec<&str> = text.split('\n').collect();
+        if text.ends_with('\n') {
+            v.pop();
+        }
+        v.into_iter()
+            .map(|l| l.strip_suffix('\r').unwrap_or(l))
+            .collect()
+    }
+
+    fn lines_fast(text: &str) -> Vec<&str> {
+        text.split_inclusive('\n')
+            .map(|l| {
+                let l = l.strip_suffix('\n').unwrap_or(l);
+                l.strip_suffix('\r').unwrap_or(l)
+            })
+            .collect()
+    }
+
+    fn check_line_reference(line: &str) -> bool {
+        !line.chars().any(|c| c.is_control() && c != '\t')
+    }
+
+    /// The old block-list reading: `split(',')` and `from_str_radix`.
+    fn blocks_reference(list: &str) -> Result<Vec<u64>, Problem> {
+        let tok = format!("t{list}");
+        if list.is_empty() {
+            return Err(Problem::TexNoBlock);
+        }
+        let mut blocks = Vec::new();
+        for item in list.split(',') {
+            if item.is_empty() {
+                return Err(Problem::EmptyBlockEntry(tok));
+            }
+            if blocks.len() == MAX_TEX_BLOCKS {
+                return Err(Problem::TooManyBlocks(list.split(',').count()));
+            }
+            if item.len() > 16 || !item.bytes().all(|c| c.is_ascii_hexdigit()) {
+                return Err(Problem::BadHex {
+                    found: item.to_string(),
+                });
+            }
+            blocks.push(u64::from_str_radix(item, 16).unwrap());
+        }
+        Ok(blocks)
+    }
+
+    fn blocks_fast(list: &str) -> Result<Vec<u64>, Problem> {
+        let mut blocks = vec![7]; // scratch left from an earlier token
+        match instr_token(&format!("t{list}"), &mut blocks)? {
+            Tok::Tex(n) => {
+                assert_eq!(blocks.len(), n + 1);
+                Ok(blocks[1..].to_vec())
+            }
+            Tok::Alu(_) => unreachable!("a `t` token"),
+        }
+    }
+
+    #[test]
+    fn line_ends_and_control_characters_at_the_edges() {
+        // (The reader refuses an empty input before it looks for lines.)
+        for text in [
+            "a", "a\n", "a\n\n", "\n", "a\r", "a\r\n", "a\r\r\n", "\r\n\r", "a\nb",
+        ] {
+            assert_eq!(lines_fast(text), lines_reference(text), "{text:?}");
+        }
+        for (line, ok) in [
+            ("q 1 2\ta3", true),
+            ("x\u{7f}", false),
+            ("x\u{80}", false),
+            ("x\u{9f}", false),
+            ("x\u{a0}", true),
+            ("\u{0}", false),
+            ("é\r", false),
+            ("é", true),
+            ("é\tq", true),
+        ] {
+            assert_eq!(check_line(line).is_ok(), ok, "{line:?}");
+            assert_eq!(check_line_reference(line), ok, "{line:?}");
+        }
+        assert_eq!(
+            blocks_fast("0,aB,ffffffffffffffff"),
+            Ok(vec![0, 0xab, u64::MAX])
+        );
+        for bad in ["", ",", "1,", ",1", "1,,2", "g", "12345678901234567", "é"] {
+            assert_eq!(blocks_fast(bad), blocks_reference(bad), "{bad:?}");
+            assert!(blocks_fast(bad).is_err(), "{bad:?}");
+        }
+        let many = vec!["1"; MAX_TEX_BLOCKS + 2].join(",");
+        assert_eq!(
+            blocks_fast(&many),
+            Err(Problem::TooManyBlocks(MAX_TEX_BLOCKS + 2))
+        );
+    }
+
+    proptest! {
+        #[test]
+        fn lines_split_as_the_plain_way(text in "[a\r\n é\t\u{85}]{1,24}") {
+            prop_assert_eq!(lines_fast(&text), lines_reference(&text));
+        }
+
+        #[test]
+        fn control_check_as_the_plain_way(line in "\\PC{0,8}|[\u{0}-\u{a0}]{0,8}|[\tá\u{85}a]{0,8}") {
+            prop_assert_eq!(check_line(&line).is_ok(), check_line_reference(&line));
+        }
+
+        #[test]
+        fn fields_split_as_the_plain_way(line in "[a1 \t\u{a0}\u{3000}]{0,16}") {
+            let plain: Vec<&str> = line.split([' ', '\t']).filter(|t| !t.is_empty()).collect();
+            prop_assert_eq!(tokens(&line).collect::<Vec<_>>(), plain);
+        }
+
+        #[test]
+        fn block_lists_read_as_the_plain_way(list in "[0-9a-fA-Fg,]{0,40}") {
+            prop_assert_eq!(blocks_fast(&list), blocks_reference(&list));
+        }
+    }
 }
