@@ -74,6 +74,11 @@ fn ratio(num: f64, den: f64) -> f64 {
 
 impl TileStats {
     pub(super) fn of(tile: &Tile) -> TileStats {
+        Self::with_unique(tile, &tile.unique_blocks())
+    }
+
+    /// The statistics of `tile`, whose distinct blocks are `unique`.
+    fn with_unique(tile: &Tile, unique: &[u64]) -> TileStats {
         let mut buf = Vec::new();
         let mut warp_blocks = 0u64;
         let mut instrs = 0u64;
@@ -96,7 +101,7 @@ impl TileStats {
             tex_instrs: tex,
             block_accesses: tile.block_accesses().len() as u64,
             warp_blocks,
-            unique_blocks: tile.unique_block_count() as u64,
+            unique_blocks: unique.len() as u64,
         }
     }
 
@@ -174,7 +179,18 @@ pub struct TraceStats {
 
 impl TraceStats {
     pub(super) fn of(trace: &Trace) -> TraceStats {
-        let tiles = trace.tile_stats();
+        // Each tile's distinct blocks serve its own statistics and, merged,
+        // the frame's distinct blocks (far fewer than its block accesses).
+        let mut all: Vec<u64> = Vec::new();
+        let tiles: Vec<TileStats> = trace
+            .tiles()
+            .iter()
+            .map(|t| {
+                let unique = t.unique_blocks();
+                all.extend_from_slice(&unique);
+                TileStats::with_unique(t, &unique)
+            })
+            .collect();
         let sum = |f: fn(&TileStats) -> u64| tiles.iter().map(f).sum::<u64>();
         let warps = sum(|t| t.warps);
         let positions = sum(|t| t.positions);
@@ -187,11 +203,6 @@ impl TraceStats {
             reuse_num += t.warps as f64 * t.reuse();
             reuse_den += t.warps as f64;
         }
-        let mut all: Vec<u64> = trace
-            .tiles()
-            .iter()
-            .flat_map(|t| t.block_accesses().iter().copied())
-            .collect();
         all.sort_unstable();
         all.dedup();
         let frame_quads = trace.header().frame_quads();

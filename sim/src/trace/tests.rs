@@ -1093,6 +1093,20 @@ proptest! {
         prop_assert!(s.warp_blocks >= s.tile_unique_blocks);
         prop_assert!(s.block_accesses >= s.warp_blocks);
         prop_assert!(s.tile_unique_blocks >= s.frame_unique_blocks);
+        // The frame's distinct blocks, the plain way: every access of every
+        // tile, sorted and deduplicated.
+        let mut all: Vec<u64> = t
+            .tiles()
+            .iter()
+            .flat_map(|tile| tile.block_accesses().iter().copied())
+            .collect();
+        all.sort_unstable();
+        all.dedup();
+        prop_assert_eq!(s.frame_unique_blocks, all.len() as u64);
+        let tile_unique: usize = t.tiles().iter().map(|tile| tile.unique_block_count()).sum();
+        prop_assert_eq!(s.tile_unique_blocks, tile_unique as u64);
+        let warp_blocks: u64 = t.tile_stats().iter().map(|ts| ts.warp_blocks).sum();
+        prop_assert_eq!(s.warp_blocks, warp_blocks);
         for tile in t.tiles() {
             let ts = tile.stats();
             prop_assert!(ts.unique_blocks == 0 || ts.reuse() >= 1.0);
