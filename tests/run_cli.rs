@@ -358,4 +358,9 @@ fn bench_reports_every_point_with_its_median_and_spread() {
         "{table}"
     );
     assert!(table.contains("tracing hook overhead"), "{table}");
+    assert!(
+        table.contains("synthetic-small.trace: read in")
+            && table.contains("workload statistics in"),
+        "{table}"
+    );
 }
