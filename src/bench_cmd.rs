@@ -44,7 +44,8 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 1)]
     pub scale: u32,
     /// Measure the tracing and warp points on this trace instead of the
-    /// generated 8x4-tile workload.
+    /// generated 8x4-tile workload (and time reading it and its workload
+    /// statistics).
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
     /// Samples per point; the fastest is kept.
