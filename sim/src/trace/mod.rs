@@ -543,6 +543,38 @@ impl ExactSizeIterator for Instrs<'_> {}
 pub struct Trace {
     header: TraceHeader,
     tiles: Vec<Tile>,
+    /// Its statistics, computed on first use: every run's report reads
+    /// them, and `wasp compare` runs several policies on one trace.
+    stats: Memo<TraceStats>,
+}
+
+/// A value derived from the rest of its owner, computed on first use.
+/// It is not part of what the owner is: any two compare equal.
+#[derive(Clone)]
+struct Memo<T>(std::sync::OnceLock<T>);
+
+impl<T> Default for Memo<T> {
+    fn default() -> Self {
+        Memo(std::sync::OnceLock::new())
+    }
+}
+
+impl<T> PartialEq for Memo<T> {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl<T> Eq for Memo<T> {}
+
+impl<T> std::fmt::Debug for Memo<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(if self.0.get().is_some() {
+            "Memo(computed)"
+        } else {
+            "Memo(not computed)"
+        })
+    }
 }
 
 impl Trace {
@@ -591,7 +623,7 @@ impl Trace {
 
     /// Whole-trace statistics (see [`TraceStats`] for the definitions).
     pub fn stats(&self) -> TraceStats {
-        TraceStats::of(self)
+        self.stats.0.get_or_init(|| TraceStats::of(self)).clone()
     }
 }
 
@@ -918,6 +950,7 @@ impl TraceBuilder {
         Ok(Trace {
             header: self.header,
             tiles: self.tiles,
+            stats: Memo::default(),
         })
     }
 }

@@ -1116,3 +1116,18 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn statistics_are_remembered_and_not_part_of_equality() {
+    let t = Trace::read(TINY).unwrap();
+    let fresh = t.clone();
+    let first = t.stats();
+    // The remembered statistics are the computed ones, and a trace that
+    // has them equals one that has not computed them yet.
+    assert_eq!(first, TraceStats::of(&t));
+    assert_eq!(t.stats(), first);
+    assert_eq!(t, fresh);
+    assert!(format!("{t:?}").contains("Memo(computed)"));
+    assert!(format!("{fresh:?}").contains("Memo(not computed)"));
+    assert_eq!(fresh.stats(), first);
+}
