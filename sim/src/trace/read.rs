@@ -82,7 +82,9 @@ fn check_line(line: &str) -> Result<(), Problem> {
     // `char::is_control` is U+0000-U+001F and U+007F-U+009F. The ASCII ones
     // are single bytes; only a line with other characters needs the
     // character-wise look for the rest.
-    let ascii_control = line.bytes().any(|b| (b < 0x20 && b != b'\t') || b == 0x7f);
+    let ascii_control = line.bytes().fold(false, |bad, b| {
+        bad | ((b < 0x20) & (b != b'\t')) | (b == 0x7f)
+    });
     if ascii_control || (!line.is_ascii() && line.chars().any(|c| c.is_control() && c != '\t')) {
         return Err(Problem::ControlCharacter);
     }
