@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Compare how two `wasp` binaries read malformed traces.
 
-    scripts/reader-diff.py OLD_BINARY NEW_BINARY [CASES] [SEED]
+    scripts/reader-diff.py OLD_BINARY NEW_BINARY [CASES] [SEED] [TRACE]
 
-Mutates tests/traces/synthetic-small.trace (inserted, deleted and replaced
+Mutates TRACE (default tests/traces/synthetic-small.trace; give one over
+4 MB to exercise the reading in pieces on several threads) (inserted, deleted and replaced
 bytes: line ends, tabs, commas, control and non-ASCII characters, stray
 directives; some cases truncated), runs `wasp run --json -` on each with both
 binaries, and reports every case where exit code, JSON or error message
@@ -20,7 +21,8 @@ old, new = sys.argv[1], sys.argv[2]
 cases = int(sys.argv[3]) if len(sys.argv) > 3 else 400
 rng = random.Random(int(sys.argv[4]) if len(sys.argv) > 4 else 11)
 repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-src = open(os.path.join(repo, "tests/traces/synthetic-small.trace"), "rb").read()
+base = sys.argv[5] if len(sys.argv) > 5 else os.path.join(repo, "tests/traces/synthetic-small.trace")
+src = open(base, "rb").read()
 pieces = [b"\r", b"\t", b" ", b",", b",,", b"\xc2\x85", b"\xc2\xa0", b"g", b"a0", b"t",
           b"q", b"\n", b"\x7f", b"\x00", b"\x1f", b"\xe3\x80\x80", b"f" * 18, b"\xff",
           b"\r\n", b"\t\xc2\xa0", b"tile 0 0\n", b"end\n", b"# c\n"]

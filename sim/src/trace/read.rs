@@ -38,44 +38,139 @@ impl Trace {
     }
 
     /// Parses trace text; `source` names the input in errors. Never panics.
+    ///
+    /// A large trace is read in pieces on the machine's threads, each
+    /// piece from a `tile` line on; the result is the same. If any piece
+    /// fails, the whole text is read again on one thread, so a problem is
+    /// reported exactly as a one-thread read finds it first.
     pub fn parse(text: &str, source: &str) -> Result<Trace, TraceError> {
-        // Lines end at '\n' (the last one may not), and a '\r' before the
-        // end of a line is part of the line ending.
-        let mut lines = text.split_inclusive('\n').enumerate().map(|(i, l)| {
-            let l = l.strip_suffix('\n').unwrap_or(l);
-            let l = l.strip_suffix('\r').unwrap_or(l);
-            (i + 1, l)
-        });
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        Trace::parse_with(text, source, threads.min(MAX_PIECES), PIECES_MIN_BYTES)
+    }
+
+    /// [`Trace::parse`] in up to `pieces` pieces when the text has at
+    /// least `min_bytes`.
+    pub(super) fn parse_with(
+        text: &str,
+        source: &str,
+        pieces: usize,
+        min_bytes: usize,
+    ) -> Result<Trace, TraceError> {
+        if pieces >= 2 && text.len() >= min_bytes {
+            if let Some(t) = parse_in_pieces(text, pieces) {
+                return Ok(t);
+            }
+        }
         let err = |line: usize, problem: Problem| TraceError::Malformed {
             source: source.to_string(),
             line,
             problem,
         };
-
-        // Line 1: the magic line.
-        if text.is_empty() {
-            return Err(err(1, Problem::EmptyInput));
-        }
-        let (_, first) = lines.next().expect("split yields at least one piece");
-        check_line(first).map_err(|p| err(1, p))?;
-        let version = check_magic(first).map_err(|p| err(1, p))?;
-
-        let mut parser = Parser {
-            fields: Vec::new(),
-            instrs: Vec::new(),
-            blocks: Vec::new(),
-            notes: Vec::new(),
-            workload: None,
-            builder: None,
-            scanline_order: version == FORMAT_VERSION_1,
-        };
-        let mut last_line = 1;
-        for (n, line) in lines {
-            last_line = n;
-            parser.line(line).map_err(|p| err(n, p))?;
-        }
-        parser.finish().map_err(|p| err(last_line, p))
+        let (mut parser, body) = header(text).map_err(|p| err(1, p))?;
+        let last = parser.lines(body, 2).map_err(|(n, p)| err(n, p))?;
+        parser.finish().map_err(|p| err(last, p))
     }
+}
+
+/// Texts shorter than this are read on one thread.
+const PIECES_MIN_BYTES: usize = 4 << 20;
+
+/// Most pieces a text is read in.
+const MAX_PIECES: usize = 8;
+
+/// The lines of `text`: they end at '\n' (the last one may not), and a
+/// '\r' before the end of a line is part of the line ending.
+fn lines(text: &str) -> impl Iterator<Item = &str> {
+    text.split_inclusive('\n').map(|l| {
+        let l = l.strip_suffix('\n').unwrap_or(l);
+        l.strip_suffix('\r').unwrap_or(l)
+    })
+}
+
+/// Checks line 1 (the magic line) and returns a parser for the rest of
+/// `text`, which starts at line 2.
+fn header(text: &str) -> Result<(Parser<'_>, &str), Problem> {
+    let Some(first) = lines(text).next() else {
+        return Err(Problem::EmptyInput);
+    };
+    check_line(first)?;
+    let version = check_magic(first)?;
+    let rest = text.find('\n').map_or("", |i| &text[i + 1..]);
+    Ok((Parser::new(None, version == FORMAT_VERSION_1), rest))
+}
+
+/// Index of the first line at or after byte `from` of `text` that starts
+/// with the `tile` directive (at the line's first byte), if any.
+fn tile_line_from(text: &str, from: usize) -> Option<usize> {
+    let bytes = text.as_bytes();
+    let mut at = from;
+    if at > 0 && bytes.get(at - 1) != Some(&b'\n') {
+        at += bytes.get(at..)?.iter().position(|&b| b == b'\n')? + 1;
+    }
+    loop {
+        let line = bytes.get(at..)?;
+        if line.starts_with(b"tile ") || line.starts_with(b"tile\t") {
+            return Some(at);
+        }
+        at += line.iter().position(|&b| b == b'\n')? + 1;
+    }
+}
+
+/// Reads `text` in up to `pieces` pieces: the header up to the first
+/// `tile` line on this thread, then pieces that each start at a `tile`
+/// line, one thread and one builder each, appended in order. `None` when
+/// the text cannot be cut or any part of it fails: the caller then reads
+/// it on one thread, which names the first problem.
+fn parse_in_pieces(text: &str, pieces: usize) -> Option<Trace> {
+    let (mut parser, rest) = header(text).ok()?;
+    let body = text.len() - rest.len();
+    let first = tile_line_from(text, body)?;
+    let mut cuts = vec![first];
+    for k in 1..pieces {
+        let want = first + (text.len() - first) * k / pieces;
+        if let Some(c) = tile_line_from(text, want) {
+            if c > *cuts.last().expect("not empty") {
+                cuts.push(c);
+            }
+        }
+    }
+    if cuts.len() < 2 {
+        return None;
+    }
+    cuts.push(text.len());
+    // The header lines (comments, `workload`, `frame`) before the first tile.
+    parser.lines(&text[body..first], 2).ok()?;
+    let mut builder = parser.builder.take()?;
+    let head = builder.header().clone();
+    let scanline = parser.scanline_order;
+    let parts: Vec<Option<Trace>> = std::thread::scope(|s| {
+        let handles: Vec<_> = cuts
+            .windows(2)
+            .map(|w| {
+                let piece = &text[w[0]..w[1]];
+                let head = head.clone();
+                s.spawn(move || {
+                    let mut b = TraceBuilder::new(head).ok()?;
+                    if scanline {
+                        b.require_scanline_order();
+                    }
+                    let mut p = Parser::new(Some(b), scanline);
+                    // The line numbers do not matter: a piece that fails is
+                    // read again with the whole text.
+                    p.lines(piece, 1).ok()?;
+                    p.finish().ok()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().ok().flatten())
+            .collect()
+    });
+    for part in parts {
+        builder.append(part?).ok()?;
+    }
+    builder.finish().ok()
 }
 
 fn check_line(line: &str) -> Result<(), Problem> {
@@ -138,6 +233,32 @@ const FRAME_USAGE: &str = "frame W H tile T";
 const TILE_USAGE: &str = "tile TX TY";
 
 impl<'a> Parser<'a> {
+    /// A parser after line 1: before the header when `builder` is `None`,
+    /// else in the body of a trace that `builder` is building.
+    fn new(builder: Option<TraceBuilder>, scanline_order: bool) -> Self {
+        Parser {
+            fields: Vec::new(),
+            instrs: Vec::new(),
+            blocks: Vec::new(),
+            notes: Vec::new(),
+            workload: None,
+            builder,
+            scanline_order,
+        }
+    }
+
+    /// Every line of `text`, numbered from `first`. Returns the number of
+    /// the last line (`first - 1` if none), or the first problem and its
+    /// line's number.
+    fn lines(&mut self, text: &'a str, first: usize) -> Result<usize, (usize, Problem)> {
+        let mut n = first - 1;
+        for line in lines(text) {
+            n += 1;
+            self.line(line).map_err(|p| (n, p))?;
+        }
+        Ok(n)
+    }
+
     fn line(&mut self, line: &'a str) -> Result<(), Problem> {
         check_line(line)?;
         let trimmed = line.trim_start_matches([' ', '\t']);
@@ -541,6 +662,47 @@ mod tests {
             blocks_fast(&many),
             Err(Problem::TooManyBlocks(MAX_TEX_BLOCKS + 2))
         );
+    }
+
+    #[test]
+    fn a_trace_is_read_in_pieces_alike() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/traces/synthetic-small.trace"
+        );
+        let text = std::fs::read_to_string(path).unwrap();
+        let one = Trace::parse_with(&text, "s", 1, usize::MAX).unwrap();
+        assert_eq!(one.tiles().len(), 4);
+        for pieces in 2..=6 {
+            // The pieces path itself succeeds (no fall-back) and agrees.
+            let t = parse_in_pieces(&text, pieces).expect("a well-formed trace reads in pieces");
+            assert_eq!(t, one, "{pieces} pieces");
+            assert_eq!(t.header(), one.header());
+        }
+        // Cuts fall on `tile` lines only.
+        let first = tile_line_from(&text, 0).unwrap();
+        assert!(
+            text[first..].starts_with("tile 0 0\n"),
+            "{}",
+            &text[first..first + 12]
+        );
+        let second = tile_line_from(&text, first + 1).unwrap();
+        assert!(second > first && text[second..].starts_with("tile "));
+        assert_eq!(tile_line_from(&text, text.len()), None);
+        // A piece that fails sends the whole text to the one-thread read,
+        // whose error names the line.
+        let broken = text.replacen("end\ntile", "tile", 1);
+        let line = broken[..broken.find("\ntile 1 ").unwrap() + 1]
+            .lines()
+            .count()
+            + 1;
+        assert_eq!(parse_in_pieces(&broken, 3), None);
+        let e = Trace::parse_with(&broken, "s", 3, 0).unwrap_err();
+        assert_eq!(
+            e,
+            Trace::parse_with(&broken, "s", 1, usize::MAX).unwrap_err()
+        );
+        assert!(e.to_string().starts_with(&format!("s:{line}:")), "{e}");
     }
 
     proptest! {

@@ -1084,6 +1084,17 @@ proptest! {
     }
 
     #[test]
+    fn reading_in_pieces_is_reading_on_one_thread(
+        t in arb_trace(),
+        pieces in 2usize..6,
+        ops in proptest::collection::vec((any::<u8>(), any::<usize>(), 0usize..40, "[ -~\t\r]{0,6}"), 0..4),
+    ) {
+        let text = if ops.is_empty() { t.to_text() } else { mutate(&t.to_text(), &ops) };
+        let one = Trace::parse_with(&text, "m", 1, usize::MAX);
+        prop_assert_eq!(Trace::parse_with(&text, "m", pieces, 0), one);
+    }
+
+    #[test]
     fn statistics_are_consistent(t in arb_trace()) {
         let s = t.stats();
         prop_assert_eq!(s.warps as usize, t.quad_count());
