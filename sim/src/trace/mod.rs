@@ -270,6 +270,9 @@ pub struct Tile {
     quads: Vec<QuadRec>,
     ops: Vec<Op>,
     blocks: Vec<u64>,
+    /// Its number of distinct blocks, counted on first use: every run's
+    /// texture footprint ratio divides by it.
+    unique: Memo<usize>,
 }
 
 impl Tile {
@@ -368,7 +371,7 @@ impl Tile {
 
     /// Number of distinct blocks the tile touches (its texture footprint).
     pub fn unique_block_count(&self) -> usize {
-        self.unique_blocks().len()
+        *self.unique.0.get_or_init(|| self.unique_blocks().len())
     }
 
     /// Instructions of all quads (ALU runs counted by length).
@@ -708,6 +711,7 @@ impl TraceBuilder {
             quads: Vec::new(),
             ops: Vec::new(),
             blocks: Vec::new(),
+            unique: Memo::default(),
         });
         Ok(())
     }

@@ -1141,4 +1141,11 @@ fn statistics_are_remembered_and_not_part_of_equality() {
     assert!(format!("{t:?}").contains("Memo(computed)"));
     assert!(format!("{fresh:?}").contains("Memo(not computed)"));
     assert_eq!(fresh.stats(), first);
+    // A tile's distinct-block count likewise.
+    let tile = &t.tiles()[0];
+    let plain = tile.unique_blocks().len();
+    assert!(plain > 0);
+    assert_eq!(tile.unique_block_count(), plain);
+    assert_eq!(tile.unique_block_count(), plain);
+    assert_eq!(tile, &fresh.tiles()[0]);
 }
