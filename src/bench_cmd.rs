@@ -72,6 +72,11 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     if cfg!(debug_assertions) {
         eprintln!("wasp bench: this is a debug build; measure with `cargo run --release -- bench`");
     }
+    if !(args.min_seconds.is_finite() && args.min_seconds >= 0.0) {
+        return Err(CliError::usage(
+            "--min-seconds must be a non-negative number".to_string(),
+        ));
+    }
     let trace = match &args.trace {
         Some(p) => {
             // Reading the trace and its workload statistics are outside the
@@ -107,11 +112,6 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         "median",
         "spread"
     );
-    if !(args.min_seconds.is_finite() && args.min_seconds >= 0.0) {
-        return Err(CliError::usage(
-            "--min-seconds must be a non-negative number".to_string(),
-        ));
-    }
     let points = bench::run(
         &cfg,
         args.scale,

@@ -374,6 +374,14 @@ impl Tile {
         *self.unique.0.get_or_init(|| self.unique_blocks().len())
     }
 
+    /// [`Tile::unique_blocks`], remembering their count for
+    /// [`Tile::unique_block_count`] on the way.
+    pub(crate) fn unique_blocks_counted(&self) -> Vec<u64> {
+        let v = self.unique_blocks();
+        self.unique.0.get_or_init(|| v.len());
+        v
+    }
+
     /// Instructions of all quads (ALU runs counted by length).
     pub fn instr_count(&self) -> u64 {
         self.quads().map(|q| q.instr_count()).sum()

@@ -74,7 +74,7 @@ fn ratio(num: f64, den: f64) -> f64 {
 
 impl TileStats {
     pub(super) fn of(tile: &Tile) -> TileStats {
-        Self::with_unique(tile, &tile.unique_blocks())
+        Self::with_unique(tile, &tile.unique_blocks_counted())
     }
 
     /// The statistics of `tile`, whose distinct blocks are `unique`.
@@ -186,7 +186,7 @@ impl TraceStats {
             .tiles()
             .iter()
             .map(|t| {
-                let unique = t.unique_blocks();
+                let unique = t.unique_blocks_counted();
                 all.extend_from_slice(&unique);
                 TileStats::with_unique(t, &unique)
             })
