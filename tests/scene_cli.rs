@@ -39,7 +39,7 @@ fn rendered_traces_are_format_2_with_one_warp_per_fragment_for_any_thread_count(
         texts.iter().all(|t| t == &texts[0]),
         "thread count changed the trace"
     );
-    assert!(texts[0].starts_with("wasp-trace 2\n"));
+    assert!(texts[0].starts_with("wasp-trace 3\n"));
     let t = Trace::parse(&texts[0], "sprites").unwrap();
     let s = t.stats();
     // Sprites blended over a backdrop: positions repeat.

@@ -788,6 +788,9 @@ struct Frag {
     material: u32,
     /// First entry of the tile's block ranges for its texture instructions.
     range: u32,
+    /// Quads Early-Z rejected since the previous fragment (in
+    /// rasterization order): the trace's `z` record before this warp.
+    rej: u32,
 }
 
 /// Per-shader facts the inner loop needs.
@@ -826,6 +829,8 @@ struct TileBuf {
     rejected: u64,
     /// Of `rejected`, those the coarse depth rejected.
     rejected_hiz: u64,
+    /// Quads rejected since the last surviving fragment.
+    rej_since: u32,
     pixels: u64,
     /// The depth buffer's coarse bounds.
     coarse: CoarseDepth,
@@ -859,6 +864,7 @@ impl TileBuf {
             covered: 0,
             rejected: 0,
             rejected_hiz: 0,
+            rej_since: 0,
             pixels: 0,
             coarse: CoarseDepth::new(tile),
             per_material: vec![[0; 3]; materials],
@@ -1120,6 +1126,7 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
     b.covered = 0;
     b.rejected = 0;
     b.rejected_hiz = 0;
+    b.rej_since = 0;
     b.coarse.clear();
     b.pixels = 0;
     b.per_material.iter_mut().for_each(|c| *c = [0; 3]);
@@ -1185,6 +1192,7 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                         b.covered += n;
                         b.rejected += n;
                         b.rejected_hiz += n;
+                        b.rej_since = b.rej_since.saturating_add(n as u32);
                         b.per_material[mc][1] += n;
                         continue;
                     }
@@ -1207,6 +1215,7 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                     }
                     if live == 0 {
                         b.rejected += 1;
+                        b.rej_since = b.rej_since.saturating_add(1);
                         b.per_material[mc][1] += 1;
                         continue;
                     }
@@ -1255,6 +1264,7 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                         pos: ((qy - oy) / 2) * side + (qx - ox) / 2,
                         material: s.material,
                         range: first,
+                        rej: std::mem::take(&mut b.rej_since),
                     });
                     if ctx.colour {
                         b.lambdas.push(lambdas);
@@ -1326,7 +1336,7 @@ fn build_tile(
     b: &mut TileBuf,
 ) -> Result<Option<Trace>, crate::trace::Problem> {
     b.positions = 0;
-    if b.frags.is_empty() {
+    if b.frags.is_empty() && b.rej_since == 0 {
         return Ok(None);
     }
     let side = ctx.tile / 2;
@@ -1342,6 +1352,9 @@ fn build_tile(
         if !b.seen[f.pos as usize] {
             b.seen[f.pos as usize] = true;
             b.positions += 1;
+        }
+        if f.rej > 0 {
+            builder.rejected(f.rej)?;
         }
         builder.begin_quad(f.pos % side, f.pos / side)?;
         let mut r = f.range as usize;
@@ -1359,6 +1372,9 @@ fn build_tile(
     }
     for f in &b.frags {
         b.seen[f.pos as usize] = false;
+    }
+    if b.rej_since > 0 {
+        builder.rejected(b.rej_since)?;
     }
     builder.end_tile()?;
     builder.finish().map(Some)
@@ -1853,6 +1869,12 @@ mod tests {
             f.stats.quads_rejected_early_z
         );
         assert_eq!(f.stats.materials[1].warps, 0, "far square hidden");
+        // The trace records every rejected quad where it was rasterized:
+        // the far square is drawn last, so after each tile's warps.
+        assert_eq!(f.trace.rejected_count(), f.stats.quads_rejected_early_z);
+        for t in f.trace.tiles() {
+            assert_eq!(u64::from(t.rejected_after_last()), t.rejected_count());
+        }
         assert_eq!(f.stats.positions, 64 * 64);
         // The near square's two triangles share a diagonal: the 64 quads it
         // crosses hold one fragment of each, two warps.
@@ -2238,6 +2260,11 @@ mod tests {
             assert!(fast.stats.quads_rejected_hiz <= fast.stats.quads_rejected_early_z);
             rejected += fast.stats.quads_rejected_hiz;
             assert_eq!(trace_bytes(&fast), trace_bytes(&slow), "seed {seed}");
+            assert_eq!(
+                fast.trace.rejected_count(),
+                fast.stats.quads_rejected_early_z,
+                "seed {seed}: every rejected quad is in the trace"
+            );
             assert!(fast.image == slow.image, "seed {seed}: picture differs");
             let stats = RasterStats {
                 quads_rejected_hiz: 0,

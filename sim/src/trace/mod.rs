@@ -1,7 +1,7 @@
 //! The wasp trace: the shaded quads of one frame, tile by tile, and the
 //! instructions each quad's shader executes — the input of the cycle model.
 //!
-//! # Format `wasp-trace 2` (and `wasp-trace 1`)
+//! # Format `wasp-trace 3` (and `wasp-trace 2`, `wasp-trace 1`)
 //!
 //! (The same text is in `tests/traces/FORMAT.md`.)
 //!
@@ -11,21 +11,23 @@
 //! character. Example:
 //!
 //! ```text
-//! wasp-trace 2
+//! wasp-trace 3
 //! # free comment lines
 //! workload synthetic:texmap scale=1 mem=0.15 seed=7
 //! frame 1960 768 tile 64
 //! tile 0 0
 //! q 0 0 a3 t1a40,1a41 a2 t1a40
 //! q 1 0 a5
+//! z 12
 //! q 0 0 a2 t2b00
+//! z 3
 //! end
 //! tile 1 0
 //! q 0 0 t1a48 a4
 //! end
 //! ```
 //!
-//! * **Line 1** is exactly `wasp-trace 2` (or `wasp-trace 1`, below): the
+//! * **Line 1** is exactly `wasp-trace 3` (or `wasp-trace 2` or `wasp-trace 1`, below): the
 //!   magic word and the format version. A reader rejects any other version.
 //! * **Comments**: a line whose first non-blank character is `#` is a
 //!   comment; blank lines are ignored. Both may appear anywhere after line 1.
@@ -55,6 +57,12 @@
 //!   there (overdraw). A reader checks no order: a record does not name its
 //!   primitive, and any sequence of positions is the rasterization order
 //!   of some sequence of primitives.
+//! * **Rejected quads** (format 3): `z N` — N quads (decimal, 1 to 2^31-1)
+//!   that the rasterizer produced at this point of the rasterization order
+//!   and Early-Z rejected: they launch no warp but cost the rasterizer a slot
+//!   each. Two `z` lines are never adjacent (write their sum). A tile record
+//!   holds at least one `q` or `z` line; a tile of `z` lines only is a tile
+//!   whose every quad is hidden.
 //! * **Instructions**, at least one per quad, in program order:
 //!   * `aN` — a run of N ALU instructions (decimal, 1 to 2^31-1). Two runs
 //!     are never adjacent: write `a5`, not `a3 a2`.
@@ -65,12 +73,17 @@
 //!     instruction, in the order the texture unit requests them.
 //! * Decimal numbers are ASCII digits without sign and must fit their range.
 //!
+//! **Version 2** (`wasp-trace 2`) is the same without `z` lines: a version-2
+//! trace records no rejected quad, so its rasterizer cost counts surviving quads
+//! only. Every version-2 trace is a version-3 trace, and a writer always writes
+//! version 3.
+//!
 //! **Version 1** (`wasp-trace 1`) is the same except that the quads of a
 //! tile appear in scanline order, strictly increasing in (Y, X), so each
 //! position at most once (fragments at one position had to be merged into
 //! one warp). A reader accepts version 1 with this rule enforced. Every
-//! version-1 trace is a version-2 trace, so a writer always writes version
-//! 2: reading a version-1 file and writing it back changes line 1 only.
+//! version-1 trace is a version-3 trace, so a writer always writes version
+//! 3: reading a version-1 file and writing it back changes line 1 only.
 //!
 //! A reader rejects any other input with an error `file:line: what was wrong
 //! (expected what)`, e.g. `scene.trace:7: quad 40 3 outside the tile
@@ -102,7 +115,9 @@ use std::fmt;
 /// The magic word on line 1.
 pub const MAGIC: &str = "wasp-trace";
 /// The format version this module writes (and reads).
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
+/// The previous version, which this module also reads: no `z` records.
+pub const FORMAT_VERSION_2: u32 = 2;
 /// The older version this module also reads: one quad per position, in
 /// scanline order.
 pub const FORMAT_VERSION_1: u32 = 1;
@@ -112,6 +127,8 @@ pub const MAX_FRAME_DIM: u32 = 65_536;
 pub const MAX_TILE_SIZE: u32 = 512;
 /// Longest ALU run of one `aN` entry.
 pub const MAX_ALU_RUN: u32 = 0x7fff_ffff;
+/// Most Early-Z-rejected quads one `z N` record may count.
+pub const MAX_REJECTED_RUN: u32 = 0x7fff_ffff;
 /// Most blocks one texture instruction may touch.
 pub const MAX_TEX_BLOCKS: usize = 1024;
 
@@ -268,6 +285,14 @@ pub struct Tile {
     tx: u32,
     ty: u32,
     quads: Vec<QuadRec>,
+    /// Early-Z-rejected quads rasterized just before each quad (empty when
+    /// the tile has none before any quad; else one entry per quad).
+    rej_before: Vec<u32>,
+    /// Rejected quads after the last quad (while the tile is built: since
+    /// the last quad).
+    rej_tail: u32,
+    /// All rejected quads of the tile.
+    rej_total: u64,
     ops: Vec<Op>,
     blocks: Vec<u64>,
     /// Its number of distinct blocks, counted on first use: every run's
@@ -286,10 +311,36 @@ impl Tile {
         self.ty
     }
 
-    /// Number of quads (warps) in the tile; at least 1 in a built trace.
-    /// With overdraw several warps share a quad position.
+    /// Number of quads (warps) in the tile. With overdraw several warps
+    /// share a quad position. A tile whose every quad Early-Z rejected
+    /// (format 3) has none.
     pub fn quad_count(&self) -> usize {
         self.quads.len()
+    }
+
+    /// Early-Z-rejected quads rasterized after quad `i - 1` and before quad
+    /// `i` (0 for an `i` past the last quad).
+    #[inline]
+    pub fn rejected_before(&self, i: usize) -> u32 {
+        self.rej_before.get(i).copied().unwrap_or(0)
+    }
+
+    /// Early-Z-rejected quads rasterized after the last quad (all of them in
+    /// a tile without quads).
+    #[inline]
+    pub fn rejected_after_last(&self) -> u32 {
+        self.rej_tail
+    }
+
+    /// Early-Z-rejected quads of the tile.
+    pub fn rejected_count(&self) -> u64 {
+        self.rej_total
+    }
+
+    /// Quads the rasterizer produces for the tile: its warps and the quads
+    /// Early-Z rejected.
+    pub fn raster_count(&self) -> u64 {
+        self.quads.len() as u64 + self.rej_total
     }
 
     /// Number of distinct quad positions the tile's warps occupy (at most
@@ -609,6 +660,11 @@ impl Trace {
         self.tiles.iter().map(Tile::quad_count).sum()
     }
 
+    /// Early-Z-rejected quads in the whole trace.
+    pub fn rejected_count(&self) -> u64 {
+        self.tiles.iter().map(Tile::rejected_count).sum()
+    }
+
     /// Instructions in the whole trace, ALU runs counted by length.
     pub fn instr_count(&self) -> u64 {
         self.tiles.iter().map(Tile::instr_count).sum()
@@ -717,6 +773,9 @@ impl TraceBuilder {
             tx,
             ty,
             quads: Vec::new(),
+            rej_before: Vec::new(),
+            rej_tail: 0,
+            rej_total: 0,
             ops: Vec::new(),
             blocks: Vec::new(),
             unique: Memo::default(),
@@ -773,6 +832,11 @@ impl TraceBuilder {
                 });
             }
         }
+        // The rejected quads since the previous quad come before this one.
+        if tile.rej_tail > 0 || !tile.rej_before.is_empty() {
+            tile.rej_before.resize(tile.quads.len(), 0);
+            tile.rej_before.push(std::mem::take(&mut tile.rej_tail));
+        }
         // x, y < side <= 256 and the pools are below u32::MAX (checked when
         // they grow), so these conversions are exact.
         tile.quads.push(QuadRec {
@@ -791,6 +855,31 @@ impl TraceBuilder {
             Some(t) if !t.quads.is_empty() => Ok(t),
             _ => Err(Problem::InstrWithoutQuad),
         }
+    }
+
+    /// Records `n` quads rasterized at this point of the open tile and
+    /// rejected by Early-Z (no warp): before the next quad, or at the tile's
+    /// end. Consecutive calls add up.
+    pub fn rejected(&mut self, n: u32) -> Result<(), Problem> {
+        if n == 0 {
+            return Err(Problem::ZeroRejected);
+        }
+        let tile = self.open.as_mut().ok_or(Problem::RejectedWithoutTile)?;
+        if let Some(q) = tile.quads.last() {
+            if q.op_len == 0 {
+                return Err(Problem::EmptyQuad {
+                    x: u32::from(q.x),
+                    y: u32::from(q.y),
+                });
+            }
+        }
+        let sum = u64::from(tile.rej_tail) + u64::from(n);
+        if sum > u64::from(MAX_REJECTED_RUN) {
+            return Err(Problem::RejectedRunTooLong(sum));
+        }
+        tile.rej_tail = sum as u32;
+        tile.rej_total += u64::from(n);
+        Ok(())
     }
 
     /// Appends a run of `n` ALU instructions to the open quad (merged into a
@@ -873,6 +962,7 @@ impl TraceBuilder {
     pub fn end_tile(&mut self) -> Result<(), Problem> {
         let tile = self.open.as_ref().ok_or(Problem::EndWithoutTile)?;
         match tile.quads.last() {
+            None if tile.rej_total > 0 => {}
             None => {
                 return Err(Problem::EmptyTile {
                     tx: tile.tx,
@@ -998,6 +1088,16 @@ pub enum TextField {
 pub enum Problem {
     /// The input has no line at all.
     EmptyInput,
+    /// `z 0`.
+    ZeroRejected,
+    /// Rejected quads outside any tile.
+    RejectedWithoutTile,
+    /// More rejected quads in one place than a record holds.
+    RejectedRunTooLong(u64),
+    /// Two `z` lines in a row.
+    AdjacentRejected,
+    /// A `z` line in a trace of a version without them.
+    RejectedInOldVersion(u32),
     /// The input is not UTF-8.
     InvalidUtf8,
     /// A line holds a control character other than tab.
@@ -1191,24 +1291,42 @@ impl fmt::Display for Problem {
         match self {
             EmptyInput => write!(
                 f,
-                "empty input (expected `{MAGIC} {FORMAT_VERSION}` or `{MAGIC} \
-                 {FORMAT_VERSION_1}` on line 1)"
+                "empty input (expected `{MAGIC} {FORMAT_VERSION}`, `{MAGIC} \
+                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)"
             ),
             InvalidUtf8 => write!(f, "invalid UTF-8 (expected UTF-8 text)"),
+            ZeroRejected => write!(f, "0 rejected quads (expected `z N` with N at least 1)"),
+            RejectedWithoutTile => write!(
+                f,
+                "rejected quads outside any tile (expected `tile TX TY` first)"
+            ),
+            RejectedRunTooLong(n) => write!(
+                f,
+                "{n} rejected quads in one place (expected at most {MAX_REJECTED_RUN})"
+            ),
+            AdjacentRejected => write!(
+                f,
+                "two `z` lines in a row (expected one `z N` with their sum)"
+            ),
+            RejectedInOldVersion(v) => write!(
+                f,
+                "`z` line in a format-{v} trace (expected `z` lines only from format \
+                 {FORMAT_VERSION} on: write `{MAGIC} {FORMAT_VERSION}` on line 1)"
+            ),
             ControlCharacter => write!(
                 f,
                 "control character in line (expected printable text, blanks and tabs)"
             ),
             BadMagic(s) => write!(
                 f,
-                "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION}` or `{MAGIC} \
-                 {FORMAT_VERSION_1}` on line 1)",
+                "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION}`, `{MAGIC} \
+                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)",
                 clip(s)
             ),
             UnsupportedVersion(v) => write!(
                 f,
-                "unsupported format version `{}` (expected {FORMAT_VERSION} or \
-                 {FORMAT_VERSION_1})",
+                "unsupported format version `{}` (expected {FORMAT_VERSION}, \
+                 {FORMAT_VERSION_2} or {FORMAT_VERSION_1})",
                 clip(v)
             ),
             MissingHeader { missing, found } => write!(
@@ -1309,7 +1427,8 @@ impl fmt::Display for Problem {
             DuplicateQuad { x, y } => write!(
                 f,
                 "quad {x} {y} appears twice in the tile (expected each quad at most once in \
-                 format {FORMAT_VERSION_1}; format {FORMAT_VERSION} allows repeats)"
+                 format {FORMAT_VERSION_1}; formats {FORMAT_VERSION_2} and {FORMAT_VERSION} \
+                 allow repeats)"
             ),
             QuadOutOfOrder {
                 x,

@@ -2,8 +2,8 @@
 //! documentation).
 
 use super::{
-    Problem, Trace, TraceBuilder, TraceError, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1, MAGIC,
-    MAX_ALU_RUN, MAX_TEX_BLOCKS,
+    Problem, Trace, TraceBuilder, TraceError, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1,
+    FORMAT_VERSION_2, MAGIC, MAX_ALU_RUN, MAX_TEX_BLOCKS,
 };
 use std::path::Path;
 
@@ -96,7 +96,7 @@ fn header(text: &str) -> Result<(Parser<'_>, &str), Problem> {
     check_line(first)?;
     let version = check_magic(first)?;
     let rest = text.find('\n').map_or("", |i| &text[i + 1..]);
-    Ok((Parser::new(None, version == FORMAT_VERSION_1), rest))
+    Ok((Parser::new(None, version), rest))
 }
 
 /// Index of the first line at or after byte `from` of `text` that starts
@@ -143,6 +143,7 @@ fn parse_in_pieces(text: &str, pieces: usize) -> Option<Trace> {
     let mut builder = parser.builder.take()?;
     let head = builder.header().clone();
     let scanline = parser.scanline_order;
+    let version = parser.version;
     let parts: Vec<Option<Trace>> = std::thread::scope(|s| {
         let handles: Vec<_> = cuts
             .windows(2)
@@ -154,7 +155,7 @@ fn parse_in_pieces(text: &str, pieces: usize) -> Option<Trace> {
                     if scanline {
                         b.require_scanline_order();
                     }
-                    let mut p = Parser::new(Some(b), scanline);
+                    let mut p = Parser::new(Some(b), version);
                     // The line numbers do not matter: a piece that fails is
                     // read again with the whole text.
                     p.lines(piece, 1).ok()?;
@@ -186,9 +187,10 @@ fn check_line(line: &str) -> Result<(), Problem> {
     Ok(())
 }
 
-/// The version line 1 names: [`FORMAT_VERSION`] or [`FORMAT_VERSION_1`].
+/// The version line 1 names: [`FORMAT_VERSION`], [`FORMAT_VERSION_2`] or
+/// [`FORMAT_VERSION_1`].
 fn check_magic(line: &str) -> Result<u32, Problem> {
-    for v in [FORMAT_VERSION, FORMAT_VERSION_1] {
+    for v in [FORMAT_VERSION, FORMAT_VERSION_2, FORMAT_VERSION_1] {
         if line == format!("{MAGIC} {v}") {
             return Ok(v);
         }
@@ -196,7 +198,7 @@ fn check_magic(line: &str) -> Result<u32, Problem> {
     let fields: Vec<&str> = tokens(line).collect();
     if fields.len() == 2
         && fields[0] == MAGIC
-        && ![FORMAT_VERSION, FORMAT_VERSION_1]
+        && ![FORMAT_VERSION, FORMAT_VERSION_2, FORMAT_VERSION_1]
             .iter()
             .any(|v| fields[1] == v.to_string())
     {
@@ -227,6 +229,10 @@ struct Parser<'a> {
     builder: Option<TraceBuilder>,
     /// A version-1 file: quads in strictly increasing scanline order.
     scanline_order: bool,
+    /// The file's format version.
+    version: u32,
+    /// The last line was a `z` line.
+    after_z: bool,
 }
 
 const FRAME_USAGE: &str = "frame W H tile T";
@@ -235,7 +241,7 @@ const TILE_USAGE: &str = "tile TX TY";
 impl<'a> Parser<'a> {
     /// A parser after line 1: before the header when `builder` is `None`,
     /// else in the body of a trace that `builder` is building.
-    fn new(builder: Option<TraceBuilder>, scanline_order: bool) -> Self {
+    fn new(builder: Option<TraceBuilder>, version: u32) -> Self {
         Parser {
             fields: Vec::new(),
             instrs: Vec::new(),
@@ -243,7 +249,9 @@ impl<'a> Parser<'a> {
             notes: Vec::new(),
             workload: None,
             builder,
-            scanline_order,
+            scanline_order: version == FORMAT_VERSION_1,
+            version,
+            after_z: false,
         }
     }
 
@@ -282,7 +290,30 @@ impl<'a> Parser<'a> {
         let Some(&directive) = fields.first() else {
             return Ok(()); // blank line
         };
+        let after_z = std::mem::replace(&mut self.after_z, directive == "z");
         match directive {
+            "z" => {
+                if self.version < FORMAT_VERSION {
+                    return Err(Problem::RejectedInOldVersion(self.version));
+                }
+                let b = self.body(directive)?;
+                if fields.len() != 2 {
+                    return Err(Problem::WrongFieldCount {
+                        directive: "z",
+                        found: fields.len(),
+                        usage: "z N",
+                    });
+                }
+                if after_z {
+                    return Err(Problem::AdjacentRejected);
+                }
+                let n = dec_u32(
+                    fields[1],
+                    "rejected quads",
+                    u64::from(super::MAX_REJECTED_RUN),
+                )?;
+                b.rejected(n)
+            }
             "workload" => self.workload_line(trimmed),
             "frame" => self.frame_line(fields),
             "tile" => {
@@ -324,7 +355,7 @@ impl<'a> Parser<'a> {
                 expected: match &self.builder {
                     None if self.workload.is_none() => "`workload NAME`",
                     None => "`frame W H tile T`",
-                    Some(b) if b.open_tile().is_some() => "`q X Y ...` or `end`",
+                    Some(b) if b.open_tile().is_some() => "`q X Y ...`, `z N` or `end`",
                     Some(_) => "`tile TX TY`",
                 },
             }),

@@ -169,12 +169,12 @@ fn synthetic_small_trace_contents() {
     assert_eq!((q.x(), q.y()), SYNTH_SMALL_Q0_POS);
     assert_eq!(q.instrs().collect::<Vec<_>>(), synth_small_q0_instrs());
     // The file is version 1; the writer reproduces it byte for byte but
-    // for line 1 (it writes version 2, a superset).
+    // for line 1 (it writes version 3, a superset).
     let text = std::fs::read_to_string(SYNTH_SMALL).unwrap();
     assert!(text.starts_with("wasp-trace 1\n"));
     assert_eq!(
         t.to_text(),
-        text.replacen("wasp-trace 1\n", "wasp-trace 2\n", 1)
+        text.replacen("wasp-trace 1\n", "wasp-trace 3\n", 1)
     );
 }
 
@@ -194,8 +194,8 @@ fn synth_small_q0_instrs() -> Vec<Instr<'static>> {
 fn tiny_trace_round_trips_through_the_writer() {
     let t = Trace::read(TINY).unwrap();
     let text = t.to_text();
-    // Read as version 1, written as version 2, the same records.
-    assert!(text.starts_with("wasp-trace 2\n# tiny.trace"));
+    // Read as version 1, written as version 3, the same records.
+    assert!(text.starts_with("wasp-trace 3\n# tiny.trace"));
     assert!(text.contains("\nq 1 1 a2 t1a00,1a01,1a10,1a11 a4 t2000 a1\n"));
     assert_eq!(Trace::parse(&text, "rt").unwrap(), t);
 }
@@ -249,9 +249,13 @@ fn overdraw_trace_keeps_repeated_positions_in_file_order() {
         footprint_ratio(t0, |x, y| (x, y) == (1, 1)),
         3.0 / 6.0
     ));
-    // Written back byte for byte (it is version 2 and canonical).
+    // Written back byte for byte but for line 1 (it is version 2 and
+    // canonical; the writer writes version 3).
     let file = std::fs::read_to_string(OVERDRAW).unwrap();
-    assert_eq!(t.to_text(), file);
+    assert_eq!(
+        t.to_text(),
+        file.replacen("wasp-trace 2\n", "wasp-trace 3\n", 1)
+    );
 }
 
 #[test]
@@ -326,7 +330,10 @@ fn version_2_allows_repeats_in_any_order_and_version_1_does_not() {
     assert_eq!(tile.position_count(), 2);
     // Three warps at (1, 1), never merged: the `a1` and `a3` stay apart.
     assert_eq!(tile.quads_at(1, 1).count(), 3);
-    assert_eq!(t.to_text(), body(records));
+    assert_eq!(
+        t.to_text(),
+        body(records).replacen("wasp-trace 2\n", "wasp-trace 3\n", 1)
+    );
     // The same records under version 1 break its order rule.
     let (line, p, _) = fail(&body1(records));
     assert_eq!(line, 6);
@@ -339,7 +346,10 @@ fn version_2_allows_repeats_in_any_order_and_version_1_does_not() {
     let a = Trace::parse(&body1(v1), "x").unwrap();
     let b = Trace::parse(&body(v1), "x").unwrap();
     assert_eq!(a, b);
-    assert_eq!(a.to_text(), body(v1));
+    assert_eq!(
+        a.to_text(),
+        body(v1).replacen("wasp-trace 2\n", "wasp-trace 3\n", 1)
+    );
     // Version 2 keeps every other rule.
     let (_, p, _) = fail(&body("tile 0 0\nq 1 1 a1\nq 1 1\nend\n"));
     assert!(matches!(p, Problem::EmptyQuad { x: 1, y: 1 }), "{p:?}");
@@ -363,9 +373,9 @@ fn every_malformation_is_reported_with_its_line() {
             )
         }),
         (
-            "wasp-trace 3\n".into(),
+            "wasp-trace 4\n".into(),
             1,
-            |p| matches!(p, UnsupportedVersion(v) if v == "3"),
+            |p| matches!(p, UnsupportedVersion(v) if v == "4"),
         ),
         (
             "wasp-trace 0\n".into(),
@@ -491,7 +501,7 @@ fn every_malformation_is_reported_with_its_line() {
             matches!(
                 p,
                 UnknownDirective {
-                    expected: "`q X Y ...` or `end`",
+                    expected: "`q X Y ...`, `z N` or `end`",
                     ..
                 }
             )
@@ -678,16 +688,16 @@ fn error_messages_read_well() {
         msg,
         "x.trace:5: quad 40 3 outside the tile (expected x and y from 0 to 31)"
     );
-    let (_, _, msg) = fail("wasp-trace 3\n");
+    let (_, _, msg) = fail("wasp-trace 4\n");
     assert_eq!(
         msg,
-        "x.trace:1: unsupported format version `3` (expected 2 or 1)"
+        "x.trace:1: unsupported format version `4` (expected 3, 2 or 1)"
     );
     let (_, _, msg) = fail(&body1("tile 0 0\nq 1 0 a1\nq 1 0 a2\n"));
     assert_eq!(
         msg,
         "x.trace:6: quad 1 0 appears twice in the tile (expected each quad at most once in \
-         format 1; format 2 allows repeats)"
+         format 1; formats 2 and 3 allow repeats)"
     );
     let (_, _, msg) = fail(&body1("tile 0 0\nq 1 1 a1\nq 2 0 a1\n"));
     assert_eq!(
@@ -1038,7 +1048,7 @@ proptest! {
 
     #[test]
     fn scanline_traces_read_the_same_as_version_1(t in arb_trace_v(true)) {
-        let text = t.to_text().replacen("wasp-trace 2\n", "wasp-trace 1\n", 1);
+        let text = t.to_text().replacen("wasp-trace 3\n", "wasp-trace 1\n", 1);
         prop_assert_eq!(Trace::parse(&text, "v1").unwrap(), t);
     }
 
@@ -1148,4 +1158,135 @@ fn statistics_are_remembered_and_not_part_of_equality() {
     assert_eq!(tile.unique_block_count(), plain);
     assert_eq!(tile.unique_block_count(), plain);
     assert_eq!(tile, &fresh.tiles()[0]);
+}
+
+// ---- format 3: Early-Z-rejected quads ----
+
+const HEAD3: &str = "wasp-trace 3\nworkload w\nframe 128 64 tile 64\n";
+
+#[test]
+fn rejected_quads_round_trip_and_sit_where_they_were_rasterized() {
+    let text = format!(
+        "{HEAD3}tile 0 0\nz 5\nq 0 0 a1\nq 1 0 a2\nz 3\nq 2 0 a1\nz 7\nend\ntile 1 0\nz 9\nend\n"
+    );
+    let t = Trace::parse(&text, "z").unwrap();
+    let a = &t.tiles()[0];
+    assert_eq!(a.quad_count(), 3);
+    assert_eq!(
+        (0..3).map(|i| a.rejected_before(i)).collect::<Vec<_>>(),
+        vec![5, 0, 3]
+    );
+    assert_eq!(a.rejected_before(3), 0, "past the last quad");
+    assert_eq!(a.rejected_after_last(), 7);
+    assert_eq!((a.rejected_count(), a.raster_count()), (15, 18));
+    // A tile whose every quad Early-Z rejected: no warp, raster time only.
+    let b = &t.tiles()[1];
+    assert_eq!((b.quad_count(), b.rejected_after_last()), (0, 9));
+    assert_eq!(t.rejected_count(), 24);
+    assert_eq!(t.to_text(), text, "the writer writes what it read");
+    // Statistics of a trace with a warp-less tile stay finite.
+    let st = t.stats();
+    assert!(st.cf.is_finite() && st.min_estimate1.is_finite());
+}
+
+#[test]
+fn the_builder_adds_up_rejections_and_keeps_them_canonical() {
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    assert_eq!(b.rejected(1), Err(Problem::RejectedWithoutTile));
+    b.begin_tile(0, 0).unwrap();
+    assert_eq!(b.rejected(0), Err(Problem::ZeroRejected));
+    b.rejected(2).unwrap();
+    b.rejected(3).unwrap();
+    b.quad(0, 0, &[Instr::Alu(1)]).unwrap();
+    b.quad(1, 0, &[Instr::Alu(1)]).unwrap();
+    b.rejected(MAX_REJECTED_RUN).unwrap();
+    assert!(matches!(b.rejected(1), Err(Problem::RejectedRunTooLong(_))));
+    b.end_tile().unwrap();
+    let t = b.finish().unwrap();
+    let tile = &t.tiles()[0];
+    assert_eq!(tile.rejected_before(0), 5);
+    assert_eq!(tile.rejected_before(1), 0);
+    assert_eq!(tile.rejected_after_last(), MAX_REJECTED_RUN);
+    assert!(t
+        .to_text()
+        .contains("tile 0 0\nz 5\nq 0 0 a1\nq 1 0 a1\nz 2147483647\nend\n"));
+    // A tile with rejections after its quads only keeps no per-quad list:
+    // it equals the same tile read back.
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    b.begin_tile(0, 0).unwrap();
+    b.quad(0, 0, &[Instr::Alu(1)]).unwrap();
+    b.rejected(4).unwrap();
+    b.end_tile().unwrap();
+    let t = b.finish().unwrap();
+    assert_eq!(Trace::parse(&t.to_text(), "rt").unwrap(), t);
+}
+
+#[test]
+fn bad_rejection_records_are_errors_with_their_line() {
+    let cases: &[(&str, usize, &str)] = &[
+        ("tile 0 0\nz 0\nq 0 0 a1\nend\n", 5, "0 rejected quads"),
+        ("tile 0 0\nz\nq 0 0 a1\nend\n", 5, "`z N`"),
+        ("tile 0 0\nz 1 2\nq 0 0 a1\nend\n", 5, "`z N`"),
+        ("tile 0 0\nz x\nq 0 0 a1\nend\n", 5, "rejected quads"),
+        ("tile 0 0\nz 4294967296\nend\n", 5, "rejected quads"),
+        ("z 3\ntile 0 0\nq 0 0 a1\nend\n", 4, "outside any tile"),
+        (
+            "tile 0 0\nz 2\nz 3\nq 0 0 a1\nend\n",
+            6,
+            "two `z` lines in a row",
+        ),
+        ("tile 0 0\nq 0 0 a1\nend\nz 3\n", 7, "outside any tile"),
+    ];
+    for (body, line, want) in cases {
+        let text = format!("{HEAD3}{body}");
+        let e = Trace::parse(&text, "bad.trace").unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.starts_with(&format!("bad.trace:{line}: ")),
+            "{body:?}: {msg}"
+        );
+        assert!(msg.contains(want), "{body:?}: {msg}");
+    }
+    // Formats 1 and 2 have no `z` line.
+    for v in [1, 2] {
+        let text = format!(
+            "wasp-trace {v}\nworkload w\nframe 64 64 tile 64\ntile 0 0\nz 2\nq 0 0 a1\nend\n"
+        );
+        let msg = Trace::parse(&text, "old.trace").unwrap_err().to_string();
+        assert!(msg.starts_with("old.trace:5: "), "{msg}");
+        assert!(msg.contains(&format!("format-{v} trace")), "{msg}");
+    }
+    // A version-2 trace without `z` lines still loads, with no rejection.
+    let text = "wasp-trace 2\nworkload w\nframe 64 64 tile 64\ntile 0 0\nq 0 0 a1\nend\n";
+    let t = Trace::parse(text, "v2").unwrap();
+    assert_eq!(t.rejected_count(), 0);
+    assert!(t.to_text().starts_with("wasp-trace 3\n"));
+}
+
+#[test]
+fn a_trace_with_rejections_reads_alike_in_pieces() {
+    // Enough tiles for several pieces, rejections in each.
+    let mut b = Trace::builder(TraceHeader::new("w", 64 * 60, 64 * 60, 64)).unwrap();
+    for ty in 0..60 {
+        for tx in 0..60 {
+            b.begin_tile(tx, ty).unwrap();
+            b.rejected(1 + tx).unwrap();
+            for i in 0..160 {
+                b.quad(
+                    i % 32,
+                    i / 32,
+                    &[Instr::Alu(1 + i), Instr::Tex(&[u64::from(i)])],
+                )
+                .unwrap();
+                if i % 7 == 3 {
+                    b.rejected(i).unwrap();
+                }
+            }
+            b.end_tile().unwrap();
+        }
+    }
+    let t = b.finish().unwrap();
+    let text = t.to_text();
+    assert!(text.len() > 4 << 20, "large enough for the pieces path");
+    assert_eq!(Trace::parse(&text, "big").unwrap(), t);
 }

@@ -1,12 +1,12 @@
-//! The writer of `wasp-trace 2` text (every trace, whatever version it was
-//! read from: version 2 accepts every version-1 trace).
+//! The writer of `wasp-trace 3` text (every trace, whatever version it was
+//! read from: version 3 accepts every version-1 and version-2 trace).
 
 use super::{Instr, Trace, FORMAT_VERSION, MAGIC};
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
 impl Trace {
-    /// Writes the trace as `wasp-trace 2` text: line 1, the header notes as
+    /// Writes the trace as `wasp-trace 3` text: line 1, the header notes as
     /// `#` lines, the header, then each tile record. Hex is lowercase without
     /// leading zeros. `Trace::parse` of the output gives back `self`.
     pub fn write(&self, mut out: impl Write) -> io::Result<()> {
@@ -24,6 +24,10 @@ impl Trace {
             buf.clear();
             let _ = writeln!(buf, "tile {} {}", tile.tx(), tile.ty());
             for q in tile.quads() {
+                let z = tile.rejected_before(q.index());
+                if z > 0 {
+                    let _ = writeln!(buf, "z {z}");
+                }
                 let _ = write!(buf, "q {} {}", q.x(), q.y());
                 for instr in q.instrs() {
                     match instr {
@@ -43,13 +47,16 @@ impl Trace {
                 }
                 buf.push('\n');
             }
+            if tile.rejected_after_last() > 0 {
+                let _ = writeln!(buf, "z {}", tile.rejected_after_last());
+            }
             buf.push_str("end\n");
             out.write_all(buf.as_bytes())?;
         }
         out.flush()
     }
 
-    /// The trace as `wasp-trace 2` text.
+    /// The trace as `wasp-trace 3` text.
     pub fn to_text(&self) -> String {
         let mut out = Vec::new();
         self.write(&mut out).expect("writing to a Vec cannot fail");
