@@ -23,6 +23,8 @@ use super::stats::DramStats;
 use wasp_waves::Tracer;
 
 const NO_ROW: u64 = u64::MAX;
+/// The `entry` of a queued write: it gets no reply.
+const WRITE: u32 = u32::MAX;
 
 #[derive(Debug, Clone, Copy, Default)]
 struct Queued {
@@ -75,7 +77,9 @@ impl Dram {
             ideal,
             blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
             open_row: vec![NO_ROW; cfg.banks as usize],
-            queue: Ring::with_capacity(n),
+            // Reads are bounded by the L2's MSHRs; the flush adds at most
+            // one write a cycle against one acceptance a cycle or more.
+            queue: Ring::with_capacity(n + 64),
             row_hits: Ring::with_capacity(n),
             row_misses: Ring::with_capacity(n),
             seq: 0,
@@ -119,6 +123,24 @@ impl Dram {
         self.stats.max_queue = self.stats.max_queue.max(self.queue.len() as u64);
     }
 
+    /// A 64-byte line write to `block` in cycle `now` (the colour-buffer
+    /// flush): it waits in the FIFO with the reads, takes an acceptance slot
+    /// and opens its row, and is answered by no reply. With ideal memory it
+    /// is absorbed at once.
+    pub fn write(&mut self, now: u64, block: u64) {
+        self.stats.writes += 1;
+        if self.ideal {
+            return;
+        }
+        self.queue.push_back(Queued {
+            ready: now + 1,
+            missed: now,
+            block,
+            entry: WRITE,
+        });
+        self.stats.max_queue = self.stats.max_queue.max(self.queue.len() as u64);
+    }
+
     /// Accept requests from the FIFO in cycle `now` (once per cycle).
     #[inline]
     pub fn accept(&mut self, now: u64) {
@@ -134,6 +156,13 @@ impl Dram {
             self.queue.drop_front();
             self.accepted_now += 1;
             let (bank, row) = self.bank_row(q.block);
+            if q.entry == WRITE {
+                if self.open_row[bank] != row {
+                    self.stats.write_row_misses += 1;
+                    self.open_row[bank] = row;
+                }
+                continue;
+            }
             let row_hit = self.open_row[bank] == row;
             let latency = if row_hit {
                 self.stats.row_hits += 1;
@@ -292,6 +321,31 @@ mod tests {
         let mut d = Dram::new(&cfg(2), false, 8);
         let out = run(&mut d, &[(10, 0), (10, 1), (10, 2)]);
         assert_eq!(out, vec![(110, 0), (110, 1), (111, 2)]);
+    }
+
+    #[test]
+    fn a_write_takes_a_slot_and_the_row_but_gets_no_reply() {
+        let mut d = Dram::new(&cfg(1), false, 8);
+        // A write to block 16 (bank 0, row 1) queued in cycle 9 goes first:
+        // the read of block 0 (bank 0, row 0) waits a cycle for its
+        // acceptance slot and finds row 1 open (a row miss); the read of
+        // block 20 (bank 0, row 1) would have hit the write's row but
+        // block 0 closed it again.
+        d.write(9, 16);
+        let out = run(&mut d, &[(9, 0), (300, 20)]);
+        assert_eq!(out, vec![(110, 0), (400, 20)]);
+        let s = d.stats();
+        assert_eq!((s.writes, s.write_row_misses), (1, 1));
+        assert_eq!((s.requests, s.row_hits, s.row_misses), (2, 0, 2));
+        assert_eq!(
+            s.queue_wait_sum, 1,
+            "the read waited one cycle behind the write"
+        );
+        // With ideal memory a write is absorbed at once.
+        let mut d = Dram::new(&cfg(1), true, 8);
+        d.write(3, 0);
+        assert!(d.is_idle());
+        assert_eq!(d.stats().writes, 1);
     }
 
     #[test]

@@ -504,6 +504,28 @@ impl MemorySystem {
             && self.dram.is_idle()
     }
 
+    /// A 64-byte line write of the colour-buffer flush to main memory in
+    /// cycle `now` (see [`Dram::write`]): it bypasses the caches.
+    pub fn write_back(&mut self, now: u64, block: u64) {
+        self.dram.write(now, block);
+    }
+
+    /// Requests waiting in the DRAM's FIFO.
+    pub fn dram_queued(&self) -> usize {
+        self.dram.queued()
+    }
+
+    /// Misses outstanding now (MSHR entries awaiting their reply):
+    /// `[L0, L1, L2]`, L0 and L1 summed over the cores.
+    pub fn outstanding(&self) -> [u32; 3] {
+        let mut o = [0, 0, self.l2.mshr_outstanding()];
+        for c in &self.cores {
+            o[0] += c.l0.as_ref().map_or(0, |l0| l0.mshr_outstanding());
+            o[1] += c.l1.mshr_outstanding();
+        }
+        o
+    }
+
     /// Counters of every level so far.
     pub fn stats(&self) -> MemStats {
         // Every cache lives through every tick. The occupancy integrals run

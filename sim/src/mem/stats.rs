@@ -104,6 +104,14 @@ pub struct DramStats {
     pub queue_wait_sum: u64,
     /// Largest FIFO depth seen.
     pub max_queue: u64,
+    /// Line writes received (the colour-buffer flush): they take the FIFO
+    /// and an acceptance slot like a read, open their row, and get no reply.
+    /// Not counted in `requests`, `row_hits`, `row_misses` or the latency.
+    #[serde(default)]
+    pub writes: u64,
+    /// Of the writes, those that had to open their row.
+    #[serde(default)]
+    pub write_row_misses: u64,
 }
 
 impl DramStats {
