@@ -6,6 +6,7 @@ mod example_cmd;
 mod run_cmd;
 mod scene_cmd;
 mod synth_cmd;
+mod timeline_plot;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

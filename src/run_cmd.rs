@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use wasp_rtl::policy::PolicySpec;
 use wasp_rtl::subset::SubsetSpec;
-use wasp_sim::config::MachineConfig;
-use wasp_sim::gpu::{simulate, simulate_traced, RunOptions, SimError};
+use wasp_sim::config::{Dispatch, MachineConfig};
+use wasp_sim::gpu::{simulate, simulate_timeline, simulate_traced, RunOptions, SimError};
 use wasp_sim::stats::{csv_table, RunStats};
 use wasp_sim::synth::{generate, GenParams};
 use wasp_sim::trace::Trace;
@@ -37,6 +37,12 @@ pub struct Inputs {
     /// Zero-latency main memory (overrides memory.ideal).
     #[arg(long)]
     pub ideal_memory: bool,
+
+    /// Tile dispatch: shared-tile (the paper's machine: one tile at a time
+    /// for the whole GPU, one rasterizer) or per-core-tile (each core renders
+    /// a tile of its own). Overrides raster.dispatch.
+    #[arg(long, value_name = "MODE")]
+    pub dispatch: Option<Dispatch>,
 
     /// No progress bar, even on a terminal.
     #[arg(long, short)]
@@ -74,6 +80,20 @@ pub struct RunArgs {
     /// Last cycle written to the VCD.
     #[arg(long, value_name = "CYCLE", requires = "vcd")]
     pub vcd_to: Option<u64>,
+
+    /// Draw the timeline (resident warps per core, outstanding misses per
+    /// cache level, priority-warp launches, tile starts and ends) to FILE,
+    /// a .png or .svg.
+    #[arg(long, value_name = "FILE", conflicts_with = "vcd")]
+    pub timeline: Option<PathBuf>,
+
+    /// First cycle of the timeline.
+    #[arg(long, value_name = "CYCLE", requires = "timeline", default_value_t = 1)]
+    pub timeline_from: u64,
+
+    /// Last cycle of the timeline (default: 20000 cycles after the first).
+    #[arg(long, value_name = "CYCLE", requires = "timeline")]
+    pub timeline_to: Option<u64>,
 }
 
 /// Options of `wasp compare`.
@@ -195,16 +215,56 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
             Some((f, t))
         }
     };
+    let timeline_window = match &args.timeline {
+        None => None,
+        Some(path) => {
+            let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+            if !matches!(ext, "png" | "svg") {
+                return Err(CliError::usage(format!(
+                    "--timeline {}: the file must end in .png or .svg",
+                    path.display()
+                )));
+            }
+            let from = args.timeline_from;
+            let to = args.timeline_to.unwrap_or(from.saturating_add(19_999));
+            if from > to {
+                return Err(CliError::usage(format!(
+                    "--timeline-from {from} is after --timeline-to {to}"
+                )));
+            }
+            if to - from > 2_000_000 {
+                return Err(CliError::usage(format!(
+                    "--timeline-from {from} --timeline-to {to}: at most 2000000 cycles can be drawn"
+                )));
+            }
+            Some((from, to))
+        }
+    };
     let opts = RunOptions {
         policy: args.policy,
         subset: args.inputs.subset.clone(),
         ideal_memory: args.inputs.ideal_memory.then_some(true),
+        dispatch: args.inputs.dispatch,
         vcd_window: window,
+        timeline: timeline_window,
         record_warps: false,
     };
     let pb = progress_bar(args.inputs.quiet, trace.tiles().len(), "simulating");
     let mut progress = |done: usize, _total: usize| pb.set_position(done as u64);
     let stats = match &args.vcd {
+        None if args.timeline.is_some() => {
+            let path = args.timeline.as_ref().expect("checked");
+            let (stats, timeline) =
+                simulate_timeline(&cfg, &trace, &opts, &mut progress).map_err(sim_err)?;
+            if timeline.samples.is_empty() {
+                return Err(CliError::usage(format!(
+                    "--timeline-from {}: the run ended at cycle {}, before the window",
+                    timeline.from, stats.cycles
+                )));
+            }
+            crate::timeline_plot::draw(&timeline, path).map_err(CliError::failed)?;
+            stats
+        }
         None => simulate(&cfg, &trace, &opts, &mut progress).map_err(sim_err)?,
         Some(path) => {
             let file = std::fs::File::create(path)
@@ -289,8 +349,8 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
                 policy: Some(*p),
                 subset: args.inputs.subset.clone(),
                 ideal_memory: args.inputs.ideal_memory.then_some(true),
-                vcd_window: None,
-                record_warps: false,
+                dispatch: args.inputs.dispatch,
+                ..RunOptions::default()
             },
         })
         .collect();
@@ -301,8 +361,8 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
                 policy: Some(args.policies[0]),
                 subset: args.inputs.subset.clone(),
                 ideal_memory: Some(true),
-                vcd_window: None,
-                record_warps: false,
+                dispatch: args.inputs.dispatch,
+                ..RunOptions::default()
             },
         });
     }
@@ -377,19 +437,34 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
     };
     let _ = writeln!(
         s,
-        "machine {}  |  workload {}  |  subset {}",
-        base.machine, base.workload, base.subset.subset
+        "machine {}  |  dispatch {}  |  workload {}  |  subset {}",
+        base.machine, base.dispatch, base.workload, base.subset.subset
     );
     let _ = writeln!(
         s,
-        "{:<26}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}",
-        "policy", "cycles", "ipc", "speedup", "stall%", "latency", "l1 miss", "l2 miss", "energy"
+        "{:<26}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}{:>7}{:>8}",
+        "policy",
+        "cycles",
+        "ipc",
+        "speedup",
+        "stall%",
+        "latency",
+        "l1 miss",
+        "l2 miss",
+        "energy",
+        "occ",
+        "lead"
     );
     for (l, r) in labels.iter().zip(runs) {
         let stall = r.l0.as_ref().unwrap_or(&r.l1).stall_fraction;
+        let lead = if r.priority_lead.priority_warps > 0 {
+            format!("{:+.0}", r.priority_lead.mean)
+        } else {
+            "-".to_string()
+        };
         let _ = writeln!(
             s,
-            "{:<26}{:>12}{:>8.3}{:>+8.2}%{:>8.2}%{:>10.1}{:>10}{:>10}{:>9.1}uJ",
+            "{:<26}{:>12}{:>8.3}{:>+8.2}%{:>8.2}%{:>10.1}{:>10}{:>10}{:>9.1}uJ{:>7.1}{:>8}",
             l,
             r.cycles,
             r.ipc,
@@ -398,12 +473,14 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
             r.memory_latency.all,
             r.l1.misses,
             r.l2.misses,
-            r.energy.total_nj / 1000.0
+            r.energy.total_nj / 1000.0,
+            r.avg_warps_per_core,
+            lead
         );
     }
     let _ = writeln!(
         s,
-        "speedup = {} cycles / policy cycles - 1; stall% = scheduler-level cache (L0, else L1) stalled; latency = mean memory latency per warp in cycles",
+        "speedup = {} cycles / policy cycles - 1; stall% = scheduler-level cache (L0, else L1) stalled; latency = mean memory latency per warp in cycles; occ = mean warps resident per core; lead = mean raster position minus launch rank of priority warps",
         labels[0]
     );
     s

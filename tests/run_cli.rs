@@ -326,6 +326,8 @@ fn bench_reports_every_point_with_its_median_and_spread() {
             "tracing hooks",
             "tracing visitor",
             "tracing vcd",
+            "dispatch shared-tile off",
+            "dispatch per-core-tile off",
             "tiles off",
             "tiles off",
             "tiles off",

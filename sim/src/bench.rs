@@ -18,7 +18,7 @@
 //!   them (the cost of the visitor);
 //! - `vcd`: every signal written to a VCD (into a byte sink).
 
-use crate::config::MachineConfig;
+use crate::config::{Dispatch, MachineConfig};
 use crate::gpu::{Gpu, RunOptions, SimError};
 use crate::synth::{generate, GenParams};
 use crate::trace::Trace;
@@ -98,6 +98,9 @@ struct Best {
     cpu: Option<f64>,
     /// Seconds per run of every sample, on-CPU where known, else wall.
     each: Vec<f64>,
+    /// Wall seconds per run of every sample (what `each` becomes when a
+    /// sample has no on-CPU time: the measures are never mixed).
+    each_wall: Vec<f64>,
 }
 
 impl Best {
@@ -180,12 +183,21 @@ fn measure(
                 wall,
                 cpu,
                 each: Vec::new(),
+                each_wall: Vec::new(),
             });
-            b.each.push(cpu.unwrap_or(wall));
+            b.each_wall.push(wall);
             b.wall = b.wall.min(wall);
             b.cpu = match (b.cpu, cpu) {
-                (Some(x), Some(y)) => Some(x.min(y)),
-                (x, y) => x.or(y),
+                (Some(x), Some(y)) if b.each.len() == b.each_wall.len() - 1 => {
+                    b.each.push(y);
+                    Some(x.min(y))
+                }
+                _ => {
+                    // A sample without on-CPU time: every figure of the
+                    // point is by wall time.
+                    b.each.clone_from(&b.each_wall);
+                    None
+                }
             };
         }
     }
@@ -233,6 +245,14 @@ fn time_run(
         cycles = gpu.cycle();
     }
     Ok((cycles, best))
+}
+
+/// `cfg` with `raster.dispatch = d` (the raster rate must suit the mode).
+fn with_dispatch(cfg: &MachineConfig, d: Dispatch) -> Result<MachineConfig, SimError> {
+    let mut c = cfg.clone();
+    c.raster.dispatch = d;
+    c.validate().map_err(SimError::Config)?;
+    Ok(c)
 }
 
 /// A synthetic workload of `tiles_x` x `tiles_y` full tiles.
@@ -288,6 +308,27 @@ pub fn run(
         );
         push(p, &mut points);
     }
+    // Both dispatch modes on the same workload, tracing off, sampled in
+    // turns (the configured mode is the "tracing off" point above too).
+    {
+        let shared = with_dispatch(&cfg, Dispatch::SharedTile)?;
+        let per_core = with_dispatch(&cfg, Dispatch::PerCoreTile)?;
+        let jobs = [(&shared, base, Mode::Off), (&per_core, base, Mode::Off)];
+        for (b, c) in measure(&jobs, repeats, min)?
+            .iter()
+            .zip([&shared, &per_core])
+        {
+            let label = format!("dispatch {}", c.raster.dispatch);
+            let p = b.point(
+                &label,
+                Mode::Off,
+                base.tiles().len(),
+                c.core.max_warps,
+                cores,
+            );
+            push(p, &mut points);
+        }
+    }
     for (tx, ty) in [(2 * s, 2), (4 * s, 4), (8 * s, 8)] {
         let t = workload(&cfg, tx, ty)?;
         let b = measure(&[(&cfg, &t, Mode::Off)], repeats, min)?.remove(0);
@@ -328,6 +369,7 @@ mod tests {
             wall: 1.5,
             cpu: Some(1.0),
             each: vec![4.0, 1.0, 2.0],
+            each_wall: vec![4.0, 1.0, 2.0],
         };
         let p = b.point("tracing", Mode::Off, 1, 64, 4);
         assert_eq!(p.median_core_cycles_per_second, 400.0 / 2.0);
@@ -336,6 +378,7 @@ mod tests {
         // An even count takes the mean of the middle two.
         let b = Best {
             each: vec![1.0, 3.0],
+            each_wall: vec![1.0, 3.0],
             ..b
         };
         let p = b.point("tracing", Mode::Off, 1, 64, 4);

@@ -45,8 +45,6 @@ pub struct CoreConfig {
     /// Entries of the input queue (the baseline's single FIFO; WaSP splits
     /// it into priority and regular FIFOs of the same total size).
     pub input_queue: u32,
-    /// Quads the rasterizer delivers to the core's input queue per cycle.
-    pub raster_quads_per_cycle: u32,
     /// Cycles from issuing an ALU instruction to the warp's next issue.
     pub alu_latency: u32,
     /// Cycles the texture unit needs after the last block of a texture
@@ -57,6 +55,84 @@ pub struct CoreConfig {
     /// 32-bit registers per thread; a warp (a quad) has 4 threads. Sizes the
     /// register file that `wasp cost` sets against WaSP's hardware.
     pub registers_per_thread: u32,
+}
+
+/// How the tiles of a frame reach the cores.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Dispatch {
+    /// The paper's machine: one tile at a time for the whole GPU, one
+    /// rasterizer and Early-Z stage, each surviving quad sent to the core
+    /// its screen position names, a barrier between tiles.
+    SharedTile,
+    /// Each core takes a whole tile of its own when it is idle and
+    /// rasterizes it with its own rasterizer (tiles run out of phase).
+    PerCoreTile,
+}
+
+impl std::fmt::Display for Dispatch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Dispatch::SharedTile => "shared-tile",
+            Dispatch::PerCoreTile => "per-core-tile",
+        })
+    }
+}
+
+impl std::str::FromStr for Dispatch {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "shared-tile" => Ok(Dispatch::SharedTile),
+            "per-core-tile" => Ok(Dispatch::PerCoreTile),
+            _ => Err(format!(
+                "unknown dispatch `{s}` (expected shared-tile or per-core-tile)"
+            )),
+        }
+    }
+}
+
+/// What happens to the colour buffer when a tile has retired.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ColorFlush {
+    /// Double-buffered colour buffer: the tile's lines are written to main
+    /// memory while the next tile renders.
+    Overlap,
+    /// One colour buffer: the next tile starts when the last line of the
+    /// flush has entered main memory.
+    Blocking,
+    /// No flush traffic (the model before the flush existed; for studies).
+    None,
+}
+
+impl std::fmt::Display for ColorFlush {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            ColorFlush::Overlap => "overlap",
+            ColorFlush::Blocking => "blocking",
+            ColorFlush::None => "none",
+        })
+    }
+}
+
+/// The raster pipeline: tile fetcher, rasterizer and Early-Z, and the
+/// dispatch of quads to the cores.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RasterConfig {
+    /// `shared-tile` (the paper's machine) or `per-core-tile`.
+    pub dispatch: Dispatch,
+    /// Quads the GPU rasterizes per cycle, Early-Z-rejected quads included.
+    /// Shared-tile: the one rasterizer's rate; per-core-tile: split evenly
+    /// over the cores' rasterizers (must divide by the core count).
+    pub quads_per_cycle: u32,
+    /// Which core shades a quad, by its in-tile position (shared-tile):
+    /// `latin:B` or `rowmajor:B` over blocks of BxB quads (see
+    /// [`crate::gpu::CoreMap`]).
+    pub core_map: String,
+    /// The colour-buffer flush after each tile.
+    pub color_flush: ColorFlush,
 }
 
 /// The launch scheduler.
@@ -124,6 +200,8 @@ pub struct MachineConfig {
     pub name: String,
     /// Global parameters.
     pub gpu: GpuConfig,
+    /// The raster pipeline and the dispatch of quads to cores.
+    pub raster: RasterConfig,
     /// The shader core.
     pub core: CoreConfig,
     /// The launch scheduler.
@@ -232,6 +310,14 @@ impl MachineConfig {
             .map_err(|e| format!("scheduler.subset: {e}"))
     }
 
+    /// The parsed quad-to-core map.
+    pub fn core_map(&self) -> Result<crate::gpu::CoreMap, String> {
+        self.raster
+            .core_map
+            .parse()
+            .map_err(|e| format!("raster.core_map: {e}"))
+    }
+
     /// Quads per tile side.
     pub fn quads_per_side(&self) -> u32 {
         self.gpu.tile_size / 2
@@ -308,12 +394,21 @@ impl MachineConfig {
             "",
         )?;
         range(
-            "core.raster_quads_per_cycle",
-            self.core.raster_quads_per_cycle as u64,
+            "raster.quads_per_cycle",
+            self.raster.quads_per_cycle as u64,
             1,
-            64,
+            256,
             "",
         )?;
+        if self.raster.dispatch == Dispatch::PerCoreTile
+            && self.raster.quads_per_cycle % self.gpu.cores != 0
+        {
+            return Err(format!(
+                "raster.quads_per_cycle = {}: with raster.dispatch = per-core-tile the rate is split evenly over the {} cores' rasterizers, so it must be a multiple of gpu.cores",
+                self.raster.quads_per_cycle, self.gpu.cores
+            ));
+        }
+        self.core_map()?;
         range(
             "core.alu_latency",
             self.core.alu_latency as u64,

@@ -11,4 +11,5 @@ pub mod rng;
 pub mod scene;
 pub mod stats;
 pub mod synth;
+pub mod timeline;
 pub mod trace;

@@ -8,7 +8,7 @@
 //! energy of the event-energy model.
 
 use crate::config::MachineConfig;
-use crate::gpu::CoreStats;
+use crate::gpu::{CoreStats, LeadStats, RasterStats, TileRecord, TileTimingStats};
 use crate::mem::{CacheStats, MemStats};
 use crate::trace::{mean_footprint_ratio, Trace};
 use serde::Serialize;
@@ -114,6 +114,89 @@ pub struct EnergyStats {
     pub total_nj: f64,
 }
 
+/// Occupancy: warps resident per core per cycle.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OccupancyStats {
+    /// Warp slots per core.
+    pub max_warps: u32,
+    /// Mean resident warps per core per cycle.
+    pub mean: f64,
+    /// The mean of each core.
+    pub per_core_mean: Vec<f64>,
+    /// Share of core-cycles with fewer than 25% of the slots occupied.
+    pub below_quarter: f64,
+    /// Share of core-cycles with fewer than 50% of the slots occupied.
+    pub below_half: f64,
+    /// Core-cycles by resident warps: entry `n` counts the core-cycles with
+    /// `n` warps resident (summed over cores).
+    pub histogram: Vec<u64>,
+}
+
+impl OccupancyStats {
+    fn of(cores: &[CoreStats], max_warps: u32) -> Self {
+        let mut histogram = vec![0u64; max_warps as usize + 1];
+        for c in cores {
+            for (h, x) in histogram.iter_mut().zip(&c.occupancy_hist) {
+                *h += x;
+            }
+        }
+        let total: u64 = histogram.iter().sum();
+        let weighted: u64 = histogram
+            .iter()
+            .enumerate()
+            .map(|(n, c)| n as u64 * c)
+            .sum();
+        let below = |frac_num: u32, frac_den: u32| {
+            // n < max * num / den  <=>  n * den < max * num.
+            let k: u64 = histogram
+                .iter()
+                .enumerate()
+                .filter(|(n, _)| {
+                    (*n as u64) * u64::from(frac_den) < u64::from(max_warps * frac_num)
+                })
+                .map(|(_, c)| c)
+                .sum();
+            mean(k as f64, total)
+        };
+        OccupancyStats {
+            max_warps,
+            mean: mean(weighted as f64, total),
+            per_core_mean: cores
+                .iter()
+                .map(|c| {
+                    let t: u64 = c.occupancy_hist.iter().sum();
+                    let w: u64 = c
+                        .occupancy_hist
+                        .iter()
+                        .enumerate()
+                        .map(|(n, x)| n as u64 * x)
+                        .sum();
+                    mean(w as f64, t)
+                })
+                .collect(),
+            below_quarter: below(1, 4),
+            below_half: below(1, 2),
+            histogram,
+        }
+    }
+}
+
+/// What the GPU measures beside the cores and caches: the raster pipeline,
+/// the tiles, the lead of priority warps.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunInstruments {
+    /// Tiles rendered.
+    pub tiles: u64,
+    /// The raster pipeline's counters.
+    pub raster: RasterStats,
+    /// The lead of priority warps.
+    pub priority_lead: LeadStats,
+    /// Means over tiles.
+    pub tile_timing: TileTimingStats,
+    /// Every tile, in trace order.
+    pub per_tile: Vec<TileRecord>,
+}
+
 /// Everything a run reports.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RunStats {
@@ -123,6 +206,12 @@ pub struct RunStats {
     pub workload: String,
     /// Launch policy.
     pub policy: String,
+    /// Dispatch mode (`shared-tile` or `per-core-tile`).
+    pub dispatch: String,
+    /// Quad-to-core map (shared-tile).
+    pub core_map: String,
+    /// Colour-buffer flush.
+    pub color_flush: String,
     /// Zero-latency main memory.
     pub ideal_memory: bool,
     /// GPU cycles until every tile is rendered and memory is idle.
@@ -149,6 +238,14 @@ pub struct RunStats {
     pub memory_latency: LatencyStats,
     /// Average warps in a core per cycle.
     pub avg_warps_per_core: f64,
+    /// Occupancy in detail.
+    pub occupancy: OccupancyStats,
+    /// The raster pipeline.
+    pub raster: RasterStats,
+    /// The lead of priority warps over the quads rasterized before them.
+    pub priority_lead: LeadStats,
+    /// Fill, drain and misses per tile, as means.
+    pub tile_timing: TileTimingStats,
     /// Cycles in which a core held a waiting priority warp back.
     pub held_cycles: u64,
     /// The priority subset.
@@ -165,6 +262,8 @@ pub struct RunStats {
     pub block_reuse: f64,
     /// Energy.
     pub energy: EnergyStats,
+    /// Every tile: start, end, fill, drain, peak occupancy, primary misses.
+    pub per_tile: Vec<TileRecord>,
 }
 
 fn mean(sum: f64, n: u64) -> f64 {
@@ -183,6 +282,7 @@ impl RunStats {
         cycles: u64,
         cores: &[CoreStats],
         mem: &MemStats,
+        inst: RunInstruments,
     ) -> Self {
         let n = cores.len() as u64;
         let sum = |f: &dyn Fn(&CoreStats) -> u64| cores.iter().map(f).sum::<u64>();
@@ -213,9 +313,16 @@ impl RunStats {
         let l0_nj = l0_acc as f64 * e.l0_access_pj / 1000.0;
         let l1_nj = mem.l1.accesses as f64 * e.l1_access_pj / 1000.0;
         let l2_nj = mem.l2.accesses as f64 * e.l2_access_pj / 1000.0;
-        let dram_nj = (mem.dram.row_hits as f64 * e.dram_row_hit_pj
-            + mem.dram.row_misses as f64 * e.dram_row_miss_pj)
-            / 1000.0;
+        // Writes (the colour-buffer flush) cost like reads: a row hit's
+        // transfer, plus activation for those that opened their row.
+        let dram_hits = mem.dram.row_hits + (mem.dram.writes - mem.dram.write_row_misses);
+        let dram_misses = mem.dram.row_misses + mem.dram.write_row_misses;
+        let dram_nj = if cfg.memory.ideal {
+            0.0
+        } else {
+            (dram_hits as f64 * e.dram_row_hit_pj + dram_misses as f64 * e.dram_row_miss_pj)
+                / 1000.0
+        };
         // mW x seconds = mJ; cycles / (MHz x 1e6) seconds; in nJ: x 1e6.
         let seconds = cycles as f64 / (cfg.gpu.frequency_mhz as f64 * 1e6);
         let static_nj = (e.core_static_mw * n as f64 + e.uncore_static_mw) * 1e-3 * seconds * 1e9;
@@ -224,13 +331,16 @@ impl RunStats {
             machine: cfg.name.clone(),
             workload: trace.header().workload.clone(),
             policy: cfg.scheduler.policy.clone(),
+            dispatch: cfg.raster.dispatch.to_string(),
+            core_map: cfg.raster.core_map.clone(),
+            color_flush: cfg.raster.color_flush.to_string(),
             ideal_memory: cfg.memory.ideal,
             cycles,
             ipc: instructions as f64 / cycles.max(1) as f64,
             warps: sum(&|c| c.warps_finished),
             instructions,
             tex_instructions: tex,
-            tiles: sum(&|c| c.tiles),
+            tiles: inst.tiles,
             l0: mem.l0.as_ref().map(|s| LevelStats::of(s, n, cycles)),
             l1: LevelStats::of(&mem.l1, n, cycles),
             l2: LevelStats::of(&mem.l2, 1, cycles),
@@ -247,6 +357,10 @@ impl RunStats {
             },
             avg_warps_per_core: sum(&|c| c.occupancy_sum) as f64
                 / (cycles.max(1) * n.max(1)) as f64,
+            occupancy: OccupancyStats::of(cores, cfg.core.max_warps),
+            raster: inst.raster,
+            priority_lead: inst.priority_lead,
+            tile_timing: inst.tile_timing,
             held_cycles: sum(&|c| c.held_cycles),
             subset: SubsetStats {
                 subset: if uses_priority {
@@ -273,6 +387,7 @@ impl RunStats {
                 static_nj,
                 total_nj,
             },
+            per_tile: inst.per_tile,
         }
     }
 
@@ -281,9 +396,15 @@ impl RunStats {
         serde_json::to_string_pretty(self).expect("stats serialize") + "\n"
     }
 
-    /// Flat `key,value` CSV rows (nested names joined with `.`).
+    /// Flat `key,value` CSV rows (nested names joined with `.`; a list of
+    /// numbers, such as a histogram, is one field of values joined by `;`,
+    /// a list of records is numbered: `priority_lead.histogram.3.count`).
+    /// The per-tile records are left out: they are in the JSON.
     pub fn to_csv_rows(&self) -> Vec<(String, String)> {
-        let v = serde_json::to_value(self).expect("stats serialize");
+        let mut v = serde_json::to_value(self).expect("stats serialize");
+        if let Some(m) = v.as_object_mut() {
+            m.remove("per_tile");
+        }
         let mut rows = Vec::new();
         flatten("", &v, &mut rows);
         rows
@@ -303,6 +424,11 @@ impl RunStats {
             s,
             "policy {}  subset {}  ideal memory {}",
             self.policy, self.subset.subset, self.ideal_memory
+        );
+        let _ = writeln!(
+            s,
+            "dispatch {}  core map {}  colour flush {}",
+            self.dispatch, self.core_map, self.color_flush
         );
         let _ = writeln!(
             s,
@@ -345,9 +471,41 @@ impl RunStats {
         );
         let _ = writeln!(
             s,
-            "warps per core {:.1}; priority warps {}; held cycles {}",
-            self.avg_warps_per_core, self.subset.priority_warps, self.held_cycles
+            "warps per core {:.1} of {} (below 25%: {:.1}% of core-cycles, below 50%: {:.1}%); priority warps {}; held cycles {}",
+            self.avg_warps_per_core,
+            self.occupancy.max_warps,
+            100.0 * self.occupancy.below_quarter,
+            100.0 * self.occupancy.below_half,
+            self.subset.priority_warps,
+            self.held_cycles
         );
+        let r = &self.raster;
+        let _ = writeln!(
+            s,
+            "raster: {} quads ({} rejected by Early-Z), back-pressure {} cycles, barrier wait {} cycles, {} colour lines flushed",
+            r.quads_rasterized, r.quads_rejected, r.backpressure_cycles, r.barrier_cycles, r.flush_lines
+        );
+        let t = &self.tile_timing;
+        let _ = writeln!(
+            s,
+            "tiles: {:.0} cycles each on average, fill {:.0} ({:.1}%), drain {:.0} ({:.1}%), {:.0} primary misses",
+            t.mean_cycles,
+            t.mean_fill,
+            100.0 * t.fill_share,
+            t.mean_drain,
+            100.0 * t.drain_share,
+            t.mean_primary_misses
+        );
+        let l = &self.priority_lead;
+        if l.priority_warps > 0 {
+            let _ = writeln!(
+                s,
+                "priority lead: mean {:+.1} positions, {:.1}% ahead, {:.1}% after a regular warp of their subtile",
+                l.mean,
+                100.0 * l.ahead_share,
+                100.0 * l.after_subtile_regular_share
+            );
+        }
         let _ = writeln!(
             s,
             "subset size ratio {:.4}, texture footprint ratio {:.3}",
@@ -389,6 +547,15 @@ fn flatten(prefix: &str, v: &serde_json::Value, out: &mut Vec<(String, String)>)
         }
         serde_json::Value::Null => out.push((prefix.to_string(), String::new())),
         serde_json::Value::String(s) => out.push((prefix.to_string(), csv_field(s))),
+        serde_json::Value::Array(items) if items.iter().all(|x| !x.is_object()) => {
+            let joined: Vec<String> = items.iter().map(|x| x.to_string()).collect();
+            out.push((prefix.to_string(), csv_field(&joined.join(";"))));
+        }
+        serde_json::Value::Array(items) => {
+            for (i, x) in items.iter().enumerate() {
+                flatten(&format!("{prefix}.{i}"), x, out);
+            }
+        }
         other => out.push((prefix.to_string(), other.to_string())),
     }
 }

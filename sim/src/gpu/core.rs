@@ -4,8 +4,12 @@
 //! Per cycle `now` (phase 1, combinational from current state):
 //! 1. wake-ups: warps whose ALU result or texture data is ready become
 //!    ready to issue, or finish if their program is done;
-//! 2. raster: up to `raster_quads_per_cycle` quads of the current tile enter
-//!    the input queue (the subset comparator picks the FIFO);
+//! 2. raster (per-core-tile dispatch only): the core's own rasterizer
+//!    produces up to its share of `raster.quads_per_cycle` quads of its
+//!    tile; Early-Z-rejected quads take their slot and go nowhere, the others
+//!    enter the input queue (the subset comparator picks the FIFO). Under
+//!    shared-tile dispatch the GPU's one rasterizer fills the queue instead
+//!    ([`ShaderCore::push_quad`], `gpu/raster.rs`);
 //! 3. launch: one warp per cycle from the FIFO the policy selects, if a
 //!    warp slot is free;
 //! 4. issue: up to `pipeline_width` ready warps issue one instruction each,
@@ -139,6 +143,14 @@ pub struct CoreStats {
     pub idle_cycles: u64,
     /// Sum over cycles of active warps (for average occupancy).
     pub occupancy_sum: u64,
+    /// Cycles by warps resident at the end of the launch stage: entry `n`
+    /// counts the cycles with `n` warps (`max_warps + 1` entries).
+    pub occupancy_hist: Vec<u64>,
+    /// Quads its own rasterizer rasterized, rejected ones included
+    /// (per-core-tile dispatch).
+    pub quads_rasterized: u64,
+    /// Of those, quads Early-Z rejected.
+    pub quads_rejected: u64,
 }
 
 /// Per-cycle signals of the core, for the waveform.
@@ -149,6 +161,8 @@ struct CoreSignals {
     ldst_presented: u32,
     ldst_refused: bool,
     finished: u32,
+    /// The warp launched in the cycle: (quad index, priority).
+    launched: Option<(u32, bool)>,
 }
 
 /// One shader core.
@@ -199,6 +213,13 @@ pub struct ShaderCore {
     tile: Option<usize>,
     /// Next quad of the tile to rasterize.
     raster_next: u32,
+    /// Rejected quads to rasterize before `raster_next` (or, past the last
+    /// quad, at the tile's end).
+    raster_gap: u32,
+    /// The GPU's rasterizer fills the input queue (shared-tile dispatch).
+    external_raster: bool,
+    /// Primary misses at the scheduler-level cache since the tile began.
+    tile_misses: u64,
     /// Quads of the current tile.
     tile_quads: u32,
     active: u32,
@@ -220,8 +241,11 @@ pub struct CoreParams {
     pub max_warps: u32,
     /// Input queue entries.
     pub input_queue: u32,
-    /// Quads rasterized per cycle.
+    /// Quads its own rasterizer produces per cycle (per-core-tile
+    /// dispatch; unused when `external_raster`).
     pub raster_rate: u32,
+    /// The GPU's one rasterizer fills the input queue (shared-tile).
+    pub external_raster: bool,
     /// ALU latency.
     pub alu_latency: u32,
     /// Texture unit latency after the data.
@@ -278,15 +302,27 @@ impl ShaderCore {
             ldst_len: 0,
             tile: None,
             raster_next: 0,
+            raster_gap: 0,
+            external_raster: p.external_raster,
+            tile_misses: 0,
             tile_quads: 0,
             active: 0,
             rr: 0,
             prio: PriorityEvents::default(),
             signals: CoreSignals::default(),
             last_progress: 0,
-            stats: CoreStats::default(),
+            stats: CoreStats {
+                occupancy_hist: vec![0; n + 1],
+                ..CoreStats::default()
+            },
             records: None,
         }
+    }
+
+    /// The core's tile (its index in the trace), if any.
+    #[inline]
+    pub fn tile(&self) -> Option<usize> {
+        self.tile
     }
 
     /// Whether the core has no tile.
@@ -294,13 +330,62 @@ impl ShaderCore {
         self.tile.is_none()
     }
 
-    /// Give the core a tile (it must be idle).
-    pub fn assign_tile(&mut self, tile: usize, quads: usize, now: u64) {
-        debug_assert!(self.tile.is_none());
+    /// Give the core a tile to rasterize itself (per-core-tile dispatch;
+    /// the core must be idle): `quads` warps, `first_gap` rejected quads
+    /// before the first (all of them when it has no warp).
+    pub fn assign_tile(&mut self, tile: usize, quads: usize, first_gap: u32, now: u64) {
+        debug_assert!(self.tile.is_none() && !self.external_raster);
         self.tile = Some(tile);
         self.raster_next = 0;
+        self.raster_gap = first_gap;
         self.tile_quads = quads as u32;
+        self.tile_misses = 0;
         self.last_progress = now;
+    }
+
+    /// The GPU opens tile `tile` for every core (shared-tile dispatch): its
+    /// quads arrive through [`push_quad`](Self::push_quad).
+    pub fn begin_shared_tile(&mut self, tile: usize, now: u64) {
+        debug_assert!(self.tile.is_none() && self.external_raster);
+        self.tile = Some(tile);
+        self.raster_next = 0;
+        self.raster_gap = 0;
+        self.tile_quads = 0;
+        self.tile_misses = 0;
+        self.last_progress = now;
+    }
+
+    /// The GPU's rasterizer offers quad `quad` of the open tile at in-tile
+    /// position (x, y): it enters the priority or regular FIFO, or, when
+    /// that FIFO is full, is refused (`false`: the rasterizer waits).
+    #[inline]
+    pub fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool {
+        !self.sched.queue().is_full() && self.sched.enqueue(quad, x, y).is_ok()
+    }
+
+    /// Nothing of the open tile is queued, resident or in the LDST unit.
+    pub fn drained(&self) -> bool {
+        self.active == 0 && self.ldst_len == 0 && self.sched.queue().is_empty()
+    }
+
+    /// The GPU closes the open tile (shared-tile dispatch; the core must be
+    /// [`drained`](Self::drained)).
+    pub fn end_shared_tile(&mut self) {
+        debug_assert!(self.drained());
+        self.tile = None;
+    }
+
+    /// Primary misses at the scheduler-level cache since the core's tile
+    /// began.
+    pub fn tile_misses(&self) -> u64 {
+        self.tile_misses
+    }
+
+    /// The warp launched in the last evaluated cycle: (quad index,
+    /// priority).
+    #[inline]
+    pub fn launched_now(&self) -> Option<(u32, bool)> {
+        self.signals.launched
     }
 
     /// The core's counters.
@@ -319,15 +404,19 @@ impl ShaderCore {
         self.prio = PriorityEvents::default();
         let Some(ti) = self.tile else {
             self.stats.idle_cycles += 1;
+            self.stats.occupancy_hist[0] += 1;
             return;
         };
         let tile = &trace.tiles()[ti];
         self.wakeups(now, tile);
-        self.raster(tile);
+        if !self.external_raster {
+            self.raster(tile);
+        }
         self.launch(now, tile);
         self.issue(now, tile);
         self.ldst(now, tile, mem);
         self.stats.occupancy_sum += self.active as u64;
+        self.stats.occupancy_hist[self.active as usize] += 1;
     }
 
     fn progress(&mut self, now: u64) {
@@ -428,7 +517,17 @@ impl ShaderCore {
 
     fn raster(&mut self, tile: &Tile) {
         let n = self.tile_quads;
-        for _ in 0..self.raster_rate {
+        let mut budget = self.raster_rate;
+        while budget > 0 {
+            if self.raster_gap > 0 {
+                // Early-Z-rejected quads: a slot each, no warp.
+                let k = self.raster_gap.min(budget);
+                self.raster_gap -= k;
+                budget -= k;
+                self.stats.quads_rasterized += u64::from(k);
+                self.stats.quads_rejected += u64::from(k);
+                continue;
+            }
             if self.raster_next >= n || self.sched.queue().is_full() {
                 break;
             }
@@ -437,6 +536,13 @@ impl ShaderCore {
                 break;
             }
             self.raster_next += 1;
+            budget -= 1;
+            self.stats.quads_rasterized += 1;
+            self.raster_gap = if self.raster_next < n {
+                tile.rejected_before(self.raster_next as usize)
+            } else {
+                tile.rejected_after_last()
+            };
         }
     }
 
@@ -475,6 +581,7 @@ impl ShaderCore {
                 self.active += 1;
                 self.stats.warps_launched += 1;
                 self.stats.priority_launches += priority as u64;
+                self.signals.launched = Some((quad, priority));
                 self.progress(now);
             }
             None => self.stats.held_cycles += 1,
@@ -664,6 +771,7 @@ impl ShaderCore {
             self.last_progress = now;
         }
         let ev = mem.mshr_events(self.id);
+        self.tile_misses += u64::from(ev.allocated);
         let mshr = if self.track_mshrs {
             MshrEvents {
                 allocs: ev.allocated as u8,
@@ -696,10 +804,11 @@ impl ShaderCore {
     /// finished.
     pub fn end_cycle(&mut self) -> bool {
         self.sched.end_cycle();
-        if self.tile.is_none() {
+        if self.tile.is_none() || self.external_raster {
             return false;
         }
         if self.raster_next == self.tile_quads
+            && self.raster_gap == 0
             && self.sched.queue().is_empty()
             && self.active == 0
             && self.ldst_len == 0
@@ -717,6 +826,14 @@ impl ShaderCore {
             .tile
             .map(|t| {
                 let tl = &trace.tiles()[t];
+                if self.external_raster {
+                    return format!(
+                        "tile {} at ({}, {}), shared by every core",
+                        t,
+                        tl.tx(),
+                        tl.ty()
+                    );
+                }
                 format!(
                     "tile {} at ({}, {}), {} of {} quads rasterized",
                     t,

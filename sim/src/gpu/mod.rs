@@ -1,19 +1,36 @@
-//! The GPU: shader cores, the tile dispatcher and the memory hierarchy,
-//! clocked by one cycle loop.
+//! The GPU: shader cores, the raster pipeline that feeds them and the
+//! memory hierarchy, clocked by one cycle loop.
 //!
-//! Tiles are taken in trace order (the front end emits them in Z-order);
-//! each idle core takes the next tile, lowest core index first, and renders
-//! all of it before taking another (fill and drain). A run ends when every
-//! tile is rendered and the memory system is idle.
+//! Tiles are taken in trace order (the front end emits them in Z-order).
+//! Two dispatch modes (`raster.dispatch`):
+//!
+//! * **shared-tile** (the paper's machine, `gpu/raster.rs`): one tile at a
+//!   time for the whole GPU; one rasterizer places each surviving quad in
+//!   the input queue of the core its position names ([`CoreMap`]); no warp
+//!   of the next tile launches until every warp of this one has retired on
+//!   every core; then the colour buffer is flushed.
+//! * **per-core-tile**: each idle core takes the next tile, lowest core
+//!   index first, rasterizes it with its own rasterizer and renders all of
+//!   it before taking another; tiles run out of phase on the cores.
+//!
+//! Either way a tile fills and drains. A run ends when every tile is
+//! rendered, every colour buffer flushed and the memory system is idle.
 
 mod core;
+mod core_map;
 mod mask;
+mod raster;
+mod tiles;
 
 pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
+pub use self::core_map::{CoreMap, CoreMapTable};
+pub use self::raster::{RasterStats, SharedRaster};
+pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
-use crate::config::MachineConfig;
+use crate::config::{Dispatch, MachineConfig};
 use crate::mem::MemorySystem;
-use crate::stats::RunStats;
+use crate::stats::{RunInstruments, RunStats};
+use crate::timeline::{TileMark, Timeline, TimelineSample};
 use crate::trace::Trace;
 use std::fmt;
 use wasp_rtl::policy::PolicySpec;
@@ -80,6 +97,10 @@ pub struct RunOptions {
     pub vcd_window: Option<(u64, u64)>,
     /// Record every warp (see [`WarpRecord`]).
     pub record_warps: bool,
+    /// Override `raster.dispatch`.
+    pub dispatch: Option<Dispatch>,
+    /// Record a [`Timeline`] of the cycles `from..=to`.
+    pub timeline: Option<(u64, u64)>,
 }
 
 impl RunOptions {
@@ -95,9 +116,23 @@ impl RunOptions {
         if let Some(i) = self.ideal_memory {
             c.memory.ideal = i;
         }
+        if let Some(d) = self.dispatch {
+            c.raster.dispatch = d;
+        }
         c.validate().map_err(SimError::Config)?;
         Ok(c)
     }
+}
+
+/// Who feeds the cores.
+enum Dispatcher {
+    /// Each idle core takes the next tile.
+    PerCore {
+        /// Next tile to hand out.
+        next_tile: usize,
+    },
+    /// The GPU's one raster pipeline.
+    Shared(SharedRaster),
 }
 
 /// The assembled GPU.
@@ -106,7 +141,10 @@ pub struct Gpu<'t> {
     trace: &'t Trace,
     cores: Vec<ShaderCore>,
     mem: MemorySystem,
-    next_tile: usize,
+    dispatch: Dispatcher,
+    /// One per renderer: the GPU (shared-tile) or each core (per-core).
+    trackers: Vec<TileTracker>,
+    timeline: Option<Timeline>,
     tiles_done: usize,
     now: u64,
     scratch: Vec<u32>,
@@ -125,11 +163,13 @@ impl<'t> Gpu<'t> {
         let policy = cfg.policy().map_err(SimError::Config)?;
         let subset = cfg.subset().map_err(SimError::Config)?;
         let (_, sc) = cfg.scheduler_cache();
+        let shared = cfg.raster.dispatch == Dispatch::SharedTile;
         let params = CoreParams {
             width: cfg.core.pipeline_width,
             max_warps: cfg.core.max_warps,
             input_queue: cfg.core.input_queue,
-            raster_rate: cfg.core.raster_quads_per_cycle,
+            raster_rate: cfg.raster.quads_per_cycle / cfg.gpu.cores,
+            external_raster: shared,
             alu_latency: cfg.core.alu_latency,
             texture_latency: cfg.core.texture_latency,
             ldst_queue: cfg.core.ldst_queue,
@@ -143,16 +183,52 @@ impl<'t> Gpu<'t> {
         }
         let mem =
             MemorySystem::new(&cfg.mem_config()).map_err(|e| SimError::Config(e.to_string()))?;
+        let (dispatch, trackers) = if shared {
+            let map = cfg.core_map().map_err(SimError::Config)?;
+            let raster = SharedRaster::new(
+                cfg.raster.quads_per_cycle,
+                map.table(side, cfg.gpu.cores),
+                cfg.raster.color_flush,
+            );
+            (Dispatcher::Shared(raster), vec![TileTracker::new()])
+        } else {
+            (
+                Dispatcher::PerCore { next_tile: 0 },
+                vec![TileTracker::new(); cfg.gpu.cores as usize],
+            )
+        };
         Ok(Self {
             cfg: cfg.clone(),
             trace,
             cores,
             mem,
-            next_tile: 0,
+            dispatch,
+            trackers,
+            timeline: None,
             tiles_done: 0,
             now: 0,
             scratch: Vec::with_capacity(64),
         })
+    }
+
+    /// Record a [`Timeline`] of the cycles `from..=to` (see
+    /// [`take_timeline`](Self::take_timeline)).
+    pub fn record_timeline(&mut self, from: u64, to: u64) {
+        self.timeline = Some(Timeline::new(
+            from,
+            to,
+            self.cores.len(),
+            self.cfg.core.max_warps,
+            self.cfg.l0.is_some(),
+            &self.cfg.raster.dispatch.to_string(),
+        ));
+    }
+
+    /// The timeline recorded so far, its window cut at the last cycle run.
+    pub fn take_timeline(&mut self) -> Option<Timeline> {
+        let mut t = self.timeline.take()?;
+        t.to = t.to.min(self.now);
+        Some(t)
     }
 
     /// The shader cores.
@@ -175,11 +251,15 @@ impl<'t> Gpu<'t> {
         self.now
     }
 
-    /// Whether every tile is rendered and the memory system is idle.
+    /// Whether every tile is rendered (and flushed) and the memory system
+    /// is idle.
     pub fn done(&self) -> bool {
-        self.next_tile >= self.trace.tiles().len()
-            && self.cores.iter().all(|c| c.idle())
-            && self.mem.is_idle()
+        let n = self.trace.tiles().len();
+        let fed = match &self.dispatch {
+            Dispatcher::PerCore { next_tile } => *next_tile >= n,
+            Dispatcher::Shared(r) => r.done(n),
+        };
+        fed && self.cores.iter().all(|c| c.idle()) && self.mem.is_idle()
     }
 
     /// Advance one cycle. This path is compiled without any tracing hook.
@@ -204,17 +284,59 @@ impl<'t> Gpu<'t> {
     ) -> Result<(), SimError> {
         self.now += 1;
         let now = self.now;
-        // One pass per phase over the cores. A core's tile assignment
-        // depends only on its own idleness (tiles are released at the end of
-        // a cycle), so taking tiles in core order within the evaluate pass
-        // is the same as taking them all first.
         let tiles = self.trace.tiles();
-        for c in self.cores.iter_mut() {
-            if c.idle() && self.next_tile < tiles.len() {
-                c.assign_tile(self.next_tile, tiles[self.next_tile].quad_count(), now);
-                self.next_tile += 1;
+        match &mut self.dispatch {
+            Dispatcher::PerCore { next_tile } => {
+                // One pass per phase over the cores. A core's tile
+                // assignment depends only on its own idleness (tiles are
+                // released at the end of a cycle), so taking tiles in core
+                // order within the evaluate pass is the same as taking them
+                // all first.
+                for (i, c) in self.cores.iter_mut().enumerate() {
+                    if c.idle() && *next_tile < tiles.len() {
+                        let t = &tiles[*next_tile];
+                        c.assign_tile(*next_tile, t.quad_count(), raster::first_gap(t), now);
+                        self.trackers[i].start(*next_tile as u32, Some(i as u32), now);
+                        if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
+                            tl.marks.push(TileMark {
+                                cycle: now,
+                                tile: *next_tile as u32,
+                                core: Some(i as u32),
+                                start: true,
+                            });
+                        }
+                        *next_tile += 1;
+                    }
+                    c.evaluate(now, self.trace, &mut self.mem);
+                    if let Some((q, prio)) = c.launched_now() {
+                        let quad = tiles[c.tile().expect("launching")].quad(q as usize);
+                        let quad = quad.expect("quad in tile");
+                        self.trackers[i].launch(now, q, quad.x(), quad.y(), prio);
+                    }
+                }
             }
-            c.evaluate(now, self.trace, &mut self.mem);
+            Dispatcher::Shared(r) => {
+                let opened = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
+                if let Some(t) = opened {
+                    self.trackers[0].start(t as u32, None, now);
+                    if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
+                        tl.marks.push(TileMark {
+                            cycle: now,
+                            tile: t as u32,
+                            core: None,
+                            start: true,
+                        });
+                    }
+                }
+                let tile = r.tile().map(|t| &tiles[t]);
+                for c in self.cores.iter_mut() {
+                    c.evaluate(now, self.trace, &mut self.mem);
+                    if let (Some((q, prio)), Some(tile)) = (c.launched_now(), tile) {
+                        let quad = tile.quad(q as usize).expect("quad in tile");
+                        self.trackers[0].launch(now, q, quad.x(), quad.y(), prio);
+                    }
+                }
+            }
         }
         self.mem.tick(now);
         match sink {
@@ -225,20 +347,82 @@ impl<'t> Gpu<'t> {
                 s.begin_cycle(now);
                 self.trace_signals(s);
                 s.end_cycle().map_err(SimError::Io)?;
-                for c in self.cores.iter_mut() {
-                    self.tiles_done += usize::from(c.end_cycle());
+                for i in 0..self.cores.len() {
+                    self.core_end_cycle(i, now);
                 }
             }
             _ => {
                 // A core's end of cycle touches only itself: it can follow
                 // its completions directly.
-                for c in self.cores.iter_mut() {
-                    c.complete(now, &mut self.mem, &mut self.scratch)?;
-                    self.tiles_done += usize::from(c.end_cycle());
+                for i in 0..self.cores.len() {
+                    self.cores[i].complete(now, &mut self.mem, &mut self.scratch)?;
+                    self.core_end_cycle(i, now);
                 }
             }
         }
+        if let Dispatcher::Shared(r) = &mut self.dispatch {
+            let resident = self.cores.iter().map(|c| c.active()).sum();
+            self.trackers[0].resident(now, resident);
+            if let Some(t) = r.end_cycle(self.trace, &mut self.cores, now) {
+                let misses = self.cores.iter().map(|c| c.tile_misses()).sum();
+                self.trackers[0].finish(now, misses);
+                self.tiles_done += 1;
+                if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
+                    tl.marks.push(TileMark {
+                        cycle: now,
+                        tile: t as u32,
+                        core: None,
+                        start: false,
+                    });
+                }
+            }
+        }
+        if self.timeline.as_ref().is_some_and(|tl| tl.covers(now)) {
+            self.sample_timeline(now);
+        }
         self.watchdog()
+    }
+
+    /// A core's end of cycle; under per-core-tile dispatch, its tile's
+    /// end.
+    #[inline]
+    fn core_end_cycle(&mut self, i: usize, now: u64) {
+        let c = &mut self.cores[i];
+        let tile = c.tile();
+        if c.end_cycle() {
+            self.tiles_done += 1;
+            let misses = c.tile_misses();
+            let t = &mut self.trackers[i];
+            t.resident(now, 0);
+            t.finish(now, misses);
+            if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
+                tl.marks.push(TileMark {
+                    cycle: now,
+                    tile: tile.expect("a finished tile") as u32,
+                    core: Some(i as u32),
+                    start: false,
+                });
+            }
+        } else if matches!(self.dispatch, Dispatcher::PerCore { .. }) {
+            let n = c.active();
+            self.trackers[i].resident(now, n);
+        }
+    }
+
+    fn sample_timeline(&mut self, now: u64) {
+        let Some(tl) = self.timeline.as_mut() else {
+            return;
+        };
+        tl.samples.push(TimelineSample {
+            cycle: now,
+            resident: self.cores.iter().map(|c| c.active()).collect(),
+            outstanding: self.mem.outstanding(),
+            priority_launches: self
+                .cores
+                .iter()
+                .map(|c| u32::from(c.launched_now().is_some_and(|(_, p)| p)))
+                .collect(),
+        });
     }
 
     fn watchdog(&self) -> Result<(), SimError> {
@@ -247,11 +431,16 @@ impl<'t> Gpu<'t> {
             return Ok(());
         }
         let limit = self.cfg.sim.watchdog_cycles;
+        let raster = match &self.dispatch {
+            Dispatcher::Shared(r) if !r.done(self.trace.tiles().len()) => Some(r.last_progress()),
+            _ => None,
+        };
         let last = self
             .cores
             .iter()
             .filter(|c| !c.idle())
             .map(|c| c.last_progress())
+            .chain(raster)
             .max();
         if let Some(last) = last {
             if self.now.saturating_sub(last) > limit {
@@ -335,12 +524,41 @@ impl<'t> Gpu<'t> {
             )));
         }
         let core_stats: Vec<CoreStats> = self.cores.iter().map(|c| c.stats().clone()).collect();
+        let raster = match &self.dispatch {
+            Dispatcher::Shared(r) => r.stats().clone(),
+            Dispatcher::PerCore { .. } => RasterStats {
+                quads_rasterized: core_stats.iter().map(|c| c.quads_rasterized).sum(),
+                quads_rejected: core_stats.iter().map(|c| c.quads_rejected).sum(),
+                ..RasterStats::default()
+            },
+        };
+        let expect_raster = quads + self.trace.rejected_count();
+        if raster.quads_rasterized != expect_raster {
+            return Err(SimError::Internal(format!(
+                "quads not conserved: {expect_raster} in the trace (rejected ones included), {} rasterized",
+                raster.quads_rasterized
+            )));
+        }
+        let mut per_tile: Vec<TileRecord> = self
+            .trackers
+            .iter()
+            .flat_map(|t| t.records().iter().cloned())
+            .collect();
+        per_tile.sort_by_key(|r| r.tile);
+        let instruments = RunInstruments {
+            tiles: self.tiles_done as u64,
+            raster,
+            priority_lead: TileTracker::lead_stats(&self.trackers),
+            tile_timing: TileTracker::timing(&per_tile),
+            per_tile,
+        };
         Ok(RunStats::collect(
             &self.cfg,
             self.trace,
             self.now,
             &core_stats,
             &self.mem.stats(),
+            instruments,
         ))
     }
 }
@@ -354,6 +572,40 @@ pub fn simulate(
 ) -> Result<RunStats, SimError> {
     let cfg = opts.apply(cfg)?;
     Gpu::new(&cfg, trace)?.run::<NullTracer>(None, None, progress)
+}
+
+/// Run `trace` on `cfg` with `opts` and return the statistics with the
+/// [`Timeline`] of the window `opts.timeline` (the whole run without one).
+pub fn simulate_timeline(
+    cfg: &MachineConfig,
+    trace: &Trace,
+    opts: &RunOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<(RunStats, Timeline), SimError> {
+    let cfg = opts.apply(cfg)?;
+    let mut gpu = Gpu::new(&cfg, trace)?;
+    let (from, to) = opts.timeline.unwrap_or((0, u64::MAX));
+    gpu.record_timeline(from, to);
+    let total = trace.tiles().len();
+    while !gpu.done() {
+        gpu.step()?;
+        if gpu.cycle() % 4096 == 0 {
+            progress(gpu.tiles_done(), total);
+        }
+        if gpu.cycle() > to {
+            // The window is recorded; the rest of the run needs no samples.
+            break;
+        }
+    }
+    let timeline = gpu.take_timeline().expect("recording");
+    while !gpu.done() {
+        gpu.step()?;
+        if gpu.cycle() % 4096 == 0 {
+            progress(gpu.tiles_done(), total);
+        }
+    }
+    progress(gpu.tiles_done(), total);
+    Ok((gpu.finish()?, timeline))
 }
 
 /// Run `trace` on `cfg` with `opts` and return the statistics with one
@@ -395,6 +647,7 @@ pub fn simulate_traced<S: CycleSink>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::ColorFlush;
     use crate::synth::{generate, GenParams};
     use crate::trace::{Instr, TraceHeader};
 
@@ -646,36 +899,48 @@ mod tests {
 
         fn arb_config() -> impl Strategy<Value = MachineConfig> {
             (
-                1u32..=6,
-                1u32..=8,
-                1u32..=4,
-                1u32..=8,
-                0usize..4,
-                any::<bool>(),
-                1u32..=3,
+                (1u32..=6, 1u32..=8, 1u32..=4, 1u32..=8),
+                (0usize..4, any::<bool>(), 1u32..=3, any::<bool>()),
+                (1u32..=3, 0usize..3, 0usize..3),
             )
-                .prop_map(|(mshrs, warps, width, queue, policy, l0, cores)| {
-                    let mut c = if l0 {
-                        MachineConfig::paper()
-                    } else {
-                        MachineConfig::paper_width2()
-                    };
-                    c.gpu.tile_size = 8;
-                    c.gpu.cores = cores;
-                    c.core.max_warps = warps;
-                    c.core.pipeline_width = width;
-                    c.core.input_queue = queue;
-                    c.l1.mshrs = mshrs.max(2);
-                    if let Some(l0) = c.l0.as_mut() {
-                        l0.mshrs = mshrs;
-                    }
-                    let t = mshrs - 1;
-                    c.scheduler.policy = ["baseline", "fullpriority", "freemshr:1", "wasp"][policy]
-                        .replace("wasp", &format!("wasp:{t}"));
-                    c.sim.watchdog_cycles = 20_000;
-                    c.validate().unwrap();
-                    c
-                })
+                .prop_map(
+                    |(
+                        (mshrs, warps, width, queue),
+                        (policy, l0, cores, shared),
+                        (rate, map, flush),
+                    )| {
+                        let mut c = if l0 {
+                            MachineConfig::paper()
+                        } else {
+                            MachineConfig::paper_width2()
+                        };
+                        c.gpu.tile_size = 8;
+                        c.gpu.cores = cores;
+                        c.raster.dispatch = if shared {
+                            Dispatch::SharedTile
+                        } else {
+                            Dispatch::PerCoreTile
+                        };
+                        c.raster.quads_per_cycle = rate * cores;
+                        c.raster.core_map = ["latin:2", "rowmajor:1", "latin:8"][map].into();
+                        c.raster.color_flush =
+                            [ColorFlush::Overlap, ColorFlush::Blocking, ColorFlush::None][flush];
+                        c.core.max_warps = warps;
+                        c.core.pipeline_width = width;
+                        c.core.input_queue = queue;
+                        c.l1.mshrs = mshrs.max(2);
+                        if let Some(l0) = c.l0.as_mut() {
+                            l0.mshrs = mshrs;
+                        }
+                        let t = mshrs - 1;
+                        c.scheduler.policy = ["baseline", "fullpriority", "freemshr:1", "wasp"]
+                            [policy]
+                            .replace("wasp", &format!("wasp:{t}"));
+                        c.sim.watchdog_cycles = 20_000;
+                        c.validate().unwrap();
+                        c
+                    },
+                )
         }
 
         proptest! {
@@ -684,14 +949,21 @@ mod tests {
             /// Every cycle: no cache holds more MSHR entries than it has;
             /// the run ends with every warp finished within a bound
             /// (bounded liveness); a core starts no warp of a tile before
-            /// the previous tile's warps all finished (fill and drain).
+            /// the previous tile's warps all finished (fill and drain);
+            /// under shared-tile dispatch no core starts a warp of a tile
+            /// before every core has finished the previous tile (the tile
+            /// barrier), tiles run in trace order, and every warp runs on
+            /// the core the map names for its position (no quad lost,
+            /// duplicated or misplaced by back-pressure).
             #[test]
             fn invariants_hold_on_random_machines(cfg in arb_config(), trace in arb_trace()) {
                 let mut gpu = Gpu::new(&cfg, &trace).unwrap();
                 gpu.record_warps();
                 let (_, sc) = cfg.scheduler_cache();
                 let instrs = trace.instr_count();
-                let bound = 200 + instrs * 400;
+                let raster = trace.quad_count() as u64 + trace.rejected_count();
+                let flush = 4 * 64 * trace.tiles().len() as u64;
+                let bound = 200 + instrs * 400 + raster + flush;
                 while !gpu.done() {
                     gpu.step().unwrap();
                     prop_assert!(gpu.cycle() <= bound, "no finish within {bound} cycles");
@@ -717,8 +989,172 @@ mod tests {
                         prop_assert!(w[0].1 <= w[1].0, "tile started before the previous drained: {:?}", w);
                     }
                 }
+                if cfg.raster.dispatch == Dispatch::SharedTile {
+                    let map = cfg.core_map().unwrap().table(cfg.quads_per_side(), cfg.gpu.cores);
+                    let mut span = std::collections::BTreeMap::<u32, (u64, u64)>::new();
+                    for r in &records {
+                        let e = span.entry(r.tile).or_insert((u64::MAX, 0));
+                        e.0 = e.0.min(r.launched);
+                        e.1 = e.1.max(r.finished);
+                        let q = trace.tiles()[r.tile as usize].quad(r.quad as usize).unwrap();
+                        prop_assert_eq!(r.core as usize, map.core(q.x(), q.y()), "warp on the wrong core");
+                    }
+                    let spans: Vec<(u32, (u64, u64))> = span.into_iter().collect();
+                    for w in spans.windows(2) {
+                        prop_assert!(w[0].1 .1 < w[1].1 .0, "tile {} launched at {} before tile {} retired at {}", w[1].0, w[1].1 .0, w[0].0, w[0].1 .1);
+                    }
+                }
             }
         }
+    }
+
+    /// A trace of one-warp tiles with many Early-Z-rejected quads each.
+    fn hidden_trace(tiles: u32, rejected: u32, with_warp: bool) -> Trace {
+        let mut b = Trace::builder(TraceHeader::new("hidden", 64 * tiles, 64, 64)).unwrap();
+        for t in 0..tiles {
+            b.begin_tile(t, 0).unwrap();
+            if rejected > 0 {
+                b.rejected(rejected).unwrap();
+            }
+            if with_warp {
+                b.quad(0, 0, &[Instr::Alu(1)]).unwrap();
+            }
+            b.end_tile().unwrap();
+        }
+        b.finish().unwrap()
+    }
+
+    fn run_dispatch(t: &Trace, d: Dispatch, flush: ColorFlush) -> RunStats {
+        let mut cfg = MachineConfig::paper();
+        cfg.raster.color_flush = flush;
+        simulate(
+            &cfg,
+            t,
+            &RunOptions {
+                dispatch: Some(d),
+                ..Default::default()
+            },
+            &mut |_, _| {},
+        )
+        .unwrap()
+    }
+
+    /// The rasterizer spends a slot on every quad Early-Z rejects: a trace
+    /// whose quads are all rejected costs raster cycles in proportion to
+    /// its quads (4 a cycle on the paper's machine), shared or per core.
+    #[test]
+    fn rejected_quads_cost_raster_cycles_in_proportion() {
+        for d in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+            let small = run_dispatch(&hidden_trace(4, 4000, false), d, ColorFlush::None);
+            let big = run_dispatch(&hidden_trace(4, 8000, false), d, ColorFlush::None);
+            assert_eq!(small.warps, 0);
+            assert_eq!(small.raster.quads_rejected, 16_000, "{d}");
+            assert_eq!(big.raster.quads_rasterized, 32_000, "{d}");
+            match d {
+                // One tile at a time: 4000 quads / 4 a cycle each; the next
+                // tile's first quads are rasterized in the cycle after a
+                // barrier.
+                Dispatch::SharedTile => {
+                    assert_eq!(small.cycles, 4 * 1000, "{d}");
+                    assert_eq!(big.cycles, 4 * 2000, "{d}");
+                    assert_eq!(small.per_tile[1].start, 1001);
+                }
+                // Four tiles at once, one quad a cycle each.
+                Dispatch::PerCoreTile => {
+                    assert_eq!(small.cycles, 4000, "{d}");
+                    assert_eq!(big.cycles, 8000, "{d}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn shared_tile_dispatch_renders_one_tile_at_a_time() {
+        let t = small_synth(13);
+        let cfg = MachineConfig::paper();
+        let (stats, recs) =
+            simulate_recording(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
+        assert_eq!(stats.dispatch, "shared-tile");
+        assert_eq!(stats.tiles, t.tiles().len() as u64);
+        assert_eq!(stats.per_tile.len(), t.tiles().len());
+        // Every core shades part of every tile (the map spreads the tile).
+        for tile in 0..t.tiles().len() as u32 {
+            let mut cores: Vec<u32> = recs
+                .iter()
+                .filter(|r| r.tile == tile)
+                .map(|r| r.core)
+                .collect();
+            cores.sort_unstable();
+            cores.dedup();
+            assert_eq!(cores, vec![0, 1, 2, 3], "tile {tile}");
+        }
+        // Tiles in trace order, each after the previous one's barrier.
+        for w in stats.per_tile.windows(2) {
+            assert!(w[0].end < w[1].start, "{:?}", w);
+            assert_eq!(w[0].tile + 1, w[1].tile);
+        }
+        // A full tile's colour buffer: 64 rows of 4 lines.
+        assert_eq!(stats.raster.flush_lines, 256 * stats.tiles);
+        assert!(stats.tile_timing.mean_fill > 0.0);
+        assert!(stats.tile_timing.mean_drain > 0.0);
+        let h: u64 = stats.occupancy.histogram.iter().sum();
+        assert_eq!(h, stats.cycles * 4, "one histogram entry per core-cycle");
+    }
+
+    #[test]
+    fn a_blocking_flush_delays_the_next_tile() {
+        let t = hidden_trace(3, 0, true);
+        let overlap = run_dispatch(&t, Dispatch::SharedTile, ColorFlush::Overlap);
+        let blocking = run_dispatch(&t, Dispatch::SharedTile, ColorFlush::Blocking);
+        let none = run_dispatch(&t, Dispatch::SharedTile, ColorFlush::None);
+        assert_eq!(none.raster.flush_lines, 0);
+        assert_eq!(overlap.raster.flush_lines, 3 * 256);
+        assert_eq!(blocking.raster.flush_lines, 3 * 256);
+        // Blocking: each tile after the first waits for 256 lines, one a
+        // cycle.
+        let gap = |s: &RunStats| s.per_tile[1].start - s.per_tile[0].end;
+        assert_eq!(gap(&overlap), 1);
+        assert_eq!(gap(&blocking), 256);
+        assert!(blocking.cycles > overlap.cycles);
+        // The writes reach the DRAM either way, and cost energy.
+        assert!(overlap.energy.dram_nj > none.energy.dram_nj);
+    }
+
+    #[test]
+    fn per_core_dispatch_is_still_available() {
+        let t = small_synth(17);
+        let s = run_dispatch(&t, Dispatch::PerCoreTile, ColorFlush::Overlap);
+        assert_eq!(s.dispatch, "per-core-tile");
+        assert_eq!(s.warps, t.quad_count() as u64);
+        assert_eq!(s.per_tile.len(), t.tiles().len());
+        assert!(s.per_tile.iter().all(|r| r.core.is_some()));
+    }
+
+    #[test]
+    fn the_timeline_covers_its_window() {
+        let t = small_synth(19);
+        let cfg = MachineConfig::paper();
+        let opts = RunOptions {
+            timeline: Some((100, 600)),
+            ..Default::default()
+        };
+        let (stats, tl) = simulate_timeline(&cfg, &t, &opts, &mut |_, _| {}).unwrap();
+        assert_eq!(stats, simulate(&cfg, &t, &opts, &mut |_, _| {}).unwrap());
+        assert_eq!(tl.samples.len(), 501);
+        assert_eq!(tl.samples[0].cycle, 100);
+        assert_eq!(tl.samples[500].cycle, 600);
+        assert!(tl.samples.iter().all(|s| s.resident.len() == 4));
+        assert!(tl
+            .samples
+            .iter()
+            .all(|s| s.resident.iter().all(|&r| r <= 64)));
+        assert!(tl.marks.iter().all(|m| tl.covers(m.cycle)));
+        let launches: u32 = tl
+            .samples
+            .iter()
+            .flat_map(|s| s.priority_launches.iter())
+            .sum();
+        assert!(launches > 0, "wasp:4 launches priority warps");
     }
 
     #[test]
