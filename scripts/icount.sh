@@ -11,7 +11,8 @@
 # With ICOUNT_SIM=1 it also runs callgrind's branch predictor and cache
 # models and prints mispredicted branches and L1 data misses per core-cycle
 # (a simple model of the host, but deterministic: wall-clock timing on a
-# shared machine cannot see a 3% change).
+# shared machine cannot see a 3% change). Extra arguments of `wasp run` go in
+# ICOUNT_ARGS, e.g. ICOUNT_ARGS="--dispatch per-core-tile".
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 bin=$(realpath "${1:-$repo/target/release/wasp}")
@@ -22,7 +23,7 @@ sim=()
 [ "${ICOUNT_SIM:-0}" = 1 ] && sim=(--branch-sim=yes --cache-sim=yes)
 valgrind --tool=callgrind "${sim[@]}" --callgrind-out-file="$out/cg" \
   --toggle-collect='wasp_sim::gpu::Gpu::step' \
-  "$bin" run -q --trace "$out/bench.trace" --json "$out/run.json" > /dev/null 2> "$out/log"
+  "$bin" run -q --trace "$out/bench.trace" ${ICOUNT_ARGS:-} --json "$out/run.json" > /dev/null 2> "$out/log"
 python3 - "$out" <<'PY'
 import json, re, signal, subprocess, sys
 signal.signal(signal.SIGPIPE, signal.SIG_DFL)
