@@ -311,7 +311,11 @@ impl<'t> Gpu<'t> {
                     if let Some((q, prio)) = c.launched_now() {
                         let quad = tiles[c.tile().expect("launching")].quad(q as usize);
                         let quad = quad.expect("quad in tile");
-                        self.trackers[i].launch(now, q, quad.x(), quad.y(), prio);
+                        let t = &mut self.trackers[i];
+                        t.launch(now, q, quad.x(), quad.y(), prio);
+                        // Occupancy rises only at a launch: its peak is
+                        // found there.
+                        t.resident(now, c.active());
                     }
                 }
             }
@@ -329,12 +333,20 @@ impl<'t> Gpu<'t> {
                     }
                 }
                 let tile = r.tile().map(|t| &tiles[t]);
+                let mut launched = false;
                 for c in self.cores.iter_mut() {
                     c.evaluate(now, self.trace, &mut self.mem);
                     if let (Some((q, prio)), Some(tile)) = (c.launched_now(), tile) {
                         let quad = tile.quad(q as usize).expect("quad in tile");
                         self.trackers[0].launch(now, q, quad.x(), quad.y(), prio);
+                        launched = true;
                     }
+                }
+                if launched {
+                    // Occupancy rises only at a launch: its peak is found
+                    // there.
+                    let resident = self.cores.iter().map(|c| c.active()).sum();
+                    self.trackers[0].resident(now, resident);
                 }
             }
         }
@@ -361,8 +373,6 @@ impl<'t> Gpu<'t> {
             }
         }
         if let Dispatcher::Shared(r) = &mut self.dispatch {
-            let resident = self.cores.iter().map(|c| c.active()).sum();
-            self.trackers[0].resident(now, resident);
             if let Some(t) = r.end_cycle(self.trace, &mut self.cores, now) {
                 let misses = self.cores.iter().map(|c| c.tile_misses()).sum();
                 self.trackers[0].finish(now, misses);
@@ -385,16 +395,14 @@ impl<'t> Gpu<'t> {
 
     /// A core's end of cycle; under per-core-tile dispatch, its tile's
     /// end.
-    #[inline]
+    #[inline(always)]
     fn core_end_cycle(&mut self, i: usize, now: u64) {
         let c = &mut self.cores[i];
         let tile = c.tile();
         if c.end_cycle() {
             self.tiles_done += 1;
             let misses = c.tile_misses();
-            let t = &mut self.trackers[i];
-            t.resident(now, 0);
-            t.finish(now, misses);
+            self.trackers[i].finish(now, misses);
             if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
                 tl.marks.push(TileMark {
                     cycle: now,
@@ -403,9 +411,6 @@ impl<'t> Gpu<'t> {
                     start: false,
                 });
             }
-        } else if matches!(self.dispatch, Dispatcher::PerCore { .. }) {
-            let n = c.active();
-            self.trackers[i].resident(now, n);
         }
     }
 

@@ -189,7 +189,8 @@ impl TileTracker {
         }
     }
 
-    /// Resident warps of the open tile at the end of cycle `now`.
+    /// Resident warps of the open tile in cycle `now` (the GPU reports them
+    /// after each launch: occupancy rises only at a launch).
     #[inline]
     pub fn resident(&mut self, now: u64, n: u32) {
         if let Some(o) = self.open.as_mut() {
