@@ -366,3 +366,75 @@ fn bench_reports_every_point_with_its_median_and_spread() {
         "{table}"
     );
 }
+
+#[test]
+fn both_dispatch_modes_report_their_machine_and_instruments() {
+    let d = dir("dispatch");
+    let trace = synth_trace(&d, 5);
+    let shared = run_json(&["--trace", &trace]);
+    let per_core = run_json(&["--trace", &trace, "--dispatch", "per-core-tile"]);
+    assert_eq!(shared["dispatch"], "shared-tile");
+    assert_eq!(per_core["dispatch"], "per-core-tile");
+    for r in [&shared, &per_core] {
+        let tiles = r["tiles"].as_u64().unwrap();
+        assert_eq!(r["per_tile"].as_array().unwrap().len() as u64, tiles);
+        let occ = &r["occupancy"];
+        let mean = occ["mean"].as_f64().unwrap();
+        assert!(mean > 0.0 && mean <= 64.0, "{occ}");
+        let hist: u64 = occ["histogram"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_u64().unwrap())
+            .sum();
+        assert_eq!(hist, 4 * r["cycles"].as_u64().unwrap());
+        assert!(r["priority_lead"]["priority_warps"].as_u64().unwrap() > 0);
+    }
+    // Under shared-tile dispatch the tiles follow one another.
+    let tiles = shared["per_tile"].as_array().unwrap();
+    for w in tiles.windows(2) {
+        assert!(w[0]["end"].as_u64() < w[1]["start"].as_u64(), "{w:?}");
+    }
+    let e = stderr(&wasp(&["run", "--trace", &trace, "--dispatch", "sideways"]));
+    assert!(e.contains("shared-tile or per-core-tile"), "{e}");
+}
+
+#[test]
+fn the_timeline_is_drawn_as_png_or_svg() {
+    let d = dir("timeline");
+    let trace = synth_trace(&d, 6);
+    let png = d.join("t.png");
+    let svg = d.join("t.svg");
+    for p in [&png, &svg] {
+        ok(&wasp(&[
+            "run",
+            "-q",
+            "--trace",
+            &trace,
+            "--timeline",
+            p.to_str().unwrap(),
+            "--timeline-to",
+            "3000",
+        ]));
+    }
+    let bytes = std::fs::read(&png).unwrap();
+    assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("Resident warps per core"), "svg has the panels");
+    // A window after the run's end, and a wrong extension, are refused.
+    let late = d.join("late.png");
+    let e = stderr(&wasp(&[
+        "run",
+        "-q",
+        "--trace",
+        &trace,
+        "--timeline",
+        late.to_str().unwrap(),
+        "--timeline-from",
+        "900000000",
+    ]));
+    assert!(e.contains("before the window"), "{e}");
+    assert!(!late.exists());
+    let e = stderr(&wasp(&["run", "--trace", &trace, "--timeline", "t.gif"]));
+    assert!(e.contains(".png or .svg"), "{e}");
+}

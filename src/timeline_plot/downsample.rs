@@ -1,0 +1,113 @@
+//! The timeline's samples cut into pixel columns: when a column covers
+//! several cycles, each series keeps its minimum, maximum and mean there
+//! (the picture draws the mean as the line and min..max as a band), and the
+//! priority launches their mean per cycle.
+
+use wasp_sim::timeline::Timeline;
+
+/// Minimum, maximum and mean of one series over one pixel column.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Agg {
+    pub(super) min: f64,
+    pub(super) max: f64,
+    pub(super) mean: f64,
+}
+
+impl Agg {
+    pub(super) fn of(values: impl Iterator<Item = u32>) -> Agg {
+        let (mut min, mut max, mut sum, mut n) = (u32::MAX, 0u32, 0u64, 0u64);
+        for v in values {
+            min = min.min(v);
+            max = max.max(v);
+            sum += u64::from(v);
+            n += 1;
+        }
+        if n == 0 {
+            return Agg::default();
+        }
+        Agg {
+            min: f64::from(min),
+            max: f64::from(max),
+            mean: sum as f64 / n as f64,
+        }
+    }
+}
+
+/// The samples of one pixel column: cycles `x0..x1`.
+#[derive(Clone, Debug)]
+pub(super) struct Column {
+    pub(super) x0: f64,
+    pub(super) x1: f64,
+    pub(super) resident: Vec<Agg>,
+    pub(super) outstanding: [Agg; 3],
+    /// Mean priority launches per cycle, per core.
+    pub(super) launches: Vec<f64>,
+}
+
+/// Split the samples into at most `columns` runs of consecutive samples of
+/// (nearly) equal length and aggregate each.
+pub(super) fn downsample(t: &Timeline, columns: usize) -> Vec<Column> {
+    let n = t.samples.len();
+    let columns = columns.clamp(1, n.max(1));
+    (0..columns)
+        .filter_map(|i| {
+            let lo = i * n / columns;
+            let hi = (i + 1) * n / columns;
+            let run = t.samples.get(lo..hi).filter(|r| !r.is_empty())?;
+            let first = run.first()?;
+            let last = run.last()?;
+            let resident = (0..t.cores)
+                .map(|c| Agg::of(run.iter().map(|s| s.resident[c])))
+                .collect();
+            let outstanding = [0, 1, 2].map(|l| Agg::of(run.iter().map(|s| s.outstanding[l])));
+            let launches = (0..t.cores)
+                .map(|c| {
+                    let sum: u64 = run.iter().map(|s| u64::from(s.priority_launches[c])).sum();
+                    sum as f64 / run.len() as f64
+                })
+                .collect();
+            Some(Column {
+                x0: first.cycle as f64,
+                x1: (last.cycle + 1) as f64,
+                resident,
+                outstanding,
+                launches,
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use wasp_sim::timeline::TimelineSample;
+
+    #[test]
+    fn downsample_keeps_min_max_and_mean() {
+        let mut t = Timeline::new(0, 9, 1, 8, false, "shared-tile");
+        for cycle in 0..10u64 {
+            t.samples.push(TimelineSample {
+                cycle,
+                resident: vec![cycle as u32],
+                outstanding: [0, cycle as u32 * 2, 1],
+                priority_launches: vec![u32::from(cycle % 2 == 0)],
+            });
+        }
+        let cols = downsample(&t, 2);
+        assert_eq!(cols.len(), 2);
+        assert_eq!((cols[0].x0, cols[0].x1), (0.0, 5.0));
+        assert_eq!((cols[1].x0, cols[1].x1), (5.0, 10.0));
+        assert_eq!(
+            cols[0].resident[0],
+            Agg {
+                min: 0.0,
+                max: 4.0,
+                mean: 2.0
+            }
+        );
+        assert_eq!(cols[1].outstanding[1].max, 18.0);
+        assert_eq!(cols[0].launches[0], 0.6);
+        // More columns than samples: one per sample.
+        assert_eq!(downsample(&t, 1000).len(), 10);
+    }
+}
