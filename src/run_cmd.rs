@@ -297,6 +297,13 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
                 };
                 save = save.traced(s, f);
             }
+            save = save.end_group().begin_group("raster", false);
+            for s in signals
+                .iter()
+                .filter(|s| s.path.len() == 2 && s.path[1] == "raster")
+            {
+                save = save.traced(s, Format::Decimal);
+            }
             save = save.end_group().begin_group("core0", false);
             for s in signals
                 .iter()

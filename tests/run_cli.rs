@@ -241,14 +241,24 @@ fn vcd_window_and_signals() {
         "wasp.core0.scheduler.launch",
         "wasp.core0.scheduler.prio_queue_occupancy",
         "wasp.core0.warps_active",
+        "wasp.raster.tile",
+        "wasp.raster.quad",
+        "wasp.raster.sent",
+        "wasp.raster.rejected",
+        "wasp.raster.backpressure",
+        "wasp.raster.flush_left",
     ] {
         assert!(names.contains(&s), "{s} missing: {names:?}");
     }
+    // The rasterizer works on tile 1 (index 0) from the window's start.
+    let tile = rb.signal("wasp.raster.tile").unwrap().changes()[0];
+    assert_eq!(tile, (10, 1));
     let first = rb.signal("wasp.core0.warps_active").unwrap().changes()[0].0;
     assert_eq!(first, 10);
     assert_eq!(rb.end_time(), Some(41));
     let gtkw = std::fs::read_to_string(d.join("run.vcd.gtkw")).unwrap();
     assert!(gtkw.contains("wasp.core0.scheduler.free_mshrs[4:0]"));
+    assert!(gtkw.contains("wasp.raster.quad[31:0]"), "{gtkw}");
 }
 
 #[test]
@@ -420,7 +430,10 @@ fn the_timeline_is_drawn_as_png_or_svg() {
     let bytes = std::fs::read(&png).unwrap();
     assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"));
     let text = std::fs::read_to_string(&svg).unwrap();
-    assert!(text.contains("Resident warps per core"), "svg has the panels");
+    assert!(
+        text.contains("Resident warps per core"),
+        "svg has the panels"
+    );
     // A window after the run's end, and a wrong extension, are refused.
     let late = d.join("late.png");
     let e = stderr(&wasp(&[

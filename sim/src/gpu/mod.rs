@@ -460,10 +460,16 @@ impl<'t> Gpu<'t> {
         Ok(())
     }
 
-    /// Every signal of the GPU: one scope per core (its scheduler, warps,
+    /// Every signal of the GPU: the raster pipeline (`raster`, under
+    /// shared-tile dispatch), one scope per core (its scheduler, warps,
     /// LDST and private caches), then the shared L2 and DRAM.
     pub fn trace_signals<T: Tracer + ?Sized>(&self, t: &mut T) {
         use wasp_waves::Traceable;
+        if let Dispatcher::Shared(r) = &self.dispatch {
+            t.push_scope("raster");
+            r.trace(t);
+            t.pop_scope();
+        }
         for (i, c) in self.cores.iter().enumerate() {
             t.push_scope(&format!("core{i}"));
             c.trace(t);

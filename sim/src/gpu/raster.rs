@@ -38,6 +38,7 @@ use crate::mem::MemorySystem;
 use crate::trace::{Tile, Trace};
 use serde::Serialize;
 use std::collections::VecDeque;
+use wasp_waves::{Traceable, Tracer};
 
 /// Block number of the frame buffer's first 64-byte line (byte address
 /// 2^42): far above the texture addresses of every workload.
@@ -83,6 +84,21 @@ pub struct SharedRaster {
     flush: VecDeque<u64>,
     stats: RasterStats,
     last_progress: u64,
+    /// What the pipeline did in the last cycle (for the waveform).
+    signals: RasterSignals,
+}
+
+/// Per-cycle signals of the raster pipeline.
+#[derive(Clone, Copy, Debug, Default)]
+struct RasterSignals {
+    /// Surviving quads sent to a core.
+    sent: u32,
+    /// Early-Z-rejected quads.
+    rejected: u32,
+    /// Waiting on a full input FIFO.
+    backpressure: bool,
+    /// A colour-buffer line written.
+    flushed: bool,
 }
 
 impl SharedRaster {
@@ -100,6 +116,7 @@ impl SharedRaster {
             flush: VecDeque::new(),
             stats: RasterStats::default(),
             last_progress: 0,
+            signals: RasterSignals::default(),
         }
     }
 
@@ -132,7 +149,9 @@ impl SharedRaster {
         cores: &mut [ShaderCore],
         mem: &mut MemorySystem,
     ) -> Option<usize> {
+        self.signals = RasterSignals::default();
         if let Some(block) = self.flush.pop_front() {
+            self.signals.flushed = true;
             mem.write_back(now, block);
             self.stats.flush_lines += 1;
             self.last_progress = now;
@@ -177,6 +196,7 @@ impl SharedRaster {
                 budget -= k;
                 self.stats.quads_rasterized += u64::from(k);
                 self.stats.quads_rejected += u64::from(k);
+                self.signals.rejected += k;
                 self.last_progress = now;
                 continue;
             }
@@ -187,8 +207,10 @@ impl SharedRaster {
             let core = self.map.core(q.x(), q.y());
             if !cores[core].push_quad(self.quad, q.x(), q.y()) {
                 self.stats.backpressure_cycles += 1;
+                self.signals.backpressure = true;
                 break;
             }
+            self.signals.sent += 1;
             self.quad += 1;
             budget -= 1;
             self.stats.quads_rasterized += 1;
@@ -223,6 +245,27 @@ impl SharedRaster {
             flush_lines(trace, t, &mut self.flush);
         }
         Some(t)
+    }
+}
+
+impl Traceable for SharedRaster {
+    /// `tile` (the open tile's index + 1, 0 for none), `quad` (the next
+    /// quad to rasterize), `sent` and `rejected` (quads this cycle),
+    /// `backpressure` (waiting on a full input FIFO), `flush_left` (colour
+    /// lines still to write) and `flushed` (a line written this cycle).
+    fn trace<T: Tracer + ?Sized>(&self, t: &mut T) {
+        t.signal(
+            "tile",
+            32,
+            self.tile.map_or(0, |x| x as u64 + 1) & 0xffff_ffff,
+        );
+        t.signal("quad", 32, u64::from(self.quad));
+        let w = (u32::BITS - self.rate.leading_zeros()).max(1);
+        t.signal("sent", w, u64::from(self.signals.sent));
+        t.signal("rejected", w, u64::from(self.signals.rejected));
+        t.bit("backpressure", self.signals.backpressure);
+        t.signal("flush_left", 16, self.flush.len().min(0xffff) as u64);
+        t.bit("flushed", self.signals.flushed);
     }
 }
 
