@@ -130,6 +130,8 @@ pub struct OccupancyStats {
     /// Core-cycles by resident warps: entry `n` counts the core-cycles with
     /// `n` warps resident (summed over cores).
     pub histogram: Vec<u64>,
+    /// The same histogram for each core.
+    pub per_core_histogram: Vec<Vec<u64>>,
 }
 
 impl OccupancyStats {
@@ -177,6 +179,7 @@ impl OccupancyStats {
             below_quarter: below(1, 4),
             below_half: below(1, 2),
             histogram,
+            per_core_histogram: cores.iter().map(|c| c.occupancy_hist.clone()).collect(),
         }
     }
 }
@@ -398,7 +401,8 @@ impl RunStats {
 
     /// Flat `key,value` CSV rows (nested names joined with `.`; a list of
     /// numbers, such as a histogram, is one field of values joined by `;`,
-    /// a list of records is numbered: `priority_lead.histogram.3.count`).
+    /// a list of records or lists is numbered:
+    /// `priority_lead.histogram.3.count`, `occupancy.per_core_histogram.2`).
     /// The per-tile records are left out: they are in the JSON.
     pub fn to_csv_rows(&self) -> Vec<(String, String)> {
         let mut v = serde_json::to_value(self).expect("stats serialize");
@@ -547,7 +551,9 @@ fn flatten(prefix: &str, v: &serde_json::Value, out: &mut Vec<(String, String)>)
         }
         serde_json::Value::Null => out.push((prefix.to_string(), String::new())),
         serde_json::Value::String(s) => out.push((prefix.to_string(), csv_field(s))),
-        serde_json::Value::Array(items) if items.iter().all(|x| !x.is_object()) => {
+        serde_json::Value::Array(items)
+            if items.iter().all(|x| !x.is_object() && !x.is_array()) =>
+        {
             let joined: Vec<String> = items.iter().map(|x| x.to_string()).collect();
             out.push((prefix.to_string(), csv_field(&joined.join(";"))));
         }
