@@ -30,7 +30,7 @@ pub struct Inputs {
     pub trace: Option<PathBuf>,
 
     /// Priority subset: mesh2, mesh4, mesh8, mesh16, hlines, vlines, top16,
-    /// random[:seed]. Overrides scheduler.subset.
+    /// random or random:SEED. Overrides scheduler.subset.
     #[arg(long, value_name = "SUBSET")]
     pub subset: Option<SubsetSpec>,
 
@@ -55,7 +55,7 @@ pub struct RunArgs {
     #[command(flatten)]
     pub inputs: Inputs,
 
-    /// Launch policy: baseline, fullpriority, freemshr:N, wasp[:threshold[:cf]].
+    /// Launch policy: baseline, fullpriority, freemshr:N, wasp, wasp:THRESHOLD or wasp:THRESHOLD:CF.
     /// Overrides scheduler.policy.
     #[arg(long, value_name = "POLICY")]
     pub policy: Option<PolicySpec>,

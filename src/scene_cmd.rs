@@ -55,7 +55,7 @@ pub struct RenderArgs {
     /// Write the picture as PNG to FILE.
     #[arg(long, value_name = "FILE")]
     pub png: Option<PathBuf>,
-    /// Overlay, repeatable: grid, subset[:SUBSET] (default mesh4),
+    /// Overlay, repeatable: grid, subset or subset:SUBSET (default mesh4),
     /// heat[:latency|cycles|launch] (runs the cycle model on the frame).
     #[arg(long, value_name = "OVERLAY")]
     pub overlay: Vec<Overlay>,
@@ -463,8 +463,8 @@ fn crop(img: &[u8], w: u32, h: u32, spec: &str) -> Result<(Vec<u8>, u32, u32), C
     };
     if cw == 0
         || ch == 0
-        || x.checked_add(cw).map_or(true, |e| e > w)
-        || y.checked_add(ch).map_or(true, |e| e > h)
+        || x.checked_add(cw).is_none_or(|e| e > w)
+        || y.checked_add(ch).is_none_or(|e| e > h)
     {
         return Err(bad());
     }

@@ -155,7 +155,7 @@ impl Model {
         let prio = self.policy.uses_priority_queue()
             && match self.subset_spec {
                 // Mesh-k in arithmetic, independent of the comparator.
-                SubsetSpec::Mesh(k) => qx % 32 % k == 0 && qy % 32 % k == 0,
+                SubsetSpec::Mesh(k) => (qx % 32).is_multiple_of(k) && (qy % 32).is_multiple_of(k),
                 _ => self.subset.is_priority(qx, qy),
             };
         if prio {

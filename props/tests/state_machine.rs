@@ -54,7 +54,7 @@ struct Cycle {
 
 impl Model {
     fn mesh4(x: u32, y: u32) -> bool {
-        x % 4 == 0 && y % 4 == 0
+        x.is_multiple_of(4) && y.is_multiple_of(4)
     }
 
     /// The exact WaSP condition on the current counters.

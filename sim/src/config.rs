@@ -401,7 +401,7 @@ impl MachineConfig {
             "",
         )?;
         if self.raster.dispatch == Dispatch::PerCoreTile
-            && self.raster.quads_per_cycle % self.gpu.cores != 0
+            && !self.raster.quads_per_cycle.is_multiple_of(self.gpu.cores)
         {
             return Err(format!(
                 "raster.quads_per_cycle = {}: with raster.dispatch = per-core-tile the rate is split evenly over the {} cores' rasterizers, so it must be a multiple of gpu.cores",

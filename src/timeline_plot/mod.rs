@@ -208,7 +208,7 @@ fn check(t: &Timeline) -> Result<(), String> {
 /// The colour of core `c`.
 fn core_colour(c: usize) -> RGBColor {
     let RGBColor(r, g, b) = CORE_COLOURS[c % CORE_COLOURS.len()];
-    if (c / CORE_COLOURS.len()) % 2 == 0 {
+    if (c / CORE_COLOURS.len()).is_multiple_of(2) {
         RGBColor(r, g, b)
     } else {
         // The second round of colours: darker.
@@ -876,7 +876,9 @@ mod tests {
                     (20.0 * level * level) as u32,
                 ];
                 let priority_launches = (0..cores)
-                    .map(|c| u32::from(phase < 0.5 && (cycle + c as u64) % (3 + c as u64) == 0))
+                    .map(|c| {
+                        u32::from(phase < 0.5 && (cycle + c as u64).is_multiple_of(3 + c as u64))
+                    })
                     .collect();
                 t.samples.push(TimelineSample {
                     cycle,

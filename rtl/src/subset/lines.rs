@@ -39,7 +39,7 @@ impl PrioritySubset for HorizontalLines {
         "hlines".into()
     }
     fn is_priority(&self, _qx: u32, qy: u32) -> bool {
-        qy % self.period == 0
+        qy.is_multiple_of(self.period)
     }
 }
 
@@ -48,7 +48,7 @@ impl PrioritySubset for VerticalLines {
         "vlines".into()
     }
     fn is_priority(&self, qx: u32, _qy: u32) -> bool {
-        qx % self.period == 0
+        qx.is_multiple_of(self.period)
     }
 }
 

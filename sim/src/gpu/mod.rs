@@ -432,7 +432,7 @@ impl<'t> Gpu<'t> {
 
     fn watchdog(&self) -> Result<(), SimError> {
         // Checked every 256 cycles: the limit is a coarse bound anyway.
-        if self.now % 256 != 0 {
+        if !self.now.is_multiple_of(256) {
             return Ok(());
         }
         let limit = self.cfg.sim.watchdog_cycles;
@@ -499,7 +499,7 @@ impl<'t> Gpu<'t> {
             } else {
                 self.step()?;
             }
-            if self.now % 4096 == 0 {
+            if self.now.is_multiple_of(4096) {
                 progress(self.tiles_done, total);
             }
         }

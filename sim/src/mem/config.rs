@@ -197,7 +197,7 @@ impl CacheConfig {
         if self.ways == 0 {
             return err("ways must not be zero".into());
         }
-        if self.size_bytes % self.line_bytes != 0 {
+        if !self.size_bytes.is_multiple_of(self.line_bytes) {
             return err(format!(
                 "size_bytes {} is not a multiple of line_bytes {}",
                 self.size_bytes, self.line_bytes
@@ -212,7 +212,7 @@ impl CacheConfig {
         if self.ways > lines {
             return err(format!("ways {} exceeds the {lines} lines", self.ways));
         }
-        if lines % self.ways != 0 {
+        if !lines.is_multiple_of(self.ways) {
             return err(format!(
                 "{lines} lines do not divide into {} ways",
                 self.ways
@@ -248,7 +248,7 @@ impl DramConfig {
         if self.banks == 0 {
             return err("banks must be at least 1".into());
         }
-        if self.row_bytes == 0 || self.row_bytes % BLOCK_BYTES != 0 {
+        if self.row_bytes == 0 || !self.row_bytes.is_multiple_of(BLOCK_BYTES) {
             return err(format!(
                 "row_bytes {} must be a non-zero multiple of {BLOCK_BYTES}",
                 self.row_bytes

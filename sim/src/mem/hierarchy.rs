@@ -123,7 +123,7 @@ impl CoreMem {
     #[inline]
     fn is_quiet(&self) -> bool {
         self.l1.mshr_occupied() == 0
-            && self.l0.as_ref().map_or(true, |l0| l0.mshr_occupied() == 0)
+            && self.l0.as_ref().is_none_or(|l0| l0.mshr_occupied() == 0)
             && self.to_l1.is_empty()
             && self.to_l2.is_empty()
             && self.to_l0.is_empty()

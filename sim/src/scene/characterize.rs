@@ -101,7 +101,7 @@ pub fn paper_footprint(spec: &SubsetSpec) -> Option<f64> {
     }
 }
 
-/// [`mean_footprint_ratio`] of several subsets at once: each tile's unique
+/// [`mean_footprint_ratio`](crate::trace::mean_footprint_ratio) of several subsets at once: each tile's unique
 /// blocks are sorted once instead of once per subset (same definition,
 /// same result; a test checks it).
 pub fn mean_footprint_ratios(trace: &Trace, specs: &[SubsetSpec]) -> Vec<f64> {

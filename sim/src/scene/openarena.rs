@@ -266,7 +266,7 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
                 ),
             ));
         }
-        if len as usize % rec != 0 {
+        if !(len as usize).is_multiple_of(rec) {
             return Err(r.err(
                 at + 4,
                 format!("{what} lump length {len} is not a multiple of {rec}"),
@@ -347,7 +347,7 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         }
         if first_vertex
             .checked_add(n_vertices)
-            .map_or(true, |e| e > vertices.len())
+            .is_none_or(|e| e > vertices.len())
         {
             return Err(r.err(
                 at + 12,
@@ -360,7 +360,7 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         if matches!(kind, 1 | 3) {
             if first_meshvert
                 .checked_add(n_meshverts)
-                .map_or(true, |e| e > meshverts.len())
+                .is_none_or(|e| e > meshverts.len())
             {
                 return Err(r.err(
                     at + 20,
@@ -757,7 +757,7 @@ pub fn decode_tga(bytes: &[u8], file: &Path) -> Result<(u32, u32, Vec<u8>), Scen
             if hdr & 0x80 != 0 {
                 let p = to_rgba(r.slice(pos, px, "RLE pixel")?);
                 pos += px;
-                pixels.extend(std::iter::repeat(p).take(count));
+                pixels.extend(std::iter::repeat_n(p, count));
             } else {
                 let raw = r.slice(pos, px * count, "RLE raw pixels")?;
                 pos += px * count;

@@ -1405,7 +1405,7 @@ fn rasterize_with(
             "frame {width}x{height}: expected 1 to 16384 pixels each"
         )));
     }
-    if opts.tile < 2 || opts.tile % 2 != 0 || opts.tile > 512 {
+    if opts.tile < 2 || !opts.tile.is_multiple_of(2) || opts.tile > 512 {
         return Err(fail(format!(
             "tile {}: expected an even size from 2 to 512",
             opts.tile

@@ -347,7 +347,7 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
                 return Err(r.err(at, format!("{nv} vertices in a buffer (at most 65535)")));
             }
             let ni = r.u32("index count")? as usize;
-            if ni % 3 != 0 {
+            if !ni.is_multiple_of(3) {
                 return Err(r.err(at + 4, format!("index count {ni} is not a multiple of 3")));
             }
             let mat_at = r.pos;
@@ -1257,12 +1257,12 @@ impl Builder<'_> {
                 Some(uv) => mesh.uv.extend_from_slice(uv),
                 None => mesh
                     .uv
-                    .extend(std::iter::repeat([0.0, 0.0]).take(b.positions.len())),
+                    .extend(std::iter::repeat_n([0.0, 0.0], b.positions.len())),
             }
             if let Some(out) = mesh.uv2.as_mut() {
                 match &b.uv2 {
                     Some(uv2) => out.extend_from_slice(uv2),
-                    None => out.extend(std::iter::repeat([0.0, 0.0]).take(b.positions.len())),
+                    None => out.extend(std::iter::repeat_n([0.0, 0.0], b.positions.len())),
                 }
             }
             for t in b.indices.chunks_exact(3) {

@@ -975,7 +975,7 @@ fn parse_layer(
                         flags: t[1],
                     };
                     let take = run.min(n - tiles.len());
-                    tiles.extend(std::iter::repeat(tile).take(take));
+                    tiles.extend(std::iter::repeat_n(tile, take));
                     if tiles.len() == n {
                         break;
                     }

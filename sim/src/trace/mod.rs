@@ -179,7 +179,7 @@ impl TraceHeader {
                 return Err(Problem::BadFrame { dim, value: v });
             }
         }
-        if self.tile < 2 || self.tile > MAX_TILE_SIZE || self.tile % 2 != 0 {
+        if self.tile < 2 || self.tile > MAX_TILE_SIZE || !self.tile.is_multiple_of(2) {
             return Err(Problem::BadTileSize(self.tile));
         }
         Ok(())
