@@ -86,4 +86,17 @@ impl Timeline {
     pub fn covers(&self, cycle: u64) -> bool {
         cycle >= self.from && cycle <= self.to
     }
+
+    /// Record that `tile` starts (`start`) or ends in `cycle` (on `core`,
+    /// per-core-tile dispatch), if the cycle lies in the window.
+    pub fn mark(&mut self, cycle: u64, tile: u32, core: Option<u32>, start: bool) {
+        if self.covers(cycle) {
+            self.marks.push(TileMark {
+                cycle,
+                tile,
+                core,
+                start,
+            });
+        }
+    }
 }

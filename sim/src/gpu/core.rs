@@ -30,6 +30,7 @@
 //! depend on the previous one, so nothing else of it is fetched meanwhile.
 
 use crate::gpu::mask::SlotMask;
+use crate::gpu::raster::RasterCursor;
 use crate::gpu::SimError;
 use crate::mem::{Access, MemorySystem};
 use crate::trace::{OpKind, Tile, Trace};
@@ -211,17 +212,12 @@ pub struct ShaderCore {
     ldst_len: usize,
     /// Index of the current tile in the trace.
     tile: Option<usize>,
-    /// Next quad of the tile to rasterize.
-    raster_next: u32,
-    /// Rejected quads to rasterize before `raster_next` (or, past the last
-    /// quad, at the tile's end).
-    raster_gap: u32,
+    /// Where its own rasterizer is in the tile (per-core-tile dispatch).
+    cursor: RasterCursor,
     /// The GPU's rasterizer fills the input queue (shared-tile dispatch).
     external_raster: bool,
     /// Primary misses at the scheduler-level cache since the tile began.
     tile_misses: u64,
-    /// Quads of the current tile.
-    tile_quads: u32,
     active: u32,
     rr: u32,
     prio: PriorityEvents,
@@ -301,11 +297,9 @@ impl ShaderCore {
             ldst_wait: VecDeque::with_capacity(p.ldst_queue as usize),
             ldst_len: 0,
             tile: None,
-            raster_next: 0,
-            raster_gap: 0,
+            cursor: RasterCursor::default(),
             external_raster: p.external_raster,
             tile_misses: 0,
-            tile_quads: 0,
             active: 0,
             rr: 0,
             prio: PriorityEvents::default(),
@@ -330,15 +324,12 @@ impl ShaderCore {
         self.tile.is_none()
     }
 
-    /// Give the core a tile to rasterize itself (per-core-tile dispatch;
-    /// the core must be idle): `quads` warps, `first_gap` rejected quads
-    /// before the first (all of them when it has no warp).
-    pub fn assign_tile(&mut self, tile: usize, quads: usize, first_gap: u32, now: u64) {
+    /// Give the core tile `index` of the trace, `tile`, to rasterize itself
+    /// (per-core-tile dispatch; the core must be idle).
+    pub fn assign_tile(&mut self, index: usize, tile: &Tile, now: u64) {
         debug_assert!(self.tile.is_none() && !self.external_raster);
-        self.tile = Some(tile);
-        self.raster_next = 0;
-        self.raster_gap = first_gap;
-        self.tile_quads = quads as u32;
+        self.tile = Some(index);
+        self.cursor = RasterCursor::start(tile);
         self.tile_misses = 0;
         self.last_progress = now;
     }
@@ -348,9 +339,7 @@ impl ShaderCore {
     pub fn begin_shared_tile(&mut self, tile: usize, now: u64) {
         debug_assert!(self.tile.is_none() && self.external_raster);
         self.tile = Some(tile);
-        self.raster_next = 0;
-        self.raster_gap = 0;
-        self.tile_quads = 0;
+        self.cursor = RasterCursor::default();
         self.tile_misses = 0;
         self.last_progress = now;
     }
@@ -516,33 +505,26 @@ impl ShaderCore {
     }
 
     fn raster(&mut self, tile: &Tile) {
-        let n = self.tile_quads;
         let mut budget = self.raster_rate;
         while budget > 0 {
-            if self.raster_gap > 0 {
-                // Early-Z-rejected quads: a slot each, no warp.
-                let k = self.raster_gap.min(budget);
-                self.raster_gap -= k;
+            // Early-Z-rejected quads: a slot each, no warp.
+            let k = self.cursor.reject(budget);
+            if k > 0 {
                 budget -= k;
                 self.stats.quads_rasterized += u64::from(k);
                 self.stats.quads_rejected += u64::from(k);
                 continue;
             }
-            if self.raster_next >= n || self.sched.queue().is_full() {
+            let Some(i) = self.cursor.peek() else {
+                break;
+            };
+            let q = tile.quad(i as usize).expect("quad in tile");
+            if !self.push_quad(i, q.x(), q.y()) {
                 break;
             }
-            let q = tile.quad(self.raster_next as usize).expect("quad in tile");
-            if self.sched.enqueue(self.raster_next, q.x(), q.y()).is_err() {
-                break;
-            }
-            self.raster_next += 1;
+            self.cursor.advance(tile);
             budget -= 1;
             self.stats.quads_rasterized += 1;
-            self.raster_gap = if self.raster_next < n {
-                tile.rejected_before(self.raster_next as usize)
-            } else {
-                tile.rejected_after_last()
-            };
         }
     }
 
@@ -807,8 +789,7 @@ impl ShaderCore {
         if self.tile.is_none() || self.external_raster {
             return false;
         }
-        if self.raster_next == self.tile_quads
-            && self.raster_gap == 0
+        if self.cursor.done()
             && self.sched.queue().is_empty()
             && self.active == 0
             && self.ldst_len == 0
@@ -839,7 +820,7 @@ impl ShaderCore {
                     t,
                     tl.tx(),
                     tl.ty(),
-                    self.raster_next,
+                    self.cursor.next,
                     tl.quad_count()
                 )
             })

@@ -30,7 +30,7 @@ pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTrack
 use crate::config::{Dispatch, MachineConfig};
 use crate::mem::MemorySystem;
 use crate::stats::{RunInstruments, RunStats};
-use crate::timeline::{TileMark, Timeline, TimelineSample};
+use crate::timeline::{Timeline, TimelineSample};
 use crate::trace::Trace;
 use std::fmt;
 use wasp_rtl::policy::PolicySpec;
@@ -294,16 +294,10 @@ impl<'t> Gpu<'t> {
                 // all first.
                 for (i, c) in self.cores.iter_mut().enumerate() {
                     if c.idle() && *next_tile < tiles.len() {
-                        let t = &tiles[*next_tile];
-                        c.assign_tile(*next_tile, t.quad_count(), raster::first_gap(t), now);
+                        c.assign_tile(*next_tile, &tiles[*next_tile], now);
                         self.trackers[i].start(*next_tile as u32, Some(i as u32), now);
-                        if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
-                            tl.marks.push(TileMark {
-                                cycle: now,
-                                tile: *next_tile as u32,
-                                core: Some(i as u32),
-                                start: true,
-                            });
+                        if let Some(tl) = self.timeline.as_mut() {
+                            tl.mark(now, *next_tile as u32, Some(i as u32), true);
                         }
                         *next_tile += 1;
                     }
@@ -323,13 +317,8 @@ impl<'t> Gpu<'t> {
                 let opened = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
                 if let Some(t) = opened {
                     self.trackers[0].start(t as u32, None, now);
-                    if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
-                        tl.marks.push(TileMark {
-                            cycle: now,
-                            tile: t as u32,
-                            core: None,
-                            start: true,
-                        });
+                    if let Some(tl) = self.timeline.as_mut() {
+                        tl.mark(now, t as u32, None, true);
                     }
                 }
                 let tile = r.tile().map(|t| &tiles[t]);
@@ -377,13 +366,8 @@ impl<'t> Gpu<'t> {
                 let misses = self.cores.iter().map(|c| c.tile_misses()).sum();
                 self.trackers[0].finish(now, misses);
                 self.tiles_done += 1;
-                if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
-                    tl.marks.push(TileMark {
-                        cycle: now,
-                        tile: t as u32,
-                        core: None,
-                        start: false,
-                    });
+                if let Some(tl) = self.timeline.as_mut() {
+                    tl.mark(now, t as u32, None, false);
                 }
             }
         }
@@ -403,13 +387,13 @@ impl<'t> Gpu<'t> {
             self.tiles_done += 1;
             let misses = c.tile_misses();
             self.trackers[i].finish(now, misses);
-            if let Some(tl) = self.timeline.as_mut().filter(|tl| tl.covers(now)) {
-                tl.marks.push(TileMark {
-                    cycle: now,
-                    tile: tile.expect("a finished tile") as u32,
-                    core: Some(i as u32),
-                    start: false,
-                });
+            if let Some(tl) = self.timeline.as_mut() {
+                tl.mark(
+                    now,
+                    tile.expect("a finished tile") as u32,
+                    Some(i as u32),
+                    false,
+                );
             }
         }
     }

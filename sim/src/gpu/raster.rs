@@ -73,12 +73,8 @@ pub struct SharedRaster {
     /// The open tile.
     tile: Option<usize>,
     next_tile: usize,
-    /// Next surviving quad to rasterize.
-    quad: u32,
-    n_quads: u32,
-    /// Rejected quads to rasterize before `quad` (or, past the last quad,
-    /// at the tile's end).
-    gap: u32,
+    /// Where the rasterizer is in the open tile.
+    cursor: RasterCursor,
     /// Colour-buffer lines still to write, oldest tile's first (a tile's
     /// flush may still run when the next tile closes).
     flush: VecDeque<u64>,
@@ -110,9 +106,7 @@ impl SharedRaster {
             flush_mode,
             tile: None,
             next_tile: 0,
-            quad: 0,
-            n_quads: 0,
-            gap: 0,
+            cursor: RasterCursor::default(),
             flush: VecDeque::new(),
             stats: RasterStats::default(),
             last_progress: 0,
@@ -170,9 +164,7 @@ impl SharedRaster {
             let t = self.next_tile;
             self.next_tile += 1;
             self.tile = Some(t);
-            self.quad = 0;
-            self.n_quads = tiles[t].quad_count() as u32;
-            self.gap = first_gap(&tiles[t]);
+            self.cursor = RasterCursor::start(&tiles[t]);
             for c in cores.iter_mut() {
                 c.begin_shared_tile(t, now);
             }
@@ -185,14 +177,13 @@ impl SharedRaster {
 
     fn rasterize(&mut self, tile: &Tile, cores: &mut [ShaderCore], now: u64) {
         let mut budget = self.rate;
-        if self.quad >= self.n_quads && self.gap == 0 {
+        if self.cursor.done() {
             self.stats.barrier_cycles += 1;
             return;
         }
         while budget > 0 {
-            if self.gap > 0 {
-                let k = self.gap.min(budget);
-                self.gap -= k;
+            let k = self.cursor.reject(budget);
+            if k > 0 {
                 budget -= k;
                 self.stats.quads_rasterized += u64::from(k);
                 self.stats.quads_rejected += u64::from(k);
@@ -200,26 +191,21 @@ impl SharedRaster {
                 self.last_progress = now;
                 continue;
             }
-            if self.quad >= self.n_quads {
+            let Some(i) = self.cursor.peek() else {
                 break;
-            }
-            let q = tile.quad(self.quad as usize).expect("quad in tile");
+            };
+            let q = tile.quad(i as usize).expect("quad in tile");
             let core = self.map.core(q.x(), q.y());
-            if !cores[core].push_quad(self.quad, q.x(), q.y()) {
+            if !cores[core].push_quad(i, q.x(), q.y()) {
                 self.stats.backpressure_cycles += 1;
                 self.signals.backpressure = true;
                 break;
             }
             self.signals.sent += 1;
-            self.quad += 1;
+            self.cursor.advance(tile);
             budget -= 1;
             self.stats.quads_rasterized += 1;
             self.last_progress = now;
-            self.gap = if self.quad < self.n_quads {
-                tile.rejected_before(self.quad as usize)
-            } else {
-                tile.rejected_after_last()
-            };
         }
     }
 
@@ -233,7 +219,7 @@ impl SharedRaster {
         now: u64,
     ) -> Option<usize> {
         let t = self.tile?;
-        if self.quad < self.n_quads || self.gap > 0 || !cores.iter().all(|c| c.drained()) {
+        if !self.cursor.done() || !cores.iter().all(|c| c.drained()) {
             return None;
         }
         for c in cores.iter_mut() {
@@ -259,7 +245,7 @@ impl Traceable for SharedRaster {
             32,
             self.tile.map_or(0, |x| x as u64 + 1) & 0xffff_ffff,
         );
-        t.signal("quad", 32, u64::from(self.quad));
+        t.signal("quad", 32, u64::from(self.cursor.next));
         let w = (u32::BITS - self.rate.leading_zeros()).max(1);
         t.signal("sent", w, u64::from(self.signals.sent));
         t.signal("rejected", w, u64::from(self.signals.rejected));
@@ -269,12 +255,65 @@ impl Traceable for SharedRaster {
     }
 }
 
-/// Rejected quads before a tile's first quad (all of them if it has none).
-pub(crate) fn first_gap(tile: &Tile) -> u32 {
-    if tile.quad_count() > 0 {
-        tile.rejected_before(0)
-    } else {
-        tile.rejected_after_last()
+/// A rasterizer's place in a tile's rasterization order: the next
+/// surviving quad, and the Early-Z-rejected quads still to rasterize before
+/// it (or, past the last quad, at the tile's end). Both the shared
+/// rasterizer and a core's own (per-core-tile dispatch) walk a tile with
+/// it.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct RasterCursor {
+    /// Next surviving quad.
+    pub(crate) next: u32,
+    /// Surviving quads of the tile.
+    quads: u32,
+    /// Rejected quads before `next`.
+    gap: u32,
+}
+
+impl RasterCursor {
+    /// At the start of `tile`.
+    pub(crate) fn start(tile: &Tile) -> Self {
+        let quads = tile.quad_count() as u32;
+        RasterCursor {
+            next: 0,
+            quads,
+            gap: if quads > 0 {
+                tile.rejected_before(0)
+            } else {
+                tile.rejected_after_last()
+            },
+        }
+    }
+
+    /// Rasterize up to `budget` rejected quads; returns how many.
+    #[inline]
+    pub(crate) fn reject(&mut self, budget: u32) -> u32 {
+        let k = self.gap.min(budget);
+        self.gap -= k;
+        k
+    }
+
+    /// The next surviving quad, if no rejected quad comes first.
+    #[inline]
+    pub(crate) fn peek(&self) -> Option<u32> {
+        (self.gap == 0 && self.next < self.quads).then_some(self.next)
+    }
+
+    /// The quad [`peek`](Self::peek) gave has been delivered.
+    #[inline]
+    pub(crate) fn advance(&mut self, tile: &Tile) {
+        self.next += 1;
+        self.gap = if self.next < self.quads {
+            tile.rejected_before(self.next as usize)
+        } else {
+            tile.rejected_after_last()
+        };
+    }
+
+    /// Every quad of the tile rasterized.
+    #[inline]
+    pub(crate) fn done(&self) -> bool {
+        self.next >= self.quads && self.gap == 0
     }
 }
 

@@ -65,7 +65,7 @@ impl ShaderCore {
         let q = self.sched.queue();
         CoreSnapshot {
             tile: self.tile,
-            rasterized: self.raster_next,
+            rasterized: self.cursor.next,
             queued: [
                 q.occupancy(QueueClass::Priority),
                 q.occupancy(QueueClass::Regular),
