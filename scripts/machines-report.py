@@ -80,14 +80,14 @@ def main():
         w("")
         w("WaSP (`wasp:4`) against the baseline: lead of priority warps (raster position minus launch rank; "
           "positive = ahead of the quads rasterized before them), memory latency per warp, L0 stalls, misses:\n")
-        w("| scene | lead (mean) | ahead | after own subtile's regular | latency priority / regular | latency all, base -> WaSP | L0 stall base / WaSP | L1 misses | L2 misses | held cycles |")
-        w("|---|---|---|---|---|---|---|---|---|---|")
+        w("| scene | measured CF (WaSP uses 2.5) | lead (mean) | ahead | after own subtile's regular | latency priority / regular | latency all, base -> WaSP | L0 stall base / WaSP | L1 misses | L2 misses | held cycles |")
+        w("|---|---|---|---|---|---|---|---|---|---|---|")
         for s, r in rows:
             b, _, _, wa, _ = r
             lead = wa["priority_lead"]
             lat = wa["memory_latency"]
             st = lambda x: (x["l0"] or x["l1"])["stall_fraction"]
-            w(f"| {s} | {lead['mean']:+.1f} | {pct(lead['ahead_share'])} | {pct(lead['after_subtile_regular_share'])} | "
+            w(f"| {s} | {b['cf']:.2f} | {lead['mean']:+.1f} | {pct(lead['ahead_share'])} | {pct(lead['after_subtile_regular_share'])} | "
               f"{lat['priority']:.1f} / {lat['regular']:.1f} | {b['memory_latency']['all']:.1f} -> {lat['all']:.1f} | "
               f"{pct(st(b))} / {pct(st(wa))} | {change(b['l1']['misses'], wa['l1']['misses'])} | "
               f"{change(b['l2']['misses'], wa['l2']['misses'])} | {wa['held_cycles']} |")
