@@ -24,6 +24,11 @@ scenes=$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6 {print $1}')
 start=$(date +%s)
 for s in $scenes; do
   t=$repo/target/machines/traces/$s.trace
+  # A trace cached in an older format (before wasp-trace 3: no Early-Z-
+  # rejected quads) is rendered again, and the runs on it redone.
+  if [ -s "$t" ] && [ "$(head -n 1 "$t")" != "wasp-trace 3" ]; then
+    rm -f "$t" "$out/json/$s".*.json
+  fi
   if [ ! -s "$t" ]; then
     echo "== render $s" >&2
     "$W" render "$s" --trace-out "$t.tmp" -q && mv "$t.tmp" "$t"

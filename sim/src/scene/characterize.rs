@@ -181,7 +181,7 @@ pub fn characterize(scene: &str, frame: &Frame, raster_seconds: f64) -> Characte
         workload: s.workload.clone(),
         width: frame.width,
         height: frame.height,
-        tiles: s.tiles,
+        tiles: s.warp_tiles,
         warps: s.warps,
         warps_per_tile: s.warps_per_tile,
         positions: s.positions,

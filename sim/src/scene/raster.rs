@@ -22,7 +22,8 @@
 //! 3. **Tiling engine**: each triangle is binned to every 64x64 tile its
 //!    edges overlap (the polygon list: one index list per tile, in draw
 //!    order). Tiles are visited in Z-order (Morton order of tile x, y);
-//!    a tile where no quad survives is skipped.
+//!    a tile that rasterizes no quad is skipped (one whose every quad
+//!    Early-Z rejects is kept: a tile record without warps).
 //! 4. **Raster pipeline, per tile**: draw order is the opaque and
 //!    alpha-tested triangles in submission order, then the alpha-blended
 //!    ones back to front (perspective: by the mean clip-space w of their
@@ -35,8 +36,10 @@
 //!    depth of their surviving pixels, alpha-tested ones of the pixels
 //!    their alpha test keeps (alpha >= 0.5), alpha-blended ones are tested
 //!    but write nothing and so never hide what is behind them. A quad with
-//!    no surviving pixel is dropped (counted in
-//!    [`RasterStats::quads_rejected_early_z`]). UVs are interpolated
+//!    no surviving pixel launches no warp: the trace records it where it
+//!    was rasterized, as a rejected quad (a `z` record of trace format 3;
+//!    every quad counted in [`RasterStats::quads_rejected_early_z`] is
+//!    there exactly once). UVs are interpolated
 //!    perspective-correctly at all 4 pixel centres, helper pixels outside
 //!    the triangle included (they feed the derivatives and take part in
 //!    the texture fetch, as in hardware).
@@ -45,9 +48,11 @@
 //!
 //! As in hardware, every surviving (triangle, quad) fragment is its own
 //! warp, running its material's shader program. A tile's warps are emitted
-//! (trace format 2) in rasterization order, the order the rasterizer hands
+//! (trace format 3) in rasterization order, the order the rasterizer hands
 //! them to the shader core: triangles in draw order (above), each
-//! triangle's quads in scanline order. Where triangles overlap, a quad
+//! triangle's quads in scanline order, with the count of quads Early-Z
+//! rejected between two warps (and after the last) where they fall in that
+//! order, since each costs the rasterizer a slot. Where triangles overlap, a quad
 //! position therefore holds several warps ([`RasterStats::warps`] vs
 //! [`RasterStats::positions`]: the overdraw the shader core sees, also
 //! written as a header note of the trace). Early-Z decides which fragments
@@ -75,8 +80,8 @@
 //! nearest depth over the block is farther than that bound fails the
 //! depth test at every pixel there, so its quads in the block are rejected
 //! (and counted, exactly, from the edges' covered ranges) without testing
-//! them one by one ([`RasterStats::quads_rejected_hiz`]; the results are
-//! the same as testing every quad).
+//! them one by one ([`RasterStats::quads_rejected_hiz`]; the results, the
+//! trace's rejected quads included, are the same as testing every quad).
 //! Opaque and alpha-tested colours are shaded once per pixel, for the
 //! fragment that ends up visible (when a blended fragment needs the colour
 //! below it, or at the end of the tile), not once per fragment; the alpha
@@ -165,7 +170,9 @@ pub struct RasterStats {
     pub setup_triangles: u64,
     /// (tile, triangle) entries of the polygon lists.
     pub bin_entries: u64,
-    /// Tiles with at least one shaded quad (tile records of the trace).
+    /// Tile records of the trace: tiles that rasterized at least one quad,
+    /// shaded or rejected by early-Z (a tile whose every quad was rejected
+    /// is a record without warps).
     pub tiles: u64,
     /// (triangle, quad) pairs with at least one covered pixel.
     pub quads_covered: u64,
@@ -829,7 +836,11 @@ struct TileBuf {
     rejected: u64,
     /// Of `rejected`, those the coarse depth rejected.
     rejected_hiz: u64,
-    /// Quads rejected since the last surviving fragment.
+    /// Quads rejected since the last surviving fragment (after the last
+    /// one once the tile is done: the `z` record that ends the tile). It
+    /// saturates, and the trace builder refuses more than a `z` record
+    /// holds, so a count too large for the trace is an error, never a
+    /// wrong count.
     rej_since: u32,
     pixels: u64,
     /// The depth buffer's coarse bounds.
@@ -848,7 +859,8 @@ struct TileBuf {
     /// Per quad position, whether a fragment is there (all false between
     /// tiles).
     seen: Vec<bool>,
-    /// The tile's trace records (None: no fragment survived).
+    /// The tile's trace records (None: the tile rasterized no quad, so it
+    /// has no record).
     part: Result<Option<Trace>, crate::trace::Problem>,
 }
 
@@ -2399,5 +2411,116 @@ mod tests {
             }
         }
         assert!(covered > 1000);
+    }
+
+    #[test]
+    fn procedural_scenes_record_every_rejected_quad_in_the_trace() {
+        use crate::scene::def::{Game, SceneDef};
+        use crate::scene::procedural;
+        let (w, h) = (320, 192);
+        let mut rejected = 0;
+        for map in procedural::MAPS {
+            let def = SceneDef {
+                name: format!("procedural-{map}"),
+                game: Game::Procedural,
+                map: map.into(),
+                camera: if map == "plane" { "ground" } else { "full" }.into(),
+                width: w,
+                height: h,
+                description: String::new(),
+                shader: None,
+            };
+            let scene = procedural::load(&def).unwrap();
+            for depth_prepass in [false, true] {
+                let opts = RasterOptions {
+                    colour: false,
+                    depth_prepass,
+                    ..RasterOptions::default()
+                };
+                let f = rasterize(&scene, w, h, &opts).unwrap();
+                let what = format!("{map}, prepass {depth_prepass}");
+                let want = f.stats.quads_rejected_early_z;
+                // Every rejected quad (coarse ones included) is in the
+                // trace once: with the warps, every covered quad.
+                assert_eq!(f.trace.rejected_count(), want, "{what}");
+                assert_eq!(f.trace.stats().rejected_quads, want, "{what}");
+                let produced: u64 = f.trace.tiles().iter().map(|t| t.raster_count()).sum();
+                assert_eq!(produced, f.stats.quads_covered, "{what}");
+                assert_eq!(f.stats.warps + want, f.stats.quads_covered, "{what}");
+                assert_eq!(f.trace.tiles().len() as u64, f.stats.tiles, "{what}");
+                // Written as format 3 and read back, each stays in place.
+                let back = Trace::parse(&f.trace.to_text(), "rt").unwrap();
+                assert_eq!(back, f.trace, "{what}");
+                rejected += want;
+            }
+        }
+        assert!(rejected > 0, "no procedural scene rejected a quad");
+    }
+
+    #[test]
+    fn rejected_quads_sit_between_the_warps_they_were_rasterized_between() {
+        // One 64x64 tile: a near left half, a far square hidden behind it,
+        // then a right half nothing hides.
+        let scene = ortho_scene(
+            vec![
+                quad_mesh(0.0, 0.0, 32.0, 64.0, 1.0, 0),
+                quad_mesh(4.0, 4.0, 20.0, 20.0, 0.0, 1),
+                quad_mesh(32.0, 0.0, 64.0, 64.0, 0.5, 2),
+            ],
+            vec![
+                mat("near", Blend::Opaque, 0),
+                mat("hidden", Blend::Opaque, 0),
+                mat("right", Blend::Opaque, 0),
+            ],
+            64.0,
+            64.0,
+        );
+        let f = rasterize(&scene, 64, 64, &RasterOptions::default()).unwrap();
+        let m = &f.stats.materials;
+        assert_eq!(m[1].warps, 0, "the far square is hidden");
+        let hidden = m[1].quads_rejected_early_z;
+        assert!(hidden >= 64, "{hidden}");
+        assert_eq!(f.stats.quads_rejected_early_z, hidden);
+        let tile = &f.trace.tiles()[0];
+        assert_eq!(tile.quad_count() as u64, m[0].warps + m[2].warps);
+        let first = m[0].warps as usize;
+        for i in 0..tile.quad_count() {
+            let want = if i == first { hidden } else { 0 };
+            assert_eq!(u64::from(tile.rejected_before(i)), want, "quad {i}");
+        }
+        assert_eq!(tile.rejected_after_last(), 0);
+        assert_eq!(tile.raster_count(), f.stats.quads_covered);
+        assert!(f.trace.to_text().contains(&format!("\nz {hidden}\nq ")));
+    }
+
+    #[test]
+    fn a_tile_whose_every_quad_is_rejected_is_a_record_without_warps() {
+        // (Raster order makes this rare: the first fragment drawn at a
+        // pixel passes the depth test. The record must still be written.)
+        let textures = TextureSet::new(&[]);
+        let ctx = TileCtx {
+            setups: &[],
+            mats: &[],
+            textures: &textures,
+            tile: 64,
+            width: 128,
+            height: 64,
+            colour: false,
+            prepass: false,
+            hiz: true,
+        };
+        let header = TraceHeader::new("w", 128, 64, 64);
+        let mut b = TileBuf::new(64, 0);
+        assert!(build_tile(&ctx, &header, 1, 0, &mut b).unwrap().is_none());
+        b.rej_since = 37;
+        let t = build_tile(&ctx, &header, 1, 0, &mut b)
+            .unwrap()
+            .expect("a record");
+        let tile = &t.tiles()[0];
+        assert_eq!((tile.tx(), tile.ty(), tile.quad_count()), (1, 0, 0));
+        assert_eq!(tile.rejected_after_last(), 37);
+        assert_eq!((tile.rejected_count(), tile.raster_count()), (37, 37));
+        assert!(t.to_text().ends_with("\ntile 1 0\nz 37\nend\n"));
+        assert_eq!(b.positions, 0);
     }
 }

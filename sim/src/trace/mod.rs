@@ -1,14 +1,13 @@
-//! The wasp trace: the shaded quads of one frame, tile by tile, and the
-//! instructions each quad's shader executes — the input of the cycle model.
+//! The wasp trace: the shaded quads of one frame, tile by tile, the quads
+//! Early-Z rejected between them, and the instructions each shaded quad's
+//! shader executes — the input of the cycle model.
 //!
 //! # Format `wasp-trace 3` (and `wasp-trace 2`, `wasp-trace 1`)
 //!
-//! (The same text is in `tests/traces/FORMAT.md`.)
+//! (The same text is in `tests/traces/FORMAT.md`; a test checks that the two
+//! agree.)
 //!
-//! A trace is UTF-8 text in lines ending in LF (a CR just before the LF is
-//! ignored). Tokens are separated by one or more spaces or tabs; blanks at the
-//! start and end of a line are ignored. No line may hold any other control
-//! character. Example:
+//! ## Example
 //!
 //! ```text
 //! wasp-trace 3
@@ -25,47 +24,71 @@
 //! tile 1 0
 //! q 0 0 t1a48 a4
 //! end
+//! tile 0 1
+//! z 40
+//! end
 //! ```
 //!
-//! * **Line 1** is exactly `wasp-trace 3` (or `wasp-trace 2` or `wasp-trace 1`, below): the
-//!   magic word and the format version. A reader rejects any other version.
-//! * **Comments**: a line whose first non-blank character is `#` is a
-//!   comment; blank lines are ignored. Both may appear anywhere after line 1.
-//!   Comments before the `frame` line are the header *notes*: a reader
-//!   keeps their text (everything after the `#`, verbatim) and a writer
-//!   writes them back right after line 1. Other comments are dropped. There
-//!   are no comments at the end of a line.
+//! The first warp, at quad (0, 0) of tile (0, 0), runs 3 ALU instructions, a
+//! texture instruction touching blocks 0x1a40 and 0x1a41, 2 ALU instructions,
+//! and a texture instruction touching block 0x1a40. After the second warp the
+//! rasterizer produced 12 quads that Early-Z rejected, then the third warp, a
+//! second fragment at position (0, 0) of a primitive drawn later (overdraw):
+//! its own warp with its own program. 3 more rejected quads end the tile.
+//! Tile (0, 1) is hidden: its 40 quads were all rejected.
+//!
+//! ## Rules
+//!
+//! A trace is UTF-8 text in lines ending in LF (a CR just before the LF is
+//! ignored). Tokens are separated by one or more spaces or tabs; blanks at the
+//! start and end of a line are ignored. No line may hold any other control
+//! character.
+//!
+//! * **Line 1** is exactly `wasp-trace 3` (or, below, `wasp-trace 2` or
+//!   `wasp-trace 1`): the magic word and the format version. A reader
+//!   rejects any other version.
+//! * **Comments**: a line whose first non-blank character is `#` is a comment;
+//!   blank lines are ignored. Both may appear anywhere after line 1. Comments
+//!   before the `frame` line are the header *notes*: a reader keeps their text
+//!   (everything after the `#`, verbatim) and a writer writes them back right
+//!   after line 1. Other comments are dropped. There are no comments at the end
+//!   of a line.
 //! * **Header**, before the first tile and in this order, each exactly once:
-//!   * `workload NAME` — provenance: NAME is the rest of the line, not
-//!     empty. A synthetic workload's name starts with `synthetic:` and names
-//!     its generator parameters.
-//!   * `frame W H tile T` — frame width and height in pixels (1 to 65536)
-//!     and the tile edge in pixels (even, 2 to 512). The frame is cut into
+//!   * `workload NAME` — provenance: NAME is the rest of the line, not empty.
+//!     A synthetic workload's name starts with `synthetic:` and names its
+//!     generator parameters.
+//!   * `frame W H tile T` — frame width and height in pixels (1 to 65536) and
+//!     the tile edge in pixels (even, 2 to 512). The frame is cut into
 //!     ceil(W/T) x ceil(H/T) tiles; a tile holds (T/2) x (T/2) quads of 2x2
 //!     pixels (32 x 32 for the paper's 64-pixel tiles).
 //! * **Tile record**: `tile TX TY` (tile column and row, inside the frame),
-//!   then one `q` line per warp, then `end` alone on its line. A tile
-//!   appears at most once and holds at least one quad. Tiles appear in
-//!   traversal order (the front end emits Z-order; a reader does not check
-//!   the order).
+//!   then the tile's `q` lines (one per warp) and `z` lines (rejected quads)
+//!   in rasterization order, then `end` alone on its line. A tile appears at
+//!   most once and holds at least one line, a `q` or a `z`: a tile of `z`
+//!   lines only is a tile whose every quad Early-Z rejected (it costs the
+//!   rasterizer time and launches no warp). Tiles appear in traversal order
+//!   (the front end emits Z-order; a reader does not check the order).
 //! * **Quad**: `q X Y INSTR...` — one warp: one shaded (primitive, quad)
 //!   fragment. X, Y are the in-tile quad column and row (0 to T/2-1); the
-//!   quad's top-left pixel (TX*T + 2X, TY*T + 2Y) lies inside the frame.
-//!   The quads of a tile appear in rasterization order, the order the
-//!   cycle model launches them: primitives in draw order, each primitive's
-//!   quads in scanline order. A position repeats once per fragment shaded
-//!   there (overdraw). A reader checks no order: a record does not name its
-//!   primitive, and any sequence of positions is the rasterization order
-//!   of some sequence of primitives.
-//! * **Rejected quads** (format 3): `z N` — N quads (decimal, 1 to 2^31-1)
-//!   that the rasterizer produced at this point of the rasterization order
-//!   and Early-Z rejected: they launch no warp but cost the rasterizer a slot
-//!   each. Two `z` lines are never adjacent (write their sum). A tile record
-//!   holds at least one `q` or `z` line; a tile of `z` lines only is a tile
-//!   whose every quad is hidden.
+//!   quad's top-left pixel (TX*T + 2X, TY*T + 2Y) lies inside the frame. The
+//!   quads of a tile appear in rasterization order, the order the cycle model
+//!   launches them: primitives in draw order, each primitive's quads in
+//!   scanline order. A position repeats once per fragment shaded there
+//!   (overdraw). A reader checks no order: a record does not name its
+//!   primitive, and any sequence of positions is the rasterization order of
+//!   some sequence of primitives.
+//! * **Rejected quads** (version 3): `z N` — N quads (decimal, 1 to 2^31-1)
+//!   that the rasterizer produced at this point of the tile's rasterization
+//!   order (after the `q` line before it, before the `q` line after it) and
+//!   Early-Z rejected: they launch no warp but cost the rasterizer a slot
+//!   each. Quads a hierarchical (coarse) depth test rejects are among them:
+//!   the same rejections, found faster. Two `z` lines are never adjacent, not
+//!   even with blank or comment lines between: write one line with their sum.
+//!   (A builder merges them; a reader rejects adjacent ones, so that writing
+//!   a trace it read gives back the same text.)
 //! * **Instructions**, at least one per quad, in program order:
-//!   * `aN` — a run of N ALU instructions (decimal, 1 to 2^31-1). Two runs
-//!     are never adjacent: write `a5`, not `a3 a2`.
+//!   * `aN` — a run of N ALU instructions (decimal, 1 to 2^31-1). Two runs are
+//!     never adjacent: write `a5`, not `a3 a2`.
 //!   * `tB,B,...` — one texture instruction and the 64-byte memory blocks it
 //!     touches, as block numbers (byte address / 64) in hex (1 to 16 digits,
 //!     either case, no `0x`; writers use lowercase without leading zeros),
@@ -73,22 +96,30 @@
 //!     instruction, in the order the texture unit requests them.
 //! * Decimal numbers are ASCII digits without sign and must fit their range.
 //!
-//! **Version 2** (`wasp-trace 2`) is the same without `z` lines: a version-2
-//! trace records no rejected quad, so its rasterizer cost counts surviving quads
-//! only. Every version-2 trace is a version-3 trace, and a writer always writes
-//! version 3.
+//! **Version 2** (`wasp-trace 2`) is the same without `z` lines: a reader
+//! rejects a `z` line in a version-2 (or version-1) file, naming the version.
+//! An older trace records no rejected quad, so its rasterizer cost counts
+//! surviving quads only. Every version-2 trace is a version-3 trace, and a
+//! writer always writes version 3: reading a version-2 file and writing it
+//! back changes line 1 only (for a file in the writer's canonical form).
 //!
-//! **Version 1** (`wasp-trace 1`) is the same except that the quads of a
+//! **Version 1** (`wasp-trace 1`) is version 2 except that the quads of a
 //! tile appear in scanline order, strictly increasing in (Y, X), so each
-//! position at most once (fragments at one position had to be merged into
-//! one warp). A reader accepts version 1 with this rule enforced. Every
-//! version-1 trace is a version-3 trace, so a writer always writes version
-//! 3: reading a version-1 file and writing it back changes line 1 only.
+//! position at most once: fragments at one position had to be merged into one
+//! warp running their programs one after the other. A reader accepts version
+//! 1 with this rule enforced (errors `quad X Y appears twice in the tile` and
+//! `quad X Y after quad X' Y'`). Every version-1 trace is a version-3 trace,
+//! so a writer always writes version 3: reading a version-1 file and writing
+//! it back changes line 1 only (for a file in the writer's canonical form).
 //!
 //! A reader rejects any other input with an error `file:line: what was wrong
-//! (expected what)`, e.g. `scene.trace:7: quad 40 3 outside the tile
-//! (expected x and y from 0 to 31)`, and never panics. Writing a trace and
-//! reading it back gives the same trace.
+//! (expected what)`, for example
+//!
+//! ```text
+//! scene.trace:7: quad 40 3 outside the tile (expected x and y from 0 to 31)
+//! ```
+//!
+//! and never panics. Writing a trace and reading it back gives the same trace.
 //!
 //! # In memory
 //!
@@ -96,10 +127,16 @@
 //! keeps its quads, instructions and block numbers in three flat vectors (no
 //! allocation per quad or instruction), so a tile is self-contained and a
 //! full 1960x768 frame (about 376k quad positions, a few million fragments
-//! with overdraw) stays small. [`QuadRef`] views one
-//! quad; [`Instr`] is one run-length instruction entry. Build traces with
-//! [`TraceBuilder`], which enforces every rule of the format, so whatever it
-//! builds the writer writes and the reader reads back identically.
+//! with overdraw) stays small. Its Early-Z-rejected quads take one `u32` per
+//! quad, and only in a tile with rejections before some quad, plus one for
+//! those after its last quad ([`Tile::rejected_before`],
+//! [`Tile::rejected_after_last`]); they are part of the tile's equality. A
+//! tile may hold no quad at all (every quad rejected): whatever divides by a
+//! tile's quads must allow for that ([`TileStats`] and [`TraceStats`] leave
+//! such tiles out of per-tile means). [`QuadRef`] views one quad; [`Instr`]
+//! is one run-length instruction entry. Build traces with [`TraceBuilder`],
+//! which enforces every rule of the format, so whatever it builds the writer
+//! writes and the reader reads back identically.
 
 mod read;
 mod stats;
@@ -279,7 +316,9 @@ struct QuadRec {
     block_len: u32,
 }
 
-/// One tile record: its position and its quads in launch (file) order.
+/// One tile record: its position, its quads in launch (file) order and the
+/// Early-Z-rejected quads rasterized among them. It may hold no quad (every
+/// quad rejected), never neither quad nor rejected quad.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Tile {
     tx: u32,
@@ -360,7 +399,6 @@ impl Tile {
         n
     }
 
-    /// The `i`-th quad in launch order.
     /// Where quad `i`'s program and block accesses lie in the tile's pools.
     #[inline]
     pub(crate) fn quad_span(&self, i: usize) -> Option<QuadSpan> {
@@ -381,6 +419,7 @@ impl Tile {
         })
     }
 
+    /// The `i`-th quad in launch order.
     pub fn quad(&self, i: usize) -> Option<QuadRef<'_>> {
         self.quads.get(i).map(|rec| QuadRef {
             tile: self,
@@ -695,7 +734,8 @@ impl Trace {
 }
 
 /// Builds a [`Trace`] step by step, enforcing every rule of the format
-/// (version 2: quad positions may repeat, in any order).
+/// (version 3: quad positions may repeat, in any order, with rejected
+/// quads among them).
 ///
 /// A call that returns an error changes nothing, so a caller may report it
 /// and stop. `begin_quad` closes the previous quad, `end_tile` the tile.
@@ -858,8 +898,17 @@ impl TraceBuilder {
     }
 
     /// Records `n` quads rasterized at this point of the open tile and
-    /// rejected by Early-Z (no warp): before the next quad, or at the tile's
-    /// end. Consecutive calls add up.
+    /// rejected by Early-Z (no warp): before the next quad
+    /// ([`begin_quad`]), or at the tile's end. Consecutive calls add up
+    /// (the format's `z` lines are never adjacent).
+    ///
+    /// Fails, changing nothing, if `n` is 0 ([`Problem::ZeroRejected`]), no
+    /// tile is open ([`Problem::RejectedWithoutTile`]), the open quad has
+    /// no instruction yet ([`Problem::EmptyQuad`]), or the rejected quads
+    /// at this point would exceed [`MAX_REJECTED_RUN`] (2^31 - 1, what one
+    /// `z` line holds; [`Problem::RejectedRunTooLong`]).
+    ///
+    /// [`begin_quad`]: TraceBuilder::begin_quad
     pub fn rejected(&mut self, n: u32) -> Result<(), Problem> {
         if n == 0 {
             return Err(Problem::ZeroRejected);
@@ -981,11 +1030,13 @@ impl TraceBuilder {
         // Free a grown vector's slack (a copy), not a few spare entries.
         for (len, cap) in [
             (tile.quads.len(), tile.quads.capacity()),
+            (tile.rej_before.len(), tile.rej_before.capacity()),
             (tile.ops.len(), tile.ops.capacity()),
             (tile.blocks.len(), tile.blocks.capacity()),
         ] {
             if cap > len + len / 8 + 16 {
                 tile.quads.shrink_to_fit();
+                tile.rej_before.shrink_to_fit();
                 tile.ops.shrink_to_fit();
                 tile.blocks.shrink_to_fit();
                 break;
@@ -1102,7 +1153,7 @@ pub enum Problem {
     InvalidUtf8,
     /// A line holds a control character other than tab.
     ControlCharacter,
-    /// Line 1 is not `wasp-trace 2` or `wasp-trace 1`.
+    /// Line 1 is not `wasp-trace 3`, `wasp-trace 2` or `wasp-trace 1`.
     BadMagic(String),
     /// Line 1 names another format version.
     UnsupportedVersion(String),
@@ -1195,7 +1246,7 @@ pub enum Problem {
         /// Tile row.
         ty: u32,
     },
-    /// A tile record has no quad.
+    /// A tile record has neither a quad nor a rejected quad.
     EmptyTile {
         /// Tile column.
         tx: u32,
@@ -1407,7 +1458,7 @@ impl fmt::Display for Problem {
             ),
             EmptyTile { tx, ty } => write!(
                 f,
-                "tile {tx} {ty} has no quad (expected at least one `q` line before `end`)"
+                "tile {tx} {ty} is empty (expected at least one `q` or `z` line before `end`)"
             ),
             EndWithoutTile => write!(f, "`end` outside any tile (expected `tile TX TY` first)"),
             QuadWithoutTile => write!(f, "quad outside any tile (expected `tile TX TY` first)"),

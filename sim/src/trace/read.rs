@@ -1,5 +1,5 @@
-//! The reader of `wasp-trace 2` and `wasp-trace 1` text (see the module
-//! documentation).
+//! The reader of `wasp-trace 3`, `wasp-trace 2` and `wasp-trace 1` text
+//! (see the module documentation).
 
 use super::{
     Problem, Trace, TraceBuilder, TraceError, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1,
@@ -231,7 +231,8 @@ struct Parser<'a> {
     scanline_order: bool,
     /// The file's format version.
     version: u32,
-    /// The last line was a `z` line.
+    /// The last line other than a comment or blank line was a `z` line
+    /// (two `z` lines are never adjacent, whatever lies between them).
     after_z: bool,
 }
 

@@ -27,8 +27,13 @@
 //!   A priority subset selects quad *positions*, so it selects every warp
 //!   (fragment) at a selected position.
 //!
+//! * **rejected quads** = quads Early-Z rejected (the trace's `z` lines);
+//!   warps + rejected quads are the quads the rasterizer produced.
+//!
 //! A ratio whose denominator is zero is 0, except the footprint ratio of a
 //! tile without blocks, which is 1 (the empty footprint is fully covered).
+//! So a tile without warps (format 3: every quad it rasterized Early-Z
+//! rejected) has every ratio 0 and footprint ratio 1, never NaN.
 //!
 //! Over a trace: the memory-instruction ratio pools all instructions (sum of
 //! texture instructions / sum of instructions). CF and Min_Estimate1 are the
@@ -37,6 +42,11 @@
 //! the mean over tiles weighted by warps, over tiles that touch at least one
 //! block. Min_Estimate2 is the trace's Min_Estimate1 / the trace's CF, as in
 //! the paper, which divides by one CF for all tiles.
+//!
+//! Tiles without warps are left out of every per-tile mean: warps per tile
+//! divides by the tiles with at least one warp, and the warp-weighted means
+//! (CF, Min_Estimate1, reuse, [`mean_footprint_ratio`]) give them weight 0
+//! (they touch no block either).
 
 use super::{Tile, Trace};
 use serde::Serialize;
@@ -48,8 +58,10 @@ pub struct TileStats {
     pub tx: u32,
     /// Tile row.
     pub ty: u32,
-    /// Quads (warps).
+    /// Quads (warps); 0 for a tile whose every quad Early-Z rejected.
     pub warps: u64,
+    /// Quads Early-Z rejected.
+    pub rejected_quads: u64,
     /// Distinct quad positions of the warps.
     pub positions: u64,
     /// Instructions, ALU runs counted by length.
@@ -96,6 +108,7 @@ impl TileStats {
             tx: tile.tx(),
             ty: tile.ty(),
             warps: tile.quad_count() as u64,
+            rejected_quads: tile.rejected_count(),
             positions: tile.position_count() as u64,
             instrs,
             tex_instrs: tex,
@@ -138,8 +151,13 @@ pub struct TraceStats {
     pub workload: String,
     /// Tile records.
     pub tiles: u64,
+    /// Tile records with at least one warp (the others hold only quads
+    /// Early-Z rejected).
+    pub warp_tiles: u64,
     /// Quads (warps).
     pub warps: u64,
+    /// Quads Early-Z rejected (0 for a version-1 or version-2 trace).
+    pub rejected_quads: u64,
     /// Sum over tiles of the distinct quad positions of their warps.
     pub positions: u64,
     /// warps / positions: fragments shaded per covered quad position.
@@ -149,7 +167,7 @@ pub struct TraceStats {
     /// positions / frame_quads: the fraction of the frame's quad
     /// positions shaded at least once.
     pub coverage: f64,
-    /// warps / tiles.
+    /// warps / warp_tiles: the mean over tiles with at least one warp.
     pub warps_per_tile: f64,
     /// Instructions, ALU runs counted by length.
     pub instrs: u64,
@@ -193,12 +211,14 @@ impl TraceStats {
             .collect();
         let sum = |f: fn(&TileStats) -> u64| tiles.iter().map(f).sum::<u64>();
         let warps = sum(|t| t.warps);
+        let warp_tiles = tiles.iter().filter(|t| t.warps > 0).count() as u64;
         let positions = sum(|t| t.positions);
         let instrs = sum(|t| t.instrs);
         let tex = sum(|t| t.tex_instrs);
         let warp_blocks = sum(|t| t.warp_blocks);
         let unique = sum(|t| t.unique_blocks);
         let (mut reuse_num, mut reuse_den) = (0.0, 0.0);
+        // (A tile without warps touches no block.)
         for t in tiles.iter().filter(|t| t.unique_blocks > 0) {
             reuse_num += t.warps as f64 * t.reuse();
             reuse_den += t.warps as f64;
@@ -211,12 +231,14 @@ impl TraceStats {
         TraceStats {
             workload: trace.header().workload.clone(),
             tiles: tiles.len() as u64,
+            warp_tiles,
             warps,
+            rejected_quads: sum(|t| t.rejected_quads),
             positions,
             warps_per_position: ratio(warps as f64, positions as f64),
             frame_quads,
             coverage: ratio(positions as f64, frame_quads as f64),
-            warps_per_tile: ratio(warps as f64, tiles.len() as f64),
+            warps_per_tile: ratio(warps as f64, warp_tiles as f64),
             instrs,
             tex_instrs: tex,
             instrs_per_warp: ratio(instrs as f64, warps as f64),
@@ -258,6 +280,7 @@ fn footprint(tile: &Tile, is_priority: &impl Fn(u32, u32) -> bool) -> (usize, us
 
 /// Mean texture footprint ratio over the tiles of `trace` that touch at
 /// least one block, weighted by their warps (0 if no tile touches a block).
+/// A tile without warps touches no block, so it is left out.
 pub fn mean_footprint_ratio(trace: &Trace, is_priority: impl Fn(u32, u32) -> bool) -> f64 {
     let (mut num, mut den) = (0.0, 0.0);
     for tile in trace.tiles() {

@@ -101,6 +101,7 @@ fn tiny_trace_statistics_match_hand_computation() {
             tx: 0,
             ty: 0,
             warps: 16,
+            rejected_quads: 0,
             positions: 16,
             instrs: 16 * 9,
             tex_instrs: 32,
@@ -119,7 +120,8 @@ fn tiny_trace_statistics_match_hand_computation() {
 
     let s = t.stats();
     assert_eq!(s.workload, "hand:tiny");
-    assert_eq!((s.tiles, s.warps, s.frame_quads), (2, 26, 32));
+    assert_eq!((s.tiles, s.warp_tiles, s.warps), (2, 2, 26));
+    assert_eq!((s.rejected_quads, s.frame_quads), (0, 32));
     assert_eq!((s.instrs, s.tex_instrs), (224, 42));
     assert_eq!(
         (s.warp_blocks, s.tile_unique_blocks, s.frame_unique_blocks),
@@ -209,10 +211,58 @@ fn the_example_of_format_md_parses_with_a_repeated_position() {
     let tile = &t.tiles()[0];
     assert_eq!((tile.quad_count(), tile.position_count()), (3, 2));
     assert_eq!(tile.quads_at(0, 0).count(), 2);
+    // 12 rejected quads before the third warp, 3 after the last one, and a
+    // tile without warps.
+    let before: Vec<u32> = (0..3).map(|i| tile.rejected_before(i)).collect();
+    assert_eq!(before, vec![0, 0, 12]);
+    assert_eq!((tile.rejected_after_last(), tile.raster_count()), (3, 18));
+    let hidden = &t.tiles()[2];
+    assert_eq!((hidden.tx(), hidden.ty(), hidden.quad_count()), (0, 1, 0));
+    assert_eq!(hidden.rejected_after_last(), 40);
+    assert_eq!((t.quad_count(), t.rejected_count()), (4, 55));
+    assert_eq!(t.to_text(), text, "the example is in the writer's form");
     // The module documentation repeats the same example.
     let doc = include_str!("mod.rs");
     for line in text.lines() {
         assert!(doc.contains(&format!("//! {line}\n")), "{line}");
+    }
+}
+
+/// The words of `text` from the line that starts with `from` to the line
+/// that starts with `to`, without the `//!` of documentation comments.
+fn words_between(text: &str, from: &str, to: &str) -> Vec<String> {
+    let lines: Vec<&str> = text
+        .lines()
+        .map(|l| l.strip_prefix("//!").unwrap_or(l).trim())
+        .collect();
+    let a = lines.iter().position(|l| l.starts_with(from)).unwrap();
+    let b = a + lines[a..].iter().position(|l| l.starts_with(to)).unwrap();
+    lines[a..b]
+        .iter()
+        .flat_map(|l| l.split_whitespace())
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn format_md_and_the_module_documentation_state_the_same_rules() {
+    let md = include_str!("../../../tests/traces/FORMAT.md");
+    let doc = include_str!("mod.rs");
+    let rules = |text: &str, end: &str| words_between(text, "A trace is UTF-8 text", end);
+    let (a, b) = (rules(md, "## Statistics"), rules(doc, "# In memory"));
+    assert!(a.len() > 500, "{}", a.len());
+    assert_eq!(
+        a, b,
+        "tests/traces/FORMAT.md and sim/src/trace/mod.rs differ"
+    );
+    let example = |text: &str| words_between(text, "The first warp, at quad", "## Rules");
+    assert_eq!(example(md), example(doc));
+    for phrase in [
+        "An older trace records no rejected quad, so its rasterizer cost counts surviving quads only.",
+        "`z N`",
+    ] {
+        let words: Vec<&str> = phrase.split_whitespace().collect();
+        assert!(a.windows(words.len()).any(|w| w == words.as_slice()), "{phrase}");
     }
 }
 
@@ -897,8 +947,9 @@ fn builder_rejects_bad_headers() {
 type SpecInstr = (u32, Vec<u64>);
 
 /// A strategy for arbitrary valid traces, built through the builder:
-/// version-2 traces (positions in any order, repeats) or, with
-/// `scanline`, traces that are also valid version 1.
+/// version-3 traces (positions in any order, repeats, rejected quads
+/// between and after the quads, tiles of rejected quads only) or, with
+/// `scanline`, traces that are also valid version 1 (no rejected quad).
 fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
     let header = (
         1u32..300,
@@ -924,6 +975,14 @@ fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
             .prop_map(|s| (0, s.into_iter().rev().collect::<Vec<u64>>())),
     ];
     let quad = proptest::collection::vec(instr, 1..6);
+    // Rejected quads before each quad and after the last (mostly none; a
+    // count may come in two calls, which the builder adds up).
+    let rejected = prop_oneof![
+        4 => Just(0u32),
+        3 => 1u32..40,
+        1 => 1u32..=MAX_REJECTED_RUN,
+    ];
+    let rejections = proptest::collection::vec((rejected, any::<bool>()), 9);
     header
         .prop_flat_map(move |hd| {
             let tiles = proptest::collection::vec(
@@ -931,6 +990,8 @@ fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
                     any::<u32>(),
                     any::<u32>(),
                     proptest::collection::vec((any::<u32>(), any::<u32>(), quad.clone()), 1..8),
+                    rejections.clone(),
+                    prop::bool::weighted(0.15),
                 ),
                 0..5,
             );
@@ -939,7 +1000,18 @@ fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
         .prop_map(move |(hd, tiles)| {
             let (nx, ny, side) = (hd.tiles_x(), hd.tiles_y(), hd.quads_per_side());
             let mut b = Trace::builder(hd).unwrap();
-            for (tx, ty, quads) in tiles {
+            let reject = |b: &mut TraceBuilder, (n, split): (u32, bool)| {
+                if n == 0 || scanline {
+                    return;
+                }
+                if split && n > 1 {
+                    b.rejected(n / 2).unwrap();
+                    b.rejected(n - n / 2).unwrap();
+                } else {
+                    b.rejected(n).unwrap();
+                }
+            };
+            for (tx, ty, quads, rej, hidden) in tiles {
                 let (tx, ty) = (tx % nx, ty % ny);
                 if b.begin_tile(tx, ty).is_err() {
                     continue; // duplicate tile
@@ -961,7 +1033,13 @@ fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
                 if placed.is_empty() {
                     placed.push((0, 0, vec![(1, vec![])]));
                 }
-                for (x, y, instrs) in placed {
+                if hidden && !scanline {
+                    // A tile whose every quad Early-Z rejected.
+                    placed.clear();
+                    reject(&mut b, (rej[8].0.max(1), rej[8].1));
+                }
+                for (i, (x, y, instrs)) in placed.into_iter().enumerate() {
+                    reject(&mut b, rej[i]);
                     b.begin_quad(x, y).unwrap();
                     for (n, blocks) in instrs {
                         if blocks.is_empty() {
@@ -971,6 +1049,9 @@ fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
                             b.tex(&blocks).unwrap();
                         }
                     }
+                }
+                if !hidden {
+                    reject(&mut b, rej[8]);
                 }
                 b.end_tile().unwrap();
             }
@@ -1058,6 +1139,9 @@ proptest! {
         let mut prefixed = HEAD.as_bytes().to_vec();
         prefixed.extend_from_slice(&bytes);
         let _ = Trace::parse_bytes(&prefixed, "r");
+        let mut prefixed = HEAD3.as_bytes().to_vec();
+        prefixed.extend_from_slice(&bytes);
+        let _ = Trace::parse_bytes(&prefixed, "r");
     }
 
     #[test]
@@ -1068,10 +1152,13 @@ proptest! {
             Just("#".to_string()), Just("a1".to_string()), Just("a0".to_string()),
             Just("t1,2".to_string()), Just("tffffffffffffffff".to_string()),
             Just("4294967296".to_string()), Just("t".to_string()), Just(",".to_string()),
+            Just("z".to_string()), Just("\nz".to_string()), Just("2147483648".to_string()),
             (0u32..40).prop_map(|n| n.to_string()), "[ -~]{0,4}",
-        ], 0..80)
+        ], 0..80),
+        v3 in any::<bool>(),
     ) {
-        let text = format!("{HEAD}{}", toks.join(" "));
+        let head = if v3 { HEAD3 } else { HEAD };
+        let text = format!("{head}{}", toks.join(" "));
         if let Ok(t) = Trace::parse(&text, "soup") {
             prop_assert_eq!(Trace::parse(&t.to_text(), "soup2").unwrap(), t);
         }
@@ -1105,10 +1192,36 @@ proptest! {
     }
 
     #[test]
+    fn one_tile_traces_appended_give_the_trace_back(t in arb_trace()) {
+        // What the front end does: each tile built alone, then appended.
+        let mut b = Trace::builder(t.header().clone()).unwrap();
+        for tile in t.tiles() {
+            let part = Trace {
+                header: t.header().clone(),
+                tiles: vec![tile.clone()],
+                stats: Memo::default(),
+            };
+            let part = Trace::parse(&part.to_text(), "part").unwrap();
+            b.append(part).unwrap();
+        }
+        let back = b.finish().unwrap();
+        prop_assert_eq!(back.rejected_count(), t.rejected_count());
+        prop_assert_eq!(&back, &t);
+    }
+
+    #[test]
     fn statistics_are_consistent(t in arb_trace()) {
         let s = t.stats();
         prop_assert_eq!(s.warps as usize, t.quad_count());
-        prop_assert!(s.positions <= s.warps && s.positions >= s.tiles);
+        prop_assert_eq!(s.rejected_quads, t.rejected_count());
+        prop_assert!(s.positions <= s.warps && s.positions >= s.warp_tiles);
+        prop_assert!(s.warp_tiles <= s.tiles);
+        let least = if s.warps > 0 { 1.0 } else { 0.0 };
+        prop_assert!(s.warps_per_tile >= least);
+        for x in [s.warps_per_position, s.coverage, s.warps_per_tile, s.instrs_per_warp,
+                  s.mem_instr_ratio, s.reuse, s.cf, s.min_estimate1, s.min_estimate2] {
+            prop_assert!(x.is_finite(), "{:?}", s);
+        }
         prop_assert!(s.coverage <= 1.0);
         prop_assert_eq!(s.instrs, t.instr_count());
         prop_assert!(s.warp_blocks >= s.tile_unique_blocks);
@@ -1130,6 +1243,20 @@ proptest! {
         prop_assert_eq!(s.warp_blocks, warp_blocks);
         for tile in t.tiles() {
             let ts = tile.stats();
+            prop_assert!(tile.quad_count() > 0 || tile.rejected_count() > 0);
+            prop_assert_eq!(ts.rejected_quads, tile.rejected_count());
+            prop_assert_eq!(
+                tile.raster_count(),
+                tile.quad_count() as u64 + tile.rejected_count()
+            );
+            let by_gap: u64 = (0..tile.quad_count())
+                .map(|i| u64::from(tile.rejected_before(i)))
+                .sum::<u64>()
+                + u64::from(tile.rejected_after_last());
+            prop_assert_eq!(by_gap, tile.rejected_count());
+            for x in [ts.cf(), ts.reuse(), ts.min_estimate1(), ts.min_estimate2(), ts.mem_instr_ratio()] {
+                prop_assert!(x.is_finite());
+            }
             prop_assert!(ts.unique_blocks == 0 || ts.reuse() >= 1.0);
             prop_assert!(close(footprint_ratio(tile, |_, _| true), 1.0));
             let f = footprint_ratio(tile, |x, _| x % 2 == 0);
@@ -1289,4 +1416,183 @@ fn a_trace_with_rejections_reads_alike_in_pieces() {
     let text = t.to_text();
     assert!(text.len() > 4 << 20, "large enough for the pieces path");
     assert_eq!(Trace::parse(&text, "big").unwrap(), t);
+}
+
+#[test]
+fn a_hand_built_tile_answers_where_its_rejected_quads_are() {
+    let build = |split: bool, tail: u32| {
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        b.rejected(3).unwrap();
+        b.quad(0, 0, &[Instr::Alu(1)]).unwrap();
+        b.quad(1, 0, &[Instr::Tex(&[9])]).unwrap();
+        if split {
+            b.rejected(2).unwrap();
+            b.rejected(3).unwrap();
+        } else {
+            b.rejected(5).unwrap();
+        }
+        b.quad(1, 0, &[Instr::Alu(2)]).unwrap();
+        b.quad(0, 1, &[Instr::Alu(3)]).unwrap();
+        if tail > 0 {
+            b.rejected(tail).unwrap();
+        }
+        b.end_tile().unwrap();
+        b.finish().unwrap()
+    };
+    let t = build(false, 4);
+    let tile = &t.tiles()[0];
+    assert_eq!(tile.quad_count(), 4);
+    let before: Vec<u32> = (0..4).map(|i| tile.rejected_before(i)).collect();
+    assert_eq!(before, vec![3, 0, 5, 0]);
+    assert_eq!(tile.rejected_after_last(), 4);
+    assert_eq!((tile.rejected_count(), tile.raster_count()), (12, 16));
+    assert_eq!(t.rejected_count(), 12);
+    assert_eq!(tile.stats().rejected_quads, 12);
+    assert_eq!(t.stats().rejected_quads, 12);
+    // Split calls add up to the same tile; other rejections make another.
+    assert_eq!(build(true, 4), t);
+    assert_ne!(build(false, 5), t);
+    assert_ne!(build(false, 0), t);
+    assert_eq!(
+        t.to_text().split_once("tile 0 0\n").unwrap().1,
+        "z 3\nq 0 0 a1\nq 1 0 t9\nz 5\nq 1 0 a2\nq 0 1 a3\nz 4\nend\n"
+    );
+    assert_eq!(Trace::parse(&t.to_text(), "rt").unwrap(), t);
+}
+
+#[test]
+fn a_failed_rejection_changes_nothing() {
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    b.begin_tile(0, 0).unwrap();
+    b.begin_quad(0, 0).unwrap();
+    // The open quad has no instruction yet.
+    assert_eq!(b.rejected(2), Err(Problem::EmptyQuad { x: 0, y: 0 }));
+    b.alu(1).unwrap();
+    b.rejected(MAX_REJECTED_RUN - 1).unwrap();
+    assert_eq!(
+        b.rejected(2),
+        Err(Problem::RejectedRunTooLong(u64::from(MAX_REJECTED_RUN) + 1))
+    );
+    b.rejected(1).unwrap();
+    b.end_tile().unwrap();
+    assert_eq!(b.rejected(1), Err(Problem::RejectedWithoutTile));
+    let t = b.finish().unwrap();
+    assert_eq!(t.tiles()[0].rejected_after_last(), MAX_REJECTED_RUN);
+    assert_eq!(t.tiles()[0].rejected_before(0), 0);
+    // A tile with no line at all is still refused.
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    b.begin_tile(0, 0).unwrap();
+    assert_eq!(b.rejected(0), Err(Problem::ZeroRejected));
+    assert_eq!(b.end_tile(), Err(Problem::EmptyTile { tx: 0, ty: 0 }));
+}
+
+#[test]
+fn more_bad_rejection_records_name_their_line() {
+    let cases: &[(&str, usize, &str)] = &[
+        // Adjacent even with a comment or blank line between.
+        (
+            "tile 0 0\nq 0 0 a1\nz 2\n# c\n\nz 3\nend\n",
+            9,
+            "two `z` lines in a row",
+        ),
+        ("tile 0 0\nz 2\n  z 1\nend\n", 6, "two `z` lines in a row"),
+        ("tile 0 0\nz 2147483648\nend\n", 5, "at most 2147483647"),
+        ("tile 0 0\nz -1\nend\n", 5, "bad rejected quads `-1`"),
+        ("tile 0 0\nz 1x\nend\n", 5, "expected a decimal number"),
+        ("tile 0 0\nz\tz\nend\n", 5, "bad rejected quads `z`"),
+        ("tile 0 0\nend\n", 5, "tile 0 0 is empty"),
+        ("tile 0 0\nz 2\ntile 1 0\n", 6, "tile 0 0 is not closed"),
+        ("tile 0 0\nz 2\n", 5, "tile 0 0 is not closed"),
+        ("tile 0 0\nzz 2\nend\n", 5, "`q X Y ...`, `z N` or `end`"),
+    ];
+    for (body, line, want) in cases {
+        let text = format!("{HEAD3}{body}");
+        let msg = Trace::parse(&text, "bad.trace").unwrap_err().to_string();
+        assert!(
+            msg.starts_with(&format!("bad.trace:{line}: ")),
+            "{body:?}: {msg}"
+        );
+        assert!(msg.contains(want), "{body:?}: {msg}");
+        assert!(msg.contains("(expected "), "{body:?}: {msg}");
+    }
+    // `z` before the header.
+    let msg = Trace::parse("wasp-trace 3\nz 1\n", "h.trace")
+        .unwrap_err()
+        .to_string();
+    assert!(msg.starts_with("h.trace:2: `z` before the header"), "{msg}");
+    // Not adjacent: a quad or another tile between.
+    let ok = format!("{HEAD3}tile 0 0\nz 2\nq 0 0 a1\nz 3\nend\ntile 1 0\nz 1\nend\n");
+    let t = Trace::parse(&ok, "ok").unwrap();
+    assert_eq!(t.rejected_count(), 6);
+}
+
+#[test]
+fn older_files_load_without_rejected_quads() {
+    for (path, version) in [(TINY, 1), (OVERDRAW, 2), (SYNTH_SMALL, 1)] {
+        let text = std::fs::read_to_string(path).unwrap();
+        assert!(
+            text.starts_with(&format!("wasp-trace {version}\n")),
+            "{path}"
+        );
+        let t = Trace::read(path).unwrap();
+        assert_eq!(t.rejected_count(), 0, "{path}");
+        assert_eq!(t.stats().rejected_quads, 0, "{path}");
+        for tile in t.tiles() {
+            assert_eq!(tile.raster_count(), tile.quad_count() as u64, "{path}");
+            assert_eq!(tile.rejected_after_last(), 0, "{path}");
+            assert!((0..tile.quad_count()).all(|i| tile.rejected_before(i) == 0));
+        }
+        // Written as version 3, the same records: only line 1 changes.
+        let v3 = t.to_text();
+        assert!(v3.starts_with("wasp-trace 3\n"));
+        assert!(!v3.contains("\nz "), "{path}");
+        assert_eq!(Trace::parse(&v3, "v3").unwrap(), t);
+    }
+}
+
+#[test]
+fn a_tile_without_warps_stays_out_of_per_tile_means() {
+    let text =
+        format!("{HEAD3}tile 0 0\nq 0 0 a1 t1,2\nq 1 0 a1 t2\nz 4\nend\ntile 1 0\nz 9\nend\n");
+    let t = Trace::parse(&text, "z").unwrap();
+    let hidden = &t.tiles()[1];
+    let hs = hidden.stats();
+    assert_eq!((hs.warps, hs.positions, hs.unique_blocks), (0, 0, 0));
+    assert_eq!(hs.rejected_quads, 9);
+    for x in [
+        hs.cf(),
+        hs.reuse(),
+        hs.min_estimate1(),
+        hs.min_estimate2(),
+        hs.mem_instr_ratio(),
+    ] {
+        assert_eq!(x, 0.0);
+    }
+    assert_eq!(footprint_ratio(hidden, |_, _| true), 1.0);
+    assert_eq!(hidden.position_count(), 0);
+    assert!(hidden.quad(0).is_none() && hidden.quads().next().is_none());
+    let s = t.stats();
+    assert_eq!(
+        (s.tiles, s.warp_tiles, s.warps, s.rejected_quads),
+        (2, 1, 2, 13)
+    );
+    // Means over the tile with warps only: as if the hidden tile were not there.
+    assert!(close(s.warps_per_tile, 2.0));
+    assert!(close(s.cf, 1.5));
+    assert!(close(s.min_estimate1, 1.0));
+    assert!(close(s.reuse, 1.5));
+    assert!(close(mean_footprint_ratio(&t, |x, _| x == 0), 1.0));
+    assert!(close(mean_footprint_ratio(&t, |x, _| x == 1), 0.5));
+    // A trace of hidden tiles only.
+    let text = format!("{HEAD3}tile 1 0\nz 9\nend\n");
+    let s = Trace::parse(&text, "z").unwrap().stats();
+    assert_eq!(
+        (s.tiles, s.warp_tiles, s.warps, s.rejected_quads),
+        (1, 0, 0, 9)
+    );
+    assert_eq!(
+        (s.warps_per_tile, s.cf, s.reuse, s.coverage),
+        (0.0, 0.0, 0.0, 0.0)
+    );
 }
