@@ -50,27 +50,106 @@ pub struct CacheConfig {
     pub ports: u32,
 }
 
-/// Main memory: an open-row DRAM model.
+/// Which main-memory model [`Dram`](super::dram::Dram) runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DramModel {
+    /// Open-row latency (`row_hit_latency` / `row_miss_latency`) plus
+    /// `requests_per_cycle` acceptances a cycle; no bank busy time, no
+    /// data-bus limit. The default.
+    #[default]
+    Fixed,
+    /// Banks with row buffers and ACTIVATE / PRECHARGE / READ / WRITE timing
+    /// (`t_rcd`, `t_rp`, `t_ras`, `t_cl`), one shared data bus (`t_burst`
+    /// cycles a line), one command a cycle chosen FR-FCFS-lite from the
+    /// oldest `scheduler_window` requests, plus `controller_latency`.
+    Banked,
+}
+
+/// Main memory: an open-row DRAM, with a fixed-latency or a banked timing
+/// model (`model`).
 ///
 /// A block maps to bank `block % banks` (interleaving on the low block
 /// address bits) and, inside that bank, to row
 /// `(block / banks) / (row_bytes / 64)`. A request whose row is the bank's
 /// open row is a row hit; any other request (including the first one to a
 /// bank) is a row miss and opens its row.
+///
+/// Every field is checked whatever the model; `row_hit_latency`,
+/// `row_miss_latency` and `requests_per_cycle` are used only by the fixed
+/// model, the `t_*`, `controller_latency` and `scheduler_window` fields only
+/// by the banked one. The banked timings are in GPU cycles (the memory
+/// configuration does not see `gpu.frequency_mhz`; the shipped configs give
+/// the conversion from nanoseconds).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DramConfig {
+    /// Timing model: `"fixed"` or `"banked"`.
+    pub model: DramModel,
     /// Number of banks, at least 1.
     pub banks: u32,
     /// Bytes in one row of one bank; a non-zero multiple of 64.
     pub row_bytes: u32,
-    /// Latency of a row hit in cycles, at least 1 (see the module docs for how
-    /// it adds to the end-to-end latency).
+    /// Fixed model: latency of a row hit in cycles, at least 1 (see the
+    /// module docs for how it adds to the end-to-end latency).
     pub row_hit_latency: u32,
-    /// Latency of a row miss in cycles, at least 1.
+    /// Fixed model: latency of a row miss in cycles, at least 1.
     pub row_miss_latency: u32,
-    /// Requests accepted per cycle; the others wait in the DRAM FIFO.
+    /// Fixed model: requests accepted per cycle; the others wait in the DRAM
+    /// FIFO.
     pub requests_per_cycle: u32,
+    /// Banked model: ACTIVATE to READ/WRITE of the opened row (tRCD), in GPU
+    /// cycles.
+    pub t_rcd: u32,
+    /// Banked model: PRECHARGE to the next ACTIVATE of the bank (tRP), in GPU
+    /// cycles.
+    pub t_rp: u32,
+    /// Banked model: ACTIVATE to PRECHARGE of the same bank (tRAS, the least
+    /// time a row stays open), in GPU cycles.
+    pub t_ras: u32,
+    /// Banked model: READ (or WRITE) command to the first data on the bus
+    /// (CAS / read latency), in GPU cycles.
+    pub t_cl: u32,
+    /// Banked model: cycles one 64-byte line occupies the shared data bus;
+    /// also the bank's column-command spacing (tCCD) and read-to-precharge
+    /// time. Sets the bandwidth: one line per `t_burst` cycles.
+    pub t_burst: u32,
+    /// Banked model: fixed controller and interface latency added to every
+    /// read reply after its last data beat, in GPU cycles (may be 0).
+    pub controller_latency: u32,
+    /// Banked model: requests at the head of the FIFO the controller's
+    /// scheduler may pick from (its transaction queue), at least 1.
+    pub scheduler_window: u32,
+}
+
+/// Bounds of the banked model's timing fields (GPU cycles).
+const MAX_DRAM_TIMING: u32 = 1000;
+/// Bound of `controller_latency` (GPU cycles).
+const MAX_CONTROLLER_LATENCY: u32 = 10_000;
+/// Bound of `scheduler_window`.
+const MAX_SCHEDULER_WINDOW: u32 = 256;
+
+impl Default for DramConfig {
+    /// The shipped configuration (`configs/paper.toml`): the fixed model with
+    /// the paper's 50 / 100 cycles, and LPDDR4-3200 timings at 600 MHz for
+    /// the banked model (see the config file for the sources).
+    fn default() -> Self {
+        DramConfig {
+            model: DramModel::Fixed,
+            banks: 8,
+            row_bytes: 2048,
+            row_hit_latency: 50,
+            row_miss_latency: 100,
+            requests_per_cycle: 1,
+            t_rcd: 11,
+            t_rp: 11,
+            t_ras: 26,
+            t_cl: 11,
+            t_burst: 6,
+            controller_latency: 33,
+            scheduler_window: 16,
+        }
+    }
 }
 
 /// The whole memory hierarchy.
@@ -113,7 +192,9 @@ impl MemConfig {
     ///   the L1 cannot feed a width-4 pipeline), L2 4 (one request per core
     ///   per cycle, so L2 bandwidth is not what limits the L0/L1 MSHRs).
     /// - DRAM: 8 banks, 2 KiB rows, row hit 50 cycles, row miss 100 cycles (the
-    ///   two ends of the paper's 50-100 range), one request accepted per cycle.
+    ///   two ends of the paper's 50-100 range), one request accepted per cycle
+    ///   (the fixed model; the banked model's timings are
+    ///   [`DramConfig::default`]'s).
     pub fn paper(width4: bool) -> Self {
         let l0 = CacheConfig {
             size_bytes: 512,
@@ -145,13 +226,7 @@ impl MemConfig {
                 max_merged: 8,
                 ports: 4,
             },
-            dram: DramConfig {
-                banks: 8,
-                row_bytes: 2048,
-                row_hit_latency: 50,
-                row_miss_latency: 100,
-                requests_per_cycle: 1,
-            },
+            dram: DramConfig::default(),
             ideal_memory: false,
         }
     }
@@ -262,6 +337,30 @@ impl DramConfig {
         if self.requests_per_cycle == 0 {
             return err("requests_per_cycle must be at least 1".into());
         }
+        let bounded = [
+            ("t_rcd", self.t_rcd, 1, MAX_DRAM_TIMING),
+            ("t_rp", self.t_rp, 1, MAX_DRAM_TIMING),
+            ("t_ras", self.t_ras, 0, MAX_DRAM_TIMING),
+            ("t_cl", self.t_cl, 1, MAX_DRAM_TIMING),
+            ("t_burst", self.t_burst, 1, MAX_DRAM_TIMING),
+            (
+                "controller_latency",
+                self.controller_latency,
+                0,
+                MAX_CONTROLLER_LATENCY,
+            ),
+            (
+                "scheduler_window",
+                self.scheduler_window,
+                1,
+                MAX_SCHEDULER_WINDOW,
+            ),
+        ];
+        for (field, v, lo, hi) in bounded {
+            if !(lo..=hi).contains(&v) {
+                return err(format!("{field} = {v}: must be in {lo}..={hi}"));
+            }
+        }
         Ok(())
     }
 }
@@ -335,6 +434,18 @@ mod tests {
             ("row_bytes", |c| c.dram.row_bytes = 100),
             ("ideal_memory", |c| c.dram.row_hit_latency = 0),
             ("requests_per_cycle", |c| c.dram.requests_per_cycle = 0),
+            ("t_rcd = 0: must be in 1..=1000", |c| c.dram.t_rcd = 0),
+            ("t_rp = 1001: must be in 1..=1000", |c| c.dram.t_rp = 1001),
+            ("t_ras = 1001: must be in 0..=1000", |c| c.dram.t_ras = 1001),
+            ("t_cl = 0", |c| c.dram.t_cl = 0),
+            ("t_burst = 0", |c| c.dram.t_burst = 0),
+            ("controller_latency = 10001: must be in 0..=10000", |c| {
+                c.dram.controller_latency = 10_001
+            }),
+            ("scheduler_window = 0: must be in 1..=256", |c| {
+                c.dram.scheduler_window = 0
+            }),
+            ("scheduler_window = 257", |c| c.dram.scheduler_window = 257),
         ];
         for (needle, mutate) in cases {
             let mut c = good.clone();
@@ -350,5 +461,11 @@ mod tests {
         let s = serde_json::to_string(&c).unwrap();
         let back: MemConfig = serde_json::from_str(&s).unwrap();
         assert_eq!(back, c);
+        assert!(s.contains(r#""model":"fixed""#), "{s}");
+        let mut b = c.clone();
+        b.dram.model = DramModel::Banked;
+        let s = serde_json::to_string(&b).unwrap();
+        assert!(s.contains(r#""model":"banked""#), "{s}");
+        assert_eq!(serde_json::from_str::<MemConfig>(&s).unwrap(), b);
     }
 }

@@ -705,6 +705,7 @@ mod tests {
                 row_hit_latency: 6,
                 row_miss_latency: 6,
                 requests_per_cycle: 1,
+                ..DramConfig::default()
             },
             ideal_memory: false,
         }
@@ -1105,6 +1106,7 @@ mod tests {
                         row_hit_latency: hit,
                         row_miss_latency: miss,
                         requests_per_cycle: rpc,
+                        ..DramConfig::default()
                     },
                     ideal_memory,
                 },

@@ -103,7 +103,8 @@ pub mod stats;
 
 pub use cache::{Cache, Lookup};
 pub use config::{
-    CacheConfig, DramConfig, MemConfig, MemConfigError, BLOCK_BYTES, FREE_MSHR_REGISTER_MAX,
+    CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
+    FREE_MSHR_REGISTER_MAX,
 };
 pub use hierarchy::{Access, MemorySystem, MshrEvents, MshrFileView};
 pub use mshr::MSHR_HOLD_CYCLES;

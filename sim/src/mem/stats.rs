@@ -112,6 +112,25 @@ pub struct DramStats {
     /// Of the writes, those that had to open their row.
     #[serde(default)]
     pub write_row_misses: u64,
+    /// Banked model: of the `row_misses`, those that found another row open
+    /// and had to precharge it first (zero in the fixed model).
+    #[serde(default)]
+    pub row_conflicts: u64,
+    /// Banked model: of the `write_row_misses`, those that had to precharge
+    /// another row first.
+    #[serde(default)]
+    pub write_row_conflicts: u64,
+    /// Banked model: ACTIVATE commands issued.
+    #[serde(default)]
+    pub activates: u64,
+    /// Banked model: PRECHARGE commands issued.
+    #[serde(default)]
+    pub precharges: u64,
+    /// Banked model: cycles the shared data bus carried data (reads and
+    /// writes, `t_burst` a line). Divided by the run's cycles it is the bus
+    /// utilisation.
+    #[serde(default)]
+    pub bus_busy_cycles: u64,
 }
 
 impl DramStats {

@@ -1,4 +1,4 @@
-//! Main memory: an open-row DRAM with a request FIFO.
+//! The fixed-latency model: an open-row DRAM with a request FIFO.
 //!
 //! Timing: an L2 primary miss in cycle `m` enters the FIFO and can be accepted
 //! from cycle `m + 1`; at most `requests_per_cycle` requests are accepted per
@@ -16,10 +16,10 @@
 //! reply cycle (fixed latency, acceptance in cycle order), and merged by
 //! (reply cycle, acceptance order): no heap, no allocation in steady state.
 
-use super::cache::bits_for;
-use super::config::{DramConfig, BLOCK_BYTES};
-use super::ring::Ring;
-use super::stats::DramStats;
+use crate::mem::cache::bits_for;
+use crate::mem::config::{DramConfig, BLOCK_BYTES};
+use crate::mem::ring::Ring;
+use crate::mem::stats::DramStats;
 use wasp_waves::Tracer;
 
 const NO_ROW: u64 = u64::MAX;
@@ -46,9 +46,9 @@ struct InFlight {
     entry: u32,
 }
 
-/// Main memory.
+/// Main memory, fixed-latency model.
 #[derive(Debug, Clone)]
-pub struct Dram {
+pub struct FixedDram {
     cfg: DramConfig,
     ideal: bool,
     blocks_per_row: u64,
@@ -66,13 +66,13 @@ pub struct Dram {
     stats: DramStats,
 }
 
-impl Dram {
+impl FixedDram {
     /// A memory with every bank closed. `max_outstanding` bounds the requests
     /// in flight (the L2's MSHR count) and sizes the queues. `cfg` must have
     /// passed [`DramConfig::check`].
     pub fn new(cfg: &DramConfig, ideal: bool, max_outstanding: u32) -> Self {
         let n = max_outstanding as usize;
-        Dram {
+        FixedDram {
             cfg: *cfg,
             ideal,
             blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
@@ -254,6 +254,7 @@ impl Dram {
 
 #[cfg(test)]
 mod tests {
+    use super::FixedDram as Dram;
     use super::*;
 
     fn cfg(rpc: u32) -> DramConfig {
@@ -263,6 +264,7 @@ mod tests {
             row_hit_latency: 50,
             row_miss_latency: 100,
             requests_per_cycle: rpc,
+            ..DramConfig::default()
         }
     }
 
