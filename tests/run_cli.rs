@@ -451,3 +451,27 @@ fn the_timeline_is_drawn_as_png_or_svg() {
     let e = stderr(&wasp(&["run", "--trace", &trace, "--timeline", "t.gif"]));
     assert!(e.contains(".png or .svg"), "{e}");
 }
+
+#[test]
+fn the_json_names_the_dram_model_and_both_models_run() {
+    let d = dir("dram-model");
+    let trace = synth_trace(&d, 6);
+    let banked = run_json(&["--trace", &trace]);
+    assert_eq!(
+        banked["dram_model"], "banked: 4 channels x 8 banks / 6 cycles a line",
+        "the shipped config selects the banked model"
+    );
+    assert!(banked["dram"]["activates"].as_u64().unwrap() > 0);
+    let mut c = MachineConfig::paper();
+    c.dram.model = wasp_sim::mem::DramModel::Fixed;
+    let p = d.join("fixed.toml");
+    std::fs::write(&p, c.to_toml()).unwrap();
+    let fixed = run_json(&["--trace", &trace, "--config", p.to_str().unwrap()]);
+    assert_eq!(
+        fixed["dram_model"],
+        "fixed: row hit 50 / row miss 100 cycles"
+    );
+    assert_eq!(fixed["dram"]["activates"].as_u64(), Some(0));
+    assert_eq!(banked["warps"], fixed["warps"]);
+    assert_ne!(banked["cycles"], fixed["cycles"]);
+}

@@ -213,7 +213,7 @@ pub struct MachineConfig {
     pub l1: CacheConfig,
     /// Shared L2.
     pub l2: CacheConfig,
-    /// Main memory (open-row DRAM).
+    /// Main memory (banked or fixed-latency open-row DRAM).
     pub dram: DramConfig,
     /// Ideal-memory switch.
     pub memory: MemoryConfig,

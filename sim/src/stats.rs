@@ -64,6 +64,21 @@ pub struct DramSummary {
     pub row_misses: u64,
     /// Average request latency in cycles (queueing included).
     pub avg_latency: f64,
+    /// Average cycles a read waited in the queue before its first command
+    /// (fixed model: before acceptance).
+    pub avg_queue_wait: f64,
+    /// Most requests queued at once.
+    pub max_queue: u64,
+    /// Line writes (the colour-buffer flush).
+    pub writes: u64,
+    /// Banked model: row misses that had to close another row first.
+    pub row_conflicts: u64,
+    /// Banked model: ACTIVATE commands.
+    pub activates: u64,
+    /// Banked model: share of the data buses' cycles carrying data (reads
+    /// and writes), over the run's cycles and all channels; 0 in the fixed
+    /// model.
+    pub bus_utilization: f64,
 }
 
 /// Average memory latency per warp: the mean over warps of each warp's mean
@@ -215,6 +230,9 @@ pub struct RunStats {
     pub core_map: String,
     /// Colour-buffer flush.
     pub color_flush: String,
+    /// Main-memory model ([`DramConfig::describe`](crate::mem::DramConfig::describe)).
+    #[serde(default)]
+    pub dram_model: String,
     /// Zero-latency main memory.
     pub ideal_memory: bool,
     /// GPU cycles until every tile is rendered and memory is idle.
@@ -337,6 +355,7 @@ impl RunStats {
             dispatch: cfg.raster.dispatch.to_string(),
             core_map: cfg.raster.core_map.clone(),
             color_flush: cfg.raster.color_flush.to_string(),
+            dram_model: cfg.dram.describe(),
             ideal_memory: cfg.memory.ideal,
             cycles,
             ipc: instructions as f64 / cycles.max(1) as f64,
@@ -352,6 +371,21 @@ impl RunStats {
                 row_hits: mem.dram.row_hits,
                 row_misses: mem.dram.row_misses,
                 avg_latency: mem.dram.avg_latency(),
+                avg_queue_wait: if mem.dram.requests == 0 {
+                    0.0
+                } else {
+                    mem.dram.queue_wait_sum as f64 / mem.dram.requests as f64
+                },
+                max_queue: mem.dram.max_queue,
+                writes: mem.dram.writes,
+                row_conflicts: mem.dram.row_conflicts,
+                activates: mem.dram.activates,
+                bus_utilization: if cfg.dram.model == crate::mem::DramModel::Banked {
+                    mem.dram.bus_busy_cycles as f64
+                        / (cycles.max(1) * u64::from(cfg.dram.channels)) as f64
+                } else {
+                    0.0
+                },
             },
             memory_latency: LatencyStats {
                 all: mean(rs + ps, rn + pn),
@@ -431,8 +465,8 @@ impl RunStats {
         );
         let _ = writeln!(
             s,
-            "dispatch {}  core map {}  colour flush {}",
-            self.dispatch, self.core_map, self.color_flush
+            "dispatch {}  core map {}  colour flush {}  dram {}",
+            self.dispatch, self.core_map, self.color_flush, self.dram_model
         );
         let _ = writeln!(
             s,

@@ -89,8 +89,11 @@
 //! allocate on fill with LRU replacement per set (a pending miss owns no way;
 //! the fill evicts the LRU valid line whatever is pending); head-of-line
 //! blocking in the request queue between two levels; the L2 arbitrates among
-//! cores round robin, starting with core `now % cores`; DRAM banks have
-//! no busy time and a bank with no open row counts as a row miss; ideal
+//! cores round robin, starting with core `now % cores`; main memory is
+//! one of two models ([`dram`]): banked (channels, banks with busy time,
+//! command timing, data buses; the shipped configs) or fixed (two latencies,
+//! no bank busy time); in both a bank with no open row counts as a row miss;
+//! ideal
 //! memory answers L2 misses in the cycle of the miss with no bandwidth limit.
 
 pub mod cache;

@@ -1,11 +1,17 @@
-//! The banked model: banks with row buffers, command timing and one shared
-//! data bus.
+//! The banked model: independent channels, each with banks with row buffers,
+//! command timing and one data bus.
 //!
 //! # Rules
 //!
+//! Block `b` goes to channel `b % channels`; inside the channel, block
+//! `b / channels` maps to a bank and row as in the fixed model. Channels share
+//! nothing: each has its own request FIFO, command bus and data bus, and the
+//! rules below hold per channel. Replies of different channels reach the L2
+//! earliest first (ties: the lowest channel).
+//!
 //! All times are GPU cycles. An L2 miss (or a colour-buffer write) in cycle
-//! `m` enters the FIFO and is visible to the scheduler from cycle `m + 1`.
-//! The scheduler sees the oldest `scheduler_window` visible requests and
+//! `m` enters its channel's FIFO and is visible to the scheduler from cycle
+//! `m + 1`. The scheduler sees the oldest `scheduler_window` visible requests and
 //! issues at most **one command a cycle** (the command bus), chosen in this
 //! order:
 //!
@@ -101,22 +107,32 @@ struct Reply {
     entry: u32,
 }
 
-/// Main memory, banked timing model (see the module docs).
+/// One channel: its banks, its request queue, its command bus (one command
+/// a cycle) and its data bus.
 #[derive(Debug, Clone)]
-pub struct BankedDram {
-    cfg: DramConfig,
-    blocks_per_row: u64,
+struct Channel {
     banks: Vec<Bank>,
     queue: VecDeque<Request>,
     /// Reads issued, in issue (= reply) order.
     replies: Ring<Reply>,
     /// First cycle the data bus is free.
     bus_free: u64,
+    /// Column commands issued in the last cycle `accept` ran.
+    columns_now: u32,
+}
+
+/// Main memory, banked timing model (see the module docs).
+#[derive(Debug, Clone)]
+pub struct BankedDram {
+    cfg: DramConfig,
+    blocks_per_row: u64,
+    channels: Vec<Channel>,
+    /// Requests waiting in all channels' queues.
+    queued: usize,
     /// Bound on reads in the memory at once (the L2's MSHR count), for
     /// signal widths.
     max_outstanding: u32,
     cycle: u64,
-    columns_now: u32,
     stats: DramStats,
 }
 
@@ -125,9 +141,7 @@ impl BankedDram {
     /// [`DramConfig::check`].
     pub fn new(cfg: &DramConfig, max_outstanding: u32) -> Self {
         let n = max_outstanding as usize;
-        BankedDram {
-            cfg: *cfg,
-            blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
+        let channel = Channel {
             banks: vec![
                 Bank {
                     open_row: CLOSED,
@@ -139,21 +153,39 @@ impl BankedDram {
             queue: VecDeque::with_capacity(n + 64),
             replies: Ring::with_capacity(n),
             bus_free: 0,
+            columns_now: 0,
+        };
+        BankedDram {
+            cfg: *cfg,
+            blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
+            channels: vec![channel; cfg.channels as usize],
+            queued: 0,
             max_outstanding,
             cycle: 0,
-            columns_now: 0,
             stats: DramStats::default(),
         }
     }
 
-    /// Bank and row of `block`.
+    /// Channel, bank in the channel and row of `block`: channels interleave
+    /// on the lowest block-address bits, banks on the next ones.
+    #[inline]
+    fn place(&self, block: u64) -> (usize, usize, u64) {
+        let channels = u64::from(self.cfg.channels);
+        let banks = u64::from(self.cfg.banks);
+        let in_channel = block / channels;
+        (
+            (block % channels) as usize,
+            (in_channel % banks) as usize,
+            in_channel / banks / self.blocks_per_row,
+        )
+    }
+
+    /// Bank (numbered across channels: `channel * banks + bank`) and row of
+    /// `block`.
     #[inline]
     pub fn bank_row(&self, block: u64) -> (usize, u64) {
-        let banks = u64::from(self.cfg.banks);
-        (
-            (block % banks) as usize,
-            block / banks / self.blocks_per_row,
-        )
+        let (ch, bank, row) = self.place(block);
+        (ch * self.cfg.banks as usize + bank, row)
     }
 
     /// An L2 primary miss on `block` in cycle `now` for MSHR entry `entry`.
@@ -171,8 +203,8 @@ impl BankedDram {
     }
 
     fn enqueue(&mut self, now: u64, block: u64, entry: u32) {
-        let (bank, row) = self.bank_row(block);
-        self.queue.push_back(Request {
+        let (ch, bank, row) = self.place(block);
+        self.channels[ch].queue.push_back(Request {
             ready: now + 1,
             missed: now,
             bank,
@@ -182,81 +214,161 @@ impl BankedDram {
             opened: false,
             closed: false,
         });
-        self.stats.max_queue = self.stats.max_queue.max(self.queue.len() as u64);
+        self.queued += 1;
+        self.stats.max_queue = self.stats.max_queue.max(self.queued as u64);
     }
 
-    /// Issue at most one command in cycle `now` (once per cycle).
+    /// Issue at most one command per channel in cycle `now` (once per
+    /// cycle).
     pub fn accept(&mut self, now: u64) {
         self.cycle = now;
-        self.columns_now = 0;
-        // Requests enter in cycle order, so the visible ones are a prefix.
-        let window = self
-            .queue
-            .iter()
-            .take(self.cfg.scheduler_window as usize)
-            .take_while(|r| r.ready <= now)
-            .count();
-        if window == 0 {
-            return;
-        }
-        // 1. The head, if it can issue anything.
-        if self.column_ready(0, now) {
-            self.issue_column(0, now);
-            return;
-        }
-        if self.try_row_command(0, now, window, true) {
-            return;
-        }
-        // 2. The oldest row hit that can issue its column command.
-        if let Some(i) = (1..window).find(|&i| self.column_ready(i, now)) {
-            self.issue_column(i, now);
-            return;
-        }
-        // 3. The oldest request that can issue a row command.
-        for i in 1..window {
-            if self.try_row_command(i, now, window, false) {
-                return;
+        let (cfg, stats) = (&self.cfg, &mut self.stats);
+        for ch in &mut self.channels {
+            ch.columns_now = 0;
+            if !ch.queue.is_empty() && ch.step(cfg, stats, now) {
+                self.queued -= 1;
             }
         }
     }
 
-    /// Can request `i` issue its READ / WRITE in cycle `now`?
-    fn column_ready(&self, i: usize, now: u64) -> bool {
-        let r = &self.queue[i];
-        let b = &self.banks[r.bank];
-        b.open_row == r.row && b.ready <= now && self.bus_free <= now + u64::from(self.cfg.t_cl)
+    /// The next reply due by cycle `now`, if any: its request's `entry`.
+    /// Of the channels' due replies, the earliest goes first (ties: the
+    /// lowest channel).
+    #[inline]
+    pub fn pop_reply(&mut self, now: u64) -> Option<u32> {
+        if let [only] = self.channels.as_mut_slice() {
+            return only.replies.pop_front_if(|f| f.at <= now).map(|f| f.entry);
+        }
+        let mut best: Option<(u64, usize)> = None;
+        for (i, ch) in self.channels.iter().enumerate() {
+            if let Some(f) = ch.replies.front() {
+                if f.at <= now && best.is_none_or(|(at, _)| f.at < at) {
+                    best = Some((f.at, i));
+                }
+            }
+        }
+        let (_, i) = best?;
+        self.channels[i].replies.pop_front().map(|f| f.entry)
     }
 
-    fn issue_column(&mut self, i: usize, now: u64) {
+    /// Nothing queued or in flight.
+    #[inline]
+    pub fn is_idle(&self) -> bool {
+        self.queued == 0 && self.channels.iter().all(|c| c.replies.is_empty())
+    }
+
+    /// Requests waiting in the queues (including those with a row command
+    /// issued but no column command yet).
+    pub fn queued(&self) -> usize {
+        self.queued
+    }
+
+    /// Reads whose READ has issued and whose reply has not been popped.
+    pub fn in_flight(&self) -> usize {
+        self.channels.iter().map(|c| c.replies.len()).sum()
+    }
+
+    /// Counters so far.
+    pub fn stats(&self) -> &DramStats {
+        &self.stats
+    }
+
+    /// Signals: queue depth, reads in flight, column commands issued this
+    /// cycle over all channels (as `accepted`).
+    pub fn trace<T: Tracer + ?Sized>(&self, now: u64, t: &mut T) {
+        let w = bits_for(u64::from(self.max_outstanding));
+        t.signal("queue", w, self.queued as u64);
+        t.signal("in_flight", w, self.in_flight() as u64);
+        let issued: u32 = if self.cycle == now {
+            self.channels.iter().map(|c| c.columns_now).sum()
+        } else {
+            0
+        };
+        let cw = bits_for(u64::from(self.cfg.channels));
+        t.signal("accepted", cw, u64::from(issued));
+    }
+}
+
+impl Channel {
+    /// Issue at most one command in cycle `now`; whether a request left the
+    /// queue (its column command issued).
+    fn step(&mut self, cfg: &DramConfig, stats: &mut DramStats, now: u64) -> bool {
+        // Requests enter in cycle order, so the visible ones are a prefix.
+        let window = self
+            .queue
+            .iter()
+            .take(cfg.scheduler_window as usize)
+            .take_while(|r| r.ready <= now)
+            .count();
+        if window == 0 {
+            return false;
+        }
+        // 1. The head, if it can issue anything.
+        if self.column_ready(cfg, 0, now) {
+            self.issue_column(cfg, stats, 0, now);
+            return true;
+        }
+        if self.try_row_command(cfg, stats, 0, now, window, true) {
+            return false;
+        }
+        // 2. The oldest row hit that can issue its column command.
+        if let Some(i) = (1..window).find(|&i| self.column_ready(cfg, i, now)) {
+            self.issue_column(cfg, stats, i, now);
+            return true;
+        }
+        // 3. The oldest request that can issue a row command.
+        for i in 1..window {
+            if self.try_row_command(cfg, stats, i, now, window, false) {
+                return false;
+            }
+        }
+        false
+    }
+
+    /// Can request `i` issue its READ / WRITE in cycle `now`?
+    fn column_ready(&self, cfg: &DramConfig, i: usize, now: u64) -> bool {
+        let r = &self.queue[i];
+        let b = &self.banks[r.bank];
+        b.open_row == r.row && b.ready <= now && self.bus_free <= now + u64::from(cfg.t_cl)
+    }
+
+    fn issue_column(&mut self, c: &DramConfig, stats: &mut DramStats, i: usize, now: u64) {
         let r = self.queue.remove(i).expect("index inside the window");
-        let c = &self.cfg;
         let burst = u64::from(c.t_burst);
         self.banks[r.bank].ready = now + burst;
         let data = now + u64::from(c.t_cl);
         self.bus_free = data + burst;
-        self.stats.bus_busy_cycles += burst;
+        stats.bus_busy_cycles += burst;
         self.columns_now += 1;
         if r.entry == WRITE {
-            self.stats.write_row_misses += u64::from(r.opened);
-            self.stats.write_row_conflicts += u64::from(r.closed);
+            stats.write_row_misses += u64::from(r.opened);
+            stats.write_row_conflicts += u64::from(r.closed);
             return;
         }
         let at = data + burst - 1 + u64::from(c.controller_latency);
         self.replies.push_back(Reply { at, entry: r.entry });
         if r.opened {
-            self.stats.row_misses += 1;
-            self.stats.row_conflicts += u64::from(r.closed);
+            stats.row_misses += 1;
+            stats.row_conflicts += u64::from(r.closed);
         } else {
-            self.stats.row_hits += 1;
+            stats.row_hits += 1;
         }
         let first = r.first_command.min(now);
-        self.stats.queue_wait_sum += first - r.ready;
-        self.stats.latency_sum += at - r.missed;
+        stats.queue_wait_sum += first - r.ready;
+        stats.latency_sum += at - r.missed;
     }
 
     /// Issue request `i`'s ACTIVATE or PRECHARGE in cycle `now` if the rules
     /// allow; `head` lifts the open-row protection.
-    fn try_row_command(&mut self, i: usize, now: u64, window: usize, head: bool) -> bool {
+    fn try_row_command(
+        &mut self,
+        cfg: &DramConfig,
+        stats: &mut DramStats,
+        i: usize,
+        now: u64,
+        window: usize,
+        head: bool,
+    ) -> bool {
         let r = self.queue[i];
         let b = self.banks[r.bank];
         if b.ready > now || b.open_row == r.row {
@@ -265,12 +377,12 @@ impl BankedDram {
         if b.open_row == CLOSED {
             self.banks[r.bank] = Bank {
                 open_row: r.row,
-                ready: now + u64::from(self.cfg.t_rcd),
+                ready: now + u64::from(cfg.t_rcd),
                 activated: now,
             };
-            self.stats.activates += 1;
+            stats.activates += 1;
         } else {
-            if now < b.activated + u64::from(self.cfg.t_ras) {
+            if now < b.activated + u64::from(cfg.t_ras) {
                 return false;
             }
             let protected = !head
@@ -284,56 +396,14 @@ impl BankedDram {
             }
             let bank = &mut self.banks[r.bank];
             bank.open_row = CLOSED;
-            bank.ready = now + u64::from(self.cfg.t_rp);
-            self.stats.precharges += 1;
+            bank.ready = now + u64::from(cfg.t_rp);
+            stats.precharges += 1;
             self.queue[i].closed = true;
         }
         let q = &mut self.queue[i];
         q.opened = true;
         q.first_command = q.first_command.min(now);
         true
-    }
-
-    /// The next reply due by cycle `now`, if any: its request's `entry`.
-    #[inline]
-    pub fn pop_reply(&mut self, now: u64) -> Option<u32> {
-        self.replies.pop_front_if(|f| f.at <= now).map(|f| f.entry)
-    }
-
-    /// Nothing queued or in flight.
-    #[inline]
-    pub fn is_idle(&self) -> bool {
-        self.queue.is_empty() && self.replies.is_empty()
-    }
-
-    /// Requests waiting in the FIFO (including those with a row command
-    /// issued but no column command yet).
-    pub fn queued(&self) -> usize {
-        self.queue.len()
-    }
-
-    /// Reads whose READ has issued and whose reply has not been popped.
-    pub fn in_flight(&self) -> usize {
-        self.replies.len()
-    }
-
-    /// Counters so far.
-    pub fn stats(&self) -> &DramStats {
-        &self.stats
-    }
-
-    /// Signals: FIFO depth, reads in flight, column commands issued this
-    /// cycle (0 or 1, as `accepted`).
-    pub fn trace<T: Tracer + ?Sized>(&self, now: u64, t: &mut T) {
-        let w = bits_for(u64::from(self.max_outstanding));
-        t.signal("queue", w, self.queue.len() as u64);
-        t.signal("in_flight", w, self.replies.len() as u64);
-        let issued = if self.cycle == now {
-            self.columns_now
-        } else {
-            0
-        };
-        t.signal("accepted", 1, u64::from(issued));
     }
 }
 
@@ -344,12 +414,13 @@ mod tests {
     use crate::rng::Rng;
 
     /// The shipped LPDDR4-3200 timings at 600 MHz (t_rcd 11, t_rp 11,
-    /// t_ras 26, t_cl 11, t_burst 6, controller 33, window 16) on 4 banks of
-    /// 256-byte rows: block `b` is in bank `b % 4`, row `b / 16`. So
-    /// `B = t_cl + t_burst + controller = 50`.
+    /// t_ras 26, t_cl 11, t_burst 6, controller 33, window 16) on one
+    /// channel of 4 banks of 256-byte rows: block `b` is in bank `b % 4`,
+    /// row `b / 16`. So `B = t_cl + t_burst + controller = 50`.
     fn cfg() -> DramConfig {
         DramConfig {
             model: DramModel::Banked,
+            channels: 1,
             banks: 4,
             row_bytes: 256,
             ..DramConfig::default()
@@ -535,12 +606,14 @@ mod tests {
     }
 
     /// Achieved read throughput (lines per cycle) at `offered` requests per
-    /// cycle to random blocks over 8 banks of 2 KiB rows (the shipped
-    /// geometry, almost every request a row miss or conflict), measured
-    /// over cycles 2000..20000.
-    fn throughput(offered: f64) -> (f64, f64) {
+    /// cycle to random blocks over `channels` channels of 8 banks of 2 KiB
+    /// rows (the shipped geometry, almost every request a row miss or
+    /// conflict), measured over cycles 2000..20000; and the data buses'
+    /// busy share.
+    fn throughput(channels: u32, offered: f64) -> (f64, f64) {
         let c = DramConfig {
             model: DramModel::Banked,
+            channels,
             ..DramConfig::default()
         };
         let mut d = BankedDram::new(&c, 64);
@@ -557,7 +630,7 @@ mod tests {
             }
         }
         let span = (end - warm) as f64;
-        let bus = d.stats().bus_busy_cycles as f64 / end as f64;
+        let bus = d.stats().bus_busy_cycles as f64 / (end * u64::from(channels)) as f64;
         (done as f64 / span, bus)
     }
 
@@ -573,7 +646,7 @@ mod tests {
         let line_rate = 1.0 / 6.0;
         let mut curve = Vec::new();
         for offered in [0.02, 0.05, 0.1, 0.13, 0.16, 0.2, 0.3, 0.5, 1.0] {
-            let (got, bus) = throughput(offered);
+            let (got, bus) = throughput(1, offered);
             eprintln!("offered {offered:.2} achieved {got:.4} bus busy {bus:.3}");
             assert!(got <= line_rate + 1e-9, "{offered}: {got}");
             if offered <= 0.1 {
@@ -587,5 +660,38 @@ mod tests {
             assert!((got - top[0]).abs() < 0.02 * line_rate, "flat: {top:?}");
         }
         assert!(curve.windows(2).all(|w| w[1] >= w[0] - 0.01 * line_rate));
+    }
+
+    #[test]
+    fn channels_have_their_own_buses_and_add_their_bandwidth() {
+        // Two channels: blocks 0 and 1 go to channels 0 and 1, both to bank
+        // 0 row 0 of their channel. Issued in the same cycle, neither waits
+        // for the other's bus: both answer as alone (61 cycles, closed bank).
+        let two = DramConfig {
+            channels: 2,
+            ..cfg()
+        };
+        let mut d = BankedDram::new(&two, 8);
+        assert_eq!(d.bank_row(0), (0, 0));
+        assert_eq!(d.bank_row(1), (4, 0), "bank 0 of channel 1");
+        assert_eq!(d.bank_row(2), (1, 0), "bank 1 of channel 0");
+        assert_eq!(d.bank_row(2 * 16), (0, 1), "row 1 of bank 0, channel 0");
+        assert_eq!(
+            run(&mut d, &[read(10, 0), read(10, 1)]),
+            vec![(71, 0), (71, 1)]
+        );
+        // On one channel the second waits for the bus (see
+        // same_bank_serializes_other_banks_overlap_on_one_bus).
+        let mut d = BankedDram::new(&cfg(), 8);
+        assert_eq!(
+            run(&mut d, &[read(10, 0), read(10, 1)]),
+            vec![(71, 0), (77, 1)]
+        );
+        // Saturated, four channels carry four times one channel's lines.
+        let (one, _) = throughput(1, 1.0);
+        let (four, bus) = throughput(4, 1.0);
+        assert!(four <= 4.0 / 6.0 + 1e-9, "{four}");
+        assert!(four > 3.5 * one, "one {one} four {four}");
+        assert!(bus > 0.85, "bus busy {bus}");
     }
 }

@@ -4,13 +4,15 @@
 //! - [`FixedDram`] (`"fixed"`, the default): an open-row DRAM with a fixed
 //!   row-hit / row-miss latency and `requests_per_cycle` acceptances a cycle;
 //!   no bank busy time and no data-bus limit.
-//! - [`BankedDram`] (`"banked"`): banks with row buffers (open-page policy),
-//!   ACTIVATE / PRECHARGE / READ / WRITE timing (tRCD, tRP, tRAS, CL), one
-//!   shared data bus (`t_burst` cycles a line), one command a cycle chosen
-//!   FR-FCFS-lite, plus a fixed controller latency.
+//! - [`BankedDram`] (`"banked"`): `channels` independent channels, each with
+//!   banks with row buffers (open-page policy), ACTIVATE / PRECHARGE / READ /
+//!   WRITE timing (tRCD, tRP, tRAS, CL), one data bus (`t_burst` cycles a
+//!   line) and one command a cycle chosen FR-FCFS-lite, plus a fixed
+//!   controller latency.
 //!
 //! Both map a block to bank `block % banks` and row
-//! `block / banks / (row_bytes / 64)`, take an L2 miss in cycle `m` into
+//! `block / banks / (row_bytes / 64)` (the banked model after taking the
+//! channel `block % channels` and dividing it out), take an L2 miss in cycle `m` into
 //! their FIFO from cycle `m + 1`, absorb colour-buffer writes
 //! ([`Dram::write`]) in the same FIFO, banks (and bus) without a reply, and
 //! answer every request in the cycle of the miss with ideal memory (ideal
