@@ -44,6 +44,12 @@ pub struct Inputs {
     #[arg(long, value_name = "MODE")]
     pub dispatch: Option<Dispatch>,
 
+    /// Change one configuration field, e.g. `--set l0.mshrs=24` or
+    /// `--set dram.model=fixed` (dotted TOML path = TOML value; repeatable,
+    /// applied in order after --config, before the other options).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<String>,
+
     /// No progress bar, even on a terminal.
     #[arg(long, short)]
     pub quiet: bool,
@@ -130,10 +136,11 @@ pub struct CompareArgs {
 
 /// Load the configuration named by the inputs.
 pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
-    match &inputs.config {
-        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string())),
-        None => Ok(MachineConfig::paper()),
-    }
+    let cfg = match &inputs.config {
+        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        None => MachineConfig::paper(),
+    };
+    wasp_sim::overrides::apply(&cfg, &inputs.set).map_err(|e| CliError::usage(e.to_string()))
 }
 
 /// Load (or generate) the trace named by the inputs.

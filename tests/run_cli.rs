@@ -475,3 +475,21 @@ fn the_json_names_the_dram_model_and_both_models_run() {
     assert_eq!(banked["warps"], fixed["warps"]);
     assert_ne!(banked["cycles"], fixed["cycles"]);
 }
+
+#[test]
+fn set_overrides_a_field_and_names_a_bad_one() {
+    let d = dir("set");
+    let trace = synth_trace(&d, 7);
+    let fixed = run_json(&["--trace", &trace, "--set", "dram.model=fixed"]);
+    assert_eq!(
+        fixed["dram_model"],
+        "fixed: row hit 50 / row miss 100 cycles"
+    );
+    let o = wasp(&["run", "-q", "--trace", &trace, "--set", "l0.mshrs=40"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("--set l0.mshrs=40") && e.contains("31"), "{e}");
+    let o = wasp(&["run", "-q", "--trace", &trace, "--set", "l0.msrhs=4"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("expected one of:"), "{}", stderr(&o));
+}

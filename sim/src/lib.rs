@@ -7,6 +7,7 @@ pub mod cost;
 pub mod example;
 pub mod gpu;
 pub mod mem;
+pub mod overrides;
 pub mod rng;
 pub mod scene;
 pub mod stats;
