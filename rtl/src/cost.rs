@@ -229,6 +229,84 @@ pub fn core_inventory(dp: &WaspDatapath, mesh: &Mesh, queue_capacity: u32) -> Ve
     v
 }
 
+/// What the measured-CF variant adds beyond the paper's WaSP: the CF meter's
+/// registers and update logic ([`crate::cf_meter`]), and a multiplier for a
+/// CF that is no longer a wired constant: five partial products `n << i`,
+/// each gated by bit `i` of the CF register (counted as a 2:1 mux per bit, an
+/// upper bound for an AND gate), summed by four 12-bit adders. The constant
+/// multiplier of [`datapath_inventory`] is then not needed:
+/// [`constant_multiplier_inventory`] lists what it replaces.
+pub fn measured_cf_inventory() -> Vec<Item> {
+    use crate::cf_meter::{ACC_BITS as METER_ACC_BITS, WINDOW_BITS};
+    let mut v = vec![
+        item(
+            "cf_meter",
+            "priority launches in the window",
+            Part::Register { bits: WINDOW_BITS },
+        ),
+        item(
+            "cf_meter",
+            "launch counter increment",
+            Part::Adder { bits: WINDOW_BITS },
+        ),
+        item(
+            "cf_meter",
+            "window end: launch counter all ones",
+            Part::ZeroDetect { bits: WINDOW_BITS },
+        ),
+        item(
+            "cf_meter",
+            "priority-warp misses in the window",
+            Part::Register {
+                bits: METER_ACC_BITS,
+            },
+        ),
+        item(
+            "cf_meter",
+            "miss accumulator add",
+            Part::Adder {
+                bits: METER_ACC_BITS,
+            },
+        ),
+        item(
+            "cf_meter",
+            "miss accumulator saturation",
+            Part::Mux2 {
+                bits: METER_ACC_BITS,
+            },
+        ),
+        item(
+            "cf_meter",
+            "CF register (quarters), loaded acc >> 2",
+            Part::Register { bits: 5 },
+        ),
+    ];
+    for i in 0..5 {
+        v.push(item(
+            "cf_multiplier",
+            format!("partial product n << {i} gated by CF bit {i}"),
+            Part::Mux2 { bits: ACC_BITS },
+        ));
+    }
+    for i in 1..5 {
+        v.push(item(
+            "cf_multiplier",
+            format!("variable shift-add, partial product {}", i + 1),
+            Part::Adder { bits: ACC_BITS },
+        ));
+    }
+    v
+}
+
+/// The constant-CF multiplier's adders of [`datapath_inventory`] (what the
+/// measured-CF variant's variable multiplier replaces).
+pub fn constant_multiplier_inventory(dp: &WaspDatapath) -> Vec<Item> {
+    datapath_inventory(dp)
+        .into_iter()
+        .filter(|i| i.block == "cf_multiplier")
+        .collect()
+}
+
 /// Gate-equivalent counting rules (one GE = one 2-input NAND).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct GateRules {
@@ -372,5 +450,22 @@ mod tests {
         assert!(!datapath_inventory(&dp)
             .iter()
             .any(|i| i.block == "cf_multiplier"));
+    }
+
+    #[test]
+    fn measured_cf_adds_the_meter_and_a_variable_multiplier() {
+        let items = measured_cf_inventory();
+        // 4-bit launch counter, 7-bit accumulator, 5-bit CF register.
+        assert_eq!(GateRules::register_bits(&items), 16);
+        let adders = items
+            .iter()
+            .filter(|i| i.block == "cf_multiplier" && matches!(i.part, Part::Adder { .. }))
+            .count();
+        assert_eq!(adders, 4, "five partial products need four adders");
+        // CF 2.5 (q = 0b01010) has two partial products: one adder replaced.
+        let replaced = constant_multiplier_inventory(&paper_datapath(4));
+        assert_eq!(replaced.len(), 1);
+        let r = GateRules::default();
+        assert!(r.total_ge(&items) > r.total_ge(&replaced));
     }
 }

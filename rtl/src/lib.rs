@@ -16,6 +16,7 @@
 //! | [`policy`] | Baseline, Fullpriority, FreeMSHR-N, WaSP |
 //! | [`scheduler::LaunchScheduler`] | all of the above, one per core |
 
+pub mod cf_meter;
 pub mod cost;
 pub mod datapath;
 pub mod free_mshr;

@@ -16,7 +16,9 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use wasp_rtl::cost::{core_inventory, GateRules, Item, Part};
+use wasp_rtl::cost::{
+    constant_multiplier_inventory, core_inventory, measured_cf_inventory, GateRules, Item, Part,
+};
 use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
 use wasp_rtl::policy::PolicySpec;
 use wasp_rtl::subset::Mesh;
@@ -67,6 +69,20 @@ pub struct Savings {
     pub ge_saved_per_core: f64,
 }
 
+/// The measured-CF variant (beyond the paper) against the report's WaSP.
+#[derive(Clone, Debug, Serialize)]
+pub struct VariantCost {
+    /// What the variant adds per core: the CF meter and the variable
+    /// multiplier.
+    pub added: Vec<CostedItem>,
+    /// What it no longer needs: the constant-CF multiplier's adders.
+    pub removed: Vec<CostedItem>,
+    /// Per-core flip-flops of the variant (WaSP's plus the meter's).
+    pub per_core_register_bits: u32,
+    /// Per-core GE of the variant.
+    pub per_core_ge: f64,
+}
+
 /// The whole report.
 #[derive(Clone, Debug, Serialize)]
 pub struct CostReport {
@@ -100,6 +116,8 @@ pub struct CostReport {
     pub yosys_note: Option<String>,
     /// What WaSP saves.
     pub savings: Savings,
+    /// The measured-CF variant's cost beside WaSP's.
+    pub measured_cf_variant: VariantCost,
 }
 
 /// Register-file parameters for the savings column.
@@ -247,19 +265,18 @@ pub fn report(
     };
     let mesh = Mesh::new(4).expect("mesh4");
     let items = core_inventory(&dp, &mesh, cfg.core.input_queue);
-    let per_core: Vec<CostedItem> = items
-        .into_iter()
-        .map(|item| CostedItem {
-            register_bits: match item.part {
-                Part::Register { bits } => bits,
-                _ => 0,
-            },
-            ge: rules.ge(&item.part),
-            item,
-        })
-        .collect();
+    let per_core = costed(items, &rules);
     let bits: u32 = per_core.iter().map(|c| c.register_bits).sum();
     let ge: f64 = per_core.iter().map(|c| c.ge).sum();
+    let added = costed(measured_cf_inventory(), &rules);
+    let removed = costed(constant_multiplier_inventory(&dp), &rules);
+    let variant = VariantCost {
+        per_core_register_bits: bits + added.iter().map(|c| c.register_bits).sum::<u32>(),
+        per_core_ge: ge + added.iter().map(|c| c.ge).sum::<f64>()
+            - removed.iter().map(|c| c.ge).sum::<f64>(),
+        added,
+        removed,
+    };
     let (_, sched) = cfg.scheduler_cache();
     let (ys, note) = if yosys {
         let params = [
@@ -302,7 +319,22 @@ pub fn report(
             ge_per_rf_bit: rf.ge_per_bit,
             ge_saved_per_core: (rf_bits * saved_warps) as f64 * rf.ge_per_bit,
         },
+        measured_cf_variant: variant,
     })
+}
+
+fn costed(items: Vec<Item>, rules: &GateRules) -> Vec<CostedItem> {
+    items
+        .into_iter()
+        .map(|item| CostedItem {
+            register_bits: match item.part {
+                Part::Register { bits } => bits,
+                _ => 0,
+            },
+            ge: rules.ge(&item.part),
+            item,
+        })
+        .collect()
 }
 
 impl CostReport {
@@ -321,18 +353,7 @@ impl CostReport {
             "block", "purpose", "part", "ff", "GE"
         );
         for c in &self.per_core {
-            let part = match c.item.part {
-                Part::Register { bits } => format!("register {bits}b"),
-                Part::Adder { bits } => format!("adder {bits}b"),
-                Part::Comparator { bits } => format!("comparator {bits}b"),
-                Part::ZeroDetect { bits } => format!("zero detect {bits} in"),
-                Part::Mux2 { bits } => format!("mux2 {bits}b"),
-            };
-            let _ = writeln!(
-                s,
-                "{:<22}{:<52}{:<22}{:>6}{:>9.1}",
-                c.item.block, c.item.purpose, part, c.register_bits, c.ge
-            );
+            item_line(&mut s, c, "");
         }
         let _ = writeln!(
             s,
@@ -405,8 +426,46 @@ impl CostReport {
             self.per_core_ge,
             v.ge_saved_per_core
         );
+        let m = &self.measured_cf_variant;
+        let _ = writeln!(
+            s,
+            "\n(d) the measured-CF variant (wasp-m, beyond the paper): CF measured per core by a meter"
+        );
+        for c in &m.added {
+            item_line(&mut s, c, "+ ");
+        }
+        for c in &m.removed {
+            item_line(&mut s, c, "- ");
+        }
+        let _ = writeln!(
+            s,
+            "per core: {} flip-flops, {:.0} GE ({:+.0} GE against WaSP with a constant CF {})",
+            m.per_core_register_bits,
+            m.per_core_ge,
+            m.per_core_ge - self.per_core_ge,
+            self.cf
+        );
         s
     }
+}
+
+fn item_line(s: &mut String, c: &CostedItem, sign: &str) {
+    let part = match c.item.part {
+        Part::Register { bits } => format!("register {bits}b"),
+        Part::Adder { bits } => format!("adder {bits}b"),
+        Part::Comparator { bits } => format!("comparator {bits}b"),
+        Part::ZeroDetect { bits } => format!("zero detect {bits} in"),
+        Part::Mux2 { bits } => format!("mux2 {bits}b"),
+    };
+    let _ = writeln!(
+        s,
+        "{:<22}{:<52}{:<22}{:>6}{:>9.1}",
+        format!("{sign}{}", c.item.block),
+        c.item.purpose,
+        part,
+        c.register_bits,
+        c.ge
+    );
 }
 
 #[cfg(test)]
@@ -452,5 +511,12 @@ mod tests {
         let t = r.to_table();
         assert!(t.contains("free_mshrs") && t.contains("nonblocked_priority"));
         assert!(t.contains("no Yosys numbers"));
+        // The measured-CF variant: 16 more flip-flops (4 + 7 + 5), the
+        // constant multiplier's one adder (CF 2.5) replaced by four.
+        let m = &r.measured_cf_variant;
+        assert_eq!(m.per_core_register_bits, 36 + 16);
+        assert_eq!(m.removed.len(), 1);
+        assert!(m.per_core_ge > r.per_core_ge);
+        assert!(t.contains("(d) the measured-CF variant") && t.contains("+ cf_meter"));
     }
 }
