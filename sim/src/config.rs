@@ -48,8 +48,19 @@ pub struct CoreConfig {
     /// Cycles from issuing an ALU instruction to the warp's next issue.
     pub alu_latency: u32,
     /// Cycles the texture unit needs after the last block of a texture
-    /// instruction arrives (address generation and filtering).
+    /// instruction arrives (address generation and filtering): its
+    /// pipeline latency, which [`CoreConfig::filter_timing`] combines with
+    /// the filter's rate.
     pub texture_latency: u32,
+    /// Cycles the core's one filter unit is busy with a bilinear (or
+    /// nearest) quad-sample: its issue interval (0: no rate limit).
+    pub filter_cycles_bilinear: u32,
+    /// Cycles the filter unit is busy with a trilinear quad-sample (two
+    /// mip levels; 0: no rate limit).
+    pub filter_cycles_trilinear: u32,
+    /// How the filter's cycles and `texture_latency` add up (see
+    /// [`FilterTiming`]).
+    pub filter_timing: FilterTiming,
     /// Texture instructions the LDST unit can hold (its queue).
     pub ldst_queue: u32,
     /// 32-bit registers per thread; a warp (a quad) has 4 threads. Sizes the
@@ -89,6 +100,38 @@ impl std::str::FromStr for Dispatch {
                 "unknown dispatch `{s}` (expected shared-tile or per-core-tile)"
             )),
         }
+    }
+}
+
+/// How a texture instruction's filter pass and the texture unit's
+/// pipeline latency (`core.texture_latency`) add up. The core has one
+/// filter unit, which serves texture instructions in the order their last
+/// block arrives: an instruction whose data arrives at cycle `a` starts
+/// filtering at `s = max(a, filter free)` and holds the filter for its
+/// `f` filter cycles (bilinear or trilinear), so the filter is free again
+/// at `s + f`. With `L = max(texture_latency, 1)` the warp wakes at:
+///
+/// * `overlap`: `max(s + f, a + L)`: the filter pass is part of the
+///   pipeline latency, so an idle filter adds nothing until `f > L`; only a
+///   busy filter (queueing) or a long pass delays the warp;
+/// * `serial`: `s + f + L`: the latency comes after the filter pass.
+///
+/// With both filter cycles 0 the two are the same: `a + L`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FilterTiming {
+    /// `max(s + f, a + L)` (wasp).
+    Overlap,
+    /// `s + f + L`.
+    Serial,
+}
+
+impl std::fmt::Display for FilterTiming {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            FilterTiming::Overlap => "overlap",
+            FilterTiming::Serial => "serial",
+        })
     }
 }
 
@@ -252,6 +295,8 @@ pub mod limits {
     pub const MAX_QUEUE: u32 = 4096;
     /// Largest latency of any fixed pipeline stage.
     pub const MAX_LATENCY: u32 = 10_000;
+    /// Most filter cycles per quad-sample.
+    pub const MAX_FILTER_CYCLES: u32 = 1_000;
 }
 
 impl MachineConfig {
@@ -422,6 +467,20 @@ impl MachineConfig {
             0,
             limits::MAX_LATENCY as u64,
             "",
+        )?;
+        range(
+            "core.filter_cycles_bilinear",
+            self.core.filter_cycles_bilinear as u64,
+            0,
+            limits::MAX_FILTER_CYCLES as u64,
+            " (0: no filter rate limit)",
+        )?;
+        range(
+            "core.filter_cycles_trilinear",
+            self.core.filter_cycles_trilinear as u64,
+            0,
+            limits::MAX_FILTER_CYCLES as u64,
+            " (0: no filter rate limit)",
         )?;
         range("core.ldst_queue", self.core.ldst_queue as u64, 1, 1024, "")?;
         range(

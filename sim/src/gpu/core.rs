@@ -20,7 +20,11 @@
 //!    MSHRs full).
 //!
 //! Then the memory system ticks, and (phase 2) completions arrive: a warp
-//! whose last block arrived wakes `texture_latency` cycles later. The
+//! whose last block arrived enters the core's one filter unit, in order of
+//! arrival, and wakes when its filter pass and the texture latency are
+//! done (`core.filter_timing`: `max(s + f, a + L)` or `s + f + L` for
+//! arrival `a`, filter start `s = max(a, filter free)`, filter cycles `f`
+//! and `L = max(texture_latency, 1)`; with no filter cycles, `a + L`). The
 //! scheduler's registers are clocked with the cycle's MSHR and priority-warp
 //! events.
 //!
@@ -29,6 +33,7 @@
 //! its data arrives. A blocked warp cannot issue: each warp's instructions
 //! depend on the previous one, so nothing else of it is fetched meanwhile.
 
+use crate::config::FilterTiming;
 use crate::gpu::mask::SlotMask;
 use crate::gpu::raster::RasterCursor;
 use crate::gpu::SimError;
@@ -75,6 +80,8 @@ struct Warp {
     pending: u32,
     /// Blocks of the current texture instruction (set when it is decoded).
     tex_len: u32,
+    /// The current texture instruction is trilinear (set when decoded).
+    tex_tri: bool,
     /// Index in the tile's block accesses of the next texture
     /// instruction's first block.
     blk: u32,
@@ -133,6 +140,14 @@ pub struct CoreStats {
     pub instructions: u64,
     /// Texture instructions issued.
     pub tex_instructions: u64,
+    /// Of those, trilinear ones.
+    pub tri_tex_instructions: u64,
+    /// Cycles the filter unit was busy: the sum of the filter cycles of
+    /// the texture instructions it served.
+    pub filter_busy_cycles: u64,
+    /// Sum over texture instructions of the cycles their data waited for
+    /// the filter unit (filter start - last block's arrival).
+    pub filter_wait_cycles: u64,
     /// Cycles with a free slot and a waiting warp but no launch, because
     /// the policy held a priority warp back (WaSP: Real_freeMSHRs too low).
     pub held_cycles: u64,
@@ -173,6 +188,12 @@ pub struct ShaderCore {
     width: u32,
     alu_latency: u64,
     texture_latency: u64,
+    /// Filter cycles per quad-sample, [bilinear, trilinear].
+    filter_cycles: [u64; 2],
+    /// The filter pass overlaps the texture latency (else precedes it).
+    filter_overlap: bool,
+    /// First cycle the filter unit is free.
+    filter_free: u64,
     ldst_cap: usize,
     raster_rate: u32,
     sched: LaunchScheduler<u32>,
@@ -246,6 +267,12 @@ pub struct CoreParams {
     pub alu_latency: u32,
     /// Texture unit latency after the data.
     pub texture_latency: u32,
+    /// Filter cycles per bilinear quad-sample.
+    pub filter_cycles_bilinear: u32,
+    /// Filter cycles per trilinear quad-sample.
+    pub filter_cycles_trilinear: u32,
+    /// How the filter pass and the texture latency add up.
+    pub filter_timing: FilterTiming,
     /// LDST queue entries.
     pub ldst_queue: u32,
     /// MSHRs of the scheduler-level cache.
@@ -271,6 +298,12 @@ impl ShaderCore {
             width: p.width,
             alu_latency: p.alu_latency as u64,
             texture_latency: p.texture_latency as u64,
+            filter_cycles: [
+                u64::from(p.filter_cycles_bilinear),
+                u64::from(p.filter_cycles_trilinear),
+            ],
+            filter_overlap: p.filter_timing == FilterTiming::Overlap,
+            filter_free: 0,
             ldst_cap: p.ldst_queue as usize,
             raster_rate: p.raster_rate,
             sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy),
@@ -466,8 +499,9 @@ impl ShaderCore {
                         self.alu_left[s % MAX_SLOTS] = n;
                         ready |= M::bit(s);
                     }
-                    OpKind::Tex(len) => {
+                    OpKind::Tex { len, tri } => {
                         w.tex_len = len;
+                        w.tex_tri = tri;
                         ready_tex |= M::bit(s);
                     }
                 }
@@ -552,6 +586,7 @@ impl ShaderCore {
                     blocked: false,
                     pending: 0,
                     tex_len: 0,
+                    tex_tri: false,
                     blk: span.block_start,
                     tex_start: 0,
                     lat_sum: 0,
@@ -658,7 +693,10 @@ impl ShaderCore {
             let end = w.blk + w.tex_len;
             debug_assert_eq!(
                 tile.op_kind(w.op as usize - 1),
-                Some(OpKind::Tex(w.tex_len)),
+                Some(OpKind::Tex {
+                    len: w.tex_len,
+                    tri: w.tex_tri
+                }),
                 "ready_tex warps wait on a texture instruction"
             );
             w.pending = w.tex_len;
@@ -677,6 +715,7 @@ impl ShaderCore {
             w.blk = end;
             self.ready_tex &= !(1u128 << s);
             self.stats.tex_instructions += 1;
+            self.stats.tri_tex_instructions += u64::from(w.tex_tri);
         }
     }
 
@@ -745,7 +784,19 @@ impl ShaderCore {
                         self.prio.unblocked += 1;
                     }
                 }
-                let at = now + self.texture_latency.max(1);
+                // The filter unit serves the instructions in order of data
+                // arrival (completion order within a cycle).
+                let f = self.filter_cycles[w.tex_tri as usize];
+                let start = now.max(self.filter_free);
+                self.filter_free = start + f;
+                self.stats.filter_busy_cycles += f;
+                self.stats.filter_wait_cycles += start - now;
+                let lat = self.texture_latency.max(1);
+                let at = if self.filter_overlap {
+                    (start + f).max(now + lat)
+                } else {
+                    start + f + lat
+                };
                 self.schedule(now, at, s);
             }
         }

@@ -152,8 +152,11 @@ use std::fmt;
 /// The magic word on line 1.
 pub const MAGIC: &str = "wasp-trace";
 /// The format version this module writes (and reads).
-pub const FORMAT_VERSION: u32 = 3;
-/// The previous version, which this module also reads: no `z` records.
+pub const FORMAT_VERSION: u32 = 4;
+/// The previous version, which this module also reads: no trilinear
+/// marker (`T`), every texture instruction taken as bilinear.
+pub const FORMAT_VERSION_3: u32 = 3;
+/// The version before, which this module also reads: no `z` records.
 pub const FORMAT_VERSION_2: u32 = 2;
 /// The older version this module also reads: one quad per position, in
 /// scanline order.
@@ -268,18 +271,42 @@ fn check_text(s: &str, field: TextField) -> Result<(), Problem> {
 pub enum Instr<'a> {
     /// A run of this many ALU instructions (at least 1).
     Alu(u32),
-    /// One texture instruction and the distinct 64-byte block numbers it
-    /// touches (at least 1), in request order.
+    /// One texture instruction whose sample is bilinear (or nearest), and
+    /// the distinct 64-byte block numbers it touches (at least 1), in
+    /// request order: `t` in the text.
     Tex(&'a [u64]),
+    /// One texture instruction whose sample is trilinear (it filters two
+    /// mip levels), and its blocks as for [`Instr::Tex`]: `T` in the text
+    /// (format 4).
+    TriTex(&'a [u64]),
 }
 
+impl<'a> Instr<'a> {
+    /// The blocks of a texture instruction (`None` for an ALU run).
+    pub fn blocks(&self) -> Option<&'a [u64]> {
+        match *self {
+            Instr::Alu(_) => None,
+            Instr::Tex(b) | Instr::TriTex(b) => Some(b),
+        }
+    }
+
+    /// Whether this is a trilinear texture instruction.
+    pub fn is_trilinear(&self) -> bool {
+        matches!(self, Instr::TriTex(_))
+    }
+}
+
+/// One entry of a tile's instruction pool: 12 bytes whichever the kind
+/// (the trilinear flag lies in the padding beside the tag).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Op {
     Alu(u32),
-    /// Blocks `start..start + len` of the tile's block pool.
+    /// Blocks `start..start + len` of the tile's block pool; `tri`: the
+    /// sample is trilinear.
     Tex {
         start: u32,
         len: u32,
+        tri: bool,
     },
 }
 
@@ -290,8 +317,14 @@ enum Op {
 pub(crate) enum OpKind {
     /// A run of this many ALU instructions.
     Alu(u32),
-    /// A texture instruction touching this many blocks.
-    Tex(u32),
+    /// A texture instruction touching `len` blocks; `tri`: its sample is
+    /// trilinear.
+    Tex {
+        /// Blocks it touches.
+        len: u32,
+        /// Whether it is trilinear.
+        tri: bool,
+    },
 }
 
 /// Where a quad's program and block accesses lie in its tile's pools
@@ -415,7 +448,7 @@ impl Tile {
     pub(crate) fn op_kind(&self, i: usize) -> Option<OpKind> {
         self.ops.get(i).map(|&op| match op {
             Op::Alu(n) => OpKind::Alu(n),
-            Op::Tex { len, .. } => OpKind::Tex(len),
+            Op::Tex { len, tri, .. } => OpKind::Tex { len, tri },
         })
     }
 
@@ -482,6 +515,14 @@ impl Tile {
         self.ops
             .iter()
             .filter(|op| matches!(op, Op::Tex { .. }))
+            .count() as u64
+    }
+
+    /// Trilinear texture instructions of all quads.
+    pub fn trilinear_count(&self) -> u64 {
+        self.ops
+            .iter()
+            .filter(|op| matches!(op, Op::Tex { tri: true, .. }))
             .count() as u64
     }
 
@@ -562,9 +603,14 @@ impl<'a> QuadRef<'a> {
     fn decode(&self, op: Op) -> Instr<'a> {
         match op {
             Op::Alu(n) => Instr::Alu(n),
-            Op::Tex { start, len } => {
+            Op::Tex { start, len, tri } => {
                 let s = start as usize;
-                Instr::Tex(&self.tile.blocks[s..s + len as usize])
+                let blocks = &self.tile.blocks[s..s + len as usize];
+                if tri {
+                    Instr::TriTex(blocks)
+                } else {
+                    Instr::Tex(blocks)
+                }
             }
         }
     }
@@ -603,6 +649,14 @@ impl<'a> QuadRef<'a> {
         self.ops()
             .iter()
             .filter(|op| matches!(op, Op::Tex { .. }))
+            .count()
+    }
+
+    /// Number of trilinear texture instructions.
+    pub fn trilinear_count(&self) -> usize {
+        self.ops()
+            .iter()
+            .filter(|op| matches!(op, Op::Tex { tri: true, .. }))
             .count()
     }
 
@@ -712,6 +766,11 @@ impl Trace {
     /// Texture instructions in the whole trace.
     pub fn tex_count(&self) -> u64 {
         self.tiles.iter().map(Tile::tex_count).sum()
+    }
+
+    /// Trilinear texture instructions in the whole trace.
+    pub fn trilinear_count(&self) -> u64 {
+        self.tiles.iter().map(Tile::trilinear_count).sum()
     }
 
     /// Adds a header note (e.g. provenance or measured figures).
@@ -960,8 +1019,21 @@ impl TraceBuilder {
         Ok(())
     }
 
-    /// Appends a texture instruction touching `blocks` to the open quad.
+    /// Appends a bilinear (or nearest) texture instruction touching
+    /// `blocks` to the open quad.
     pub fn tex(&mut self, blocks: &[u64]) -> Result<(), Problem> {
+        self.tex_filtered(blocks, false)
+    }
+
+    /// Appends a trilinear texture instruction touching `blocks` to the
+    /// open quad.
+    pub fn tex_trilinear(&mut self, blocks: &[u64]) -> Result<(), Problem> {
+        self.tex_filtered(blocks, true)
+    }
+
+    /// Appends a texture instruction touching `blocks` to the open quad,
+    /// trilinear if `trilinear`.
+    pub fn tex_filtered(&mut self, blocks: &[u64], trilinear: bool) -> Result<(), Problem> {
         if blocks.is_empty() {
             return Err(Problem::TexNoBlock);
         }
@@ -982,6 +1054,7 @@ impl TraceBuilder {
         tile.ops.push(Op::Tex {
             start,
             len: blocks.len() as u32,
+            tri: trilinear,
         });
         let q = tile.quads.last_mut().expect("open quad");
         q.op_len += 1;
@@ -994,6 +1067,7 @@ impl TraceBuilder {
         match instr {
             Instr::Alu(n) => self.alu(n),
             Instr::Tex(b) => self.tex(b),
+            Instr::TriTex(b) => self.tex_trilinear(b),
         }
     }
 
@@ -1149,11 +1223,19 @@ pub enum Problem {
     AdjacentRejected,
     /// A `z` line in a trace of a version without them.
     RejectedInOldVersion(u32),
+    /// A trilinear texture instruction (`T...`) in a trace of a version
+    /// without them (before 4).
+    TrilinearInOldVersion {
+        /// The file's format version.
+        version: u32,
+        /// The token.
+        token: String,
+    },
     /// The input is not UTF-8.
     InvalidUtf8,
     /// A line holds a control character other than tab.
     ControlCharacter,
-    /// Line 1 is not `wasp-trace 3`, `wasp-trace 2` or `wasp-trace 1`.
+    /// Line 1 is not `wasp-trace 4`, `3`, `2` or `1`.
     BadMagic(String),
     /// Line 1 names another format version.
     UnsupportedVersion(String),
@@ -1343,7 +1425,8 @@ impl fmt::Display for Problem {
             EmptyInput => write!(
                 f,
                 "empty input (expected `{MAGIC} {FORMAT_VERSION}`, `{MAGIC} \
-                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)"
+                 {FORMAT_VERSION_3}`, `{MAGIC} {FORMAT_VERSION_2}` or `{MAGIC} \
+                 {FORMAT_VERSION_1}` on line 1)"
             ),
             InvalidUtf8 => write!(f, "invalid UTF-8 (expected UTF-8 text)"),
             ZeroRejected => write!(f, "0 rejected quads (expected `z N` with N at least 1)"),
@@ -1362,7 +1445,14 @@ impl fmt::Display for Problem {
             RejectedInOldVersion(v) => write!(
                 f,
                 "`z` line in a format-{v} trace (expected `z` lines only from format \
-                 {FORMAT_VERSION} on: write `{MAGIC} {FORMAT_VERSION}` on line 1)"
+                 {FORMAT_VERSION_3} on: write `{MAGIC} {FORMAT_VERSION}` on line 1)"
+            ),
+            TrilinearInOldVersion { version, token } => write!(
+                f,
+                "trilinear texture instruction `{}` in a format-{version} trace \
+                 (expected `T` only from format {FORMAT_VERSION} on: write `t`, or \
+                 `{MAGIC} {FORMAT_VERSION}` on line 1)",
+                clip(token)
             ),
             ControlCharacter => write!(
                 f,
@@ -1371,13 +1461,14 @@ impl fmt::Display for Problem {
             BadMagic(s) => write!(
                 f,
                 "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION}`, `{MAGIC} \
-                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)",
+                 {FORMAT_VERSION_3}`, `{MAGIC} {FORMAT_VERSION_2}` or `{MAGIC} \
+                 {FORMAT_VERSION_1}` on line 1)",
                 clip(s)
             ),
             UnsupportedVersion(v) => write!(
                 f,
                 "unsupported format version `{}` (expected {FORMAT_VERSION}, \
-                 {FORMAT_VERSION_2} or {FORMAT_VERSION_1})",
+                 {FORMAT_VERSION_3}, {FORMAT_VERSION_2} or {FORMAT_VERSION_1})",
                 clip(v)
             ),
             MissingHeader { missing, found } => write!(
@@ -1478,7 +1569,7 @@ impl fmt::Display for Problem {
             DuplicateQuad { x, y } => write!(
                 f,
                 "quad {x} {y} appears twice in the tile (expected each quad at most once in \
-                 format {FORMAT_VERSION_1}; formats {FORMAT_VERSION_2} and {FORMAT_VERSION} \
+                 format {FORMAT_VERSION_1}; formats {FORMAT_VERSION_2} to {FORMAT_VERSION} \
                  allow repeats)"
             ),
             QuadOutOfOrder {
@@ -1493,7 +1584,8 @@ impl fmt::Display for Problem {
             ),
             EmptyQuad { x, y } => write!(
                 f,
-                "quad {x} {y} has no instruction (expected at least one `aN` or `tB,...`)"
+                "quad {x} {y} has no instruction (expected at least one `aN`, `tB,...` or \
+                 `TB,...`)"
             ),
             ZeroAlu => write!(f, "ALU run of 0 (expected a run of at least 1)"),
             AluRunTooLong(n) => {
@@ -1506,12 +1598,13 @@ impl fmt::Display for Problem {
             ),
             BadInstr(s) => write!(
                 f,
-                "bad instruction `{}` (expected `aN` or `tB,B,...`)",
+                "bad instruction `{}` (expected `aN`, `tB,B,...` or `TB,B,...`)",
                 clip(s)
             ),
             TexNoBlock => write!(
                 f,
-                "texture instruction without blocks (expected `t` and hex block numbers)"
+                "texture instruction without blocks (expected `t` or `T` and hex block \
+                 numbers)"
             ),
             EmptyBlockEntry(s) => write!(
                 f,
