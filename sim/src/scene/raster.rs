@@ -829,7 +829,9 @@ struct TileBuf {
     depth: Vec<f32>,
     colour: Vec<[f32; 4]>,
     frags: Vec<Frag>,
-    ranges: Vec<(u32, u32)>,
+    /// Per texture instruction: its blocks in `pool` (start, length) and
+    /// whether it is trilinear (it read two mip levels).
+    ranges: Vec<(u32, u32, bool)>,
     pool: Vec<u64>,
     scratch: Vec<u64>,
     covered: u64,
@@ -1268,7 +1270,13 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                         if k < lambdas.len() {
                             lambdas[k] = lambda;
                         }
-                        b.ranges.push((b.pool.len() as u32, b.scratch.len() as u32));
+                        // Trilinear in the trace: the sample filtered two mip
+                        // levels (a trilinear sample that magnifies or sits
+                        // at the last level reads one level: one bilinear
+                        // pass).
+                        let tri = ctx.textures.reads_two_levels(smp, lambda);
+                        b.ranges
+                            .push((b.pool.len() as u32, b.scratch.len() as u32, tri));
                         b.pool.extend_from_slice(&b.scratch);
                     }
                     let frag = b.frags.len() as u32;
@@ -1375,9 +1383,9 @@ fn build_tile(
                 ShaderOp::Alu(0) => {}
                 ShaderOp::Alu(n) => builder.alu(*n)?,
                 ShaderOp::Tex(_) => {
-                    let (start, len) = b.ranges[r];
+                    let (start, len, tri) = b.ranges[r];
                     r += 1;
-                    builder.tex(&b.pool[start as usize..(start + len) as usize])?;
+                    builder.tex_filtered(&b.pool[start as usize..(start + len) as usize], tri)?;
                 }
             }
         }

@@ -2,7 +2,7 @@
 //! Early-Z rejected between them, and the instructions each shaded quad's
 //! shader executes — the input of the cycle model.
 //!
-//! # Format `wasp-trace 3` (and `wasp-trace 2`, `wasp-trace 1`)
+//! # Format `wasp-trace 4` (and `wasp-trace 3`, `2`, `1`)
 //!
 //! (The same text is in `tests/traces/FORMAT.md`; a test checks that the two
 //! agree.)
@@ -10,12 +10,12 @@
 //! ## Example
 //!
 //! ```text
-//! wasp-trace 3
+//! wasp-trace 4
 //! # free comment lines
 //! workload synthetic:texmap scale=1 mem=0.15 seed=7
 //! frame 1960 768 tile 64
 //! tile 0 0
-//! q 0 0 a3 t1a40,1a41 a2 t1a40
+//! q 0 0 a3 t1a40,1a41 a2 T1a40,1b20
 //! q 1 0 a5
 //! z 12
 //! q 0 0 a2 t2b00
@@ -31,7 +31,8 @@
 //!
 //! The first warp, at quad (0, 0) of tile (0, 0), runs 3 ALU instructions, a
 //! texture instruction touching blocks 0x1a40 and 0x1a41, 2 ALU instructions,
-//! and a texture instruction touching block 0x1a40. After the second warp the
+//! and a trilinear texture instruction touching blocks 0x1a40 and 0x1b20 (two
+//! mip levels). After the second warp the
 //! rasterizer produced 12 quads that Early-Z rejected, then the third warp, a
 //! second fragment at position (0, 0) of a primitive drawn later (overdraw):
 //! its own warp with its own program. 3 more rejected quads end the tile.
@@ -44,9 +45,9 @@
 //! start and end of a line are ignored. No line may hold any other control
 //! character.
 //!
-//! * **Line 1** is exactly `wasp-trace 3` (or, below, `wasp-trace 2` or
-//!   `wasp-trace 1`): the magic word and the format version. A reader
-//!   rejects any other version.
+//! * **Line 1** is exactly `wasp-trace 4` (or, below, `wasp-trace 3`,
+//!   `wasp-trace 2` or `wasp-trace 1`): the magic word and the format
+//!   version. A reader rejects any other version.
 //! * **Comments**: a line whose first non-blank character is `#` is a comment;
 //!   blank lines are ignored. Both may appear anywhere after line 1. Comments
 //!   before the `frame` line are the header *notes*: a reader keeps their text
@@ -77,7 +78,7 @@
 //!   (overdraw). A reader checks no order: a record does not name its
 //!   primitive, and any sequence of positions is the rasterization order of
 //!   some sequence of primitives.
-//! * **Rejected quads** (version 3): `z N` — N quads (decimal, 1 to 2^31-1)
+//! * **Rejected quads** (versions 3 and 4): `z N` — N quads (decimal, 1 to 2^31-1)
 //!   that the rasterizer produced at this point of the tile's rasterization
 //!   order (after the `q` line before it, before the `q` line after it) and
 //!   Early-Z rejected: they launch no warp but cost the rasterizer a slot
@@ -93,24 +94,34 @@
 //!     touches, as block numbers (byte address / 64) in hex (1 to 16 digits,
 //!     either case, no `0x`; writers use lowercase without leading zeros),
 //!     comma-separated without blanks: 1 to 1024 blocks, distinct within the
-//!     instruction, in the order the texture unit requests them.
+//!     instruction, in the order the texture unit requests them. Its sample
+//!     is filtered bilinear or nearest: one filter pass.
+//!   * `TB,B,...` (version 4) — the same for a texture instruction whose
+//!     sample is trilinear: it filters two mip levels, two filter passes. The
+//!     front end writes `T` exactly when the sample read two levels (a
+//!     trilinear sample that magnifies, or minifies to the last level, reads
+//!     one level and is written `t`).
 //! * Decimal numbers are ASCII digits without sign and must fit their range.
 //!
-//! **Version 2** (`wasp-trace 2`) is the same without `z` lines: a reader
+//! **Version 3** (`wasp-trace 3`) is version 4 without `T` instructions: it
+//! does not say which samples are trilinear, and a reader takes every
+//! texture instruction of a version-3 (or older) file as bilinear. A reader
+//! rejects a `T` instruction in a version-3, -2 or -1 file, naming the
+//! version and the token. Every version-3 trace is a version-4 trace, and a
+//! writer always writes version 4: reading an older file and writing it back
+//! changes line 1 only (for a file in the writer's canonical form).
+//!
+//! **Version 2** (`wasp-trace 2`) is version 3 without `z` lines: a reader
 //! rejects a `z` line in a version-2 (or version-1) file, naming the version.
 //! An older trace records no rejected quad, so its rasterizer cost counts
-//! surviving quads only. Every version-2 trace is a version-3 trace, and a
-//! writer always writes version 3: reading a version-2 file and writing it
-//! back changes line 1 only (for a file in the writer's canonical form).
+//! surviving quads only. Every version-2 trace is a version-3 trace.
 //!
 //! **Version 1** (`wasp-trace 1`) is version 2 except that the quads of a
 //! tile appear in scanline order, strictly increasing in (Y, X), so each
 //! position at most once: fragments at one position had to be merged into one
 //! warp running their programs one after the other. A reader accepts version
 //! 1 with this rule enforced (errors `quad X Y appears twice in the tile` and
-//! `quad X Y after quad X' Y'`). Every version-1 trace is a version-3 trace,
-//! so a writer always writes version 3: reading a version-1 file and writing
-//! it back changes line 1 only (for a file in the writer's canonical form).
+//! `quad X Y after quad X' Y'`). Every version-1 trace is a version-2 trace.
 //!
 //! A reader rejects any other input with an error `file:line: what was wrong
 //! (expected what)`, for example
@@ -125,7 +136,8 @@
 //!
 //! [`Trace`] holds a [`TraceHeader`] and the [`Tile`]s in file order. A tile
 //! keeps its quads, instructions and block numbers in three flat vectors (no
-//! allocation per quad or instruction), so a tile is self-contained and a
+//! allocation per quad or instruction; a texture instruction's trilinear
+//! flag shares its 12-byte entry), so a tile is self-contained and a
 //! full 1960x768 frame (about 376k quad positions, a few million fragments
 //! with overdraw) stays small. Its Early-Z-rejected quads take one `u32` per
 //! quad, and only in a tile with rejections before some quad, plus one for
@@ -385,7 +397,7 @@ impl Tile {
 
     /// Number of quads (warps) in the tile. With overdraw several warps
     /// share a quad position. A tile whose every quad Early-Z rejected
-    /// (format 3) has none.
+    /// (format 3 or 4) has none.
     pub fn quad_count(&self) -> usize {
         self.quads.len()
     }
@@ -793,8 +805,8 @@ impl Trace {
 }
 
 /// Builds a [`Trace`] step by step, enforcing every rule of the format
-/// (version 3: quad positions may repeat, in any order, with rejected
-/// quads among them).
+/// (version 4: quad positions may repeat, in any order, with rejected
+/// quads among them, and texture instructions bilinear or trilinear).
 ///
 /// A call that returns an error changes nothing, so a caller may report it
 /// and stop. `begin_quad` closes the previous quad, `end_tile` the tile.

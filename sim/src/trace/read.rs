@@ -685,6 +685,18 @@ mod tests {
         }
     }
 
+    /// `T` lists read as `t` lists, marked trilinear.
+    fn blocks_fast_tri(list: &str) -> Result<Vec<u64>, Problem> {
+        let mut blocks = Vec::new();
+        match instr_token(&format!("T{list}"), &mut blocks)? {
+            Tok::Tex { len: n, tri: true } => {
+                assert_eq!(blocks.len(), n);
+                Ok(blocks)
+            }
+            _ => unreachable!("a `T` token"),
+        }
+    }
+
     #[test]
     fn line_ends_and_control_characters_at_the_edges() {
         // (The reader refuses an empty input before it looks for lines.)
@@ -783,6 +795,15 @@ mod tests {
         #[test]
         fn block_lists_read_as_the_plain_way(list in "[0-9a-fA-Fg,]{0,40}") {
             prop_assert_eq!(blocks_fast(&list), blocks_reference(&list));
+            // A `T` list reads as the `t` list, errors naming the `T` token.
+            let tri = blocks_fast_tri(&list);
+            match blocks_fast(&list) {
+                Err(Problem::EmptyBlockEntry(tok)) => prop_assert_eq!(
+                    tri,
+                    Err(Problem::EmptyBlockEntry(tok.replacen('t', "T", 1)))
+                ),
+                plain => prop_assert_eq!(tri, plain),
+            }
         }
     }
 }

@@ -37,7 +37,7 @@
 //!
 //! A ratio whose denominator is zero is 0, except the footprint ratio of a
 //! tile without blocks, which is 1 (the empty footprint is fully covered).
-//! So a tile without warps (format 3: every quad it rasterized Early-Z
+//! So a tile without warps (format 3 or 4: every quad it rasterized Early-Z
 //! rejected) has every ratio 0 and footprint ratio 1, never NaN.
 //!
 //! Over a trace: the memory-instruction ratio pools all instructions (sum of
