@@ -649,6 +649,92 @@ mod tests {
     }
 
     #[test]
+    fn filter_fields_are_required_and_checked() {
+        let p = MachineConfig::paper();
+        assert_eq!(
+            (
+                p.core.filter_cycles_bilinear,
+                p.core.filter_cycles_trilinear,
+                p.core.filter_timing
+            ),
+            (1, 2, FilterTiming::Overlap)
+        );
+        let w2 = MachineConfig::paper_width2();
+        assert_eq!(
+            (
+                w2.core.filter_cycles_bilinear,
+                w2.core.filter_cycles_trilinear,
+                w2.core.filter_timing
+            ),
+            (1, 2, FilterTiming::Overlap)
+        );
+        for key in [
+            "filter_cycles_bilinear = 1",
+            "filter_cycles_trilinear = 2",
+            "filter_timing = \"overlap\"",
+        ] {
+            let name = key.split(' ').next().unwrap();
+            assert!(PAPER_TOML.contains(key), "fixture: {key}");
+            let e = with(|s| s.replacen(key, "", 1)).unwrap_err();
+            assert!(
+                e.message.contains(&format!("missing field `{name}`")),
+                "{e}"
+            );
+        }
+        for (from, to, msg) in [
+            (
+                "filter_cycles_bilinear = 1",
+                "filter_cycles_bilinear = 1001",
+                "core.filter_cycles_bilinear = 1001",
+            ),
+            (
+                "filter_cycles_trilinear = 2",
+                "filter_cycles_trilinear = 5000",
+                "core.filter_cycles_trilinear = 5000",
+            ),
+            (
+                "filter_cycles_trilinear = 2",
+                "filter_cycles_trilinear = -1",
+                "filter_cycles_trilinear",
+            ),
+            (
+                "filter_timing = \"overlap\"",
+                "filter_timing = \"after\"",
+                "unknown variant `after`",
+            ),
+        ] {
+            let e = with(|s| s.replacen(from, to, 1)).unwrap_err();
+            assert!(e.message.contains(msg), "{to}: {e}");
+        }
+        let e = with(|s| {
+            s.replacen(
+                "filter_cycles_bilinear = 1",
+                "filter_cycles_bilinear = 1001",
+                1,
+            )
+        })
+        .unwrap_err();
+        assert!(e.message.contains("1000"), "names the limit: {e}");
+        // 0 and the serial timing are allowed.
+        let c = with(|s| {
+            s.replacen(
+                "filter_cycles_bilinear = 1",
+                "filter_cycles_bilinear = 0",
+                1,
+            )
+            .replacen(
+                "filter_timing = \"overlap\"",
+                "filter_timing = \"serial\"",
+                1,
+            )
+        })
+        .unwrap();
+        assert_eq!(c.core.filter_cycles_bilinear, 0);
+        assert_eq!(c.core.filter_timing, FilterTiming::Serial);
+        assert_eq!(c.core.filter_timing.to_string(), "serial");
+    }
+
+    #[test]
     fn cache_geometry_errors() {
         // 64 KiB / 64 B / 3 ways is not a whole power-of-two set count.
         let e = with(|s| s.replacen("ways = 4", "ways = 3", 1)).unwrap_err();
