@@ -75,7 +75,10 @@ fn rendered_trilinear_samples_are_marked() {
     let t = Trace::read(&p).unwrap();
     let s = t.stats();
     assert!(s.tri_tex_instrs > 0, "{s:?}");
-    assert!(s.tri_tex_instrs < s.tex_instrs, "the sky is bilinear: {s:?}");
+    assert!(
+        s.tri_tex_instrs < s.tex_instrs,
+        "the sky is bilinear: {s:?}"
+    );
     assert!(s.trilinear_share > 0.0 && s.trilinear_share < 1.0);
     // A trilinear instruction reads two mip levels, so never fewer blocks
     // than two.
