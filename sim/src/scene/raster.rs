@@ -37,7 +37,7 @@
 //!    their alpha test keeps (alpha >= 0.5), alpha-blended ones are tested
 //!    but write nothing and so never hide what is behind them. A quad with
 //!    no surviving pixel launches no warp: the trace records it where it
-//!    was rasterized, as a rejected quad (a `z` record of trace format 3;
+//!    was rasterized, as a rejected quad (a `z` record of trace format 4;
 //!    every quad counted in [`RasterStats::quads_rejected_early_z`] is
 //!    there exactly once). UVs are interpolated
 //!    perspective-correctly at all 4 pixel centres, helper pixels outside
@@ -48,7 +48,7 @@
 //!
 //! As in hardware, every surviving (triangle, quad) fragment is its own
 //! warp, running its material's shader program. A tile's warps are emitted
-//! (trace format 3) in rasterization order, the order the rasterizer hands
+//! (trace format 4) in rasterization order, the order the rasterizer hands
 //! them to the shader core: triangles in draw order (above), each
 //! triangle's quads in scanline order, with the count of quads Early-Z
 //! rejected between two warps (and after the last) where they fall in that
@@ -2456,7 +2456,7 @@ mod tests {
                 assert_eq!(produced, f.stats.quads_covered, "{what}");
                 assert_eq!(f.stats.warps + want, f.stats.quads_covered, "{what}");
                 assert_eq!(f.trace.tiles().len() as u64, f.stats.tiles, "{what}");
-                // Written as format 3 and read back, each stays in place.
+                // Written as format 4 and read back, each stays in place.
                 let back = Trace::parse(&f.trace.to_text(), "rt").unwrap();
                 assert_eq!(back, f.trace, "{what}");
                 rejected += want;
