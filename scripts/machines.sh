@@ -21,12 +21,16 @@ cargo build --release --locked -q
 W=$repo/target/release/wasp
 scenes=$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6 {print $1}')
 "$W" scenes fetch supertuxkart openarena teeworlds frozen-bubble >&2
+# The trace format the front end writes (FORMAT_VERSION in sim/src/trace).
+version=$(sed -n 's/^pub const FORMAT_VERSION: u32 = \([0-9][0-9]*\);$/\1/p' sim/src/trace/mod.rs)
+[ -n "$version" ] || { echo "machines.sh: no FORMAT_VERSION in sim/src/trace/mod.rs" >&2; exit 1; }
 start=$(date +%s)
 for s in $scenes; do
   t=$repo/target/machines/traces/$s.trace
   # A trace cached in an older format (before wasp-trace 3: no Early-Z-
-  # rejected quads) is rendered again, and the runs on it redone.
-  if [ -s "$t" ] && [ "$(head -n 1 "$t")" != "wasp-trace 3" ]; then
+  # rejected quads; before wasp-trace 4: no trilinear marks) is rendered
+  # again, and the runs on it redone.
+  if [ -s "$t" ] && [ "$(head -n 1 "$t")" != "wasp-trace $version" ]; then
     rm -f "$t" "$out/json/$s".*.json
   fi
   if [ ! -s "$t" ]; then

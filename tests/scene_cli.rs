@@ -14,7 +14,7 @@ fn dir(name: &str) -> PathBuf {
 }
 
 #[test]
-fn rendered_traces_are_format_2_with_one_warp_per_fragment_for_any_thread_count() {
+fn rendered_traces_are_format_4_with_one_warp_per_fragment_for_any_thread_count() {
     let d = dir("threads");
     let mut texts = Vec::new();
     for threads in ["1", "3", "0"] {
@@ -39,9 +39,12 @@ fn rendered_traces_are_format_2_with_one_warp_per_fragment_for_any_thread_count(
         texts.iter().all(|t| t == &texts[0]),
         "thread count changed the trace"
     );
-    assert!(texts[0].starts_with("wasp-trace 3\n"));
+    assert!(texts[0].starts_with("wasp-trace 4\n"));
     let t = Trace::parse(&texts[0], "sprites").unwrap();
     let s = t.stats();
+    // Sprites filter bilinear or nearest: no trilinear instruction.
+    assert_eq!(s.tri_tex_instrs, 0);
+    assert!(!texts[0].contains(" T"));
     // Sprites blended over a backdrop: positions repeat.
     assert!(
         s.warps > s.positions,
@@ -50,6 +53,44 @@ fn rendered_traces_are_format_2_with_one_warp_per_fragment_for_any_thread_count(
         s.positions
     );
     assert_eq!(s.positions, s.frame_quads);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The plane's ground, crates and bricks filter trilinear, its sky
+/// bilinear: the trace marks the instructions whose sample read two mip
+/// levels, and only those.
+#[test]
+fn rendered_trilinear_samples_are_marked() {
+    let d = dir("trilinear");
+    let p = d.join("plane.trace");
+    ok(&wasp(&[
+        "render",
+        "procedural-plane",
+        "--size",
+        "320x192",
+        "-q",
+        "--trace-out",
+        p.to_str().unwrap(),
+    ]));
+    let t = Trace::read(&p).unwrap();
+    let s = t.stats();
+    assert!(s.tri_tex_instrs > 0, "{s:?}");
+    assert!(
+        s.tri_tex_instrs < s.tex_instrs,
+        "the sky is bilinear: {s:?}"
+    );
+    assert!(s.trilinear_share > 0.0 && s.trilinear_share < 1.0);
+    // A trilinear instruction reads two mip levels, so never fewer blocks
+    // than two.
+    for tile in t.tiles() {
+        for q in tile.quads() {
+            for i in q.instrs() {
+                if i.is_trilinear() {
+                    assert!(i.blocks().unwrap().len() >= 2, "{i:?}");
+                }
+            }
+        }
+    }
     let _ = std::fs::remove_dir_all(&d);
 }
 

@@ -48,8 +48,19 @@ pub struct CoreConfig {
     /// Cycles from issuing an ALU instruction to the warp's next issue.
     pub alu_latency: u32,
     /// Cycles the texture unit needs after the last block of a texture
-    /// instruction arrives (address generation and filtering).
+    /// instruction arrives (address generation and filtering): its
+    /// pipeline latency, which [`CoreConfig::filter_timing`] combines with
+    /// the filter's rate.
     pub texture_latency: u32,
+    /// Cycles the core's one filter unit is busy with a bilinear (or
+    /// nearest) quad-sample: its issue interval (0: no rate limit).
+    pub filter_cycles_bilinear: u32,
+    /// Cycles the filter unit is busy with a trilinear quad-sample (two
+    /// mip levels; 0: no rate limit).
+    pub filter_cycles_trilinear: u32,
+    /// How the filter's cycles and `texture_latency` add up (see
+    /// [`FilterTiming`]).
+    pub filter_timing: FilterTiming,
     /// Texture instructions the LDST unit can hold (its queue).
     pub ldst_queue: u32,
     /// 32-bit registers per thread; a warp (a quad) has 4 threads. Sizes the
@@ -89,6 +100,38 @@ impl std::str::FromStr for Dispatch {
                 "unknown dispatch `{s}` (expected shared-tile or per-core-tile)"
             )),
         }
+    }
+}
+
+/// How a texture instruction's filter pass and the texture unit's
+/// pipeline latency (`core.texture_latency`) add up. The core has one
+/// filter unit, which serves texture instructions in the order their last
+/// block arrives: an instruction whose data arrives at cycle `a` starts
+/// filtering at `s = max(a, filter free)` and holds the filter for its
+/// `f` filter cycles (bilinear or trilinear), so the filter is free again
+/// at `s + f`. With `L = max(texture_latency, 1)` the warp wakes at:
+///
+/// * `overlap`: `max(s + f, a + L)`: the filter pass is part of the
+///   pipeline latency, so an idle filter adds nothing until `f > L`; only a
+///   busy filter (queueing) or a long pass delays the warp;
+/// * `serial`: `s + f + L`: the latency comes after the filter pass.
+///
+/// With both filter cycles 0 the two are the same: `a + L`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FilterTiming {
+    /// `max(s + f, a + L)` (wasp).
+    Overlap,
+    /// `s + f + L`.
+    Serial,
+}
+
+impl std::fmt::Display for FilterTiming {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            FilterTiming::Overlap => "overlap",
+            FilterTiming::Serial => "serial",
+        })
     }
 }
 
@@ -252,6 +295,8 @@ pub mod limits {
     pub const MAX_QUEUE: u32 = 4096;
     /// Largest latency of any fixed pipeline stage.
     pub const MAX_LATENCY: u32 = 10_000;
+    /// Most filter cycles per quad-sample.
+    pub const MAX_FILTER_CYCLES: u32 = 1_000;
 }
 
 impl MachineConfig {
@@ -423,6 +468,20 @@ impl MachineConfig {
             limits::MAX_LATENCY as u64,
             "",
         )?;
+        range(
+            "core.filter_cycles_bilinear",
+            self.core.filter_cycles_bilinear as u64,
+            0,
+            limits::MAX_FILTER_CYCLES as u64,
+            " (0: no filter rate limit)",
+        )?;
+        range(
+            "core.filter_cycles_trilinear",
+            self.core.filter_cycles_trilinear as u64,
+            0,
+            limits::MAX_FILTER_CYCLES as u64,
+            " (0: no filter rate limit)",
+        )?;
         range("core.ldst_queue", self.core.ldst_queue as u64, 1, 1024, "")?;
         range(
             "core.registers_per_thread",
@@ -587,6 +646,92 @@ mod tests {
             let e = with(|s| s.replacen(from, to, 1)).unwrap_err();
             assert!(e.message.contains(field), "{to}: {e}");
         }
+    }
+
+    #[test]
+    fn filter_fields_are_required_and_checked() {
+        let p = MachineConfig::paper();
+        assert_eq!(
+            (
+                p.core.filter_cycles_bilinear,
+                p.core.filter_cycles_trilinear,
+                p.core.filter_timing
+            ),
+            (1, 2, FilterTiming::Overlap)
+        );
+        let w2 = MachineConfig::paper_width2();
+        assert_eq!(
+            (
+                w2.core.filter_cycles_bilinear,
+                w2.core.filter_cycles_trilinear,
+                w2.core.filter_timing
+            ),
+            (1, 2, FilterTiming::Overlap)
+        );
+        for key in [
+            "filter_cycles_bilinear = 1",
+            "filter_cycles_trilinear = 2",
+            "filter_timing = \"overlap\"",
+        ] {
+            let name = key.split(' ').next().unwrap();
+            assert!(PAPER_TOML.contains(key), "fixture: {key}");
+            let e = with(|s| s.replacen(key, "", 1)).unwrap_err();
+            assert!(
+                e.message.contains(&format!("missing field `{name}`")),
+                "{e}"
+            );
+        }
+        for (from, to, msg) in [
+            (
+                "filter_cycles_bilinear = 1",
+                "filter_cycles_bilinear = 1001",
+                "core.filter_cycles_bilinear = 1001",
+            ),
+            (
+                "filter_cycles_trilinear = 2",
+                "filter_cycles_trilinear = 5000",
+                "core.filter_cycles_trilinear = 5000",
+            ),
+            (
+                "filter_cycles_trilinear = 2",
+                "filter_cycles_trilinear = -1",
+                "filter_cycles_trilinear",
+            ),
+            (
+                "filter_timing = \"overlap\"",
+                "filter_timing = \"after\"",
+                "unknown variant `after`",
+            ),
+        ] {
+            let e = with(|s| s.replacen(from, to, 1)).unwrap_err();
+            assert!(e.message.contains(msg), "{to}: {e}");
+        }
+        let e = with(|s| {
+            s.replacen(
+                "filter_cycles_bilinear = 1",
+                "filter_cycles_bilinear = 1001",
+                1,
+            )
+        })
+        .unwrap_err();
+        assert!(e.message.contains("1000"), "names the limit: {e}");
+        // 0 and the serial timing are allowed.
+        let c = with(|s| {
+            s.replacen(
+                "filter_cycles_bilinear = 1",
+                "filter_cycles_bilinear = 0",
+                1,
+            )
+            .replacen(
+                "filter_timing = \"overlap\"",
+                "filter_timing = \"serial\"",
+                1,
+            )
+        })
+        .unwrap();
+        assert_eq!(c.core.filter_cycles_bilinear, 0);
+        assert_eq!(c.core.filter_timing, FilterTiming::Serial);
+        assert_eq!(c.core.filter_timing.to_string(), "serial");
     }
 
     #[test]

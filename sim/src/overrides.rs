@@ -164,6 +164,24 @@ mod tests {
         expect.name = "sweep".into();
         assert_eq!(c, expect);
         assert_eq!(apply(&base, &[]).unwrap(), base);
+        // The filter fields, like every field.
+        let c = apply(
+            &base,
+            &sets(&[
+                "core.filter_cycles_bilinear=0",
+                "core.filter_cycles_trilinear=3",
+                "core.filter_timing=\"serial\"",
+            ]),
+        )
+        .unwrap();
+        assert_eq!(
+            (
+                c.core.filter_cycles_bilinear,
+                c.core.filter_cycles_trilinear,
+                c.core.filter_timing
+            ),
+            (0, 3, crate::config::FilterTiming::Serial)
+        );
     }
 
     #[test]
@@ -180,6 +198,15 @@ mod tests {
             ("dram.model=slow", "dram.model"),
             // Validation runs on the result: the register holds 31 at most.
             ("l0.mshrs=40", "31"),
+            (
+                "core.filter_cycles_trilinear=2000",
+                "core.filter_cycles_trilinear",
+            ),
+            ("core.filter_timing=\"later\"", "core.filter_timing"),
+            (
+                "core.filter_cycles_bilinear=\"one\"",
+                "holds an integer, not a string",
+            ),
         ];
         for (set, needle) in cases {
             let e = apply(&base, &sets(&[set])).unwrap_err().to_string();

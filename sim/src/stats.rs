@@ -215,6 +215,32 @@ pub struct RunInstruments {
     pub per_tile: Vec<TileRecord>,
 }
 
+/// The texture filter unit: its configuration (`core.filter_*`) and what
+/// it did, summed over the cores.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FilterStats {
+    /// Filter cycles per bilinear (or nearest) quad-sample.
+    pub cycles_bilinear: u32,
+    /// Filter cycles per trilinear quad-sample.
+    pub cycles_trilinear: u32,
+    /// How the filter pass and `texture_latency` add up (`overlap` or
+    /// `serial`).
+    pub timing: String,
+    /// Trilinear texture instructions run.
+    pub trilinear_instructions: u64,
+    /// Trilinear / all texture instructions.
+    pub trilinear_share: f64,
+    /// Cycles the filter units were busy, summed over cores.
+    pub busy_cycles: u64,
+    /// busy_cycles / (cycles x cores).
+    pub busy_fraction: f64,
+    /// Cycles texture data waited for a busy filter unit, summed over
+    /// texture instructions.
+    pub wait_cycles: u64,
+    /// wait_cycles / texture instructions.
+    pub avg_wait: f64,
+}
+
 /// Everything a run reports.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RunStats {
@@ -245,6 +271,8 @@ pub struct RunStats {
     pub instructions: u64,
     /// Texture instructions.
     pub tex_instructions: u64,
+    /// The texture filter unit.
+    pub filter: FilterStats,
     /// Tiles rendered.
     pub tiles: u64,
     /// Per-core L0 (absent without L0).
@@ -309,6 +337,9 @@ impl RunStats {
         let sum = |f: &dyn Fn(&CoreStats) -> u64| cores.iter().map(f).sum::<u64>();
         let instructions = sum(&|c| c.instructions);
         let tex = sum(&|c| c.tex_instructions);
+        let tri = sum(&|c| c.tri_tex_instructions);
+        let filter_busy = sum(&|c| c.filter_busy_cycles);
+        let filter_wait = sum(&|c| c.filter_wait_cycles);
         let lat = |i: usize| -> (f64, u64) {
             (
                 cores.iter().map(|c| c.warp_latency_sum[i]).sum(),
@@ -362,6 +393,17 @@ impl RunStats {
             warps: sum(&|c| c.warps_finished),
             instructions,
             tex_instructions: tex,
+            filter: FilterStats {
+                cycles_bilinear: cfg.core.filter_cycles_bilinear,
+                cycles_trilinear: cfg.core.filter_cycles_trilinear,
+                timing: cfg.core.filter_timing.to_string(),
+                trilinear_instructions: tri,
+                trilinear_share: mean(tri as f64, tex),
+                busy_cycles: filter_busy,
+                busy_fraction: mean(filter_busy as f64, cycles * n),
+                wait_cycles: filter_wait,
+                avg_wait: mean(filter_wait as f64, tex),
+            },
             tiles: inst.tiles,
             l0: mem.l0.as_ref().map(|s| LevelStats::of(s, n, cycles)),
             l1: LevelStats::of(&mem.l1, n, cycles),
@@ -472,6 +514,18 @@ impl RunStats {
             s,
             "cycles {}  ipc {:.3}  warps {}  instructions {} ({} texture)  tiles {}",
             self.cycles, self.ipc, self.warps, self.instructions, self.tex_instructions, self.tiles
+        );
+        let f = &self.filter;
+        let _ = writeln!(
+            s,
+            "filter {}/{} cycles ({})  trilinear {} ({:.1}%)  busy {:.2}%  wait {:.2} cycles/instr",
+            f.cycles_bilinear,
+            f.cycles_trilinear,
+            f.timing,
+            f.trilinear_instructions,
+            100.0 * f.trilinear_share,
+            100.0 * f.busy_fraction,
+            f.avg_wait
         );
         let _ = writeln!(
             s,

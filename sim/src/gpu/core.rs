@@ -20,7 +20,11 @@
 //!    MSHRs full).
 //!
 //! Then the memory system ticks, and (phase 2) completions arrive: a warp
-//! whose last block arrived wakes `texture_latency` cycles later. The
+//! whose last block arrived enters the core's one filter unit, in order of
+//! arrival, and wakes when its filter pass and the texture latency are
+//! done (`core.filter_timing`: `max(s + f, a + L)` or `s + f + L` for
+//! arrival `a`, filter start `s = max(a, filter free)`, filter cycles `f`
+//! and `L = max(texture_latency, 1)`; with no filter cycles, `a + L`). The
 //! scheduler's registers are clocked with the cycle's MSHR and priority-warp
 //! events.
 //!
@@ -29,6 +33,7 @@
 //! its data arrives. A blocked warp cannot issue: each warp's instructions
 //! depend on the previous one, so nothing else of it is fetched meanwhile.
 
+use crate::config::FilterTiming;
 use crate::gpu::mask::SlotMask;
 use crate::gpu::raster::RasterCursor;
 use crate::gpu::SimError;
@@ -75,6 +80,8 @@ struct Warp {
     pending: u32,
     /// Blocks of the current texture instruction (set when it is decoded).
     tex_len: u32,
+    /// The current texture instruction is trilinear (set when decoded).
+    tex_tri: bool,
     /// Index in the tile's block accesses of the next texture
     /// instruction's first block.
     blk: u32,
@@ -133,6 +140,14 @@ pub struct CoreStats {
     pub instructions: u64,
     /// Texture instructions issued.
     pub tex_instructions: u64,
+    /// Of those, trilinear ones.
+    pub tri_tex_instructions: u64,
+    /// Cycles the filter unit was busy: the sum of the filter cycles of
+    /// the texture instructions it served.
+    pub filter_busy_cycles: u64,
+    /// Sum over texture instructions of the cycles their data waited for
+    /// the filter unit (filter start - last block's arrival).
+    pub filter_wait_cycles: u64,
     /// Cycles with a free slot and a waiting warp but no launch, because
     /// the policy held a priority warp back (WaSP: Real_freeMSHRs too low).
     pub held_cycles: u64,
@@ -173,6 +188,12 @@ pub struct ShaderCore {
     width: u32,
     alu_latency: u64,
     texture_latency: u64,
+    /// Filter cycles per quad-sample, [bilinear, trilinear].
+    filter_cycles: [u64; 2],
+    /// The filter pass overlaps the texture latency (else precedes it).
+    filter_overlap: bool,
+    /// First cycle the filter unit is free.
+    filter_free: u64,
     ldst_cap: usize,
     raster_rate: u32,
     sched: LaunchScheduler<u32>,
@@ -246,6 +267,12 @@ pub struct CoreParams {
     pub alu_latency: u32,
     /// Texture unit latency after the data.
     pub texture_latency: u32,
+    /// Filter cycles per bilinear quad-sample.
+    pub filter_cycles_bilinear: u32,
+    /// Filter cycles per trilinear quad-sample.
+    pub filter_cycles_trilinear: u32,
+    /// How the filter pass and the texture latency add up.
+    pub filter_timing: FilterTiming,
     /// LDST queue entries.
     pub ldst_queue: u32,
     /// MSHRs of the scheduler-level cache.
@@ -271,6 +298,12 @@ impl ShaderCore {
             width: p.width,
             alu_latency: p.alu_latency as u64,
             texture_latency: p.texture_latency as u64,
+            filter_cycles: [
+                u64::from(p.filter_cycles_bilinear),
+                u64::from(p.filter_cycles_trilinear),
+            ],
+            filter_overlap: p.filter_timing == FilterTiming::Overlap,
+            filter_free: 0,
             ldst_cap: p.ldst_queue as usize,
             raster_rate: p.raster_rate,
             sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy),
@@ -466,8 +499,9 @@ impl ShaderCore {
                         self.alu_left[s % MAX_SLOTS] = n;
                         ready |= M::bit(s);
                     }
-                    OpKind::Tex(len) => {
+                    OpKind::Tex { len, tri } => {
                         w.tex_len = len;
+                        w.tex_tri = tri;
                         ready_tex |= M::bit(s);
                     }
                 }
@@ -552,6 +586,7 @@ impl ShaderCore {
                     blocked: false,
                     pending: 0,
                     tex_len: 0,
+                    tex_tri: false,
                     blk: span.block_start,
                     tex_start: 0,
                     lat_sum: 0,
@@ -658,7 +693,10 @@ impl ShaderCore {
             let end = w.blk + w.tex_len;
             debug_assert_eq!(
                 tile.op_kind(w.op as usize - 1),
-                Some(OpKind::Tex(w.tex_len)),
+                Some(OpKind::Tex {
+                    len: w.tex_len,
+                    tri: w.tex_tri
+                }),
                 "ready_tex warps wait on a texture instruction"
             );
             w.pending = w.tex_len;
@@ -677,6 +715,7 @@ impl ShaderCore {
             w.blk = end;
             self.ready_tex &= !(1u128 << s);
             self.stats.tex_instructions += 1;
+            self.stats.tri_tex_instructions += u64::from(w.tex_tri);
         }
     }
 
@@ -745,7 +784,19 @@ impl ShaderCore {
                         self.prio.unblocked += 1;
                     }
                 }
-                let at = now + self.texture_latency.max(1);
+                // The filter unit serves the instructions in order of data
+                // arrival (completion order within a cycle).
+                let f = self.filter_cycles[w.tex_tri as usize];
+                let start = now.max(self.filter_free);
+                self.filter_free = start + f;
+                self.stats.filter_busy_cycles += f;
+                self.stats.filter_wait_cycles += start - now;
+                let lat = self.texture_latency.max(1);
+                let at = if self.filter_overlap {
+                    (start + f).max(now + lat)
+                } else {
+                    start + f + lat
+                };
                 self.schedule(now, at, s);
             }
         }
@@ -886,5 +937,173 @@ impl Traceable for ShaderCore {
             32,
             self.tile.map(|t| t as u64 + 1).unwrap_or(0) & 0xffff_ffff,
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The texture filter unit: its rate, its order and how it adds to
+    //! the texture latency.
+    use crate::config::{FilterTiming, MachineConfig};
+    use crate::gpu::{simulate, Gpu, RunOptions};
+    use crate::stats::RunStats;
+    use crate::trace::{Instr, Trace, TraceHeader};
+
+    /// A 8x8-pixel frame whose quads (x, y) each run `program`.
+    fn trace(quads: &[(u32, u32)], program: &[Instr]) -> Trace {
+        let mut b = Trace::builder(TraceHeader::new("filter", 8, 8, 8)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        for &(x, y) in quads {
+            b.quad(x, y, program).unwrap();
+        }
+        b.end_tile().unwrap();
+        b.finish().unwrap()
+    }
+
+    fn cfg(bil: u32, tri: u32, timing: FilterTiming) -> MachineConfig {
+        let mut c = MachineConfig::paper();
+        c.gpu.tile_size = 8;
+        c.core.filter_cycles_bilinear = bil;
+        c.core.filter_cycles_trilinear = tri;
+        c.core.filter_timing = timing;
+        c.validate().unwrap();
+        c
+    }
+
+    /// (launch, finish) of each warp, by quad index, and the statistics.
+    fn run(c: &MachineConfig, t: &Trace) -> (Vec<(u64, u64)>, RunStats) {
+        let mut gpu = Gpu::new(c, t).unwrap();
+        gpu.record_warps();
+        while !gpu.done() {
+            gpu.step().unwrap();
+        }
+        let mut r = gpu.take_records();
+        r.sort_by_key(|w| w.quad);
+        let times = r.iter().map(|w| (w.launched, w.finished)).collect();
+        let s = simulate(c, t, &RunOptions::default(), &mut |_, _| {}).unwrap();
+        (times, s)
+    }
+
+    const OVERLAP: FilterTiming = FilterTiming::Overlap;
+    const SERIAL: FilterTiming = FilterTiming::Serial;
+
+    /// A lone warp: under `overlap` a pass no longer than the texture
+    /// latency (4) costs nothing, a longer one its excess; under `serial`
+    /// every filter cycle adds.
+    #[test]
+    fn a_lone_warp_pays_the_filter_pass_beyond_the_latency() {
+        let bil = trace(&[(0, 0)], &[Instr::Alu(1), Instr::Tex(&[9]), Instr::Alu(1)]);
+        let tri = trace(
+            &[(0, 0)],
+            &[Instr::Alu(1), Instr::TriTex(&[9]), Instr::Alu(1)],
+        );
+        let span = |c: &MachineConfig, t: &Trace| {
+            let (w, _) = run(c, t);
+            w[0].1 - w[0].0
+        };
+        let base = span(&cfg(0, 0, OVERLAP), &bil);
+        assert_eq!(span(&cfg(0, 0, OVERLAP), &tri), base);
+        assert_eq!(span(&cfg(0, 0, SERIAL), &tri), base);
+        assert_eq!(span(&cfg(1, 2, OVERLAP), &bil), base);
+        assert_eq!(span(&cfg(1, 2, OVERLAP), &tri), base);
+        assert_eq!(span(&cfg(1, 4, OVERLAP), &tri), base, "f = latency");
+        assert_eq!(span(&cfg(1, 7, OVERLAP), &tri), base + 3);
+        assert_eq!(span(&cfg(7, 1, OVERLAP), &bil), base + 3);
+        assert_eq!(span(&cfg(7, 1, OVERLAP), &tri), base);
+        assert_eq!(span(&cfg(1, 2, SERIAL), &bil), base + 1);
+        assert_eq!(span(&cfg(1, 2, SERIAL), &tri), base + 2);
+        let (_, s) = run(&cfg(1, 7, OVERLAP), &tri);
+        assert_eq!(s.filter.busy_cycles, 7);
+        assert_eq!(s.filter.wait_cycles, 0);
+        assert_eq!(s.filter.trilinear_instructions, 1);
+        assert_eq!(
+            (s.filter.cycles_bilinear, s.filter.cycles_trilinear),
+            (1, 7)
+        );
+        assert_eq!(s.filter.timing, "overlap");
+    }
+
+    /// Quads of one core whose one block arrives in the same cycle (the
+    /// first misses, the others merge into its MSHR) queue at the filter:
+    /// the k-th waits k filter passes, and finishes a pass after the one
+    /// before it once the queue outgrows the latency.
+    #[test]
+    fn data_arriving_together_queues_at_the_one_filter() {
+        // Shared-tile dispatch sends an 8x8-quad block to one core: the 16
+        // quads of the 8x8-pixel tile all run on it.
+        let quads: Vec<(u32, u32)> = (0..4).flat_map(|y| (0..4).map(move |x| (x, y))).collect();
+        let tri = trace(&quads, &[Instr::TriTex(&[9]), Instr::Alu(1)]);
+        let (free, s0) = run(&cfg(0, 0, OVERLAP), &tri);
+        assert_eq!(s0.filter.wait_cycles, 0);
+        assert_eq!(s0.filter.busy_cycles, 0);
+        let (w, s) = run(&cfg(1, 8, SERIAL), &tri);
+        assert_eq!(s.tex_instructions, 16);
+        assert_eq!(s.filter.trilinear_instructions, 16);
+        assert!((s.filter.trilinear_share - 1.0).abs() < 1e-12);
+        assert_eq!(s.filter.busy_cycles, 16 * 8);
+        // Each warp's data arrives when it would have without a filter:
+        // it waits for the passes of those before it.
+        let mut ends: Vec<u64> = w.iter().map(|x| x.1).collect();
+        ends.sort_unstable();
+        for pair in ends.windows(2) {
+            assert!(pair[1] - pair[0] >= 8, "{ends:?}");
+        }
+        assert!(
+            s.filter.wait_cycles >= 8 * (15 * 16 / 2) / 2,
+            "{:?}",
+            s.filter
+        );
+        assert!(
+            s.cycles > s0.cycles + 15 * 8,
+            "{} vs {}",
+            s.cycles,
+            s0.cycles
+        );
+        assert!(s.filter.avg_wait > 0.0 && s.filter.busy_fraction > 0.0);
+        // No filter cycles: every warp as without a filter.
+        let (w0, _) = run(&cfg(0, 0, SERIAL), &tri);
+        assert_eq!(w0, free);
+    }
+
+    /// With both filter cycles 0 a trilinear trace runs exactly as the
+    /// same trace bilinear, either timing: the marker changes nothing but
+    /// the count.
+    #[test]
+    fn no_filter_cycles_make_trilinear_cost_nothing() {
+        let quads: Vec<(u32, u32)> = (0..4).flat_map(|y| (0..4).map(move |x| (x, y))).collect();
+        let prog_b = [
+            Instr::Alu(2),
+            Instr::Tex(&[1, 2]),
+            Instr::Alu(1),
+            Instr::Tex(&[3]),
+        ];
+        let prog_t = [
+            Instr::Alu(2),
+            Instr::TriTex(&[1, 2]),
+            Instr::Alu(1),
+            Instr::Tex(&[3]),
+        ];
+        let (b, t) = (trace(&quads, &prog_b), trace(&quads, &prog_t));
+        for timing in [OVERLAP, SERIAL] {
+            let c = cfg(0, 0, timing);
+            let (wb, mut sb) = run(&c, &b);
+            let (wt, mut st) = run(&c, &t);
+            assert_eq!(wb, wt);
+            assert_eq!(
+                (
+                    sb.filter.trilinear_instructions,
+                    st.filter.trilinear_instructions
+                ),
+                (0, 16)
+            );
+            sb.filter.trilinear_instructions = 0;
+            st.filter.trilinear_instructions = 0;
+            sb.filter.trilinear_share = 0.0;
+            st.filter.trilinear_share = 0.0;
+            assert_eq!(sb.to_json(), st.to_json());
+        }
+        // With a rate, trilinear costs more than bilinear.
+        let c = cfg(1, 8, SERIAL);
+        assert!(run(&c, &t).1.cycles > run(&c, &b).1.cycles);
     }
 }

@@ -172,6 +172,9 @@ impl<'t> Gpu<'t> {
             external_raster: shared,
             alu_latency: cfg.core.alu_latency,
             texture_latency: cfg.core.texture_latency,
+            filter_cycles_bilinear: cfg.core.filter_cycles_bilinear,
+            filter_cycles_trilinear: cfg.core.filter_cycles_trilinear,
+            filter_timing: cfg.core.filter_timing,
             ldst_queue: cfg.core.ldst_queue,
             sched_mshrs: sc.mshrs,
         };

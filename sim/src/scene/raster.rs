@@ -37,7 +37,7 @@
 //!    their alpha test keeps (alpha >= 0.5), alpha-blended ones are tested
 //!    but write nothing and so never hide what is behind them. A quad with
 //!    no surviving pixel launches no warp: the trace records it where it
-//!    was rasterized, as a rejected quad (a `z` record of trace format 3;
+//!    was rasterized, as a rejected quad (a `z` record of trace format 4;
 //!    every quad counted in [`RasterStats::quads_rejected_early_z`] is
 //!    there exactly once). UVs are interpolated
 //!    perspective-correctly at all 4 pixel centres, helper pixels outside
@@ -48,7 +48,7 @@
 //!
 //! As in hardware, every surviving (triangle, quad) fragment is its own
 //! warp, running its material's shader program. A tile's warps are emitted
-//! (trace format 3) in rasterization order, the order the rasterizer hands
+//! (trace format 4) in rasterization order, the order the rasterizer hands
 //! them to the shader core: triangles in draw order (above), each
 //! triangle's quads in scanline order, with the count of quads Early-Z
 //! rejected between two warps (and after the last) where they fall in that
@@ -829,7 +829,9 @@ struct TileBuf {
     depth: Vec<f32>,
     colour: Vec<[f32; 4]>,
     frags: Vec<Frag>,
-    ranges: Vec<(u32, u32)>,
+    /// Per texture instruction: its blocks in `pool` (start, length) and
+    /// whether it is trilinear (it read two mip levels).
+    ranges: Vec<(u32, u32, bool)>,
     pool: Vec<u64>,
     scratch: Vec<u64>,
     covered: u64,
@@ -1268,7 +1270,13 @@ fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
                         if k < lambdas.len() {
                             lambdas[k] = lambda;
                         }
-                        b.ranges.push((b.pool.len() as u32, b.scratch.len() as u32));
+                        // Trilinear in the trace: the sample filtered two mip
+                        // levels (a trilinear sample that magnifies or sits
+                        // at the last level reads one level: one bilinear
+                        // pass).
+                        let tri = ctx.textures.reads_two_levels(smp, lambda);
+                        b.ranges
+                            .push((b.pool.len() as u32, b.scratch.len() as u32, tri));
                         b.pool.extend_from_slice(&b.scratch);
                     }
                     let frag = b.frags.len() as u32;
@@ -1375,9 +1383,9 @@ fn build_tile(
                 ShaderOp::Alu(0) => {}
                 ShaderOp::Alu(n) => builder.alu(*n)?,
                 ShaderOp::Tex(_) => {
-                    let (start, len) = b.ranges[r];
+                    let (start, len, tri) = b.ranges[r];
                     r += 1;
-                    builder.tex(&b.pool[start as usize..(start + len) as usize])?;
+                    builder.tex_filtered(&b.pool[start as usize..(start + len) as usize], tri)?;
                 }
             }
         }
@@ -2448,7 +2456,7 @@ mod tests {
                 assert_eq!(produced, f.stats.quads_covered, "{what}");
                 assert_eq!(f.stats.warps + want, f.stats.quads_covered, "{what}");
                 assert_eq!(f.trace.tiles().len() as u64, f.stats.tiles, "{what}");
-                // Written as format 3 and read back, each stays in place.
+                // Written as format 4 and read back, each stays in place.
                 let back = Trace::parse(&f.trace.to_text(), "rt").unwrap();
                 assert_eq!(back, f.trace, "{what}");
                 rejected += want;

@@ -40,7 +40,11 @@
 //! * **Trilinear** (`LINEAR_MIPMAP_LINEAR`): 2x2 texels at level
 //!   `floor(lambda)` and 2x2 at `floor(lambda) + 1`, 8 texels per pixel;
 //!   when magnifying (`lambda <= 0`) or at the last level, one level only
-//!   (the magnification filter is bilinear on level 0).
+//!   (the magnification filter is bilinear on level 0). The trace marks a
+//!   quad's texture instruction trilinear (`T`) exactly when its sample
+//!   reads two levels ([`TextureSet::reads_two_levels`]): the texture unit
+//!   then filters twice; a one-level trilinear sample is one bilinear
+//!   pass, written `t`.
 //!
 //! Wrap mode per texture: repeat (texel index modulo the level's size) or
 //! clamp to edge. A texture instruction of a quad touches the union of the
@@ -436,6 +440,16 @@ impl<'a> TextureSet<'a> {
                 }
             }
         }
+    }
+
+    /// Whether `sample` at this level of detail filters two mip levels:
+    /// a trilinear sample that minifies above the last level. Such a
+    /// texture instruction is trilinear in the trace (`T`, format 4); every
+    /// other one (nearest, bilinear, or trilinear reading one level) is
+    /// one bilinear filter pass (`t`).
+    pub fn reads_two_levels(&self, sample: &TexSample, lambda: f32) -> bool {
+        let (a, b, _) = self.levels_for(sample.texture, sample.filter, lambda);
+        a != b
     }
 
     /// The distinct blocks (block numbers = byte address / 64, sorted) that

@@ -2,7 +2,7 @@
 //! Early-Z rejected between them, and the instructions each shaded quad's
 //! shader executes — the input of the cycle model.
 //!
-//! # Format `wasp-trace 3` (and `wasp-trace 2`, `wasp-trace 1`)
+//! # Format `wasp-trace 4` (and `wasp-trace 3`, `2`, `1`)
 //!
 //! (The same text is in `tests/traces/FORMAT.md`; a test checks that the two
 //! agree.)
@@ -10,12 +10,12 @@
 //! ## Example
 //!
 //! ```text
-//! wasp-trace 3
+//! wasp-trace 4
 //! # free comment lines
 //! workload synthetic:texmap scale=1 mem=0.15 seed=7
 //! frame 1960 768 tile 64
 //! tile 0 0
-//! q 0 0 a3 t1a40,1a41 a2 t1a40
+//! q 0 0 a3 t1a40,1a41 a2 T1a40,1b20
 //! q 1 0 a5
 //! z 12
 //! q 0 0 a2 t2b00
@@ -31,7 +31,8 @@
 //!
 //! The first warp, at quad (0, 0) of tile (0, 0), runs 3 ALU instructions, a
 //! texture instruction touching blocks 0x1a40 and 0x1a41, 2 ALU instructions,
-//! and a texture instruction touching block 0x1a40. After the second warp the
+//! and a trilinear texture instruction touching blocks 0x1a40 and 0x1b20 (two
+//! mip levels). After the second warp the
 //! rasterizer produced 12 quads that Early-Z rejected, then the third warp, a
 //! second fragment at position (0, 0) of a primitive drawn later (overdraw):
 //! its own warp with its own program. 3 more rejected quads end the tile.
@@ -44,9 +45,9 @@
 //! start and end of a line are ignored. No line may hold any other control
 //! character.
 //!
-//! * **Line 1** is exactly `wasp-trace 3` (or, below, `wasp-trace 2` or
-//!   `wasp-trace 1`): the magic word and the format version. A reader
-//!   rejects any other version.
+//! * **Line 1** is exactly `wasp-trace 4` (or, below, `wasp-trace 3`,
+//!   `wasp-trace 2` or `wasp-trace 1`): the magic word and the format
+//!   version. A reader rejects any other version.
 //! * **Comments**: a line whose first non-blank character is `#` is a comment;
 //!   blank lines are ignored. Both may appear anywhere after line 1. Comments
 //!   before the `frame` line are the header *notes*: a reader keeps their text
@@ -77,7 +78,7 @@
 //!   (overdraw). A reader checks no order: a record does not name its
 //!   primitive, and any sequence of positions is the rasterization order of
 //!   some sequence of primitives.
-//! * **Rejected quads** (version 3): `z N` — N quads (decimal, 1 to 2^31-1)
+//! * **Rejected quads** (versions 3 and 4): `z N` — N quads (decimal, 1 to 2^31-1)
 //!   that the rasterizer produced at this point of the tile's rasterization
 //!   order (after the `q` line before it, before the `q` line after it) and
 //!   Early-Z rejected: they launch no warp but cost the rasterizer a slot
@@ -93,24 +94,34 @@
 //!     touches, as block numbers (byte address / 64) in hex (1 to 16 digits,
 //!     either case, no `0x`; writers use lowercase without leading zeros),
 //!     comma-separated without blanks: 1 to 1024 blocks, distinct within the
-//!     instruction, in the order the texture unit requests them.
+//!     instruction, in the order the texture unit requests them. Its sample
+//!     is filtered bilinear or nearest: one filter pass.
+//!   * `TB,B,...` (version 4) — the same for a texture instruction whose
+//!     sample is trilinear: it filters two mip levels, two filter passes. The
+//!     front end writes `T` exactly when the sample read two levels (a
+//!     trilinear sample that magnifies, or minifies to the last level, reads
+//!     one level and is written `t`).
 //! * Decimal numbers are ASCII digits without sign and must fit their range.
 //!
-//! **Version 2** (`wasp-trace 2`) is the same without `z` lines: a reader
+//! **Version 3** (`wasp-trace 3`) is version 4 without `T` instructions: it
+//! does not say which samples are trilinear, and a reader takes every
+//! texture instruction of a version-3 (or older) file as bilinear. A reader
+//! rejects a `T` instruction in a version-3, -2 or -1 file, naming the
+//! version and the token. Every version-3 trace is a version-4 trace, and a
+//! writer always writes version 4: reading an older file and writing it back
+//! changes line 1 only (for a file in the writer's canonical form).
+//!
+//! **Version 2** (`wasp-trace 2`) is version 3 without `z` lines: a reader
 //! rejects a `z` line in a version-2 (or version-1) file, naming the version.
 //! An older trace records no rejected quad, so its rasterizer cost counts
-//! surviving quads only. Every version-2 trace is a version-3 trace, and a
-//! writer always writes version 3: reading a version-2 file and writing it
-//! back changes line 1 only (for a file in the writer's canonical form).
+//! surviving quads only. Every version-2 trace is a version-3 trace.
 //!
 //! **Version 1** (`wasp-trace 1`) is version 2 except that the quads of a
 //! tile appear in scanline order, strictly increasing in (Y, X), so each
 //! position at most once: fragments at one position had to be merged into one
 //! warp running their programs one after the other. A reader accepts version
 //! 1 with this rule enforced (errors `quad X Y appears twice in the tile` and
-//! `quad X Y after quad X' Y'`). Every version-1 trace is a version-3 trace,
-//! so a writer always writes version 3: reading a version-1 file and writing
-//! it back changes line 1 only (for a file in the writer's canonical form).
+//! `quad X Y after quad X' Y'`). Every version-1 trace is a version-2 trace.
 //!
 //! A reader rejects any other input with an error `file:line: what was wrong
 //! (expected what)`, for example
@@ -125,7 +136,8 @@
 //!
 //! [`Trace`] holds a [`TraceHeader`] and the [`Tile`]s in file order. A tile
 //! keeps its quads, instructions and block numbers in three flat vectors (no
-//! allocation per quad or instruction), so a tile is self-contained and a
+//! allocation per quad or instruction; a texture instruction's trilinear
+//! flag shares its 12-byte entry), so a tile is self-contained and a
 //! full 1960x768 frame (about 376k quad positions, a few million fragments
 //! with overdraw) stays small. Its Early-Z-rejected quads take one `u32` per
 //! quad, and only in a tile with rejections before some quad, plus one for
@@ -152,8 +164,11 @@ use std::fmt;
 /// The magic word on line 1.
 pub const MAGIC: &str = "wasp-trace";
 /// The format version this module writes (and reads).
-pub const FORMAT_VERSION: u32 = 3;
-/// The previous version, which this module also reads: no `z` records.
+pub const FORMAT_VERSION: u32 = 4;
+/// The previous version, which this module also reads: no trilinear
+/// marker (`T`), every texture instruction taken as bilinear.
+pub const FORMAT_VERSION_3: u32 = 3;
+/// The version before, which this module also reads: no `z` records.
 pub const FORMAT_VERSION_2: u32 = 2;
 /// The older version this module also reads: one quad per position, in
 /// scanline order.
@@ -268,18 +283,42 @@ fn check_text(s: &str, field: TextField) -> Result<(), Problem> {
 pub enum Instr<'a> {
     /// A run of this many ALU instructions (at least 1).
     Alu(u32),
-    /// One texture instruction and the distinct 64-byte block numbers it
-    /// touches (at least 1), in request order.
+    /// One texture instruction whose sample is bilinear (or nearest), and
+    /// the distinct 64-byte block numbers it touches (at least 1), in
+    /// request order: `t` in the text.
     Tex(&'a [u64]),
+    /// One texture instruction whose sample is trilinear (it filters two
+    /// mip levels), and its blocks as for [`Instr::Tex`]: `T` in the text
+    /// (format 4).
+    TriTex(&'a [u64]),
 }
 
+impl<'a> Instr<'a> {
+    /// The blocks of a texture instruction (`None` for an ALU run).
+    pub fn blocks(&self) -> Option<&'a [u64]> {
+        match *self {
+            Instr::Alu(_) => None,
+            Instr::Tex(b) | Instr::TriTex(b) => Some(b),
+        }
+    }
+
+    /// Whether this is a trilinear texture instruction.
+    pub fn is_trilinear(&self) -> bool {
+        matches!(self, Instr::TriTex(_))
+    }
+}
+
+/// One entry of a tile's instruction pool: 12 bytes whichever the kind
+/// (the trilinear flag lies in the padding beside the tag).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Op {
     Alu(u32),
-    /// Blocks `start..start + len` of the tile's block pool.
+    /// Blocks `start..start + len` of the tile's block pool; `tri`: the
+    /// sample is trilinear.
     Tex {
         start: u32,
         len: u32,
+        tri: bool,
     },
 }
 
@@ -290,8 +329,14 @@ enum Op {
 pub(crate) enum OpKind {
     /// A run of this many ALU instructions.
     Alu(u32),
-    /// A texture instruction touching this many blocks.
-    Tex(u32),
+    /// A texture instruction touching `len` blocks; `tri`: its sample is
+    /// trilinear.
+    Tex {
+        /// Blocks it touches.
+        len: u32,
+        /// Whether it is trilinear.
+        tri: bool,
+    },
 }
 
 /// Where a quad's program and block accesses lie in its tile's pools
@@ -352,7 +397,7 @@ impl Tile {
 
     /// Number of quads (warps) in the tile. With overdraw several warps
     /// share a quad position. A tile whose every quad Early-Z rejected
-    /// (format 3) has none.
+    /// (format 3 or 4) has none.
     pub fn quad_count(&self) -> usize {
         self.quads.len()
     }
@@ -415,7 +460,7 @@ impl Tile {
     pub(crate) fn op_kind(&self, i: usize) -> Option<OpKind> {
         self.ops.get(i).map(|&op| match op {
             Op::Alu(n) => OpKind::Alu(n),
-            Op::Tex { len, .. } => OpKind::Tex(len),
+            Op::Tex { len, tri, .. } => OpKind::Tex { len, tri },
         })
     }
 
@@ -482,6 +527,14 @@ impl Tile {
         self.ops
             .iter()
             .filter(|op| matches!(op, Op::Tex { .. }))
+            .count() as u64
+    }
+
+    /// Trilinear texture instructions of all quads.
+    pub fn trilinear_count(&self) -> u64 {
+        self.ops
+            .iter()
+            .filter(|op| matches!(op, Op::Tex { tri: true, .. }))
             .count() as u64
     }
 
@@ -562,9 +615,14 @@ impl<'a> QuadRef<'a> {
     fn decode(&self, op: Op) -> Instr<'a> {
         match op {
             Op::Alu(n) => Instr::Alu(n),
-            Op::Tex { start, len } => {
+            Op::Tex { start, len, tri } => {
                 let s = start as usize;
-                Instr::Tex(&self.tile.blocks[s..s + len as usize])
+                let blocks = &self.tile.blocks[s..s + len as usize];
+                if tri {
+                    Instr::TriTex(blocks)
+                } else {
+                    Instr::Tex(blocks)
+                }
             }
         }
     }
@@ -603,6 +661,14 @@ impl<'a> QuadRef<'a> {
         self.ops()
             .iter()
             .filter(|op| matches!(op, Op::Tex { .. }))
+            .count()
+    }
+
+    /// Number of trilinear texture instructions.
+    pub fn trilinear_count(&self) -> usize {
+        self.ops()
+            .iter()
+            .filter(|op| matches!(op, Op::Tex { tri: true, .. }))
             .count()
     }
 
@@ -714,6 +780,11 @@ impl Trace {
         self.tiles.iter().map(Tile::tex_count).sum()
     }
 
+    /// Trilinear texture instructions in the whole trace.
+    pub fn trilinear_count(&self) -> u64 {
+        self.tiles.iter().map(Tile::trilinear_count).sum()
+    }
+
     /// Adds a header note (e.g. provenance or measured figures).
     pub fn push_note(&mut self, text: impl Into<String>) -> Result<(), Problem> {
         let text = text.into();
@@ -734,8 +805,8 @@ impl Trace {
 }
 
 /// Builds a [`Trace`] step by step, enforcing every rule of the format
-/// (version 3: quad positions may repeat, in any order, with rejected
-/// quads among them).
+/// (version 4: quad positions may repeat, in any order, with rejected
+/// quads among them, and texture instructions bilinear or trilinear).
 ///
 /// A call that returns an error changes nothing, so a caller may report it
 /// and stop. `begin_quad` closes the previous quad, `end_tile` the tile.
@@ -960,8 +1031,21 @@ impl TraceBuilder {
         Ok(())
     }
 
-    /// Appends a texture instruction touching `blocks` to the open quad.
+    /// Appends a bilinear (or nearest) texture instruction touching
+    /// `blocks` to the open quad.
     pub fn tex(&mut self, blocks: &[u64]) -> Result<(), Problem> {
+        self.tex_filtered(blocks, false)
+    }
+
+    /// Appends a trilinear texture instruction touching `blocks` to the
+    /// open quad.
+    pub fn tex_trilinear(&mut self, blocks: &[u64]) -> Result<(), Problem> {
+        self.tex_filtered(blocks, true)
+    }
+
+    /// Appends a texture instruction touching `blocks` to the open quad,
+    /// trilinear if `trilinear`.
+    pub fn tex_filtered(&mut self, blocks: &[u64], trilinear: bool) -> Result<(), Problem> {
         if blocks.is_empty() {
             return Err(Problem::TexNoBlock);
         }
@@ -982,6 +1066,7 @@ impl TraceBuilder {
         tile.ops.push(Op::Tex {
             start,
             len: blocks.len() as u32,
+            tri: trilinear,
         });
         let q = tile.quads.last_mut().expect("open quad");
         q.op_len += 1;
@@ -994,6 +1079,7 @@ impl TraceBuilder {
         match instr {
             Instr::Alu(n) => self.alu(n),
             Instr::Tex(b) => self.tex(b),
+            Instr::TriTex(b) => self.tex_trilinear(b),
         }
     }
 
@@ -1149,11 +1235,19 @@ pub enum Problem {
     AdjacentRejected,
     /// A `z` line in a trace of a version without them.
     RejectedInOldVersion(u32),
+    /// A trilinear texture instruction (`T...`) in a trace of a version
+    /// without them (before 4).
+    TrilinearInOldVersion {
+        /// The file's format version.
+        version: u32,
+        /// The token.
+        token: String,
+    },
     /// The input is not UTF-8.
     InvalidUtf8,
     /// A line holds a control character other than tab.
     ControlCharacter,
-    /// Line 1 is not `wasp-trace 3`, `wasp-trace 2` or `wasp-trace 1`.
+    /// Line 1 is not `wasp-trace 4`, `3`, `2` or `1`.
     BadMagic(String),
     /// Line 1 names another format version.
     UnsupportedVersion(String),
@@ -1343,7 +1437,8 @@ impl fmt::Display for Problem {
             EmptyInput => write!(
                 f,
                 "empty input (expected `{MAGIC} {FORMAT_VERSION}`, `{MAGIC} \
-                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)"
+                 {FORMAT_VERSION_3}`, `{MAGIC} {FORMAT_VERSION_2}` or `{MAGIC} \
+                 {FORMAT_VERSION_1}` on line 1)"
             ),
             InvalidUtf8 => write!(f, "invalid UTF-8 (expected UTF-8 text)"),
             ZeroRejected => write!(f, "0 rejected quads (expected `z N` with N at least 1)"),
@@ -1362,7 +1457,14 @@ impl fmt::Display for Problem {
             RejectedInOldVersion(v) => write!(
                 f,
                 "`z` line in a format-{v} trace (expected `z` lines only from format \
-                 {FORMAT_VERSION} on: write `{MAGIC} {FORMAT_VERSION}` on line 1)"
+                 {FORMAT_VERSION_3} on: write `{MAGIC} {FORMAT_VERSION}` on line 1)"
+            ),
+            TrilinearInOldVersion { version, token } => write!(
+                f,
+                "trilinear texture instruction `{}` in a format-{version} trace \
+                 (expected `T` only from format {FORMAT_VERSION} on: write `t`, or \
+                 `{MAGIC} {FORMAT_VERSION}` on line 1)",
+                clip(token)
             ),
             ControlCharacter => write!(
                 f,
@@ -1371,13 +1473,14 @@ impl fmt::Display for Problem {
             BadMagic(s) => write!(
                 f,
                 "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION}`, `{MAGIC} \
-                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)",
+                 {FORMAT_VERSION_3}`, `{MAGIC} {FORMAT_VERSION_2}` or `{MAGIC} \
+                 {FORMAT_VERSION_1}` on line 1)",
                 clip(s)
             ),
             UnsupportedVersion(v) => write!(
                 f,
                 "unsupported format version `{}` (expected {FORMAT_VERSION}, \
-                 {FORMAT_VERSION_2} or {FORMAT_VERSION_1})",
+                 {FORMAT_VERSION_3}, {FORMAT_VERSION_2} or {FORMAT_VERSION_1})",
                 clip(v)
             ),
             MissingHeader { missing, found } => write!(
@@ -1478,7 +1581,7 @@ impl fmt::Display for Problem {
             DuplicateQuad { x, y } => write!(
                 f,
                 "quad {x} {y} appears twice in the tile (expected each quad at most once in \
-                 format {FORMAT_VERSION_1}; formats {FORMAT_VERSION_2} and {FORMAT_VERSION} \
+                 format {FORMAT_VERSION_1}; formats {FORMAT_VERSION_2} to {FORMAT_VERSION} \
                  allow repeats)"
             ),
             QuadOutOfOrder {
@@ -1493,7 +1596,8 @@ impl fmt::Display for Problem {
             ),
             EmptyQuad { x, y } => write!(
                 f,
-                "quad {x} {y} has no instruction (expected at least one `aN` or `tB,...`)"
+                "quad {x} {y} has no instruction (expected at least one `aN`, `tB,...` or \
+                 `TB,...`)"
             ),
             ZeroAlu => write!(f, "ALU run of 0 (expected a run of at least 1)"),
             AluRunTooLong(n) => {
@@ -1506,12 +1610,13 @@ impl fmt::Display for Problem {
             ),
             BadInstr(s) => write!(
                 f,
-                "bad instruction `{}` (expected `aN` or `tB,B,...`)",
+                "bad instruction `{}` (expected `aN`, `tB,B,...` or `TB,B,...`)",
                 clip(s)
             ),
             TexNoBlock => write!(
                 f,
-                "texture instruction without blocks (expected `t` and hex block numbers)"
+                "texture instruction without blocks (expected `t` or `T` and hex block \
+                 numbers)"
             ),
             EmptyBlockEntry(s) => write!(
                 f,

@@ -1,10 +1,18 @@
-//! The reader of `wasp-trace 3`, `wasp-trace 2` and `wasp-trace 1` text
-//! (see the module documentation).
+//! The reader of `wasp-trace 4`, `3`, `2` and `1` text (see the module
+//! documentation).
 
 use super::{
     Problem, Trace, TraceBuilder, TraceError, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1,
-    FORMAT_VERSION_2, MAGIC, MAX_ALU_RUN, MAX_TEX_BLOCKS,
+    FORMAT_VERSION_2, FORMAT_VERSION_3, MAGIC, MAX_ALU_RUN, MAX_TEX_BLOCKS,
 };
+
+/// Every version the reader accepts, newest first.
+const VERSIONS: [u32; 4] = [
+    FORMAT_VERSION,
+    FORMAT_VERSION_3,
+    FORMAT_VERSION_2,
+    FORMAT_VERSION_1,
+];
 use std::path::Path;
 
 impl Trace {
@@ -187,10 +195,9 @@ fn check_line(line: &str) -> Result<(), Problem> {
     Ok(())
 }
 
-/// The version line 1 names: [`FORMAT_VERSION`], [`FORMAT_VERSION_2`] or
-/// [`FORMAT_VERSION_1`].
+/// The version line 1 names: one of [`VERSIONS`].
 fn check_magic(line: &str) -> Result<u32, Problem> {
-    for v in [FORMAT_VERSION, FORMAT_VERSION_2, FORMAT_VERSION_1] {
+    for v in VERSIONS {
         if line == format!("{MAGIC} {v}") {
             return Ok(v);
         }
@@ -198,9 +205,7 @@ fn check_magic(line: &str) -> Result<u32, Problem> {
     let fields: Vec<&str> = tokens(line).collect();
     if fields.len() == 2
         && fields[0] == MAGIC
-        && ![FORMAT_VERSION, FORMAT_VERSION_2, FORMAT_VERSION_1]
-            .iter()
-            .any(|v| fields[1] == v.to_string())
+        && !VERSIONS.iter().any(|v| fields[1] == v.to_string())
     {
         return Err(Problem::UnsupportedVersion(fields[1].to_string()));
     }
@@ -294,7 +299,7 @@ impl<'a> Parser<'a> {
         let after_z = std::mem::replace(&mut self.after_z, directive == "z");
         match directive {
             "z" => {
-                if self.version < FORMAT_VERSION {
+                if self.version < FORMAT_VERSION_3 {
                     return Err(Problem::RejectedInOldVersion(self.version));
                 }
                 let b = self.body(directive)?;
@@ -331,11 +336,12 @@ impl<'a> Parser<'a> {
                 b.begin_tile(tx, ty)
             }
             "q" => {
+                let version = self.version;
                 let mut instrs = std::mem::take(&mut self.instrs);
                 let mut blocks = std::mem::take(&mut self.blocks);
                 let r = self
                     .body(directive)
-                    .and_then(|b| quad_line(b, fields, &mut instrs, &mut blocks));
+                    .and_then(|b| quad_line(b, fields, version, &mut instrs, &mut blocks));
                 self.instrs = instrs;
                 self.blocks = blocks;
                 r
@@ -436,11 +442,12 @@ impl<'a> Parser<'a> {
     }
 }
 
-/// A `q X Y INSTR...` line. `instrs` and `blocks` are scratch space (their
-/// contents on entry are ignored).
+/// A `q X Y INSTR...` line of a format-`version` file. `instrs` and
+/// `blocks` are scratch space (their contents on entry are ignored).
 fn quad_line(
     b: &mut TraceBuilder,
     fields: &[&str],
+    version: u32,
     instrs: &mut Vec<Tok>,
     blocks: &mut Vec<u64>,
 ) -> Result<(), Problem> {
@@ -466,6 +473,12 @@ fn quad_line(
     let mut prev_alu: Option<u32> = None;
     for tok in &fields[3..] {
         let instr = instr_token(tok, blocks)?;
+        if matches!(instr, Tok::Tex { tri: true, .. }) && version < FORMAT_VERSION {
+            return Err(Problem::TrilinearInOldVersion {
+                version,
+                token: tok.to_string(),
+            });
+        }
         match instr {
             Tok::Alu(n) => {
                 if let Some(first) = prev_alu {
@@ -473,7 +486,7 @@ fn quad_line(
                 }
                 prev_alu = Some(n);
             }
-            Tok::Tex(_) => prev_alu = None,
+            Tok::Tex { .. } => prev_alu = None,
         }
         instrs.push(instr);
     }
@@ -482,8 +495,8 @@ fn quad_line(
     for instr in instrs.iter() {
         match *instr {
             Tok::Alu(n) => b.alu(n)?,
-            Tok::Tex(len) => {
-                b.tex(&blocks[start..start + len])?;
+            Tok::Tex { len, tri } => {
+                b.tex_filtered(&blocks[start..start + len], tri)?;
                 start += len;
             }
         }
@@ -494,9 +507,12 @@ fn quad_line(
 /// One checked instruction token.
 enum Tok {
     Alu(u32),
-    /// A texture instruction: its block numbers are the next this many of
-    /// the line's block scratch.
-    Tex(usize),
+    /// A texture instruction: its block numbers are the next `len` of the
+    /// line's block scratch; `tri`: written `T` (trilinear).
+    Tex {
+        len: usize,
+        tri: bool,
+    },
 }
 
 /// Checks one instruction token; a texture instruction's block numbers
@@ -512,7 +528,14 @@ fn instr_token(tok: &str, blocks: &mut Vec<u64>) -> Result<Tok, Problem> {
         }
         return Ok(Tok::Alu(n as u32));
     }
-    if let Some(list) = tok.strip_prefix('t') {
+    let tex = match tok.as_bytes().first() {
+        Some(b't') => Some(false),
+        Some(b'T') => Some(true),
+        _ => None,
+    };
+    if let Some(tri) = tex {
+        // `t` and `T` are one byte each.
+        let list = &tok[1..];
         if list.is_empty() {
             return Err(Problem::TexNoBlock);
         }
@@ -539,7 +562,10 @@ fn instr_token(tok: &str, blocks: &mut Vec<u64>) -> Result<Tok, Problem> {
             }
             from = to + 1;
         }
-        return Ok(Tok::Tex(blocks.len() - start));
+        return Ok(Tok::Tex {
+            len: blocks.len() - start,
+            tri,
+        });
     }
     Err(Problem::BadInstr(tok.to_string()))
 }
@@ -651,11 +677,23 @@ mod tests {
     fn blocks_fast(list: &str) -> Result<Vec<u64>, Problem> {
         let mut blocks = vec![7]; // scratch left from an earlier token
         match instr_token(&format!("t{list}"), &mut blocks)? {
-            Tok::Tex(n) => {
+            Tok::Tex { len: n, tri: false } => {
                 assert_eq!(blocks.len(), n + 1);
                 Ok(blocks[1..].to_vec())
             }
-            Tok::Alu(_) => unreachable!("a `t` token"),
+            _ => unreachable!("a `t` token"),
+        }
+    }
+
+    /// `T` lists read as `t` lists, marked trilinear.
+    fn blocks_fast_tri(list: &str) -> Result<Vec<u64>, Problem> {
+        let mut blocks = Vec::new();
+        match instr_token(&format!("T{list}"), &mut blocks)? {
+            Tok::Tex { len: n, tri: true } => {
+                assert_eq!(blocks.len(), n);
+                Ok(blocks)
+            }
+            _ => unreachable!("a `T` token"),
         }
     }
 
@@ -757,6 +795,15 @@ mod tests {
         #[test]
         fn block_lists_read_as_the_plain_way(list in "[0-9a-fA-Fg,]{0,40}") {
             prop_assert_eq!(blocks_fast(&list), blocks_reference(&list));
+            // A `T` list reads as the `t` list, errors naming the `T` token.
+            let tri = blocks_fast_tri(&list);
+            match blocks_fast(&list) {
+                Err(Problem::EmptyBlockEntry(tok)) => prop_assert_eq!(
+                    tri,
+                    Err(Problem::EmptyBlockEntry(tok.replacen('t', "T", 1)))
+                ),
+                plain => prop_assert_eq!(tri, plain),
+            }
         }
     }
 }

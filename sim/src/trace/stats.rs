@@ -27,12 +27,17 @@
 //!   A priority subset selects quad *positions*, so it selects every warp
 //!   (fragment) at a selected position.
 //!
+//! * **trilinear texture instructions** = texture instructions written `T`
+//!   (format 4): their sample filters two mip levels. A trace of an older
+//!   version has none (every texture instruction taken as bilinear).
+//!   **trilinear share** = trilinear / all texture instructions.
+//!
 //! * **rejected quads** = quads Early-Z rejected (the trace's `z` lines);
 //!   warps + rejected quads are the quads the rasterizer produced.
 //!
 //! A ratio whose denominator is zero is 0, except the footprint ratio of a
 //! tile without blocks, which is 1 (the empty footprint is fully covered).
-//! So a tile without warps (format 3: every quad it rasterized Early-Z
+//! So a tile without warps (format 3 or 4: every quad it rasterized Early-Z
 //! rejected) has every ratio 0 and footprint ratio 1, never NaN.
 //!
 //! Over a trace: the memory-instruction ratio pools all instructions (sum of
@@ -68,6 +73,8 @@ pub struct TileStats {
     pub instrs: u64,
     /// Texture instructions.
     pub tex_instrs: u64,
+    /// Of those, trilinear ones (`T`).
+    pub tri_tex_instrs: u64,
     /// Block accesses: blocks listed over all texture instructions.
     pub block_accesses: u64,
     /// Distinct (warp, block) pairs.
@@ -95,6 +102,7 @@ impl TileStats {
         let mut warp_blocks = 0u64;
         let mut instrs = 0u64;
         let mut tex = 0u64;
+        let mut tri = 0u64;
         for q in tile.quads() {
             buf.clear();
             buf.extend_from_slice(q.block_accesses());
@@ -103,6 +111,7 @@ impl TileStats {
             warp_blocks += buf.len() as u64;
             instrs += q.instr_count();
             tex += q.tex_count() as u64;
+            tri += q.trilinear_count() as u64;
         }
         TileStats {
             tx: tile.tx(),
@@ -112,6 +121,7 @@ impl TileStats {
             positions: tile.position_count() as u64,
             instrs,
             tex_instrs: tex,
+            tri_tex_instrs: tri,
             block_accesses: tile.block_accesses().len() as u64,
             warp_blocks,
             unique_blocks: unique.len() as u64,
@@ -173,6 +183,10 @@ pub struct TraceStats {
     pub instrs: u64,
     /// Texture instructions.
     pub tex_instrs: u64,
+    /// Of those, trilinear ones (`T`; 0 before format 4).
+    pub tri_tex_instrs: u64,
+    /// tri_tex_instrs / tex_instrs: the trilinear share.
+    pub trilinear_share: f64,
     /// instrs / warps.
     pub instrs_per_warp: f64,
     /// Block accesses over all texture instructions.
@@ -215,6 +229,7 @@ impl TraceStats {
         let positions = sum(|t| t.positions);
         let instrs = sum(|t| t.instrs);
         let tex = sum(|t| t.tex_instrs);
+        let tri = sum(|t| t.tri_tex_instrs);
         let warp_blocks = sum(|t| t.warp_blocks);
         let unique = sum(|t| t.unique_blocks);
         let (mut reuse_num, mut reuse_den) = (0.0, 0.0);
@@ -241,6 +256,8 @@ impl TraceStats {
             warps_per_tile: ratio(warps as f64, warp_tiles as f64),
             instrs,
             tex_instrs: tex,
+            tri_tex_instrs: tri,
+            trilinear_share: ratio(tri as f64, tex as f64),
             instrs_per_warp: ratio(instrs as f64, warps as f64),
             block_accesses: sum(|t| t.block_accesses),
             warp_blocks,

@@ -105,6 +105,7 @@ fn tiny_trace_statistics_match_hand_computation() {
             positions: 16,
             instrs: 16 * 9,
             tex_instrs: 32,
+            tri_tex_instrs: 0,
             block_accesses: 36 + 16,
             warp_blocks: 52,
             unique_blocks: 10,
@@ -171,12 +172,12 @@ fn synthetic_small_trace_contents() {
     assert_eq!((q.x(), q.y()), SYNTH_SMALL_Q0_POS);
     assert_eq!(q.instrs().collect::<Vec<_>>(), synth_small_q0_instrs());
     // The file is version 1; the writer reproduces it byte for byte but
-    // for line 1 (it writes version 3, a superset).
+    // for line 1 (it writes version 4, a superset).
     let text = std::fs::read_to_string(SYNTH_SMALL).unwrap();
     assert!(text.starts_with("wasp-trace 1\n"));
     assert_eq!(
         t.to_text(),
-        text.replacen("wasp-trace 1\n", "wasp-trace 3\n", 1)
+        text.replacen("wasp-trace 1\n", "wasp-trace 4\n", 1)
     );
 }
 
@@ -196,8 +197,8 @@ fn synth_small_q0_instrs() -> Vec<Instr<'static>> {
 fn tiny_trace_round_trips_through_the_writer() {
     let t = Trace::read(TINY).unwrap();
     let text = t.to_text();
-    // Read as version 1, written as version 3, the same records.
-    assert!(text.starts_with("wasp-trace 3\n# tiny.trace"));
+    // Read as version 1, written as version 4, the same records.
+    assert!(text.starts_with("wasp-trace 4\n# tiny.trace"));
     assert!(text.contains("\nq 1 1 a2 t1a00,1a01,1a10,1a11 a4 t2000 a1\n"));
     assert_eq!(Trace::parse(&text, "rt").unwrap(), t);
 }
@@ -304,7 +305,7 @@ fn overdraw_trace_keeps_repeated_positions_in_file_order() {
     let file = std::fs::read_to_string(OVERDRAW).unwrap();
     assert_eq!(
         t.to_text(),
-        file.replacen("wasp-trace 2\n", "wasp-trace 3\n", 1)
+        file.replacen("wasp-trace 2\n", "wasp-trace 4\n", 1)
     );
 }
 
@@ -382,7 +383,7 @@ fn version_2_allows_repeats_in_any_order_and_version_1_does_not() {
     assert_eq!(tile.quads_at(1, 1).count(), 3);
     assert_eq!(
         t.to_text(),
-        body(records).replacen("wasp-trace 2\n", "wasp-trace 3\n", 1)
+        body(records).replacen("wasp-trace 2\n", "wasp-trace 4\n", 1)
     );
     // The same records under version 1 break its order rule.
     let (line, p, _) = fail(&body1(records));
@@ -398,7 +399,7 @@ fn version_2_allows_repeats_in_any_order_and_version_1_does_not() {
     assert_eq!(a, b);
     assert_eq!(
         a.to_text(),
-        body(v1).replacen("wasp-trace 2\n", "wasp-trace 3\n", 1)
+        body(v1).replacen("wasp-trace 2\n", "wasp-trace 4\n", 1)
     );
     // Version 2 keeps every other rule.
     let (_, p, _) = fail(&body("tile 0 0\nq 1 1 a1\nq 1 1\nend\n"));
@@ -423,9 +424,9 @@ fn every_malformation_is_reported_with_its_line() {
             )
         }),
         (
-            "wasp-trace 4\n".into(),
+            "wasp-trace 5\n".into(),
             1,
-            |p| matches!(p, UnsupportedVersion(v) if v == "4"),
+            |p| matches!(p, UnsupportedVersion(v) if v == "5"),
         ),
         (
             "wasp-trace 0\n".into(),
@@ -738,16 +739,16 @@ fn error_messages_read_well() {
         msg,
         "x.trace:5: quad 40 3 outside the tile (expected x and y from 0 to 31)"
     );
-    let (_, _, msg) = fail("wasp-trace 4\n");
+    let (_, _, msg) = fail("wasp-trace 5\n");
     assert_eq!(
         msg,
-        "x.trace:1: unsupported format version `4` (expected 3, 2 or 1)"
+        "x.trace:1: unsupported format version `5` (expected 4, 3, 2 or 1)"
     );
     let (_, _, msg) = fail(&body1("tile 0 0\nq 1 0 a1\nq 1 0 a2\n"));
     assert_eq!(
         msg,
         "x.trace:6: quad 1 0 appears twice in the tile (expected each quad at most once in \
-         format 1; formats 2 and 3 allow repeats)"
+         format 1; formats 2 to 4 allow repeats)"
     );
     let (_, _, msg) = fail(&body1("tile 0 0\nq 1 1 a1\nq 2 0 a1\n"));
     assert_eq!(
@@ -943,13 +944,15 @@ fn builder_rejects_bad_headers() {
 
 // ---------------------------------------------------------------- proptests
 
-/// An instruction of a generated quad: (ALU run, no blocks) or (0, blocks).
+/// An instruction of a generated quad: (ALU run, no blocks) or (0 for
+/// bilinear, 1 for trilinear, blocks).
 type SpecInstr = (u32, Vec<u64>);
 
 /// A strategy for arbitrary valid traces, built through the builder:
-/// version-3 traces (positions in any order, repeats, rejected quads
-/// between and after the quads, tiles of rejected quads only) or, with
-/// `scanline`, traces that are also valid version 1 (no rejected quad).
+/// version-4 traces (positions in any order, repeats, rejected quads
+/// between and after the quads, tiles of rejected quads only, trilinear
+/// texture instructions) or, with `scanline`, traces that are also valid
+/// version 1 (no rejected quad, every texture instruction bilinear).
 fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
     let header = (
         1u32..300,
@@ -969,10 +972,16 @@ fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
         });
     let instr = prop_oneof![
         (1u32..=MAX_ALU_RUN).prop_map(|n| (n, vec![])),
-        proptest::collection::btree_set(any::<u64>(), 1..6)
-            .prop_map(|s| (0, s.into_iter().collect::<Vec<u64>>())),
-        proptest::collection::btree_set(0u64..64, 1..5)
-            .prop_map(|s| (0, s.into_iter().rev().collect::<Vec<u64>>())),
+        (
+            proptest::collection::btree_set(any::<u64>(), 1..6),
+            any::<bool>()
+        )
+            .prop_map(|(s, tri)| (u32::from(tri), s.into_iter().collect::<Vec<u64>>())),
+        (
+            proptest::collection::btree_set(0u64..64, 1..5),
+            any::<bool>()
+        )
+            .prop_map(|(s, tri)| (u32::from(tri), s.into_iter().rev().collect::<Vec<u64>>())),
     ];
     let quad = proptest::collection::vec(instr, 1..6);
     // Rejected quads before each quad and after the last (mostly none; a
@@ -1046,7 +1055,7 @@ fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
                             // Merging may overflow the run limit: then skip it.
                             let _ = b.alu(n);
                         } else {
-                            b.tex(&blocks).unwrap();
+                            b.tex_filtered(&blocks, n == 1 && !scanline).unwrap();
                         }
                     }
                 }
@@ -1129,7 +1138,7 @@ proptest! {
 
     #[test]
     fn scanline_traces_read_the_same_as_version_1(t in arb_trace_v(true)) {
-        let text = t.to_text().replacen("wasp-trace 3\n", "wasp-trace 1\n", 1);
+        let text = t.to_text().replacen("wasp-trace 4\n", "wasp-trace 1\n", 1);
         prop_assert_eq!(Trace::parse(&text, "v1").unwrap(), t);
     }
 
@@ -1310,7 +1319,11 @@ fn rejected_quads_round_trip_and_sit_where_they_were_rasterized() {
     let b = &t.tiles()[1];
     assert_eq!((b.quad_count(), b.rejected_after_last()), (0, 9));
     assert_eq!(t.rejected_count(), 24);
-    assert_eq!(t.to_text(), text, "the writer writes what it read");
+    assert_eq!(
+        t.to_text(),
+        text.replacen("wasp-trace 3\n", "wasp-trace 4\n", 1),
+        "the writer writes what it read, as version 4"
+    );
     // Statistics of a trace with a warp-less tile stay finite.
     let st = t.stats();
     assert!(st.cf.is_finite() && st.min_estimate1.is_finite());
@@ -1387,7 +1400,7 @@ fn bad_rejection_records_are_errors_with_their_line() {
     let text = "wasp-trace 2\nworkload w\nframe 64 64 tile 64\ntile 0 0\nq 0 0 a1\nend\n";
     let t = Trace::parse(text, "v2").unwrap();
     assert_eq!(t.rejected_count(), 0);
-    assert!(t.to_text().starts_with("wasp-trace 3\n"));
+    assert!(t.to_text().starts_with("wasp-trace 4\n"));
 }
 
 #[test]
@@ -1543,11 +1556,11 @@ fn older_files_load_without_rejected_quads() {
             assert_eq!(tile.rejected_after_last(), 0, "{path}");
             assert!((0..tile.quad_count()).all(|i| tile.rejected_before(i) == 0));
         }
-        // Written as version 3, the same records: only line 1 changes.
-        let v3 = t.to_text();
-        assert!(v3.starts_with("wasp-trace 3\n"));
-        assert!(!v3.contains("\nz "), "{path}");
-        assert_eq!(Trace::parse(&v3, "v3").unwrap(), t);
+        // Written as version 4, the same records: only line 1 changes.
+        let v4 = t.to_text();
+        assert!(v4.starts_with("wasp-trace 4\n"));
+        assert!(!v4.contains("\nz "), "{path}");
+        assert_eq!(Trace::parse(&v4, "v4").unwrap(), t);
     }
 }
 
@@ -1595,4 +1608,154 @@ fn a_tile_without_warps_stays_out_of_per_tile_means() {
         (s.warps_per_tile, s.cf, s.reuse, s.coverage),
         (0.0, 0.0, 0.0, 0.0)
     );
+}
+
+// ---------------------------------------------------------------- trilinear
+
+const HEAD4: &str = "wasp-trace 4\nworkload w\nframe 128 64 tile 64\n";
+
+#[test]
+fn trilinear_instructions_round_trip_and_count() {
+    let text = format!(
+        "{HEAD4}tile 0 0\nq 0 0 a2 T1a,2b a1 t3\nq 1 0 TFF\nz 2\nend\ntile 1 0\nq 0 0 t4 T5\nend\n"
+    );
+    let t = Trace::parse(&text, "tri").unwrap();
+    let q = t.tiles()[0].quad(0).unwrap();
+    assert_eq!(
+        q.instrs().collect::<Vec<_>>(),
+        vec![
+            Instr::Alu(2),
+            Instr::TriTex(&[0x1a, 0x2b]),
+            Instr::Alu(1),
+            Instr::Tex(&[3]),
+        ]
+    );
+    assert_eq!((q.tex_count(), q.trilinear_count()), (2, 1));
+    assert!(Instr::TriTex(&[1]).is_trilinear() && !Instr::Tex(&[1]).is_trilinear());
+    assert_eq!(Instr::TriTex(&[1, 2]).blocks(), Some(&[1u64, 2][..]));
+    assert_eq!(Instr::Alu(3).blocks(), None);
+    // Upper-case hex digits read, written lower-case; `T` stays `T`.
+    assert_eq!(
+        t.tiles()[0].quad(1).unwrap().entry(0),
+        Some(Instr::TriTex(&[0xff]))
+    );
+    assert_eq!(t.tiles()[0].trilinear_count(), 2);
+    assert_eq!((t.tex_count(), t.trilinear_count()), (5, 3));
+    let s = t.stats();
+    assert_eq!((s.tex_instrs, s.tri_tex_instrs), (5, 3));
+    assert!(close(s.trilinear_share, 0.6));
+    assert_eq!(t.tiles()[1].stats().tri_tex_instrs, 1);
+    assert_eq!(t.to_text(), text.replace("TFF", "Tff"));
+    // The core's view: the flag with the block count.
+    let tile = &t.tiles()[0];
+    assert_eq!(tile.op_kind(1), Some(OpKind::Tex { len: 2, tri: true }));
+    assert_eq!(tile.op_kind(3), Some(OpKind::Tex { len: 1, tri: false }));
+    // The same blocks bilinear or trilinear are different instructions.
+    let bil = Trace::parse(&text.replace('T', "t"), "bil").unwrap();
+    assert_ne!(bil, t);
+    assert_eq!(bil.trilinear_count(), 0);
+    // The builder's three ways to add one.
+    let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+    b.begin_tile(0, 0).unwrap();
+    b.begin_quad(0, 0).unwrap();
+    b.tex_trilinear(&[1]).unwrap();
+    b.tex_filtered(&[2], true).unwrap();
+    b.instr(Instr::TriTex(&[3])).unwrap();
+    b.tex_filtered(&[4], false).unwrap();
+    assert_eq!(b.tex_trilinear(&[5, 5]), Err(Problem::DuplicateBlock(5)));
+    b.end_tile().unwrap();
+    let t = b.finish().unwrap();
+    assert_eq!((t.tex_count(), t.trilinear_count()), (4, 3));
+    assert!(t.to_text().contains("\nq 0 0 T1 T2 T3 t4\n"));
+}
+
+#[test]
+fn an_instruction_entry_stays_twelve_bytes() {
+    assert_eq!(std::mem::size_of::<Op>(), 12);
+}
+
+#[test]
+fn trilinear_in_an_older_version_is_an_error_naming_the_token() {
+    for v in [1, 2, 3] {
+        let text = format!(
+            "wasp-trace {v}\nworkload w\nframe 64 64 tile 64\ntile 0 0\nq 0 0 a1 T1a,2\nend\n"
+        );
+        let e = Trace::parse(&text, "old.trace").unwrap_err();
+        assert_eq!(e.line(), Some(5));
+        assert_eq!(
+            e.problem(),
+            Some(&Problem::TrilinearInOldVersion {
+                version: v,
+                token: "T1a,2".into()
+            })
+        );
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "old.trace:5: trilinear texture instruction `T1a,2` in a format-{v} trace \
+                 (expected `T` only from format 4 on: write `t`, or `wasp-trace 4` on line 1)"
+            )
+        );
+        // The same with `t` loads, every texture instruction bilinear.
+        let t = Trace::parse(&text.replace('T', "t"), "old.trace").unwrap();
+        assert_eq!((t.tex_count(), t.trilinear_count()), (1, 0));
+    }
+}
+
+#[test]
+fn bad_trilinear_tokens_are_errors_with_their_line() {
+    let cases: [(&str, Problem); 6] = [
+        ("T", Problem::TexNoBlock),
+        ("T1,,2", Problem::EmptyBlockEntry("T1,,2".into())),
+        ("T1g", Problem::BadHex { found: "1g".into() }),
+        ("T7,7", Problem::DuplicateBlock(7)),
+        ("TT1", Problem::BadHex { found: "T1".into() }),
+        ("tT1", Problem::BadHex { found: "T1".into() }),
+    ];
+    for (tok, want) in cases {
+        let text = format!("{HEAD4}tile 0 0\nq 0 0 a1 {tok}\nend\n");
+        let e = Trace::parse(&text, "t.trace").unwrap_err();
+        assert_eq!(e.line(), Some(5), "{tok}");
+        assert_eq!(e.problem(), Some(&want), "{tok}");
+        assert!(e.to_string().contains("(expected "), "{e}");
+    }
+    let many = (0..1025)
+        .map(|i| format!("{i:x}"))
+        .collect::<Vec<_>>()
+        .join(",");
+    let text = format!("{HEAD4}tile 0 0\nq 0 0 T{many}\nend\n");
+    assert_eq!(
+        Trace::parse(&text, "t").unwrap_err().problem(),
+        Some(&Problem::TooManyBlocks(1025))
+    );
+    let msg = Trace::parse(&format!("{HEAD4}tile 0 0\nq 0 0 T\nend\n"), "t")
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        msg,
+        "t:5: texture instruction without blocks (expected `t` or `T` and hex block numbers)"
+    );
+}
+
+#[test]
+fn a_trilinear_error_in_a_piece_is_reported_as_on_one_thread() {
+    // A version-3 text long enough to be read in pieces, with one `T`
+    // near the end: the pieces fail, the one-thread read names its line.
+    let mut text = String::from("wasp-trace 3\nworkload w\nframe 4096 64 tile 64\n");
+    for tx in 0..64 {
+        text.push_str(&format!("tile {tx} 0\nq 0 0 a1 t{tx:x}\nend\n"));
+    }
+    let good = Trace::parse_with(&text, "p", 4, 0).unwrap();
+    assert_eq!(good.trilinear_count(), 0);
+    let bad = text.replacen("q 0 0 a1 t3e\n", "q 0 0 a1 T3e\n", 1);
+    let line = bad.lines().position(|l| l.ends_with("T3e")).unwrap() + 1;
+    let e = Trace::parse_with(&bad, "p", 4, 0).unwrap_err();
+    assert_eq!(e, Trace::parse_with(&bad, "p", 1, usize::MAX).unwrap_err());
+    assert_eq!(e.line(), Some(line));
+    assert!(e.to_string().contains("`T3e` in a format-3 trace"), "{e}");
+    // As version 4 it reads, in pieces or not, the same.
+    let v4 = bad.replacen("wasp-trace 3\n", "wasp-trace 4\n", 1);
+    let a = Trace::parse_with(&v4, "p", 4, 0).unwrap();
+    assert_eq!(a, Trace::parse_with(&v4, "p", 1, usize::MAX).unwrap());
+    assert_eq!(a.trilinear_count(), 1);
 }

@@ -1,12 +1,12 @@
-//! The writer of `wasp-trace 3` text (every trace, whatever version it was
-//! read from: version 3 accepts every version-1 and version-2 trace).
+//! The writer of `wasp-trace 4` text (every trace, whatever version it was
+//! read from: version 4 accepts every version-1, -2 and -3 trace).
 
 use super::{Instr, Trace, FORMAT_VERSION, MAGIC};
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
 impl Trace {
-    /// Writes the trace as `wasp-trace 3` text: line 1, the header notes as
+    /// Writes the trace as `wasp-trace 4` text: line 1, the header notes as
     /// `#` lines, the header, then each tile record. Hex is lowercase without
     /// leading zeros. `Trace::parse` of the output gives back `self`.
     pub fn write(&self, mut out: impl Write) -> io::Result<()> {
@@ -34,8 +34,8 @@ impl Trace {
                         Instr::Alu(n) => {
                             let _ = write!(buf, " a{n}");
                         }
-                        Instr::Tex(blocks) => {
-                            buf.push_str(" t");
+                        Instr::Tex(blocks) | Instr::TriTex(blocks) => {
+                            buf.push_str(if instr.is_trilinear() { " T" } else { " t" });
                             for (i, b) in blocks.iter().enumerate() {
                                 if i > 0 {
                                     buf.push(',');
@@ -56,7 +56,7 @@ impl Trace {
         out.flush()
     }
 
-    /// The trace as `wasp-trace 3` text.
+    /// The trace as `wasp-trace 4` text.
     pub fn to_text(&self) -> String {
         let mut out = Vec::new();
         self.write(&mut out).expect("writing to a Vec cannot fail");
