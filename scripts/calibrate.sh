@@ -20,7 +20,9 @@
 # Traces come from scripts/machines.sh's cache (target/machines/traces),
 # rendered there if missing. WASP_CONFIG names the starting configuration
 # (default: the embedded configs/paper.toml); SCENES limits the scenes
-# (space separated) for a quick look, which is then not a calibration.
+# (space separated) for a quick look, which is then not a calibration;
+# JOBS caps the simulations run at once (default: the machine's cores);
+# STOP_AFTER=A stops after the MSHR stage.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$repo/target/calibrate}
@@ -39,8 +41,15 @@ KNEE=${KNEE:-0.01}
 export KNEE
 
 scenes=${SCENES:-$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6 {print $1}')}
+# The trace format the front end writes (FORMAT_VERSION in sim/src/trace):
+# a cached trace of another version is rendered again.
+version=$(sed -n 's/^pub const FORMAT_VERSION: u32 = \([0-9][0-9]*\);$/\1/p' sim/src/trace/mod.rs)
+[ -n "$version" ] || { echo "calibrate.sh: no FORMAT_VERSION in sim/src/trace/mod.rs" >&2; exit 1; }
 for s in $scenes; do
   t=$repo/target/machines/traces/$s.trace
+  if [ -s "$t" ] && [ "$(head -n 1 "$t")" != "wasp-trace $version" ]; then
+    rm -f "$t"
+  fi
   if [ ! -s "$t" ]; then
     echo "== render $s" >&2
     "$W" render "$s" --trace-out "$t.tmp" -q && mv "$t.tmp" "$t"
@@ -56,7 +65,7 @@ run() {
   for s in $scenes; do
     local j=$out/json/$name.$s.json
     [ -s "$j" ] && continue
-    "$W" compare "${cfg_args[@]}" --trace "$repo/target/machines/traces/$s.trace" \
+    "$W" compare "${cfg_args[@]}" ${JOBS:+--jobs "$JOBS"} --trace "$repo/target/machines/traces/$s.trace" \
       --policies "$policies" "${sets[@]}" -q --json "$j.tmp" >/dev/null
     mv "$j.tmp" "$j"
   done
@@ -73,11 +82,15 @@ for n in $L1_SET; do run "l1-$n.l2-$l2" baseline l0.mshrs=31 "l1.mshrs=$n" "l2.m
 l1=$(pick "l1" $L1_SET -- ".l2-$l2")
 echo "   L1 MSHRs = $l1" >&2
 echo "== A. L0 MSHRs: $L0_SET" >&2
-for n in $L0_SET; do run "l0-$n.l1-$l1.l2-$l2" baseline "l0.mshrs=$n" "l1.mshrs=$l1" "l2.mshrs=$l2"; done
+for n in $L0_SET; do run "l0-$n.l1-$l1.l2-$l2" baseline scheduler.policy=baseline "l0.mshrs=$n" "l1.mshrs=$l1" "l2.mshrs=$l2"; done
 l0=$(pick "l0" $L0_SET -- ".l1-$l1.l2-$l2")
 echo "   L0 MSHRs = $l0" >&2
 mshrs=("l0.mshrs=$l0" "l1.mshrs=$l1" "l2.mshrs=$l2")
 base="l0-$l0.l1-$l1.l2-$l2"
+if [ "${STOP_AFTER:-}" = A ]; then
+  echo "== stopped after stage A: $base" >&2
+  exit 0
+fi
 
 echo "== B. CF" >&2
 cf=$(python3 "$repo/scripts/calibrate-report.py" cf "$out" "$base")
@@ -89,7 +102,7 @@ for ((t = 0; t < l0; t += THRESHOLD_STEP)); do
   policies+=",wasp:$t:$cf"
   [ "$cf" != "2.5" ] && policies+=",wasp:$t:2.5"
 done
-run "wasp.$base" "$policies" "${mshrs[@]}"
+run "wasp.$base" "$policies" scheduler.policy=baseline "${mshrs[@]}"
 
 python3 "$repo/scripts/calibrate-report.py" report "$out" "$base" "$cf" \
   "$l0" "$l1" "$l2" "$L0_SET" "$L1_SET" "$L2_SET" "$scenes"
