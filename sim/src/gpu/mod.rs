@@ -33,7 +33,7 @@ use crate::stats::{RunInstruments, RunStats};
 use crate::timeline::{Timeline, TimelineSample};
 use crate::trace::Trace;
 use std::fmt;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::subset::SubsetSpec;
 use wasp_rtl::RegisterFault;
 use wasp_waves::{CycleSink, NullTracer, Tracer};
@@ -89,6 +89,8 @@ impl std::error::Error for SimError {}
 pub struct RunOptions {
     /// Override `scheduler.policy`.
     pub policy: Option<PolicySpec>,
+    /// Override `scheduler.launch_rule`.
+    pub launch_rule: Option<LaunchRule>,
     /// Override `scheduler.subset`.
     pub subset: Option<SubsetSpec>,
     /// Override `memory.ideal`.
@@ -109,6 +111,9 @@ impl RunOptions {
         let mut c = cfg.clone();
         if let Some(p) = self.policy {
             c.scheduler.policy = p.to_string();
+        }
+        if let Some(r) = self.launch_rule {
+            c.scheduler.launch_rule = r.to_string();
         }
         if let Some(s) = &self.subset {
             c.scheduler.subset = s.to_string();
@@ -162,6 +167,7 @@ impl<'t> Gpu<'t> {
         }
         let policy = cfg.policy().map_err(SimError::Config)?;
         let subset = cfg.subset().map_err(SimError::Config)?;
+        let rule = cfg.launch_rule().map_err(SimError::Config)?;
         let (_, sc) = cfg.scheduler_cache();
         let shared = cfg.raster.dispatch == Dispatch::SharedTile;
         let params = CoreParams {
@@ -179,7 +185,7 @@ impl<'t> Gpu<'t> {
         let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);
         for id in 0..cfg.gpu.cores as usize {
             let p = policy.build(sc.mshrs.min(31)).map_err(SimError::Config)?;
-            cores.push(ShaderCore::new(id, params, p, subset.build(side)));
+            cores.push(ShaderCore::new(id, params, p, rule, subset.build(side)));
         }
         let mem =
             MemorySystem::new(&cfg.mem_config()).map_err(|e| SimError::Config(e.to_string()))?;
