@@ -782,6 +782,47 @@ mod tests {
         }
     }
 
+    /// WaSP at threshold 14 of 16 L0 MSHRs closes its gate often; under
+    /// `hold` a core then idles whenever only priority warps wait, under
+    /// `launch` it never does. The baseline never holds and is the same
+    /// under both rules.
+    #[test]
+    fn launch_rule_hold_idles_and_launch_does_not() {
+        let t = small_synth(3);
+        let cfg = MachineConfig::paper();
+        let go = |policy: &str, rule: LaunchRule| {
+            let opts = RunOptions {
+                policy: Some(policy.parse().unwrap()),
+                launch_rule: Some(rule),
+                ..Default::default()
+            };
+            simulate(&cfg, &t, &opts, &mut |_, _| {}).unwrap()
+        };
+        let hold = go("wasp:14", LaunchRule::Hold);
+        let launch = go("wasp:14", LaunchRule::Launch);
+        assert_eq!(
+            (hold.launch_rule.as_str(), launch.launch_rule.as_str()),
+            ("hold", "launch")
+        );
+        assert!(hold.held_cycles > 0, "{}", hold.held_cycles);
+        assert_eq!(
+            hold.held_cycles,
+            hold.held_cycles_per_core.iter().sum::<u64>()
+        );
+        assert_eq!(hold.held_cycles_per_core.len(), cfg.gpu.cores as usize);
+        assert_eq!(launch.held_cycles, 0);
+        assert!(launch.held_cycles_per_core.iter().all(|&h| h == 0));
+        for s in [&hold, &launch] {
+            assert_eq!(s.warps, t.quad_count() as u64);
+        }
+        assert_ne!(hold.cycles, launch.cycles);
+        let base_hold = go("baseline", LaunchRule::Hold);
+        let base_launch = go("baseline", LaunchRule::Launch);
+        assert_eq!(base_hold.held_cycles, 0);
+        assert_eq!(base_hold.cycles, base_launch.cycles);
+        assert_eq!(base_hold.per_tile, base_launch.per_tile);
+    }
+
     #[test]
     fn scarce_mshrs_stall_and_plentiful_do_not() {
         let t = small_synth(7);
