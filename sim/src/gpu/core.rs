@@ -10,8 +10,10 @@
 //!    enter the input queue (the subset comparator picks the FIFO). Under
 //!    shared-tile dispatch the GPU's one rasterizer fills the queue instead
 //!    ([`ShaderCore::push_quad`], `gpu/raster.rs`);
-//! 3. launch: one warp per cycle from the FIFO the policy selects, if a
-//!    warp slot is free;
+//! 3. launch: one warp per cycle from the FIFO the policy selects under
+//!    the launch rule (`scheduler.launch_rule`), if a warp slot is free; a
+//!    cycle in which `hold` keeps a lone priority warp back is a hold idle
+//!    cycle ([`CoreStats::held_cycles`]);
 //! 4. issue: up to `pipeline_width` ready warps issue one instruction each,
 //!    in loose round-robin order; a texture instruction enters the LDST
 //!    queue (one per cycle, if it has room);
