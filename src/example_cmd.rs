@@ -6,6 +6,7 @@ use clap::Args;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use wasp_rtl::policy::LaunchRule;
 use wasp_sim::example::{self, ExampleConfig, ExampleError, ExampleReport};
 use wasp_waves::{Format, GtkwSave, SignalInfo, VcdSink};
 
@@ -36,6 +37,11 @@ pub struct ExampleArgs {
     /// (0..=31 and below --mshrs). CF is 1, as each warp makes one access.
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub threshold: u32,
+
+    /// What a closed gate does when only a priority warp waits: hold
+    /// (launch nothing; the paper's rule) or launch (that priority warp).
+    #[arg(long, default_value_t = LaunchRule::Hold, value_name = "RULE")]
+    pub launch_rule: LaunchRule,
 }
 
 impl Default for ExampleArgs {
@@ -47,6 +53,7 @@ impl Default for ExampleArgs {
             latency: d.latency,
             mshrs: d.mshrs,
             threshold: d.threshold,
+            launch_rule: d.launch_rule,
         }
     }
 }
@@ -64,6 +71,7 @@ pub fn run(args: &ExampleArgs) -> Result<(), CliError> {
         latency: args.latency,
         mshrs: args.mshrs,
         threshold: args.threshold,
+        launch_rule: args.launch_rule,
     };
     cfg.validate().map_err(CliError::usage)?;
     let report = match &args.vcd {

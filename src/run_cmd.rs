@@ -6,7 +6,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
 use wasp_sim::gpu::{simulate, simulate_timeline, simulate_traced, RunOptions, SimError};
@@ -33,6 +33,13 @@ pub struct Inputs {
     /// random or random:SEED. Overrides scheduler.subset.
     #[arg(long, value_name = "SUBSET")]
     pub subset: Option<SubsetSpec>,
+
+    /// What a core launches when a priority warp waits, the policy's gate
+    /// is closed and no regular warp waits: hold (nothing; the paper's rule)
+    /// or launch (that priority warp; work-conserving). Overrides
+    /// scheduler.launch_rule.
+    #[arg(long, value_name = "RULE")]
+    pub launch_rule: Option<LaunchRule>,
 
     /// Zero-latency main memory (overrides memory.ideal).
     #[arg(long)]
@@ -249,6 +256,7 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     };
     let opts = RunOptions {
         policy: args.policy,
+        launch_rule: args.inputs.launch_rule,
         subset: args.inputs.subset.clone(),
         ideal_memory: args.inputs.ideal_memory.then_some(true),
         dispatch: args.inputs.dispatch,
@@ -361,6 +369,7 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
             label: p.to_string(),
             opts: RunOptions {
                 policy: Some(*p),
+                launch_rule: args.inputs.launch_rule,
                 subset: args.inputs.subset.clone(),
                 ideal_memory: args.inputs.ideal_memory.then_some(true),
                 dispatch: args.inputs.dispatch,
@@ -373,6 +382,7 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
             label: format!("{} +ideal memory", args.policies[0]),
             opts: RunOptions {
                 policy: Some(args.policies[0]),
+                launch_rule: args.inputs.launch_rule,
                 subset: args.inputs.subset.clone(),
                 ideal_memory: Some(true),
                 dispatch: args.inputs.dispatch,
@@ -451,12 +461,12 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
     };
     let _ = writeln!(
         s,
-        "machine {}  |  dispatch {}  |  workload {}  |  subset {}",
-        base.machine, base.dispatch, base.workload, base.subset.subset
+        "machine {}  |  dispatch {}  |  workload {}  |  subset {}  |  launch rule {}",
+        base.machine, base.dispatch, base.workload, base.subset.subset, base.launch_rule
     );
     let _ = writeln!(
         s,
-        "{:<26}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}{:>7}{:>8}",
+        "{:<26}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}{:>7}{:>8}{:>10}",
         "policy",
         "cycles",
         "ipc",
@@ -467,7 +477,8 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
         "l2 miss",
         "energy",
         "occ",
-        "lead"
+        "lead",
+        "held"
     );
     for (l, r) in labels.iter().zip(runs) {
         let stall = r.l0.as_ref().unwrap_or(&r.l1).stall_fraction;
@@ -478,7 +489,7 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
         };
         let _ = writeln!(
             s,
-            "{:<26}{:>12}{:>8.3}{:>+8.2}%{:>8.2}%{:>10.1}{:>10}{:>10}{:>9.1}uJ{:>7.1}{:>8}",
+            "{:<26}{:>12}{:>8.3}{:>+8.2}%{:>8.2}%{:>10.1}{:>10}{:>10}{:>9.1}uJ{:>7.1}{:>8}{:>10}",
             l,
             r.cycles,
             r.ipc,
@@ -489,12 +500,13 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
             r.l2.misses,
             r.energy.total_nj / 1000.0,
             r.avg_warps_per_core,
-            lead
+            lead,
+            r.held_cycles
         );
     }
     let _ = writeln!(
         s,
-        "speedup = {} cycles / policy cycles - 1; stall% = scheduler-level cache (L0, else L1) stalled; latency = mean memory latency per warp in cycles; occ = mean warps resident per core; lead = mean raster position minus launch rank of priority warps",
+        "speedup = {} cycles / policy cycles - 1; stall% = scheduler-level cache (L0, else L1) stalled; latency = mean memory latency per warp in cycles; occ = mean warps resident per core; lead = mean raster position minus launch rank of priority warps; held = hold idle core-cycles (a free slot, a priority warp waiting, nothing launched)",
         labels[0]
     );
     s

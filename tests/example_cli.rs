@@ -98,7 +98,14 @@ fn help_explains_each_subcommand() {
     assert!(s.contains("example") && s.contains("worked example"));
     let o = wasp(&["example", "--help"]);
     let s = stdout(&o);
-    for flag in ["--json", "--vcd", "--latency", "--mshrs", "--threshold"] {
+    for flag in [
+        "--json",
+        "--vcd",
+        "--latency",
+        "--mshrs",
+        "--threshold",
+        "--launch-rule",
+    ] {
         assert!(s.contains(flag), "{flag} missing from help");
     }
 }
@@ -196,4 +203,33 @@ fn unwritable_vcd_path_is_a_clear_error() {
     let o = wasp(&["example", "--vcd", "/nonexistent-dir/x.vcd"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("cannot create /nonexistent-dir/x.vcd"));
+}
+
+/// The launch rule: the paper's example is the same under both rules; at
+/// threshold 2 `hold` idles 4 cycles (19 in all) where `launch` sends W5 and
+/// W10 at once (17).
+#[test]
+fn the_launch_rule_flag() {
+    let json = |args: &[&str]| -> Value {
+        let mut a = vec!["example", "--json"];
+        a.extend_from_slice(args);
+        let o = wasp(&a);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_str(&stdout(&o)).unwrap()
+    };
+    let hold = json(&[]);
+    assert_eq!(hold["wasp"]["machine"]["launch_rule"], "hold");
+    let launch = json(&["--launch-rule", "launch"]);
+    assert_eq!(launch["wasp"]["machine"]["launch_rule"], "launch");
+    assert_eq!(launch["wasp"]["cycles"], 16);
+    assert_eq!(launch["wasp"]["timeline"], hold["wasp"]["timeline"]);
+    for (rule, cycles, held) in [("hold", 19, 4), ("launch", 17, 0)] {
+        let v = json(&["--threshold", "2", "--launch-rule", rule]);
+        assert_eq!(v["wasp"]["cycles"], cycles, "{rule}");
+        assert_eq!(v["wasp"]["held_cycles"], held, "{rule}");
+    }
+    let text = stdout(&wasp(&["example", "--launch-rule", "launch"]));
+    assert!(text.contains("launch rule launch"), "{text}");
+    let o = wasp(&["example", "--launch-rule", "never"]);
+    assert_eq!(o.status.code(), Some(2));
 }

@@ -493,3 +493,88 @@ fn set_overrides_a_field_and_names_a_bad_one() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("expected one of:"), "{}", stderr(&o));
 }
+
+#[test]
+fn the_launch_rule_is_chosen_reported_and_counted() {
+    let d = dir("launch-rule");
+    let trace = synth_trace(&d, 3);
+    // The default is the paper's `hold`; the JSON says so and carries the
+    // hold idle core-cycles, in total and per core.
+    let hold = run_json(&["--trace", &trace, "--policy", "wasp:14"]);
+    assert_eq!(hold["launch_rule"], "hold");
+    let per_core: Vec<u64> = hold["held_cycles_per_core"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .collect();
+    assert_eq!(per_core.len(), 4);
+    assert_eq!(
+        hold["held_cycles"].as_u64().unwrap(),
+        per_core.iter().sum::<u64>()
+    );
+    assert!(hold["held_cycles"].as_u64().unwrap() > 0);
+    // --launch-rule and --set both choose `launch`, which never holds.
+    let flag = run_json(&[
+        "--trace",
+        &trace,
+        "--policy",
+        "wasp:14",
+        "--launch-rule",
+        "launch",
+    ]);
+    let set = run_json(&[
+        "--trace",
+        &trace,
+        "--policy",
+        "wasp:14",
+        "--set",
+        "scheduler.launch_rule=\"launch\"",
+    ]);
+    for v in [&flag, &set] {
+        assert_eq!(v["launch_rule"], "launch");
+        assert_eq!(v["held_cycles"], 0);
+    }
+    assert_eq!(flag["cycles"], set["cycles"]);
+    // The text table names the rule and the held cycles.
+    let table = ok(&wasp(&[
+        "run",
+        "-q",
+        "--trace",
+        &trace,
+        "--launch-rule",
+        "launch",
+    ]));
+    assert!(table.contains("launch rule launch"), "{table}");
+    assert!(table.contains("hold idle core-cycles 0"), "{table}");
+    // compare applies the rule to every run and shows the held column.
+    let o = ok(&wasp(&[
+        "compare",
+        "-q",
+        "--trace",
+        &trace,
+        "--policies",
+        "baseline,wasp:14",
+        "--launch-rule",
+        "hold",
+    ]));
+    assert!(o.contains("launch rule hold") && o.contains("held"), "{o}");
+    // A bad rule is a usage error that names the choices.
+    let o = wasp(&["run", "-q", "--trace", &trace, "--launch-rule", "idle"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("hold or launch"), "{}", stderr(&o));
+    let o = wasp(&[
+        "run",
+        "-q",
+        "--trace",
+        &trace,
+        "--set",
+        "scheduler.launch_rule=\"idle\"",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("scheduler.launch_rule"),
+        "{}",
+        stderr(&o)
+    );
+}

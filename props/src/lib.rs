@@ -18,16 +18,23 @@
 //!
 //! # (a) No priority launch when `Real_freeMSHRs <= Threshold`
 //!
+//! Under the launch rule `hold` (the paper's); under `launch` a priority
+//! warp goes below the threshold only when no regular warp waits, and the
+//! scheduler never idles while a warp waits. Every body below checks both
+//! rules.
+//!
 //! | body | harness | test twin | domain |
 //! |---|---|---|---|
-//! | [`policy::wasp_priority_only_above_threshold`] | `policy::proofs::proof_wasp_priority_only_above_threshold` | `policy::tests::exhaustive_wasp_select_q0_to_15`, `..._q16_to_31` | free 0..=31 x nonblocked 0..=127 x q 0..=31 x T 0..=31 x both FIFO flags: 16,777,216 decisions; `select` gives `Priority` only if the exact condition holds, and equals the exact WaSP rule |
+//! | [`policy::wasp_priority_only_above_threshold`] | `policy::proofs::proof_wasp_priority_only_above_threshold` | `policy::tests::exhaustive_wasp_select_q0_to_15`, `..._q16_to_31` | free 0..=31 x nonblocked 0..=127 x q 0..=31 x T 0..=31 x both FIFO flags: 16,777,216 decisions, each under both launch rules; `select` gives `Priority` only if the exact condition holds (under `launch`: or no regular warp waits), never idles under `launch` with a warp waiting, and equals the exact WaSP rule |
 //! | [`policy::wasp_without_datapath_never_priority`] | `proof_wasp_without_datapath_never_priority` | `exhaustive_wasp_without_datapath` | q x T x free x flags (131,072) |
 //! | [`policy::policy_matches_reference`] | `proof_other_policies_match_reference` | `exhaustive_other_policies` | Baseline, Fullpriority, FreeMSHR-N for N 0..=31, x free x nonblocked x flags (557,056) |
-//! | [`scheduler::SchedulerCheck`] (`front`/`back`, via [`scheduler::explore_wasp`]) | `scheduler::proofs::proof_wasp_scheduler_cycles` (3 cycles, any CF, T < 4, 4 MSHRs, queue 2) | `scheduler::tests::exhaustive_wasp_scheduler_depth6_a`, `..._b` | `LaunchScheduler` with WaSP, 2 MSHRs, queue 2, (T, q) in {(0,4), (0,10), (1,0), (1,4)}: every input sequence of up to 6 cycles over a 192-letter alphabet (offer nothing / a priority quad / a regular quad, enable or not, each event count 0 or 1, reduced to legal), as a state graph (about 330 states, 44,000 transitions per configuration); plus `extreme_register_values_through_the_scheduler` (127 priority warps, CF 7.75) |
+//! | [`scheduler::SchedulerCheck`] (`front`/`back`, via [`scheduler::explore_wasp`]) | `scheduler::proofs::proof_wasp_scheduler_cycles` (3 cycles, any CF, T < 4, 4 MSHRs, queue 2) | `scheduler::tests::exhaustive_wasp_scheduler_depth6_a`, `..._b` (hold), `..._launch` (launch: (T, q) in {(1,0), (1,4), (0,10)}) | `LaunchScheduler` with WaSP, 2 MSHRs, queue 2, (T, q) in {(0,4), (0,10), (1,0), (1,4)}: every input sequence of up to 6 cycles over a 192-letter alphabet (offer nothing / a priority quad / a regular quad, enable or not, each event count 0 or 1, reduced to legal), as a state graph (about 330 states, 44,000 transitions per configuration); plus `extreme_register_values_through_the_scheduler` (127 priority warps, CF 7.75) |
 //!
 //! At the scheduler level every cycle checks: the decision equals the exact
 //! rule on that cycle's register values, a priority launch happens only
-//! when the exact condition held, the datapath outputs are exact, the
+//! when the exact condition held (under `launch`: or no regular warp
+//! waited), `launch` selects a FIFO whenever a warp waits, `held` is set
+//! exactly when `hold` idles with a lone priority warp, the datapath outputs are exact, the
 //! launched warp is the reference FIFO head, the registers equal the
 //! model's unbounded counters after the clock, no `RegisterFault` under
 //! legal events, and queue conservation.

@@ -251,6 +251,8 @@ pub struct SmallMachine {
     pub max_merged: u32,
     /// Launch policy.
     pub policy: &'static str,
+    /// The launch rule for a closed gate.
+    pub launch_rule: wasp_rtl::policy::LaunchRule,
     /// Priority subset.
     pub subset: &'static str,
     /// Zero-latency main memory.
@@ -290,6 +292,7 @@ impl SmallMachine {
         c.dram.row_miss_latency = 6;
         c.memory.ideal = self.ideal;
         c.scheduler.policy = self.policy.into();
+        c.scheduler.launch_rule = self.launch_rule.to_string();
         c.scheduler.subset = self.subset.into();
         c.sim.watchdog_cycles = 100_000;
         c
@@ -345,13 +348,14 @@ mod proofs {
 
     /// Every machine property over one tile of two quads with any
     /// programs of the domain, on a one-core WaSP machine with one L0 MSHR
-    /// (threshold 0) and two warp slots; the run ends within the liveness
+    /// (threshold 0), either launch rule and two warp slots; the run ends within the liveness
     /// bound, so the unwinding covers it. Twin:
     /// `tests::exhaustive_one_tile_up_to_three_quads`.
     #[kani::proof]
     #[kani::unwind(40)]
     fn proof_machine_two_quads() {
         let (a, b): (u8, u8) = (kani::any(), kani::any());
+        let launch: bool = kani::any();
         let quads = [a as usize % PROGRAMS, b as usize % PROGRAMS];
         let trace = small_trace(&[&quads]);
         let m = SmallMachine {
@@ -363,6 +367,11 @@ mod proofs {
             mshrs: 1,
             max_merged: 1,
             policy: "wasp:0",
+            launch_rule: if launch {
+                wasp_rtl::policy::LaunchRule::Launch
+            } else {
+                wasp_rtl::policy::LaunchRule::Hold
+            },
             subset: "mesh2",
             ideal: false,
         };
@@ -373,6 +382,14 @@ mod proofs {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use wasp_rtl::policy::LaunchRule;
+
+    fn launch(m: SmallMachine) -> SmallMachine {
+        SmallMachine {
+            launch_rule: LaunchRule::Launch,
+            ..m
+        }
+    }
 
     fn m(
         l0: bool,
@@ -391,6 +408,7 @@ mod tests {
             mshrs,
             max_merged: 1,
             policy,
+            launch_rule: LaunchRule::Hold,
             subset: "mesh2",
             ideal: false,
         }
@@ -414,6 +432,10 @@ mod tests {
                 ideal: true,
                 ..m(false, 1, 2, 2, 1, "wasp:0")
             },
+            // The work-conserving launch rule.
+            launch(m(true, 1, 2, 2, 1, "wasp:0")),
+            launch(m(true, 1, 3, 1, 2, "wasp:1")),
+            launch(m(false, 1, 3, 2, 2, "freemshr:1")),
         ]
     }
 
@@ -457,7 +479,7 @@ mod tests {
         }
         // Not vacuous: priority warps launched, MSHR files filled up, cores
         // held several warps at once.
-        assert_eq!(runs, 7 * 155);
+        assert_eq!(runs, 10 * 155);
         assert!(
             prio > 500 && full > 500 && max_active == 3,
             "{prio} {full} {max_active}"
@@ -471,6 +493,7 @@ mod tests {
             m(true, 1, 2, 2, 1, "wasp:0"),
             m(true, 2, 2, 1, 1, "fullpriority"),
             m(false, 1, 2, 2, 2, "baseline"),
+            launch(m(true, 1, 2, 2, 1, "wasp:0")),
         ];
         let mut runs = 0;
         for mach in machines {
@@ -484,7 +507,7 @@ mod tests {
                 }
             }
         }
-        assert_eq!(runs, 3 * 30 * 30);
+        assert_eq!(runs, 4 * 30 * 30);
     }
 
     #[test]

@@ -1,5 +1,7 @@
-//! (a) WaSP never launches a priority warp when `Real_freeMSHRs <= Threshold`,
-//! and every policy's `select` equals an exact reference.
+//! (a) Under the launch rule `hold`, WaSP never launches a priority warp
+//! when `Real_freeMSHRs <= Threshold`; under `launch` it does so only when
+//! no regular warp waits, and never idles while a warp waits. Every
+//! policy's `select` equals an exact reference under both rules.
 //!
 //! [`RefPolicy`] restates each launch rule in unbounded `i64` arithmetic on
 //! the register values (for WaSP, the real-number rule scaled by 4). The
@@ -13,7 +15,7 @@ use crate::datapath::exact_priority;
 use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
 use wasp_rtl::free_mshr::FreeMshrs;
 use wasp_rtl::nonblocked::NonblockedCount;
-use wasp_rtl::policy::{LaunchPolicy, LaunchView, PolicySpec, Wasp};
+use wasp_rtl::policy::{LaunchPolicy, LaunchRule, LaunchView, PolicySpec, Wasp};
 use wasp_rtl::queue::QueueClass;
 
 /// Property name used in counterexamples.
@@ -78,10 +80,12 @@ impl RefPolicy {
         }
     }
 
-    /// The FIFO to launch from: priority if one waits and the rule allows
-    /// it, else regular if one waits, else none.
+    /// The FIFO to launch from: priority if one waits and the policy allows
+    /// it, else regular if one waits, else priority if one waits and the
+    /// launch rule is `launch`, else none.
     pub fn select(
         &self,
+        rule: LaunchRule,
         priority_waiting: bool,
         regular_waiting: bool,
         free: i64,
@@ -91,6 +95,8 @@ impl RefPolicy {
             Some(QueueClass::Priority)
         } else if regular_waiting {
             Some(QueueClass::Regular)
+        } else if priority_waiting && rule == LaunchRule::Launch {
+            Some(QueueClass::Priority)
         } else {
             None
         }
@@ -119,12 +125,15 @@ pub const FIFO_FLAGS: [(bool, bool); 4] =
     [(false, false), (false, true), (true, false), (true, true)];
 
 /// (a), combinational: for the WaSP policy with CF `cf` and threshold `t`,
-/// at register values `free`, `nonblocked`, and for each of the four
-/// combinations of `priority_waiting` and `regular_waiting`, `select`
-/// returns `Priority` only if the exact `free - CF x nonblocked > t` holds
-/// (and a priority warp waits); moreover it equals the exact WaSP rule
-/// ([`RefPolicy::Wasp`]). The datapath is evaluated once, as the scheduler
-/// does, and the view differs only in the two FIFO flags.
+/// at register values `free`, `nonblocked`, for each of the four
+/// combinations of `priority_waiting` and `regular_waiting` and under both
+/// launch rules, `select` returns `Priority` only if a priority warp waits
+/// and, under `hold`, only if the exact `free - CF x nonblocked > t` holds
+/// (under `launch`: if it holds or no regular warp waits); under `launch`
+/// it selects a FIFO whenever a warp waits (work-conserving); and it equals
+/// the exact WaSP rule ([`RefPolicy::Wasp`]). The datapath is evaluated
+/// once, as the scheduler does, and the view differs only in the two FIFO
+/// flags.
 pub fn wasp_priority_only_above_threshold(
     free: FreeMshrs,
     nonblocked: NonblockedCount,
@@ -141,43 +150,58 @@ pub fn wasp_priority_only_above_threshold(
         threshold.get() as i64,
     );
     let exact = exact_priority(f, n, q, t);
-    for (priority_waiting, regular_waiting) in FIFO_FLAGS {
-        let view = LaunchView {
-            priority_waiting,
-            regular_waiting,
-            free_mshrs: free,
-            datapath: Some(out),
-        };
-        let got = (&policy as &dyn LaunchPolicy).select(&view);
-        let cex = |what| {
-            Cex::new(PROP, what)
-                .with("free", f)
-                .with("nonblocked", n)
-                .with("cf_quarters", q)
-                .with("threshold", t)
-                .with("priority_waiting", priority_waiting as i64)
-                .with("regular_waiting", regular_waiting as i64)
-        };
-        ensure(got != Some(QueueClass::Priority) || exact, || {
-            cex("priority warp selected with Real_freeMSHRs <= Threshold (exact)")
-                .with("scaled_real_minus_threshold", 4 * f - q * n - 4 * t)
-        })?;
-        ensure(
-            got != Some(QueueClass::Priority) || priority_waiting,
-            || cex("priority FIFO selected while empty"),
-        )?;
-        let want = RefPolicy::Wasp { q, t }.select(priority_waiting, regular_waiting, f, n);
-        ensure(got == want, || {
-            cex("select differs from the exact WaSP rule")
-                .with("expected_select", class_code(want))
-                .with("got_select", class_code(got))
-        })?;
+    for rule in LaunchRule::ALL {
+        for (priority_waiting, regular_waiting) in FIFO_FLAGS {
+            let view = LaunchView {
+                priority_waiting,
+                regular_waiting,
+                free_mshrs: free,
+                datapath: Some(out),
+            };
+            let got = (&policy as &dyn LaunchPolicy).select(rule, &view);
+            let cex = |what| {
+                Cex::new(PROP, what)
+                    .with("launch_rule", rule as i64)
+                    .with("free", f)
+                    .with("nonblocked", n)
+                    .with("cf_quarters", q)
+                    .with("threshold", t)
+                    .with("priority_waiting", priority_waiting as i64)
+                    .with("regular_waiting", regular_waiting as i64)
+            };
+            // hold: never below the threshold; launch: below it only when
+            // no regular warp waits.
+            let below_allowed = rule == LaunchRule::Launch && !regular_waiting;
+            ensure(
+                got != Some(QueueClass::Priority) || exact || below_allowed,
+                || {
+                    cex("priority warp selected with Real_freeMSHRs <= Threshold (exact)")
+                        .with("scaled_real_minus_threshold", 4 * f - q * n - 4 * t)
+                },
+            )?;
+            ensure(
+                got != Some(QueueClass::Priority) || priority_waiting,
+                || cex("priority FIFO selected while empty"),
+            )?;
+            ensure(
+                rule == LaunchRule::Hold || got.is_some() == (priority_waiting || regular_waiting),
+                || cex("launch rule `launch` idles while a warp waits"),
+            )?;
+            let want =
+                RefPolicy::Wasp { q, t }.select(rule, priority_waiting, regular_waiting, f, n);
+            ensure(got == want, || {
+                cex("select differs from the exact WaSP rule")
+                    .with("expected_select", class_code(want))
+                    .with("got_select", class_code(got))
+            })?;
+        }
     }
     Ok(())
 }
 
 /// (a), without a datapath: WaSP given a view with no datapath output
-/// never selects the priority FIFO.
+/// treats the gate as closed: never the priority FIFO under `hold`, and
+/// under `launch` only when no regular warp waits.
 pub fn wasp_without_datapath_never_priority(
     cf: Cf,
     threshold: Threshold,
@@ -186,20 +210,41 @@ pub fn wasp_without_datapath_never_priority(
     regular_waiting: bool,
 ) -> Result<(), Cex> {
     let policy = Wasp::new(WaspDatapath { cf, threshold });
-    let got = (&policy as &dyn LaunchPolicy).select(&LaunchView {
-        priority_waiting,
-        regular_waiting,
-        free_mshrs: free,
-        datapath: None,
-    });
-    ensure(got != Some(QueueClass::Priority), || {
-        Cex::new(PROP, "priority selected with no datapath output").with("free", free.get() as i64)
-    })
+    for rule in LaunchRule::ALL {
+        let got = (&policy as &dyn LaunchPolicy).select(
+            rule,
+            &LaunchView {
+                priority_waiting,
+                regular_waiting,
+                free_mshrs: free,
+                datapath: None,
+            },
+        );
+        let closed = match rule {
+            LaunchRule::Hold => None,
+            LaunchRule::Launch => priority_waiting.then_some(QueueClass::Priority),
+        };
+        let want = if regular_waiting {
+            Some(QueueClass::Regular)
+        } else {
+            closed
+        };
+        ensure(got == want, || {
+            Cex::new(PROP, "no datapath output must act as a closed gate")
+                .with("launch_rule", rule as i64)
+                .with("free", free.get() as i64)
+                .with("priority_waiting", priority_waiting as i64)
+                .with("regular_waiting", regular_waiting as i64)
+                .with("expected_select", class_code(want))
+                .with("got_select", class_code(got))
+        })?;
+    }
+    Ok(())
 }
 
-/// Any policy: at these register values and FIFO flags, `select` on the
-/// view the scheduler builds equals `reference`, and never names an empty
-/// FIFO.
+/// Any policy: at these register values and FIFO flags, under both launch
+/// rules, `select` on the view the scheduler builds equals `reference`, and
+/// never names an empty FIFO.
 pub fn policy_matches_reference(
     policy: &dyn LaunchPolicy,
     reference: RefPolicy,
@@ -209,27 +254,31 @@ pub fn policy_matches_reference(
     regular_waiting: bool,
 ) -> Result<(), Cex> {
     let view = scheduler_view(policy, free, nonblocked, priority_waiting, regular_waiting);
-    let got = policy.select(&view);
     let (f, n) = (free.get() as i64, nonblocked.get() as i64);
-    let want = reference.select(priority_waiting, regular_waiting, f, n);
-    let cex = |what| {
-        Cex::new(PROP_REF, what)
-            .with("free", f)
-            .with("nonblocked", n)
-            .with("priority_waiting", priority_waiting as i64)
-            .with("regular_waiting", regular_waiting as i64)
-            .with("expected_select", class_code(want))
-            .with("got_select", class_code(got))
-    };
-    let waiting = match got {
-        None => true,
-        Some(QueueClass::Priority) => priority_waiting,
-        Some(QueueClass::Regular) => regular_waiting,
-    };
-    ensure(waiting, || cex("selected an empty FIFO"))?;
-    ensure(got == want, || {
-        cex("select differs from the reference rule")
-    })
+    for rule in LaunchRule::ALL {
+        let got = policy.select(rule, &view);
+        let want = reference.select(rule, priority_waiting, regular_waiting, f, n);
+        let cex = |what| {
+            Cex::new(PROP_REF, what)
+                .with("launch_rule", rule as i64)
+                .with("free", f)
+                .with("nonblocked", n)
+                .with("priority_waiting", priority_waiting as i64)
+                .with("regular_waiting", regular_waiting as i64)
+                .with("expected_select", class_code(want))
+                .with("got_select", class_code(got))
+        };
+        let waiting = match got {
+            None => true,
+            Some(QueueClass::Priority) => priority_waiting,
+            Some(QueueClass::Regular) => regular_waiting,
+        };
+        ensure(waiting, || cex("selected an empty FIFO"))?;
+        ensure(got == want, || {
+            cex("select differs from the reference rule")
+        })?;
+    }
+    Ok(())
 }
 
 /// The `launch` signal encoding (0 none, 1 regular, 2 priority) as `i64`.
@@ -410,6 +459,17 @@ mod tests {
             None
         );
         assert!(!RefPolicy::Baseline.uses_priority_queue());
+        // The rules differ only with a lone priority warp and a closed gate.
+        let w = RefPolicy::Wasp { q: 10, t: 4 };
+        assert_eq!(w.select(LaunchRule::Hold, true, false, 4, 0), None);
+        assert_eq!(
+            w.select(LaunchRule::Launch, true, false, 4, 0),
+            Some(QueueClass::Priority)
+        );
+        assert_eq!(
+            w.select(LaunchRule::Launch, true, true, 4, 0),
+            Some(QueueClass::Regular)
+        );
         assert!(RefPolicy::FreeMshr { n: 3 }.uses_priority_queue());
     }
 }

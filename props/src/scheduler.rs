@@ -6,16 +6,19 @@
 //! counters (`i64`): the MSHR entries in flight, the priority warps in the
 //! core, non-blocked and blocked, the regular warps in the core, and an
 //! ideal pair of FIFOs with a capacity check. The launch rule is the exact
-//! [`RefPolicy`]. A cycle is:
+//! [`RefPolicy`] under the configured [`LaunchRule`]. A cycle is:
 //!
 //! 1. the rasterizer may offer one warp (in-tile quad coordinates): its
 //!    class must be the reference classification, and it must be accepted
 //!    iff fewer than `queue_capacity` warps wait;
 //! 2. `decide` must pick the reference FIFO from the current register
 //!    values; for WaSP the datapath outputs must equal the exact product,
-//!    difference and comparison, and **(a)**: a priority selection, and a
-//!    priority launch, happen only when `4 free - q nonblocked > 4 T` on
-//!    that cycle's register values;
+//!    difference and comparison, and **(a)**: under `hold` a priority
+//!    selection, and a priority launch, happen only when
+//!    `4 free - q nonblocked > 4 T` on that cycle's register values (under
+//!    `launch` also when no regular warp waits); under `launch` a FIFO is
+//!    selected whenever a warp waits; `held` is set exactly when `hold`
+//!    idles with a priority warp waiting;
 //! 3. `launch` (enabled when the core has a free warp slot and the
 //!    environment wants a launch) must pop the reference FIFO's head;
 //! 4. the cycle's memory and warp events, legal in the model, are clocked
@@ -35,7 +38,7 @@ use crate::policy::{class_code, RefPolicy};
 use std::collections::VecDeque;
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::LaunchScheduler;
 use wasp_rtl::subset::{PrioritySubset, SubsetSpec};
@@ -49,6 +52,8 @@ pub const PROP: &str = "(a) scheduler vs model";
 pub struct SchedConfig {
     /// The launch policy.
     pub policy: PolicySpec,
+    /// The launch rule for a closed gate.
+    pub launch_rule: LaunchRule,
     /// The priority subset.
     pub subset: SubsetSpec,
     /// MSHR entries of the scheduler-level cache (0..=31).
@@ -106,6 +111,8 @@ pub struct Launched {
 pub struct Model {
     /// The exact launch rule.
     pub policy: RefPolicy,
+    /// What a closed gate does with a lone waiting priority warp.
+    pub rule: LaunchRule,
     subset_spec: SubsetSpec,
     subset: Box<dyn PrioritySubset>,
     /// Priority FIFO (tickets), oldest first.
@@ -256,9 +263,16 @@ impl SchedulerCheck {
             .ok_or_else(|| format!("no reference for {}", cfg.policy))?;
         let reg = FreeMshrReg::with_capacity(cfg.mshrs)
             .ok_or_else(|| format!("{} MSHRs do not fit 5 bits", cfg.mshrs))?;
-        let sched = LaunchScheduler::new(cfg.queue_capacity, cfg.subset.build(32), reg, policy);
+        let sched = LaunchScheduler::new(
+            cfg.queue_capacity,
+            cfg.subset.build(32),
+            reg,
+            policy,
+            cfg.launch_rule,
+        );
         let model = Model {
             policy: reference,
+            rule: cfg.launch_rule,
             subset_spec: cfg.subset.clone(),
             subset: cfg.subset.build(32),
             priority: VecDeque::new(),
@@ -359,7 +373,8 @@ impl SchedulerCheck {
         let pw = !self.model.priority.is_empty();
         let rw = !self.model.regular.is_empty();
         let d = self.sched.decide();
-        let want = self.model.policy.select(pw, rw, free, nb);
+        let rule = self.model.rule;
+        let want = self.model.policy.select(rule, pw, rw, free, nb);
         match (self.model.policy, d.datapath) {
             (RefPolicy::Wasp { q, t }, Some(out)) => {
                 let product = exact_product(nb, q);
@@ -379,9 +394,14 @@ impl SchedulerCheck {
             (_, Some(_)) => return Err(self.cex("a non-WaSP policy has a datapath")),
             (_, None) => {}
         }
+        // A priority warp below the threshold: never under `hold`; under
+        // `launch` only with no regular warp waiting.
+        let below_ok = rule == LaunchRule::Launch && !rw;
         if let RefPolicy::Wasp { q, t } = self.model.policy {
             ensure(
-                d.select != Some(QueueClass::Priority) || exact_priority(free, nb, q, t),
+                d.select != Some(QueueClass::Priority)
+                    || exact_priority(free, nb, q, t)
+                    || below_ok,
                 || {
                     self.cex("(a) priority selected with Real_freeMSHRs <= Threshold")
                         .with("scaled_real_minus_threshold", 4 * free - q * nb - 4 * t)
@@ -392,6 +412,15 @@ impl SchedulerCheck {
             self.cex("decision differs from the reference policy")
                 .with("expected_select", class_code(want))
                 .with("got_select", class_code(d.select))
+        })?;
+        ensure(
+            rule == LaunchRule::Hold || d.select.is_some() == (pw || rw),
+            || self.cex("launch rule `launch` idles while a warp waits"),
+        )?;
+        let held =
+            rule == LaunchRule::Hold && pw && !rw && !self.model.policy.priority_allowed(free, nb);
+        ensure(d.held == held, || {
+            self.cex("`held` differs from: hold, a lone priority warp, gate closed")
         })?;
         // 3. Launch.
         let room = self.model.in_core() < self.model.max_warps;
@@ -410,7 +439,7 @@ impl SchedulerCheck {
             (got, self.model.policy)
         {
             // (a) at the scheduler level, on this cycle's register values.
-            ensure(exact_priority(free, nb, q, t), || {
+            ensure(exact_priority(free, nb, q, t) || below_ok, || {
                 self.cex("(a) priority warp launched with Real_freeMSHRs <= Threshold")
             })?;
         }
@@ -674,9 +703,9 @@ mod proofs {
     /// Cycles of the Kani harness.
     const KANI_CYCLES: usize = 3;
 
-    /// Twin: `tests::exhaustive_wasp_scheduler_depth6_a` and `_b`. WaSP
-    /// with any CF, any threshold below 4 MSHRs, a queue of 2, symbolic
-    /// inputs for 3 cycles.
+    /// Twin: `tests::exhaustive_wasp_scheduler_depth6_a`, `_b` and
+    /// `_launch`. WaSP with any CF, any threshold below 4 MSHRs, either
+    /// launch rule, a queue of 2, symbolic inputs for 3 cycles.
     #[kani::proof]
     #[kani::unwind(8)]
     fn proof_wasp_scheduler_cycles() {
@@ -684,10 +713,16 @@ mod proofs {
         kani::assume(q <= 31);
         let t: u8 = kani::any();
         kani::assume(t < 4);
+        let launch: bool = kani::any();
         let cfg = SchedConfig {
             policy: PolicySpec::Wasp {
                 threshold: t as u32,
                 cf: q as f64 / 4.0,
+            },
+            launch_rule: if launch {
+                LaunchRule::Launch
+            } else {
+                LaunchRule::Hold
             },
             subset: SubsetSpec::Mesh(4),
             mshrs: 4,
@@ -730,6 +765,7 @@ mod tests {
                 threshold,
                 cf: q as f64 / 4.0,
             },
+            launch_rule: LaunchRule::Hold,
             subset: SubsetSpec::Mesh(4),
             mshrs,
             queue_capacity: queue,
@@ -737,10 +773,13 @@ mod tests {
         }
     }
 
-    fn explore(configs: &[(u32, u32)]) {
+    fn explore(configs: &[(u32, u32)], launch_rule: LaunchRule) {
         let alphabet = small_alphabet();
         for &(t, q) in configs {
-            let cfg = wasp_cfg(t, q, 2, 2);
+            let cfg = SchedConfig {
+                launch_rule,
+                ..wasp_cfg(t, q, 2, 2)
+            };
             let st =
                 explore_wasp(&cfg, &alphabet, DEPTH).unwrap_or_else(|e| panic!("{cfg:?}: {e}"));
             assert!(st.states > 1 && st.transitions > 0, "{st:?}");
@@ -752,12 +791,56 @@ mod tests {
     /// CF 0 and 1 (WaSP holds priority warps back in each).
     #[test]
     fn exhaustive_wasp_scheduler_depth6_a() {
-        explore(&[(0, 4), (0, 10)]);
+        explore(&[(0, 4), (0, 10)], LaunchRule::Hold);
     }
 
     #[test]
     fn exhaustive_wasp_scheduler_depth6_b() {
-        explore(&[(1, 0), (1, 4)]);
+        explore(&[(1, 0), (1, 4)], LaunchRule::Hold);
+    }
+
+    /// The work-conserving rule on the configurations of `_a` and `_b`
+    /// where WaSP closes its gate most (threshold 1).
+    #[test]
+    fn exhaustive_wasp_scheduler_depth6_launch() {
+        explore(&[(1, 0), (1, 4), (0, 10)], LaunchRule::Launch);
+    }
+
+    /// Under `hold` a closed gate with only a priority warp waiting idles
+    /// and says so (`held`); under `launch` the warp launches.
+    #[test]
+    fn a_lone_priority_warp_with_the_gate_closed() {
+        for rule in LaunchRule::ALL {
+            let cfg = SchedConfig {
+                launch_rule: rule,
+                // Threshold 1 of 2 MSHRs: one miss closes the gate.
+                ..wasp_cfg(1, 4, 2, 4)
+            };
+            let mut s = SchedulerCheck::new(&cfg).unwrap();
+            let l = s
+                .cycle(&CycleChoice {
+                    enqueue: Some((0, 0)),
+                    enable: true,
+                    allocs: 1,
+                    blocked: 1,
+                    ..Default::default()
+                })
+                .unwrap();
+            assert!(matches!(l.warp, Some((_, QueueClass::Priority))));
+            let l = s
+                .cycle(&CycleChoice {
+                    enqueue: Some((4, 0)),
+                    enable: true,
+                    ..Default::default()
+                })
+                .unwrap();
+            match rule {
+                LaunchRule::Hold => assert_eq!(l.warp, None),
+                LaunchRule::Launch => {
+                    assert!(matches!(l.warp, Some((_, QueueClass::Priority))))
+                }
+            }
+        }
     }
 
     /// The register extremes through the scheduler: 127 priority warps

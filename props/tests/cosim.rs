@@ -9,7 +9,8 @@
 //! every output of every cycle is compared with the model: the registers
 //! (free MSHRs, non-blocked count, both queue occupancies), the comparator,
 //! push acceptance, the datapath (product, real_free, the comparison), the
-//! policy's selection, the launch, and the fault flag.
+//! policy's selection under the launch rule (`hold` or `launch`), the
+//! launch, and the fault flag.
 //!
 //! Events are legal (a model of the MSHR file and of the priority warps in
 //! the core keeps them so, like `FreeMshrReg::legal` and the warp slots of a
@@ -34,7 +35,7 @@ use std::process::Command;
 use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::{launch_code, LaunchScheduler};
 use wasp_rtl::subset::Mesh;
@@ -85,6 +86,9 @@ struct Config {
     freemshr_n: u32,
     /// Mesh-k.
     mesh_k: u32,
+    /// The launch rule for a closed gate (the Verilog LAUNCH_RULE: 0 hold,
+    /// 1 launch).
+    launch_rule: LaunchRule,
     seeds: u64,
     cycles: usize,
     /// Cycles (per 1000) that carry one arbitrary, possibly illegal, count.
@@ -117,6 +121,7 @@ impl Config {
             Box::new(Mesh::new(self.mesh_k).expect("mesh k")),
             FreeMshrReg::with_capacity(self.mshrs).expect("capacity fits 5 bits"),
             self.spec().build(self.mshrs).expect("valid policy"),
+            self.launch_rule,
         )
     }
 
@@ -129,6 +134,13 @@ impl Config {
             ("THRESHOLD", self.threshold as usize),
             ("FREEMSHR_N", self.freemshr_n as usize),
             ("MESH_BITS", self.mesh_k.trailing_zeros() as usize),
+            (
+                "LAUNCH_RULE",
+                match self.launch_rule {
+                    LaunchRule::Hold => 0,
+                    LaunchRule::Launch => 1,
+                },
+            ),
         ];
         p.iter()
             .map(|(k, v)| format!("-Ptb_cosim.{k}={v}"))
@@ -235,6 +247,11 @@ struct Coverage {
     regular_launches: u64,
     /// A priority warp waited but the policy chose regular or nothing.
     priority_held_back: u64,
+    /// The launch rule `hold` idled: a lone priority warp, the gate closed.
+    held: u64,
+    /// A WaSP priority launch with the datapath saying regular (only the
+    /// launch rule `launch` does that).
+    launched_gate_closed: u64,
     free_zero: u64,
     real_free_negative: u64,
     faults: u64,
@@ -250,6 +267,8 @@ impl Coverage {
         self.priority_launches += o.priority_launches;
         self.regular_launches += o.regular_launches;
         self.priority_held_back += o.priority_held_back;
+        self.held += o.held;
+        self.launched_gate_closed += o.launched_gate_closed;
         self.free_zero += o.free_zero;
         self.real_free_negative += o.real_free_negative;
         self.faults += o.faults;
@@ -481,6 +500,8 @@ fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
             c.priority_launches += lp as u64;
             c.regular_launches += lr as u64;
             c.priority_held_back += (prio_waiting && d.select != Some(QueueClass::Priority)) as u64;
+            c.held += d.held as u64;
+            c.launched_gate_closed += (lp == 1 && out.priority_over_regular == 0) as u64;
             c.free_zero += (free == 0) as u64;
             c.real_free_negative += (out.real_free < 0) as u64;
             c.faults += out.fault as u64;
@@ -686,6 +707,7 @@ const fn wasp(
         threshold,
         freemshr_n: 0,
         mesh_k: 4,
+        launch_rule: LaunchRule::Hold,
         seeds: 6,
         cycles: 4000,
         illegal_per_mille: 0,
@@ -720,8 +742,10 @@ fn cosim_wasp_configurations() {
             "{}: vacuous stimulus: {c:?}",
             cfg.name
         );
+        assert_eq!(c.launched_gate_closed, 0, "{}: hold launched", cfg.name);
         total.add(&c);
     }
+    assert!(total.held > 0, "hold never idled: {total:?}");
     assert!(total.pushes_refused > 0 && total.free_zero > 0 && total.real_free_negative > 0);
     assert_eq!(total.max_nonblocked, MAX_WARPS, "{total:?}");
 }
@@ -810,5 +834,45 @@ fn cosim_faults_on_illegal_events() {
             "{}: too few faults exercised: {c:?}",
             cfg.name
         );
+    }
+}
+
+/// The launch rule `launch` (LAUNCH_RULE = 1): WaSP launches priority warps
+/// with its gate closed when no regular warp waits, and never holds; the
+/// other policies with the same rule.
+#[test]
+fn cosim_launch_rule_launch() {
+    let launch = |c: Config| Config {
+        launch_rule: LaunchRule::Launch,
+        ..c
+    };
+    let wasp_configs = [
+        launch(wasp("launch_wasp_paper_m16_q64_cf2.5_t4", 16, 64, 10, 4)),
+        launch(wasp("launch_wasp_worked_m3_q16_cf1_t1", 3, 16, 4, 1)),
+        launch(wasp("launch_wasp_m31_q100_cf2.5_t30", 31, 100, 10, 30)),
+        launch(wasp("launch_wasp_m3_q2_cf7.75_t2", 3, 2, 31, 2)),
+    ];
+    let mut total = Coverage::default();
+    for cfg in &wasp_configs {
+        let Some(c) = cosim(cfg) else { return };
+        assert_eq!(c.held, 0, "{}: launch held: {c:?}", cfg.name);
+        total.add(&c);
+    }
+    assert!(total.launched_gate_closed > 0, "{total:?}");
+    let base = wasp("", 16, 64, 10, 4);
+    for (name, policy, n) in [
+        ("launch_baseline_m16_q64", 0, 0),
+        ("launch_fullpriority_m16_q64", 1, 0),
+        ("launch_freemshr10_m16_q64", 2, 10),
+    ] {
+        let cfg = launch(Config {
+            name,
+            policy,
+            freemshr_n: n,
+            ..base.clone()
+        });
+        let Some(c) = cosim(&cfg) else { return };
+        assert_eq!(c.held, 0, "{name}: {c:?}");
+        assert!(c.regular_launches > 0, "{name}: {c:?}");
     }
 }

@@ -12,7 +12,7 @@ use proptest::test_runner::Config;
 use wasp_props::scheduler::{run, CycleChoice, CycleEvents, SchedConfig, SchedulerCheck};
 use wasp_rtl::free_mshr::MshrEvents;
 use wasp_rtl::nonblocked::PriorityEvents;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::subset::SubsetSpec;
 
 const CYCLES: usize = 1000;
@@ -72,10 +72,15 @@ fn choices() -> impl Strategy<Value = Vec<CycleChoice>> {
 /// A configuration for `policy(mshrs)`: MSHRs 1..=31, queue 1..=64,
 /// warp slots 1..=127.
 fn config(policy: impl Fn(u32) -> BoxedStrategy<PolicySpec>) -> impl Strategy<Value = SchedConfig> {
-    (1u32..=31, 1usize..=64, 1u32..=127, subset()).prop_flat_map(
-        move |(mshrs, queue_capacity, max_warps, subset)| {
+    (1u32..=31, 1usize..=64, 1u32..=127, subset(), any::<bool>()).prop_flat_map(
+        move |(mshrs, queue_capacity, max_warps, subset, launch)| {
             policy(mshrs).prop_map(move |policy| SchedConfig {
                 policy,
+                launch_rule: if launch {
+                    LaunchRule::Launch
+                } else {
+                    LaunchRule::Hold
+                },
                 subset: subset.clone(),
                 mshrs,
                 queue_capacity,
@@ -240,6 +245,7 @@ fn long_deterministic_runs() {
     ] {
         let cfg = SchedConfig {
             policy,
+            launch_rule: LaunchRule::Hold,
             subset: SubsetSpec::Mesh(4),
             mshrs: 16,
             queue_capacity: 64,

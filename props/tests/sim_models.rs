@@ -14,6 +14,7 @@ use proptest::prelude::*;
 use proptest_state_machine::{prop_state_machine, ReferenceStateMachine, StateMachineTest};
 use wasp_props::machine::{run_checked, SmallMachine};
 use wasp_props::mshr_file::{cache_step, small_cache, CacheModel, CacheOp, BLOCKS};
+use wasp_rtl::policy::LaunchRule;
 use wasp_sim::mem::Cache;
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
@@ -105,9 +106,10 @@ fn arb_machine() -> impl Strategy<Value = SmallMachine> {
         0u32..=2,
         0usize..5,
         any::<bool>(),
+        any::<bool>(),
     )
         .prop_map(
-            |(l0, cores, warps, width, queue, mshrs, merged, policy, mesh2)| SmallMachine {
+            |(l0, cores, warps, width, queue, mshrs, merged, policy, mesh2, launch)| SmallMachine {
                 l0,
                 cores,
                 warps,
@@ -122,6 +124,11 @@ fn arb_machine() -> impl Strategy<Value = SmallMachine> {
                     "wasp:0",
                     "wasp:0:1",
                 ][policy],
+                launch_rule: if launch {
+                    LaunchRule::Launch
+                } else {
+                    LaunchRule::Hold
+                },
                 subset: if mesh2 { "mesh2" } else { "mesh4" },
                 ideal: false,
             },

@@ -3,8 +3,9 @@
 //! register, 7-bit non-blocked counter, x CF datapath, WaSP select) is
 //! driven cycle by cycle with random legal events and compared after every
 //! cycle with an unbounded reference model: exact integers, two ideal
-//! FIFOs, the WaSP rule evaluated as the real-number inequality. A failing
-//! case shrinks to a minimal cycle sequence.
+//! FIFOs, the WaSP rule evaluated as the real-number inequality, under
+//! either launch rule (`hold` or `launch`). A failing case shrinks to a
+//! minimal cycle sequence.
 
 use proptest::prelude::*;
 use proptest_state_machine::{prop_state_machine, ReferenceStateMachine, StateMachineTest};
@@ -12,7 +13,7 @@ use std::collections::VecDeque;
 use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
-use wasp_rtl::policy::Wasp;
+use wasp_rtl::policy::{LaunchRule, Wasp};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::LaunchScheduler;
 use wasp_rtl::subset::Mesh;
@@ -24,6 +25,8 @@ struct Model {
     queue_cap: usize,
     threshold: i64,
     cf_quarters: i64,
+    /// A closed gate with only priority warps waiting launches one.
+    launch: bool,
     /// MSHR entries allocated and not yet replied.
     outstanding: i64,
     /// Priority warps in the core, not blocked, not finished.
@@ -71,15 +74,22 @@ impl ReferenceStateMachine for SchedulerRef {
     type Transition = Cycle;
 
     fn init_state() -> BoxedStrategy<Model> {
-        (1i64..=31, 1usize..=12, 0u32..=31)
-            .prop_flat_map(|(mshrs, queue_cap, q)| {
-                (Just(mshrs), Just(queue_cap), 0..mshrs, Just(q as i64))
+        (1i64..=31, 1usize..=12, 0u32..=31, any::<bool>())
+            .prop_flat_map(|(mshrs, queue_cap, q, launch)| {
+                (
+                    Just(mshrs),
+                    Just(queue_cap),
+                    0..mshrs,
+                    Just(q as i64),
+                    Just(launch),
+                )
             })
-            .prop_map(|(mshrs, queue_cap, threshold, cf_quarters)| Model {
+            .prop_map(|(mshrs, queue_cap, threshold, cf_quarters, launch)| Model {
                 mshrs,
                 queue_cap,
                 threshold,
                 cf_quarters,
+                launch,
                 outstanding: 0,
                 nonblocked: 0,
                 blocked: 0,
@@ -160,6 +170,8 @@ impl ReferenceStateMachine for SchedulerRef {
             Some(QueueClass::Priority)
         } else if !s.regular.is_empty() {
             Some(QueueClass::Regular)
+        } else if s.launch && !s.prio.is_empty() {
+            Some(QueueClass::Priority)
         } else {
             None
         };
@@ -209,6 +221,11 @@ impl StateMachineTest for SchedulerTest {
                 Box::new(Mesh::new(4).unwrap()),
                 FreeMshrReg::with_capacity(s.mshrs as u32).unwrap(),
                 Box::new(Wasp::new(dp)),
+                if s.launch {
+                    LaunchRule::Launch
+                } else {
+                    LaunchRule::Hold
+                },
             ),
             next_id: 0,
         }

@@ -11,7 +11,8 @@
 #
 # Bugs: wrap_sub (5-bit wrapping free - product), off_by_one (>= instead of
 # > against the threshold), drop_finish (the non-blocked counter ignores
-# finished warps). Prints which check caught which bug; exits non-zero if
+# finished warps), hold_launches (the launch rule `hold` launches a lone
+# priority warp with the gate closed). Prints which check caught which bug; exits non-zero if
 # any bug went uncaught.
 #
 # usage: props/verilog/mutants.sh [--skip-rust] [--skip-prove] [--skip-cosim]
@@ -77,6 +78,9 @@ plant_rust() { # plant_rust NAME DIR
     drop_finish)
         f="$2/rtl/src/nonblocked.rs"
         perl -0pi -e 's/\n\s*- ev\.finished as i32;/;/' "$f" ;;
+    hold_launches)
+        f="$2/rtl/src/policy/mod.rs"
+        perl -0pi -e 's/\} else if v\.priority_waiting && rule == LaunchRule::Launch \{/} else if v.priority_waiting {/' "$f" ;;
     esac
     ! cmp -s "$f" "$root/${f#"$2"/}"
 }

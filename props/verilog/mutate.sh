@@ -6,10 +6,12 @@
 #   wrap_sub     real_free = free - product in 5 bits (wraps), zero-extended
 #   off_by_one   priority_over_regular = real_free >= threshold
 #   drop_finish  the non-blocked counter ignores prio_finished
+#   hold_launches the launch rule `hold` launches a lone priority warp with
+#                the gate closed (as `launch` does)
 #   list         print the names
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-names="wrap_sub off_by_one drop_finish"
+names="wrap_sub off_by_one drop_finish hold_launches"
 
 if [[ $# -ge 1 && $1 == list ]]; then
     echo "$names"
@@ -35,6 +37,9 @@ off_by_one)
         "$src" >"$dst" ;;
 drop_finish)
     sed -e 's|^        - \$signed({{(EW-CNT_W){1'"'"'b0}}, finished});$|        ; // MUTANT drop_finish: prio_finished ignored|' \
+        "$src" >"$dst" ;;
+hold_launches)
+    sed -e 's|^                    (prio_waiting \&\& cfg_launch_rule) ? 2'"'"'d2 :$|                    prio_waiting ? 2'"'"'d2 : // MUTANT hold_launches|' \
         "$src" >"$dst" ;;
 *)
     echo "mutate.sh: unknown mutant '$name' (one of: $names)" >&2

@@ -4,7 +4,7 @@
 # from reset (BMC, with --presat: the assumptions are satisfiable at every
 # step) and a k-induction proof (yosys-smtbmc -i), plus a cover run showing
 # that the interesting cases are reachable. Every configuration (policy,
-# capacity, CF, threshold, N, queue capacity) is covered at once: the
+# capacity, CF, threshold, N, queue capacity, launch rule) is covered at once: the
 # wrapper drives them with $anyconst. Prints a summary table; exits
 # non-zero if any check fails. See README.md for the properties.
 #
@@ -18,7 +18,7 @@
 #   --bmc-depth N     BMC steps (default 20)
 #   --ind-depth K     induction steps (default 2)
 #   --cover-depth N   cover steps (default 12)
-#   --only LIST       comma-separated rows (P34,P5,P1,P2,P6,P7,P8,COVER)
+#   --only LIST       comma-separated rows (P34,P5,P1,P2,P6,P7,P9,P8,COVER)
 #   --jobs N          parallel solver runs (default: number of CPUs)
 #   --keep            keep the work directory (models, logs, traces)
 set -euo pipefail
@@ -75,18 +75,20 @@ rows=(
     "P2|ASSERT_P2|bmc ind"
     "P6|ASSERT_P6 ASSUME_P34|bmc ind"
     "P7|ASSERT_P7 ASSUME_P34 ASSUME_P5|bmc ind"
+    "P9|ASSERT_P9 ASSUME_P34 ASSUME_P5|bmc ind"
     "P8|FAULT_MODE ASSERT_P8|bmc ind"
     "COVER|COVER|cover"
 )
 declare -A what=(
     [P34]="P3 free == cap - outstanding <= cap; P4 nb == model <= 127"
     [P5]="occupancies == model, sum <= cap, refuse iff full, Mesh4"
-    [P1]="priority launch only if 4*free - q*nb > 4*T  (assumes P34)"
+    [P1]="priority launch only if 4*free - q*nb > 4*T (launch rule: or no regular warp)  (assumes P34)"
     [P2]="x CF shift-add, subtract, compare == exact, every value"
     [P6]="no fault under legal inputs  (assumes P34)"
-    [P7]="select/launch == reference policy, all 4  (assumes P34, P5)"
+    [P7]="select/launch == reference policy, all 4, both launch rules  (assumes P34, P5)"
+    [P9]="hold: no priority launch, gate closed; launch: never idle with a warp waiting  (assumes P34, P5)"
     [P8]="fault iff exact next out of range; hold / load; reset"
-    [COVER]="boundary launch, hold-back, full queue, free=0, ... reachable"
+    [COVER]="boundary launch, hold-back, full queue, free=0, hold idle, launch with gate closed ... reachable"
 )
 
 selected() { [[ -z $only ]] || [[ ",$only," == *",$1,"* ]]; }

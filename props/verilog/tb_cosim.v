@@ -22,6 +22,7 @@ module tb_cosim;
     parameter integer THRESHOLD  = 4;
     parameter integer FREEMSHR_N = 10;
     parameter integer MESH_BITS  = 2;
+    parameter integer LAUNCH_RULE = 0;
     localparam integer OCC_W = (QUEUE_CAP < 2) ? 1 : $clog2(QUEUE_CAP + 1);
 
     reg        clk = 1'b0;
@@ -52,6 +53,7 @@ module tb_cosim;
     wasp_sched #(
         .POLICY(POLICY), .CAPACITY(CAPACITY), .QUEUE_CAP(QUEUE_CAP),
         .CF_Q(CF_Q), .THRESHOLD(THRESHOLD), .FREEMSHR_N(FREEMSHR_N),
+        .LAUNCH_RULE(LAUNCH_RULE),
         .MESH_BITS(MESH_BITS), .CNT_W(8)
     ) dut (
         .clk(clk), .rst(rst),

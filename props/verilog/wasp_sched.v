@@ -11,7 +11,8 @@
 //   wasp_free_mshr_reg  free_mshr.rs     5-bit free-MSHR register
 //   wasp_nonblocked_ctr nonblocked.rs    7-bit non-blocked priority counter
 //   wasp_cf_datapath    datapath.rs      x CF shift-add, 11-bit subtract, compare
-//   wasp_launch_select  policy/*.rs      baseline / fullpriority / freemshr-N / wasp
+//   wasp_launch_select  policy/*.rs      baseline / fullpriority / freemshr-N / wasp,
+//                                        launch rule hold / launch
 //   wasp_sched          scheduler.rs     the above, one per core
 //
 // Configuration. Each constant is a parameter of the block that uses it
@@ -19,7 +20,7 @@
 // the set bits of CF_Q). When the macro WASP_CFG_PORTS is defined, as the
 // formal wrapper does, the constants instead come from input ports cfg_*
 // (same logic, same source text), so that one proof covers every policy,
-// capacity, CF, threshold, N and queue capacity at once.
+// capacity, CF, threshold, N, queue capacity and launch rule at once.
 //
 // Timing: cycle-exact with wasp-rtl under the call order of one cycle
 //     enqueue -> decide -> launch -> clock -> end_cycle
@@ -31,7 +32,10 @@
 //     pop of the same cycle).
 //   * product, real_free, priority_over_regular: the datapath on the Q
 //     values of free_mshrs and nonblocked.
-//   * select: the policy's choice; a FIFO counts as non-empty if it held a
+//   * select: the policy's choice under the launch rule (LAUNCH_RULE 0 hold:
+//     a priority warp waiting with the gate closed and no regular warp
+//     waiting launches nothing; 1 launch: it launches); a FIFO counts as
+//     non-empty if it held a
 //     warp at the start of the cycle or accepted one this cycle (a warp
 //     pushed in a cycle can launch in that cycle). launch = select when
 //     launch_enable, else 0 (0 none, 1 regular, 2 priority); it pops.
@@ -226,14 +230,22 @@ endmodule
 // ---------------------------------------------------------------------------
 // The launch policy: which FIFO to launch from (0 none, 1 regular,
 // 2 priority). POLICY 0 baseline, 1 fullpriority, 2 freemshr-N
-// (free_mshrs >= N), 3 wasp (priority_over_regular).
+// (free_mshrs >= N), 3 wasp (priority_over_regular): the gate
+// (prio_allowed). The launch rule: a priority warp if one waits and the gate
+// is open, else a regular warp if one waits, else -- a priority warp waits,
+// the gate is closed -- LAUNCH_RULE 0 (hold, the paper's: "If the boolean
+// evaluates to true, a priority warp (if available) is launched; otherwise,
+// a regular warp is launched") launches nothing, 1 (launch,
+// work-conserving) launches the priority warp.
 module wasp_launch_select #(
-    parameter integer POLICY     = 3,
-    parameter integer FREEMSHR_N = 10
+    parameter integer POLICY      = 3,
+    parameter integer FREEMSHR_N  = 10,
+    parameter integer LAUNCH_RULE = 0
 ) (
 `ifdef WASP_CFG_PORTS
     input  wire [1:0] cfg_policy,
     input  wire [4:0] cfg_freemshr_n,
+    input  wire       cfg_launch_rule,
 `endif
     input  wire       prio_waiting,
     input  wire       reg_waiting,
@@ -244,17 +256,19 @@ module wasp_launch_select #(
     output wire [1:0] launch
 );
 `ifndef WASP_CFG_PORTS
-    wire [1:0] cfg_policy     = POLICY;
-    wire [4:0] cfg_freemshr_n = FREEMSHR_N;
+    wire [1:0] cfg_policy      = POLICY;
+    wire [4:0] cfg_freemshr_n  = FREEMSHR_N;
+    wire       cfg_launch_rule = LAUNCH_RULE;
 `endif
     wire prio_allowed =
         (cfg_policy == 2'd1) ? 1'b1 :
         (cfg_policy == 2'd2) ? (free_mshrs >= cfg_freemshr_n) :
         (cfg_policy == 2'd3) ? priority_over_regular :
                                1'b0;
-    assign select = (prio_waiting && prio_allowed) ? 2'd2 :
-                    reg_waiting                    ? 2'd1 :
-                                                     2'd0;
+    assign select = (prio_waiting && prio_allowed)    ? 2'd2 :
+                    reg_waiting                       ? 2'd1 :
+                    (prio_waiting && cfg_launch_rule) ? 2'd2 :
+                                                        2'd0;
     assign launch = launch_enable ? select : 2'd0;
 endmodule
 
@@ -270,6 +284,7 @@ module wasp_sched #(
     parameter integer THRESHOLD  = 4,   // WaSP threshold (0..31)
     parameter integer FREEMSHR_N = 10,  // FreeMSHR-N's N (0..31)
     parameter integer MESH_BITS  = 2,   // Mesh-k, k = 2**MESH_BITS (1..4)
+    parameter integer LAUNCH_RULE = 0,  // gate closed, only priority warps waiting: 0 hold, 1 launch
     parameter integer CNT_W      = 8,   // width of the event counts
     parameter integer OCC_W      = (QUEUE_CAP < 2) ? 1 : $clog2(QUEUE_CAP + 1)
 ) (
@@ -282,6 +297,7 @@ module wasp_sched #(
     input  wire [4:0]       cfg_threshold,
     input  wire [4:0]       cfg_freemshr_n,
     input  wire [OCC_W-1:0] cfg_queue_cap,
+    input  wire             cfg_launch_rule,
 `endif
     input  wire             push_valid,
     input  wire [4:0]       qx,
@@ -315,6 +331,7 @@ module wasp_sched #(
         if (MESH_BITS < 1 || MESH_BITS > 4)    wasp_sched_param_error_MESH_BITS_must_be_1_to_4 e4 ();
         if (POLICY < 0 || POLICY > 3)          wasp_sched_param_error_POLICY_must_be_0_to_3 e5 ();
         if (CNT_W < 1)                         wasp_sched_param_error_CNT_W_must_be_positive e6 ();
+        if (LAUNCH_RULE < 0 || LAUNCH_RULE > 1) wasp_sched_param_error_LAUNCH_RULE_must_be_0_or_1 e8 ();
         if (QUEUE_CAP < 0 || QUEUE_CAP >= (1 << OCC_W))
                                                wasp_sched_param_error_QUEUE_CAP_must_fit_OCC_W e7 ();
     endgenerate
@@ -368,9 +385,10 @@ module wasp_sched #(
         .priority_over_regular(priority_over_regular)
     );
 
-    wasp_launch_select #(.POLICY(POLICY), .FREEMSHR_N(FREEMSHR_N)) u_select (
+    wasp_launch_select #(.POLICY(POLICY), .FREEMSHR_N(FREEMSHR_N), .LAUNCH_RULE(LAUNCH_RULE)) u_select (
 `ifdef WASP_CFG_PORTS
         .cfg_policy(cfg_policy), .cfg_freemshr_n(cfg_freemshr_n),
+        .cfg_launch_rule(cfg_launch_rule),
 `endif
         .prio_waiting(prio_waiting), .reg_waiting(reg_waiting),
         .free_mshrs(free_mshrs),

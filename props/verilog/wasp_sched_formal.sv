@@ -5,8 +5,8 @@
 // from ports, driven here by $anyconst: every proof covers every
 // configuration at once -- policy 0..3 (baseline, fullpriority, freemshr-N,
 // wasp), MSHR capacity 0..31, CF_Q 0..31 (CF 0..7.75), threshold 0..31,
-// N 0..31, queue capacity 0..2**OCC_W-1 (0..127). MESH_BITS (Mesh4 by
-// default) and the widths are parameters.
+// N 0..31, queue capacity 0..2**OCC_W-1 (0..127), launch rule 0 (hold) and
+// 1 (launch). MESH_BITS (Mesh4 by default) and the widths are parameters.
 //
 // The per-cycle inputs are free. Unless FAULT_MODE is defined they are
 // assumed LEGAL with respect to an auxiliary reference model kept here in
@@ -30,7 +30,8 @@
 // Properties, each enabled by a define so that prove.sh proves them group
 // by group, each assertion labelled (the label names the property):
 //   P1  a priority selection or launch only when
-//       4*(capacity - inflight) - q*nb > 4*T on the reference model (wasp)
+//       4*(capacity - inflight) - q*nb > 4*T on the reference model (wasp),
+//       or, under the launch rule `launch`, when no regular warp waits
 //   P2  product == floor(q*nb/4); real_free == free - floor(q*nb/4) as a
 //       signed value (the 11-bit subtract never wraps);
 //       priority_over_regular == (4*free - q*nb > 4*T); for EVERY register
@@ -46,6 +47,11 @@
 //   P7  select and launch equal the reference policy on the reference
 //       model (a FIFO is non-empty if it holds a warp or accepts one now;
 //       launch = select when launch_enable)
+//   P9  the launch rule, every policy: under `hold` a priority warp never
+//       launches with the gate closed (on the reference model); under
+//       `launch` the core never idles while a warp waits and launch_enable
+//       is high; a core that idles with a warp waiting and launch_enable high
+//       is exactly a `hold` with a lone priority warp and the gate closed
 //   P8  (FAULT_MODE: no legality assumptions) fault == the exact next value
 //       of either register leaves its range; on a fault both registers hold,
 //       otherwise both load the exact values; a reset loads capacity and 0s
@@ -78,6 +84,7 @@ module wasp_sched_formal #(
     wire [4:0]       cfg_threshold  = $anyconst;
     wire [4:0]       cfg_freemshr_n = $anyconst;
     wire [OCC_W-1:0] cfg_queue_cap  = $anyconst;
+    wire             cfg_launch_rule = $anyconst;   // 0 hold, 1 launch
 
     wire [4:0]       free_mshrs;
     wire [6:0]       nonblocked;
@@ -98,6 +105,7 @@ module wasp_sched_formal #(
         .cfg_capacity(cfg_capacity), .cfg_cf_q(cfg_cf_q),
         .cfg_threshold(cfg_threshold), .cfg_freemshr_n(cfg_freemshr_n),
         .cfg_queue_cap(cfg_queue_cap),
+        .cfg_launch_rule(cfg_launch_rule),
         .push_valid(push_valid), .qx(qx), .qy(qy),
         .launch_enable(launch_enable),
         .mshr_allocs(mshr_allocs), .mshr_replies(mshr_replies),
@@ -152,7 +160,9 @@ module wasp_sched_formal #(
     wire ref_allowed = (cfg_policy == 2'd1) ? 1'b1 :
                        (cfg_policy == 2'd2) ? (aux_free >= nmin) :
                        (cfg_policy == 2'd3) ? exact_wasp : 1'b0;
-    wire [1:0] ref_select = (ref_pw && ref_allowed) ? 2'd2 : ref_rw ? 2'd1 : 2'd0;
+    wire [1:0] ref_select = (ref_pw && ref_allowed)    ? 2'd2 :
+                            ref_rw                     ? 2'd1 :
+                            (ref_pw && cfg_launch_rule) ? 2'd2 : 2'd0;
     wire [1:0] ref_launch = launch_enable ? ref_select : 2'd0;
 
     always @(posedge clk) begin
@@ -186,9 +196,14 @@ module wasp_sched_formal #(
 
     // ---- P1: a priority launch only under the exact condition ----
 `ifdef ASSERT_P1
+    // under `launch`, a priority warp below the threshold only when no
+    // regular warp waits (the block's own regular FIFO: P1 assumes only P34)
+    wire dut_rw = (reg_occ != {OCC_W{1'b0}}) || (push_accepted && !is_priority);
+    wire p1_ok  = exact_wasp || (cfg_launch_rule && !dut_rw);
     always @(*) if (!rst && cfg_policy == 2'd3) begin
-        if (select == 2'd2) p1_select: assert(exact_wasp);
-        if (launch == 2'd2) p1_launch: assert(exact_wasp);
+        if (select == 2'd2) p1_select: assert(p1_ok);
+        if (launch == 2'd2) p1_launch: assert(p1_ok);
+        if (!cfg_launch_rule && launch == 2'd2) p1_hold: assert(exact_wasp);
     end
 `endif
 
@@ -265,6 +280,20 @@ module wasp_sched_formal #(
     end
 `endif
 
+    // ---- P9: the launch rule ----
+`ifdef ASSERT_P9
+    wire ref_waiting = ref_pw || ref_rw;
+    always @(*) if (!rst) begin
+        // hold: a closed gate never launches a priority warp
+        if (!cfg_launch_rule && launch == 2'd2) p9_hold: assert(ref_allowed);
+        // launch: never idle while a warp waits
+        if (cfg_launch_rule && launch_enable && ref_waiting) p9_work_conserving: assert(launch != 2'd0);
+        // idling with a warp waiting is exactly hold's lone priority warp
+        if (launch_enable && ref_waiting && launch == 2'd0)
+            p9_idle_is_hold: assert(!cfg_launch_rule && ref_pw && !ref_rw && !ref_allowed);
+    end
+`endif
+
     // ---- P8: fault semantics, without legality assumptions ----
 `ifdef ASSERT_P8
     wire signed [AW-1:0] exact_free_next = reg_free - a + r;
@@ -310,6 +339,11 @@ module wasp_sched_formal #(
         c_negative: cover(real_free[10] && nonblocked > 7'd1);
         // several warps finish, block and unblock in one cycle
         c_events: cover(prio_finished > 8'd1 && prio_blocked > 8'd1 && prio_unblocked > 8'd1);
+        // hold: a lone priority warp, gate closed, a free slot, nothing launched (wasp)
+        c_hold: cover(cfg_policy == 2'd3 && !cfg_launch_rule && launch_enable && launch == 2'd0 &&
+                      aux_pw != ZERO && aux_rw == ZERO);
+        // launch: a priority warp launched with the WaSP gate closed
+        c_launch_closed: cover(cfg_policy == 2'd3 && cfg_launch_rule && launch == 2'd2 && !exact_wasp);
     end
 `endif
 endmodule

@@ -13,7 +13,7 @@
 //! | [`datapath::WaspDatapath`] | multiply by 2.5 (shift-add), subtract, compare |
 //! | [`subset::Mesh`] | the two-bit comparator of Mesh4 (and Mesh2/8/16) |
 //! | [`queue::SplitQueue`] | the input queue split into priority and regular FIFOs |
-//! | [`policy`] | Baseline, Fullpriority, FreeMSHR-N, WaSP |
+//! | [`policy`] | Baseline, Fullpriority, FreeMSHR-N, WaSP; the launch rule for a closed gate ([`policy::LaunchRule`]) |
 //! | [`scheduler::LaunchScheduler`] | all of the above, one per core |
 
 pub mod cf_meter;

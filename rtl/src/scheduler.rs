@@ -1,6 +1,7 @@
 //! The warp launch scheduler of one core: the split input queue, the
 //! subset comparator on its input, the free-MSHR register, the non-blocked
-//! priority-warp counter, the decision datapath and the launch policy.
+//! priority-warp counter, the decision datapath, the launch policy and the
+//! launch rule for a closed gate ([`LaunchRule`]).
 //!
 //! One cycle, two phases:
 //! 1. [`LaunchScheduler::decide`] reads only current register values (Q)
@@ -15,7 +16,7 @@
 use crate::datapath::{DatapathOut, WaspDatapath};
 use crate::free_mshr::{FreeMshrReg, MshrEvents};
 use crate::nonblocked::{NonblockedCounter, PriorityEvents};
-use crate::policy::{LaunchPolicy, LaunchView, PriorityGate};
+use crate::policy::{LaunchPolicy, LaunchRule, LaunchView, PriorityGate};
 use crate::queue::{QueueClass, SplitQueue};
 use crate::subset::{PrioritySubset, SubsetTable};
 use crate::RegisterFault;
@@ -37,6 +38,10 @@ pub struct LaunchDecision {
     pub select: Option<QueueClass>,
     /// The datapath signals, for policies that have the datapath.
     pub datapath: Option<DatapathOut>,
+    /// The launch rule held a waiting priority warp: one waits, the gate
+    /// is closed, no regular warp waits and the rule is
+    /// [`LaunchRule::Hold`] (so `select` is `None`).
+    pub held: bool,
 }
 
 /// The launch scheduler of one core, holding warp tickets of type `T`.
@@ -57,18 +62,21 @@ pub struct LaunchScheduler<T> {
     uses_priority_queue: bool,
     datapath: Option<WaspDatapath>,
     gate: PriorityGate,
+    rule: LaunchRule,
     // Signals of the current cycle, for the waveform.
     decision: LaunchDecision,
     launched: Option<QueueClass>,
 }
 
 impl<T: Copy> LaunchScheduler<T> {
-    /// A scheduler in its reset state.
+    /// A scheduler in its reset state, launching under `rule` when the
+    /// policy's gate is closed and only a priority warp waits.
     pub fn new(
         queue_capacity: usize,
         subset: Box<dyn PrioritySubset>,
         free_mshrs: FreeMshrReg,
         policy: Box<dyn LaunchPolicy>,
+        rule: LaunchRule,
     ) -> Self {
         let priority_table = if policy.uses_priority_queue() {
             SubsetTable::of(subset.as_ref())
@@ -84,10 +92,12 @@ impl<T: Copy> LaunchScheduler<T> {
             uses_priority_queue: policy.uses_priority_queue(),
             datapath: policy.datapath(),
             gate: policy.gate(),
+            rule,
             policy,
             decision: LaunchDecision {
                 select: None,
                 datapath: None,
+                held: false,
             },
             launched: None,
         }
@@ -96,6 +106,11 @@ impl<T: Copy> LaunchScheduler<T> {
     /// The policy.
     pub fn policy(&self) -> &dyn LaunchPolicy {
         self.policy.as_ref()
+    }
+
+    /// The launch rule for a closed gate.
+    pub fn launch_rule(&self) -> LaunchRule {
+        self.rule
     }
 
     /// The input queue.
@@ -151,8 +166,13 @@ impl<T: Copy> LaunchScheduler<T> {
             free_mshrs: self.free_mshrs.free(),
             datapath,
         };
-        let select = self.gate.select(&view);
-        let decision = LaunchDecision { select, datapath };
+        let select = self.gate.select(self.rule, &view);
+        let held = self.rule == LaunchRule::Hold && self.gate.rule_decides(&view);
+        let decision = LaunchDecision {
+            select,
+            datapath,
+            held,
+        };
         self.decision = decision;
         decision
     }
@@ -223,6 +243,7 @@ mod tests {
             Box::new(Mesh::new(4).unwrap()),
             FreeMshrReg::with_capacity(6).unwrap(),
             PolicySpec::wasp(1).build(6).unwrap(),
+            LaunchRule::Hold,
         );
         s.enqueue(7, 0, 0).unwrap();
         s.enqueue(8, 1, 0).unwrap();
@@ -251,6 +272,7 @@ mod tests {
             Box::new(Mesh::new(4).unwrap()),
             FreeMshrReg::with_capacity(4).unwrap(),
             PolicySpec::Baseline.build(4).unwrap(),
+            LaunchRule::Hold,
         );
         for i in 0..8u32 {
             assert_eq!(s.enqueue(i, i, 0), Ok(QueueClass::Regular));
@@ -280,6 +302,7 @@ mod tests {
             Box::new(Explicit::new([(0, 0), (5, 0), (10, 0)])),
             FreeMshrReg::with_capacity(3).unwrap(),
             Box::new(Wasp::new(dp)),
+            LaunchRule::Hold,
         );
         for i in 0..15u32 {
             s.enqueue(i, i, 0).unwrap();
@@ -341,6 +364,7 @@ mod tests {
                     subset,
                     FreeMshrReg::with_capacity(4).unwrap(),
                     spec.build(4).unwrap(),
+                    LaunchRule::Hold,
                 );
                 for y in (0..48).chain([u32::MAX]) {
                     for x in (0..48).chain([u32::MAX]) {
@@ -363,11 +387,101 @@ mod tests {
             Box::new(Mesh::new(4).unwrap()),
             FreeMshrReg::with_capacity(4).unwrap(),
             PolicySpec::FullPriority.build(4).unwrap(),
+            LaunchRule::Hold,
         );
         s.enqueue(7u32, 0, 0).unwrap();
         let d = s.decide();
         assert_eq!(d.select, Some(QueueClass::Priority));
         assert_eq!(s.launch(d, false), None);
         assert_eq!(s.queue().len(), 1);
+    }
+
+    /// WaSP at threshold 1 with 3 MSHRs: two priority warps launch and
+    /// block on a miss each, leaving 1 free (not > 1). With only priority
+    /// warps waiting, `hold` launches nothing and says so; `launch`
+    /// launches the next priority warp.
+    #[test]
+    fn closed_gate_holds_or_launches_by_rule() {
+        for rule in LaunchRule::ALL {
+            let dp = WaspDatapath {
+                cf: Cf::ONE,
+                threshold: Threshold::new(1).unwrap(),
+            };
+            let mut s = LaunchScheduler::new(
+                16,
+                Box::new(Explicit::new([(0, 0), (1, 0), (2, 0)])),
+                FreeMshrReg::with_capacity(3).unwrap(),
+                Box::new(Wasp::new(dp)),
+                rule,
+            );
+            assert_eq!(s.launch_rule(), rule);
+            for i in 0..3u32 {
+                assert_eq!(s.enqueue(i, i, 0), Ok(QueueClass::Priority));
+            }
+            for w in 0..2u32 {
+                let d = s.decide();
+                assert!(!d.held);
+                assert_eq!(s.launch(d, true), Some((w, QueueClass::Priority)));
+                s.clock(
+                    MshrEvents {
+                        allocs: 1,
+                        replies: 0,
+                    },
+                    PriorityEvents {
+                        blocked: 1,
+                        ..Default::default()
+                    },
+                )
+                .unwrap();
+                s.end_cycle();
+            }
+            let d = s.decide();
+            assert!(!d.datapath.unwrap().priority_over_regular);
+            match rule {
+                LaunchRule::Hold => {
+                    assert!(d.held);
+                    assert_eq!(d.select, None);
+                    assert_eq!(s.launch(d, true), None);
+                    assert_eq!(s.queue().len(), 1);
+                }
+                LaunchRule::Launch => {
+                    assert!(!d.held);
+                    assert_eq!(s.launch(d, true), Some((2, QueueClass::Priority)));
+                    assert_eq!(s.queue().len(), 0);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_rule_does_not_change_the_baseline() {
+        let mut runs = vec![];
+        for rule in LaunchRule::ALL {
+            let mut s = LaunchScheduler::new(
+                8,
+                Box::new(Mesh::new(4).unwrap()),
+                FreeMshrReg::with_capacity(4).unwrap(),
+                PolicySpec::Baseline.build(4).unwrap(),
+                rule,
+            );
+            for i in 0..8u32 {
+                s.enqueue(i, i % 2 * 4, 0).unwrap();
+            }
+            let mut order = vec![];
+            loop {
+                let d = s.decide();
+                assert!(!d.held);
+                let Some((w, class)) = s.launch(d, true) else {
+                    break;
+                };
+                order.push((w, class));
+                s.clock(MshrEvents::default(), PriorityEvents::default())
+                    .unwrap();
+                s.end_cycle();
+            }
+            runs.push(order);
+        }
+        assert_eq!(runs[0], runs[1]);
+        assert_eq!(runs[0].len(), 8);
     }
 }

@@ -14,7 +14,7 @@ use std::fmt;
 use std::path::Path;
 use wasp_rtl::free_mshr::FREE_MSHR_BITS;
 use wasp_rtl::nonblocked::NONBLOCKED_BITS;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::subset::SubsetSpec;
 
 /// The paper's machine, as shipped in `configs/paper.toml`.
@@ -188,6 +188,11 @@ pub struct SchedulerConfig {
     /// Priority subset: `mesh2|4|8|16`, `hlines`, `vlines`, `top16`,
     /// `random[:seed]`.
     pub subset: String,
+    /// What a core launches when a priority warp waits, the policy's gate
+    /// is closed and no regular warp waits: `hold` (nothing; the paper's
+    /// rule) or `launch` (that priority warp; work-conserving). See
+    /// [`LaunchRule`].
+    pub launch_rule: String,
 }
 
 /// Main memory and the ideal-memory switch.
@@ -345,6 +350,14 @@ impl MachineConfig {
             .policy
             .parse()
             .map_err(|e| format!("scheduler.policy: {e}"))
+    }
+
+    /// The parsed launch rule for a closed gate.
+    pub fn launch_rule(&self) -> Result<LaunchRule, String> {
+        self.scheduler
+            .launch_rule
+            .parse()
+            .map_err(|e| format!("scheduler.launch_rule: {e}"))
     }
 
     /// The parsed priority subset.
@@ -509,6 +522,7 @@ impl MachineConfig {
             ));
         }
         let subset = self.subset()?;
+        self.launch_rule()?;
         policy.build(sched_cache.mshrs.min(reg_max)).map_err(|e| {
             format!(
                 "scheduler.policy: {e} ({level}.mshrs = {})",
@@ -579,6 +593,24 @@ mod tests {
         assert_eq!(w2.core.pipeline_width, 2);
         assert!(w2.l0.is_none());
         assert_eq!(w2.scheduler_cache().0, "l1");
+        // The paper's rule: a closed gate holds the priority warp.
+        for c in [&p, &w2] {
+            assert_eq!(c.launch_rule(), Ok(LaunchRule::Hold));
+        }
+    }
+
+    #[test]
+    fn launch_rule_is_required_and_parsed() {
+        let e = with(|s| {
+            s.lines()
+                .filter(|l| !l.starts_with("launch_rule"))
+                .collect::<Vec<_>>()
+                .join("\n")
+        })
+        .unwrap_err();
+        assert!(e.message.contains("launch_rule"), "{e}");
+        let c = with(|s| s.replace("launch_rule = \"hold\"", "launch_rule = \"launch\"")).unwrap();
+        assert_eq!(c.launch_rule(), Ok(LaunchRule::Launch));
     }
 
     #[test]
@@ -629,6 +661,11 @@ mod tests {
                 "subset = \"mesh4\"",
                 "subset = \"mesh5\"",
                 "scheduler.subset",
+            ),
+            (
+                "launch_rule = \"hold\"",
+                "launch_rule = \"idle\"",
+                "scheduler.launch_rule",
             ),
             (
                 "watchdog_cycles = 1000000",

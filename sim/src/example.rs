@@ -40,7 +40,7 @@ use std::fmt::Write as _;
 use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
 use wasp_rtl::nonblocked::PriorityEvents;
-use wasp_rtl::policy::{LaunchPolicy, PolicySpec, Wasp};
+use wasp_rtl::policy::{LaunchPolicy, LaunchRule, PolicySpec, Wasp};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::LaunchScheduler;
 use wasp_rtl::subset::Explicit;
@@ -63,6 +63,10 @@ pub struct ExampleConfig {
     pub mshrs: u32,
     /// WaSP threshold (default 1).
     pub threshold: u32,
+    /// What a closed gate does with a lone waiting priority warp (default
+    /// `hold`, the paper's rule: "W10 is delayed until there is more space
+    /// in the MSHR").
+    pub launch_rule: LaunchRule,
 }
 
 impl Default for ExampleConfig {
@@ -71,6 +75,7 @@ impl Default for ExampleConfig {
             latency: 7,
             mshrs: 3,
             threshold: 1,
+            launch_rule: LaunchRule::Hold,
         }
     }
 }
@@ -189,6 +194,10 @@ pub struct Chronograph {
     pub cycles: u64,
     /// Cycles in which the cache refused an access (MSHRs full).
     pub stall_cycles: u64,
+    /// Cycles in which the LDST register was free and a priority warp
+    /// waited but the launch rule `hold` launched nothing (gate closed, no
+    /// regular warp waiting).
+    pub held_cycles: u64,
     /// Hits.
     pub hits: u32,
     /// Primary misses.
@@ -330,7 +339,13 @@ impl Machine {
         // The paper designates W0, W5 and W10 (the first warp of each block)
         // as the priority subset. Warp i is the quad at (i, 0).
         let subset = Explicit::new((0..WARPS).step_by(WARPS_PER_BLOCK as usize).map(|w| (w, 0)));
-        let mut sched = LaunchScheduler::new(WARPS as usize, Box::new(subset), free, policy);
+        let mut sched = LaunchScheduler::new(
+            WARPS as usize,
+            Box::new(subset),
+            free,
+            policy,
+            cfg.launch_rule,
+        );
         let mut priority = [false; WARPS as usize];
         for w in 0..WARPS {
             let class = sched.enqueue(w, w, 0).expect("queue holds the tile");
@@ -352,6 +367,7 @@ impl Machine {
                 cf: 1.0,
                 cycles: 0,
                 stall_cycles: 0,
+                held_cycles: 0,
                 hits: 0,
                 misses: 0,
                 secondary_misses: 0,
@@ -389,6 +405,9 @@ impl Machine {
         // Launch stage: a warp enters the LDST register when it is empty.
         let decision = self.sched.decide();
         row.real_free_mshrs = decision.datapath.map(|d| d.real_free.get());
+        if decision.held && self.ldst.is_none() {
+            self.chrono.held_cycles += 1;
+        }
         if let Some((w, class)) = self.sched.launch(decision, self.ldst.is_none()) {
             self.ldst = Some(w);
             self.chrono.launch_order.push(w);
@@ -680,9 +699,17 @@ pub fn render_report(r: &ExampleReport) -> String {
         s,
         "The worked example of WaSP, Section III-A: 15 warps, one access each (W0-W4 -> A, W5-W9 -> B, W10-W14 -> C),\n\
          a single-level cache with {} MSHRs, main memory latency {}, one access per cycle.\n\
-         Priority warps: W0, W5, W10. WaSP: Real_freeMSHRs = free_mshrs - CF x nonblocked_priority > threshold, CF = 1, threshold = {}.\n\
+         Priority warps: W0, W5, W10. WaSP: Real_freeMSHRs = free_mshrs - CF x nonblocked_priority > threshold, CF = 1, threshold = {},\n\
+         launch rule {} (with the gate closed and only priority warps waiting: {}).\n\
          Legend: X miss, O secondary miss, H hit, ## blocked (all MSHRs occupied); reply = block answered by memory.\n",
-        m.mshrs, m.latency, m.threshold
+        m.mshrs,
+        m.latency,
+        m.threshold,
+        m.launch_rule,
+        match m.launch_rule {
+            LaunchRule::Hold => "launch nothing",
+            LaunchRule::Launch => "launch the priority warp",
+        }
     );
     for c in [&r.scanline, &r.all_priority_first, &r.wasp] {
         s.push_str(&render_chronograph(c));
@@ -794,6 +821,7 @@ mod tests {
             mshrs: 31,
             threshold: 1,
             latency: 7,
+            ..Default::default()
         })
         .unwrap();
         for c in [&r.scanline, &r.all_priority_first, &r.wasp] {
@@ -838,19 +866,22 @@ mod tests {
         for mshrs in 1..=6 {
             for latency in 1..=12 {
                 for threshold in 0..mshrs {
-                    let r = run(&ExampleConfig {
-                        mshrs,
-                        latency,
-                        threshold,
-                    })
-                    .unwrap();
-                    for c in [&r.scanline, &r.all_priority_first, &r.wasp] {
-                        let mut order = c.launch_order.clone();
-                        order.sort_unstable();
-                        assert_eq!(order, (0..15).collect::<Vec<_>>());
-                        assert_eq!(c.hits + c.misses + c.secondary_misses, 15);
-                        assert_eq!(c.misses, 3);
-                        assert!(c.timeline.iter().all(|r| r.mshrs_held <= mshrs));
+                    for launch_rule in LaunchRule::ALL {
+                        let r = run(&ExampleConfig {
+                            mshrs,
+                            latency,
+                            threshold,
+                            launch_rule,
+                        })
+                        .unwrap();
+                        for c in [&r.scanline, &r.all_priority_first, &r.wasp] {
+                            let mut order = c.launch_order.clone();
+                            order.sort_unstable();
+                            assert_eq!(order, (0..15).collect::<Vec<_>>());
+                            assert_eq!(c.hits + c.misses + c.secondary_misses, 15);
+                            assert_eq!(c.misses, 3);
+                            assert!(c.timeline.iter().all(|r| r.mshrs_held <= mshrs));
+                        }
                     }
                 }
             }
@@ -871,5 +902,76 @@ mod tests {
             .unwrap();
         assert_eq!(cache_row.matches("##").count(), 6);
         assert!(cache_row.contains("   X   X   X  ##"));
+    }
+
+    #[test]
+    fn the_launch_rule_leaves_the_papers_example_alone() {
+        // At threshold 1, W10 launches (cycle 9) while regular warps still
+        // wait: the gate is never closed with only priority warps queued,
+        // so `launch` changes nothing.
+        let hold = run(&ExampleConfig::default()).unwrap();
+        let launch = run(&ExampleConfig {
+            launch_rule: LaunchRule::Launch,
+            ..Default::default()
+        })
+        .unwrap();
+        assert_eq!(hold.wasp.held_cycles, 0);
+        assert_eq!(launch.wasp.timeline, hold.wasp.timeline);
+        assert_eq!(
+            (
+                launch.scanline.cycles,
+                launch.all_priority_first.cycles,
+                launch.wasp.cycles
+            ),
+            (18, 21, 16)
+        );
+    }
+
+    #[test]
+    fn at_threshold_2_hold_idles_and_launch_does_not() {
+        // Threshold 2 of 3 MSHRs: a priority warp needs all 3 free. W0
+        // launches first (3 > 2); every later decision sees at most 2 free
+        // until C's reply, so the regular warps go first, in scanline order,
+        // and W14 (cycle 13) empties the regular FIFO with W5 and W10 still
+        // waiting.
+        let cfg = ExampleConfig {
+            threshold: 2,
+            ..Default::default()
+        };
+        let hold = run(&cfg).unwrap();
+        let launch = run(&ExampleConfig {
+            launch_rule: LaunchRule::Launch,
+            ..cfg
+        })
+        .unwrap();
+        let order = vec![0, 1, 2, 3, 4, 6, 7, 8, 9, 11, 12, 13, 14, 5, 10];
+        assert_eq!(hold.wasp.launch_order, order);
+        assert_eq!(launch.wasp.launch_order, order);
+        // hold: cycles 14-17 launch nothing (free_mshrs 2, not > 2); C
+        // replies in 17, the register counts it in 18: W5 hits B in 18,
+        // W10 hits C in 19. 19 cycles, 4 hold cycles.
+        assert_eq!((hold.wasp.cycles, hold.wasp.held_cycles), (19, 4));
+        let idle: Vec<u64> = hold.wasp.timeline[13..17]
+            .iter()
+            .filter(|r| r.launched.is_none() && r.warp.is_none())
+            .map(|r| r.cycle)
+            .collect();
+        assert_eq!(idle, vec![14, 15, 16, 17]);
+        assert_eq!(hold.wasp.timeline[17].warp, Some(5));
+        assert_eq!(hold.wasp.timeline[18].warp, Some(10));
+        // launch: W5 in 14 (hits B, replied in 13), W10 in 15 merges into
+        // C's entry and completes with C's reply in 17: 17 cycles, 2 fewer.
+        assert_eq!((launch.wasp.cycles, launch.wasp.held_cycles), (17, 0));
+        assert_eq!(launch.wasp.timeline[13].warp, Some(5));
+        assert_eq!(launch.wasp.timeline[13].outcome, Some(Outcome::Hit));
+        assert_eq!(launch.wasp.timeline[14].warp, Some(10));
+        assert_eq!(launch.wasp.timeline[14].outcome, Some(Outcome::Secondary));
+        // The baseline and Fullpriority never close a gate on a waiting
+        // priority warp: the rule does not change them.
+        assert_eq!(launch.scanline.timeline, hold.scanline.timeline);
+        assert_eq!(
+            launch.all_priority_first.timeline,
+            hold.all_priority_first.timeline
+        );
     }
 }

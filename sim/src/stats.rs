@@ -250,6 +250,9 @@ pub struct RunStats {
     pub workload: String,
     /// Launch policy.
     pub policy: String,
+    /// Launch rule for a closed gate (`hold` or `launch`,
+    /// `scheduler.launch_rule`).
+    pub launch_rule: String,
     /// Dispatch mode (`shared-tile` or `per-core-tile`).
     pub dispatch: String,
     /// Quad-to-core map (shared-tile).
@@ -295,8 +298,12 @@ pub struct RunStats {
     pub priority_lead: LeadStats,
     /// Fill, drain and misses per tile, as means.
     pub tile_timing: TileTimingStats,
-    /// Cycles in which a core held a waiting priority warp back.
+    /// Hold idle core-cycles, summed over cores: cycles in which a core
+    /// launched nothing although a priority warp waited and it had a free
+    /// warp slot (the launch rule `hold` held it; 0 under `launch`).
     pub held_cycles: u64,
+    /// The same per core.
+    pub held_cycles_per_core: Vec<u64>,
     /// The priority subset.
     pub subset: SubsetStats,
     /// Memory-instruction ratio of the workload.
@@ -383,6 +390,7 @@ impl RunStats {
             machine: cfg.name.clone(),
             workload: trace.header().workload.clone(),
             policy: cfg.scheduler.policy.clone(),
+            launch_rule: cfg.scheduler.launch_rule.clone(),
             dispatch: cfg.raster.dispatch.to_string(),
             core_map: cfg.raster.core_map.clone(),
             color_flush: cfg.raster.color_flush.to_string(),
@@ -441,6 +449,7 @@ impl RunStats {
             priority_lead: inst.priority_lead,
             tile_timing: inst.tile_timing,
             held_cycles: sum(&|c| c.held_cycles),
+            held_cycles_per_core: cores.iter().map(|c| c.held_cycles).collect(),
             subset: SubsetStats {
                 subset: if uses_priority {
                     subset_spec.to_string()
@@ -502,8 +511,8 @@ impl RunStats {
         let _ = writeln!(s, "machine {}  |  workload {}", self.machine, self.workload);
         let _ = writeln!(
             s,
-            "policy {}  subset {}  ideal memory {}",
-            self.policy, self.subset.subset, self.ideal_memory
+            "policy {}  launch rule {}  subset {}  ideal memory {}",
+            self.policy, self.launch_rule, self.subset.subset, self.ideal_memory
         );
         let _ = writeln!(
             s,
@@ -563,13 +572,23 @@ impl RunStats {
         );
         let _ = writeln!(
             s,
-            "warps per core {:.1} of {} (below 25%: {:.1}% of core-cycles, below 50%: {:.1}%); priority warps {}; held cycles {}",
+            "warps per core {:.1} of {} (below 25%: {:.1}% of core-cycles, below 50%: {:.1}%); priority warps {}",
             self.avg_warps_per_core,
             self.occupancy.max_warps,
             100.0 * self.occupancy.below_quarter,
             100.0 * self.occupancy.below_half,
             self.subset.priority_warps,
-            self.held_cycles
+        );
+        let per_core: Vec<String> = self
+            .held_cycles_per_core
+            .iter()
+            .map(u64::to_string)
+            .collect();
+        let _ = writeln!(
+            s,
+            "hold idle core-cycles {} (per core {}): a free slot, a priority warp waiting, nothing launched",
+            self.held_cycles,
+            per_core.join(" ")
         );
         let r = &self.raster;
         let _ = writeln!(

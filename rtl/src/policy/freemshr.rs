@@ -1,7 +1,9 @@
 //! FreeMSHR-N: a priority warp only while at least N MSHRs are free.
 //!
 //! The paper's Freemshr10 is N = 10. Unlike WaSP it ignores the misses that
-//! priority warps already in the core are about to make.
+//! priority warps already in the core are about to make. With fewer than N
+//! free and no regular warp waiting, the [`LaunchRule`](super::LaunchRule)
+//! decides (nothing under `hold`).
 
 use super::{LaunchPolicy, PriorityGate};
 use crate::free_mshr::FreeMshrs;

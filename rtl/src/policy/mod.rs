@@ -6,9 +6,13 @@
 //!
 //! All four share one launch rule and differ only in its gate
 //! ([`PriorityGate`]): a priority warp if one waits and the gate is open,
-//! else a regular warp if one waits, else nothing. A policy names its gate;
+//! else a regular warp if one waits, else -- when only a priority warp
+//! waits and the gate is closed -- what the [`LaunchRule`] says: nothing
+//! ([`LaunchRule::Hold`], the paper's rule and the default) or that priority
+//! warp ([`LaunchRule::Launch`], work-conserving). A policy names its gate;
 //! [`PriorityGate::select`] is the rule around it. The scheduler reads the
-//! gate once when it is built and evaluates the rule itself each cycle.
+//! gate once when it is built, is built with the launch rule, and evaluates
+//! the rule itself each cycle.
 
 mod baseline;
 mod freemshr;
@@ -39,6 +43,59 @@ pub struct LaunchView {
     pub datapath: Option<DatapathOut>,
 }
 
+/// What the core launches when a priority warp waits, the gate is closed
+/// and no regular warp waits.
+///
+/// The paper (Section IV-C): "If the boolean evaluates to true, a priority
+/// warp (if available) is launched; otherwise, a regular warp is launched",
+/// and "this estimation prevents launching a new priority warp"; its worked
+/// example: "W10 is delayed until there is more space in the MSHR". A
+/// closed gate therefore holds the priority warp even when no regular warp
+/// is there to launch instead: [`LaunchRule::Hold`]. [`LaunchRule::Launch`]
+/// is the work-conserving alternative (wasp): the core never idles while a
+/// warp waits and it has a free slot.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LaunchRule {
+    /// Launch nothing (the paper's rule).
+    #[default]
+    Hold,
+    /// Launch the waiting priority warp anyway (work-conserving).
+    Launch,
+}
+
+impl LaunchRule {
+    /// Both rules, default first.
+    pub const ALL: [LaunchRule; 2] = [LaunchRule::Hold, LaunchRule::Launch];
+
+    /// The name used on the command line and in config files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LaunchRule::Hold => "hold",
+            LaunchRule::Launch => "launch",
+        }
+    }
+}
+
+impl fmt::Display for LaunchRule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for LaunchRule {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "hold" => Ok(LaunchRule::Hold),
+            "launch" => Ok(LaunchRule::Launch),
+            _ => Err(format!(
+                "unknown launch rule `{s}` (expected hold or launch)"
+            )),
+        }
+    }
+}
+
 /// When a waiting priority warp may launch (ahead of any regular warp).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PriorityGate {
@@ -66,16 +123,28 @@ impl PriorityGate {
     }
 
     /// The launch rule: the priority FIFO if a warp waits there and the gate
-    /// is open, else the regular FIFO if a warp waits there, else nothing.
+    /// is open, else the regular FIFO if a warp waits there, else the
+    /// priority FIFO if a warp waits there and `rule` is
+    /// [`LaunchRule::Launch`], else nothing.
     #[inline]
-    pub fn select(self, v: &LaunchView) -> Option<QueueClass> {
+    pub fn select(self, rule: LaunchRule, v: &LaunchView) -> Option<QueueClass> {
         if v.priority_waiting && self.is_open(v) {
             Some(QueueClass::Priority)
         } else if v.regular_waiting {
             Some(QueueClass::Regular)
+        } else if v.priority_waiting && rule == LaunchRule::Launch {
+            Some(QueueClass::Priority)
         } else {
             None
         }
+    }
+
+    /// Whether `rule` decides this cycle: a priority warp waits, the gate
+    /// is closed and no regular warp waits. Only then do the two rules
+    /// differ (a hold under [`LaunchRule::Hold`]).
+    #[inline]
+    pub fn rule_decides(self, v: &LaunchView) -> bool {
+        v.priority_waiting && !v.regular_waiting && !self.is_open(v)
     }
 }
 
@@ -106,12 +175,12 @@ pub trait LaunchPolicy: fmt::Debug + Send + Sync {
 
 impl dyn LaunchPolicy + '_ {
     /// Which FIFO to launch from this cycle, or `None` to launch nothing:
-    /// the shared launch rule ([`PriorityGate::select`]) around this
-    /// policy's gate. Not a trait method, so no policy can decide otherwise
-    /// than the gate it names (the scheduler evaluates the rule on the gate
-    /// directly).
-    pub fn select(&self, v: &LaunchView) -> Option<QueueClass> {
-        self.gate().select(v)
+    /// the shared launch rule ([`PriorityGate::select`]) under `rule` around
+    /// this policy's gate. Not a trait method, so no policy can decide
+    /// otherwise than the gate it names (the scheduler evaluates the rule on
+    /// the gate directly).
+    pub fn select(&self, rule: LaunchRule, v: &LaunchView) -> Option<QueueClass> {
+        self.gate().select(rule, v)
     }
 }
 
@@ -292,7 +361,7 @@ mod tests {
     }
 
     /// Each policy's `select` as it was written out per policy before the
-    /// rule was shared.
+    /// rule was shared (the `hold` rule).
     fn select_as_written(spec: &PolicySpec, v: &LaunchView) -> Option<QueueClass> {
         let regular = || v.regular_waiting.then_some(QueueClass::Regular);
         match *spec {
@@ -347,16 +416,79 @@ mod tests {
                                 free_mshrs,
                                 datapath,
                             };
-                            assert_eq!(
-                                policy.select(&v),
-                                select_as_written(spec, &v),
-                                "{spec} {v:?}"
-                            );
-                            assert_eq!(policy.gate().select(&v), policy.select(&v));
+                            let hold = policy.select(LaunchRule::Hold, &v);
+                            assert_eq!(hold, select_as_written(spec, &v), "{spec} {v:?}");
+                            assert_eq!(policy.gate().select(LaunchRule::Hold, &v), hold);
+                            // `launch` differs from `hold` only where the
+                            // rule decides, and there launches the priority
+                            // warp.
+                            let launch = policy.select(LaunchRule::Launch, &v);
+                            if policy.gate().rule_decides(&v) {
+                                assert_eq!(hold, None, "{spec} {v:?}");
+                                assert_eq!(launch, Some(QueueClass::Priority), "{spec} {v:?}");
+                            } else {
+                                assert_eq!(launch, hold, "{spec} {v:?}");
+                            }
+                            // Work-conserving: `launch` picks a FIFO
+                            // whenever a warp waits.
+                            assert_eq!(launch.is_some(), v.priority_waiting || v.regular_waiting);
                         }
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn launch_rule_parses_and_names_itself() {
+        for rule in LaunchRule::ALL {
+            assert_eq!(rule.to_string().parse::<LaunchRule>(), Ok(rule));
+        }
+        assert_eq!(LaunchRule::default(), LaunchRule::Hold);
+        assert_eq!(" Launch ".parse::<LaunchRule>(), Ok(LaunchRule::Launch));
+        assert!("idle"
+            .parse::<LaunchRule>()
+            .unwrap_err()
+            .contains("hold or launch"));
+    }
+
+    #[test]
+    fn a_closed_gate_holds_or_launches_the_lone_priority_warp() {
+        let v = LaunchView {
+            priority_waiting: true,
+            regular_waiting: false,
+            free_mshrs: FreeMshrs::new(0).unwrap(),
+            datapath: None,
+        };
+        for gate in [
+            PriorityGate::Closed,
+            PriorityGate::Datapath,
+            PriorityGate::FreeMshrsAtLeast(FreeMshrs::new(1).unwrap()),
+        ] {
+            assert!(gate.rule_decides(&v), "{gate:?}");
+            assert_eq!(gate.select(LaunchRule::Hold, &v), None, "{gate:?}");
+            assert_eq!(
+                gate.select(LaunchRule::Launch, &v),
+                Some(QueueClass::Priority),
+                "{gate:?}"
+            );
+            // A waiting regular warp goes first under both rules.
+            let both = LaunchView {
+                regular_waiting: true,
+                ..v
+            };
+            assert!(!gate.rule_decides(&both));
+            for rule in LaunchRule::ALL {
+                assert_eq!(gate.select(rule, &both), Some(QueueClass::Regular));
+            }
+        }
+        // An open gate launches the priority warp under both rules.
+        assert!(!PriorityGate::Open.rule_decides(&v));
+        for rule in LaunchRule::ALL {
+            assert_eq!(
+                PriorityGate::Open.select(rule, &v),
+                Some(QueueClass::Priority)
+            );
         }
     }
 

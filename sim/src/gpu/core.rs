@@ -10,8 +10,10 @@
 //!    enter the input queue (the subset comparator picks the FIFO). Under
 //!    shared-tile dispatch the GPU's one rasterizer fills the queue instead
 //!    ([`ShaderCore::push_quad`], `gpu/raster.rs`);
-//! 3. launch: one warp per cycle from the FIFO the policy selects, if a
-//!    warp slot is free;
+//! 3. launch: one warp per cycle from the FIFO the policy selects under
+//!    the launch rule (`scheduler.launch_rule`), if a warp slot is free; a
+//!    cycle in which `hold` keeps a lone priority warp back is a hold idle
+//!    cycle ([`CoreStats::held_cycles`]);
 //! 4. issue: up to `pipeline_width` ready warps issue one instruction each,
 //!    in loose round-robin order; a texture instruction enters the LDST
 //!    queue (one per cycle, if it has room);
@@ -53,7 +55,7 @@ const WHEEL: usize = 64;
 /// masked to this power of two needs no bounds check.
 const MAX_SLOTS: usize = 128;
 use wasp_rtl::nonblocked::PriorityEvents;
-use wasp_rtl::policy::LaunchPolicy;
+use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::LaunchScheduler;
 use wasp_rtl::subset::PrioritySubset;
@@ -148,8 +150,10 @@ pub struct CoreStats {
     /// Sum over texture instructions of the cycles their data waited for
     /// the filter unit (filter start - last block's arrival).
     pub filter_wait_cycles: u64,
-    /// Cycles with a free slot and a waiting warp but no launch, because
-    /// the policy held a priority warp back (WaSP: Real_freeMSHRs too low).
+    /// Hold idle cycles: cycles with a free slot and a warp waiting in the
+    /// priority FIFO but no launch, because the policy's gate was closed, no
+    /// regular warp waited and the launch rule is `hold` (WaSP:
+    /// Real_freeMSHRs too low). Always 0 under `launch`.
     pub held_cycles: u64,
     /// Sum over warps of each warp's mean texture latency.
     pub warp_latency_sum: [f64; 2],
@@ -285,6 +289,7 @@ impl ShaderCore {
         id: usize,
         p: CoreParams,
         policy: Box<dyn LaunchPolicy>,
+        rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,
     ) -> Self {
         // Policies that do not read the free-MSHR register may watch a cache
@@ -306,7 +311,7 @@ impl ShaderCore {
             filter_free: 0,
             ldst_cap: p.ldst_queue as usize,
             raster_rate: p.raster_rate,
-            sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy),
+            sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy, rule),
             track_mshrs,
             slots: Box::new([Warp::default(); MAX_SLOTS]),
             alu_left: Box::new([0; MAX_SLOTS]),
@@ -601,7 +606,13 @@ impl ShaderCore {
                 self.signals.launched = Some((quad, priority));
                 self.progress(now);
             }
-            None => self.stats.held_cycles += 1,
+            None => {
+                // A free slot and a waiting warp but no launch: only the
+                // launch rule `hold` does that (a closed gate, only
+                // priority warps waiting).
+                debug_assert!(decision.held);
+                self.stats.held_cycles += u64::from(decision.held);
+            }
         }
     }
 

@@ -33,7 +33,7 @@ use crate::stats::{RunInstruments, RunStats};
 use crate::timeline::{Timeline, TimelineSample};
 use crate::trace::Trace;
 use std::fmt;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::subset::SubsetSpec;
 use wasp_rtl::RegisterFault;
 use wasp_waves::{CycleSink, NullTracer, Tracer};
@@ -89,6 +89,8 @@ impl std::error::Error for SimError {}
 pub struct RunOptions {
     /// Override `scheduler.policy`.
     pub policy: Option<PolicySpec>,
+    /// Override `scheduler.launch_rule`.
+    pub launch_rule: Option<LaunchRule>,
     /// Override `scheduler.subset`.
     pub subset: Option<SubsetSpec>,
     /// Override `memory.ideal`.
@@ -109,6 +111,9 @@ impl RunOptions {
         let mut c = cfg.clone();
         if let Some(p) = self.policy {
             c.scheduler.policy = p.to_string();
+        }
+        if let Some(r) = self.launch_rule {
+            c.scheduler.launch_rule = r.to_string();
         }
         if let Some(s) = &self.subset {
             c.scheduler.subset = s.to_string();
@@ -162,6 +167,7 @@ impl<'t> Gpu<'t> {
         }
         let policy = cfg.policy().map_err(SimError::Config)?;
         let subset = cfg.subset().map_err(SimError::Config)?;
+        let rule = cfg.launch_rule().map_err(SimError::Config)?;
         let (_, sc) = cfg.scheduler_cache();
         let shared = cfg.raster.dispatch == Dispatch::SharedTile;
         let params = CoreParams {
@@ -182,7 +188,7 @@ impl<'t> Gpu<'t> {
         let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);
         for id in 0..cfg.gpu.cores as usize {
             let p = policy.build(sc.mshrs.min(31)).map_err(SimError::Config)?;
-            cores.push(ShaderCore::new(id, params, p, subset.build(side)));
+            cores.push(ShaderCore::new(id, params, p, rule, subset.build(side)));
         }
         let mem =
             MemorySystem::new(&cfg.mem_config()).map_err(|e| SimError::Config(e.to_string()))?;
@@ -777,6 +783,47 @@ mod tests {
             );
             assert_eq!(ideal.dram.avg_latency, 0.0, "ideal memory answers at once");
         }
+    }
+
+    /// WaSP at threshold 14 of 16 L0 MSHRs closes its gate often; under
+    /// `hold` a core then idles whenever only priority warps wait, under
+    /// `launch` it never does. The baseline never holds and is the same
+    /// under both rules.
+    #[test]
+    fn launch_rule_hold_idles_and_launch_does_not() {
+        let t = small_synth(3);
+        let cfg = MachineConfig::paper();
+        let go = |policy: &str, rule: LaunchRule| {
+            let opts = RunOptions {
+                policy: Some(policy.parse().unwrap()),
+                launch_rule: Some(rule),
+                ..Default::default()
+            };
+            simulate(&cfg, &t, &opts, &mut |_, _| {}).unwrap()
+        };
+        let hold = go("wasp:14", LaunchRule::Hold);
+        let launch = go("wasp:14", LaunchRule::Launch);
+        assert_eq!(
+            (hold.launch_rule.as_str(), launch.launch_rule.as_str()),
+            ("hold", "launch")
+        );
+        assert!(hold.held_cycles > 0, "{}", hold.held_cycles);
+        assert_eq!(
+            hold.held_cycles,
+            hold.held_cycles_per_core.iter().sum::<u64>()
+        );
+        assert_eq!(hold.held_cycles_per_core.len(), cfg.gpu.cores as usize);
+        assert_eq!(launch.held_cycles, 0);
+        assert!(launch.held_cycles_per_core.iter().all(|&h| h == 0));
+        for s in [&hold, &launch] {
+            assert_eq!(s.warps, t.quad_count() as u64);
+        }
+        assert_ne!(hold.cycles, launch.cycles);
+        let base_hold = go("baseline", LaunchRule::Hold);
+        let base_launch = go("baseline", LaunchRule::Launch);
+        assert_eq!(base_hold.held_cycles, 0);
+        assert_eq!(base_hold.cycles, base_launch.cycles);
+        assert_eq!(base_hold.per_tile, base_launch.per_tile);
     }
 
     #[test]
