@@ -30,6 +30,7 @@ use crate::cex::{ensure, Cex};
 use std::collections::{BTreeMap, BTreeSet};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::gpu::{Gpu, WarpRecord};
+use wasp_sim::mem::BlockedOn;
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
 /// Property name used in counterexamples.
@@ -255,6 +256,8 @@ pub struct SmallMachine {
     pub subset: &'static str,
     /// Zero-latency main memory.
     pub ideal: bool,
+    /// Which miss blocks a warp.
+    pub blocked_on: BlockedOn,
 }
 
 impl SmallMachine {
@@ -291,6 +294,7 @@ impl SmallMachine {
         c.memory.ideal = self.ideal;
         c.scheduler.policy = self.policy.into();
         c.scheduler.subset = self.subset.into();
+        c.scheduler.blocked_on = self.blocked_on;
         c.sim.watchdog_cycles = 100_000;
         c
     }
@@ -365,6 +369,7 @@ mod proofs {
             policy: "wasp:0",
             subset: "mesh2",
             ideal: false,
+            blocked_on: BlockedOn::L1Miss,
         };
         assert!(run_checked(&m.config(), &trace).is_ok());
     }
@@ -393,6 +398,7 @@ mod tests {
             policy,
             subset: "mesh2",
             ideal: false,
+            blocked_on: BlockedOn::L1Miss,
         }
     }
 
@@ -442,7 +448,12 @@ mod tests {
         let tiles = tiles_up_to(3);
         assert_eq!(tiles.len(), 5 + 25 + 125);
         let (mut runs, mut prio, mut full, mut max_active) = (0, 0, 0, 0);
-        for mach in machines() {
+        // Every machine under every blocking rule: (i) holds whichever miss
+        // blocks a warp.
+        let all = machines()
+            .into_iter()
+            .flat_map(|m| BlockedOn::ALL.map(|blocked_on| SmallMachine { blocked_on, ..m }));
+        for mach in all {
             let cfg = mach.config();
             cfg.validate().unwrap();
             for t in &tiles {
@@ -457,7 +468,7 @@ mod tests {
         }
         // Not vacuous: priority warps launched, MSHR files filled up, cores
         // held several warps at once.
-        assert_eq!(runs, 7 * 155);
+        assert_eq!(runs, 3 * 7 * 155);
         assert!(
             prio > 500 && full > 500 && max_active == 3,
             "{prio} {full} {max_active}"

@@ -14,7 +14,7 @@ use proptest::prelude::*;
 use proptest_state_machine::{prop_state_machine, ReferenceStateMachine, StateMachineTest};
 use wasp_props::machine::{run_checked, SmallMachine};
 use wasp_props::mshr_file::{cache_step, small_cache, CacheModel, CacheOp, BLOCKS};
-use wasp_sim::mem::Cache;
+use wasp_sim::mem::{BlockedOn, Cache};
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
 struct CacheRef;
@@ -105,9 +105,10 @@ fn arb_machine() -> impl Strategy<Value = SmallMachine> {
         0u32..=2,
         0usize..5,
         any::<bool>(),
+        0usize..3,
     )
         .prop_map(
-            |(l0, cores, warps, width, queue, mshrs, merged, policy, mesh2)| SmallMachine {
+            |(l0, cores, warps, width, queue, mshrs, merged, policy, mesh2, rule)| SmallMachine {
                 l0,
                 cores,
                 warps,
@@ -124,6 +125,7 @@ fn arb_machine() -> impl Strategy<Value = SmallMachine> {
                 ][policy],
                 subset: if mesh2 { "mesh2" } else { "mesh4" },
                 ideal: false,
+                blocked_on: BlockedOn::ALL[rule],
             },
         )
 }

@@ -8,7 +8,7 @@
 //! every value the model or the scheduler's registers cannot hold, naming
 //! the field and the limit.
 
-use crate::mem::{CacheConfig, DramConfig, MemConfig};
+use crate::mem::{BlockedOn, CacheConfig, DramConfig, MemConfig};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::Path;
@@ -145,6 +145,10 @@ pub struct SchedulerConfig {
     /// Priority subset: `mesh2|4|8|16`, `hlines`, `vlines`, `top16`,
     /// `random[:seed]`.
     pub subset: String,
+    /// Which miss blocks a warp (the paper's long-latency miss, at a level
+    /// the paper does not name): `first-level`, `l1-miss` or `dram` (see
+    /// [`BlockedOn`]).
+    pub blocked_on: BlockedOn,
 }
 
 /// Main memory and the ideal-memory switch.
@@ -340,6 +344,7 @@ impl MachineConfig {
             l2: self.l2,
             dram: self.dram,
             ideal_memory: self.memory.ideal,
+            blocked_on: self.scheduler.blocked_on,
         }
     }
 

@@ -174,6 +174,7 @@ impl<'t> Gpu<'t> {
             texture_latency: cfg.core.texture_latency,
             ldst_queue: cfg.core.ldst_queue,
             sched_mshrs: sc.mshrs,
+            blocked_on: cfg.scheduler.blocked_on,
         };
         let side = cfg.quads_per_side();
         let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);

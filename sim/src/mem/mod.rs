@@ -106,7 +106,7 @@ pub mod stats;
 
 pub use cache::{Cache, Lookup};
 pub use config::{
-    CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
+    BlockedOn, CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
     FREE_MSHR_REGISTER_MAX,
 };
 pub use hierarchy::{Access, MemorySystem, MshrEvents, MshrFileView};
