@@ -632,6 +632,37 @@ mod tests {
     }
 
     #[test]
+    fn blocked_on_is_required_and_checked() {
+        assert_eq!(
+            MachineConfig::paper().scheduler.blocked_on,
+            BlockedOn::L1Miss
+        );
+        assert_eq!(
+            MachineConfig::paper_width2().scheduler.blocked_on,
+            BlockedOn::L1Miss
+        );
+        let line = "blocked_on = \"l1-miss\"";
+        assert!(PAPER_TOML.contains(line));
+        for rule in BlockedOn::ALL {
+            let c = with(|s| s.replacen(line, &format!("blocked_on = \"{rule}\""), 1)).unwrap();
+            assert_eq!(c.scheduler.blocked_on, rule);
+            assert_eq!(c.mem_config().blocked_on, rule);
+            assert_eq!(rule.to_string().parse::<BlockedOn>(), Ok(rule));
+        }
+        let e = with(|s| s.replacen(line, "blocked_on = \"l2\"", 1)).unwrap_err();
+        assert!(
+            e.message.contains("l2") && e.message.contains("l1-miss") && e.message.contains("line"),
+            "{e}"
+        );
+        let e = with(|s| s.replacen(line, "", 1)).unwrap_err();
+        assert!(e.message.contains("blocked_on"), "{e}");
+        assert!("l2"
+            .parse::<BlockedOn>()
+            .unwrap_err()
+            .contains("first-level"));
+    }
+
+    #[test]
     fn bad_toml_reports_line() {
         let e = MachineConfig::parse("name = \"x\"\n[gpu\ncores = 1", "broken.toml").unwrap_err();
         assert!(e.to_string().starts_with("broken.toml: "));
