@@ -229,7 +229,8 @@ struct L2Reply {
 /// Per cycle `now` the owner calls, in this order: [`access`](Self::access)
 /// for that cycle's accesses (any cores, any order; the order within a core
 /// is the order of its ports), [`tick`](Self::tick) once, then any of
-/// [`take_completions`](Self::take_completions),
+/// [`take_long_latency`](Self::take_long_latency) (before the
+/// completions), [`take_completions`](Self::take_completions),
 /// [`mshr_events`](Self::mshr_events), [`trace`](Self::trace). Cycles must
 /// not go backwards and `tick` should be called for every cycle; cycles in
 /// which [`is_idle`](Self::is_idle) holds and no access is made may be
