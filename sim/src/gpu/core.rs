@@ -93,8 +93,6 @@ struct Warp {
     blk: u32,
     /// Cycle the current texture instruction entered the LDST queue.
     tex_start: u64,
-    /// Cycle the warp became blocked (meaningful while `blocked`).
-    blocked_at: u64,
     /// Sum of the memory latencies of its texture instructions.
     lat_sum: u64,
     /// Texture instructions completed.
@@ -208,6 +206,9 @@ pub struct ShaderCore {
     /// Warp slots; a slot holds a warp when its bit in `free_slots` is 0.
     /// Only the first `n_slots` are used.
     slots: Box<[Warp; MAX_SLOTS]>,
+    /// Per slot, the cycle its warp became blocked (meaningful while the
+    /// warp is blocked), apart from the warp like `alu_left`.
+    blocked_at: Box<[u64; MAX_SLOTS]>,
     /// Per slot, the ALU instructions left in the warp's current ALU run
     /// (0: not started), apart from the rest of the warp: the issue stage
     /// counts a run down without touching the warp.
@@ -307,6 +308,7 @@ impl ShaderCore {
             long: Vec::new(),
             slots: Box::new([Warp::default(); MAX_SLOTS]),
             alu_left: Box::new([0; MAX_SLOTS]),
+            blocked_at: Box::new([0; MAX_SLOTS]),
             n_slots: n,
             free_slots: if n == 128 {
                 u128::MAX
@@ -584,7 +586,6 @@ impl ShaderCore {
                     tex_len: 0,
                     blk: span.block_start,
                     tex_start: 0,
-                    blocked_at: 0,
                     lat_sum: 0,
                     tex_done: 0,
                     launched_at: now,
@@ -716,6 +717,9 @@ impl ShaderCore {
             return;
         }
         let blocks = tile.block_accesses();
+        // Under first-level the LDST unit blocks warps at their misses; the
+        // other rules block in phase 2.
+        let at_access = self.blocked_on == BlockedOn::FirstLevel;
         loop {
             let e = &mut self.ldst_cur;
             while e.next < e.end {
@@ -727,14 +731,12 @@ impl ShaderCore {
                 e.next += 1;
                 self.signals.ldst_presented += 1;
                 self.last_progress = now;
-                if self.blocked_on == BlockedOn::FirstLevel
-                    && matches!(r, Access::Miss | Access::SecondaryMiss)
-                {
+                if at_access && matches!(r, Access::Miss | Access::SecondaryMiss) {
                     let w = &mut self.slots[e.slot as usize % MAX_SLOTS];
                     if !w.blocked {
                         w.blocked = true;
-                        w.blocked_at = now;
-                        self.stats.blocked_episodes[w.priority as usize] += 1;
+                        self.blocked_at[e.slot as usize % MAX_SLOTS] = now;
+                        self.stats.blocked_episodes[w.priority as usize & 1] += 1;
                         if w.priority {
                             self.prio.blocked += 1;
                         }
@@ -779,7 +781,8 @@ impl ShaderCore {
                 w.tex_done += 1;
                 if w.blocked {
                     w.blocked = false;
-                    self.stats.blocked_cycles[w.priority as usize] += now - w.blocked_at;
+                    self.stats.blocked_cycles[w.priority as usize & 1] +=
+                        now - self.blocked_at[s % MAX_SLOTS];
                     if w.priority {
                         self.prio.unblocked += 1;
                     }
@@ -837,7 +840,7 @@ impl ShaderCore {
             }
             if !w.blocked {
                 w.blocked = true;
-                w.blocked_at = now;
+                self.blocked_at[s % MAX_SLOTS] = now;
                 self.stats.blocked_episodes[w.priority as usize] += 1;
                 if w.priority {
                     self.prio.blocked += 1;

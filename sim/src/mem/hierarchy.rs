@@ -216,6 +216,31 @@ fn mark_l1(c: &mut CoreMem, e: u32) {
     }
 }
 
+/// Long-latency bookkeeping of an access of tag `tag` that missed in the
+/// first level of core `c`, allocating (`merged` false) or merging into
+/// its MSHR entry `entry`: without an L0 under [`Track::L1`] the access
+/// itself is reported; otherwise a new entry starts unmarked and a merge
+/// into a marked entry is reported. Out of line: the accesses' hot path
+/// only tests `track`.
+#[inline(never)]
+fn first_level_miss(c: &mut CoreMem, track: Track, tag: u32, entry: u32, merged: bool) {
+    let marks = if c.l0.is_some() {
+        &mut c.l0_long
+    } else if track == Track::L1 {
+        // The access itself misses in the L1.
+        c.long.push(tag);
+        return;
+    } else {
+        &mut c.l1_long
+    };
+    let m = &mut marks[entry as usize];
+    if !merged {
+        *m = false;
+    } else if *m {
+        c.long.push(tag);
+    }
+}
+
 /// L2 reply to the L1 of a core.
 #[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
@@ -336,10 +361,9 @@ impl MemorySystem {
         self.now = now;
         let track = self.track;
         let c = &mut self.cores[core];
-        let has_l0 = c.l0.is_some();
-        let (first, queue, marks) = match c.l0.as_mut() {
-            Some(l0) => (l0, &mut c.to_l1, &mut c.l0_long),
-            None => (&mut c.l1, &mut c.to_l2, &mut c.l1_long),
+        let (first, queue) = match c.l0.as_mut() {
+            Some(l0) => (l0, &mut c.to_l1),
+            None => (&mut c.l1, &mut c.to_l2),
         };
         match first.access_entry(now, block, tag) {
             (Lookup::Hit, _) => {
@@ -354,22 +378,13 @@ impl MemorySystem {
                     entry,
                 });
                 if track != Track::Nothing {
-                    if track == Track::L1 && !has_l0 {
-                        // The access itself misses in the L1.
-                        c.long.push(tag);
-                    } else {
-                        marks[entry as usize] = false;
-                    }
+                    first_level_miss(c, track, tag, entry, false);
                 }
                 Access::Miss
             }
             (Lookup::Secondary, entry) => {
-                if track != Track::Nothing
-                    && ((track == Track::L1 && !has_l0) || marks[entry as usize])
-                {
-                    // Merged into an L1 miss, or into an entry already
-                    // reported.
-                    c.long.push(tag);
+                if track != Track::Nothing {
+                    first_level_miss(c, track, tag, entry, true);
                 }
                 Access::SecondaryMiss
             }
