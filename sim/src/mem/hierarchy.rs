@@ -1088,14 +1088,12 @@ mod tests {
         MemorySystem::new(&cfg).unwrap()
     }
 
+    /// (cycle, tag) pairs.
+    type Events = Vec<(u64, u32)>;
+
     /// Tick cycles `from..to`, returning `core`'s long-latency reports as
     /// (cycle, tag) and its completions the same way (reports taken first).
-    fn drive_reports(
-        mem: &mut MemorySystem,
-        core: usize,
-        from: u64,
-        to: u64,
-    ) -> (Vec<(u64, u32)>, Vec<(u64, u32)>) {
+    fn drive_reports(mem: &mut MemorySystem, core: usize, from: u64, to: u64) -> (Events, Events) {
         let (mut long, mut done, mut buf) = (Vec::new(), Vec::new(), Vec::new());
         for now in from..to {
             mem.tick(now);
