@@ -163,15 +163,15 @@ pub struct CoreStats {
     /// Quads its own rasterizer rasterized, rejected ones included
     /// (per-core-tile dispatch).
     pub quads_rasterized: u64,
+    /// Of those, quads Early-Z rejected.
+    pub quads_rejected: u64,
     /// Blocked episodes: texture instructions whose warp became blocked
     /// (`[regular, priority]` warps).
     pub blocked_episodes: [u64; 2],
     /// Cycles from the cycle a warp became blocked to the cycle its last
-    /// block arrived (unblocking it), summed
-    /// over the episodes (`[regular, priority]`).
+    /// block arrived (unblocking it), summed over the episodes
+    /// (`[regular, priority]`).
     pub blocked_cycles: [u64; 2],
-    /// Of those, quads Early-Z rejected.
-    pub quads_rejected: u64,
 }
 
 /// Per-cycle signals of the core, for the waveform.
