@@ -10,6 +10,7 @@ use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
 use wasp_sim::gpu::{simulate, simulate_timeline, simulate_traced, RunOptions, SimError};
+use wasp_sim::mem::BlockedOn;
 use wasp_sim::stats::{csv_table, RunStats};
 use wasp_sim::synth::{generate, GenParams};
 use wasp_sim::trace::Trace;
@@ -44,6 +45,12 @@ pub struct Inputs {
     /// Zero-latency main memory (overrides memory.ideal).
     #[arg(long)]
     pub ideal_memory: bool,
+
+    /// Which miss blocks a warp: first-level (any miss in the L0, or the L1
+    /// without L0), l1-miss (a request misses in the L1) or dram (in the
+    /// L2). Overrides scheduler.blocked_on.
+    #[arg(long, value_name = "RULE")]
+    pub blocked_on: Option<BlockedOn>,
 
     /// Tile dispatch: shared-tile (the paper's machine: one tile at a time
     /// for the whole GPU, one rasterizer) or per-core-tile (each core renders
@@ -147,7 +154,12 @@ pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
         Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
         None => MachineConfig::paper(),
     };
-    wasp_sim::overrides::apply(&cfg, &inputs.set).map_err(|e| CliError::usage(e.to_string()))
+    let mut cfg = wasp_sim::overrides::apply(&cfg, &inputs.set)
+        .map_err(|e| CliError::usage(e.to_string()))?;
+    if let Some(b) = inputs.blocked_on {
+        cfg.scheduler.blocked_on = b;
+    }
+    Ok(cfg)
 }
 
 /// Load (or generate) the trace named by the inputs.

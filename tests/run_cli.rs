@@ -578,3 +578,48 @@ fn the_launch_rule_is_chosen_reported_and_counted() {
         stderr(&o)
     );
 }
+
+#[test]
+fn the_json_names_the_blocked_rule_and_counts_episodes() {
+    let d = dir("blocked");
+    let t = synth_trace(&d, 4);
+    // The default rule, then each rule by flag and by --set.
+    let v = run_json(&["--trace", &t, "--policy", "wasp:4"]);
+    assert_eq!(v["blocked_on"], "l1-miss");
+    let mut episodes = Vec::new();
+    for rule in ["first-level", "l1-miss", "dram"] {
+        let a = run_json(&["--trace", &t, "--policy", "wasp:4", "--blocked-on", rule]);
+        let set = format!("scheduler.blocked_on=\"{rule}\"");
+        let b = run_json(&["--trace", &t, "--policy", "wasp:4", "--set", &set]);
+        assert_eq!(a, b, "{rule}");
+        assert_eq!(a["blocked_on"], rule);
+        let e = a["blocked"]["episodes"].as_u64().unwrap();
+        assert!(e <= a["tex_instructions"].as_u64().unwrap());
+        assert!(a["blocked"]["priority_episodes"].as_u64().unwrap() <= e);
+        episodes.push(e);
+    }
+    assert!(
+        episodes[0] > episodes[1] && episodes[1] >= episodes[2] && episodes[2] > 0,
+        "{episodes:?}"
+    );
+    // compare runs every policy under the rule it is given.
+    let j = ok(&wasp(&[
+        "compare",
+        "-q",
+        "--trace",
+        &t,
+        "--policies",
+        "baseline,wasp:4",
+        "--blocked-on",
+        "dram",
+        "--json",
+        "-",
+    ]));
+    let v: Value = serde_json::from_str(&j).unwrap();
+    for r in v.as_array().unwrap() {
+        assert_eq!(r["blocked_on"], "dram");
+    }
+    let o = wasp(&["run", "-q", "--trace", &t, "--blocked-on", "l2"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("first-level"), "{}", stderr(&o));
+}

@@ -30,6 +30,7 @@ use crate::cex::{ensure, Cex};
 use std::collections::{BTreeMap, BTreeSet};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::gpu::{Gpu, WarpRecord};
+use wasp_sim::mem::BlockedOn;
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
 /// Property name used in counterexamples.
@@ -257,6 +258,8 @@ pub struct SmallMachine {
     pub subset: &'static str,
     /// Zero-latency main memory.
     pub ideal: bool,
+    /// Which miss blocks a warp.
+    pub blocked_on: BlockedOn,
 }
 
 impl SmallMachine {
@@ -294,6 +297,7 @@ impl SmallMachine {
         c.scheduler.policy = self.policy.into();
         c.scheduler.launch_rule = self.launch_rule.to_string();
         c.scheduler.subset = self.subset.into();
+        c.scheduler.blocked_on = self.blocked_on;
         c.sim.watchdog_cycles = 100_000;
         c
     }
@@ -374,6 +378,7 @@ mod proofs {
             },
             subset: "mesh2",
             ideal: false,
+            blocked_on: BlockedOn::L1Miss,
         };
         assert!(run_checked(&m.config(), &trace).is_ok());
     }
@@ -411,6 +416,7 @@ mod tests {
             launch_rule: LaunchRule::Hold,
             subset: "mesh2",
             ideal: false,
+            blocked_on: BlockedOn::L1Miss,
         }
     }
 
@@ -464,7 +470,12 @@ mod tests {
         let tiles = tiles_up_to(3);
         assert_eq!(tiles.len(), 5 + 25 + 125);
         let (mut runs, mut prio, mut full, mut max_active) = (0, 0, 0, 0);
-        for mach in machines() {
+        // Every machine under every blocking rule: (i) holds whichever miss
+        // blocks a warp.
+        let all = machines()
+            .into_iter()
+            .flat_map(|m| BlockedOn::ALL.map(|blocked_on| SmallMachine { blocked_on, ..m }));
+        for mach in all {
             let cfg = mach.config();
             cfg.validate().unwrap();
             for t in &tiles {
@@ -479,7 +490,7 @@ mod tests {
         }
         // Not vacuous: priority warps launched, MSHR files filled up, cores
         // held several warps at once.
-        assert_eq!(runs, 10 * 155);
+        assert_eq!(runs, 3 * 10 * 155);
         assert!(
             prio > 500 && full > 500 && max_active == 3,
             "{prio} {full} {max_active}"

@@ -15,7 +15,7 @@ use proptest_state_machine::{prop_state_machine, ReferenceStateMachine, StateMac
 use wasp_props::machine::{run_checked, SmallMachine};
 use wasp_props::mshr_file::{cache_step, small_cache, CacheModel, CacheOp, BLOCKS};
 use wasp_rtl::policy::LaunchRule;
-use wasp_sim::mem::Cache;
+use wasp_sim::mem::{BlockedOn, Cache};
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
 struct CacheRef;
@@ -107,9 +107,10 @@ fn arb_machine() -> impl Strategy<Value = SmallMachine> {
         0usize..5,
         any::<bool>(),
         any::<bool>(),
+        0usize..3,
     )
         .prop_map(
-            |(l0, cores, warps, width, queue, mshrs, merged, policy, mesh2, launch)| SmallMachine {
+            |(l0, cores, warps, width, queue, mshrs, merged, policy, mesh2, launch, rule)| SmallMachine {
                 l0,
                 cores,
                 warps,
@@ -131,6 +132,7 @@ fn arb_machine() -> impl Strategy<Value = SmallMachine> {
                 },
                 subset: if mesh2 { "mesh2" } else { "mesh4" },
                 ideal: false,
+                blocked_on: BlockedOn::ALL[rule],
             },
         )
 }

@@ -8,7 +8,7 @@
 //! every value the model or the scheduler's registers cannot hold, naming
 //! the field and the limit.
 
-use crate::mem::{CacheConfig, DramConfig, MemConfig};
+use crate::mem::{BlockedOn, CacheConfig, DramConfig, MemConfig};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::Path;
@@ -193,6 +193,10 @@ pub struct SchedulerConfig {
     /// rule) or `launch` (that priority warp; work-conserving). See
     /// [`LaunchRule`].
     pub launch_rule: String,
+    /// Which miss blocks a warp (the paper's long-latency miss, at a level
+    /// the paper does not name): `first-level`, `l1-miss` or `dram` (see
+    /// [`BlockedOn`]).
+    pub blocked_on: BlockedOn,
 }
 
 /// Main memory and the ideal-memory switch.
@@ -398,6 +402,7 @@ impl MachineConfig {
             l2: self.l2,
             dram: self.dram,
             ideal_memory: self.memory.ideal,
+            blocked_on: self.scheduler.blocked_on,
         }
     }
 
@@ -806,6 +811,37 @@ mod tests {
         assert!(e.message.contains("7-bit"), "{e}");
         // 128 warps with Mesh4 (64 priority quads per tile) is fine.
         with(|s| s.replace("max_warps = 64", "max_warps = 128")).unwrap();
+    }
+
+    #[test]
+    fn blocked_on_is_required_and_checked() {
+        assert_eq!(
+            MachineConfig::paper().scheduler.blocked_on,
+            BlockedOn::L1Miss
+        );
+        assert_eq!(
+            MachineConfig::paper_width2().scheduler.blocked_on,
+            BlockedOn::L1Miss
+        );
+        let line = "blocked_on = \"l1-miss\"";
+        assert!(PAPER_TOML.contains(line));
+        for rule in BlockedOn::ALL {
+            let c = with(|s| s.replacen(line, &format!("blocked_on = \"{rule}\""), 1)).unwrap();
+            assert_eq!(c.scheduler.blocked_on, rule);
+            assert_eq!(c.mem_config().blocked_on, rule);
+            assert_eq!(rule.to_string().parse::<BlockedOn>(), Ok(rule));
+        }
+        let e = with(|s| s.replacen(line, "blocked_on = \"l2\"", 1)).unwrap_err();
+        assert!(
+            e.message.contains("l2") && e.message.contains("l1-miss") && e.message.contains("line"),
+            "{e}"
+        );
+        let e = with(|s| s.replacen(line, "", 1)).unwrap_err();
+        assert!(e.message.contains("blocked_on"), "{e}");
+        assert!("l2"
+            .parse::<BlockedOn>()
+            .unwrap_err()
+            .contains("first-level"));
     }
 
     #[test]

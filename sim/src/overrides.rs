@@ -185,6 +185,13 @@ mod tests {
     }
 
     #[test]
+    fn blocked_on_can_be_set() {
+        let base = MachineConfig::paper();
+        let c = apply(&base, &sets(&["scheduler.blocked_on=\"dram\""])).unwrap();
+        assert_eq!(c.scheduler.blocked_on, crate::mem::BlockedOn::Dram);
+    }
+
+    #[test]
     fn bad_overrides_say_what_was_expected() {
         let base = MachineConfig::paper();
         let cases = [
@@ -196,6 +203,7 @@ mod tests {
             ("l0.mshrs=many", "l0.mshrs holds an integer, not a string"),
             ("dram.model=3", "dram.model holds a string, not an integer"),
             ("dram.model=slow", "dram.model"),
+            ("scheduler.blocked_on=\"l2\"", "scheduler.blocked_on"),
             // Validation runs on the result: the register holds 31 at most.
             ("l0.mshrs=40", "31"),
             (

@@ -94,6 +94,23 @@ pub struct LatencyStats {
     pub regular: f64,
 }
 
+/// Blocked episodes: texture instructions whose warp became blocked (the
+/// paper's long-latency state) under the run's `blocked_on` rule.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BlockedStats {
+    /// Episodes, all warps.
+    pub episodes: u64,
+    /// Episodes of priority warps.
+    pub priority_episodes: u64,
+    /// Texture instructions whose warp became blocked, as a share of all.
+    pub episode_share: f64,
+    /// Mean cycles from the cycle a warp became blocked to the cycle its
+    /// last block arrived, over all episodes.
+    pub mean_cycles: f64,
+    /// The same over the priority warps' episodes.
+    pub priority_mean_cycles: f64,
+}
+
 /// The priority subset and what it covers.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SubsetStats {
@@ -264,6 +281,8 @@ pub struct RunStats {
     pub dram_model: String,
     /// Zero-latency main memory.
     pub ideal_memory: bool,
+    /// Which miss blocks a warp (`scheduler.blocked_on`).
+    pub blocked_on: String,
     /// GPU cycles until every tile is rendered and memory is idle.
     pub cycles: u64,
     /// Warp instructions per GPU cycle.
@@ -304,6 +323,8 @@ pub struct RunStats {
     pub held_cycles: u64,
     /// The same per core.
     pub held_cycles_per_core: Vec<u64>,
+    /// Blocked episodes and their length.
+    pub blocked: BlockedStats,
     /// The priority subset.
     pub subset: SubsetStats,
     /// Memory-instruction ratio of the workload.
@@ -396,6 +417,7 @@ impl RunStats {
             color_flush: cfg.raster.color_flush.to_string(),
             dram_model: cfg.dram.describe(),
             ideal_memory: cfg.memory.ideal,
+            blocked_on: cfg.scheduler.blocked_on.to_string(),
             cycles,
             ipc: instructions as f64 / cycles.max(1) as f64,
             warps: sum(&|c| c.warps_finished),
@@ -450,6 +472,17 @@ impl RunStats {
             tile_timing: inst.tile_timing,
             held_cycles: sum(&|c| c.held_cycles),
             held_cycles_per_core: cores.iter().map(|c| c.held_cycles).collect(),
+            blocked: {
+                let ep = |i: usize| sum(&|c| c.blocked_episodes[i]);
+                let cy = |i: usize| sum(&|c| c.blocked_cycles[i]) as f64;
+                BlockedStats {
+                    episodes: ep(0) + ep(1),
+                    priority_episodes: ep(1),
+                    episode_share: mean((ep(0) + ep(1)) as f64, tex),
+                    mean_cycles: mean(cy(0) + cy(1), ep(0) + ep(1)),
+                    priority_mean_cycles: mean(cy(1), ep(1)),
+                }
+            },
             subset: SubsetStats {
                 subset: if uses_priority {
                     subset_spec.to_string()
@@ -589,6 +622,17 @@ impl RunStats {
             "hold idle core-cycles {} (per core {}): a free slot, a priority warp waiting, nothing launched",
             self.held_cycles,
             per_core.join(" ")
+        );
+        let b = &self.blocked;
+        let _ = writeln!(
+            s,
+            "blocked on {}: {} episodes ({:.1}% of texture instructions; {} of priority warps), mean {:.1} cycles (priority {:.1})",
+            self.blocked_on,
+            b.episodes,
+            100.0 * b.episode_share,
+            b.priority_episodes,
+            b.mean_cycles,
+            b.priority_mean_cycles
         );
         let r = &self.raster;
         let _ = writeln!(

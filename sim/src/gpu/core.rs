@@ -21,25 +21,38 @@
 //!    first cache level, in order, until the cache refuses (ports used or
 //!    MSHRs full).
 //!
-//! Then the memory system ticks, and (phase 2) completions arrive: a warp
-//! whose last block arrived enters the core's one filter unit, in order of
-//! arrival, and wakes when its filter pass and the texture latency are
-//! done (`core.filter_timing`: `max(s + f, a + L)` or `s + f + L` for
-//! arrival `a`, filter start `s = max(a, filter free)`, filter cycles `f`
-//! and `L = max(texture_latency, 1)`; with no filter cycles, `a + L`). The
-//! scheduler's registers are clocked with the cycle's MSHR and priority-warp
-//! events.
+//! Then the memory system ticks, and (phase 2) the warps whose requests began
+//! to wait on a long-latency miss are marked blocked, then completions
+//! arrive: a warp whose last block arrived enters the core's one filter
+//! unit, in order of arrival, and wakes when its filter pass and the texture
+//! latency are done (`core.filter_timing`: `max(s + f, a + L)` or
+//! `s + f + L` for arrival `a`, filter start `s = max(a, filter free)`,
+//! filter cycles `f` and `L = max(texture_latency, 1)`; with no filter
+//! cycles, `a + L`). The scheduler's registers are clocked with the cycle's
+//! MSHR and priority-warp events.
 //!
-//! A warp is *blocked* (the paper's long-latency state, deprioritised at
-//! fetch) from the cycle one of its accesses misses in the first level until
-//! its data arrives. A blocked warp cannot issue: each warp's instructions
-//! depend on the previous one, so nothing else of it is fetched meanwhile.
+//! A warp is *blocked* (the paper's long-latency state: "warps are marked as
+//! blocked when they encounter a long-latency miss", Section IV-C) from the
+//! cycle one of its requests of a texture instruction takes the miss that
+//! `scheduler.blocked_on` names until its last block arrives:
+//! - `first-level`: a miss in the first level (L0, or L1 without L0), seen
+//!   by the LDST unit at the access (phase 1);
+//! - `l1-miss`: a miss in the L1 (a request leaving the core), which the
+//!   memory system reports ([`MemorySystem::take_long_latency`]) in the
+//!   cycle of the L1 lookup (phase 2);
+//! - `dram`: a miss in the L2, reported the same way.
+//!
+//! Each blocked episode of a priority warp counts once in the non-blocked
+//! counter's events. A blocked warp cannot issue: each warp's instructions
+//! depend on the previous one, so nothing else of it is fetched meanwhile;
+//! a warp waiting on shorter misses cannot issue either, but counts as not
+//! blocked.
 
 use crate::config::FilterTiming;
 use crate::gpu::mask::SlotMask;
 use crate::gpu::raster::RasterCursor;
 use crate::gpu::SimError;
-use crate::mem::{Access, MemorySystem};
+use crate::mem::{Access, BlockedOn, MemorySystem};
 use crate::trace::{OpKind, Tile, Trace};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
@@ -171,6 +184,13 @@ pub struct CoreStats {
     pub quads_rasterized: u64,
     /// Of those, quads Early-Z rejected.
     pub quads_rejected: u64,
+    /// Blocked episodes: texture instructions whose warp became blocked
+    /// (`[regular, priority]` warps).
+    pub blocked_episodes: [u64; 2],
+    /// Cycles from the cycle a warp became blocked to the cycle its last
+    /// block arrived (unblocking it), summed over the episodes
+    /// (`[regular, priority]`).
+    pub blocked_cycles: [u64; 2],
 }
 
 /// Per-cycle signals of the core, for the waveform.
@@ -204,9 +224,16 @@ pub struct ShaderCore {
     /// Whether the free-MSHR register follows the cache (policies that
     /// read it).
     track_mshrs: bool,
+    /// Which miss blocks a warp.
+    blocked_on: BlockedOn,
+    /// Tags reported by the memory system (scratch of phase 2).
+    long: Vec<u32>,
     /// Warp slots; a slot holds a warp when its bit in `free_slots` is 0.
     /// Only the first `n_slots` are used.
     slots: Box<[Warp; MAX_SLOTS]>,
+    /// Per slot, the cycle its warp became blocked (meaningful while the
+    /// warp is blocked), apart from the warp like `alu_left`.
+    blocked_at: Box<[u64; MAX_SLOTS]>,
     /// Per slot, the ALU instructions left in the warp's current ALU run
     /// (0: not started), apart from the rest of the warp: the issue stage
     /// counts a run down without touching the warp.
@@ -281,6 +308,8 @@ pub struct CoreParams {
     pub ldst_queue: u32,
     /// MSHRs of the scheduler-level cache.
     pub sched_mshrs: u32,
+    /// Which miss blocks a warp (the memory system must report the same).
+    pub blocked_on: BlockedOn,
 }
 
 impl ShaderCore {
@@ -313,8 +342,11 @@ impl ShaderCore {
             raster_rate: p.raster_rate,
             sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy, rule),
             track_mshrs,
+            blocked_on: p.blocked_on,
+            long: Vec::new(),
             slots: Box::new([Warp::default(); MAX_SLOTS]),
             alu_left: Box::new([0; MAX_SLOTS]),
+            blocked_at: Box::new([0; MAX_SLOTS]),
             n_slots: n,
             free_slots: if n == 128 {
                 u128::MAX
@@ -735,6 +767,9 @@ impl ShaderCore {
             return;
         }
         let blocks = tile.block_accesses();
+        // Under first-level the LDST unit blocks warps at their misses; the
+        // other rules block in phase 2.
+        let at_access = self.blocked_on == BlockedOn::FirstLevel;
         loop {
             let e = &mut self.ldst_cur;
             while e.next < e.end {
@@ -746,10 +781,12 @@ impl ShaderCore {
                 e.next += 1;
                 self.signals.ldst_presented += 1;
                 self.last_progress = now;
-                if matches!(r, Access::Miss | Access::SecondaryMiss) {
+                if at_access && matches!(r, Access::Miss | Access::SecondaryMiss) {
                     let w = &mut self.slots[e.slot as usize % MAX_SLOTS];
                     if !w.blocked {
                         w.blocked = true;
+                        self.blocked_at[e.slot as usize % MAX_SLOTS] = now;
+                        self.stats.blocked_episodes[w.priority as usize & 1] += 1;
                         if w.priority {
                             self.prio.blocked += 1;
                         }
@@ -772,6 +809,9 @@ impl ShaderCore {
         mem: &mut MemorySystem,
         scratch: &mut Vec<u32>,
     ) -> Result<(), SimError> {
+        if self.blocked_on != BlockedOn::FirstLevel {
+            self.block_long_latency(now, mem)?;
+        }
         scratch.clear();
         mem.take_completions(self.id, scratch);
         for &tag in scratch.iter() {
@@ -791,6 +831,8 @@ impl ShaderCore {
                 w.tex_done += 1;
                 if w.blocked {
                     w.blocked = false;
+                    self.stats.blocked_cycles[w.priority as usize & 1] +=
+                        now - self.blocked_at[s % MAX_SLOTS];
                     if w.priority {
                         self.prio.unblocked += 1;
                     }
@@ -839,6 +881,33 @@ impl ShaderCore {
                 self.id,
                 ev.free_from_reply()
             )));
+        }
+        Ok(())
+    }
+
+    /// Mark blocked the warps whose requests the memory system reports
+    /// waiting on a long-latency miss in this cycle (before the cycle's
+    /// completions: a report always precedes its tag's completion).
+    fn block_long_latency(&mut self, now: u64, mem: &mut MemorySystem) -> Result<(), SimError> {
+        self.long.clear();
+        mem.take_long_latency(self.id, &mut self.long);
+        for &tag in &self.long {
+            let s = tag as usize;
+            let w = &mut self.slots[s % MAX_SLOTS];
+            if w.pending == 0 || s >= MAX_SLOTS {
+                return Err(SimError::Internal(format!(
+                    "core {}: long-latency report for slot {s}, which waits for no block, at cycle {now}",
+                    self.id
+                )));
+            }
+            if !w.blocked {
+                w.blocked = true;
+                self.blocked_at[s % MAX_SLOTS] = now;
+                self.stats.blocked_episodes[w.priority as usize] += 1;
+                if w.priority {
+                    self.prio.blocked += 1;
+                }
+            }
         }
         Ok(())
     }

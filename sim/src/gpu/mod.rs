@@ -183,6 +183,7 @@ impl<'t> Gpu<'t> {
             filter_timing: cfg.core.filter_timing,
             ldst_queue: cfg.core.ldst_queue,
             sched_mshrs: sc.mshrs,
+            blocked_on: cfg.scheduler.blocked_on,
         };
         let side = cfg.quads_per_side();
         let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);
@@ -652,6 +653,7 @@ pub fn simulate_traced<S: CycleSink>(
 mod tests {
     use super::*;
     use crate::config::ColorFlush;
+    use crate::mem::BlockedOn;
     use crate::synth::{generate, GenParams};
     use crate::trace::{Instr, TraceHeader};
 
@@ -847,6 +849,75 @@ mod tests {
         assert_eq!(s.l1.stall_cycles, 0);
     }
 
+    /// `run` under blocking rule `rule`.
+    fn run_blocked(cfg: &MachineConfig, t: &Trace, policy: &str, rule: BlockedOn) -> RunStats {
+        let mut c = cfg.clone();
+        c.scheduler.blocked_on = rule;
+        run(&c, t, policy)
+    }
+
+    /// The stats without the field naming the rule.
+    fn json_without_rule(s: &RunStats) -> String {
+        let mut v = serde_json::to_value(s).unwrap();
+        v.as_object_mut().unwrap().remove("blocked_on");
+        v.to_string()
+    }
+
+    #[test]
+    fn l1_miss_blocks_fewer_warps_than_first_level_and_dram_fewer_still() {
+        let t = small_synth(3);
+        let cfg = MachineConfig::paper();
+        let [first, l1, dram] = BlockedOn::ALL.map(|r| run_blocked(&cfg, &t, "wasp:4", r));
+        assert_eq!(
+            [&first.blocked_on, &l1.blocked_on, &dram.blocked_on],
+            ["first-level", "l1-miss", "dram"]
+        );
+        // Every L0 miss blocks under first-level; only those the L1 misses
+        // under l1-miss; only L2 misses under dram.
+        assert!(
+            first.blocked.episodes > l1.blocked.episodes,
+            "{:?} {:?}",
+            first.blocked,
+            l1.blocked
+        );
+        assert!(
+            l1.blocked.episodes >= dram.blocked.episodes,
+            "{:?} {:?}",
+            l1.blocked,
+            dram.blocked
+        );
+        assert!(dram.blocked.episodes > 0);
+        // Longer misses: longer episodes.
+        assert!(l1.blocked.mean_cycles > first.blocked.mean_cycles);
+        for s in [&first, &l1, &dram] {
+            assert!(s.blocked.priority_episodes <= s.blocked.episodes);
+            assert!(s.blocked.episodes <= s.tex_instructions);
+        }
+        // The rule is WaSP's input only: the baseline runs the same (all
+        // but the blocked episodes it counts).
+        let [a, b, c] = BlockedOn::ALL.map(|r| {
+            let mut v = serde_json::to_value(run_blocked(&cfg, &t, "baseline", r)).unwrap();
+            let m = v.as_object_mut().unwrap();
+            m.remove("blocked_on");
+            m.remove("blocked");
+            v.to_string()
+        });
+        assert_eq!(a, b);
+        assert_eq!(a, c);
+    }
+
+    #[test]
+    fn without_l0_first_level_and_l1_miss_coincide() {
+        let t = small_synth(5);
+        let cfg = MachineConfig::paper_width2();
+        for p in ["wasp:4", "wasp:2:1.5", "freemshr:10"] {
+            let a = run_blocked(&cfg, &t, p, BlockedOn::FirstLevel);
+            let b = run_blocked(&cfg, &t, p, BlockedOn::L1Miss);
+            assert!(a.blocked.episodes > 0);
+            assert_eq!(json_without_rule(&a), json_without_rule(&b), "{p}");
+        }
+    }
+
     #[test]
     fn width2_machine_schedules_on_the_l1() {
         let t = small_synth(9);
@@ -946,13 +1017,13 @@ mod tests {
             (
                 (1u32..=6, 1u32..=8, 1u32..=4, 1u32..=8),
                 (0usize..4, any::<bool>(), 1u32..=3, any::<bool>()),
-                (1u32..=3, 0usize..3, 0usize..3),
+                (1u32..=3, 0usize..3, 0usize..3, 0usize..3),
             )
                 .prop_map(
                     |(
                         (mshrs, warps, width, queue),
                         (policy, l0, cores, shared),
-                        (rate, map, flush),
+                        (rate, map, flush, rule),
                     )| {
                         let mut c = if l0 {
                             MachineConfig::paper()
@@ -981,6 +1052,7 @@ mod tests {
                         c.scheduler.policy = ["baseline", "fullpriority", "freemshr:1", "wasp"]
                             [policy]
                             .replace("wasp", &format!("wasp:{t}"));
+                        c.scheduler.blocked_on = crate::mem::BlockedOn::ALL[rule];
                         c.sim.watchdog_cycles = 20_000;
                         c.validate().unwrap();
                         c

@@ -159,7 +159,8 @@ impl Cache {
     }
 
     /// [`Cache::access`], also returning the MSHR entry allocated when the
-    /// lookup is [`Lookup::Miss`] (meaningless otherwise), for
+    /// lookup is [`Lookup::Miss`], or merged into when it is
+    /// [`Lookup::Secondary`] (meaningless otherwise), for
     /// [`Cache::fill_entry`].
     #[inline(always)]
     pub fn access_entry(&mut self, now: u64, block: u64, target: u32) -> (Lookup, u32) {
@@ -190,11 +191,11 @@ impl Cache {
         }
         debug_assert!(!self.contains(block));
         match self.mshr.merge(block, target, now) {
-            Merge::Merged => {
+            Merge::Merged(e) => {
                 self.ports_used += 1;
                 self.stats.accesses += 1;
                 self.stats.secondary_misses += 1;
-                return (Lookup::Secondary, 0);
+                return (Lookup::Secondary, e);
             }
             Merge::Full => {
                 self.stats.merge_stalls += 1;
@@ -288,6 +289,13 @@ impl Cache {
     #[inline]
     pub fn pending_block(&self, e: u32) -> u64 {
         self.mshr.block(e)
+    }
+
+    /// The targets of pending MSHR entry `e` so far, in acceptance order
+    /// (primary first).
+    #[inline]
+    pub fn pending_targets(&self, e: u32) -> &[u32] {
+        self.mshr.targets(e)
     }
 
     /// Whether a miss for `block` is awaiting its reply.

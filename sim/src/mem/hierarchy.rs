@@ -3,7 +3,7 @@
 //! See the [module docs](super) for the timing model.
 
 use super::cache::{bits_for, Cache, Lookup};
-use super::config::{MemConfig, MemConfigError};
+use super::config::{BlockedOn, MemConfig, MemConfigError};
 use super::dram::Dram;
 use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
@@ -107,6 +107,14 @@ struct CoreMem {
     completing: Ring<(u64, u32)>,
     /// Tags completed and not yet taken.
     ready: Vec<u32>,
+    /// Per L0 MSHR entry (long-latency reporting with an L0): its targets
+    /// have been reported, and so is every target merged into it later.
+    /// Meaningful while the entry is pending (cleared at allocation).
+    l0_long: Box<[bool]>,
+    /// The same per L1 MSHR entry (reporting L2 misses).
+    l1_long: Box<[bool]>,
+    /// Tags reported waiting on a long-latency miss and not yet taken.
+    long: Vec<u32>,
     /// Not quiet at the start of the current tick (tick scratch).
     active: bool,
 }
@@ -166,6 +174,73 @@ fn complete_all(
     }
 }
 
+/// Which misses [`MemorySystem::take_long_latency`] reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Track {
+    /// None ([`BlockedOn::FirstLevel`]: the access's result tells).
+    Nothing,
+    /// Misses in the L1.
+    L1,
+    /// Misses in the L2.
+    L2,
+}
+
+/// Report every target of L0 MSHR entry `e` (pending) as waiting on a
+/// long-latency miss, once: the entry is marked, and targets merged into it
+/// later are reported at merge.
+#[inline]
+fn mark_l0(l0: &Cache, l0_long: &mut [bool], long: &mut Vec<u32>, e: u32) {
+    let m = &mut l0_long[e as usize];
+    if !*m {
+        *m = true;
+        long.extend_from_slice(l0.pending_targets(e));
+    }
+}
+
+/// The same for L1 MSHR entry `e` (pending) of core `c`: its targets are
+/// tags, or L0 MSHR entries whose targets are reported in turn.
+#[inline]
+fn mark_l1(c: &mut CoreMem, e: u32) {
+    let m = &mut c.l1_long[e as usize];
+    if *m {
+        return;
+    }
+    *m = true;
+    match c.l0.as_ref() {
+        Some(l0) => {
+            for &e0 in c.l1.pending_targets(e) {
+                mark_l0(l0, &mut c.l0_long, &mut c.long, e0);
+            }
+        }
+        None => c.long.extend_from_slice(c.l1.pending_targets(e)),
+    }
+}
+
+/// Long-latency bookkeeping of an access of tag `tag` that missed in the
+/// first level of core `c`, allocating (`merged` false) or merging into
+/// its MSHR entry `entry`: without an L0 under [`Track::L1`] the access
+/// itself is reported; otherwise a new entry starts unmarked and a merge
+/// into a marked entry is reported. Out of line: the accesses' hot path
+/// only tests `track`.
+#[inline(never)]
+fn first_level_miss(c: &mut CoreMem, track: Track, tag: u32, entry: u32, merged: bool) {
+    let marks = if c.l0.is_some() {
+        &mut c.l0_long
+    } else if track == Track::L1 {
+        // The access itself misses in the L1.
+        c.long.push(tag);
+        return;
+    } else {
+        &mut c.l1_long
+    };
+    let m = &mut marks[entry as usize];
+    if !merged {
+        *m = false;
+    } else if *m {
+        c.long.push(tag);
+    }
+}
+
 /// L2 reply to the L1 of a core.
 #[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
@@ -179,7 +254,8 @@ struct L2Reply {
 /// Per cycle `now` the owner calls, in this order: [`access`](Self::access)
 /// for that cycle's accesses (any cores, any order; the order within a core
 /// is the order of its ports), [`tick`](Self::tick) once, then any of
-/// [`take_completions`](Self::take_completions),
+/// [`take_long_latency`](Self::take_long_latency) (before the
+/// completions), [`take_completions`](Self::take_completions),
 /// [`mshr_events`](Self::mshr_events), [`trace`](Self::trace). Cycles must
 /// not go backwards and `tick` should be called for every cycle; cycles in
 /// which [`is_idle`](Self::is_idle) holds and no access is made may be
@@ -194,6 +270,8 @@ pub struct MemorySystem {
     cfg: MemConfig,
     cores: Vec<CoreMem>,
     l2: Cache,
+    /// Which misses are reported to the cores as long-latency.
+    track: Track,
     /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
     to_l1: Ring<L2Reply>,
     /// Cores taking part in the L2 arbitration of the current tick, in
@@ -233,6 +311,14 @@ impl MemorySystem {
                 to_l0: Ring::with_capacity(l0_mshrs),
                 completing: Ring::with_capacity(completing),
                 ready: Vec::with_capacity(completing),
+                l0_long: vec![false; l0_mshrs].into(),
+                l1_long: vec![false; l1_mshrs].into(),
+                // Each waiting tag is reported at most once.
+                long: Vec::with_capacity(if cfg.blocked_on == BlockedOn::FirstLevel {
+                    0
+                } else {
+                    completing
+                }),
                 active: false,
             });
         }
@@ -240,6 +326,11 @@ impl MemorySystem {
             cfg: cfg.clone(),
             cores,
             l2: Cache::new(&cfg.l2)?,
+            track: match cfg.blocked_on {
+                BlockedOn::FirstLevel => Track::Nothing,
+                BlockedOn::L1Miss => Track::L1,
+                BlockedOn::Dram => Track::L2,
+            },
             to_l1: Ring::with_capacity(n_cores * cfg.l1.mshrs as usize),
             l2_order: Vec::with_capacity(n_cores),
             dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
@@ -268,6 +359,7 @@ impl MemorySystem {
     pub fn access(&mut self, now: u64, core: usize, block: u64, tag: u32) -> Access {
         debug_assert!(now >= self.now, "access in a past cycle");
         self.now = now;
+        let track = self.track;
         let c = &mut self.cores[core];
         let (first, queue) = match c.l0.as_mut() {
             Some(l0) => (l0, &mut c.to_l1),
@@ -285,9 +377,17 @@ impl MemorySystem {
                     block,
                     entry,
                 });
+                if track != Track::Nothing {
+                    first_level_miss(c, track, tag, entry, false);
+                }
                 Access::Miss
             }
-            (Lookup::Secondary, _) => Access::SecondaryMiss,
+            (Lookup::Secondary, entry) => {
+                if track != Track::Nothing {
+                    first_level_miss(c, track, tag, entry, true);
+                }
+                Access::SecondaryMiss
+            }
             (Lookup::Stall | Lookup::MergeFull, _) => Access::Stall,
             (Lookup::PortBusy, _) => Access::PortBusy,
         }
@@ -308,6 +408,7 @@ impl MemorySystem {
         self.ticked_until = now + 1;
         let has_l0 = self.cfg.l0.is_some();
         let n = self.cores.len();
+        let track = self.track;
 
         // L0 -> L1 requests, over the cores (their private levels are
         // independent). A quiet core (no MSHR occupied,
@@ -353,12 +454,25 @@ impl MemorySystem {
                                 at: l1_reply,
                                 entry: r.entry,
                             }),
-                            (Lookup::Miss, entry) => c.to_l2.push_back(Request {
-                                ready: now + 1,
-                                block: r.block,
-                                entry,
-                            }),
-                            (Lookup::Secondary, _) => {}
+                            (Lookup::Miss, entry) => {
+                                c.to_l2.push_back(Request {
+                                    ready: now + 1,
+                                    block: r.block,
+                                    entry,
+                                });
+                                match track {
+                                    Track::Nothing => {}
+                                    Track::L1 => mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry),
+                                    Track::L2 => c.l1_long[entry as usize] = false,
+                                }
+                            }
+                            (Lookup::Secondary, entry) => {
+                                if track == Track::L1
+                                    || (track == Track::L2 && c.l1_long[entry as usize])
+                                {
+                                    mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry);
+                                }
+                            }
                             (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
                         }
                         c.to_l1.drop_front();
@@ -397,8 +511,17 @@ impl MemorySystem {
                         core,
                         block: r.block,
                     }),
-                    (Lookup::Miss, entry) => self.dram.request(now, r.block, entry),
-                    (Lookup::Secondary, _) => {}
+                    (Lookup::Miss, entry) => {
+                        self.dram.request(now, r.block, entry);
+                        if track == Track::L2 {
+                            mark_l1(c, r.entry);
+                        }
+                    }
+                    (Lookup::Secondary, _) => {
+                        if track == Track::L2 {
+                            mark_l1(c, r.entry);
+                        }
+                    }
                     (Lookup::PortBusy, _) => break 'arbitrate,
                     (Lookup::Stall | Lookup::MergeFull, _) => continue,
                 }
@@ -477,6 +600,28 @@ impl MemorySystem {
         }
     }
 
+    /// Append to `out` the tags of `core` that began to wait on a
+    /// long-latency miss ([`MemConfig::blocked_on`]) in the last cycle (and
+    /// any not taken before), each reported at most once per access and
+    /// always before its completion is taken when the owner takes these
+    /// first: under [`BlockedOn::L1Miss`] the tags whose request missed in
+    /// the L1 (with an L0: every target of an L0 MSHR entry whose request
+    /// the L1 missed or merged into an L1 MSHR entry, and every later target
+    /// merged into that entry), under [`BlockedOn::Dram`] the same one level
+    /// down (a request the L2 missed or merged into an L2 MSHR entry). Under
+    /// [`BlockedOn::FirstLevel`] nothing: the access's own result
+    /// ([`Access::Miss`], [`Access::SecondaryMiss`]) tells.
+    #[inline]
+    pub fn take_long_latency(&mut self, core: usize, out: &mut Vec<u32>) {
+        let c = &mut self.cores[core];
+        if out.is_empty() {
+            std::mem::swap(out, &mut c.long);
+        } else {
+            out.extend_from_slice(&c.long);
+            c.long.clear();
+        }
+    }
+
     /// The scheduler-level cache's MSHR events of `core` in the last cycle.
     #[inline]
     pub fn mshr_events(&self, core: usize) -> MshrEvents {
@@ -494,7 +639,8 @@ impl MemorySystem {
     /// Nothing in flight anywhere: no MSHR entry occupied (awaiting its
     /// reply or in the cycle after it), no request or reply travelling, no
     /// tag completing or completed and not taken. While this holds, ticks
-    /// change nothing but the tick count.
+    /// change nothing but the tick count. (Long-latency reports not taken
+    /// do not count: they are notices, not work in flight.)
     pub fn is_idle(&self) -> bool {
         self.cores
             .iter()
@@ -708,6 +854,7 @@ mod tests {
                 ..DramConfig::default()
             },
             ideal_memory: false,
+            blocked_on: BlockedOn::L1Miss,
         }
     }
 
@@ -934,6 +1081,130 @@ mod tests {
             .collect()
     }
 
+    /// The paper's machine (with or without L0) reporting misses by `rule`.
+    fn paper_blocked(width4: bool, rule: BlockedOn) -> MemorySystem {
+        let mut cfg = MemConfig::paper(width4);
+        cfg.blocked_on = rule;
+        MemorySystem::new(&cfg).unwrap()
+    }
+
+    /// (cycle, tag) pairs.
+    type Events = Vec<(u64, u32)>;
+
+    /// Tick cycles `from..to`, returning `core`'s long-latency reports as
+    /// (cycle, tag) and its completions the same way (reports taken first).
+    fn drive_reports(mem: &mut MemorySystem, core: usize, from: u64, to: u64) -> (Events, Events) {
+        let (mut long, mut done, mut buf) = (Vec::new(), Vec::new(), Vec::new());
+        for now in from..to {
+            mem.tick(now);
+            buf.clear();
+            mem.take_long_latency(core, &mut buf);
+            long.extend(buf.iter().map(|&t| (now, t)));
+            buf.clear();
+            mem.take_completions(core, &mut buf);
+            done.extend(buf.iter().map(|&t| (now, t)));
+        }
+        (long, done)
+    }
+
+    #[test]
+    fn first_level_rule_reports_nothing() {
+        for width4 in [false, true] {
+            let mut mem = paper_blocked(width4, BlockedOn::FirstLevel);
+            assert_eq!(mem.access(0, 0, 77, 1), Access::Miss);
+            let (long, done) = drive_reports(&mut mem, 0, 0, 200);
+            assert_eq!((long, done.len()), (vec![], 1));
+        }
+    }
+
+    #[test]
+    fn l0_miss_reported_when_the_l1_misses_not_when_it_hits() {
+        let mut mem = paper_blocked(true, BlockedOn::L1Miss);
+        // Cycle 0: tags 1 and 2 (second port) miss and merge in the L0; the
+        // L1 looks the block up in cycle 1, misses, and both are reported.
+        assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
+        assert_eq!(mem.access(0, 0, 5, 2), Access::SecondaryMiss);
+        let (long, _) = drive_reports(&mut mem, 0, 0, 3);
+        assert_eq!(long, vec![(1, 1), (1, 2)]);
+        // Cycle 3: a merge into the reported entry is reported at once.
+        assert_eq!(mem.access(3, 0, 5, 3), Access::SecondaryMiss);
+        let (long, done) = drive_reports(&mut mem, 0, 3, 300);
+        assert_eq!(long, vec![(3, 3)]);
+        assert_eq!(done.iter().map(|d| d.1).collect::<Vec<_>>(), [1, 2, 3]);
+        // Evict block 5 from the 8-line L0; then it misses in the L0 and
+        // hits in the L1: not reported.
+        let mut t = 300;
+        for b in 100..108 {
+            assert!(mem.access(t, 0, b, 10).accepted());
+            let (_, done) = drive_reports(&mut mem, 0, t, t + 300);
+            assert_eq!(done.len(), 1);
+            t += 300;
+        }
+        assert_eq!(mem.access(t, 0, 5, 4), Access::Miss);
+        let (long, done) = drive_reports(&mut mem, 0, t, t + 5);
+        assert_eq!((long, done), (vec![], vec![(t + 1, 4)]));
+    }
+
+    #[test]
+    fn l1_miss_without_l0_is_reported_at_the_access() {
+        let mut mem = paper_blocked(false, BlockedOn::L1Miss);
+        assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
+        let (long, _) = drive_reports(&mut mem, 0, 0, 2);
+        assert_eq!(long, vec![(0, 1)]);
+        assert_eq!(mem.access(2, 0, 5, 2), Access::SecondaryMiss);
+        let (long, done) = drive_reports(&mut mem, 0, 2, 300);
+        assert_eq!((long, done.len()), (vec![(2, 2)], 2));
+        assert_eq!(mem.access(300, 0, 5, 3), Access::Hit);
+        let (long, done) = drive_reports(&mut mem, 0, 300, 301);
+        assert_eq!((long, done), (vec![], vec![(300, 3)]));
+    }
+
+    #[test]
+    fn dram_rule_reports_l2_misses_not_l2_hits() {
+        for width4 in [false, true] {
+            let extra = u64::from(width4);
+            let mut mem = paper_blocked(width4, BlockedOn::Dram);
+            // The L2 looks the L1's request up one cycle after the L1 miss.
+            assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
+            let (long, _) = drive_reports(&mut mem, 0, 0, 3 + extra);
+            assert_eq!(long, vec![(1 + extra, 1)]);
+            // A later merge into the reported entry (L0's, or L1's without
+            // L0) is reported at the merge.
+            assert_eq!(mem.access(5, 0, 5, 2), Access::SecondaryMiss);
+            let (long, done) = drive_reports(&mut mem, 0, 5, 300);
+            assert_eq!((long, done.len()), (vec![(5, 2)], 2));
+            // Core 1 misses in its L1 and hits in the L2: not reported
+            // under dram, reported under l1-miss.
+            assert_eq!(mem.access(300, 1, 5, 7), Access::Miss);
+            let (long, done) = drive_reports(&mut mem, 1, 300, 400);
+            assert_eq!((long, done), (vec![], vec![(318 + extra, 7)]));
+        }
+        let mut mem = paper_blocked(true, BlockedOn::L1Miss);
+        assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
+        drive_reports(&mut mem, 0, 0, 300);
+        assert_eq!(mem.access(300, 1, 5, 7), Access::Miss);
+        let (long, done) = drive_reports(&mut mem, 1, 300, 400);
+        assert_eq!((long, done), (vec![(301, 7)], vec![(319, 7)]));
+    }
+
+    #[test]
+    fn dram_rule_reports_targets_merged_before_the_l2_miss_once() {
+        // With an L0, tag 2 merges into the L0 entry in cycle 2, before the
+        // L2 misses in that cycle's tick: both are reported then, once.
+        // (An L0 request never merges into a pending L1 entry: the L0 holds
+        // one entry per block, and the L1's entry for it stops pending when
+        // the L1 fills, before the L0 can miss on the block again.)
+        let mut cfg = MemConfig::paper(true);
+        cfg.blocked_on = BlockedOn::Dram;
+        let mut mem = MemorySystem::new(&cfg).unwrap();
+        assert_eq!(mem.access(0, 0, 9, 1), Access::Miss);
+        let (long, _) = drive_reports(&mut mem, 0, 0, 2);
+        assert_eq!(long, vec![]);
+        assert_eq!(mem.access(2, 0, 9, 2), Access::SecondaryMiss);
+        let (long, _) = drive_reports(&mut mem, 0, 2, 3);
+        assert_eq!(long, vec![(2, 1), (2, 2)]);
+    }
+
     #[test]
     fn ideal_memory_is_never_slower() {
         for width4 in [false, true] {
@@ -1093,22 +1364,26 @@ mod tests {
             arb_cache(6),
             (1u32..4, 1u32..4, 1u32..8, 1u32..12, 1u32..3),
             any::<bool>(),
+            0usize..3,
         )
             .prop_map(
-                |(cores, l0, l1, l2, (banks, rows, hit, miss, rpc), ideal_memory)| MemConfig {
-                    cores,
-                    l0,
-                    l1,
-                    l2,
-                    dram: DramConfig {
-                        banks,
-                        row_bytes: 64 * rows,
-                        row_hit_latency: hit,
-                        row_miss_latency: miss,
-                        requests_per_cycle: rpc,
-                        ..DramConfig::default()
-                    },
-                    ideal_memory,
+                |(cores, l0, l1, l2, (banks, rows, hit, miss, rpc), ideal_memory, rule)| {
+                    MemConfig {
+                        cores,
+                        l0,
+                        l1,
+                        l2,
+                        dram: DramConfig {
+                            banks,
+                            row_bytes: 64 * rows,
+                            row_hit_latency: hit,
+                            row_miss_latency: miss,
+                            requests_per_cycle: rpc,
+                            ..DramConfig::default()
+                        },
+                        ideal_memory,
+                        blocked_on: BlockedOn::ALL[rule],
+                    }
                 },
             )
     }
@@ -1118,7 +1393,10 @@ mod tests {
 
         /// Every accepted access completes exactly once, never before it was
         /// made, refused ones never; MSHR occupancy stays within capacity; the
-        /// system drains.
+        /// system drains. Long-latency reports, taken before completions,
+        /// name only accepted tags of the core still waiting, each at most
+        /// once, none under `first-level`, and some exactly when the level
+        /// of the rule missed.
         #[test]
         fn accepted_accesses_complete_exactly_once(
             cfg in arb_config(),
@@ -1131,6 +1409,8 @@ mod tests {
             let mut accepted: Vec<Option<u64>> = Vec::new();
             let mut completed: Vec<Option<u64>> = Vec::new();
             let mut owner: Vec<usize> = Vec::new();
+            let mut reported: Vec<bool> = Vec::new();
+            let mut reports = 0u64;
             let mut buf = Vec::new();
             let mut now = 0u64;
             let mut ops = ops.into_iter();
@@ -1147,6 +1427,7 @@ mod tests {
                                     let r = mem.access(now, k, block + j * 7 + k as u64, tag);
                                     accepted.push(r.accepted().then_some(now));
                                     completed.push(None);
+                                    reported.push(false);
                                     owner.push(k);
                                 }
                             }
@@ -1159,6 +1440,17 @@ mod tests {
                     let e = mem.mshr_events(k);
                     prop_assert!(e.occupied <= e.capacity && e.outstanding <= e.occupied);
                     prop_assert_eq!(e.capacity, first.mshrs);
+                    buf.clear();
+                    mem.take_long_latency(k, &mut buf);
+                    for &t in &buf {
+                        let t = t as usize;
+                        prop_assert_eq!(owner[t], k);
+                        prop_assert!(accepted[t].is_some(), "refused tag {} reported", t);
+                        prop_assert!(completed[t].is_none(), "tag {} reported after completion", t);
+                        prop_assert!(!reported[t], "tag {} reported twice", t);
+                        reported[t] = true;
+                        reports += 1;
+                    }
                     buf.clear();
                     mem.take_completions(k, &mut buf);
                     for &t in &buf {
@@ -1187,6 +1479,12 @@ mod tests {
             prop_assert_eq!(s.l2.misses, s.dram.requests);
             prop_assert_eq!(s.l2.fills, s.l2.misses);
             prop_assert_eq!(s.l1.fills, s.l1.misses);
+            let missed = match cfg.blocked_on {
+                BlockedOn::FirstLevel => false,
+                BlockedOn::L1Miss => s.l1.misses + s.l1.secondary_misses > 0,
+                BlockedOn::Dram => s.l2.misses + s.l2.secondary_misses > 0,
+            };
+            prop_assert_eq!(reports > 0, missed, "{} reports", reports);
         }
     }
 }

@@ -25,8 +25,8 @@
 //! # Cycle protocol
 //!
 //! In each cycle `now`: the cores call [`MemorySystem::access`], then the
-//! owner calls [`MemorySystem::tick`] once, then reads completions, MSHR
-//! events and traces. Within `tick` the order is fixed: L1s take L0 requests,
+//! owner calls [`MemorySystem::tick`] once, then reads long-latency reports
+//! (before completions), completions, MSHR events and traces. Within `tick` the order is fixed: L1s take L0 requests,
 //! the L2 takes L1 requests (round robin over cores), the DRAM accepts
 //! requests, then replies due in `now` fill the L2, the L1s and the L0s, and
 //! tags due in `now` complete. Accesses to a level in a cycle are therefore
@@ -82,6 +82,18 @@
 //! The WaSP scheduler's 5-bit free-MSHR register counts an entry free from
 //! its reply; [`MemorySystem::mshr_events`] gives it what it needs.
 //!
+//! # Long-latency reports
+//!
+//! A core blocks a warp on a long-latency miss at the level
+//! [`MemConfig::blocked_on`] names ([`BlockedOn`]). For `l1-miss` and `dram`
+//! the memory system reports the waiting tags:
+//! [`MemorySystem::take_long_latency`] hands over, per core, the tags whose
+//! request missed in the L1 (or the L2) in the last tick, or merged at the
+//! first level into an MSHR entry already reported. An L0 (L1) MSHR entry is
+//! marked when the level below misses on its block; its targets are
+//! reported then and later ones at their merge. The reports change no
+//! timing; under `first-level` nothing is tracked.
+//!
 //! # Choices of wasp, not of the paper
 //!
 //! See [`MemConfig::paper`] for the defaults (MSHR counts, merge limits,
@@ -106,7 +118,7 @@ pub mod stats;
 
 pub use cache::{Cache, Lookup};
 pub use config::{
-    CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
+    BlockedOn, CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
     FREE_MSHR_REGISTER_MAX,
 };
 pub use hierarchy::{Access, MemorySystem, MshrEvents, MshrFileView};

@@ -103,8 +103,8 @@ pub struct Integrals {
 /// Result of trying to merge a secondary miss.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Merge {
-    /// Merged into the pending entry for the block.
-    Merged,
+    /// Merged into the pending entry for the block (this entry).
+    Merged(u32),
     /// A pending entry exists but its target list is full.
     Full,
     /// No entry is pending for the block.
@@ -245,7 +245,7 @@ impl MshrFile {
         entry.count = n + 1;
         entry.issued_sum += now;
         self.targets[e * self.slots as usize + n as usize] = target;
-        Merge::Merged
+        Merge::Merged(e as u32)
     }
 
     /// Allocate an entry for a primary miss on `block` and return it. The
@@ -363,7 +363,7 @@ mod tests {
         let a = m.allocate(10, 100, 1);
         assert!(m.is_pending(10));
         assert_eq!(m.find(10), Some(a));
-        assert_eq!(m.merge(10, 101, 2), Merge::Merged);
+        assert_eq!(m.merge(10, 101, 2), Merge::Merged(a));
         assert_eq!(m.merge(10, 102, 3), Merge::Full);
         assert_eq!(m.merge(11, 103, 3), Merge::NotPending);
         let b = m.allocate(11, 104, 3);
@@ -422,7 +422,7 @@ mod tests {
         assert_eq!((m.find(3), m.find(3 + n)), (Some(a), None));
         assert_eq!(m.merge(3 + n, 31, 0), Merge::NotPending);
         let b = m.allocate(3 + n, 32, 0);
-        assert_eq!(m.merge(3 + n, 33, 0), Merge::Merged);
+        assert_eq!(m.merge(3 + n, 33, 0), Merge::Merged(b));
         assert_eq!(m.complete(a, 1), 3);
         // The bucket still counts block 3 + n, and only it.
         assert_eq!((m.find(3), m.find(3 + n)), (None, Some(b)));
