@@ -110,29 +110,31 @@ fn arb_machine() -> impl Strategy<Value = SmallMachine> {
         0usize..3,
     )
         .prop_map(
-            |(l0, cores, warps, width, queue, mshrs, merged, policy, mesh2, launch, rule)| SmallMachine {
-                l0,
-                cores,
-                warps,
-                width,
-                queue,
-                mshrs,
-                max_merged: merged,
-                policy: [
-                    "baseline",
-                    "fullpriority",
-                    "freemshr:1",
-                    "wasp:0",
-                    "wasp:0:1",
-                ][policy],
-                launch_rule: if launch {
-                    LaunchRule::Launch
-                } else {
-                    LaunchRule::Hold
-                },
-                subset: if mesh2 { "mesh2" } else { "mesh4" },
-                ideal: false,
-                blocked_on: BlockedOn::ALL[rule],
+            |(l0, cores, warps, width, queue, mshrs, merged, policy, mesh2, launch, rule)| {
+                SmallMachine {
+                    l0,
+                    cores,
+                    warps,
+                    width,
+                    queue,
+                    mshrs,
+                    max_merged: merged,
+                    policy: [
+                        "baseline",
+                        "fullpriority",
+                        "freemshr:1",
+                        "wasp:0",
+                        "wasp:0:1",
+                    ][policy],
+                    launch_rule: if launch {
+                        LaunchRule::Launch
+                    } else {
+                        LaunchRule::Hold
+                    },
+                    subset: if mesh2 { "mesh2" } else { "mesh4" },
+                    ideal: false,
+                    blocked_on: BlockedOn::ALL[rule],
+                }
             },
         )
 }
