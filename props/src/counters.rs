@@ -309,6 +309,7 @@ mod proofs {
             blocked: kani::any(),
             unblocked: kani::any(),
             finished: kani::any(),
+            misses: kani::any(),
         };
         assert!(nonblocked_next_exact(counter, ev).is_ok());
     }
@@ -326,6 +327,7 @@ mod proofs {
             blocked: kani::any(),
             unblocked: kani::any(),
             finished: kani::any(),
+            misses: kani::any(),
         };
         kani::assume(model.legal(ev));
         let counter = counter_at(model.nonblocked).unwrap();
@@ -405,6 +407,7 @@ mod tests {
                                 blocked: b as u8,
                                 unblocked: u as u8,
                                 finished: f as u8,
+                                misses: 0,
                             };
                             debug_assert!(model.legal(ev));
                             check(nonblocked_tracks_model(model, counter, ev));
@@ -447,6 +450,7 @@ mod tests {
                                     blocked: b,
                                     unblocked: u,
                                     finished: f,
+                                    misses: 0,
                                 };
                                 let counter = counter_at(nb).unwrap();
                                 check(nonblocked_tracks_model(model, counter, ev));
@@ -478,6 +482,7 @@ mod tests {
                                     blocked,
                                     unblocked,
                                     finished,
+                                    misses: 0,
                                 },
                             ));
                             points += 1;

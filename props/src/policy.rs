@@ -46,7 +46,9 @@ pub enum RefPolicy {
 
 impl RefPolicy {
     /// The reference of a policy named by `spec` (as `PolicySpec::build`
-    /// would build it); `None` for a WaSP CF that is not a multiple of 0.25.
+    /// would build it); `None` for a WaSP CF that is not a multiple of 0.25,
+    /// and for `wasp-m`, whose CF is the state of its meter (checked by the
+    /// meter's own exhaustive twin in `wasp_rtl::cf_meter`).
     pub fn from_spec(spec: &PolicySpec) -> Option<Self> {
         Some(match *spec {
             PolicySpec::Baseline => RefPolicy::Baseline,
@@ -62,6 +64,7 @@ impl RefPolicy {
                     t: threshold as i64,
                 }
             }
+            PolicySpec::WaspMeasured { .. } => return None,
         })
     }
 

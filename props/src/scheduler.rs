@@ -486,6 +486,7 @@ impl SchedulerCheck {
                 blocked: blocked as u8,
                 unblocked: unblocked as u8,
                 finished: finished as u8,
+                misses: 0,
             },
             regular_finished: regular_finished as u32,
         }

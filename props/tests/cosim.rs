@@ -481,6 +481,7 @@ fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
                     blocked: inp.blocked,
                     unblocked: inp.unblocked,
                     finished: inp.finished,
+                    misses: 0,
                 },
             );
             s.end_cycle();

@@ -253,6 +253,7 @@ impl StateMachineTest for SchedulerTest {
                     blocked: c.block,
                     unblocked: c.unblock,
                     finished: c.finish,
+                    misses: 0,
                 },
             )
             .expect("legal events never fault");

@@ -31,6 +31,9 @@ pub struct PriorityEvents {
     pub unblocked: u8,
     /// Non-blocked priority warps that finished (left the core).
     pub finished: u8,
+    /// Primary misses (MSHR allocations) made by priority warps. The
+    /// counter ignores them; the CF meter of `wasp-m` reads them.
+    pub misses: u8,
 }
 
 /// The non-blocked priority-warp counter.
@@ -204,6 +207,7 @@ mod tests {
                             blocked,
                             unblocked,
                             finished: 0,
+                            misses: 0,
                         };
                         assert_eq!(c.next(ev), next_clamped(c, ev), "{c:?} {ev:?}");
                     }

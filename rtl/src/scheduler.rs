@@ -13,12 +13,14 @@
 //!
 //! A decision in cycle t therefore sees the events of cycles up to t-1.
 
+use crate::cf_meter::{CfMeter, MeterEvents, MISSES_BITS};
 use crate::datapath::{DatapathOut, WaspDatapath};
 use crate::free_mshr::{FreeMshrReg, MshrEvents};
 use crate::nonblocked::{NonblockedCounter, PriorityEvents};
 use crate::policy::{LaunchPolicy, LaunchRule, LaunchView, PriorityGate};
 use crate::queue::{QueueClass, SplitQueue};
 use crate::subset::{PrioritySubset, SubsetTable};
+use crate::uint::UInt;
 use crate::RegisterFault;
 use wasp_waves::{Traceable, Tracer};
 
@@ -63,6 +65,8 @@ pub struct LaunchScheduler<T> {
     datapath: Option<WaspDatapath>,
     gate: PriorityGate,
     rule: LaunchRule,
+    // The CF meter, for a policy whose CF is measured (`wasp-m`).
+    meter: Option<CfMeter>,
     // Signals of the current cycle, for the waveform.
     decision: LaunchDecision,
     launched: Option<QueueClass>,
@@ -93,6 +97,7 @@ impl<T: Copy> LaunchScheduler<T> {
             datapath: policy.datapath(),
             gate: policy.gate(),
             rule,
+            meter: policy.measures_cf().then(CfMeter::reset),
             policy,
             decision: LaunchDecision {
                 select: None,
@@ -111,6 +116,11 @@ impl<T: Copy> LaunchScheduler<T> {
     /// The launch rule for a closed gate.
     pub fn launch_rule(&self) -> LaunchRule {
         self.rule
+    }
+
+    /// The CF meter, when the policy measures its CF.
+    pub fn cf_meter(&self) -> Option<CfMeter> {
+        self.meter
     }
 
     /// The input queue.
@@ -157,9 +167,14 @@ impl<T: Copy> LaunchScheduler<T> {
 
     /// Phase 1: the policy's choice from the current register values.
     pub fn decide(&mut self) -> LaunchDecision {
-        let datapath = self
-            .datapath
-            .map(|dp| dp.eval(self.free_mshrs.free(), self.nonblocked.count()));
+        let datapath = self.datapath.map(|dp| {
+            // A measured CF replaces the wired constant.
+            let dp = match self.meter {
+                Some(m) => WaspDatapath { cf: m.cf(), ..dp },
+                None => dp,
+            };
+            dp.eval(self.free_mshrs.free(), self.nonblocked.count())
+        });
         let view = LaunchView {
             priority_waiting: self.queue.has(QueueClass::Priority),
             regular_waiting: self.queue.has(QueueClass::Regular),
@@ -198,6 +213,15 @@ impl<T: Copy> LaunchScheduler<T> {
         let nb = self.nonblocked.next(prio)?;
         self.free_mshrs = free;
         self.nonblocked = nb;
+        if let Some(m) = &mut self.meter {
+            // More misses in one cycle than the 2-bit input holds are
+            // clamped to its largest value.
+            let max = (1u8 << MISSES_BITS) - 1;
+            *m = m.next(MeterEvents {
+                launched: prio.launched,
+                misses: UInt::masked(u32::from(prio.misses.min(max))),
+            });
+        }
         Ok(())
     }
 
@@ -220,6 +244,9 @@ impl<T: Copy> Traceable for LaunchScheduler<T> {
                 priority_over_regular: false,
             }
             .trace(t),
+        }
+        if let Some(m) = &self.meter {
+            m.trace(t);
         }
         t.signal("launch", 2, launch_code(self.launched));
         self.queue.trace(t);
@@ -483,5 +510,87 @@ mod tests {
         }
         assert_eq!(runs[0], runs[1]);
         assert_eq!(runs[0].len(), 8);
+    }
+
+    #[test]
+    fn a_measured_cf_replaces_the_constant_after_a_window() {
+        // wasp-m:1 starts at CF 2.5, measures 3 over a window of 16 priority
+        // launches, and then decides differently from wasp:1 (CF 2.5).
+        let build = || {
+            LaunchScheduler::<u32>::new(
+                64,
+                Box::new(Mesh::new(4).unwrap()),
+                FreeMshrReg::with_capacity(16).unwrap(),
+                PolicySpec::WaspMeasured { threshold: 1 }.build(16).unwrap(),
+                LaunchRule::Hold,
+            )
+        };
+        let mut s = build();
+        assert_eq!(s.cf_meter().unwrap().cf(), Cf::PAPER);
+        // A window: 16 priority launches, 3 misses each cycle (clamped input
+        // saturates the accumulator at 127: CF 7.75).
+        for _ in 0..16 {
+            s.clock(
+                MshrEvents::default(),
+                PriorityEvents {
+                    launched: true,
+                    misses: 9,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            // Each launched warp blocks at once, so the counter stays 0.
+            s.clock(
+                MshrEvents::default(),
+                PriorityEvents {
+                    blocked: 1,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+        }
+        assert_eq!(
+            s.cf_meter().unwrap().cf().quarters(),
+            12,
+            "48 misses / 16 warps = 3"
+        );
+        // Same state, constant CF 2.5 against the measured 3: at 3 non-blocked
+        // warps and 7 free, 7 - 7 = 0 (2.5 x 3 = 7.5 -> 7) is not above 1,
+        // and neither is 7 - 9; at 2 warps: 7 - 5 = 2 > 1 but 7 - 6 = 1 is not.
+        let mut c = LaunchScheduler::<u32>::new(
+            64,
+            Box::new(Mesh::new(4).unwrap()),
+            FreeMshrReg::with_capacity(16).unwrap(),
+            PolicySpec::wasp(1).build(16).unwrap(),
+            LaunchRule::Hold,
+        );
+        for sched in [&mut s as &mut LaunchScheduler<u32>, &mut c] {
+            sched
+                .clock(
+                    MshrEvents {
+                        allocs: 9,
+                        replies: 0,
+                    },
+                    PriorityEvents {
+                        launched: true,
+                        ..Default::default()
+                    },
+                )
+                .unwrap();
+            sched
+                .clock(
+                    MshrEvents::default(),
+                    PriorityEvents {
+                        launched: true,
+                        ..Default::default()
+                    },
+                )
+                .unwrap();
+            sched.enqueue(1, 0, 0).unwrap();
+            assert_eq!(sched.free_mshrs().free().get(), 7);
+            assert_eq!(sched.nonblocked().count().get(), 2);
+        }
+        assert_eq!(c.decide().select, Some(QueueClass::Priority), "7 - 5 > 1");
+        assert_eq!(s.decide().select, None, "7 - 6 = 1 is not above 1: hold");
     }
 }

@@ -323,6 +323,9 @@ pub struct RunStats {
     pub held_cycles: u64,
     /// The same per core.
     pub held_cycles_per_core: Vec<u64>,
+    /// `wasp-m`: the mean over cores and cycles of the CF meter's register
+    /// (the measured CF the datapath used); absent for other policies.
+    pub measured_cf_mean: Option<f64>,
     /// Blocked episodes and their length.
     pub blocked: BlockedStats,
     /// The priority subset.
@@ -472,6 +475,10 @@ impl RunStats {
             tile_timing: inst.tile_timing,
             held_cycles: sum(&|c| c.held_cycles),
             held_cycles_per_core: cores.iter().map(|c| c.held_cycles).collect(),
+            measured_cf_mean: {
+                let n = sum(&|c| c.cf_samples);
+                (n > 0).then(|| sum(&|c| c.cf_quarters_sum) as f64 / 4.0 / n as f64)
+            },
             blocked: {
                 let ep = |i: usize| sum(&|c| c.blocked_episodes[i]);
                 let cy = |i: usize| sum(&|c| c.blocked_cycles[i]) as f64;

@@ -18,11 +18,13 @@ mod baseline;
 mod freemshr;
 mod fullpriority;
 mod wasp;
+mod wasp_measured;
 
 pub use baseline::Baseline;
 pub use freemshr::FreeMshrN;
 pub use fullpriority::FullPriority;
 pub use wasp::Wasp;
+pub use wasp_measured::WaspMeasured;
 
 use crate::datapath::{Cf, DatapathOut, Threshold, WaspDatapath};
 use crate::free_mshr::FreeMshrs;
@@ -168,6 +170,11 @@ pub trait LaunchPolicy: fmt::Debug + Send + Sync {
     fn datapath(&self) -> Option<WaspDatapath> {
         None
     }
+    /// Whether the datapath's CF comes from the core's CF meter
+    /// ([`crate::cf_meter`]) rather than a wired constant (`wasp-m`).
+    fn measures_cf(&self) -> bool {
+        false
+    }
     /// When a waiting priority warp may launch. A policy is fixed wiring:
     /// the gate never changes.
     fn gate(&self) -> PriorityGate;
@@ -200,6 +207,11 @@ pub enum PolicySpec {
         /// Expected misses per non-blocked priority warp.
         cf: f64,
     },
+    /// WaSP whose CF a per-core meter measures (beyond the paper).
+    WaspMeasured {
+        /// `Real_freeMSHRs > threshold` launches a priority warp.
+        threshold: u32,
+    },
 }
 
 impl PolicySpec {
@@ -210,7 +222,10 @@ impl PolicySpec {
 
     /// Whether the policy reads the free-MSHR register.
     pub fn reads_free_mshrs(&self) -> bool {
-        matches!(self, PolicySpec::FreeMshr(_) | PolicySpec::Wasp { .. })
+        matches!(
+            self,
+            PolicySpec::FreeMshr(_) | PolicySpec::Wasp { .. } | PolicySpec::WaspMeasured { .. }
+        )
     }
 
     /// Build the policy for a scheduler-level cache with `mshrs` entries,
@@ -245,6 +260,19 @@ impl PolicySpec {
                 })?;
                 Ok(Box::new(Wasp::new(WaspDatapath { cf, threshold: t })))
             }
+            PolicySpec::WaspMeasured { threshold } => {
+                let t = Threshold::new(threshold).ok_or_else(|| {
+                    format!(
+                        "wasp-m:{threshold}: the threshold must fit its 5-bit register (0..=31)"
+                    )
+                })?;
+                if threshold >= mshrs {
+                    return Err(format!(
+                        "wasp-m:{threshold}: the threshold must be below the {mshrs} MSHRs, or Real_freeMSHRs > threshold never holds and priority warps never launch"
+                    ));
+                }
+                Ok(Box::new(WaspMeasured::new(t)))
+            }
         }
     }
 }
@@ -257,6 +285,7 @@ impl fmt::Display for PolicySpec {
             PolicySpec::FreeMshr(n) => write!(f, "freemshr:{n}"),
             PolicySpec::Wasp { threshold, cf: 2.5 } => write!(f, "wasp:{threshold}"),
             PolicySpec::Wasp { threshold, cf } => write!(f, "wasp:{threshold}:{cf}"),
+            PolicySpec::WaspMeasured { threshold } => write!(f, "wasp-m:{threshold}"),
         }
     }
 }
@@ -283,8 +312,12 @@ impl FromStr for PolicySpec {
                     .parse::<f64>()
                     .map_err(|_| format!("policy `{s}`: CF `{cf}` is not a number"))?,
             }),
+            ["wasp-m"] => Ok(PolicySpec::WaspMeasured { threshold: 4 }),
+            ["wasp-m", t] => Ok(PolicySpec::WaspMeasured {
+                threshold: int(t, "threshold")?,
+            }),
             _ => Err(format!(
-                "unknown policy `{s}` (expected baseline, fullpriority, freemshr:N, wasp[:threshold[:cf]])"
+                "unknown policy `{s}` (expected baseline, fullpriority, freemshr:N, wasp[:threshold[:cf]], wasp-m[:threshold])"
             )),
         }
     }
@@ -302,6 +335,7 @@ mod tests {
             "freemshr:10",
             "wasp:4",
             "wasp:3:1",
+            "wasp-m:6",
         ] {
             assert_eq!(s.parse::<PolicySpec>().unwrap().to_string(), s);
         }
@@ -354,6 +388,7 @@ mod tests {
             "freemshr:3",
             "wasp:2",
             "wasp:2:1.5",
+            "wasp-m:2",
         ] {
             let spec: PolicySpec = s.parse().unwrap();
             assert_eq!(spec.build(8).unwrap().name(), s);
@@ -380,7 +415,7 @@ mod tests {
                     regular()
                 }
             }
-            PolicySpec::Wasp { .. } => {
+            PolicySpec::Wasp { .. } | PolicySpec::WaspMeasured { .. } => {
                 if v.priority_waiting && v.datapath.is_some_and(|d| d.priority_over_regular) {
                     Some(QueueClass::Priority)
                 } else {

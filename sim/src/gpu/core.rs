@@ -168,6 +168,11 @@ pub struct CoreStats {
     /// regular warp waited and the launch rule is `hold` (WaSP:
     /// Real_freeMSHRs too low). Always 0 under `launch`.
     pub held_cycles: u64,
+    /// Sum over cycles of the CF meter's register, in quarters (`wasp-m`;
+    /// 0 for other policies).
+    pub cf_quarters_sum: u64,
+    /// Cycles summed in `cf_quarters_sum`.
+    pub cf_samples: u64,
     /// Sum over warps of each warp's mean texture latency.
     pub warp_latency_sum: [f64; 2],
     /// Warps with at least one texture instruction, [regular, priority].
@@ -224,6 +229,9 @@ pub struct ShaderCore {
     /// Whether the free-MSHR register follows the cache (policies that
     /// read it).
     track_mshrs: bool,
+    /// Whether the scheduler has a CF meter (`wasp-m`): primary misses of
+    /// priority warps are then counted for it.
+    measures_cf: bool,
     /// Which miss blocks a warp.
     blocked_on: BlockedOn,
     /// Tags reported by the memory system (scratch of phase 2).
@@ -324,6 +332,7 @@ impl ShaderCore {
         // Policies that do not read the free-MSHR register may watch a cache
         // with more entries than it holds; the register then stays at reset.
         let track_mshrs = policy.reads_free_mshrs();
+        let measures_cf = policy.measures_cf();
         let free = FreeMshrReg::with_capacity(p.sched_mshrs.min(FREE_MSHR_MAX))
             .expect("capacity clamped to the register");
         let n = (p.max_warps as usize).min(MAX_SLOTS);
@@ -342,6 +351,7 @@ impl ShaderCore {
             raster_rate: p.raster_rate,
             sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy, rule),
             track_mshrs,
+            measures_cf,
             blocked_on: p.blocked_on,
             long: Vec::new(),
             slots: Box::new([Warp::default(); MAX_SLOTS]),
@@ -781,6 +791,12 @@ impl ShaderCore {
                 e.next += 1;
                 self.signals.ldst_presented += 1;
                 self.last_progress = now;
+                if self.measures_cf
+                    && r == Access::Miss
+                    && self.slots[e.slot as usize % MAX_SLOTS].priority
+                {
+                    self.prio.misses = self.prio.misses.saturating_add(1);
+                }
                 if at_access && matches!(r, Access::Miss | Access::SecondaryMiss) {
                     let w = &mut self.slots[e.slot as usize % MAX_SLOTS];
                     if !w.blocked {
@@ -873,6 +889,10 @@ impl ShaderCore {
                 cycle: now,
                 fault: e,
             })?;
+        if let Some(m) = self.sched.cf_meter() {
+            self.stats.cf_quarters_sum += u64::from(m.cf().quarters());
+            self.stats.cf_samples += 1;
+        }
         // Self-check: the register counts an entry free from its reply.
         let free = self.sched.free_mshrs().free().get();
         if self.track_mshrs && free != ev.free_from_reply() {

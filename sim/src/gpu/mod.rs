@@ -829,6 +829,31 @@ mod tests {
     }
 
     #[test]
+    fn the_measured_cf_variant_runs_and_reports_its_cf() {
+        let t = small_synth(3);
+        let cfg = MachineConfig::paper();
+        let go = |policy: &str| {
+            let opts = RunOptions {
+                policy: Some(policy.parse().unwrap()),
+                ..Default::default()
+            };
+            simulate(&cfg, &t, &opts, &mut |_, _| {}).unwrap()
+        };
+        let m = go("wasp-m:4");
+        let w = go("wasp:4");
+        assert_eq!(m.policy, "wasp-m:4");
+        assert_eq!(m.warps, t.quad_count() as u64);
+        assert_eq!(w.measured_cf_mean, None);
+        let cf = m.measured_cf_mean.expect("wasp-m reports its CF");
+        // The meter starts at 2.5 and loads misses per priority warp: some
+        // window ended, so the mean moved off the reset value, inside the
+        // register's range.
+        assert!(cf > 0.0 && cf <= 7.75 && cf != 2.5, "{cf}");
+        assert!(m.subset.priority_warps > 16);
+        assert_ne!(m.cycles, w.cycles);
+    }
+
+    #[test]
     fn scarce_mshrs_stall_and_plentiful_do_not() {
         let t = small_synth(7);
         let mut scarce = MachineConfig::paper();
@@ -949,7 +974,7 @@ mod tests {
         let (stats, recs) =
             simulate_recording(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
         assert_eq!(recs.len() as u64, stats.warps);
-        let plain = run(&cfg, &t, "wasp:4");
+        let plain = run(&cfg, &t, "wasp:0:3");
         assert_eq!(plain, stats, "recording does not change the run");
         for r in &recs {
             assert!(r.finished > r.launched);
