@@ -123,13 +123,11 @@ pub struct CompareArgs {
     pub inputs: Inputs,
 
     /// Policies to compare, comma separated; the first is the reference for
-    /// speedups (scanline baseline by default).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "baseline,fullpriority,freemshr:10,wasp:4"
-    )]
-    pub policies: Vec<PolicySpec>,
+    /// speedups. Default: baseline, fullpriority, freemshr:10, the
+    /// configuration's `scheduler.policy` and, when that is WaSP, the
+    /// measured-CF variant `wasp-m` at its threshold.
+    #[arg(long, value_delimiter = ',')]
+    pub policies: Option<Vec<PolicySpec>>,
 
     /// Also run the reference policy with ideal (zero-latency) main memory.
     #[arg(long)]
@@ -367,15 +365,37 @@ struct Job {
     opts: RunOptions,
 }
 
+/// The policies `wasp compare` runs when `--policies` is not given: the
+/// scanline baseline, Fullpriority, Freemshr10, the configuration's policy
+/// and, when that is WaSP, `wasp-m` at the same threshold.
+fn default_policies(cfg: &MachineConfig) -> Result<Vec<PolicySpec>, CliError> {
+    let mut v = vec![
+        PolicySpec::Baseline,
+        PolicySpec::FullPriority,
+        PolicySpec::FreeMshr(10),
+    ];
+    let own = cfg.policy().map_err(CliError::usage)?;
+    if !v.contains(&own) {
+        v.push(own);
+    }
+    if let PolicySpec::Wasp { threshold, .. } = own {
+        v.push(PolicySpec::WaspMeasured { threshold });
+    }
+    Ok(v)
+}
+
 /// Run the comparison.
 pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
     let cfg = load_config(&args.inputs)?;
     let trace = load_trace(&args.inputs, &cfg)?;
-    if args.policies.is_empty() {
+    let policies = match &args.policies {
+        Some(p) => p.clone(),
+        None => default_policies(&cfg)?,
+    };
+    if policies.is_empty() {
         return Err(CliError::usage("--policies: name at least one policy"));
     }
-    let mut jobs: Vec<Job> = args
-        .policies
+    let mut jobs: Vec<Job> = policies
         .iter()
         .map(|p| Job {
             label: p.to_string(),
@@ -391,9 +411,9 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
         .collect();
     if args.with_ideal {
         jobs.push(Job {
-            label: format!("{} +ideal memory", args.policies[0]),
+            label: format!("{} +ideal memory", policies[0]),
             opts: RunOptions {
-                policy: Some(args.policies[0]),
+                policy: Some(policies[0]),
                 launch_rule: args.inputs.launch_rule,
                 subset: args.inputs.subset.clone(),
                 ideal_memory: Some(true),

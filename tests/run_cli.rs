@@ -274,11 +274,14 @@ fn compare_prints_speedups_against_the_baseline() {
         "--jobs",
         "2",
     ]));
+    // The default list: the three rivals, the configuration's WaSP and the
+    // measured-CF variant at its threshold.
     for p in [
         "baseline",
         "fullpriority",
         "freemshr:10",
-        "wasp:4",
+        "wasp:0:3",
+        "wasp-m:0",
         "+ideal memory",
     ] {
         assert!(o.contains(p), "{p} missing:\n{o}");

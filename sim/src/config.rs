@@ -653,12 +653,12 @@ mod tests {
             ("tile_size = 64", "tile_size = 48", "gpu.tile_size"),
             ("cores = 4", "cores = 0", "cores"),
             (
-                "policy = \"wasp:4\"",
+                "policy = \"wasp:0:3\"",
                 "policy = \"wasp:40\"",
                 "scheduler.policy",
             ),
             (
-                "policy = \"wasp:4\"",
+                "policy = \"wasp:0:3\"",
                 "policy = \"fifo\"",
                 "scheduler.policy",
             ),
@@ -798,7 +798,7 @@ mod tests {
         // Policies that do not read the register may have more MSHRs.
         with(|s| {
             s.replacen("mshrs = 16", "mshrs = 64", 1)
-                .replace("policy = \"wasp:4\"", "policy = \"fullpriority\"")
+                .replace("policy = \"wasp:0:3\"", "policy = \"fullpriority\"")
         })
         .unwrap();
         // Mesh2 puts 256 priority quads in a tile; with 128 warp slots the
