@@ -7,8 +7,9 @@
 #
 # Builds the release binary, renders every shipped scene's trace once
 # (cached in target/machines/traces; game data is fetched into the scene cache if
-# missing), runs `wasp compare --with-ideal` (baseline, fullpriority,
-# freemshr:10, wasp:4, baseline with ideal memory) under each dispatch mode
+# missing), runs `wasp compare --with-ideal` (its default list: baseline,
+# fullpriority, freemshr:10, the configuration's WaSP and wasp-m at its
+# threshold; then the baseline with ideal memory) under each dispatch mode
 # with configs/paper.toml (JSON in OUT_DIR/json), and writes the tables to
 # OUT_DIR/machines.md with scripts/machines-report.py. Nothing is tuned per
 # scene: every run uses the same configuration file.
