@@ -247,34 +247,33 @@ impl PolicySpec {
                 Ok(Box::new(FreeMshrN::new(n)))
             }
             PolicySpec::Wasp { threshold, cf } => {
-                let t = Threshold::new(threshold).ok_or_else(|| {
-                    format!("wasp:{threshold}: the threshold must fit its 5-bit register (0..=31)")
-                })?;
-                if threshold >= mshrs {
-                    return Err(format!(
-                        "wasp:{threshold}: the threshold must be below the {mshrs} MSHRs, or Real_freeMSHRs > threshold never holds and priority warps never launch"
-                    ));
-                }
+                let t = gate_threshold("wasp", threshold, mshrs)?;
                 let cf = Cf::from_f64(cf).ok_or_else(|| {
                     format!("wasp CF {cf}: must be a multiple of 0.25 between 0 and 7.75 (a 5-bit constant in quarters)")
                 })?;
                 Ok(Box::new(Wasp::new(WaspDatapath { cf, threshold: t })))
             }
             PolicySpec::WaspMeasured { threshold } => {
-                let t = Threshold::new(threshold).ok_or_else(|| {
-                    format!(
-                        "wasp-m:{threshold}: the threshold must fit its 5-bit register (0..=31)"
-                    )
-                })?;
-                if threshold >= mshrs {
-                    return Err(format!(
-                        "wasp-m:{threshold}: the threshold must be below the {mshrs} MSHRs, or Real_freeMSHRs > threshold never holds and priority warps never launch"
-                    ));
-                }
+                let t = gate_threshold("wasp-m", threshold, mshrs)?;
                 Ok(Box::new(WaspMeasured::new(t)))
             }
         }
     }
+}
+
+/// The threshold register of a WaSP policy named `name`, checked: it must
+/// fit 5 bits and lie below the `mshrs` MSHRs, or `Real_freeMSHRs >
+/// threshold` never holds and priority warps never launch.
+fn gate_threshold(name: &str, threshold: u32, mshrs: u32) -> Result<Threshold, String> {
+    let t = Threshold::new(threshold).ok_or_else(|| {
+        format!("{name}:{threshold}: the threshold must fit its 5-bit register (0..=31)")
+    })?;
+    if threshold >= mshrs {
+        return Err(format!(
+            "{name}:{threshold}: the threshold must be below the {mshrs} MSHRs, or Real_freeMSHRs > threshold never holds and priority warps never launch"
+        ));
+    }
+    Ok(t)
 }
 
 impl fmt::Display for PolicySpec {
@@ -365,6 +364,12 @@ mod tests {
             .build(16)
             .unwrap_err()
             .contains("below"));
+        let m = |t| PolicySpec::WaspMeasured { threshold: t }.build(16);
+        assert!(m(15).is_ok());
+        assert!(m(16)
+            .unwrap_err()
+            .starts_with("wasp-m:16: the threshold must be below"));
+        assert!(m(32).unwrap_err().contains("5-bit"));
         assert!(PolicySpec::FreeMshr(40)
             .build(16)
             .unwrap_err()
