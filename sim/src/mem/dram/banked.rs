@@ -119,6 +119,11 @@ struct Channel {
     bus_free: u64,
     /// Column commands issued in the last cycle `accept` ran.
     columns_now: u32,
+    /// First cycle in which the scheduler could issue a command: a lower
+    /// bound computed when a step issues nothing, lowered by every new
+    /// request. Cycles before it are skipped (the fast path; see
+    /// [`Channel::next_chance`]).
+    wake: u64,
 }
 
 /// Main memory, banked timing model (see the module docs).
@@ -134,6 +139,9 @@ pub struct BankedDram {
     max_outstanding: u32,
     cycle: u64,
     stats: DramStats,
+    /// Skip a channel's cycles before its `wake` (false: step every cycle,
+    /// the plain reference the tests compare the fast path with).
+    skip_idle: bool,
 }
 
 impl BankedDram {
@@ -154,6 +162,7 @@ impl BankedDram {
             replies: Ring::with_capacity(n),
             bus_free: 0,
             columns_now: 0,
+            wake: 0,
         };
         BankedDram {
             cfg: *cfg,
@@ -163,7 +172,16 @@ impl BankedDram {
             max_outstanding,
             cycle: 0,
             stats: DramStats::default(),
+            skip_idle: true,
         }
+    }
+
+    /// The same memory stepping every channel in every cycle: the plain
+    /// reference of the idle-cycle skip.
+    #[cfg(test)]
+    fn stepping_every_cycle(mut self) -> Self {
+        self.skip_idle = false;
+        self
     }
 
     /// Channel, bank in the channel and row of `block`: channels interleave
@@ -204,7 +222,9 @@ impl BankedDram {
 
     fn enqueue(&mut self, now: u64, block: u64, entry: u32) {
         let (ch, bank, row) = self.place(block);
-        self.channels[ch].queue.push_back(Request {
+        let c = &mut self.channels[ch];
+        c.wake = c.wake.min(now + 1);
+        c.queue.push_back(Request {
             ready: now + 1,
             missed: now,
             bank,
@@ -225,7 +245,10 @@ impl BankedDram {
         let (cfg, stats) = (&self.cfg, &mut self.stats);
         for ch in &mut self.channels {
             ch.columns_now = 0;
-            if !ch.queue.is_empty() && ch.step(cfg, stats, now) {
+            if ch.queue.is_empty() || (self.skip_idle && now < ch.wake) {
+                continue;
+            }
+            if ch.step(cfg, stats, now) {
                 self.queued -= 1;
             }
         }
@@ -300,7 +323,10 @@ impl Channel {
             .take(cfg.scheduler_window as usize)
             .take_while(|r| r.ready <= now)
             .count();
+        // Something may issue next cycle unless this one issues nothing.
+        self.wake = now + 1;
         if window == 0 {
+            self.wake = self.queue[0].ready;
             return false;
         }
         // 1. The head, if it can issue anything.
@@ -322,7 +348,45 @@ impl Channel {
                 return false;
             }
         }
+        self.wake = self.next_chance(cfg, now, window);
         false
+    }
+
+    /// After a cycle `now` in which nothing could issue: the first cycle in
+    /// which something might. Until a command issues or a request arrives
+    /// (which wakes the channel), banks, bus and queue change only with
+    /// time, and each condition of the rules, once true, stays true; so the
+    /// earliest cycle any of them can turn true bounds the next command
+    /// from below:
+    /// - a row hit: its bank free and its data slot free,
+    ///   `max(bank ready, bus free - t_cl)`;
+    /// - a bank busy with another row's command: its `ready`;
+    /// - a PRECHARGE waiting for `t_ras`: `activated + t_ras`;
+    /// - the window growing: the next request's `ready`.
+    ///
+    /// A row command held only by the open-row protection waits for a
+    /// command or an arrival, which wake the channel anyway.
+    fn next_chance(&self, cfg: &DramConfig, now: u64, window: usize) -> u64 {
+        let mut wake = u64::MAX;
+        let visible = (cfg.scheduler_window as usize).min(self.queue.len());
+        if window < visible {
+            wake = self.queue[window].ready;
+        }
+        for r in self.queue.iter().take(window) {
+            let b = &self.banks[r.bank];
+            let t = if b.open_row == r.row {
+                b.ready
+                    .max(self.bus_free.saturating_sub(u64::from(cfg.t_cl)))
+            } else if b.ready > now {
+                b.ready
+            } else if b.open_row != CLOSED && now < b.activated + u64::from(cfg.t_ras) {
+                b.activated + u64::from(cfg.t_ras)
+            } else {
+                u64::MAX
+            };
+            wake = wake.min(t);
+        }
+        wake.max(now + 1)
     }
 
     /// Can request `i` issue its READ / WRITE in cycle `now`?
@@ -602,6 +666,54 @@ mod tests {
             assert_eq!(s.row_hits + s.row_misses, s.requests);
             assert!(s.row_hits > 0 && s.row_conflicts > 0 && s.write_row_misses > 0);
             assert_eq!(s.bus_busy_cycles, 6 * (s.requests + s.writes));
+        }
+    }
+
+    #[test]
+    fn skipping_idle_cycles_changes_nothing() {
+        // The fast path (channels sleep until their next chance) against the
+        // plain reference (every channel steps every cycle): the same replies
+        // in the same cycles and the same counters, for light and heavy
+        // random traffic, reads and writes, several windows and channels.
+        for (window, channels, rate) in [(1, 1, 0.05), (2, 2, 0.3), (16, 4, 0.1), (16, 1, 0.15)] {
+            let c = DramConfig {
+                scheduler_window: window,
+                channels,
+                ..cfg()
+            };
+            let mut fast = BankedDram::new(&c, 64);
+            let mut plain = BankedDram::new(&c, 64).stepping_every_cycle();
+            let mut rng = Rng::new(u64::from(window) * 7 + u64::from(channels));
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            let mut n = 0u32;
+            for now in 0..80_000u64 {
+                if now < 10_000 && rng.chance(rate) {
+                    let block = rng.below(4 * 16 * 6);
+                    if rng.chance(0.2) {
+                        fast.write(now, block);
+                        plain.write(now, block);
+                    } else {
+                        fast.request(now, block, n);
+                        plain.request(now, block, n);
+                        n += 1;
+                    }
+                }
+                fast.accept(now);
+                plain.accept(now);
+                while let Some(e) = fast.pop_reply(now) {
+                    a.push((now, e));
+                }
+                while let Some(e) = plain.pop_reply(now) {
+                    b.push((now, e));
+                }
+                assert_eq!(fast.queued(), plain.queued(), "cycle {now}");
+            }
+            assert_eq!(a.len(), n as usize);
+            assert_eq!(a, b, "window {window}, channels {channels}");
+            assert_eq!(
+                format!("{:?}", fast.stats()),
+                format!("{:?}", plain.stats())
+            );
         }
     }
 
