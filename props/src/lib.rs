@@ -76,6 +76,12 @@
 //! |---|---|---|---|
 //! | [`mshr_file::cache_step`], [`mshr_file::cache_sequence`] | `mshr_file::proofs::proof_cache_sequence` (5 operations, 1..=3 MSHRs, 0..=1 merges, 1..=2 ports) | `mshr_file::tests::exhaustive_cache_sequences` | a one-set four-way cache with 1..=3 MSHRs x 0..=1 merged targets x 1..=2 ports, every sequence of up to 7 operations (access block 0/1/2, fill a pending block, next cycle): 798,282 steps against [`mshr_file::CacheModel`]; occupancy never above capacity, a full file refuses every access (hits included) and a refused access changes nothing, every lookup and fill as the model says |
 //!
+//! # (l) The CF meter of `wasp-m` (beyond the paper)
+//!
+//! | property | Kani harness | exhaustive twin | domain |
+//! |---|---|---|---|
+//! | [`cf_meter::cf_meter_next_exact`] | `cf_meter::proofs::proof_cf_meter_next_exact` | `cf_meter::tests::exhaustive_cf_meter` | every launch count (4 bits), accumulator (7 bits) and CF register (5 bits) x launch or not x 0..=3 misses: 524,288 points; the next state equals the specification and the CF register stays in the datapath's 5-bit range |
+//!
 //! # (g)-(k) The assembled GPU (`wasp-sim`)
 //!
 //! | body | harness | test twin | domain |
@@ -124,6 +130,7 @@
 //! properties say exactly this.
 
 pub mod cex;
+pub mod cf_meter;
 pub mod counters;
 pub mod datapath;
 pub mod machine;

@@ -78,6 +78,16 @@ impl CfMeter {
         }
     }
 
+    /// A meter holding the given register values; `None` if a value does
+    /// not fit its register (launches 4 bits, accumulator 7 bits).
+    pub fn from_registers(launches: u32, acc: u32, cf: Cf) -> Option<Self> {
+        Some(Self {
+            launches: UInt::new(launches)?,
+            acc: UInt::new(acc)?,
+            cf,
+        })
+    }
+
     /// The CF register (the datapath's multiplier input).
     #[inline]
     pub const fn cf(&self) -> Cf {
