@@ -81,14 +81,19 @@ def detail_table(w, rows, col, label):
     w(f"{label} (`{present[0][1][col]['policy']}`) against the baseline: lead of priority warps (raster position "
       "minus launch rank; positive = ahead of the quads rasterized before them), memory latency per warp, "
       "L0 stalls, misses, energy, core-cycles held by the launch rule:\n")
-    w("| scene | measured CF | lead (mean) | ahead | after own subtile's regular | latency priority / regular | "
+    pol = present[0][1][col]["policy"]
+    used = pol.split(":")[2] if pol.startswith("wasp:") and pol.count(":") == 2 else (
+        "2.5" if pol.startswith("wasp:") else "its meter's")
+    w(f"| scene | measured CF (the policy uses {used}) | lead (mean) | ahead | after own subtile's regular | latency priority / regular | "
       "latency all, base -> policy | L0 stall base / policy | L1 misses | L2 misses | energy | held cycles |")
     w("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for s, p in present:
         b, r = p["baseline"], p[col]
         lead = r["priority_lead"]
         lat = r["memory_latency"]
-        w(f"| {s} | {b['cf']:.2f} | {lead['mean']:+.1f} | {pct(lead['ahead_share'])} | "
+        meter = r.get("measured_cf_mean")
+        cf = f"{b['cf']:.2f}" + (f" (meter {meter:.2f})" if meter is not None else "")
+        w(f"| {s} | {cf} | {lead['mean']:+.1f} | {pct(lead['ahead_share'])} | "
           f"{pct(lead['after_subtile_regular_share'])} | {lat['priority']:.1f} / {lat['regular']:.1f} | "
           f"{b['memory_latency']['all']:.1f} -> {lat['all']:.1f} | {pct(stall(b))} / {pct(stall(r))} | "
           f"{change(b['l1']['misses'], r['l1']['misses'])} | {change(b['l2']['misses'], r['l2']['misses'])} | "
