@@ -1,0 +1,66 @@
+//! Whole-program tests: the CLI refuses nonsense before it works, and says
+//! what happened when a run gives less than was asked for.
+
+mod common;
+
+use common::{scratch, stderr, wasp};
+use std::path::PathBuf;
+
+fn dir(name: &str) -> PathBuf {
+    scratch("say", name)
+}
+
+/// The exit code and standard error of `wasp args`.
+fn refused(args: &[&str]) -> (i32, String) {
+    let o = wasp(args);
+    (o.status.code().expect("exit code"), stderr(&o))
+}
+
+#[test]
+fn cost_refuses_arguments_that_price_nothing() {
+    let (code, e) = refused(&["cost", "--no-yosys", "--registers-per-thread", "0"]);
+    assert_eq!(code, 2, "{e}");
+    assert!(
+        e.contains("--registers-per-thread") && e.contains("1..=1024"),
+        "{e}"
+    );
+    let (code, e) = refused(&["cost", "--no-yosys", "--baseline-warps", "129"]);
+    assert_eq!(code, 2, "{e}");
+    assert!(
+        e.contains("--baseline-warps") && e.contains("2..=128"),
+        "{e}"
+    );
+    let (code, e) = refused(&["cost", "--no-yosys", "--wasp-warps", "0"]);
+    assert_eq!(code, 2, "{e}");
+    assert!(e.contains("--wasp-warps") && e.contains("1..128"), "{e}");
+    // The paper machine's baseline needs 64 warps: WaSP with as many saves
+    // nothing.
+    let (code, e) = refused(&["cost", "--no-yosys", "--wasp-warps", "64"]);
+    assert_eq!(code, 2, "{e}");
+    assert!(
+        e.contains("--wasp-warps 64 with --baseline-warps 64: WaSP must need fewer warps"),
+        "{e}"
+    );
+    let o = wasp(&["cost", "--no-yosys", "--registers-per-thread", "1"]);
+    let out = common::ok(&o);
+    assert!(out.contains("register file per warp: 128 bits"), "{out}");
+}
+
+#[test]
+fn bench_bounds_scale_and_repeats() {
+    for (flag, value, range) in [
+        ("--scale", "0", "1..=64"),
+        ("--scale", "65", "1..=64"),
+        ("--scale", "4294967295", "1..=64"),
+        ("--repeats", "0", "1..=100"),
+        ("--repeats", "101", "1..=100"),
+    ] {
+        let (code, e) = refused(&["bench", flag, value]);
+        assert_eq!(code, 2, "{flag} {value}: {e}");
+        assert!(
+            e.contains(&format!("invalid value '{value}' for '{flag}"))
+                && e.contains(&format!("{value} is not in {range}")),
+            "{flag} {value}: {e}"
+        );
+    }
+}
