@@ -64,3 +64,59 @@ fn bench_bounds_scale_and_repeats() {
         );
     }
 }
+
+#[test]
+fn render_checks_size_crop_and_scene_before_rendering() {
+    let d = dir("render");
+    let png = d.join("frame.png");
+    let png = png.to_str().unwrap();
+    let (code, e) = refused(&[
+        "render",
+        "procedural-plane",
+        "--png",
+        png,
+        "--size",
+        "1x65536",
+    ]);
+    assert_eq!(code, 2, "{e}");
+    assert!(
+        e.contains("--size `1x65536`: the height is 65536 pixels; each side must be in 1..=16384"),
+        "{e}"
+    );
+    // At the scene's own 1960x768, a crop outside the frame is refused
+    // before the frame is rendered (which would print its summary).
+    let (code, e) = refused(&[
+        "render",
+        "procedural-plane",
+        "--png",
+        png,
+        "--crop",
+        "1900,0,100,10",
+    ]);
+    assert_eq!(code, 2, "{e}");
+    assert!(
+        e.contains(
+            "--crop `1900,0,100,10`: pixels 1900..2000 x 0..10 reach outside the 1960x768 frame"
+        ),
+        "{e}"
+    );
+    assert!(!e.contains("triangles"), "rendered before refusing: {e}");
+    assert!(!std::path::Path::new(png).exists());
+    let tmp = std::env::temp_dir();
+    let (code, e) = refused(&["render", tmp.to_str().unwrap(), "--png", png]);
+    assert_eq!(code, 2, "{e}");
+    assert!(
+        e.contains("is a directory, not a scene name or scene file"),
+        "{e}"
+    );
+    let readme = concat!(env!("CARGO_MANIFEST_DIR"), "/README.md");
+    let (code, e) = refused(&["render", readme, "--png", png]);
+    assert_eq!(code, 2, "{e}");
+    assert!(e.contains("is not a scene definition"), "{e}");
+    let (code, e) = refused(&["render", "missing.toml", "--png", png]);
+    assert_eq!(code, 2, "{e}");
+    assert!(e.contains("missing.toml: no such scene file"), "{e}");
+    let (code, e) = refused(&["render", "no-such-scene", "--png", png]);
+    assert_eq!(code, 2, "{e}");
+    assert!(e.contains("no scene named `no-such-scene`"), "{e}");
+}
