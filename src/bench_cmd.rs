@@ -75,7 +75,7 @@ const NOISY: f64 = 0.10;
 /// Run the benchmark.
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     let cfg = match &args.config {
-        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
     if cfg!(debug_assertions) {

@@ -39,7 +39,7 @@ pub struct CostArgs {
 /// Run the command.
 pub fn run(args: &CostArgs) -> Result<(), CliError> {
     let cfg = match &args.config {
-        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
     let mut rf = RfParams::for_config(&cfg);

@@ -254,7 +254,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         None => None,
     };
     let config = match &args.config {
-        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
     let mut best = PhaseTimes::default();

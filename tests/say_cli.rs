@@ -120,3 +120,26 @@ fn render_checks_size_crop_and_scene_before_rendering() {
     assert_eq!(code, 2, "{e}");
     assert!(e.contains("no scene named `no-such-scene`"), "{e}");
 }
+
+#[test]
+fn a_config_that_is_not_utf8_is_named_with_its_line_and_column() {
+    let d = dir("utf8");
+    let cfg = d.join("latin1.toml");
+    // "é" in Latin-1 (0xe9) on line 3, after five ASCII bytes; the UTF-8
+    // "é" of line 1 is fine.
+    std::fs::write(&cfg, b"# caf\xc3\xa9\n[core]\nx = \"\xe9t\xe9\"\n").unwrap();
+    let c = cfg.to_str().unwrap();
+    for cmd in [
+        &["run", "--config", c][..],
+        &["cost", "--no-yosys", "--config", c],
+    ] {
+        let (code, e) = refused(cmd);
+        assert_eq!(code, 2, "{e}");
+        assert!(
+            e.contains(&format!(
+                "{c}:3:6: byte 0xe9 is not UTF-8 (line 3, byte column 6)"
+            )),
+            "{e}"
+        );
+    }
+}
