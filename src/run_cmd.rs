@@ -253,8 +253,7 @@ pub fn gtkw_path(vcd: &Path) -> PathBuf {
 
 /// Run the command.
 pub fn run(args: &RunArgs) -> Result<(), CliError> {
-    let cfg = load_config(&args.inputs)?;
-    let trace = load_trace(&args.inputs, &cfg)?;
+    // The flags are checked before the (possibly long) trace is read.
     let window = match (args.vcd_from, args.vcd_to) {
         (None, None) => None,
         (f, t) => {
@@ -292,6 +291,8 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
             Some((from, to))
         }
     };
+    let cfg = load_config(&args.inputs)?;
+    let trace = load_trace(&args.inputs, &cfg)?;
     let opts = RunOptions {
         policy: args.policy,
         launch_rule: args.inputs.launch_rule,
@@ -325,6 +326,20 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
             let mut sink = VcdSink::new(BufWriter::new(file), "wasp");
             let stats =
                 simulate_traced(&cfg, &trace, &opts, &mut sink, &mut progress).map_err(sim_err)?;
+            if let Some((from, to)) = window.filter(|w| w.0 > stats.cycles) {
+                // The window is known to be empty only once the run has ended.
+                let to = if to == u64::MAX {
+                    String::new()
+                } else {
+                    format!("={to}")
+                };
+                eprintln!(
+                    "wasp: warning: the run ended at cycle {}, before --vcd-from {from}: {} holds \
+                     no cycle of the window {from}..{to}",
+                    stats.cycles,
+                    path.display()
+                );
+            }
             let signals = sink.signals().to_vec();
             let end = match window {
                 Some((_, to)) => to.min(stats.cycles) + 1,

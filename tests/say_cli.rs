@@ -143,3 +143,64 @@ fn a_config_that_is_not_utf8_is_named_with_its_line_and_column() {
         );
     }
 }
+
+#[test]
+fn a_vcd_window_after_the_run_is_a_warning() {
+    let d = dir("vcd");
+    let vcd = d.join("late.vcd");
+    let trace = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/traces/tiny.trace");
+    let run = |window: &[&str]| {
+        let mut a = vec![
+            "run",
+            "-q",
+            "--set",
+            "gpu.tile_size=8",
+            "--trace",
+            trace,
+            "--json",
+            "-",
+            "--vcd",
+            vcd.to_str().unwrap(),
+        ];
+        a.extend_from_slice(window);
+        wasp(&a)
+    };
+    let o = run(&["--vcd-from", "100000", "--vcd-to", "200000"]);
+    let v: serde_json::Value = serde_json::from_str(&common::ok(&o)).unwrap();
+    let cycles = v["cycles"].as_u64().unwrap();
+    assert!(cycles < 100_000);
+    let e = stderr(&o);
+    assert!(
+        e.contains(&format!(
+            "wasp: warning: the run ended at cycle {cycles}, before --vcd-from 100000: {} holds no cycle of the window 100000..=200000",
+            vcd.display()
+        )),
+        "{e}"
+    );
+    let o = run(&["--vcd-from", "100000"]);
+    assert!(o.status.success());
+    assert!(
+        stderr(&o).contains("no cycle of the window 100000.."),
+        "{}",
+        stderr(&o)
+    );
+    // A window inside the run, and an inverted one (refused before the run).
+    let o = run(&["--vcd-from", "10", "--vcd-to", "20"]);
+    assert!(o.status.success());
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+    // (A trace that does not exist: the flags are refused before reading it.)
+    let (code, e) = refused(&[
+        "run",
+        "-q",
+        "--trace",
+        "missing.trace",
+        "--vcd",
+        vcd.to_str().unwrap(),
+        "--vcd-from",
+        "20",
+        "--vcd-to",
+        "10",
+    ]);
+    assert_eq!(code, 2, "{e}");
+    assert!(e.contains("--vcd-from 20 is after --vcd-to 10"), "{e}");
+}
