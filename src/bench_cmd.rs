@@ -60,6 +60,11 @@ pub struct BenchArgs {
     /// Write the points as JSON to FILE (`-`: stdout).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
+    /// (Bench's rows on stderr are its result, and print.)
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// Largest `--scale` (wasp): the growth rows then reach 4096 tiles, about

@@ -64,7 +64,8 @@ pub struct Inputs {
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub set: Vec<String>,
 
-    /// No progress bar, even on a terminal.
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
 }

@@ -98,7 +98,8 @@ pub struct RenderArgs {
     /// (fastest) time of each phase (the frame is the same every time).
     #[arg(long, value_name = "N", default_value_t = 1, requires = "timings")]
     pub repeat: u32,
-    /// No progress bar.
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
 }
@@ -119,6 +120,10 @@ pub struct CharacterizeArgs {
     /// Hidden-surface removal by a depth pre-pass (see `wasp render`).
     #[arg(long)]
     pub depth_prepass: bool,
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 fn parse_game(s: &str) -> Result<Game, CliError> {
@@ -545,7 +550,15 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
     };
     let mut rows: Vec<Characterization> = Vec::new();
     let mut failed = Vec::new();
-    for d in &defs {
+    for (i, d) in defs.iter().enumerate() {
+        if !args.quiet {
+            eprintln!(
+                "wasp: characterising {} ({} of {})",
+                d.name,
+                i + 1,
+                defs.len()
+            );
+        }
         match characterize::characterize_def(d, args.depth_prepass) {
             Ok(c) => rows.push(c),
             Err(e) => {

@@ -204,3 +204,48 @@ fn a_vcd_window_after_the_run_is_a_warning() {
     assert_eq!(code, 2, "{e}");
     assert!(e.contains("--vcd-from 20 is after --vcd-to 10"), "{e}");
 }
+
+#[test]
+fn every_command_that_simulates_or_renders_takes_quiet() {
+    for cmd in [
+        "example",
+        "run",
+        "compare",
+        "synth",
+        "bench",
+        "render",
+        "characterize",
+    ] {
+        let help = common::ok(&wasp(&[cmd, "--help"]));
+        assert!(
+            help.contains("-q, --quiet") && help.contains("No progress output on stderr"),
+            "{cmd}: {help}"
+        );
+    }
+    // Same result, quiet or not.
+    assert_eq!(
+        common::ok(&wasp(&["example", "-q"])),
+        common::ok(&wasp(&["example"]))
+    );
+    // characterize notes each scene as it goes, unless quiet.
+    let args = ["characterize", "procedural-sprites", "--json", "-"];
+    let loud = wasp(&args);
+    let quiet = wasp(&[&args[..], &["--quiet"]].concat());
+    // The same figures (but for the wall-clock raster_seconds).
+    let figures = |o: &std::process::Output| {
+        let mut v: serde_json::Value = serde_json::from_str(&common::ok(o)).unwrap();
+        v[0].as_object_mut().unwrap().remove("raster_seconds");
+        v
+    };
+    assert_eq!(figures(&loud), figures(&quiet));
+    assert!(
+        stderr(&loud).contains("wasp: characterising procedural-sprites (1 of 1)"),
+        "{}",
+        stderr(&loud)
+    );
+    assert!(
+        !stderr(&quiet).contains("characterising"),
+        "{}",
+        stderr(&quiet)
+    );
+}
