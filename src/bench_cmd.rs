@@ -17,6 +17,7 @@
 
 use crate::run_cmd::emit;
 use crate::CliError;
+use clap::builder::RangedU64ValueParser;
 use clap::Args;
 use std::path::PathBuf;
 use wasp_sim::bench;
@@ -40,16 +41,17 @@ pub struct BenchArgs {
     /// Machine configuration (TOML); default: the embedded paper.toml.
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
-    /// Workload size multiplier (1: 32, 4..64 tiles).
-    #[arg(long, default_value_t = 1)]
+    /// Workload size multiplier, 1..=64 (1: 32, 4..64 tiles; 64: 2048,
+    /// 256..4096 tiles).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_SCALE as i64))]
     pub scale: u32,
     /// Measure the tracing and warp points on this trace instead of the
     /// generated 8x4-tile workload (and time reading it and its workload
     /// statistics).
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
-    /// Samples per point; the fastest is kept.
-    #[arg(long, default_value_t = 3)]
+    /// Samples per point, 1..=100; the fastest is kept.
+    #[arg(long, default_value_t = 3, value_parser = RangedU64ValueParser::<usize>::new().range(1..=MAX_REPEATS))]
     pub repeats: usize,
     /// Least time of one sample, in seconds: whole runs are repeated until
     /// it has passed.
@@ -58,7 +60,19 @@ pub struct BenchArgs {
     /// Write the points as JSON to FILE (`-`: stdout).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
+    /// (Bench's rows on stderr are its result, and print.)
+    #[arg(long, short)]
+    pub quiet: bool,
 }
+
+/// Largest `--scale` (wasp): the growth rows then reach 4096 tiles, about
+/// a 2048x2048 frame of 32x32 tiles, minutes of simulation per sample.
+const MAX_SCALE: u32 = 64;
+
+/// Most `--repeats` (wasp): more samples than this add time, not accuracy.
+const MAX_REPEATS: u64 = 100;
 
 /// A spread of samples above this is worth a warning.
 const NOISY: f64 = 0.10;
@@ -66,7 +80,7 @@ const NOISY: f64 = 0.10;
 /// Run the benchmark.
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     let cfg = match &args.config {
-        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
     if cfg!(debug_assertions) {

@@ -5,6 +5,7 @@ use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use wasp_rtl::cost::GateRules;
+use wasp_sim::config::limits::MAX_WARPS;
 use wasp_sim::config::MachineConfig;
 use wasp_sim::cost::{report, RfParams};
 
@@ -17,15 +18,18 @@ pub struct CostArgs {
     /// Do not run Yosys on the Verilog twin.
     #[arg(long)]
     pub no_yosys: bool,
-    /// Registers per thread (default: core.registers_per_thread).
-    #[arg(long)]
+    /// Registers per thread, 1..=1024 as core.registers_per_thread
+    /// (default: core.registers_per_thread).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub registers_per_thread: Option<u32>,
-    /// Warps the baseline needs to match WaSP (default: the paper's figure
-    /// for the machine's width: 48 at width 2, 64 at width 4).
-    #[arg(long)]
+    /// Warps the baseline needs to match WaSP, 2..=128 as core.max_warps
+    /// (default: the paper's figure for the machine's width: 48 at width 2,
+    /// 64 at width 4).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(2..=MAX_WARPS as i64))]
     pub baseline_warps: Option<u32>,
-    /// Warps WaSP needs (default: the paper's 32 at width 2, 48 at width 4).
-    #[arg(long)]
+    /// Warps WaSP needs, 1..=127 and fewer than the baseline's (default: the
+    /// paper's 32 at width 2, 48 at width 4).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..MAX_WARPS as i64))]
     pub wasp_warps: Option<u32>,
     /// Write the report as JSON to FILE (`-`: stdout).
     #[arg(long, value_name = "FILE")]
@@ -35,7 +39,7 @@ pub struct CostArgs {
 /// Run the command.
 pub fn run(args: &CostArgs) -> Result<(), CliError> {
     let cfg = match &args.config {
-        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
     let mut rf = RfParams::for_config(&cfg);
@@ -45,6 +49,15 @@ pub fn run(args: &CostArgs) -> Result<(), CliError> {
     if args.baseline_warps.is_some() || args.wasp_warps.is_some() {
         rf.baseline_warps = args.baseline_warps.unwrap_or(rf.baseline_warps);
         rf.wasp_warps = args.wasp_warps.unwrap_or(rf.wasp_warps);
+        // The report prices the register file of the warps WaSP saves: with
+        // none saved there is nothing to price it against.
+        if rf.wasp_warps >= rf.baseline_warps {
+            return Err(CliError::usage(format!(
+                "--wasp-warps {} with --baseline-warps {}: WaSP must need fewer warps than \
+                 the baseline (the register file it saves is their difference)",
+                rf.wasp_warps, rf.baseline_warps
+            )));
+        }
         rf.source = format!(
             "given: WaSP with {} warps matches the baseline with {}",
             rf.wasp_warps, rf.baseline_warps

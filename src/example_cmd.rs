@@ -42,6 +42,12 @@ pub struct ExampleArgs {
     /// (launch nothing; the paper's rule) or launch (that priority warp).
     #[arg(long, default_value_t = LaunchRule::Hold, value_name = "RULE")]
     pub launch_rule: LaunchRule,
+
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
+    /// (The example is short and shows none.)
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 impl Default for ExampleArgs {
@@ -54,6 +60,7 @@ impl Default for ExampleArgs {
             mshrs: d.mshrs,
             threshold: d.threshold,
             launch_rule: d.launch_rule,
+            quiet: false,
         }
     }
 }

@@ -64,7 +64,8 @@ pub struct Inputs {
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub set: Vec<String>,
 
-    /// No progress bar, even on a terminal.
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
 }
@@ -146,10 +147,38 @@ pub struct CompareArgs {
     pub jobs: Option<usize>,
 }
 
+/// Read and validate the machine configuration FILE. A file that is not
+/// UTF-8 is named with the line and byte column of its first invalid byte.
+pub fn read_config(path: &Path) -> Result<MachineConfig, CliError> {
+    let source = path.display().to_string();
+    let bytes =
+        std::fs::read(path).map_err(|e| CliError::usage(format!("{source}: cannot read: {e}")))?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| {
+        let (line, column) = line_and_column(&bytes, e.valid_up_to());
+        CliError::usage(format!(
+            "{source}:{line}:{column}: byte 0x{:02x} is not UTF-8 (line {line}, byte column \
+             {column}); a configuration is UTF-8 TOML text",
+            bytes[e.valid_up_to()]
+        ))
+    })?;
+    MachineConfig::parse(text, &source).map_err(|e| CliError::usage(e.to_string()))
+}
+
+/// The 1-based line and byte column of byte `at` of `bytes`.
+fn line_and_column(bytes: &[u8], at: usize) -> (usize, usize) {
+    let before = &bytes[..at];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    (line, at - start + 1)
+}
+
 /// Load the configuration named by the inputs.
 pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
     let cfg = match &inputs.config {
-        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(p) => read_config(p)?,
         None => MachineConfig::paper(),
     };
     let mut cfg = wasp_sim::overrides::apply(&cfg, &inputs.set)
@@ -225,8 +254,7 @@ pub fn gtkw_path(vcd: &Path) -> PathBuf {
 
 /// Run the command.
 pub fn run(args: &RunArgs) -> Result<(), CliError> {
-    let cfg = load_config(&args.inputs)?;
-    let trace = load_trace(&args.inputs, &cfg)?;
+    // The flags are checked before the (possibly long) trace is read.
     let window = match (args.vcd_from, args.vcd_to) {
         (None, None) => None,
         (f, t) => {
@@ -264,6 +292,8 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
             Some((from, to))
         }
     };
+    let cfg = load_config(&args.inputs)?;
+    let trace = load_trace(&args.inputs, &cfg)?;
     let opts = RunOptions {
         policy: args.policy,
         launch_rule: args.inputs.launch_rule,
@@ -297,6 +327,20 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
             let mut sink = VcdSink::new(BufWriter::new(file), "wasp");
             let stats =
                 simulate_traced(&cfg, &trace, &opts, &mut sink, &mut progress).map_err(sim_err)?;
+            if let Some((from, to)) = window.filter(|w| w.0 > stats.cycles) {
+                // The window is known to be empty only once the run has ended.
+                let to = if to == u64::MAX {
+                    String::new()
+                } else {
+                    format!("={to}")
+                };
+                eprintln!(
+                    "wasp: warning: the run ended at cycle {}, before --vcd-from {from}: {} holds \
+                     no cycle of the window {from}..{to}",
+                    stats.cycles,
+                    path.display()
+                );
+            }
             let signals = sink.signals().to_vec();
             let end = match window {
                 Some((_, to)) => to.min(stats.cycles) + 1,
@@ -542,4 +586,19 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
         labels[0]
     );
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_and_columns_count_from_one() {
+        let b = b"ab\ncd\n\nxyz";
+        assert_eq!(line_and_column(b, 0), (1, 1));
+        assert_eq!(line_and_column(b, 1), (1, 2));
+        assert_eq!(line_and_column(b, 3), (2, 1));
+        assert_eq!(line_and_column(b, 6), (3, 1));
+        assert_eq!(line_and_column(b, 9), (4, 3));
+    }
 }

@@ -98,7 +98,8 @@ pub struct RenderArgs {
     /// (fastest) time of each phase (the frame is the same every time).
     #[arg(long, value_name = "N", default_value_t = 1, requires = "timings")]
     pub repeat: u32,
-    /// No progress bar.
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
 }
@@ -119,6 +120,10 @@ pub struct CharacterizeArgs {
     /// Hidden-surface removal by a depth pre-pass (see `wasp render`).
     #[arg(long)]
     pub depth_prepass: bool,
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print.
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 fn parse_game(s: &str) -> Result<Game, CliError> {
@@ -139,6 +144,24 @@ fn scene_err(e: impl std::fmt::Display) -> CliError {
 }
 
 fn find_def(name: &str) -> Result<SceneDef, CliError> {
+    // A name that is a path on disk but no definition file: say what it is,
+    // rather than that no scene has that name.
+    let p = std::path::Path::new(name);
+    if p.is_dir() {
+        return Err(CliError::usage(format!(
+            "{name} is a directory, not a scene name or scene file (see `wasp scenes list`)"
+        )));
+    }
+    let is_toml = p.extension().is_some_and(|x| x == "toml");
+    if p.exists() && !is_toml {
+        return Err(CliError::usage(format!(
+            "{name} is not a scene definition: a scene file is TOML and ends in .toml \
+             (see scenes/*.toml)"
+        )));
+    }
+    if is_toml && !p.exists() {
+        return Err(CliError::usage(format!("{name}: no such scene file")));
+    }
     def::find(&def::scenes_dir(), name).map_err(|e| CliError::usage(e.to_string()))
 }
 
@@ -195,17 +218,24 @@ pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
     }
 }
 
+/// Largest frame side in pixels, as the scene definitions' width and height.
+const MAX_SIDE: u64 = 16384;
+
 fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
     let bad = || CliError::usage(format!("--size `{s}`: expected WxH, e.g. 1960x768"));
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     let (w, h) = (
-        w.trim().parse::<u32>().map_err(|_| bad())?,
-        h.trim().parse::<u32>().map_err(|_| bad())?,
+        w.trim().parse::<u64>().map_err(|_| bad())?,
+        h.trim().parse::<u64>().map_err(|_| bad())?,
     );
-    if w == 0 || h == 0 || w > 16384 || h > 16384 {
-        return Err(bad());
+    for (side, v) in [("width", w), ("height", h)] {
+        if v == 0 || v > MAX_SIDE {
+            return Err(CliError::usage(format!(
+                "--size `{s}`: the {side} is {v} pixels; each side must be in 1..={MAX_SIDE}"
+            )));
+        }
     }
-    Ok((w, h))
+    Ok((w as u32, h as u32))
 }
 
 /// Run `wasp render`.
@@ -223,8 +253,13 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         Some(s) => parse_size(s)?,
         None => (d.width, d.height),
     };
+    // Check the crop against the frame before spending time on rendering.
+    let crop_rect = match &args.crop {
+        Some(c) => Some(parse_crop(c, w, h)?),
+        None => None,
+    };
     let config = match &args.config {
-        Some(p) => MachineConfig::load(p).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
     let mut best = PhaseTimes::default();
@@ -301,8 +336,8 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     }
     let clock = Stopwatch::start();
     if let Some(p) = &args.png {
-        let (img, cw, ch) = match &args.crop {
-            Some(c) => crop(&out.image, w, h, c)?,
+        let (img, cw, ch) = match crop_rect {
+            Some(r) => crop(&out.image, w, r),
             None => (out.image.clone(), w, h),
         };
         render::write_png(p, &img, cw, ch).map_err(scene_err)?;
@@ -446,34 +481,51 @@ fn print_timings(scene: &str, w: u32, h: u32, repeat: u32, t: &PhaseTimes) {
     println!("  (wall-clock seconds; CPU: the whole process, all threads)");
 }
 
-/// The rectangle `spec` (X,Y,W,H) of a `w` x `h` RGBA picture.
-fn crop(img: &[u8], w: u32, h: u32, spec: &str) -> Result<(Vec<u8>, u32, u32), CliError> {
-    let bad = || {
-        CliError::usage(format!(
-            "--crop `{spec}`: expected X,Y,W,H inside the {w}x{h} frame"
-        ))
-    };
+/// A rectangle of the picture: left, top, width, height in pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Rect {
+    x: u32,
+    y: u32,
+    w: u32,
+    h: u32,
+}
+
+/// The rectangle `spec` (X,Y,W,H) of a `w` x `h` frame, checked to lie
+/// inside it.
+fn parse_crop(spec: &str, w: u32, h: u32) -> Result<Rect, CliError> {
+    let bad = |why: String| CliError::usage(format!("--crop `{spec}`: {why}"));
     let v: Vec<u32> = spec
         .split(',')
         .map(|t| t.trim().parse::<u32>())
         .collect::<Result<_, _>>()
-        .map_err(|_| bad())?;
+        .map_err(|_| bad("expected X,Y,W,H: four whole numbers of pixels".into()))?;
     let [x, y, cw, ch] = v[..] else {
-        return Err(bad());
+        return Err(bad(format!(
+            "expected X,Y,W,H: four numbers, not {}",
+            v.len()
+        )));
     };
-    if cw == 0
-        || ch == 0
-        || x.checked_add(cw).is_none_or(|e| e > w)
-        || y.checked_add(ch).is_none_or(|e| e > h)
-    {
-        return Err(bad());
+    if cw == 0 || ch == 0 {
+        return Err(bad("the width and height must be at least 1".into()));
     }
-    let mut out = Vec::with_capacity(cw as usize * ch as usize * 4);
-    for row in y..y + ch {
-        let s = (row as usize * w as usize + x as usize) * 4;
-        out.extend_from_slice(&img[s..s + cw as usize * 4]);
+    if x.checked_add(cw).is_none_or(|e| e > w) || y.checked_add(ch).is_none_or(|e| e > h) {
+        return Err(bad(format!(
+            "pixels {x}..{} x {y}..{} reach outside the {w}x{h} frame",
+            x as u64 + cw as u64,
+            y as u64 + ch as u64
+        )));
     }
-    Ok((out, cw, ch))
+    Ok(Rect { x, y, w: cw, h: ch })
+}
+
+/// The rectangle `r` of an RGBA picture `w` pixels wide.
+fn crop(img: &[u8], w: u32, r: Rect) -> (Vec<u8>, u32, u32) {
+    let mut out = Vec::with_capacity(r.w as usize * r.h as usize * 4);
+    for row in r.y..r.y + r.h {
+        let s = (row as usize * w as usize + r.x as usize) * 4;
+        out.extend_from_slice(&img[s..s + r.w as usize * 4]);
+    }
+    (out, r.w, r.h)
 }
 
 /// Run `wasp characterize`.
@@ -498,7 +550,15 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
     };
     let mut rows: Vec<Characterization> = Vec::new();
     let mut failed = Vec::new();
-    for d in &defs {
+    for (i, d) in defs.iter().enumerate() {
+        if !args.quiet {
+            eprintln!(
+                "wasp: characterising {} ({} of {})",
+                d.name,
+                i + 1,
+                defs.len()
+            );
+        }
         match characterize::characterize_def(d, args.depth_prepass) {
             Ok(c) => rows.push(c),
             Err(e) => {
@@ -534,4 +594,47 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crops_are_checked_against_the_frame() {
+        assert_eq!(
+            parse_crop("1, 2,3,4", 4, 6).unwrap(),
+            Rect {
+                x: 1,
+                y: 2,
+                w: 3,
+                h: 4
+            }
+        );
+        for bad in ["1,2,4,4", "0,0,0,1", "1,2,3", "x,0,1,1", "0,4294967295,1,1"] {
+            let e = parse_crop(bad, 4, 6).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("--crop `{bad}`: ")), "{e}");
+        }
+        // A 2x2 RGBA picture: its right column.
+        let img: Vec<u8> = (0..16).collect();
+        let r = Rect {
+            x: 1,
+            y: 0,
+            w: 1,
+            h: 2,
+        };
+        assert_eq!(crop(&img, 2, r), (vec![4, 5, 6, 7, 12, 13, 14, 15], 1, 2));
+    }
+
+    #[test]
+    fn sizes_name_the_side_out_of_range() {
+        assert_eq!(parse_size("16384x1").unwrap(), (16384, 1));
+        let e = parse_size("1x65536").unwrap_err().to_string();
+        assert!(
+            e.contains("the height is 65536 pixels") && e.contains("1..=16384"),
+            "{e}"
+        );
+        let e = parse_size("99999999999x1").unwrap_err().to_string();
+        assert!(e.contains("the width is 99999999999"), "{e}");
+    }
 }

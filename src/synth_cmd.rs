@@ -39,6 +39,10 @@ pub struct SynthArgs {
     /// searching the texel scale; the achieved value is reported.
     #[arg(long)]
     pub reuse: Option<f64>,
+    /// No progress output on stderr (progress bars, notes of what is being
+    /// done); results, warnings and errors still print. (Synth shows none.)
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 fn parse_frame(s: &str) -> Result<(u32, u32), String> {
