@@ -381,17 +381,22 @@ impl MemConfig {
         Ok(())
     }
 
-    /// An estimate, from above, of the host memory the memory system
-    /// allocates: per cache 16 bytes a line (tag and recency links) and 4
-    /// bytes an MSHR target, per core three completion queues of the
-    /// scheduler-level cache's `ports x hit_latency + mshrs x (1 +
-    /// max_merged)` entries of at most 8 bytes. Valid after the per-cache
+    /// An estimate of the host memory the memory system allocates: per
+    /// cache 16 bytes a line (tag and recency links), 12 a set (its recency
+    /// order), 64 an MSHR entry, 4 an MSHR target and 4 KiB of fixed
+    /// filters; per core three completion queues of the scheduler-level
+    /// cache's `ports x hit_latency + mshrs x (1 + max_merged)` entries
+    /// (rounded up to a power of two) of 8 bytes. Valid after the per-cache
     /// checks (bounded fields, so no overflow).
     pub fn host_bytes(&self) -> u64 {
-        let cache = |c: &CacheConfig| 16 * c.lines() + 4 * c.target_slots();
+        let cache = |c: &CacheConfig| {
+            let sets = c.lines() / u64::from(c.ways.max(1));
+            16 * c.lines() + 12 * sets + 64 * u64::from(c.mshrs) + 4 * c.target_slots() + 4096
+        };
         let first = self.scheduler_level();
-        let completing =
-            u64::from(first.ports) * u64::from(first.hit_latency) + first.target_slots();
+        let completing = (u64::from(first.ports) * u64::from(first.hit_latency)
+            + first.target_slots())
+        .next_power_of_two();
         let per_core = self.l0.as_ref().map_or(0, cache) + cache(&self.l1) + 3 * 8 * completing;
         u64::from(self.cores) * per_core + cache(&self.l2)
     }
