@@ -398,7 +398,9 @@ impl MemConfig {
             + first.target_slots())
         .next_power_of_two();
         let per_core = self.l0.as_ref().map_or(0, cache) + cache(&self.l1) + 3 * 8 * completing;
-        u64::from(self.cores) * per_core + cache(&self.l2)
+        u64::from(self.cores)
+            .saturating_mul(per_core)
+            .saturating_add(cache(&self.l2))
     }
 }
 
@@ -625,6 +627,9 @@ mod tests {
                 c.l2.mshrs = 4096;
                 c.l2.max_merged = 1024
             }),
+            // The memory system alone does not bound the core count (the
+            // machine config does: 1..=64), but its budget does.
+            ("gpu.cores = 4294967295", |c| c.cores = u32::MAX),
             ("budget of 1024 MiB", |c| {
                 c.cores = 64;
                 c.l1.size_bytes = 16 << 20;
