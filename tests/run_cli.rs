@@ -498,6 +498,36 @@ fn set_overrides_a_field_and_names_a_bad_one() {
 }
 
 #[test]
+fn an_absurd_bank_count_fails_fast_naming_the_field() {
+    // 2^32 - 1 banks once made the process try to allocate tens of GB and
+    // abort; the bound refuses it before anything is built.
+    let t = std::time::Instant::now();
+    let o = wasp(&["run", "-q", "--set", "dram.banks=4294967295"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("dram.banks = 4294967295") && e.contains("1..=64"),
+        "{e}"
+    );
+    assert!(t.elapsed().as_secs() < 30, "took {:?}", t.elapsed());
+    // The same bound from a config file, and for an enormous latency.
+    let d = dir("bounds");
+    let p = d.join("huge.toml");
+    let text =
+        wasp_sim::config::PAPER_TOML.replacen("hit_latency = 18", "hit_latency = 4000000000", 1);
+    std::fs::write(&p, text).unwrap();
+    let o = wasp(&["run", "-q", "--config", p.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("huge.toml")
+            && e.contains("l2.hit_latency = 4000000000")
+            && e.contains("1..=10000"),
+        "{e}"
+    );
+}
+
+#[test]
 fn the_launch_rule_is_chosen_reported_and_counted() {
     let d = dir("launch-rule");
     let trace = synth_trace(&d, 3);

@@ -8,6 +8,7 @@
 //! every value the model or the scheduler's registers cannot hold, naming
 //! the field and the limit.
 
+use crate::mem::config::check_range;
 use crate::mem::{BlockedOn, CacheConfig, DramConfig, MemConfig};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -292,7 +293,11 @@ impl fmt::Display for ConfigError {
 
 impl std::error::Error for ConfigError {}
 
-/// Limits the model enforces.
+/// Limits the model enforces: every numeric field of the machine
+/// configuration has an upper bound that makes sense for the mobile GPU it
+/// describes and keeps memory and run time bounded (docs/machine.md,
+/// "Configuration bounds", lists them all; the memory system's are in
+/// [`crate::mem::config::bounds`]).
 pub mod limits {
     /// Largest pipeline width.
     pub const MAX_WIDTH: u32 = 16;
@@ -300,12 +305,27 @@ pub mod limits {
     pub const MAX_WARPS: u32 = 128;
     /// Largest core count.
     pub const MAX_CORES: u32 = 64;
+    /// Highest clock frequency, MHz (mobile GPUs run below 1.5 GHz).
+    pub const MAX_FREQUENCY_MHZ: u32 = 10_000;
     /// Largest input queue.
     pub const MAX_QUEUE: u32 = 4096;
     /// Largest latency of any fixed pipeline stage.
     pub const MAX_LATENCY: u32 = 10_000;
     /// Most filter cycles per quad-sample.
     pub const MAX_FILTER_CYCLES: u32 = 1_000;
+    /// Most quads rasterized per cycle by the GPU.
+    pub const MAX_QUADS_PER_CYCLE: u32 = 256;
+    /// Largest LDST queue.
+    pub const MAX_LDST_QUEUE: u32 = 1024;
+    /// Most 32-bit registers per thread (GPUs address at most 255).
+    pub const MAX_REGISTERS_PER_THREAD: u32 = 1024;
+    /// Longest watchdog: a run stopped after 10^9 cycles without progress
+    /// has spent minutes of host time spinning.
+    pub const MAX_WATCHDOG_CYCLES: u64 = 1_000_000_000;
+    /// Largest energy of one event, pJ: 1 uJ (a DRAM access is a few nJ).
+    pub const MAX_EVENT_PJ: f64 = 1_000_000.0;
+    /// Largest static power, mW: 100 W.
+    pub const MAX_STATIC_MW: f64 = 100_000.0;
 }
 
 impl MachineConfig {
@@ -408,13 +428,7 @@ impl MachineConfig {
 
     /// Every check, each error naming the field and the limit.
     pub fn validate(&self) -> Result<(), String> {
-        let range = |field: &str, v: u64, lo: u64, hi: u64, why: &str| {
-            if v < lo || v > hi {
-                Err(format!("{field} = {v}: must be in {lo}..={hi}{why}"))
-            } else {
-                Ok(())
-            }
-        };
+        let range = check_range;
         range(
             "gpu.cores",
             self.gpu.cores as u64,
@@ -426,7 +440,7 @@ impl MachineConfig {
             "gpu.frequency_mhz",
             self.gpu.frequency_mhz as u64,
             1,
-            100_000,
+            limits::MAX_FREQUENCY_MHZ as u64,
             "",
         )?;
         let ts = self.gpu.tile_size;
@@ -460,7 +474,7 @@ impl MachineConfig {
             "raster.quads_per_cycle",
             self.raster.quads_per_cycle as u64,
             1,
-            256,
+            limits::MAX_QUADS_PER_CYCLE as u64,
             "",
         )?;
         if self.raster.dispatch == Dispatch::PerCoreTile
@@ -500,20 +514,26 @@ impl MachineConfig {
             limits::MAX_FILTER_CYCLES as u64,
             " (0: no filter rate limit)",
         )?;
-        range("core.ldst_queue", self.core.ldst_queue as u64, 1, 1024, "")?;
+        range(
+            "core.ldst_queue",
+            self.core.ldst_queue as u64,
+            1,
+            limits::MAX_LDST_QUEUE as u64,
+            "",
+        )?;
         range(
             "core.registers_per_thread",
             self.core.registers_per_thread as u64,
             1,
-            1024,
+            limits::MAX_REGISTERS_PER_THREAD as u64,
             "",
         )?;
         range(
             "sim.watchdog_cycles",
             self.sim.watchdog_cycles,
             1,
-            u64::MAX,
-            "",
+            limits::MAX_WATCHDOG_CYCLES,
+            " cycles",
         )?;
 
         self.mem_config().check().map_err(|e| e.to_string())?;
@@ -558,9 +578,14 @@ impl MachineConfig {
             ("energy.core_static_mw", e.core_static_mw),
             ("energy.uncore_static_mw", e.uncore_static_mw),
         ] {
-            if !v.is_finite() || v < 0.0 {
+            let hi = if field.ends_with("_mw") {
+                limits::MAX_STATIC_MW
+            } else {
+                limits::MAX_EVENT_PJ
+            };
+            if !v.is_finite() || !(0.0..=hi).contains(&v) {
                 return Err(format!(
-                    "{field} = {v}: must be a finite, non-negative number"
+                    "{field} = {v}: must be a finite number in 0..={hi}"
                 ));
             }
         }
@@ -842,6 +867,260 @@ mod tests {
             .parse::<BlockedOn>()
             .unwrap_err()
             .contains("first-level"));
+    }
+
+    /// Every numeric field of the machine configuration with its bound: the
+    /// dotted path, the largest accepted value, the smallest refused one
+    /// above it, the range the error must name, and the other fields that
+    /// must change for the bound itself to pass the rest of the validation.
+    /// Not here: `sim.seed` (every u64 is a seed), the numbers inside the
+    /// `scheduler.policy`, `scheduler.subset` and `raster.core_map` strings
+    /// (checked by their parsers, see `values_out_of_range_name_the_field`)
+    /// and the `line_bytes` fields (64 exactly).
+    const BOUNDS: &[(&str, &str, &str, &str, &[&str])] = &[
+        ("gpu.cores", "64", "65", "1..=64", &[]),
+        ("gpu.frequency_mhz", "10000", "10001", "1..=10000", &[]),
+        // A power of two: the next one above the bound is 128.
+        ("gpu.tile_size", "64", "128", "4..=64", &[]),
+        ("raster.quads_per_cycle", "256", "257", "1..=256", &[]),
+        ("core.pipeline_width", "16", "17", "1..=16", &[]),
+        ("core.max_warps", "128", "129", "1..=128", &[]),
+        ("core.input_queue", "4096", "4097", "1..=4096", &[]),
+        ("core.alu_latency", "10000", "10001", "1..=10000", &[]),
+        ("core.texture_latency", "10000", "10001", "0..=10000", &[]),
+        (
+            "core.filter_cycles_bilinear",
+            "1000",
+            "1001",
+            "0..=1000",
+            &[],
+        ),
+        (
+            "core.filter_cycles_trilinear",
+            "1000",
+            "1001",
+            "0..=1000",
+            &[],
+        ),
+        ("core.ldst_queue", "1024", "1025", "1..=1024", &[]),
+        ("core.registers_per_thread", "1024", "1025", "1..=1024", &[]),
+        ("l0.size_bytes", "1048576", "1048577", "64..=1048576", &[]),
+        // 64 ways need at least 64 lines: a 4 KiB L0.
+        ("l0.ways", "64", "65", "1..=64", &["l0.size_bytes=4096"]),
+        ("l0.hit_latency", "10000", "10001", "1..=10000", &[]),
+        // More than 31 MSHRs at the scheduler's level only for a policy
+        // that does not read the 5-bit free-MSHR register.
+        (
+            "l0.mshrs",
+            "4096",
+            "4097",
+            "1..=4096",
+            &["scheduler.policy=fullpriority"],
+        ),
+        ("l0.max_merged", "1024", "1025", "0..=1024", &[]),
+        ("l0.ports", "64", "65", "1..=64", &[]),
+        (
+            "l1.size_bytes",
+            "16777216",
+            "16777217",
+            "64..=16777216",
+            &[],
+        ),
+        ("l1.ways", "64", "65", "1..=64", &[]),
+        ("l1.hit_latency", "10000", "10001", "1..=10000", &[]),
+        ("l1.mshrs", "4096", "4097", "1..=4096", &[]),
+        ("l1.max_merged", "1024", "1025", "0..=1024", &[]),
+        ("l1.ports", "64", "65", "1..=64", &[]),
+        (
+            "l2.size_bytes",
+            "268435456",
+            "268435457",
+            "64..=268435456",
+            &[],
+        ),
+        ("l2.ways", "64", "65", "1..=64", &[]),
+        ("l2.hit_latency", "10000", "10001", "1..=10000", &[]),
+        ("l2.mshrs", "4096", "4097", "1..=4096", &[]),
+        ("l2.max_merged", "1024", "1025", "0..=1024", &[]),
+        ("l2.ports", "64", "65", "1..=64", &[]),
+        ("dram.channels", "16", "17", "1..=16", &[]),
+        ("dram.banks", "64", "65", "1..=64", &[]),
+        ("dram.row_bytes", "65536", "65537", "64..=65536", &[]),
+        ("dram.row_hit_latency", "10000", "10001", "1..=10000", &[]),
+        ("dram.row_miss_latency", "10000", "10001", "1..=10000", &[]),
+        ("dram.requests_per_cycle", "64", "65", "1..=64", &[]),
+        ("dram.t_rcd", "1000", "1001", "1..=1000", &[]),
+        ("dram.t_rp", "1000", "1001", "1..=1000", &[]),
+        ("dram.t_ras", "1000", "1001", "0..=1000", &[]),
+        ("dram.t_cl", "1000", "1001", "1..=1000", &[]),
+        ("dram.t_burst", "1000", "1001", "1..=1000", &[]),
+        (
+            "dram.controller_latency",
+            "10000",
+            "10001",
+            "0..=10000",
+            &[],
+        ),
+        ("dram.scheduler_window", "256", "257", "1..=256", &[]),
+        (
+            "energy.alu_instruction_pj",
+            "1000000.0",
+            "1000000.5",
+            "0..=1000000",
+            &[],
+        ),
+        (
+            "energy.texture_instruction_pj",
+            "1000000.0",
+            "1000000.5",
+            "0..=1000000",
+            &[],
+        ),
+        (
+            "energy.l0_access_pj",
+            "1000000.0",
+            "1000000.5",
+            "0..=1000000",
+            &[],
+        ),
+        (
+            "energy.l1_access_pj",
+            "1000000.0",
+            "1000000.5",
+            "0..=1000000",
+            &[],
+        ),
+        (
+            "energy.l2_access_pj",
+            "1000000.0",
+            "1000000.5",
+            "0..=1000000",
+            &[],
+        ),
+        (
+            "energy.dram_row_hit_pj",
+            "1000000.0",
+            "1000000.5",
+            "0..=1000000",
+            &[],
+        ),
+        (
+            "energy.dram_row_miss_pj",
+            "1000000.0",
+            "1000000.5",
+            "0..=1000000",
+            &[],
+        ),
+        (
+            "energy.core_static_mw",
+            "100000.0",
+            "100000.5",
+            "0..=100000",
+            &[],
+        ),
+        (
+            "energy.uncore_static_mw",
+            "100000.0",
+            "100000.5",
+            "0..=100000",
+            &[],
+        ),
+        (
+            "sim.watchdog_cycles",
+            "1000000000",
+            "1000000001",
+            "1..=1000000000",
+            &[],
+        ),
+    ];
+
+    fn set(extra: &[&str], field: &str, value: &str) -> Result<MachineConfig, ConfigError> {
+        let mut sets: Vec<String> = extra.iter().map(|s| s.to_string()).collect();
+        sets.push(format!("{field}={value}"));
+        crate::overrides::apply(&MachineConfig::paper(), &sets)
+    }
+
+    #[test]
+    fn every_numeric_field_is_in_the_bounds_table() {
+        // A field added to the config without a bound fails here.
+        let root = toml::Value::try_from(MachineConfig::paper()).unwrap();
+        let mut numeric = Vec::new();
+        for (section, table) in root.as_table().unwrap() {
+            let Some(table) = table.as_table() else {
+                continue;
+            };
+            for (key, v) in table {
+                if v.is_integer() || v.is_float() {
+                    numeric.push(format!("{section}.{key}"));
+                }
+            }
+        }
+        for path in &numeric {
+            let exempt = path == "sim.seed" || path.ends_with(".line_bytes");
+            assert!(
+                exempt || BOUNDS.iter().any(|b| b.0 == path),
+                "{path} has no bound in the table"
+            );
+        }
+        assert_eq!(numeric.len(), BOUNDS.len() + 1 + 3, "{numeric:?}");
+    }
+
+    #[test]
+    fn each_field_just_above_its_bound_is_refused_naming_field_and_range() {
+        for (field, _, above, range, extra) in BOUNDS {
+            let e = set(extra, field, above).expect_err(field);
+            assert!(
+                e.message.contains(&format!("{field} = {above}")),
+                "{field}={above}: {e}"
+            );
+            assert!(e.message.contains(range), "{field}={above}: {e}");
+            // The same text from a file.
+            let mut doc = toml::Value::try_from(MachineConfig::paper()).unwrap();
+            for kv in extra
+                .iter()
+                .map(|s| s.to_string())
+                .chain([format!("{field}={above}")])
+            {
+                let (path, v) = kv.split_once('=').unwrap();
+                let (sec, key) = path.split_once('.').unwrap();
+                let v: toml::Value = toml::from_str::<toml::Table>(&format!("v = {v}"))
+                    .map(|t| t["v"].clone())
+                    .unwrap_or(toml::Value::String(v.into()));
+                doc[sec][key] = v;
+            }
+            let e = MachineConfig::parse(&toml::to_string(&doc).unwrap(), "bounds.toml")
+                .expect_err(field);
+            assert!(e.message.contains(range), "{field}={above} in a file: {e}");
+        }
+    }
+
+    #[test]
+    fn each_field_at_its_bound_is_accepted() {
+        for (field, at, _, _, extra) in BOUNDS {
+            let c = set(extra, field, at).unwrap_or_else(|e| panic!("{field}={at}: {e}"));
+            let doc = toml::Value::try_from(&c).unwrap();
+            let (sec, key) = field.split_once('.').unwrap();
+            assert_eq!(doc[sec][key].to_string(), *at, "{field}");
+        }
+    }
+
+    #[test]
+    fn the_memory_systems_host_memory_is_budgeted() {
+        // Each at its bound is accepted (above); together these would
+        // allocate more than 1 GiB: 64 cores x (640 000 L0 completion
+        // entries + a 16 MiB L1's 262 144 lines).
+        let e = set(
+            &["gpu.cores=64", "l0.ports=64", "l0.hit_latency=10000"],
+            "l1.size_bytes",
+            "16777216",
+        )
+        .unwrap_err();
+        assert!(
+            e.message.contains("gpu.cores = 64") && e.message.contains("budget of 1024 MiB"),
+            "{e}"
+        );
+        let p = MachineConfig::paper().mem_config();
+        assert!(p.host_bytes() < 1 << 20, "{}", p.host_bytes());
     }
 
     #[test]

@@ -18,8 +18,68 @@ pub const FREE_MSHR_REGISTER_MAX: u32 = 31;
 /// Upper bound on `mshrs * (1 + max_merged)` for one cache, so that an absurd
 /// configuration is refused instead of allocating gigabytes.
 const MAX_TARGET_SLOTS: u64 = 1 << 22;
-/// Upper bound on the number of lines of one cache (a 1 GiB cache), same reason.
-const MAX_LINES: u64 = 1 << 24;
+
+/// Upper bounds of the numeric fields of the memory configuration: what
+/// makes sense for a mobile GPU's memory system, generous enough for
+/// sweeps, small enough that memory and run time stay bounded (the table in
+/// docs/machine.md, "Configuration bounds", lists them with the rest).
+pub mod bounds {
+    /// Per-core L0 capacity (the paper's is 0.5 KiB): 1 MiB.
+    pub const L0_MAX_BYTES: u32 = 1 << 20;
+    /// Per-core L1 capacity (the paper's is 64 KiB): 16 MiB.
+    pub const L1_MAX_BYTES: u32 = 16 << 20;
+    /// Shared L2 capacity (the paper's is 1 MiB): 256 MiB.
+    pub const L2_MAX_BYTES: u32 = 256 << 20;
+    /// Associativity (a set is searched way by way).
+    pub const MAX_WAYS: u32 = 64;
+    /// Cache hit latency, DRAM fixed-model latencies and other stage
+    /// latencies, in cycles.
+    pub const MAX_LATENCY: u32 = 10_000;
+    /// MSHRs of one cache.
+    pub const MAX_MSHRS: u32 = 4096;
+    /// Secondary misses merged into one MSHR entry.
+    pub const MAX_MERGED: u32 = 1024;
+    /// Ports of one cache.
+    pub const MAX_PORTS: u32 = 64;
+    /// DRAM channels.
+    pub const MAX_CHANNELS: u32 = 16;
+    /// DRAM banks (per channel in the banked model; LPDDR4 has 8, DDR5 32).
+    pub const MAX_BANKS: u32 = 64;
+    /// DRAM row (page) size in bytes (LPDDR4 x16: 2 KiB): 64 KiB.
+    pub const MAX_ROW_BYTES: u32 = 64 << 10;
+    /// Fixed-model DRAM requests accepted per cycle.
+    pub const MAX_REQUESTS_PER_CYCLE: u32 = 64;
+    /// Banked-model timing fields (`t_*`), GPU cycles.
+    pub const MAX_DRAM_TIMING: u32 = 1000;
+    /// Banked-model `controller_latency`, GPU cycles.
+    pub const MAX_CONTROLLER_LATENCY: u32 = 10_000;
+    /// Banked-model `scheduler_window`.
+    pub const MAX_SCHEDULER_WINDOW: u32 = 256;
+    /// Host memory the memory system may allocate for its cache arrays,
+    /// MSHR target lists and completion queues, over all cores: 1 GiB
+    /// (estimated by [`MemConfig::host_bytes`](super::MemConfig::host_bytes)).
+    pub const HOST_BYTES_BUDGET: u64 = 1 << 30;
+    /// The largest `size_bytes` of the cache level `name` (`l0`, `l1`,
+    /// otherwise the L2's).
+    pub fn max_size_bytes(name: &str) -> u32 {
+        match name {
+            "l0" => L0_MAX_BYTES,
+            "l1" => L1_MAX_BYTES,
+            _ => L2_MAX_BYTES,
+        }
+    }
+}
+use bounds::*;
+
+/// `field = v: must be in lo..=hi` (with `why` appended) when `v` is out of
+/// range: the style of every bound check of the machine configuration.
+pub fn check_range(field: &str, v: u64, lo: u64, hi: u64, why: &str) -> Result<(), String> {
+    if (lo..=hi).contains(&v) {
+        Ok(())
+    } else {
+        Err(format!("{field} = {v}: must be in {lo}..={hi}{why}"))
+    }
+}
 
 /// Which miss marks a warp *blocked*, the paper's long-latency state
 /// ("warps are marked as blocked when they encounter a long-latency miss",
@@ -178,15 +238,6 @@ pub struct DramConfig {
     pub scheduler_window: u32,
 }
 
-/// Bounds of the banked model's timing fields (GPU cycles).
-const MAX_DRAM_TIMING: u32 = 1000;
-/// Bound of `controller_latency` (GPU cycles).
-const MAX_CONTROLLER_LATENCY: u32 = 10_000;
-/// Bound of `channels`.
-const MAX_CHANNELS: u32 = 16;
-/// Bound of `scheduler_window`.
-const MAX_SCHEDULER_WINDOW: u32 = 256;
-
 impl Default for DramConfig {
     /// The shipped configuration's DRAM values (`configs/paper.toml`: four
     /// x16 LPDDR4-3200 channels with their timings at 600 MHz, and the
@@ -314,7 +365,42 @@ impl MemConfig {
         }
         self.l1.check("l1")?;
         self.l2.check("l2")?;
-        self.dram.check()
+        self.dram.check()?;
+        let bytes = self.host_bytes();
+        if bytes > HOST_BYTES_BUDGET {
+            return Err(MemConfigError(format!(
+                "the memory system of gpu.cores = {} would allocate about {} MiB for its cache arrays \
+                 (l0/l1/l2.size_bytes), MSHR targets (mshrs x (1 + max_merged)) and completion queues \
+                 (ports x hit_latency of the {} cache), more than the budget of {} MiB",
+                self.cores,
+                bytes >> 20,
+                if self.l0.is_some() { "l0" } else { "l1" },
+                HOST_BYTES_BUDGET >> 20
+            )));
+        }
+        Ok(())
+    }
+
+    /// An estimate of the host memory the memory system allocates: per
+    /// cache 16 bytes a line (tag and recency links), 12 a set (its recency
+    /// order), 64 an MSHR entry, 4 an MSHR target and 4 KiB of fixed
+    /// filters; per core three completion queues of the scheduler-level
+    /// cache's `ports x hit_latency + mshrs x (1 + max_merged)` entries
+    /// (rounded up to a power of two) of 8 bytes. Valid after the per-cache
+    /// checks (bounded fields, so no overflow).
+    pub fn host_bytes(&self) -> u64 {
+        let cache = |c: &CacheConfig| {
+            let sets = c.lines() / u64::from(c.ways.max(1));
+            16 * c.lines() + 12 * sets + 64 * u64::from(c.mshrs) + 4 * c.target_slots() + 4096
+        };
+        let first = self.scheduler_level();
+        let completing = (u64::from(first.ports) * u64::from(first.hit_latency)
+            + first.target_slots())
+        .next_power_of_two();
+        let per_core = self.l0.as_ref().map_or(0, cache) + cache(&self.l1) + 3 * 8 * completing;
+        u64::from(self.cores)
+            .saturating_mul(per_core)
+            .saturating_add(cache(&self.l2))
     }
 }
 
@@ -324,21 +410,39 @@ impl CacheConfig {
         self.size_bytes / self.line_bytes / self.ways
     }
 
-    /// Structural checks; `name` prefixes the error message.
+    /// Structural checks and bounds; `name` (`l0`, `l1`, `l2`) prefixes the
+    /// field in the error message (`l1.ways = 0: must be in 1..=64`).
     pub fn check(&self, name: &str) -> Result<(), MemConfigError> {
         let err = |msg: String| Err(MemConfigError(format!("{name}: {msg}")));
+        let bound = |field: &str, v: u32, lo: u32, hi: u32, why: &str| {
+            check_range(
+                &format!("{name}.{field}"),
+                v.into(),
+                lo.into(),
+                hi.into(),
+                why,
+            )
+            .map_err(MemConfigError)
+        };
         if self.line_bytes != BLOCK_BYTES {
             return err(format!(
                 "line_bytes is {} but the memory system uses {BLOCK_BYTES}-byte blocks",
                 self.line_bytes
             ));
         }
-        if self.size_bytes == 0 {
-            return err("size_bytes must not be zero".into());
-        }
-        if self.ways == 0 {
-            return err("ways must not be zero".into());
-        }
+        let max_size = max_size_bytes(name);
+        bound(
+            "size_bytes",
+            self.size_bytes,
+            BLOCK_BYTES,
+            max_size,
+            &format!(" ({} MiB at most)", max_size as f64 / (1u32 << 20) as f64),
+        )?;
+        bound("ways", self.ways, 1, MAX_WAYS, "")?;
+        bound("hit_latency", self.hit_latency, 1, MAX_LATENCY, " cycles")?;
+        bound("mshrs", self.mshrs, 1, MAX_MSHRS, "")?;
+        bound("max_merged", self.max_merged, 0, MAX_MERGED, "")?;
+        bound("ports", self.ports, 1, MAX_PORTS, "")?;
         if !self.size_bytes.is_multiple_of(self.line_bytes) {
             return err(format!(
                 "size_bytes {} is not a multiple of line_bytes {}",
@@ -346,11 +450,6 @@ impl CacheConfig {
             ));
         }
         let lines = self.size_bytes / self.line_bytes;
-        if u64::from(lines) > MAX_LINES {
-            return err(format!(
-                "{lines} lines is more than the supported {MAX_LINES}"
-            ));
-        }
         if self.ways > lines {
             return err(format!("ways {} exceeds the {lines} lines", self.ways));
         }
@@ -364,22 +463,23 @@ impl CacheConfig {
         if !sets.is_power_of_two() {
             return err(format!("set count {sets} is not a power of two"));
         }
-        if self.hit_latency == 0 {
-            return err("hit_latency must be at least 1".into());
-        }
-        if self.mshrs == 0 {
-            return err("mshrs must be at least 1".into());
-        }
-        if self.ports == 0 {
-            return err("ports must be at least 1".into());
-        }
-        let slots = u64::from(self.mshrs) * (1 + u64::from(self.max_merged));
+        let slots = self.target_slots();
         if slots > MAX_TARGET_SLOTS {
             return err(format!(
                 "mshrs x (1 + max_merged) = {slots} is more than the supported {MAX_TARGET_SLOTS}"
             ));
         }
         Ok(())
+    }
+
+    /// Lines of the cache.
+    fn lines(&self) -> u64 {
+        u64::from(self.size_bytes / self.line_bytes.max(1))
+    }
+
+    /// Targets the MSHR file holds: `mshrs x (1 + max_merged)`.
+    fn target_slots(&self) -> u64 {
+        u64::from(self.mshrs) * (1 + u64::from(self.max_merged))
     }
 }
 
@@ -400,28 +500,28 @@ impl DramConfig {
         }
     }
 
-    /// Structural checks.
+    /// Structural checks and bounds, each error naming the field
+    /// (`dram.banks = 0: must be in 1..=64`).
     pub fn check(&self) -> Result<(), MemConfigError> {
-        let err = |msg: String| Err(MemConfigError(format!("dram: {msg}")));
-        if self.banks == 0 {
-            return err("banks must be at least 1".into());
-        }
-        if self.row_bytes == 0 || !self.row_bytes.is_multiple_of(BLOCK_BYTES) {
-            return err(format!(
-                "row_bytes {} must be a non-zero multiple of {BLOCK_BYTES}",
-                self.row_bytes
-            ));
-        }
         if self.row_hit_latency == 0 || self.row_miss_latency == 0 {
-            return err("row_hit_latency and row_miss_latency must be at least 1 \
+            return Err(MemConfigError(
+                "dram: row_hit_latency and row_miss_latency must be at least 1 \
                  (use ideal_memory for a zero-latency memory)"
-                .into());
-        }
-        if self.requests_per_cycle == 0 {
-            return err("requests_per_cycle must be at least 1".into());
+                    .into(),
+            ));
         }
         let bounded = [
             ("channels", self.channels, 1, MAX_CHANNELS),
+            ("banks", self.banks, 1, MAX_BANKS),
+            ("row_bytes", self.row_bytes, BLOCK_BYTES, MAX_ROW_BYTES),
+            ("row_hit_latency", self.row_hit_latency, 1, MAX_LATENCY),
+            ("row_miss_latency", self.row_miss_latency, 1, MAX_LATENCY),
+            (
+                "requests_per_cycle",
+                self.requests_per_cycle,
+                1,
+                MAX_REQUESTS_PER_CYCLE,
+            ),
             ("t_rcd", self.t_rcd, 1, MAX_DRAM_TIMING),
             ("t_rp", self.t_rp, 1, MAX_DRAM_TIMING),
             ("t_ras", self.t_ras, 0, MAX_DRAM_TIMING),
@@ -441,9 +541,14 @@ impl DramConfig {
             ),
         ];
         for (field, v, lo, hi) in bounded {
-            if !(lo..=hi).contains(&v) {
-                return err(format!("{field} = {v}: must be in {lo}..={hi}"));
-            }
+            check_range(&format!("dram.{field}"), v.into(), lo.into(), hi.into(), "")
+                .map_err(MemConfigError)?;
+        }
+        if !self.row_bytes.is_multiple_of(BLOCK_BYTES) {
+            return Err(MemConfigError(format!(
+                "dram.row_bytes = {}: must be a multiple of {BLOCK_BYTES}",
+                self.row_bytes
+            )));
         }
         Ok(())
     }
@@ -503,19 +608,50 @@ mod tests {
         type Mutate = fn(&mut MemConfig);
         let cases: Vec<(&str, Mutate)> = vec![
             ("cores", |c| c.cores = 0),
-            ("l1: size_bytes", |c| c.l1.size_bytes = 0),
-            ("l1: ways must", |c| c.l1.ways = 0),
+            ("l1.size_bytes = 0: must be in 64..=16777216", |c| {
+                c.l1.size_bytes = 0
+            }),
+            ("l1.ways = 0: must be in 1..=64", |c| c.l1.ways = 0),
             ("l2: line_bytes", |c| c.l2.line_bytes = 128),
             ("power of two", |c| c.l1.size_bytes = 3 * 4 * 64),
             ("exceeds", |c| c.l0.as_mut().unwrap().ways = 16),
-            ("l0: mshrs", |c| c.l0.as_mut().unwrap().mshrs = 0),
+            ("l0.mshrs = 0", |c| c.l0.as_mut().unwrap().mshrs = 0),
             ("ports", |c| c.l2.ports = 0),
             ("hit_latency", |c| c.l1.hit_latency = 0),
             ("not a multiple", |c| c.l1.size_bytes = 65536 + 32),
             ("divide", |c| c.l1.ways = 3),
-            ("max_merged", |c| c.l2.max_merged = u32::MAX),
-            ("banks", |c| c.dram.banks = 0),
-            ("row_bytes", |c| c.dram.row_bytes = 100),
+            ("l2.max_merged = 4294967295: must be in 0..=1024", |c| {
+                c.l2.max_merged = u32::MAX
+            }),
+            ("mshrs x (1 + max_merged) = 4198400", |c| {
+                c.l2.mshrs = 4096;
+                c.l2.max_merged = 1024
+            }),
+            // The memory system alone does not bound the core count (the
+            // machine config does: 1..=64), but its budget does.
+            ("gpu.cores = 4294967295", |c| c.cores = u32::MAX),
+            ("budget of 1024 MiB", |c| {
+                c.cores = 64;
+                c.l1.size_bytes = 16 << 20;
+                c.l1.hit_latency = 10_000;
+                c.l1.ports = 64;
+                c.l0 = None
+            }),
+            ("dram.banks = 0: must be in 1..=64", |c| c.dram.banks = 0),
+            ("dram.banks = 4294967295: must be in 1..=64", |c| {
+                c.dram.banks = u32::MAX
+            }),
+            (
+                "l2.size_bytes = 536870912: must be in 64..=268435456",
+                |c| c.l2.size_bytes = 512 << 20,
+            ),
+            ("l2.ways = 128", |c| c.l2.ways = 128),
+            ("dram.row_bytes = 131072: must be in 64..=65536", |c| {
+                c.dram.row_bytes = 128 << 10
+            }),
+            ("dram.row_bytes = 100: must be a multiple of 64", |c| {
+                c.dram.row_bytes = 100
+            }),
             ("ideal_memory", |c| c.dram.row_hit_latency = 0),
             ("requests_per_cycle", |c| c.dram.requests_per_cycle = 0),
             ("channels = 0: must be in 1..=16", |c| c.dram.channels = 0),

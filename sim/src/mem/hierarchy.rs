@@ -1022,7 +1022,10 @@ mod tests {
         let mut cfg = MemConfig::paper(true);
         cfg.l2.mshrs = 0;
         let e = MemorySystem::new(&cfg).unwrap_err();
-        assert!(e.to_string().contains("l2: mshrs"), "{e}");
+        assert!(
+            e.to_string().contains("l2.mshrs = 0: must be in 1..=4096"),
+            "{e}"
+        );
     }
 
     /// Every core presents its stream in order, up to `per_cycle` accesses a
