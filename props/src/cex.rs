@@ -108,6 +108,16 @@ pub fn ensure(ok: bool, cex: impl FnOnce() -> Cex) -> Result<(), Cex> {
     }
 }
 
+/// Panic with the counterexample of a failed property check (the tests'
+/// assertion: the panic message is the counterexample).
+#[cfg(test)]
+#[track_caller]
+pub(crate) fn check(r: Result<(), Cex>) {
+    if let Err(c) = r {
+        panic!("{c}");
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -84,12 +84,7 @@ mod proofs {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn check(r: Result<(), Cex>) {
-        if let Err(c) = r {
-            panic!("{c}");
-        }
-    }
+    use crate::cex::check;
 
     /// Every state (16 x 128 x 32) x launched x misses 0..=3: 524,288
     /// points, the whole domain.

@@ -338,12 +338,7 @@ mod proofs {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn check(r: Result<(), Cex>) {
-        if let Err(c) = r {
-            panic!("{c}");
-        }
-    }
+    use crate::cex::check;
 
     /// Every capacity (0..=31) x free (0..=capacity) x allocs (0..=255) x
     /// replies (0..=255): 528 x 65,536 = 34,603,008 points, split in two

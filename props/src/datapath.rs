@@ -226,12 +226,7 @@ mod proofs {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn check(r: Result<(), Cex>) {
-        if let Err(c) = r {
-            panic!("{c}");
-        }
-    }
+    use crate::cex::check;
 
     /// Every free (0..=31) x nonblocked (0..=127) x q (0..=31) x T (0..=31):
     /// 4,194,304 points, split by CF into two tests so that the test harness

@@ -353,13 +353,8 @@ mod proofs {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cex::check;
     use wasp_rtl::policy::{Baseline, FreeMshrN, FullPriority};
-
-    fn check(r: Result<(), Cex>) {
-        if let Err(c) = r {
-            panic!("{c}");
-        }
-    }
 
     const FLAGS: [(bool, bool); 4] = FIFO_FLAGS;
 

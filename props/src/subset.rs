@@ -153,12 +153,7 @@ mod proofs {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn check(r: Result<(), Cex>) {
-        if let Err(c) = r {
-            panic!("{c}");
-        }
-    }
+    use crate::cex::check;
 
     /// k in {2, 4, 8, 16}: every quad of the tile and the count; no other
     /// k in 0..=64 builds a Mesh.
