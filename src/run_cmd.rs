@@ -257,6 +257,8 @@ fn progress_bar(quiet: bool, total: usize, label: &str) -> ProgressBar {
         .progress_chars("=> "),
     );
     pb.set_prefix(label.to_string());
+    // Redraw (elapsed time) even while one long tile keeps the count still.
+    pb.enable_steady_tick(std::time::Duration::from_millis(250));
     pb
 }
 
