@@ -19,7 +19,8 @@
 //!   cycle × the clock period rounded to whole picoseconds (1667 ps at
 //!   600 MHz), so a viewer shows real time; the `$comment` states the
 //!   period. Cycle N is at time N × period.
-//!//! # Protocol
+//!
+//! # Protocol
 //!
 //! ```text
 //! let mut sink = VcdSink::new(file, "top");
