@@ -146,6 +146,7 @@ fn format_of(name: &str) -> Format {
 /// A save file showing every run's scheduler and cache signals, grouped.
 fn gtkw_save(vcd: &Path, signals: &[SignalInfo], end: u64) -> GtkwSave {
     let mut save = GtkwSave::new(vcd.display().to_string())
+        .note(wasp_waves::vcd_sink::TIME_UNIT_COMMENT)
         .zoom_to_fit(end)
         .window_size(1400, 700)
         .signals_width(300);

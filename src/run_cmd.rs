@@ -14,7 +14,32 @@ use wasp_sim::mem::BlockedOn;
 use wasp_sim::stats::{csv_table, RunStats};
 use wasp_sim::synth::{generate, GenParams};
 use wasp_sim::trace::Trace;
-use wasp_waves::{Format, GtkwSave, VcdSink};
+use wasp_waves::vcd_sink::time_unit_note;
+use wasp_waves::{Format, GtkwSave, TimeAxis, VcdSink};
+
+/// The time axis of `wasp run --vcd` (see [`TimeAxis`]).
+///
+/// (wasp) Cycles by default: every number the simulator prints or accepts
+/// (`cycles`, `--vcd-from`, `--vcd-to`, `--timeline-from`) is a cycle, and
+/// one time unit per cycle lets a user read them off the waveform directly;
+/// real time is the option for comparing with wall-clock figures.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum VcdTime {
+    /// One time unit per GPU cycle.
+    #[default]
+    Cycles,
+    /// Picoseconds: cycle x the clock period.
+    Real,
+}
+
+impl From<VcdTime> for TimeAxis {
+    fn from(t: VcdTime) -> TimeAxis {
+        match t {
+            VcdTime::Cycles => TimeAxis::Cycles,
+            VcdTime::Real => TimeAxis::RealTime,
+        }
+    }
+}
 
 /// Where the machine and the workload come from.
 #[derive(Args, Debug, Clone)]
@@ -101,6 +126,15 @@ pub struct RunArgs {
     /// Last cycle written to the VCD.
     #[arg(long, value_name = "CYCLE", requires = "vcd")]
     pub vcd_to: Option<u64>,
+
+    /// Time axis of the VCD. cycles: one time unit is one GPU cycle (the
+    /// VCD format needs a physical unit, so the file declares 1 ns and says
+    /// in a comment that a unit is a cycle at gpu.frequency_mhz; GTKWave's
+    /// "ns" reads as cycles). real: picoseconds, cycle x the clock period
+    /// rounded to whole ps (1667 ps at 600 MHz), so GTKWave shows real time.
+    /// Default: cycles.
+    #[arg(long, value_name = "AXIS", value_enum, requires = "vcd")]
+    pub vcd_time: Option<VcdTime>,
 
     /// Draw the timeline (resident warps per core, outstanding misses per
     /// cache level, priority-warp launches, tile starts and ends) to FILE,
@@ -223,6 +257,8 @@ fn progress_bar(quiet: bool, total: usize, label: &str) -> ProgressBar {
         .progress_chars("=> "),
     );
     pb.set_prefix(label.to_string());
+    // Redraw (elapsed time) even while one long tile keeps the count still.
+    pb.enable_steady_tick(std::time::Duration::from_millis(250));
     pb
 }
 
@@ -324,7 +360,11 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
         Some(path) => {
             let file = std::fs::File::create(path)
                 .map_err(|e| CliError::failed(format!("cannot create {}: {e}", path.display())))?;
-            let mut sink = VcdSink::new(BufWriter::new(file), "wasp");
+            let axis = TimeAxis::from(args.vcd_time.unwrap_or_default());
+            let mut sink = VcdSink::new(BufWriter::new(file), "wasp")
+                .with_clock_mhz(cfg.gpu.frequency_mhz)
+                .with_time_axis(axis);
+            let scale = sink.units_per_cycle();
             let stats =
                 simulate_traced(&cfg, &trace, &opts, &mut sink, &mut progress).map_err(sim_err)?;
             if let Some((from, to)) = window.filter(|w| w.0 > stats.cycles) {
@@ -350,10 +390,11 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
                 .and_then(|mut w| w.flush())
                 .map_err(|e| CliError::failed(format!("writing {}: {e}", path.display())))?;
             let mut save = GtkwSave::new(path.display().to_string())
-                .timestart(window.map(|w| w.0).unwrap_or(0))
+                .note(time_unit_note(Some(cfg.gpu.frequency_mhz), axis))
+                .timestart(window.map(|w| w.0).unwrap_or(0).saturating_mul(scale))
                 .window_size(1400, 700)
                 .signals_width(320)
-                .zoom_to_fit(end);
+                .zoom_to_fit(end.saturating_mul(scale));
             save = save.begin_group("core0 scheduler", false);
             for s in signals
                 .iter()

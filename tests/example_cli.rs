@@ -192,6 +192,10 @@ fn vcd_matches_the_chronographs_cycle_by_cycle() {
     // The GTKWave save file preselects the signals with GTKWave's vector names.
     let gtkw = std::fs::read_to_string(dir.join("example.vcd.gtkw")).unwrap();
     assert!(gtkw.contains("[dumpfile]"));
+    assert!(
+        gtkw.contains("[*] one time unit = one clock cycle\n"),
+        "{gtkw}"
+    );
     assert!(gtkw.contains("wasp_example.wasp.scheduler.free_mshrs[4:0]"));
     assert!(gtkw.contains("wasp_example.wasp.scheduler.real_free_mshrs[10:0]"));
     assert!(gtkw.contains("wasp_example.wasp.scheduler.priority_over_regular\n"));

@@ -656,3 +656,154 @@ fn the_json_names_the_blocked_rule_and_counts_episodes() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("first-level"), "{}", stderr(&o));
 }
+
+/// Cycles `--vcd` writes a change at, read from the VCD's timestamps.
+fn vcd_times(bytes: &[u8]) -> Vec<u64> {
+    String::from_utf8_lossy(bytes)
+        .lines()
+        .filter_map(|l| l.strip_prefix('#'))
+        .map(|t| t.parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn vcd_time_axis_is_cycles_or_picoseconds_and_says_so() {
+    let d = dir("vcd-time");
+    let cfg = tiny_config(&d);
+    let trace = tiny_trace();
+    let write = |name: &str, extra: &[&str]| -> (String, String) {
+        let vcd = d.join(name);
+        let mut a = vec![
+            "--config",
+            &cfg,
+            "--trace",
+            &trace,
+            "--vcd",
+            vcd.to_str().unwrap(),
+            "--vcd-from",
+            "10",
+            "--vcd-to",
+            "40",
+        ];
+        a.extend_from_slice(extra);
+        run_json(&a);
+        let gtkw = std::fs::read_to_string(d.join(format!("{name}.gtkw"))).unwrap();
+        (std::fs::read_to_string(&vcd).unwrap(), gtkw)
+    };
+    let (cycles, cycles_gtkw) = write("cycles.vcd", &[]);
+    let (explicit, _) = write("explicit.vcd", &["--vcd-time", "cycles"]);
+    assert_eq!(cycles, explicit.replace("explicit.vcd", "cycles.vcd"));
+    let note = "one time unit = one GPU cycle at 600 MHz (1.667 ns)";
+    assert!(
+        cycles.contains(&format!("$comment\n    {note}\n$end")),
+        "{cycles}"
+    );
+    assert!(cycles.contains("$timescale 1 ns $end"));
+    assert!(
+        cycles_gtkw.contains(&format!("[*] {note}\n")),
+        "{cycles_gtkw}"
+    );
+    assert!(cycles_gtkw.contains("[timestart] 10\n"), "{cycles_gtkw}");
+
+    let (real, real_gtkw) = write("real.vcd", &["--vcd-time", "real"]);
+    assert!(real.contains("$timescale 1 ps $end"), "{real}");
+    let note = "time unit = 1 ps; one GPU cycle at 600 MHz = 1667 ps: cycle N is at time N x 1667";
+    assert!(real.contains(note), "{real}");
+    assert!(real_gtkw.contains(&format!("[*] {note}\n")), "{real_gtkw}");
+    assert!(real_gtkw.contains("[timestart] 16670\n"), "{real_gtkw}");
+    let c = vcd_times(cycles.as_bytes());
+    assert_eq!(c.first(), Some(&10));
+    assert_eq!(c.last(), Some(&41));
+    let scaled: Vec<u64> = c.iter().map(|t| t * 1667).collect();
+    assert_eq!(vcd_times(real.as_bytes()), scaled);
+
+    // The axis follows gpu.frequency_mhz.
+    let (fast, _) = write("fast.vcd", &["--set", "gpu.frequency_mhz=1000"]);
+    assert!(
+        fast.contains("one GPU cycle at 1000 MHz (1.000 ns)"),
+        "{fast}"
+    );
+    let (fast_real, _) = write(
+        "fast-real.vcd",
+        &["--set", "gpu.frequency_mhz=1000", "--vcd-time", "real"],
+    );
+    let scaled: Vec<u64> = c.iter().map(|t| t * 1000).collect();
+    assert_eq!(vcd_times(fast_real.as_bytes()), scaled);
+
+    // Checked before any work: an unknown axis, and an axis without --vcd.
+    let o = wasp(&[
+        "run",
+        "--trace",
+        &trace,
+        "--vcd",
+        "x.vcd",
+        "--vcd-time",
+        "ns",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("cycles") && stderr(&o).contains("real"));
+    let o = wasp(&["run", "--trace", &trace, "--vcd-time", "real"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--vcd <FILE>"), "{}", stderr(&o));
+}
+
+/// `wasp run` on a terminal draws a progress bar on stderr; `-q` hides it,
+/// and so does a stderr that is not a terminal.
+#[test]
+fn run_progress_only_on_a_terminal_and_never_under_q() {
+    let d = dir("progress");
+    let trace = synth_trace(&d, 3);
+    // Not a terminal (the test harness captures stderr).
+    for q in [true, false] {
+        let mut a = vec!["run", "--trace", &trace];
+        if q {
+            a.push("-q");
+        }
+        let o = wasp(&a);
+        ok(&o);
+        let e = stderr(&o);
+        assert!(
+            !e.contains("simulating") && !e.contains(" tiles 00:"),
+            "{e}"
+        );
+        if q {
+            assert_eq!(e, "", "-q must keep stderr empty");
+        }
+    }
+    // On a terminal, through script(1) when it is installed.
+    let has_script = std::process::Command::new("script")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !has_script {
+        eprintln!("note: script(1) missing: the terminal half of this test did not run");
+        return;
+    }
+    let on_tty = |q: bool| -> String {
+        let cmd = format!(
+            "{} run {}--trace {trace}",
+            env!("CARGO_BIN_EXE_wasp"),
+            if q { "-q " } else { "" }
+        );
+        let o = std::process::Command::new("script")
+            .args(["-qec", &cmd, "/dev/null"])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        String::from_utf8_lossy(&o.stdout).into_owned()
+    };
+    // The bar: "simulating [===>   ] 3/8 tiles 00:00:00 eta 0s".
+    let bar = |s: &str| s.contains("simulating") || s.contains(" tiles 00:");
+    let loud = on_tty(false);
+    assert!(
+        loud.contains("simulating") && loud.contains(" tiles 00:"),
+        "{loud}"
+    );
+    assert!(loud.contains("cycles"), "{loud}");
+    let quiet = on_tty(true);
+    assert!(!bar(&quiet), "{quiet}");
+    assert!(
+        quiet.contains("cycles"),
+        "the table is still printed: {quiet}"
+    );
+}

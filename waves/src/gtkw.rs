@@ -143,6 +143,8 @@ pub struct GtkwSave {
     size: (u32, u32),
     sst_width: u32,
     signals_width: u32,
+    /// Header comment lines (`[*] text`), e.g. what a time unit is.
+    notes: Vec<String>,
 }
 
 impl GtkwSave {
@@ -157,10 +159,23 @@ impl GtkwSave {
             size: DEFAULT_SIZE,
             sst_width: DEFAULT_SST_WIDTH,
             signals_width: DEFAULT_SIGNALS_WIDTH,
+            notes: Vec::new(),
         }
     }
 
-    /// First cycle shown at the left edge (default 0).
+    /// A `[*] text` comment line in the file's header, after the version
+    /// line; GTKWave ignores it. Used to say what a time unit is
+    /// ([`time_unit_note`](crate::vcd_sink::time_unit_note)), since GTKWave
+    /// labels the axis with the VCD's physical unit.
+    pub fn note(mut self, text: impl Into<String>) -> Self {
+        self.notes.push(text.into());
+        self
+    }
+
+    /// First cycle shown at the left edge (default 0). Times in a save file
+    /// are VCD time units: cycles on the
+    /// [cycle axis](crate::vcd_sink::TimeAxis::Cycles), picoseconds on the
+    /// real-time one.
     pub fn timestart(mut self, cycle: u64) -> Self {
         self.timestart = cycle;
         self
@@ -261,6 +276,9 @@ impl GtkwSave {
         fn bad(message: String) -> io::Error {
             io::Error::new(io::ErrorKind::InvalidInput, message)
         }
+        if let Some(note) = self.notes.iter().find(|n| n.contains(['\n', '\r'])) {
+            return Err(bad(format!("note {note:?} contains a newline")));
+        }
         if self.dumpfile.contains(['\n', '\r', '"']) {
             return Err(bad(format!(
                 "dump file path {:?} contains a newline or a double quote",
@@ -312,6 +330,9 @@ impl GtkwSave {
         self.validate()?;
         writeln!(out, "[*]")?;
         writeln!(out, "[*] {} GTKWave save file", crate::vcd_sink::VERSION)?;
+        for note in &self.notes {
+            writeln!(out, "[*] {note}")?;
+        }
         writeln!(out, "[*]")?;
         writeln!(out, "[dumpfile] \"{}\"", self.dumpfile)?;
         writeln!(out, "[timestart] {}", self.timestart)?;
@@ -483,5 +504,27 @@ mod tests {
             assert_eq!(err.kind(), io::ErrorKind::InvalidInput, "{save:?}");
             assert!(out.is_empty());
         }
+    }
+
+    #[test]
+    fn notes_follow_the_version_line() {
+        let save = GtkwSave::new("w.vcd")
+            .note("one time unit = one GPU cycle at 600 MHz (1.667 ns)")
+            .signal("top.a", 1, Format::Binary);
+        let t = text(&save);
+        assert!(
+            t.starts_with(&format!(
+                "[*]\n[*] {VERSION} GTKWave save file\n\
+                 [*] one time unit = one GPU cycle at 600 MHz (1.667 ns)\n[*]\n[dumpfile]"
+            )),
+            "{t}"
+        );
+        let mut out = Vec::new();
+        let err = GtkwSave::new("w.vcd")
+            .note("two\nlines")
+            .write_to(&mut out)
+            .unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::InvalidInput);
+        assert!(out.is_empty());
     }
 }

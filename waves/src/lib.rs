@@ -8,7 +8,8 @@
 //! code runs at all.
 //!
 //! Sinks provided here: [`vcd_sink::VcdSink`] writes a Value Change Dump
-//! (change-only values, vectors MSB first, `$timescale` of one cycle) and
+//! (change-only values, vectors MSB first, one time unit per cycle or
+//! real time in picoseconds, stated in a `$comment`) and
 //! [`gtkw`] writes a GTKWave save file that preselects signals.
 //! [`readback`] parses a VCD back into per-cycle values, for tests.
 
@@ -16,7 +17,7 @@ pub mod gtkw;
 pub mod vcd_sink;
 
 pub use gtkw::{Format, GtkwSave};
-pub use vcd_sink::{readback, SignalInfo, VcdSink};
+pub use vcd_sink::{readback, SignalInfo, TimeAxis, VcdSink};
 
 /// Receives the signals of a design, one cycle at a time.
 ///

@@ -2,11 +2,23 @@
 //!
 //! # Time
 //!
-//! **One VCD time unit is one clock cycle.** The file declares
-//! `$timescale 1 ns $end` because a timescale must name a physical unit, and
-//! says so in a `$comment`; a waveform viewer's "ns" axis therefore reads as
-//! cycles. Timestamps are the cycle numbers given to
-//! [`VcdSink::begin_cycle`].
+//! The VCD format only allows a timescale of 1, 10 or 100 of a physical unit
+//! (s, ms, us, ns, ps, fs), so a clock period such as 1.667 ns cannot be the
+//! unit. A sink offers two time axes ([`TimeAxis`]):
+//!
+//! - [`TimeAxis::Cycles`] (the default): **one VCD time unit is one clock
+//!   cycle**. Timestamps are the cycle numbers given to
+//!   [`VcdSink::begin_cycle`], so the cycle numbers of the simulator's
+//!   statistics, `--vcd-from`/`--vcd-to` and the waveform agree. The file
+//!   declares `$timescale 1 ns $end` because a timescale must name a
+//!   physical unit, and says in a `$comment` that a unit is a cycle (and,
+//!   when the clock is given with [`VcdSink::with_clock_mhz`], which clock:
+//!   "one time unit = one GPU cycle at 600 MHz (1.667 ns)"). A waveform
+//!   viewer's "ns" axis therefore reads as cycles.
+//! - [`TimeAxis::RealTime`]: `$timescale 1 ps $end` and timestamps of
+//!   cycle × the clock period rounded to whole picoseconds (1667 ps at
+//!   600 MHz), so a viewer shows real time; the `$comment` states the
+//!   period. Cycle N is at time N × period.
 //!
 //! # Protocol
 //!
@@ -69,8 +81,57 @@ pub const MAX_WIDTH: u32 = 64;
 /// Text of the `$version` header.
 pub const VERSION: &str = concat!("wasp ", env!("CARGO_PKG_VERSION"));
 
-/// Text of the `$comment` header that states the time unit.
+/// Text of the `$comment` header that states the time unit when the clock
+/// frequency is not given.
 pub const TIME_UNIT_COMMENT: &str = "one time unit = one clock cycle";
+
+/// How VCD time relates to clock cycles (see the [time unit](self#time)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum TimeAxis {
+    /// One time unit per cycle (`$timescale 1 ns`, read as cycles).
+    #[default]
+    Cycles,
+    /// Picoseconds (`$timescale 1 ps`): cycle × the clock period.
+    RealTime,
+}
+
+/// The clock period in whole picoseconds (rounded), at least 1.
+pub fn period_ps(clock_mhz: u32) -> u64 {
+    let mhz = u64::from(clock_mhz.max(1));
+    ((1_000_000 + mhz / 2) / mhz).max(1)
+}
+
+/// The sentence that states what a VCD time unit is: the `$comment` of a
+/// [`VcdSink`] and a comment line of its GTKWave save file.
+///
+/// ```
+/// use wasp_waves::vcd_sink::{time_unit_note, TimeAxis};
+///
+/// assert_eq!(
+///     time_unit_note(Some(600), TimeAxis::Cycles),
+///     "one time unit = one GPU cycle at 600 MHz (1.667 ns)"
+/// );
+/// assert_eq!(
+///     time_unit_note(Some(600), TimeAxis::RealTime),
+///     "time unit = 1 ps; one GPU cycle at 600 MHz = 1667 ps: cycle N is at time N x 1667"
+/// );
+/// ```
+pub fn time_unit_note(clock_mhz: Option<u32>, axis: TimeAxis) -> String {
+    match (clock_mhz, axis) {
+        (None, _) => TIME_UNIT_COMMENT.to_owned(),
+        (Some(mhz), TimeAxis::Cycles) => format!(
+            "one time unit = one GPU cycle at {mhz} MHz ({:.3} ns)",
+            1000.0 / f64::from(mhz.max(1))
+        ),
+        (Some(mhz), TimeAxis::RealTime) => {
+            let ps = period_ps(mhz);
+            format!(
+                "time unit = 1 ps; one GPU cycle at {mhz} MHz = {ps} ps: \
+                 cycle N is at time N x {ps}"
+            )
+        }
+    }
+}
 
 /// Longest VCD identifier code a `u64` index can produce (94 printable
 /// characters per digit: 94^10 > 2^64).
@@ -230,6 +291,12 @@ pub struct VcdSink<W: Write> {
     out: W,
     top: String,
     date: Option<String>,
+    /// Clock frequency named in the time comment, MHz.
+    clock_mhz: Option<u32>,
+    /// Time axis; [`TimeAxis::RealTime`] only with a clock.
+    axis: TimeAxis,
+    /// VCD time units per cycle (1, or the period in ps).
+    scale: u64,
     /// Whether the header and the first cycle's dump were written.
     defined: bool,
     /// Between `begin_cycle` and `end_cycle`.
@@ -267,6 +334,9 @@ impl<W: Write> VcdSink<W> {
             out: writer,
             top: top.to_owned(),
             date: None,
+            clock_mhz: None,
+            axis: TimeAxis::Cycles,
+            scale: 1,
             defined: false,
             in_cycle: false,
             cycle: 0,
@@ -297,6 +367,56 @@ impl<W: Write> VcdSink<W> {
     pub fn with_date(mut self, date: impl Into<String>) -> Self {
         self.date = Some(date.into());
         self
+    }
+
+    /// Names the clock in the time `$comment`: "one time unit = one GPU cycle
+    /// at 600 MHz (1.667 ns)". The time axis stays one unit per cycle unless
+    /// [`with_time_axis`](Self::with_time_axis) asks for real time.
+    /// A frequency of 0 is reported by the first
+    /// [`end_cycle`](Self::end_cycle) (or [`finish`](Self::finish)).
+    pub fn with_clock_mhz(mut self, mhz: u32) -> Self {
+        if mhz == 0 {
+            self.fail(
+                io::ErrorKind::InvalidInput,
+                "clock frequency 0 MHz".to_owned(),
+            );
+        }
+        self.clock_mhz = Some(mhz);
+        self.update_scale();
+        self
+    }
+
+    /// Chooses the time axis. [`TimeAxis::RealTime`] needs the clock
+    /// ([`with_clock_mhz`](Self::with_clock_mhz), in either order); without
+    /// one the first [`end_cycle`](Self::end_cycle) (or
+    /// [`finish`](Self::finish)) reports an error.
+    pub fn with_time_axis(mut self, axis: TimeAxis) -> Self {
+        self.axis = axis;
+        self.update_scale();
+        self
+    }
+
+    /// The time axis in use.
+    pub fn time_axis(&self) -> TimeAxis {
+        self.axis
+    }
+
+    /// VCD time units per cycle: 1 on the cycle axis, the clock period in
+    /// picoseconds on the real-time axis.
+    pub fn units_per_cycle(&self) -> u64 {
+        self.scale
+    }
+
+    fn update_scale(&mut self) {
+        self.scale = match (self.axis, self.clock_mhz) {
+            (TimeAxis::RealTime, Some(mhz)) => period_ps(mhz),
+            _ => 1,
+        };
+    }
+
+    /// The VCD time of `cycle`.
+    fn time_of(&self, cycle: u64) -> u64 {
+        cycle.saturating_mul(self.scale)
     }
 
     /// The signals defined by the first cycle, in visit order (empty before
@@ -437,8 +557,9 @@ impl<W: Write> VcdSink<W> {
         if !self.defined {
             self.write_header()?;
         }
-        if self.last_time != Some(final_cycle) {
-            vcd::Writer::new(&mut self.out).timestamp(final_cycle)?;
+        let end = self.time_of(final_cycle);
+        if self.last_time != Some(end) {
+            vcd::Writer::new(&mut self.out).timestamp(end)?;
         }
         self.out.flush()?;
         Ok(self.out)
@@ -536,13 +657,24 @@ impl<W: Write> VcdSink<W> {
 
     /// Header and hierarchy, up to `$enddefinitions`.
     fn write_header(&mut self) -> io::Result<()> {
+        if self.axis == TimeAxis::RealTime && self.clock_mhz.is_none() {
+            return Err(self.fail(
+                io::ErrorKind::InvalidInput,
+                "a real-time axis needs the clock frequency (with_clock_mhz)".to_owned(),
+            ));
+        }
+        let note = time_unit_note(self.clock_mhz, self.axis);
+        let unit = match self.axis {
+            TimeAxis::Cycles => TimescaleUnit::NS,
+            TimeAxis::RealTime => TimescaleUnit::PS,
+        };
         let mut w = vcd::Writer::new(&mut self.out);
         if let Some(date) = &self.date {
             w.date(date)?;
         }
         w.version(VERSION)?;
-        w.comment(TIME_UNIT_COMMENT)?;
-        w.timescale(1, TimescaleUnit::NS)?;
+        w.comment(&note)?;
+        w.timescale(1, unit)?;
         w.add_module(&self.top)?;
         let mut index = 0;
         for event in &self.events {
@@ -573,25 +705,27 @@ impl<W: Write> VcdSink<W> {
 
     /// The first cycle: every value under `$dumpvars`.
     fn write_dumpvars(&mut self) -> io::Result<()> {
+        let time = self.time_of(self.cycle);
         let mut w = vcd::Writer::new(&mut self.out);
-        w.timestamp(self.cycle)?;
+        w.timestamp(time)?;
         w.begin(SimulationCommand::Dumpvars)?;
         for slot in &mut self.slots {
             slot.write_value(w.writer())?;
             slot.written = slot.value;
         }
         w.end()?;
-        self.last_time = Some(self.cycle);
+        self.last_time = Some(time);
         Ok(())
     }
 
     /// A later cycle: the changed values, under a timestamp if any.
     fn write_changes(&mut self) -> io::Result<()> {
         let mut stamped = false;
+        let time = self.time_of(self.cycle);
         for slot in &mut self.slots {
             if slot.value != slot.written {
                 if !stamped {
-                    vcd::Writer::new(&mut self.out).timestamp(self.cycle)?;
+                    vcd::Writer::new(&mut self.out).timestamp(time)?;
                     stamped = true;
                 }
                 slot.write_value(&mut self.out)?;
@@ -599,7 +733,7 @@ impl<W: Write> VcdSink<W> {
             }
         }
         if stamped {
-            self.last_time = Some(self.cycle);
+            self.last_time = Some(time);
         }
         Ok(())
     }
@@ -1231,5 +1365,104 @@ mod tests {
         assert_eq!(err.kind(), io::ErrorKind::BrokenPipe);
         let err = sink.trace_cycle(1, &START).unwrap_err();
         assert_eq!(err.kind(), io::ErrorKind::BrokenPipe);
+    }
+
+    fn write_toy_with(setup: impl FnOnce(VcdSink<Vec<u8>>) -> VcdSink<Vec<u8>>) -> Vec<u8> {
+        let mut sink = setup(VcdSink::new(Vec::new(), "top"));
+        for (cycle, toy) in toy_cycles() {
+            sink.trace_cycle(cycle, &toy).unwrap();
+        }
+        sink.finish(6).unwrap()
+    }
+
+    fn timestamps(bytes: &[u8]) -> Vec<u64> {
+        body(bytes)
+            .into_iter()
+            .filter_map(|c| match c {
+                Command::Timestamp(t) => Some(t),
+                _ => None,
+            })
+            .collect()
+    }
+
+    fn header_comments(bytes: &[u8]) -> Vec<String> {
+        let header = vcd::Parser::new(bytes).parse_header().unwrap();
+        header
+            .items
+            .iter()
+            .filter_map(|i| match i {
+                ScopeItem::Comment(c) => Some(c.clone()),
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn period_is_rounded_to_whole_picoseconds() {
+        assert_eq!(period_ps(600), 1667);
+        assert_eq!(period_ps(1000), 1000);
+        assert_eq!(period_ps(1), 1_000_000);
+        assert_eq!(period_ps(10_000), 100);
+        assert_eq!(period_ps(0), 1_000_000);
+    }
+
+    #[test]
+    fn clock_names_the_cycle_in_the_comment_and_keeps_cycle_times() {
+        let plain = write_toy();
+        let bytes = write_toy_with(|s| s.with_clock_mhz(600));
+        assert_eq!(
+            header_comments(&bytes),
+            ["one time unit = one GPU cycle at 600 MHz (1.667 ns)"]
+        );
+        let header = vcd::Parser::new(&bytes[..]).parse_header().unwrap();
+        assert_eq!(header.timescale, Some((1, TimescaleUnit::NS)));
+        assert_eq!(timestamps(&bytes), timestamps(&plain));
+        assert_eq!(timestamps(&bytes), [0, 1, 2, 4, 5, 6]);
+        assert_eq!(body(&bytes), body(&plain));
+    }
+
+    #[test]
+    fn real_time_axis_writes_picoseconds() {
+        let plain = write_toy();
+        let bytes = write_toy_with(|s| s.with_time_axis(TimeAxis::RealTime).with_clock_mhz(600));
+        let header = vcd::Parser::new(&bytes[..]).parse_header().unwrap();
+        assert_eq!(header.timescale, Some((1, TimescaleUnit::PS)));
+        assert_eq!(
+            header_comments(&bytes),
+            ["time unit = 1 ps; one GPU cycle at 600 MHz = 1667 ps: cycle N is at time N x 1667"]
+        );
+        let want: Vec<u64> = [0, 1, 2, 4, 5, 6].iter().map(|c| c * 1667).collect();
+        assert_eq!(timestamps(&bytes), want);
+        // The same changes, only the timestamps differ.
+        let strip = |b: &[u8]| -> Vec<Command> {
+            body(b)
+                .into_iter()
+                .filter(|c| !matches!(c, Command::Timestamp(_)))
+                .collect()
+        };
+        assert_eq!(strip(&bytes), strip(&plain));
+        let waves = readback::values_by_cycle(&bytes).unwrap();
+        assert_eq!(waves.value_at("top.core0.sched.warp", 2 * 1667), Some(7));
+        assert_eq!(
+            waves.value_at("top.core0.sched.warp", 2 * 1667 - 1),
+            Some(0)
+        );
+        assert_eq!(waves.end_time(), Some(6 * 1667));
+    }
+
+    #[test]
+    fn real_time_needs_a_clock_and_a_clock_must_tick() {
+        let mut sink = VcdSink::new(Vec::new(), "top").with_time_axis(TimeAxis::RealTime);
+        expect_error(
+            sink.trace_cycle(0, &START),
+            io::ErrorKind::InvalidInput,
+            "clock frequency",
+        );
+        let mut sink = VcdSink::new(Vec::new(), "top").with_clock_mhz(0);
+        expect_error(
+            sink.trace_cycle(0, &START),
+            io::ErrorKind::InvalidInput,
+            "0 MHz",
+        );
     }
 }

@@ -23,8 +23,10 @@
 //! ```
 //!
 //! Limits: values must be two-state (`0`/`1`; `x` and `z` are errors),
-//! vectors at most 64 bits, no real or string variables. Every timestamp is
-//! taken as a cycle number (see the [time unit](super#time)).
+//! vectors at most 64 bits, no real or string variables. Timestamps are
+//! returned as written: cycle numbers on the cycle axis, picoseconds on the
+//! real-time one (see the [time unit](super#time); divide by
+//! [`period_ps`](super::period_ps) to get cycles).
 
 use std::collections::{BTreeMap, HashMap};
 use std::io;
