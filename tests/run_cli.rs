@@ -656,3 +656,25 @@ fn the_json_names_the_blocked_rule_and_counts_episodes() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("first-level"), "{}", stderr(&o));
 }
+
+#[test]
+fn an_absurd_alu_run_in_a_trace_fails_fast_naming_line_and_range() {
+    // `a2147483647` was once accepted and ran for minutes with no progress
+    // shown under `-q`; the trace bounds refuse it while reading.
+    let d = dir("alu-bound");
+    let p = d.join("long.trace");
+    std::fs::write(
+        &p,
+        "wasp-trace 4\nworkload w\nframe 64 64 tile 64\ntile 0 0\nq 0 0 a2147483647\nend\n",
+    )
+    .unwrap();
+    let t = std::time::Instant::now();
+    let o = wasp(&["run", "-q", "--trace", p.to_str().unwrap()]);
+    assert_ne!(o.status.code(), Some(0), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("long.trace:5: ALU run `2147483647` out of range (expected at most 4096)"),
+        "{e}"
+    );
+    assert!(t.elapsed().as_secs() < 30, "took {:?}", t.elapsed());
+}

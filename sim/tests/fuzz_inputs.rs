@@ -28,7 +28,7 @@ use wasp_sim::trace::Trace;
 /// Cases per target in a release build.
 const CASES: u32 = 2000;
 /// Cases per target in a debug build (`cargo test` without `--release`).
-const DEBUG_CASES: u32 = 300;
+const DEBUG_CASES: u32 = 1000;
 /// Cycles a configuration or trace that parses is run for.
 const RUN_CYCLES: u64 = 3000;
 
