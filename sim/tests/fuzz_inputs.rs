@@ -229,7 +229,7 @@ fn value_for(old: &toml::Value, a: u64, b: u64, v: i64) -> toml::Value {
             }
             toml::Value::Array(xs) => {
                 let mut xs = xs.clone();
-                if !xs.is_empty() && b % 2 == 0 {
+                if !xs.is_empty() && b.is_multiple_of(2) {
                     xs.remove((v.unsigned_abs() % xs.len() as u64) as usize);
                 } else if let Some(x) = xs.first().cloned() {
                     xs.push(value_for(&x, a / 32, b / 2, v));
@@ -434,7 +434,7 @@ fn trace_mutation(text: &str, (kind, a, b, v): Mutation) -> String {
             }
             let (i, j) = spans[(a % spans.len() as u64) as usize];
             let n = number(b, v);
-            let new = if b % 5 == 0 {
+            let new = if b.is_multiple_of(5) {
                 format!("{:x}", n.unsigned_abs())
             } else {
                 n.to_string()
