@@ -78,7 +78,7 @@
 //!   (overdraw). A reader checks no order: a record does not name its
 //!   primitive, and any sequence of positions is the rasterization order of
 //!   some sequence of primitives.
-//! * **Rejected quads** (versions 3 and 4): `z N` — N quads (decimal, 1 to 2^31-1)
+//! * **Rejected quads** (versions 3 and 4): `z N` — N quads (decimal, 1 to 4194304 = 2^22)
 //!   that the rasterizer produced at this point of the tile's rasterization
 //!   order (after the `q` line before it, before the `q` line after it) and
 //!   Early-Z rejected: they launch no warp but cost the rasterizer a slot
@@ -87,8 +87,9 @@
 //!   even with blank or comment lines between: write one line with their sum.
 //!   (A builder merges them; a reader rejects adjacent ones, so that writing
 //!   a trace it read gives back the same text.)
-//! * **Instructions**, at least one per quad, in program order:
-//!   * `aN` — a run of N ALU instructions (decimal, 1 to 2^31-1). Two runs are
+//! * **Instructions**, at least one per quad and at most 65536 (ALU runs
+//!   counted by their length, a texture instruction as one), in program order:
+//!   * `aN` — a run of N ALU instructions (decimal, 1 to 4096). Two runs are
 //!     never adjacent: write `a5`, not `a3 a2`.
 //!   * `tB,B,...` — one texture instruction and the 64-byte memory blocks it
 //!     touches, as block numbers (byte address / 64) in hex (1 to 16 digits,
@@ -102,6 +103,10 @@
 //!     trilinear sample that magnifies, or minifies to the last level, reads
 //!     one level and is written `t`).
 //! * Decimal numbers are ASCII digits without sign and must fit their range.
+//!   The bounds on ALU runs, instructions per quad, blocks per texture
+//!   instruction and rejected quads per `z` line lie far above any real
+//!   shader or scene; they keep a corrupt number from running the model for
+//!   minutes.
 //!
 //! **Version 3** (`wasp-trace 3`) is version 4 without `T` instructions: it
 //! does not say which samples are trilinear, and a reader takes every
@@ -177,10 +182,20 @@ pub const FORMAT_VERSION_1: u32 = 1;
 pub const MAX_FRAME_DIM: u32 = 65_536;
 /// Largest tile edge, in pixels.
 pub const MAX_TILE_SIZE: u32 = 512;
-/// Longest ALU run of one `aN` entry.
-pub const MAX_ALU_RUN: u32 = 0x7fff_ffff;
-/// Most Early-Z-rejected quads one `z N` record may count.
-pub const MAX_REJECTED_RUN: u32 = 0x7fff_ffff;
+/// Longest ALU run of one `aN` entry (wasp): 4096, far above the
+/// straight-line ALU stretch of any fragment shader of the paper's
+/// workloads (a handful to a few dozen), so a typo or a corrupt number is
+/// refused instead of keeping the model busy for minutes.
+pub const MAX_ALU_RUN: u32 = 4096;
+/// Most instructions of one quad's program (wasp), ALU runs counted by
+/// their length and a texture instruction as one: 65536, 16 runs of
+/// [`MAX_ALU_RUN`] with texture instructions between them. It bounds the
+/// cycles one warp can occupy a core.
+pub const MAX_QUAD_INSTRS: u32 = 65_536;
+/// Most Early-Z-rejected quads one `z N` record may count (wasp): 2^22 =
+/// 4194304, the quads of the largest tile (256 x 256 for 512 pixels) times
+/// an overdraw of 64, or 4096 times the quads of the paper's 64-pixel tile.
+pub const MAX_REJECTED_RUN: u32 = 1 << 22;
 /// Most blocks one texture instruction may touch.
 pub const MAX_TEX_BLOCKS: usize = 1024;
 
@@ -818,6 +833,9 @@ pub struct TraceBuilder {
     open: Option<Tile>,
     /// Version 1's rule: quads in strictly increasing scanline order.
     scanline_order: bool,
+    /// Instructions of the open quad so far (ALU runs by length), held to
+    /// [`MAX_QUAD_INSTRS`].
+    quad_instrs: u32,
 }
 
 impl TraceBuilder {
@@ -830,6 +848,7 @@ impl TraceBuilder {
             seen: HashSet::new(),
             open: None,
             scanline_order: false,
+            quad_instrs: 0,
         })
     }
 
@@ -958,7 +977,17 @@ impl TraceBuilder {
             block_start: tile.blocks.len() as u32,
             block_len: 0,
         });
+        self.quad_instrs = 0;
         Ok(())
+    }
+
+    /// Checks that `n` more instructions fit the open quad's program.
+    fn quad_room(&self, n: u32) -> Result<u32, Problem> {
+        let sum = u64::from(self.quad_instrs) + u64::from(n);
+        if sum > u64::from(MAX_QUAD_INSTRS) {
+            return Err(Problem::QuadTooLong(sum));
+        }
+        Ok(sum as u32)
     }
 
     fn open_quad(&mut self) -> Result<&mut Tile, Problem> {
@@ -976,7 +1005,7 @@ impl TraceBuilder {
     /// Fails, changing nothing, if `n` is 0 ([`Problem::ZeroRejected`]), no
     /// tile is open ([`Problem::RejectedWithoutTile`]), the open quad has
     /// no instruction yet ([`Problem::EmptyQuad`]), or the rejected quads
-    /// at this point would exceed [`MAX_REJECTED_RUN`] (2^31 - 1, what one
+    /// at this point would exceed [`MAX_REJECTED_RUN`] (2^22, what one
     /// `z` line holds; [`Problem::RejectedRunTooLong`]).
     ///
     /// [`begin_quad`]: TraceBuilder::begin_quad
@@ -1011,6 +1040,8 @@ impl TraceBuilder {
         if n > MAX_ALU_RUN {
             return Err(Problem::AluRunTooLong(u64::from(n)));
         }
+        self.open_quad()?;
+        let count = self.quad_room(n)?;
         let tile = self.open_quad()?;
         let q = *tile.quads.last().expect("open quad");
         if q.op_len > 0 {
@@ -1020,6 +1051,7 @@ impl TraceBuilder {
                     return Err(Problem::AluRunTooLong(sum));
                 }
                 *m = sum as u32;
+                self.quad_instrs = count;
                 return Ok(());
             }
         }
@@ -1028,6 +1060,7 @@ impl TraceBuilder {
         }
         tile.ops.push(Op::Alu(n));
         tile.quads.last_mut().expect("open quad").op_len += 1;
+        self.quad_instrs = count;
         Ok(())
     }
 
@@ -1055,6 +1088,8 @@ impl TraceBuilder {
         if let Some(b) = first_duplicate(blocks) {
             return Err(Problem::DuplicateBlock(b));
         }
+        self.open_quad()?;
+        let count = self.quad_room(1)?;
         let tile = self.open_quad()?;
         if tile.ops.len() >= u32::MAX as usize
             || tile.blocks.len() + blocks.len() >= u32::MAX as usize
@@ -1071,6 +1106,7 @@ impl TraceBuilder {
         let q = tile.quads.last_mut().expect("open quad");
         q.op_len += 1;
         q.block_len += blocks.len() as u32;
+        self.quad_instrs = count;
         Ok(())
     }
 
@@ -1402,6 +1438,8 @@ pub enum Problem {
     ZeroAlu,
     /// An ALU run longer than [`MAX_ALU_RUN`].
     AluRunTooLong(u64),
+    /// A quad program of more than [`MAX_QUAD_INSTRS`] instructions.
+    QuadTooLong(u64),
     /// Two ALU runs next to each other in the text.
     AdjacentAlu {
         /// The first run.
@@ -1448,7 +1486,7 @@ impl fmt::Display for Problem {
             ),
             RejectedRunTooLong(n) => write!(
                 f,
-                "{n} rejected quads in one place (expected at most {MAX_REJECTED_RUN})"
+                "{n} rejected quads in one place (expected 1 to {MAX_REJECTED_RUN})"
             ),
             AdjacentRejected => write!(
                 f,
@@ -1601,8 +1639,13 @@ impl fmt::Display for Problem {
             ),
             ZeroAlu => write!(f, "ALU run of 0 (expected a run of at least 1)"),
             AluRunTooLong(n) => {
-                write!(f, "ALU run of {n} (expected at most {MAX_ALU_RUN})")
+                write!(f, "ALU run of {n} (expected 1 to {MAX_ALU_RUN})")
             }
+            QuadTooLong(n) => write!(
+                f,
+                "quad program of {n} instructions (expected 1 to {MAX_QUAD_INSTRS}, ALU runs \
+                 counted by length)"
+            ),
             AdjacentAlu { first, second } => write!(
                 f,
                 "adjacent ALU runs `a{first} a{second}` (expected one run `a{}`)",

@@ -3,7 +3,7 @@
 
 use super::{
     Problem, Trace, TraceBuilder, TraceError, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1,
-    FORMAT_VERSION_2, FORMAT_VERSION_3, MAGIC, MAX_ALU_RUN, MAX_TEX_BLOCKS,
+    FORMAT_VERSION_2, FORMAT_VERSION_3, MAGIC, MAX_ALU_RUN, MAX_QUAD_INSTRS, MAX_TEX_BLOCKS,
 };
 
 /// Every version the reader accepts, newest first.
@@ -471,8 +471,16 @@ fn quad_line(
     instrs.clear();
     blocks.clear();
     let mut prev_alu: Option<u32> = None;
+    let mut count: u64 = 0;
     for tok in &fields[3..] {
         let instr = instr_token(tok, blocks)?;
+        count += match instr {
+            Tok::Alu(n) => u64::from(n),
+            Tok::Tex { .. } => 1,
+        };
+        if count > u64::from(MAX_QUAD_INSTRS) {
+            return Err(Problem::QuadTooLong(count));
+        }
         if matches!(instr, Tok::Tex { tri: true, .. }) && version < FORMAT_VERSION {
             return Err(Problem::TrilinearInOldVersion {
                 version,
