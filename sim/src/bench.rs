@@ -1,6 +1,6 @@
 //! `wasp bench`: simulation speed in simulated core-cycles per second.
 //!
-//! Measured, never asserted: the numbers go to the README. A *sample* of a
+//! Measured, never asserted: the numbers go to docs/speed.md. A *sample* of a
 //! point simulates its workload from reset as many whole times as it takes
 //! to fill at least [`MIN_SAMPLE_SECONDS`] (every run is simulated in full;
 //! nothing is reused between runs), and its rate is the core-cycles of
