@@ -181,32 +181,11 @@ pub struct CompareArgs {
     pub jobs: Option<usize>,
 }
 
-/// Read and validate the machine configuration FILE. A file that is not
-/// UTF-8 is named with the line and byte column of its first invalid byte.
+/// Read and validate the machine configuration FILE
+/// ([`MachineConfig::load`]: a file that is not UTF-8 is named with the line
+/// and byte column of its first invalid byte).
 pub fn read_config(path: &Path) -> Result<MachineConfig, CliError> {
-    let source = path.display().to_string();
-    let bytes =
-        std::fs::read(path).map_err(|e| CliError::usage(format!("{source}: cannot read: {e}")))?;
-    let text = std::str::from_utf8(&bytes).map_err(|e| {
-        let (line, column) = line_and_column(&bytes, e.valid_up_to());
-        CliError::usage(format!(
-            "{source}:{line}:{column}: byte 0x{:02x} is not UTF-8 (line {line}, byte column \
-             {column}); a configuration is UTF-8 TOML text",
-            bytes[e.valid_up_to()]
-        ))
-    })?;
-    MachineConfig::parse(text, &source).map_err(|e| CliError::usage(e.to_string()))
-}
-
-/// The 1-based line and byte column of byte `at` of `bytes`.
-fn line_and_column(bytes: &[u8], at: usize) -> (usize, usize) {
-    let before = &bytes[..at];
-    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
-    let start = before
-        .iter()
-        .rposition(|&b| b == b'\n')
-        .map_or(0, |i| i + 1);
-    (line, at - start + 1)
+    MachineConfig::load(path).map_err(|e| CliError::usage(e.to_string()))
 }
 
 /// Load the configuration named by the inputs.
@@ -627,19 +606,4 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
         labels[0]
     );
     s
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn lines_and_columns_count_from_one() {
-        let b = b"ab\ncd\n\nxyz";
-        assert_eq!(line_and_column(b, 0), (1, 1));
-        assert_eq!(line_and_column(b, 1), (1, 2));
-        assert_eq!(line_and_column(b, 3), (2, 1));
-        assert_eq!(line_and_column(b, 6), (3, 1));
-        assert_eq!(line_and_column(b, 9), (4, 3));
-    }
 }

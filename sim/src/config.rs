@@ -285,6 +285,17 @@ pub struct ConfigError {
     pub message: String,
 }
 
+/// The 1-based line and byte column of byte `at` of `bytes`.
+fn line_and_column(bytes: &[u8], at: usize) -> (usize, usize) {
+    let before = &bytes[..at];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    (line, at - start + 1)
+}
+
 impl fmt::Display for ConfigError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}: {}", self.source, self.message)
@@ -340,14 +351,27 @@ impl MachineConfig {
             .expect("shipped config is valid")
     }
 
-    /// Read and validate a TOML file.
+    /// Read and validate a TOML file. A file that is not UTF-8 is named with
+    /// the line and byte column of its first invalid byte.
     pub fn load(path: &Path) -> Result<Self, ConfigError> {
         let source = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
+        let bytes = std::fs::read(path).map_err(|e| ConfigError {
             source: source.clone(),
             message: format!("cannot read: {e}"),
         })?;
-        Self::parse(&text, &source)
+        let text = std::str::from_utf8(&bytes).map_err(|e| {
+            let at = e.valid_up_to();
+            let (line, column) = line_and_column(&bytes, at);
+            ConfigError {
+                source: format!("{source}:{line}:{column}"),
+                message: format!(
+                    "byte 0x{:02x} is not UTF-8 (line {line}, byte column {column}); a \
+                     configuration is UTF-8 TOML text",
+                    bytes[at]
+                ),
+            }
+        })?;
+        Self::parse(text, &source)
     }
 
     /// Parse and validate TOML text; `source` names it in errors.
@@ -596,6 +620,16 @@ impl MachineConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lines_and_columns_count_from_one() {
+        let b = b"ab\ncd\n\nxyz";
+        assert_eq!(line_and_column(b, 0), (1, 1));
+        assert_eq!(line_and_column(b, 1), (1, 2));
+        assert_eq!(line_and_column(b, 3), (2, 1));
+        assert_eq!(line_and_column(b, 6), (3, 1));
+        assert_eq!(line_and_column(b, 9), (4, 3));
+    }
 
     fn with(edit: impl Fn(&str) -> String) -> Result<MachineConfig, ConfigError> {
         MachineConfig::parse(&edit(PAPER_TOML), "test.toml")
