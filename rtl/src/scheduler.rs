@@ -203,6 +203,7 @@ impl<T: Copy> LaunchScheduler<T> {
 
     /// Phase 2: load the registers with this cycle's events. The priority
     /// launch of this cycle (if any) is added to `prio` here.
+    #[inline]
     pub fn clock(&mut self, mshr: MshrEvents, prio: PriorityEvents) -> Result<(), RegisterFault> {
         let prio = PriorityEvents {
             // An OR gate (`|`, no short circuit: both inputs are ready).
