@@ -210,6 +210,27 @@ struct CoreSignals {
     launched: Option<(u32, bool)>,
 }
 
+/// Start a blocked episode of warp `w` in cycle `now` unless it is blocked
+/// already: its block cycle, the episode count of its class, and for a
+/// priority warp one `blocked` event for the non-blocked counter.
+#[inline]
+fn block_warp(
+    w: &mut Warp,
+    blocked_at: &mut u64,
+    episodes: &mut [u64; 2],
+    prio: &mut PriorityEvents,
+    now: u64,
+) {
+    if !w.blocked {
+        w.blocked = true;
+        *blocked_at = now;
+        episodes[w.priority as usize & 1] += 1;
+        if w.priority {
+            prio.blocked += 1;
+        }
+    }
+}
+
 /// One shader core.
 #[derive(Debug)]
 pub struct ShaderCore {
@@ -798,15 +819,14 @@ impl ShaderCore {
                     self.prio.misses = self.prio.misses.saturating_add(1);
                 }
                 if at_access && matches!(r, Access::Miss | Access::SecondaryMiss) {
-                    let w = &mut self.slots[e.slot as usize % MAX_SLOTS];
-                    if !w.blocked {
-                        w.blocked = true;
-                        self.blocked_at[e.slot as usize % MAX_SLOTS] = now;
-                        self.stats.blocked_episodes[w.priority as usize & 1] += 1;
-                        if w.priority {
-                            self.prio.blocked += 1;
-                        }
-                    }
+                    let s = e.slot as usize % MAX_SLOTS;
+                    block_warp(
+                        &mut self.slots[s],
+                        &mut self.blocked_at[s],
+                        &mut self.stats.blocked_episodes,
+                        &mut self.prio,
+                        now,
+                    );
                 }
             }
             self.ldst_len -= 1;
@@ -920,14 +940,13 @@ impl ShaderCore {
                     self.id
                 )));
             }
-            if !w.blocked {
-                w.blocked = true;
-                self.blocked_at[s % MAX_SLOTS] = now;
-                self.stats.blocked_episodes[w.priority as usize] += 1;
-                if w.priority {
-                    self.prio.blocked += 1;
-                }
-            }
+            block_warp(
+                w,
+                &mut self.blocked_at[s % MAX_SLOTS],
+                &mut self.stats.blocked_episodes,
+                &mut self.prio,
+                now,
+            );
         }
         Ok(())
     }

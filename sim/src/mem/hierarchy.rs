@@ -241,6 +241,18 @@ fn first_level_miss(c: &mut CoreMem, track: Track, tag: u32, entry: u32, merged:
     }
 }
 
+/// Move the tags of `from` to the end of `out`, leaving `from` empty. The
+/// usual case, an empty `out`, hands over the buffer instead of copying it.
+#[inline]
+fn hand_over(from: &mut Vec<u32>, out: &mut Vec<u32>) {
+    if out.is_empty() {
+        std::mem::swap(out, from);
+    } else {
+        out.extend_from_slice(from);
+        from.clear();
+    }
+}
+
 /// L2 reply to the L1 of a core.
 #[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
@@ -590,14 +602,7 @@ impl MemorySystem {
     /// the order they arrived, each fill's targets in access order.
     #[inline]
     pub fn take_completions(&mut self, core: usize, out: &mut Vec<u32>) {
-        let c = &mut self.cores[core];
-        if out.is_empty() {
-            // The usual case: hand over the buffer instead of copying it.
-            std::mem::swap(out, &mut c.ready);
-        } else {
-            out.extend_from_slice(&c.ready);
-            c.ready.clear();
-        }
+        hand_over(&mut self.cores[core].ready, out);
     }
 
     /// Append to `out` the tags of `core` that began to wait on a
@@ -613,13 +618,7 @@ impl MemorySystem {
     /// ([`Access::Miss`], [`Access::SecondaryMiss`]) tells.
     #[inline]
     pub fn take_long_latency(&mut self, core: usize, out: &mut Vec<u32>) {
-        let c = &mut self.cores[core];
-        if out.is_empty() {
-            std::mem::swap(out, &mut c.long);
-        } else {
-            out.extend_from_slice(&c.long);
-            c.long.clear();
-        }
+        hand_over(&mut self.cores[core].long, out);
     }
 
     /// The scheduler-level cache's MSHR events of `core` in the last cycle.
