@@ -695,7 +695,10 @@ impl RunStats {
     }
 }
 
-fn flatten(prefix: &str, v: &serde_json::Value, out: &mut Vec<(String, String)>) {
+/// Flatten a JSON value into `key,value` CSV fields under `prefix`: nested
+/// names joined with `.`, a list of plain values one field joined by `;`, a
+/// list of records or lists numbered (the rows of [`RunStats::to_csv_rows`]).
+pub fn flatten(prefix: &str, v: &serde_json::Value, out: &mut Vec<(String, String)>) {
     match v {
         serde_json::Value::Object(m) => {
             for (k, x) in m {

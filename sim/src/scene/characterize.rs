@@ -27,12 +27,12 @@ use super::{fetch, SceneError};
 #[cfg(test)]
 use crate::trace::mean_footprint_ratio;
 use crate::trace::Trace;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use wasp_rtl::subset::SubsetSpec;
 
 /// The footprint of one priority subset.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SubsetFootprint {
     /// Subset name (`mesh4`, `top16`, ...).
     pub subset: String,
@@ -47,7 +47,7 @@ pub struct SubsetFootprint {
 }
 
 /// One scene's characterisation.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Characterization {
     /// Scene definition name.
     pub scene: String,

@@ -1,0 +1,189 @@
+//! A point of a study: one scene on one machine, and the key its result is
+//! cached under.
+//!
+//! A point names a scene, a base configuration (`paper`, `paper-width2` or
+//! a TOML file) and the `--set` overrides applied to it in order. Every
+//! other knob a study varies (policy, dispatch, subset, ideal memory,
+//! warps, MSHRs) is one of those overrides, so two points that describe the
+//! same machine on the same scene resolve to the same effective
+//! configuration and share one result.
+//!
+//! The cache key hashes (64-bit FNV-1a) the scene's identity (its
+//! definition and the fetched packages' versions), the effective
+//! configuration and the identity of the `wasp` binary (a hash of the
+//! executable's bytes): a rebuilt simulator never reuses a result of
+//! another build.
+
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::hash::Hasher;
+use std::path::Path;
+use std::sync::OnceLock;
+use wasp_sim::config::MachineConfig;
+use wasp_sim::scene::def::SceneDef;
+use wasp_sim::scene::fetch;
+
+/// One scene on one machine.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct Point {
+    /// Scene name (`wasp scenes list`).
+    pub scene: String,
+    /// Base configuration: `paper` (configs/paper.toml, embedded),
+    /// `paper-width2` (configs/paper-width2.toml, embedded) or a TOML file.
+    pub config: String,
+    /// `PATH=VALUE` overrides applied in order (as `--set`).
+    pub sets: Vec<String>,
+}
+
+impl Point {
+    /// A point on `config` with `sets`.
+    pub fn new(scene: &str, config: &str, sets: &[&str]) -> Point {
+        Point {
+            scene: scene.to_string(),
+            config: config.to_string(),
+            sets: sets.iter().map(|s| s.to_string()).collect(),
+        }
+    }
+
+    /// The same point with one more override.
+    pub fn with(&self, set: impl Into<String>) -> Point {
+        let mut p = self.clone();
+        p.sets.push(set.into());
+        p
+    }
+
+    /// `scene config set1 set2 ...` for messages.
+    pub fn describe(&self) -> String {
+        let mut s = format!("{} on {}", self.scene, self.config);
+        for x in &self.sets {
+            s.push_str(" --set ");
+            s.push_str(x);
+        }
+        s
+    }
+}
+
+/// The base configuration a point names.
+pub fn base_config(name: &str) -> Result<MachineConfig, String> {
+    match name {
+        "paper" => Ok(MachineConfig::paper()),
+        "paper-width2" => Ok(MachineConfig::paper_width2()),
+        path => MachineConfig::load(Path::new(path)).map_err(|e| e.to_string()),
+    }
+}
+
+/// Resolves points to effective configurations, caching base configurations
+/// by name.
+#[derive(Default)]
+pub struct Resolver {
+    bases: HashMap<String, MachineConfig>,
+}
+
+impl Resolver {
+    /// The effective configuration of `p` (base, then every override,
+    /// validated).
+    pub fn config(&mut self, p: &Point) -> Result<MachineConfig, String> {
+        if !self.bases.contains_key(&p.config) {
+            let c = base_config(&p.config)?;
+            self.bases.insert(p.config.clone(), c);
+        }
+        let base = &self.bases[&p.config];
+        wasp_sim::overrides::apply(base, &p.sets).map_err(|e| e.to_string())
+    }
+}
+
+/// A stable 64-bit FNV-1a hash of `parts`, each followed by a NUL byte, as
+/// 16 hex digits.
+pub fn hash_parts(parts: &[&[u8]]) -> String {
+    let mut h = fnv::FnvHasher::default();
+    for p in parts {
+        h.write(p);
+        h.write_u8(0);
+    }
+    format!("{:016x}", h.finish())
+}
+
+/// The identity of the running `wasp` binary: a hash of the executable's
+/// bytes (computed once), or the crate version when it cannot be read.
+pub fn binary_id() -> &'static str {
+    static ID: OnceLock<String> = OnceLock::new();
+    ID.get_or_init(|| {
+        let bytes = std::env::current_exe().and_then(std::fs::read);
+        match bytes {
+            Ok(b) => hash_parts(&[&b]),
+            Err(_) => format!("version-{}", env!("CARGO_PKG_VERSION")),
+        }
+    })
+}
+
+/// The identity of a scene: its definition and, for a game, the versions
+/// of the packages its data came from.
+pub fn scene_identity(def: &SceneDef) -> String {
+    let mut s = format!("{def:?}");
+    if let Some(v) = fetch::fetched_versions(def.game) {
+        for (p, ver) in v {
+            s.push_str(&format!(" {p}={ver}"));
+        }
+    }
+    s
+}
+
+/// The cache key of a point whose scene has identity `scene_id` and whose
+/// effective configuration is `cfg`, for the binary `binary`.
+pub fn point_key(binary: &str, scene_id: &str, cfg: &MachineConfig) -> String {
+    let cfg_json = serde_json::to_string(cfg).expect("configurations serialize");
+    hash_parts(&[
+        b"wasp-point-1",
+        binary.as_bytes(),
+        scene_id.as_bytes(),
+        cfg_json.as_bytes(),
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fnv_hash_is_the_published_one() {
+        // FNV-1a 64 of "a" is af63dc4c8601ec8c; with the NUL separator the
+        // hash is of "a\0".
+        let mut h = fnv::FnvHasher::default();
+        h.write(b"a");
+        assert_eq!(format!("{:016x}", h.finish()), "af63dc4c8601ec8c");
+        assert_ne!(hash_parts(&[b"a", b"b"]), hash_parts(&[b"ab"]));
+        assert_eq!(hash_parts(&[b"x"]), hash_parts(&[b"x"]));
+    }
+
+    #[test]
+    fn equal_machines_share_a_key_and_different_ones_do_not() {
+        let mut r = Resolver::default();
+        let a = Point::new("s", "paper", &["scheduler.policy=\"baseline\""]);
+        let b = Point::new(
+            "s",
+            "paper",
+            &["scheduler.policy=\"wasp\"", "scheduler.policy=\"baseline\""],
+        );
+        let c = Point::new("s", "paper", &["scheduler.policy=\"wasp:2:3\""]);
+        let ka = point_key("bin", "scene", &r.config(&a).unwrap());
+        let kb = point_key("bin", "scene", &r.config(&b).unwrap());
+        let kc = point_key("bin", "scene", &r.config(&c).unwrap());
+        assert_eq!(ka, kb);
+        assert_ne!(ka, kc);
+        assert_ne!(ka, point_key("other-bin", "scene", &r.config(&a).unwrap()));
+        assert_ne!(ka, point_key("bin", "scene2", &r.config(&a).unwrap()));
+    }
+
+    #[test]
+    fn bad_overrides_and_configs_are_reported() {
+        let mut r = Resolver::default();
+        let e = r
+            .config(&Point::new("s", "paper", &["l0.mshrs=0"]))
+            .unwrap_err();
+        assert!(e.contains("l0.mshrs"), "{e}");
+        let e = r
+            .config(&Point::new("s", "/nonexistent/x.toml", &[]))
+            .unwrap_err();
+        assert!(e.contains("/nonexistent/x.toml"), "{e}");
+    }
+}

@@ -1,0 +1,482 @@
+//! Runs the tasks of a study in parallel: each scene is rendered once and
+//! its trace shared by every task on it (load once, run many), finished
+//! points are stored as they end and skipped on the next run, progress is
+//! shown, and the run ends with its wall time and points per second.
+//!
+//! Tasks are ordered by scene, and the workers take them in that order, so
+//! at most about one scene per worker is held in memory; a scene's frame
+//! is dropped as soon as its last task ends.
+
+use super::cache::{Cache, PointRecord};
+use super::point::{binary_id, hash_parts, point_key, scene_identity, Point, Resolver};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::collections::{BTreeMap, HashMap};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+use wasp_sim::config::MachineConfig;
+use wasp_sim::gpu::{simulate, simulate_timeline, RunOptions};
+use wasp_sim::scene::characterize::{characterize, Characterization};
+use wasp_sim::scene::def::{self, SceneDef};
+use wasp_sim::scene::fetch;
+use wasp_sim::scene::raster::{rasterize_timed, Frame, RasterOptions};
+
+/// One piece of work on a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Task {
+    /// Simulate a point and store its statistics.
+    Run(Point),
+    /// Characterise the scene (Table I figures, footprint ratio of every
+    /// subset) at the tile size of the base configuration `config`.
+    Characterize {
+        /// Scene name.
+        scene: String,
+        /// Base configuration name (its `gpu.tile_size` is the tile).
+        config: String,
+    },
+    /// Draw the timeline of cycles `from..=to` of a point to `out` (.png
+    /// or .svg); skipped if `out` exists.
+    Timeline {
+        /// The run.
+        point: Point,
+        /// First cycle.
+        from: u64,
+        /// Last cycle.
+        to: u64,
+        /// The picture.
+        out: PathBuf,
+    },
+}
+
+impl Task {
+    fn scene(&self) -> &str {
+        match self {
+            Task::Run(p) | Task::Timeline { point: p, .. } => &p.scene,
+            Task::Characterize { scene, .. } => scene,
+        }
+    }
+}
+
+/// How to run.
+#[derive(Clone, Debug)]
+pub struct RunnerOptions {
+    /// Simulations at once.
+    pub jobs: usize,
+    /// No progress output.
+    pub quiet: bool,
+    /// Fetch a game's data when a scene needs it and it is missing (else:
+    /// an error naming `wasp scenes fetch`).
+    pub fetch: bool,
+    /// The progress bar's label.
+    pub label: String,
+}
+
+/// What a study's run produced.
+#[derive(Debug, Default)]
+pub struct Outcome {
+    /// Every point's result (cached or run).
+    pub points: HashMap<Point, PointRecord>,
+    /// Every characterised scene.
+    pub scenes: BTreeMap<String, Characterization>,
+    /// Tasks that failed, with why.
+    pub failures: Vec<String>,
+    /// Tasks run now.
+    pub ran: usize,
+    /// Tasks whose result was stored already.
+    pub cached: usize,
+    /// Wall seconds.
+    pub seconds: f64,
+}
+
+impl Outcome {
+    /// The result of `p`, if it ran.
+    pub fn get(&self, p: &Point) -> Option<&PointRecord> {
+        self.points.get(p)
+    }
+
+    /// The closing line: tasks, wall time and points per second.
+    pub fn summary(&self) -> String {
+        let rate = if self.seconds > 0.0 {
+            self.ran as f64 / self.seconds
+        } else {
+            0.0
+        };
+        format!(
+            "{} tasks ({} run, {} already done{}) in {:.1} s wall, {:.2} tasks/s",
+            self.ran + self.cached,
+            self.ran,
+            self.cached,
+            if self.failures.is_empty() {
+                String::new()
+            } else {
+                format!(", {} failed", self.failures.len())
+            },
+            self.seconds,
+            rate
+        )
+    }
+}
+
+/// A task ready to run: its key and effective configuration.
+struct Ready {
+    task: Task,
+    key: String,
+    cfg: MachineConfig,
+}
+
+/// The scene a group of tasks shares.
+struct Group {
+    def: SceneDef,
+    tile: u32,
+    frame: Mutex<Option<Result<Arc<Frame>, String>>>,
+    remaining: AtomicUsize,
+}
+
+/// Scene definitions by name, read once.
+#[derive(Default)]
+pub struct Scenes {
+    defs: HashMap<String, SceneDef>,
+}
+
+impl Scenes {
+    /// The definition of `name` (`wasp scenes list`).
+    pub fn def(&mut self, name: &str) -> Result<&SceneDef, String> {
+        if !self.defs.contains_key(name) {
+            let d = def::find(&def::scenes_dir(), name).map_err(|e| e.to_string())?;
+            self.defs.insert(name.to_string(), d);
+        }
+        Ok(&self.defs[name])
+    }
+}
+
+/// Run `tasks` with the results stored in `cache`.
+pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcome, String> {
+    let start = Instant::now();
+    let mut out = Outcome::default();
+    let mut resolver = Resolver::default();
+    let mut scenes = Scenes::default();
+    let mut ids: HashMap<String, String> = HashMap::new();
+    let mut todo: Vec<Ready> = Vec::new();
+    // Resolve every task (bad scenes and overrides fail here, before any
+    // run), and take the stored results.
+    for t in tasks {
+        let d = scenes.def(t.scene())?.clone();
+        let id = ids
+            .entry(d.name.clone())
+            .or_insert_with(|| scene_identity(&d))
+            .clone();
+        let (key, cfg) = match t {
+            Task::Run(p) | Task::Timeline { point: p, .. } => {
+                let cfg = resolver
+                    .config(p)
+                    .map_err(|e| format!("{}: {e}", p.describe()))?;
+                (point_key(binary_id(), &id, &cfg), cfg)
+            }
+            Task::Characterize { config, .. } => {
+                let cfg = resolver
+                    .config(&Point::new(&d.name, config, &[]))
+                    .map_err(|e| format!("{config}: {e}"))?;
+                let tile = cfg.gpu.tile_size.to_string();
+                let key = hash_parts(&[
+                    b"wasp-scene-1",
+                    binary_id().as_bytes(),
+                    id.as_bytes(),
+                    tile.as_bytes(),
+                ]);
+                (key, cfg)
+            }
+        };
+        let done = match t {
+            Task::Run(p) => match cache.load_point(&p.scene, &key) {
+                Some(r) => {
+                    out.points.insert(p.clone(), r);
+                    true
+                }
+                None => false,
+            },
+            Task::Characterize { scene, .. } => match cache.load_scene(scene, &key) {
+                Some(c) => {
+                    out.scenes.insert(scene.clone(), c);
+                    true
+                }
+                None => false,
+            },
+            Task::Timeline { out: path, .. } => path.is_file(),
+        };
+        if done {
+            out.cached += 1;
+        } else if !todo.iter().any(|r| r.key == key && same_kind(&r.task, t)) {
+            todo.push(Ready {
+                task: t.clone(),
+                key,
+                cfg,
+            });
+        } else if let Task::Run(p) = t {
+            // The same machine under another description: filled in from
+            // the first one's result at the end.
+            out.points.entry(p.clone()).or_insert_with(|| PointRecord {
+                key: key.clone(),
+                point: p.clone(),
+                binary: String::new(),
+                stats: serde_json::Value::Null,
+            });
+        }
+    }
+    // Fetch the games the remaining tasks need.
+    let mut games: Vec<_> = todo
+        .iter()
+        .map(|r| scenes.def(r.task.scene()).map(|d| d.game))
+        .collect::<Result<_, _>>()?;
+    games.sort_by_key(|g| g.name());
+    games.dedup();
+    for g in games {
+        if fetch::is_fetched(g) {
+            continue;
+        }
+        if !opts.fetch {
+            return Err(format!(
+                "the {} data is not fetched: run `wasp scenes fetch {}`",
+                g.name(),
+                g.name()
+            ));
+        }
+        if !opts.quiet {
+            eprintln!(
+                "wasp: fetching the {} data (once, into the scene cache)",
+                g.name()
+            );
+        }
+        let quiet = opts.quiet;
+        fetch::fetch(g, &mut |m| {
+            if !quiet {
+                eprintln!("wasp:   {m}");
+            }
+        })
+        .map_err(|e| format!("fetching {}: {e}", g.name()))?;
+    }
+    // Group by scene and tile size, in scene order.
+    todo.sort_by(|a, b| {
+        (a.task.scene(), a.cfg.gpu.tile_size).cmp(&(b.task.scene(), b.cfg.gpu.tile_size))
+    });
+    let mut groups: Vec<Group> = Vec::new();
+    let mut group_of = Vec::with_capacity(todo.len());
+    for r in &todo {
+        let tile = r.cfg.gpu.tile_size;
+        let same = groups
+            .last()
+            .is_some_and(|g| g.def.name == r.task.scene() && g.tile == tile);
+        if !same {
+            groups.push(Group {
+                def: scenes.def(r.task.scene())?.clone(),
+                tile,
+                frame: Mutex::new(None),
+                remaining: AtomicUsize::new(0),
+            });
+        }
+        let g = groups.len() - 1;
+        groups[g].remaining.fetch_add(1, Ordering::Relaxed);
+        group_of.push(g);
+    }
+    let pb = progress(opts, todo.len());
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<(usize, Result<Done, String>)>> = Mutex::new(Vec::new());
+    let threads = opts.jobs.clamp(1, todo.len().max(1));
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                if i >= todo.len() {
+                    break;
+                }
+                let g = &groups[group_of[i]];
+                pb.set_message(g.def.name.clone());
+                let frame = frame_of(g);
+                let r = frame.and_then(|f| perform(&todo[i], &f, cache));
+                if g.remaining.fetch_sub(1, Ordering::AcqRel) == 1 {
+                    *g.frame.lock().expect("lock") = None;
+                }
+                let mut v = results.lock().expect("lock");
+                v.push((i, r));
+                pb.set_position(v.len() as u64);
+                pb.tick_line(v.len(), todo.len());
+            });
+        }
+    });
+    pb.finish();
+    let mut results = results.into_inner().expect("lock");
+    results.sort_by_key(|(i, _)| *i);
+    for (i, r) in results {
+        match r {
+            Ok(Done::Point(rec)) => {
+                if let Task::Run(p) = &todo[i].task {
+                    out.points.insert(p.clone(), rec);
+                }
+            }
+            Ok(Done::Scene(c)) => {
+                out.scenes.insert(c.scene.clone(), *c);
+            }
+            Ok(Done::Drawn) => {}
+            Err(e) => out
+                .failures
+                .push(format!("{}: {e}", describe(&todo[i].task))),
+        }
+        out.ran += 1;
+    }
+    // Points that named a machine another point ran under another name.
+    let by_key: HashMap<String, PointRecord> = out
+        .points
+        .values()
+        .filter(|r| !r.stats.is_null())
+        .map(|r| (r.key.clone(), r.clone()))
+        .collect();
+    out.points.retain(|p, r| {
+        if r.stats.is_null() {
+            match by_key.get(&r.key) {
+                Some(x) => {
+                    *r = PointRecord {
+                        point: p.clone(),
+                        ..x.clone()
+                    };
+                    true
+                }
+                None => false,
+            }
+        } else {
+            true
+        }
+    });
+    out.seconds = start.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+fn same_kind(a: &Task, b: &Task) -> bool {
+    std::mem::discriminant(a) == std::mem::discriminant(b)
+        && match (a, b) {
+            (Task::Timeline { out: x, .. }, Task::Timeline { out: y, .. }) => x == y,
+            _ => true,
+        }
+}
+
+fn describe(t: &Task) -> String {
+    match t {
+        Task::Run(p) => p.describe(),
+        Task::Characterize { scene, config } => format!("characterising {scene} ({config})"),
+        Task::Timeline { point, out, .. } => {
+            format!("timeline {} of {}", out.display(), point.describe())
+        }
+    }
+}
+
+/// What a task produced.
+enum Done {
+    Point(PointRecord),
+    Scene(Box<Characterization>),
+    Drawn,
+}
+
+/// The group's frame, rendered by the first worker that needs it.
+fn frame_of(g: &Group) -> Result<Arc<Frame>, String> {
+    let mut slot = g.frame.lock().expect("lock");
+    if slot.is_none() {
+        *slot = Some(render(&g.def, g.tile).map(Arc::new));
+    }
+    slot.as_ref().expect("set").clone()
+}
+
+/// The scene's frame as `wasp render SCENE --trace-out` makes it (the
+/// trace does not depend on the colour pass, which is skipped).
+pub fn render(d: &SceneDef, tile: u32) -> Result<Frame, String> {
+    let scene = fetch::load_scene(d).map_err(|e| e.to_string())?;
+    let opts = RasterOptions {
+        tile,
+        colour: false,
+        threads: 1,
+        ..RasterOptions::default()
+    };
+    rasterize_timed(&scene, d.width, d.height, &opts)
+        .map(|(f, _)| f)
+        .map_err(|e| e.to_string())
+}
+
+fn perform(r: &Ready, frame: &Frame, cache: &Cache) -> Result<Done, String> {
+    match &r.task {
+        Task::Run(p) => {
+            let stats = simulate(&r.cfg, &frame.trace, &RunOptions::default(), &mut |_, _| {})
+                .map_err(|e| e.to_string())?;
+            let rec = PointRecord::new(r.key.clone(), p.clone(), &stats);
+            cache.store_point(&rec)?;
+            Ok(Done::Point(rec))
+        }
+        Task::Characterize { scene, .. } => {
+            let c = characterize(scene, frame, 0.0);
+            cache.store_scene(&r.key, &c)?;
+            Ok(Done::Scene(Box::new(c)))
+        }
+        Task::Timeline { from, to, out, .. } => {
+            let opts = RunOptions {
+                timeline: Some((*from, *to)),
+                ..RunOptions::default()
+            };
+            let (_, tl) = simulate_timeline(&r.cfg, &frame.trace, &opts, &mut |_, _| {})
+                .map_err(|e| e.to_string())?;
+            crate::timeline_plot::draw(&tl, out)?;
+            Ok(Done::Drawn)
+        }
+    }
+}
+
+/// Progress: a bar on a terminal; otherwise a line at every tenth.
+struct Progress {
+    bar: ProgressBar,
+    lines: bool,
+    label: String,
+    start: Instant,
+}
+
+impl Progress {
+    fn set_message(&self, m: String) {
+        self.bar.set_message(m);
+    }
+    fn set_position(&self, n: u64) {
+        self.bar.set_position(n);
+    }
+    fn tick_line(&self, done: usize, total: usize) {
+        if self.lines && (done * 10 / total) != ((done - 1) * 10 / total) {
+            eprintln!(
+                "wasp: {}: {done}/{total} tasks, {:.0} s",
+                self.label,
+                self.start.elapsed().as_secs_f64()
+            );
+        }
+    }
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+fn progress(opts: &RunnerOptions, total: usize) -> Progress {
+    let tty = std::io::stderr().is_terminal();
+    let bar = if opts.quiet || !tty || total == 0 {
+        ProgressBar::hidden()
+    } else {
+        let pb = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
+        pb.set_style(
+            ProgressStyle::with_template(
+                "{prefix:>12} [{bar:40}] {pos}/{len} tasks {elapsed_precise} eta {eta} {msg}",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        pb.set_prefix(opts.label.clone());
+        pb.enable_steady_tick(std::time::Duration::from_millis(250));
+        pb
+    };
+    Progress {
+        bar,
+        lines: !opts.quiet && !tty && total > 0,
+        label: opts.label.clone(),
+        start: Instant::now(),
+    }
+}
