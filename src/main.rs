@@ -3,6 +3,7 @@
 mod bench_cmd;
 mod cost_cmd;
 mod example_cmd;
+mod fonts;
 mod run_cmd;
 mod scene_cmd;
 mod synth_cmd;
