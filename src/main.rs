@@ -1,6 +1,9 @@
 //! `wasp`: the command-line front end of the wasp cycle model.
 
 mod bench_cmd;
+// `wasp reproduce` draws its figures with it; until then only its tests do.
+#[allow(dead_code, unused_imports)]
+mod charts;
 mod cost_cmd;
 mod example_cmd;
 mod fonts;
