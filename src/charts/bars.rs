@@ -8,10 +8,13 @@
 //! its value printed over it (under it when negative; vertical when wider
 //! than the bar), unless that would cover another bar, mark or label.
 
+use super::axis::{draw_y_axis, value_label, y_axis_width, Frame, YAxis};
 use super::canvas::{
-    column, draw_legend, draw_paper_lines, draw_title, draw_y_axis, legend_height, paper_entry,
-    paper_margin, style, text_size, title_height, value_label, y_axis_width, Canvas, Entry, Frame,
-    Placer, Rect, Shape, Swatch, YAxis, LABEL_SIZE, REFERENCE, SMALL_SIZE,
+    column, style, text_size, Canvas, Placer, Rect, Shape, LABEL_SIZE, REFERENCE, SMALL_SIZE,
+};
+use super::legend::{
+    draw_legend, draw_paper_lines, draw_title, legend_height, paper_entry, paper_margin,
+    title_height, Entry, Swatch,
 };
 use super::{
     check_marks, check_series, dark, is_svg, mark_colour, save, series_colour, who, BarChart,

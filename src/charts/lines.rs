@@ -9,10 +9,13 @@
 //! A paper mark of one x position is the series' shape, hollow and larger,
 //! on a short dashed line, labelled beside it where there is room.
 
+use super::axis::{draw_y_axis, y_axis_width, Frame, YAxis};
 use super::canvas::{
-    column, draw_legend, draw_paper_lines, draw_title, draw_y_axis, legend_height, paper_entry,
-    paper_margin, style, text_size, title_height, y_axis_width, Canvas, Entry, Frame, Placer,
-    Shape, Swatch, YAxis, GRID, LABEL_SIZE, REFERENCE, SMALL_SIZE,
+    column, style, text_size, Canvas, Placer, Shape, GRID, LABEL_SIZE, REFERENCE, SMALL_SIZE,
+};
+use super::legend::{
+    draw_legend, draw_paper_lines, draw_title, legend_height, paper_entry, paper_margin,
+    title_height, Entry, Swatch,
 };
 use super::{
     check_marks, check_series, is_svg, mark_colour, save, series_colour, who, LineChart, Picture,
