@@ -123,3 +123,26 @@ fn examples() {
     draw_lines(&lines, &dir.join("lines.png")).expect("lines");
     draw_lines(&lines, &dir.join("lines.svg")).expect("lines svg");
 }
+
+#[test]
+#[ignore = "writes example pictures to look at"]
+fn small_examples() {
+    let dir = dir();
+    let mut one = BarChart::new(
+        "A single scene with a rather long title that keeps going",
+        "speedup",
+        vec!["amazon-lumberyard-bistro".into()],
+    );
+    one.series = vec![
+        Series::full("WaSP", &[-0.021]),
+        Series::full("Fullpriority", &[0.004]),
+    ];
+    one.paper = vec![PaperMark::at(Some(0), 0, 0.01, "paper 1.0%")];
+    one.percent = true;
+    one.reference = Some(0.0);
+    draw_bars(&one, &dir.join("bars-one.png")).expect("one bar");
+    let mut point = LineChart::new("One point", "MSHRs", "IPC", vec![32.0]);
+    point.series = vec![Series::full("WaSP", &[0.7])];
+    point.paper = vec![PaperMark::at(None, 0, 0.72, "paper 0.72")];
+    draw_lines(&point, &dir.join("lines-one.png")).expect("one point");
+}

@@ -120,6 +120,12 @@ fn x_ticks(chart: &LineChart, lo: f64, hi: f64, max: usize) -> Vec<(f64, String)
         .collect()
 }
 
+/// The shape of a paper mark of `series` at one x position: the series'
+/// shape, or a diamond for the whole chart.
+fn paper_shape(series: Option<usize>) -> Shape {
+    series.map_or(Shape::Diamond, Shape::of)
+}
+
 /// A line chart laid out in pixels.
 struct Layout<'a> {
     chart: &'a LineChart,
@@ -198,7 +204,13 @@ impl<'a> Layout<'a> {
                 swatch: Swatch::Line(series_colour(k), Shape::of(k)),
             })
             .collect();
-        legend.extend(paper_entry(&chart.paper, Shape::Circle));
+        // The hollow mark as the first mark of one x position is drawn.
+        let shape = chart
+            .paper
+            .iter()
+            .find(|m| m.category.is_some())
+            .map_or(Shape::Diamond, |m| paper_shape(m.series));
+        legend.extend(paper_entry(&chart.paper, shape));
         let top = title_height(&chart.subtitle) + legend_height(&legend, left, plot_w) + 12.0;
         let bottom_h = tick_h + x_label_h + 12.0;
         let height = (top + MIN_PLOT_H + bottom_h).max(MIN_HEIGHT).round();
@@ -304,7 +316,7 @@ impl Picture for Layout<'_> {
             let ends = [(x - 2.0 * PAPER_R, y), (x + 2.0 * PAPER_R, y)];
             c.path(&ends, WHITE.stroke_width(5))?;
             c.dashed(&ends, 4, 2, colour.stroke_width(2))?;
-            let shape = m.series.map_or(Shape::Diamond, Shape::of);
+            let shape = paper_shape(m.series);
             c.marker(shape, (x, y), PAPER_R, colour, true)?;
             placer.take((
                 x - PAPER_R - 1.0,
