@@ -1,8 +1,12 @@
 //! `wasp`: the command-line front end of the wasp cycle model.
 
 mod bench_cmd;
+// `wasp reproduce` draws its figures with it; until then only its tests do.
+#[allow(dead_code, unused_imports)]
+mod charts;
 mod cost_cmd;
 mod example_cmd;
+mod fonts;
 mod run_cmd;
 mod scene_cmd;
 mod synth_cmd;

@@ -48,12 +48,12 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
-use plotters::style::register_font;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::sync::OnceLock;
 use wasp_sim::timeline::Timeline;
+
+use crate::fonts::{font, register_fonts};
 
 /// Width of the picture in pixels.
 pub const WIDTH: u32 = 1600;
@@ -68,8 +68,6 @@ use downsample::{downsample, Agg, Column};
 const LEGEND_W: u32 = 230;
 /// Height of the title strip.
 const TITLE_H: u32 = 58;
-/// The font family every text uses (registered by [`register_fonts`]).
-const FONT: &str = "sans-serif";
 
 /// Distinguishable colours for the cores (repeated darker past ten cores).
 const CORE_COLOURS: [RGBColor; 10] = [
@@ -117,7 +115,7 @@ pub fn draw(t: &Timeline, path: &Path) -> Result<(), String> {
         }
     };
     check(t)?;
-    register_fonts()?;
+    register_fonts().map_err(drawing)?;
     if svg {
         let mut text = String::new();
         {
@@ -141,37 +139,9 @@ pub fn draw(t: &Timeline, path: &Path) -> Result<(), String> {
     }
 }
 
-/// The font of every text: DejaVu Sans of `size` (plotters' size unit:
-/// the glyphs are about `size / 1.24` pixels high), bold or not.
-fn font(size: u32, bold: bool) -> FontDesc<'static> {
-    let style = if bold {
-        FontStyle::Bold
-    } else {
-        FontStyle::Normal
-    };
-    FontDesc::new(FontFamily::Name(FONT), f64::from(size), style)
-}
-
 /// A drawing error as the CLI reports it.
 fn drawing<E: std::fmt::Display>(e: E) -> String {
     format!("drawing the timeline: {e}")
-}
-
-/// Register the embedded DejaVu Sans as the [`FONT`] family, once.
-fn register_fonts() -> Result<(), String> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
-    DONE.get_or_init(|| {
-        let faces = [
-            (FontStyle::Normal, dejavu::sans::regular()),
-            (FontStyle::Bold, dejavu::sans::bold()),
-        ];
-        for (style, bytes) in faces {
-            register_font(FONT, style, bytes)
-                .map_err(|_| "drawing the timeline: the embedded DejaVu Sans font does not load")?;
-        }
-        Ok(())
-    })
-    .clone()
 }
 
 /// The checks that keep [`render`] from drawing nonsense.
