@@ -1,14 +1,14 @@
 //! `wasp`: the command-line front end of the wasp cycle model.
 
 mod bench_cmd;
-// `wasp reproduce` draws its figures with it; until then only its tests do.
-#[allow(dead_code, unused_imports)]
 mod charts;
 mod cost_cmd;
 mod example_cmd;
 mod fonts;
+mod reproduce;
 mod run_cmd;
 mod scene_cmd;
+mod study;
 mod synth_cmd;
 mod timeline_plot;
 
@@ -86,6 +86,13 @@ enum Command {
     /// ratio, block reuse in tile, CF, Min_Estimate1/2 and the texture
     /// footprint ratio of every priority subset, beside the paper's values.
     Characterize(scene_cmd::CharacterizeArgs),
+
+    /// Reproduce the paper's evaluation: every experiment of Sections III
+    /// and V on the shipped scenes, under the paper's shared-tile machine
+    /// and the per-core-tile machine, in parallel and resumable, with plots
+    /// (PNG, SVG), data (CSV, JSON) and REPORT.md setting the paper's
+    /// numbers beside ours.
+    Reproduce(reproduce::ReproduceArgs),
 }
 
 fn main() -> ExitCode {
@@ -100,6 +107,7 @@ fn main() -> ExitCode {
         Some(Command::Scenes(args)) => scene_cmd::scenes(&args),
         Some(Command::Render(args)) => scene_cmd::render(&args),
         Some(Command::Characterize(args)) => scene_cmd::characterize(&args),
+        Some(Command::Reproduce(args)) => reproduce::run(&args),
         None => example_cmd::run(&example_cmd::ExampleArgs::default()),
     };
     match result {

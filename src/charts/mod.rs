@@ -76,6 +76,7 @@ impl Series {
         }
     }
 
+    #[cfg(test)]
     /// A series with a value for every category.
     pub fn full(name: impl Into<String>, values: &[f64]) -> Self {
         Series::new(name, values.iter().copied().map(Some).collect())

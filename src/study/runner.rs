@@ -71,6 +71,9 @@ pub struct RunnerOptions {
     pub fetch: bool,
     /// The progress bar's label.
     pub label: String,
+    /// Scene definitions known before the scenes folder is searched (e.g.
+    /// files named on the command line); tasks name them by `name`.
+    pub scenes: Vec<SceneDef>,
 }
 
 /// What a study's run produced.
@@ -141,6 +144,13 @@ pub struct Scenes {
 }
 
 impl Scenes {
+    /// A lookup that knows `defs` before the scenes folder.
+    pub fn with(defs: &[SceneDef]) -> Scenes {
+        Scenes {
+            defs: defs.iter().map(|d| (d.name.clone(), d.clone())).collect(),
+        }
+    }
+
     /// The definition of `name` (`wasp scenes list`).
     pub fn def(&mut self, name: &str) -> Result<&SceneDef, String> {
         if !self.defs.contains_key(name) {
@@ -156,7 +166,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     let start = Instant::now();
     let mut out = Outcome::default();
     let mut resolver = Resolver::default();
-    let mut scenes = Scenes::default();
+    let mut scenes = Scenes::with(&opts.scenes);
     let mut ids: HashMap<String, String> = HashMap::new();
     let mut todo: Vec<Ready> = Vec::new();
     // Resolve every task (bad scenes and overrides fail here, before any

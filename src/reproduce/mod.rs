@@ -1,0 +1,163 @@
+//! `wasp reproduce`: every experiment of the paper's Sections III and V on
+//! the shipped scenes, under the paper's shared-tile machine and the
+//! per-core-tile machine, with plots, data files and a report that sets our
+//! numbers beside the paper's.
+//!
+//! - [`plan`]: the experiments as study points;
+//! - [`paper`]: the paper's numbers;
+//! - [`figures`]: the numbers of each figure, from the results;
+//! - [`report`]: REPORT.md, the CSV/JSON files and the plots.
+
+pub mod draw;
+pub mod figures;
+pub mod paper;
+pub mod plan;
+pub mod report;
+
+use crate::study::cache::Cache;
+use crate::study::runner::{self, RunnerOptions};
+use crate::CliError;
+use clap::Args;
+use plan::Plan;
+use std::path::{Path, PathBuf};
+use wasp_sim::config::Dispatch;
+use wasp_sim::scene::def::{self, SceneDef};
+
+/// Options of `wasp reproduce`.
+#[derive(Args, Debug, Clone)]
+pub struct ReproduceArgs {
+    /// A first look in about a minute: the smallest scene of each game, the
+    /// heuristics, ideal memory, the meshes, four thresholds, width 4 at
+    /// 32/48/64 warps and one timeline, on the shared-tile machine only.
+    #[arg(long)]
+    pub quick: bool,
+
+    /// Output folder: REPORT.md, figures/, data/, and the finished points
+    /// (points/, scenes/) that a later run with the same binary skips.
+    #[arg(long, value_name = "DIR", default_value = "reproduce")]
+    pub out: PathBuf,
+
+    /// Machines: both (shared-tile, the paper's, and per-core-tile),
+    /// shared-tile or per-core-tile.
+    #[arg(long, value_name = "WHICH", default_value = "both")]
+    pub machines: Machines,
+
+    /// Only these scenes (comma separated names of `wasp scenes list`, or
+    /// scene definition files; default: every listed scene). A subset is
+    /// not the paper's suite: the report says so.
+    #[arg(long, value_delimiter = ',', value_name = "SCENES")]
+    pub scenes: Option<Vec<String>>,
+
+    /// Simulations run at once (default: the machine's cores).
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+
+    /// No progress output on stderr.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Which machines a reproduction runs.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Machines {
+    /// Shared-tile (the paper's) and per-core-tile.
+    Both,
+    /// The paper's shared-tile machine only.
+    SharedTile,
+    /// The per-core-tile machine only.
+    PerCoreTile,
+}
+
+impl Machines {
+    fn dispatches(self) -> Vec<Dispatch> {
+        match self {
+            Machines::Both => vec![Dispatch::SharedTile, Dispatch::PerCoreTile],
+            Machines::SharedTile => vec![Dispatch::SharedTile],
+            Machines::PerCoreTile => vec![Dispatch::PerCoreTile],
+        }
+    }
+}
+
+/// Run the command.
+pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
+    let jobs = match args.jobs {
+        Some(0) => return Err(CliError::usage("--jobs 0: expected at least 1")),
+        Some(n) if n > 1024 => {
+            return Err(CliError::usage(format!("--jobs {n}: at most 1024")));
+        }
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    let all = def::list(&def::scenes_dir()).map_err(|e| CliError::failed(e.to_string()))?;
+    let defs = match &args.scenes {
+        None => all,
+        Some(names) => {
+            let mut v = Vec::new();
+            for n in names {
+                match all.iter().find(|d| &d.name == n) {
+                    Some(d) => v.push(d.clone()),
+                    None if n.ends_with(".toml") => v.push(
+                        SceneDef::load(Path::new(n))
+                            .map_err(|e| CliError::usage(format!("--scenes: {e}")))?,
+                    ),
+                    None => {
+                        return Err(CliError::usage(format!(
+                            "--scenes: no scene `{n}`; `wasp scenes list` names them"
+                        )))
+                    }
+                }
+            }
+            let mut seen = std::collections::HashSet::new();
+            if let Some(d) = v.iter().find(|d| !seen.insert(d.name.clone())) {
+                return Err(CliError::usage(format!(
+                    "--scenes: the scene `{}` is named twice",
+                    d.name
+                )));
+            }
+            v
+        }
+    };
+    if defs.is_empty() {
+        return Err(CliError::usage("--scenes: name at least one scene"));
+    }
+    let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
+    let cache = Cache::open(&args.out).map_err(CliError::failed)?;
+    let figures = args.out.join("figures");
+    std::fs::create_dir_all(&figures)
+        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
+    let tasks = plan.tasks(&figures);
+    if !args.quiet {
+        eprintln!(
+            "wasp: reproducing the paper{}: {} scenes, {} machine(s), {} tasks, {} at once, into {}",
+            if args.quick { " (quick look)" } else { "" },
+            plan.scenes.len(),
+            plan.dispatches.len(),
+            tasks.len(),
+            jobs,
+            args.out.display()
+        );
+    }
+    let opts = RunnerOptions {
+        jobs,
+        quiet: args.quiet,
+        fetch: true,
+        label: "reproducing".into(),
+        scenes: defs.clone(),
+    };
+    let outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let subset = args.scenes.is_some();
+    let written = report::write(&plan, &outcome, &args.out, subset).map_err(CliError::failed)?;
+    eprintln!("wasp: {}", outcome.summary());
+    eprintln!("wasp: wrote {}", written.display());
+    if !outcome.failures.is_empty() {
+        for f in &outcome.failures {
+            eprintln!("wasp: failed: {f}");
+        }
+        return Err(CliError::failed(format!(
+            "{} of {} tasks failed (the report leaves their points out)",
+            outcome.failures.len(),
+            tasks.len()
+        )));
+    }
+    Ok(())
+}
