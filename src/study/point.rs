@@ -105,9 +105,20 @@ pub fn hash_parts(parts: &[&[u8]]) -> String {
 
 /// The identity of the running `wasp` binary: a hash of the executable's
 /// bytes (computed once), or the crate version when it cannot be read.
+///
+/// `WASP_STUDY_BINARY_ID` overrides it: a developer changing only report
+/// code can reuse the points of an earlier build by naming its id (the
+/// `binary` field of its point records). Results then come from that
+/// build, not this one; use it for nothing else.
 pub fn binary_id() -> &'static str {
     static ID: OnceLock<String> = OnceLock::new();
     ID.get_or_init(|| {
+        if let Some(id) = std::env::var("WASP_STUDY_BINARY_ID")
+            .ok()
+            .filter(|s| !s.is_empty())
+        {
+            return id;
+        }
         let bytes = std::env::current_exe().and_then(std::fs::read);
         match bytes {
             Ok(b) => hash_parts(&[&b]),
