@@ -21,7 +21,7 @@ fn csv_rows(path: &Path) -> Vec<Vec<String>> {
     std::fs::read_to_string(path)
         .unwrap()
         .lines()
-        .map(|l| split_csv(l))
+        .map(split_csv)
         .collect()
 }
 
