@@ -37,7 +37,8 @@ pub enum Task {
         config: String,
     },
     /// Draw the timeline of cycles `from..=to` of a point to `out` (.png
-    /// or .svg); skipped if `out` exists.
+    /// or .svg); skipped if `out` exists and `out.key` names the point's
+    /// key.
     Timeline {
         /// The run.
         point: Point,
@@ -89,6 +90,9 @@ pub struct Outcome {
     pub ran: usize,
     /// Tasks whose result was stored already.
     pub cached: usize,
+    /// Tasks on the same machine as an earlier task of the run (sharing its
+    /// result).
+    pub same: usize,
     /// Wall seconds.
     pub seconds: f64,
 }
@@ -107,10 +111,12 @@ impl Outcome {
             0.0
         };
         format!(
-            "{} tasks ({} run, {} already done{}) in {:.1} s wall, {:.2} tasks/s",
-            self.ran + self.cached,
+            "{} tasks ({} run, {} already done, {} the same as another{}) in {:.1} s wall, \
+             {:.2} tasks/s",
+            self.ran + self.cached + self.same,
             self.ran,
             self.cached,
+            self.same,
             if self.failures.is_empty() {
                 String::new()
             } else {
@@ -169,6 +175,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     let mut scenes = Scenes::with(&opts.scenes);
     let mut ids: HashMap<String, String> = HashMap::new();
     let mut todo: Vec<Ready> = Vec::new();
+    let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
     // Resolve every task (bad scenes and overrides fail here, before any
     // run), and take the stored results.
     for t in tasks {
@@ -198,6 +205,26 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
                 (key, cfg)
             }
         };
+        // A task on the same machine as an earlier one (the same key and
+        // kind) shares its result.
+        let id = match t {
+            Task::Timeline { out, .. } => format!("timeline {key} {}", out.display()),
+            Task::Run(_) => format!("run {key}"),
+            Task::Characterize { .. } => format!("scene {key}"),
+        };
+        if !seen.insert(id) {
+            out.same += 1;
+            if let Task::Run(p) = t {
+                // Filled in from the first one's result at the end.
+                out.points.entry(p.clone()).or_insert_with(|| PointRecord {
+                    key: key.clone(),
+                    point: p.clone(),
+                    binary: String::new(),
+                    stats: serde_json::Value::Null,
+                });
+            }
+            continue;
+        }
         let done = match t {
             Task::Run(p) => match cache.load_point(&p.scene, &key) {
                 Some(r) => {
@@ -213,24 +240,18 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
                 }
                 None => false,
             },
-            Task::Timeline { out: path, .. } => path.is_file(),
+            Task::Timeline { out: path, .. } => {
+                path.is_file()
+                    && std::fs::read_to_string(key_file(path)).is_ok_and(|k| k.trim() == key)
+            }
         };
         if done {
             out.cached += 1;
-        } else if !todo.iter().any(|r| r.key == key && same_kind(&r.task, t)) {
+        } else {
             todo.push(Ready {
                 task: t.clone(),
                 key,
                 cfg,
-            });
-        } else if let Task::Run(p) = t {
-            // The same machine under another description: filled in from
-            // the first one's result at the end.
-            out.points.entry(p.clone()).or_insert_with(|| PointRecord {
-                key: key.clone(),
-                point: p.clone(),
-                binary: String::new(),
-                stats: serde_json::Value::Null,
             });
         }
     }
@@ -361,14 +382,6 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     Ok(out)
 }
 
-fn same_kind(a: &Task, b: &Task) -> bool {
-    std::mem::discriminant(a) == std::mem::discriminant(b)
-        && match (a, b) {
-            (Task::Timeline { out: x, .. }, Task::Timeline { out: y, .. }) => x == y,
-            _ => true,
-        }
-}
-
 fn describe(t: &Task) -> String {
     match t {
         Task::Run(p) => p.describe(),
@@ -377,6 +390,14 @@ fn describe(t: &Task) -> String {
             format!("timeline {} of {}", out.display(), point.describe())
         }
     }
+}
+
+/// `PICTURE.key` beside a timeline picture: the key of the run it shows,
+/// so that a picture of another build or machine is drawn again.
+fn key_file(picture: &std::path::Path) -> PathBuf {
+    let mut s = picture.as_os_str().to_owned();
+    s.push(".key");
+    PathBuf::from(s)
 }
 
 /// What a task produced.
@@ -432,6 +453,7 @@ fn perform(r: &Ready, frame: &Frame, cache: &Cache) -> Result<Done, String> {
             let (_, tl) = simulate_timeline(&r.cfg, &frame.trace, &opts, &mut |_, _| {})
                 .map_err(|e| e.to_string())?;
             crate::timeline_plot::draw(&tl, out)?;
+            super::cache::write_atomic(&key_file(out), &format!("{}\n", r.key))?;
             Ok(Done::Drawn)
         }
     }
