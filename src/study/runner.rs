@@ -285,7 +285,13 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
                 eprintln!("wasp:   {m}");
             }
         })
-        .map_err(|e| format!("fetching {}: {e}", g.name()))?;
+        .map_err(|e| {
+            format!(
+                "fetching the {} data: {e} (its scenes need it; name the other scenes to leave \
+                 them out)",
+                g.name()
+            )
+        })?;
     }
     // Group by scene and tile size, in scene order.
     todo.sort_by(|a, b| {
