@@ -5,6 +5,7 @@ mod cost_cmd;
 mod example_cmd;
 mod run_cmd;
 mod scene_cmd;
+mod study;
 mod synth_cmd;
 mod timeline_plot;
 
