@@ -132,9 +132,17 @@ impl Sweep {
     /// `known`.
     pub fn parse(text: &str, shown: &str, dir: &Path, known: &[String]) -> Result<Sweep, String> {
         let raw: RawSweep = toml::from_str(text).map_err(|e| {
-            let line = e.span().map(|s| line_of(text, s.start));
-            let at = line.map_or(String::new(), |l| format!(":{l}"));
-            format!("{shown}{at}: {}", e.message().trim_end())
+            let message = e.message().trim_end().replace('\n', ": ");
+            match e.span().map(|s| line_of(text, s.start)) {
+                // A missing field is reported at its table: the line says
+                // nothing more.
+                Some(l) if !message.starts_with("missing field") => {
+                    let src = text.lines().nth(l - 1).unwrap_or("").trim();
+                    format!("{shown}:{l}: {message} (in `{src}`)")
+                }
+                Some(l) => format!("{shown}:{l}: {message}"),
+                None => format!("{shown}: {message}"),
+            }
         })?;
         let at = |offset: usize| format!("{shown}:{}", line_of(text, offset));
         let list = |field: &str, v: &Spanned<Vec<Spanned<String>>>| -> Result<(), String> {
@@ -495,6 +503,15 @@ set = ["l0.mshrs=8"]
             (
                 "scenes = [\"procedural-plane\"]\npolicies = [\"baseline\"]\n",
                 "sweep.toml: no [[configs]] entry",
+            ),
+            (
+                "scenes = [\"procedural-plane\"]\npolicies = \"baseline\"\n",
+                "sweep.toml:2: invalid type: string \"baseline\", expected a sequence (in \
+                 `policies = \"baseline\"`)",
+            ),
+            (
+                "scenes = [\"procedural-plane\"]\n",
+                "sweep.toml:1: missing field `policies`",
             ),
             (
                 "scenes = [\"procedural-plane\"]\npolicies = [\"baseline\"]\ndispatches = [\"diagonal\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
