@@ -12,13 +12,14 @@ use super::point::{binary_id, point_key, scene_identity, Point};
 use super::runner::Scenes;
 use super::sweep::SweepPoint;
 use super::table::csv;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::{BTreeSet, HashMap, HashSet};
 use std::fmt::Write as _;
 
 /// `records` without repeats: records of the same key and point count once,
 /// and records of the same key must hold the same statistics.
 pub fn combine(records: Vec<PointRecord>) -> Result<Vec<PointRecord>, String> {
     let mut first: HashMap<String, usize> = HashMap::new();
+    let mut seen: HashSet<(String, Point)> = HashSet::new();
     let mut out: Vec<PointRecord> = Vec::with_capacity(records.len());
     for r in records {
         if let Some(&i) = first.get(&r.key) {
@@ -31,13 +32,12 @@ pub fn combine(records: Vec<PointRecord>) -> Result<Vec<PointRecord>, String> {
                     r.point.describe()
                 ));
             }
-            if out.iter().any(|x| x.key == r.key && x.point == r.point) {
-                continue;
-            }
         } else {
             first.insert(r.key.clone(), out.len());
         }
-        out.push(r);
+        if seen.insert((r.key.clone(), r.point.clone())) {
+            out.push(r);
+        }
     }
     Ok(out)
 }
