@@ -85,7 +85,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     }
     let out = sweep::absolute(&args.out).map_err(CliError::usage)?;
     if let Some(jobs) = &args.jobs_file {
-        return write_jobs(args, jobs, &out, &points);
+        return write_jobs(args, &s, jobs, &out, &points);
     }
     let chosen: Vec<&SweepPoint> = match args.point {
         Some(n) if (1..=points.len()).contains(&n) => vec![&points[n - 1]],
@@ -156,6 +156,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
 /// Write the jobs file and say how to run it.
 fn write_jobs(
     args: &SweepArgs,
+    s: &Sweep,
     jobs: &Path,
     out: &Path,
     points: &[SweepPoint],
@@ -168,10 +169,9 @@ fn write_jobs(
     std::fs::write(jobs, text)
         .map_err(|e| CliError::failed(format!("cannot write {}: {e}", jobs.display())))?;
     let mut games: Vec<def::Game> = Vec::new();
-    for p in points {
-        let d =
-            def::find(&def::scenes_dir(), &p.scene).map_err(|e| CliError::usage(e.to_string()))?;
-        if !fetch::is_fetched(d.game) && !games.contains(&d.game) {
+    for d in def::list(&def::scenes_dir()).map_err(|e| CliError::failed(e.to_string()))? {
+        let used = s.scenes.contains(&d.name);
+        if used && !fetch::is_fetched(d.game) && !games.contains(&d.game) {
             games.push(d.game);
         }
     }
@@ -182,25 +182,11 @@ fn write_jobs(
             g.name()
         );
     }
-    let q = |p: &Path| sweep::shell_quote(&p.display().to_string());
-    let jq = q(&sweep::absolute(jobs).map_err(CliError::usage)?);
-    let n = points.len();
-    println!("wrote {}: {n} jobs, line N runs point N", jobs.display());
-    println!("run them, e.g. with GNU parallel:");
-    println!("  parallel -j 8 < {jq}");
-    println!("or as a Slurm array:");
-    println!(
-        "  sbatch --array=1-{n} --wrap {}",
-        sweep::shell_quote(&format!("sed -n \"${{SLURM_ARRAY_TASK_ID}}p\" {jq} | sh"))
-    );
-    println!("then combine the results:");
-    println!(
-        "  {} merge {} --sweep {} --csv results.csv",
-        q(&exe),
-        q(out),
-        q(&file)
-    );
-    Ok(())
+    let abs_jobs = sweep::absolute(jobs).map_err(CliError::usage)?;
+    emit(
+        Path::new("-"),
+        &sweep::how_to_run(&exe, &file, out, &abs_jobs, points.len()),
+    )
 }
 
 /// Run `wasp merge`.

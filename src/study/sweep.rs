@@ -387,6 +387,27 @@ pub fn jobs_text(exe: &Path, file: &Path, out: &Path, count: usize) -> String {
         .collect()
 }
 
+/// What `--jobs-file` prints: the jobs file `jobs` of `count` points, how
+/// to run it (GNU parallel, a Slurm array) and how to merge the results of
+/// `out` afterwards (all paths absolute).
+pub fn how_to_run(exe: &Path, file: &Path, out: &Path, jobs: &Path, count: usize) -> String {
+    let q = |p: &Path| shell_quote(&p.display().to_string());
+    let jq = q(jobs);
+    let task = shell_quote(&format!("sed -n \"${{SLURM_ARRAY_TASK_ID}}p\" {jq} | sh"));
+    format!(
+        "wrote {jq}: {count} jobs, line N runs point N\n\
+         run them, e.g. with GNU parallel:\n  \
+         parallel -j 8 < {jq}\n\
+         or as a Slurm array:\n  \
+         sbatch --array=1-{count} --wrap {task}\n\
+         then combine the results:\n  \
+         {} merge {} --sweep {} --csv results.csv\n",
+        q(exe),
+        q(out),
+        q(file)
+    )
+}
+
 /// `N<TAB>description` for every point.
 pub fn listing(points: &[SweepPoint]) -> String {
     points
@@ -617,6 +638,24 @@ set = ["l0.mshrs=8"]
         assert_eq!(
             line,
             "/bin/wasp sweep '/s/my sweep.toml' --out /o --point 7 -q"
+        );
+        let how = how_to_run(
+            Path::new("/w"),
+            Path::new("/f"),
+            Path::new("/d"),
+            Path::new("/j s"),
+            3,
+        );
+        assert!(how.contains("\n  parallel -j 8 < '/j s'\n"), "{how}");
+        assert!(
+            how.contains(
+                "\n  sbatch --array=1-3 --wrap 'sed -n \"${SLURM_ARRAY_TASK_ID}p\" '\\''/j s'\\'' | sh'\n"
+            ),
+            "{how}"
+        );
+        assert!(
+            how.ends_with("\n  /w merge /d --sweep /f --csv results.csv\n"),
+            "{how}"
         );
         let jobs = jobs_text(Path::new("/w"), Path::new("/f"), Path::new("/d"), 3);
         assert_eq!(jobs.lines().count(), 3);
