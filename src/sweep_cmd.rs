@@ -4,6 +4,7 @@
 
 use crate::run_cmd::emit;
 use crate::study::cache::{read_points, write_atomic, Cache, PointRecord};
+use crate::study::jobs;
 use crate::study::merge;
 use crate::study::runner::{self, RunnerOptions, Task};
 use crate::study::sweep::{self, Sweep, SweepPoint};
@@ -165,7 +166,7 @@ fn write_jobs(
         .map_err(|e| CliError::failed(format!("cannot find the wasp executable: {e}")))?;
     let file = std::fs::canonicalize(&args.file)
         .map_err(|e| CliError::usage(format!("{}: {e}", args.file.display())))?;
-    let text = sweep::jobs_text(&exe, &file, out, points.len());
+    let text = jobs::jobs_text(&exe, &file, out, points.len());
     std::fs::write(jobs, text)
         .map_err(|e| CliError::failed(format!("cannot write {}: {e}", jobs.display())))?;
     let mut games: Vec<def::Game> = Vec::new();
@@ -185,7 +186,7 @@ fn write_jobs(
     let abs_jobs = sweep::absolute(jobs).map_err(CliError::usage)?;
     emit(
         Path::new("-"),
-        &sweep::how_to_run(&exe, &file, out, &abs_jobs, points.len()),
+        &jobs::how_to_run(&exe, &file, out, &abs_jobs, points.len()),
     )
 }
 
@@ -251,8 +252,8 @@ pub fn merge(args: &MergeArgs) -> Result<(), CliError> {
         return Err(CliError::failed(merge::missing_message(
             &missing,
             points.len(),
-            &sweep::shell_quote(&file.display().to_string()),
-            &sweep::shell_quote(&dir.display().to_string()),
+            &jobs::shell_quote(&file.display().to_string()),
+            &jobs::shell_quote(&dir.display().to_string()),
         )));
     }
     Ok(())
