@@ -9,6 +9,7 @@ mod reproduce;
 mod run_cmd;
 mod scene_cmd;
 mod study;
+mod sweep_cmd;
 mod synth_cmd;
 mod timeline_plot;
 
@@ -93,6 +94,23 @@ enum Command {
     /// (PNG, SVG), data (CSV, JSON) and REPORT.md setting the paper's
     /// numbers beside ours.
     Reproduce(reproduce::ReproduceArgs),
+
+    /// Run a grid of simulations described by a sweep file: scenes x
+    /// configurations x dispatch modes x launch policies (docs/sweep.md).
+    ///
+    /// Points run in parallel, each scene rendered once; finished points are
+    /// stored in the --out folder and skipped by a rerun. Writes
+    /// DIR/results.csv and DIR/results.json and prints cycles and speedups
+    /// against the first policy. For a cluster, --jobs-file writes one
+    /// command per point (`--point N`), and `wasp merge` combines them.
+    Sweep(sweep_cmd::SweepArgs),
+
+    /// Combine the point results of study folders (e.g. one per cluster
+    /// node) into one table: CSV on standard output by default.
+    ///
+    /// With --sweep FILE the rows are that sweep's points in order, as in
+    /// its results.csv, and points without a result are listed (exit 1).
+    Merge(sweep_cmd::MergeArgs),
 }
 
 fn main() -> ExitCode {
@@ -108,6 +126,8 @@ fn main() -> ExitCode {
         Some(Command::Render(args)) => scene_cmd::render(&args),
         Some(Command::Characterize(args)) => scene_cmd::characterize(&args),
         Some(Command::Reproduce(args)) => reproduce::run(&args),
+        Some(Command::Sweep(args)) => sweep_cmd::sweep(&args),
+        Some(Command::Merge(args)) => sweep_cmd::merge(&args),
         None => example_cmd::run(&example_cmd::ExampleArgs::default()),
     };
     match result {

@@ -111,12 +111,15 @@ impl Outcome {
             0.0
         };
         format!(
-            "{} tasks ({} run, {} already done, {} the same as another{}) in {:.1} s wall, \
-             {:.2} tasks/s",
+            "{} tasks ({} run, {} already done{}{}) in {:.1} s wall, {:.2} tasks/s",
             self.ran + self.cached + self.same,
             self.ran,
             self.cached,
-            self.same,
+            if self.same == 0 {
+                String::new()
+            } else {
+                format!(", {} the same as another", self.same)
+            },
             if self.failures.is_empty() {
                 String::new()
             } else {

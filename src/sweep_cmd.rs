@@ -1,0 +1,261 @@
+//! `wasp sweep` and `wasp merge`: a user's grid of simulations
+//! (docs/sweep.md), run here in parallel or as one cluster job per point,
+//! and its results combined from any number of study folders.
+
+use crate::run_cmd::emit;
+use crate::study::cache::{read_points, write_atomic, Cache, PointRecord};
+use crate::study::jobs;
+use crate::study::merge;
+use crate::study::runner::{self, RunnerOptions, Task};
+use crate::study::sweep::{self, Sweep, SweepPoint};
+use crate::CliError;
+use clap::Args;
+use std::path::{Path, PathBuf};
+use wasp_sim::scene::{def, fetch};
+
+/// Options of `wasp sweep`.
+#[derive(Args, Debug, Clone)]
+pub struct SweepArgs {
+    /// The sweep file (TOML; see docs/sweep.md).
+    pub file: PathBuf,
+
+    /// The study folder: finished points (`points/`), `results.csv` and
+    /// `results.json`. A rerun skips the points it holds.
+    #[arg(long, value_name = "DIR", default_value = "sweep-out")]
+    pub out: PathBuf,
+
+    /// Simulations at once (default: the machine's cores).
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+
+    /// Write one shell command per point to JOBS (line N runs point N with
+    /// --point N) for a cluster, instead of running anything.
+    #[arg(long, value_name = "JOBS", conflicts_with_all = ["point", "list"])]
+    pub jobs_file: Option<PathBuf>,
+
+    /// Print `N<TAB>description` for every point, and run nothing.
+    #[arg(long, conflicts_with = "point")]
+    pub list: bool,
+
+    /// Run only point N (from 1; see --list) and store its result in the
+    /// folder; `wasp merge` makes the tables.
+    #[arg(long, value_name = "N")]
+    pub point: Option<usize>,
+
+    /// No progress output on stderr; results, warnings and errors still
+    /// print.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Options of `wasp merge`.
+#[derive(Args, Debug, Clone)]
+pub struct MergeArgs {
+    /// Study folders (of `wasp sweep --out`, or their `points/` folders).
+    #[arg(required = true, value_name = "DIR")]
+    pub dirs: Vec<PathBuf>,
+
+    /// The sweep file: one row per point in sweep order, with its columns
+    /// (point, config, dispatch, policy, scene); points without a result
+    /// are listed and the exit code is 1.
+    #[arg(long, value_name = "FILE")]
+    pub sweep: Option<PathBuf>,
+
+    /// Write the table as CSV to OUT (`-`: standard output; the default
+    /// when neither --csv nor --json is given).
+    #[arg(long, value_name = "OUT")]
+    pub csv: Option<PathBuf>,
+
+    /// Write the records as JSON to OUT (`-`: standard output).
+    #[arg(long, value_name = "OUT")]
+    pub json: Option<PathBuf>,
+}
+
+/// Read the sweep file and expand it, every machine resolved.
+fn load(file: &Path) -> Result<(Sweep, Vec<SweepPoint>), CliError> {
+    let s = Sweep::load(file).map_err(CliError::usage)?;
+    let points = s.points().map_err(CliError::usage)?;
+    Ok((s, points))
+}
+
+/// Run `wasp sweep`.
+pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
+    let (s, points) = load(&args.file)?;
+    if args.list {
+        return emit(Path::new("-"), &sweep::listing(&points));
+    }
+    let out = sweep::absolute(&args.out).map_err(CliError::usage)?;
+    if let Some(jobs) = &args.jobs_file {
+        return write_jobs(args, &s, jobs, &out, &points);
+    }
+    let chosen: Vec<&SweepPoint> = match args.point {
+        Some(n) if (1..=points.len()).contains(&n) => vec![&points[n - 1]],
+        Some(n) => {
+            return Err(CliError::usage(format!(
+                "--point {n}: {} has points 1 to {} (see --list)",
+                s.shown,
+                points.len()
+            )))
+        }
+        None => points.iter().collect(),
+    };
+    let cache = Cache::open(&out).map_err(CliError::failed)?;
+    let tasks: Vec<Task> = chosen.iter().map(|p| Task::Run(p.point.clone())).collect();
+    let opts = RunnerOptions {
+        jobs: args
+            .jobs
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+        quiet: args.quiet,
+        // A cluster job never fetches: concurrent fetches into one scene
+        // cache would race, so the error names `wasp scenes fetch`.
+        fetch: args.point.is_none(),
+        label: "sweep".into(),
+        scenes: Vec::new(),
+    };
+    let outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let stored: Vec<(&SweepPoint, PointRecord)> = chosen
+        .iter()
+        .filter_map(|p| outcome.get(&p.point).map(|r| (*p, merge::as_stored(r))))
+        .collect();
+    let rows: Vec<(&SweepPoint, &PointRecord)> = stored.iter().map(|(p, r)| (*p, r)).collect();
+    if args.point.is_none() {
+        let csv = out.join("results.csv");
+        let json = out.join("results.json");
+        write_atomic(&csv, &merge::results_csv(&rows)).map_err(CliError::failed)?;
+        write_atomic(&json, &merge::results_json(&rows)).map_err(CliError::failed)?;
+        if !args.quiet {
+            eprintln!("wasp: wrote {} and {}", csv.display(), json.display());
+        }
+    }
+    match (args.point, rows.first()) {
+        (Some(n), Some((p, r))) => println!(
+            "point {n}/{} ({}): {:.0} cycles",
+            points.len(),
+            p.describe(),
+            r.cycles()
+        ),
+        (Some(_), None) => {}
+        (None, _) => emit(Path::new("-"), &merge::results_table(&rows, &s.policies[0]))?,
+    }
+    if !args.quiet {
+        eprintln!("wasp: {}", outcome.summary());
+    }
+    if !outcome.failures.is_empty() {
+        let n = outcome.failures.len();
+        let mut m = format!("{n} of {} points failed:", chosen.len());
+        for f in outcome.failures.iter().take(10) {
+            m.push_str("\n  ");
+            m.push_str(f);
+        }
+        if n > 10 {
+            m.push_str("\n  ...");
+        }
+        return Err(CliError::failed(m));
+    }
+    Ok(())
+}
+
+/// Write the jobs file and say how to run it.
+fn write_jobs(
+    args: &SweepArgs,
+    s: &Sweep,
+    jobs: &Path,
+    out: &Path,
+    points: &[SweepPoint],
+) -> Result<(), CliError> {
+    let exe = std::env::current_exe()
+        .map_err(|e| CliError::failed(format!("cannot find the wasp executable: {e}")))?;
+    let file = std::fs::canonicalize(&args.file)
+        .map_err(|e| CliError::usage(format!("{}: {e}", args.file.display())))?;
+    let text = jobs::jobs_text(&exe, &file, out, points.len());
+    std::fs::write(jobs, text)
+        .map_err(|e| CliError::failed(format!("cannot write {}: {e}", jobs.display())))?;
+    let mut games: Vec<def::Game> = Vec::new();
+    for d in def::list(&def::scenes_dir()).map_err(|e| CliError::failed(e.to_string()))? {
+        let used = s.scenes.contains(&d.name);
+        if used && !fetch::is_fetched(d.game) && !games.contains(&d.game) {
+            games.push(d.game);
+        }
+    }
+    for g in games {
+        eprintln!(
+            "wasp: warning: the {0} data is not fetched here; run `wasp scenes fetch {0}` \
+             before the jobs (they do not fetch)",
+            g.name()
+        );
+    }
+    let abs_jobs = sweep::absolute(jobs).map_err(CliError::usage)?;
+    emit(
+        Path::new("-"),
+        &jobs::how_to_run(&exe, &file, out, &abs_jobs, points.len()),
+    )
+}
+
+/// Run `wasp merge`.
+pub fn merge(args: &MergeArgs) -> Result<(), CliError> {
+    for d in &args.dirs {
+        if !d.is_dir() {
+            return Err(CliError::usage(format!("{}: no such folder", d.display())));
+        }
+    }
+    let swept = match &args.sweep {
+        Some(f) => Some(load(f)?),
+        None => None,
+    };
+    let records = read_points(&args.dirs).map_err(CliError::failed)?;
+    let records = merge::combine(records).map_err(CliError::failed)?;
+    let (csv, json) = (args.csv.clone(), args.json.clone());
+    let csv = match (&csv, &json) {
+        (None, None) => Some(PathBuf::from("-")),
+        _ => csv,
+    };
+    let Some((_, points)) = swept else {
+        let all: Vec<&PointRecord> = records.iter().collect();
+        if let Some(w) = merge::mixed_builds(&all) {
+            eprintln!("wasp: warning: {w}");
+        }
+        if let Some(p) = &csv {
+            emit(p, &crate::study::table::points_csv(&all))?;
+        }
+        if let Some(p) = &json {
+            let text = serde_json::to_string_pretty(&records)
+                .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?;
+            emit(p, &(text + "\n"))?;
+        }
+        return Ok(());
+    };
+    let found = merge::match_points(&points, &records).map_err(CliError::failed)?;
+    let rows: Vec<(&SweepPoint, &PointRecord)> = points
+        .iter()
+        .zip(&found)
+        .filter_map(|(p, r)| r.map(|r| (p, r)))
+        .collect();
+    let used: Vec<&PointRecord> = rows.iter().map(|(_, r)| *r).collect();
+    if let Some(w) = merge::mixed_builds(&used) {
+        eprintln!("wasp: warning: {w}");
+    }
+    if let Some(p) = &csv {
+        emit(p, &merge::results_csv(&rows))?;
+    }
+    if let Some(p) = &json {
+        emit(p, &merge::results_json(&rows))?;
+    }
+    let missing: Vec<usize> = points
+        .iter()
+        .zip(&found)
+        .filter(|(_, r)| r.is_none())
+        .map(|(p, _)| p.index)
+        .collect();
+    if !missing.is_empty() {
+        let file =
+            sweep::absolute(args.sweep.as_deref().expect("a sweep")).map_err(CliError::usage)?;
+        let dir = sweep::absolute(&args.dirs[0]).map_err(CliError::usage)?;
+        return Err(CliError::failed(merge::missing_message(
+            &missing,
+            points.len(),
+            &jobs::shell_quote(&file.display().to_string()),
+            &jobs::shell_quote(&dir.display().to_string()),
+        )));
+    }
+    Ok(())
+}

@@ -1,0 +1,199 @@
+//! Whole-program tests of `wasp sweep` and `wasp merge`: a sweep run at
+//! once and the same sweep run as cluster jobs give the same table.
+
+use std::path::Path;
+use std::process::Command;
+
+mod common;
+use common::{ok, stderr, stdout, wasp};
+
+/// One scene, one machine, two policies: two points.
+const SWEEP: &str = r#"
+scenes = ["procedural-plane"]
+policies = ["baseline", "wasp:0:3"]
+[[configs]]
+name = "shipped"
+base = "paper"
+"#;
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// The rows of a results table without its header, which names the
+/// columns.
+fn rows(csv: &str) -> Vec<String> {
+    csv.lines().map(String::from).collect()
+}
+
+#[test]
+fn a_sweep_run_at_once_and_as_jobs_gives_the_same_table() {
+    let d = common::scratch("sweep", "jobs");
+    let _ = std::fs::remove_dir_all(d.join("a"));
+    let _ = std::fs::remove_dir_all(d.join("b"));
+    let file = d.join("tiny sweep.toml");
+    std::fs::write(&file, SWEEP).unwrap();
+    let (a, b) = (d.join("a"), d.join("b"));
+
+    // (a) All at once.
+    let o = wasp(&["sweep", s(&file), "--out", s(&a), "--jobs", "2"]);
+    let table = ok(&o);
+    assert!(table.starts_with("point  scene"), "{table}");
+    assert!(table.contains("shared-tile  wasp:0:3"), "{table}");
+    assert!(
+        stderr(&o).contains("2 tasks (2 run, 0 already done)"),
+        "{}",
+        stderr(&o)
+    );
+    let csv_a = std::fs::read_to_string(a.join("results.csv")).unwrap();
+    let lines = rows(&csv_a);
+    assert_eq!(lines.len(), 3, "{csv_a}");
+    assert!(
+        lines[0].starts_with("point,config,dispatch,policy,scene,"),
+        "{}",
+        lines[0]
+    );
+    assert!(lines[0].contains(",cycles,"), "{}", lines[0]);
+    assert!(lines[1].starts_with("1,shipped,shared-tile,baseline,procedural-plane,"));
+    assert!(lines[2].starts_with("2,shipped,shared-tile,wasp:0:3,procedural-plane,"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(a.join("results.json")).unwrap()).unwrap();
+    assert_eq!(json.as_array().unwrap().len(), 2);
+    assert_eq!(json[1]["stats"]["policy"], "wasp:0:3");
+    assert!(json[0]["stats"]["cycles"].as_u64().unwrap() > 0);
+
+    // --list numbers the points as the jobs do.
+    let list = ok(&wasp(&["sweep", s(&file), "--list"]));
+    assert_eq!(
+        list,
+        "1\tprocedural-plane, config shipped, shared-tile, baseline\n\
+         2\tprocedural-plane, config shipped, shared-tile, wasp:0:3\n"
+    );
+
+    // (b) As jobs, one process per point, then merged.
+    let jobs = d.join("jobs.txt");
+    let how = ok(&wasp(&[
+        "sweep",
+        s(&file),
+        "--out",
+        s(&b),
+        "--jobs-file",
+        s(&jobs),
+    ]));
+    assert!(how.contains("sbatch --array=1-2"), "{how}");
+    assert!(how.contains("parallel -j 8 <"), "{how}");
+    let lines = std::fs::read_to_string(&jobs).unwrap();
+    let lines: Vec<&str> = lines.lines().collect();
+    assert_eq!(lines.len(), 2);
+    assert!(
+        lines[1].ends_with(&format!("--out {} --point 2 -q", s(&b))),
+        "{}",
+        lines[1]
+    );
+    assert!(
+        lines[0].contains("'"),
+        "the file name has a space: {}",
+        lines[0]
+    );
+    for (i, line) in lines.iter().enumerate() {
+        // Run from elsewhere: the commands are self-contained.
+        let o = Command::new("sh")
+            .arg("-c")
+            .arg(line)
+            .current_dir(std::env::temp_dir())
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{line}: {}", stderr(&o));
+        assert!(
+            stdout(&o).starts_with(&format!("point {}/2 (", i + 1)),
+            "{}",
+            stdout(&o)
+        );
+        assert!(stderr(&o).is_empty(), "-q: {}", stderr(&o));
+    }
+    assert!(
+        !b.join("results.csv").exists(),
+        "a job writes its point only"
+    );
+    let merged = d.join("m.csv");
+    ok(&wasp(&[
+        "merge",
+        s(&b),
+        "--sweep",
+        s(&file),
+        "--csv",
+        s(&merged),
+    ]));
+    assert_eq!(
+        rows(&std::fs::read_to_string(&merged).unwrap()),
+        rows(&csv_a)
+    );
+
+    // (c) A rerun finds every point done.
+    let o = wasp(&["sweep", s(&file), "--out", s(&a)]);
+    ok(&o);
+    assert!(
+        stderr(&o).contains("2 tasks (0 run, 2 already done)"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read_to_string(a.join("results.csv")).unwrap(),
+        csv_a
+    );
+
+    // A merge without one point's file writes the rest and names it.
+    let points: Vec<_> = std::fs::read_dir(b.join("points"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(points.len(), 2);
+    let wasp_m = points
+        .iter()
+        .find(|p| std::fs::read_to_string(p).unwrap().contains("wasp:0:3"))
+        .unwrap();
+    std::fs::remove_file(wasp_m).unwrap();
+    let o = wasp(&["merge", s(&b), "--sweep", s(&file)]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(rows(&stdout(&o)), rows(&csv_a)[..2]);
+    let e = stderr(&o);
+    assert!(
+        e.contains("1 of 2 points have no result: 2; run them with `wasp sweep"),
+        "{e}"
+    );
+    assert!(e.contains("--point N`"), "{e}");
+
+    // (d) A point out of range is a usage error naming the range.
+    let o = wasp(&["sweep", s(&file), "--out", s(&b), "--point", "99"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--point 99: "), "{}", stderr(&o));
+    assert!(stderr(&o).contains("has points 1 to 2"), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_bad_sweep_file_is_refused_before_any_run() {
+    let d = common::scratch("sweep", "bad");
+    let file = d.join("bad.toml");
+    std::fs::write(
+        &file,
+        "scenes = [\"procedural-plane\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \"x\"\n\
+         base = \"paper\"\nset = [\"l0.mshrs=0\"]\n",
+    )
+    .unwrap();
+    let out = d.join("out");
+    let o = wasp(&["sweep", s(&file), "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(
+        e.contains("bad.toml:4: configs `x` with its own dispatch"),
+        "{e}"
+    );
+    assert!(e.contains("l0.mshrs"), "{e}");
+    assert!(!out.exists(), "nothing ran");
+    // The shipped example parses and expands.
+    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/sweep-example.toml");
+    let list = ok(&wasp(&["sweep", example, "--list"]));
+    assert_eq!(list.lines().count(), 24, "{list}");
+    let _ = std::fs::remove_dir_all(&d);
+}
