@@ -25,8 +25,8 @@ fail() { echo "moved-binary: $*" >&2; exit 1; }
 grep -q "cycles" example.txt || fail "the worked example printed no cycles"
 n=$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6' | wc -l)
 [ "$n" -ge 16 ] || fail "scenes list shows $n scenes, expected the 16 shipped"
-"$W" render procedural-plane --size 256x128 --trace-out plane.trace -q
-"$W" run --trace plane.trace -q --json plane.json
+"$W" render procedural-plane --size 256x128 --trace-out plane.trace -q 2> /dev/null
+"$W" run --trace plane.trace -q --json plane.json > /dev/null
 grep -q '"cycles"' plane.json || fail "run wrote no statistics"
 sed -e 's/^name = .*/name = "moved-plane"/' -e 's/^width = .*/width = 128/' \
     -e 's/^height = .*/height = 64/' > "$work/defs/moved-plane.toml" <<'TOML'
@@ -39,7 +39,7 @@ height = 1
 TOML
 "$W" --scenes-dir "$work/defs" scenes list | grep -q "^moved-plane " \
     || fail "--scenes-dir did not add its scene"
-WASP_SCENES_DIR="$work/defs" "$W" render moved-plane --trace-out moved.trace -q
+WASP_SCENES_DIR="$work/defs" "$W" render moved-plane --trace-out moved.trace -q 2> /dev/null
 if command -v yosys > /dev/null; then
   "$W" cost > cost.txt
   grep -qi "yosys" cost.txt || fail "wasp cost did not synthesize the embedded twin"

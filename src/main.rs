@@ -26,6 +26,16 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+
+    /// A folder of extra scene definitions (*.toml): they add scenes or
+    /// replace a shipped one of the same name (the shipped ones are built
+    /// into the binary). Also WASP_SCENES_DIR.
+    #[arg(long, global = true, value_name = "DIR")]
+    scenes_dir: Option<std::path::PathBuf>,
+
+    /// With no subcommand: run the worked example without notes on stderr.
+    #[arg(long, short)]
+    quiet: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -69,7 +79,7 @@ enum Command {
     /// Build with --release for meaningful numbers.
     Bench(bench_cmd::BenchArgs),
 
-    /// List scene definitions (scenes/*.toml) and fetch real games' data.
+    /// List the scene definitions (built in, plus --scenes-dir) and fetch real games' data.
     ///
     /// Game data (SuperTuxKart, OpenArena, Teeworlds, Frozen Bubble) comes
     /// from Debian's packages into a cache outside the repository
@@ -115,6 +125,16 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Some(d) = &cli.scenes_dir {
+        if !d.is_dir() {
+            eprintln!(
+                "wasp: error: --scenes-dir {}: not a folder of scene definitions",
+                d.display()
+            );
+            return ExitCode::from(2);
+        }
+        wasp_sim::scene::def::set_scenes_dir(d.clone());
+    }
     let result = match cli.command {
         Some(Command::Example(args)) => example_cmd::run(&args),
         Some(Command::Run(args)) => run_cmd::run(&args),
@@ -128,7 +148,10 @@ fn main() -> ExitCode {
         Some(Command::Reproduce(args)) => reproduce::run(&args),
         Some(Command::Sweep(args)) => sweep_cmd::sweep(&args),
         Some(Command::Merge(args)) => sweep_cmd::merge(&args),
-        None => example_cmd::run(&example_cmd::ExampleArgs::default()),
+        None => example_cmd::run(&example_cmd::ExampleArgs {
+            quiet: cli.quiet,
+            ..example_cmd::ExampleArgs::default()
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -26,7 +26,7 @@ pub struct ScenesArgs {
 /// `wasp scenes list|fetch`.
 #[derive(Subcommand, Debug, Clone)]
 pub enum ScenesCommand {
-    /// List the scene definitions (scenes/*.toml) and whether their game
+    /// List the scene definitions (built in, plus --scenes-dir) and whether their game
     /// data is in the cache.
     List,
     /// Download a game's Debian packages (apt-get download) and unpack
@@ -162,14 +162,14 @@ fn find_def(name: &str) -> Result<SceneDef, CliError> {
     if is_toml && !p.exists() {
         return Err(CliError::usage(format!("{name}: no such scene file")));
     }
-    def::find(&def::scenes_dir(), name).map_err(|e| CliError::usage(e.to_string()))
+    def::lookup(name).map_err(|e| CliError::usage(e.to_string()))
 }
 
 /// Run `wasp scenes`.
 pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
     match &args.command {
         ScenesCommand::List => {
-            let defs = def::list(&def::scenes_dir()).map_err(scene_err)?;
+            let defs = def::all().map_err(scene_err)?;
             println!(
                 "{:<28} {:<14} {:<18} {:<16} {:>10}  data",
                 "scene", "game", "map", "camera", "frame"
@@ -190,6 +190,13 @@ pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
                     d.camera,
                     format!("{}x{}", d.width, d.height)
                 );
+            }
+            match def::scenes_dir() {
+                Some(d) => println!(
+                    "scene definitions: built in, and {} (--scenes-dir / WASP_SCENES_DIR)",
+                    d.display()
+                ),
+                None => println!("scene definitions: built in"),
             }
             println!("scene cache: {}", fetch::cache_dir().display());
             Ok(())
@@ -531,7 +538,7 @@ fn crop(img: &[u8], w: u32, r: Rect) -> (Vec<u8>, u32, u32) {
 /// Run `wasp characterize`.
 pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
     let defs: Vec<SceneDef> = if args.scenes.is_empty() {
-        let all = def::list(&def::scenes_dir()).map_err(scene_err)?;
+        let all = def::all().map_err(scene_err)?;
         let (have, missing): (Vec<_>, Vec<_>) =
             all.into_iter().partition(|d| fetch::is_fetched(d.game));
         if !missing.is_empty() {

@@ -171,7 +171,7 @@ fn write_jobs(
     std::fs::write(jobs, text)
         .map_err(|e| CliError::failed(format!("cannot write {}: {e}", jobs.display())))?;
     let mut games: Vec<def::Game> = Vec::new();
-    for d in def::list(&def::scenes_dir()).map_err(|e| CliError::failed(e.to_string()))? {
+    for d in def::all().map_err(|e| CliError::failed(e.to_string()))? {
         let used = s.scenes.contains(&d.name);
         if used && !fetch::is_fetched(d.game) && !games.contains(&d.game) {
             games.push(d.game);

@@ -145,3 +145,67 @@ fn the_cycle_model_runs_repeated_positions_as_separate_warps() {
     assert_eq!(v["workload"], "hand:overdraw");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_scenes_folder_adds_and_replaces_definitions() {
+    let d = dir("scenes-dir");
+    let defs = d.join("defs");
+    std::fs::create_dir_all(&defs).unwrap();
+    let def = |name: &str, w: u32, h: u32| {
+        format!(
+            "name = \"{name}\"\ngame = \"procedural\"\nmap = \"plane\"\ncamera = \"ground\"\n\
+             width = {w}\nheight = {h}\n"
+        )
+    };
+    std::fs::write(defs.join("extra-plane.toml"), def("extra-plane", 128, 64)).unwrap();
+    std::fs::write(defs.join("plane.toml"), def("procedural-plane", 192, 96)).unwrap();
+    let defs_s = defs.to_str().unwrap();
+    let by_flag = ok(&wasp(&["--scenes-dir", defs_s, "scenes", "list"]));
+    let line = |list: &str, name: &str| {
+        list.lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("{name} not listed:\n{list}"))
+            .to_string()
+    };
+    assert!(line(&by_flag, "extra-plane").contains("128x64"));
+    assert!(
+        line(&by_flag, "procedural-plane").contains("192x96"),
+        "replaced"
+    );
+    assert!(
+        line(&by_flag, "tw-dm1-spawn0").contains("1960x768"),
+        "still shipped"
+    );
+    assert!(
+        by_flag.contains(&format!("built in, and {defs_s}")),
+        "{by_flag}"
+    );
+    // The environment variable does the same.
+    let by_env = std::process::Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .args(["scenes", "list"])
+        .env("WASP_SCENES_DIR", &defs)
+        .output()
+        .unwrap();
+    assert_eq!(ok(&by_env), by_flag);
+    // Without either, the built-in definitions alone.
+    let plain = ok(&wasp(&["scenes", "list"]));
+    assert!(line(&plain, "procedural-plane").contains("1960x768"));
+    assert!(!plain.contains("extra-plane"));
+    // An added scene renders by name.
+    let t = d.join("extra.trace");
+    ok(&wasp(&[
+        "--scenes-dir",
+        defs_s,
+        "render",
+        "extra-plane",
+        "--trace-out",
+        t.to_str().unwrap(),
+        "-q",
+    ]));
+    assert!(Trace::read(&t).unwrap().quad_count() > 0);
+    // A folder that is not there is named.
+    let r = wasp(&["--scenes-dir", "/nonexistent/defs", "scenes", "list"]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("/nonexistent/defs"));
+    let _ = std::fs::remove_dir_all(&d);
+}

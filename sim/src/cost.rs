@@ -14,7 +14,7 @@ use crate::config::MachineConfig;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use wasp_rtl::cost::{
     constant_multiplier_inventory, core_inventory, measured_cf_inventory, GateRules, Item, Part,
@@ -173,12 +173,24 @@ impl RfParams {
     }
 }
 
-/// The Verilog twin shipped in the repository.
-pub fn verilog_twin() -> PathBuf {
-    PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../props/verilog/wasp_sched.v"
-    ))
+/// The Verilog twin (`props/verilog/wasp_sched.v`), embedded so that
+/// `wasp cost` synthesizes it wherever the binary is installed.
+pub const VERILOG_TWIN: &str = include_str!("../../props/verilog/wasp_sched.v");
+
+/// Run Yosys on the embedded twin: it is written to a temporary file for
+/// the run and removed after.
+pub fn run_yosys_on_twin(params: &[(&str, i64)], top: &str) -> Result<YosysStat, String> {
+    let path = std::env::temp_dir().join(format!("wasp-twin-{}.v", std::process::id()));
+    std::fs::write(&path, VERILOG_TWIN)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    let r = run_yosys(&path, params, top);
+    let _ = std::fs::remove_file(&path);
+    r.map(|mut s| {
+        s.command = s
+            .command
+            .replace(&path.display().to_string(), "props/verilog/wasp_sched.v");
+        s
+    })
 }
 
 /// Parse the last statistics block of a Yosys log.
@@ -285,7 +297,7 @@ pub fn report(
             ("CF_Q", dp.cf.quarters() as i64),
             ("THRESHOLD", threshold as i64),
         ];
-        match run_yosys(&verilog_twin(), &params, "wasp_sched") {
+        match run_yosys_on_twin(&params, "wasp_sched") {
             Ok(s) => (Some(s), None),
             Err(e) => (None, Some(e)),
         }

@@ -88,7 +88,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
-    let all = def::list(&def::scenes_dir()).map_err(|e| CliError::failed(e.to_string()))?;
+    let all = def::all().map_err(|e| CliError::failed(e.to_string()))?;
     let defs = match &args.scenes {
         None => all,
         Some(names) => {

@@ -309,7 +309,7 @@ mod tests {
     use wasp_sim::scene::def;
 
     fn defs() -> Vec<SceneDef> {
-        def::list(&def::scenes_dir()).unwrap()
+        def::all().unwrap()
     }
 
     #[test]

@@ -163,7 +163,7 @@ impl Scenes {
     /// The definition of `name` (`wasp scenes list`).
     pub fn def(&mut self, name: &str) -> Result<&SceneDef, String> {
         if !self.defs.contains_key(name) {
-            let d = def::find(&def::scenes_dir(), name).map_err(|e| e.to_string())?;
+            let d = def::lookup(name).map_err(|e| e.to_string())?;
             self.defs.insert(name.to_string(), d);
         }
         Ok(&self.defs[name])

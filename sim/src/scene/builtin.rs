@@ -6,21 +6,66 @@
 /// (name, TOML text) of every shipped scene, sorted by name.
 pub const BUILTIN: &[(&str, &str)] = &[
     ("fb-level1", include_str!("../../../scenes/fb-level1.toml")),
-    ("fb-level100-wide", include_str!("../../../scenes/fb-level100-wide.toml")),
-    ("fb-level50", include_str!("../../../scenes/fb-level50.toml")),
-    ("oa-dm1-spawn0", include_str!("../../../scenes/oa-dm1-spawn0.toml")),
-    ("oa-dm5-spawn1", include_str!("../../../scenes/oa-dm5-spawn1.toml")),
-    ("oa-wrackdm17-spawn2", include_str!("../../../scenes/oa-wrackdm17-spawn2.toml")),
-    ("procedural-plane", include_str!("../../../scenes/procedural-plane.toml")),
-    ("procedural-plane-lit", include_str!("../../../scenes/procedural-plane-lit.toml")),
-    ("procedural-sprites", include_str!("../../../scenes/procedural-sprites.toml")),
-    ("stk-blackforest-start", include_str!("../../../scenes/stk-blackforest-start.toml")),
-    ("stk-cocoatemple-start", include_str!("../../../scenes/stk-cocoatemple-start.toml")),
-    ("stk-lighthouse-start", include_str!("../../../scenes/stk-lighthouse-start.toml")),
-    ("stk-zengarden-driveline", include_str!("../../../scenes/stk-zengarden-driveline.toml")),
-    ("tw-dm1-spawn0", include_str!("../../../scenes/tw-dm1-spawn0.toml")),
-    ("tw-dm6-center", include_str!("../../../scenes/tw-dm6-center.toml")),
-    ("tw-dm8-center", include_str!("../../../scenes/tw-dm8-center.toml")),
+    (
+        "fb-level100-wide",
+        include_str!("../../../scenes/fb-level100-wide.toml"),
+    ),
+    (
+        "fb-level50",
+        include_str!("../../../scenes/fb-level50.toml"),
+    ),
+    (
+        "oa-dm1-spawn0",
+        include_str!("../../../scenes/oa-dm1-spawn0.toml"),
+    ),
+    (
+        "oa-dm5-spawn1",
+        include_str!("../../../scenes/oa-dm5-spawn1.toml"),
+    ),
+    (
+        "oa-wrackdm17-spawn2",
+        include_str!("../../../scenes/oa-wrackdm17-spawn2.toml"),
+    ),
+    (
+        "procedural-plane",
+        include_str!("../../../scenes/procedural-plane.toml"),
+    ),
+    (
+        "procedural-plane-lit",
+        include_str!("../../../scenes/procedural-plane-lit.toml"),
+    ),
+    (
+        "procedural-sprites",
+        include_str!("../../../scenes/procedural-sprites.toml"),
+    ),
+    (
+        "stk-blackforest-start",
+        include_str!("../../../scenes/stk-blackforest-start.toml"),
+    ),
+    (
+        "stk-cocoatemple-start",
+        include_str!("../../../scenes/stk-cocoatemple-start.toml"),
+    ),
+    (
+        "stk-lighthouse-start",
+        include_str!("../../../scenes/stk-lighthouse-start.toml"),
+    ),
+    (
+        "stk-zengarden-driveline",
+        include_str!("../../../scenes/stk-zengarden-driveline.toml"),
+    ),
+    (
+        "tw-dm1-spawn0",
+        include_str!("../../../scenes/tw-dm1-spawn0.toml"),
+    ),
+    (
+        "tw-dm6-center",
+        include_str!("../../../scenes/tw-dm6-center.toml"),
+    ),
+    (
+        "tw-dm8-center",
+        include_str!("../../../scenes/tw-dm8-center.toml"),
+    ),
 ];
 
 #[cfg(test)]
@@ -35,7 +80,10 @@ mod tests {
         let on_disk = list(&dir).unwrap();
         let names: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
         let disk: Vec<&str> = on_disk.iter().map(|d| d.name.as_str()).collect();
-        assert_eq!(names, disk, "scenes/ and BUILTIN differ: add the file to BUILTIN");
+        assert_eq!(
+            names, disk,
+            "scenes/ and BUILTIN differ: add the file to BUILTIN"
+        );
         for (name, text) in BUILTIN {
             let d = SceneDef::parse(text, Path::new(name)).unwrap();
             assert_eq!(&d.name, name, "the file stem is the scene's name");

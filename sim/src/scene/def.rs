@@ -15,6 +15,7 @@ use super::SceneError;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 /// The games wasp loads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -131,9 +132,65 @@ impl SceneDef {
     }
 }
 
-/// The `scenes/` directory of the repository.
-pub fn scenes_dir() -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"))
+/// A folder of extra scene definitions set by the front end
+/// (`--scenes-dir`), read before `WASP_SCENES_DIR`.
+static EXTRA_DIR: OnceLock<PathBuf> = OnceLock::new();
+
+/// Name the folder of extra scene definitions (`--scenes-dir`); the first
+/// call wins.
+pub fn set_scenes_dir(dir: PathBuf) {
+    let _ = EXTRA_DIR.set(dir);
+}
+
+/// The folder of extra scene definitions: `--scenes-dir`, else the
+/// `WASP_SCENES_DIR` environment variable, else none. (`WASP_SCENES` names
+/// the cache of fetched game data, not definitions.)
+pub fn scenes_dir() -> Option<PathBuf> {
+    EXTRA_DIR.get().cloned().or_else(|| {
+        std::env::var_os("WASP_SCENES_DIR")
+            .filter(|v| !v.is_empty())
+            .map(PathBuf::from)
+    })
+}
+
+/// Every scene definition: the shipped ones embedded in the binary
+/// ([`super::builtin::BUILTIN`]), then those of [`scenes_dir`], which add
+/// scenes or replace a shipped one of the same name; sorted by name.
+pub fn all() -> Result<Vec<SceneDef>, SceneError> {
+    let mut defs: Vec<SceneDef> = super::builtin::BUILTIN
+        .iter()
+        .map(|(name, text)| SceneDef::parse(text, Path::new(&format!("(built in) {name}.toml"))))
+        .collect::<Result<_, _>>()?;
+    if let Some(dir) = scenes_dir() {
+        for d in list(&dir)? {
+            match defs.iter_mut().find(|x| x.name == d.name) {
+                Some(x) => *x = d,
+                None => defs.push(d),
+            }
+        }
+    }
+    defs.sort_by(|a, b| a.name.cmp(&b.name));
+    Ok(defs)
+}
+
+/// The scene `name` of [`all`], or the definition file `name` (a path
+/// ending in `.toml`).
+pub fn lookup(name: &str) -> Result<SceneDef, SceneError> {
+    let as_path = Path::new(name);
+    if as_path.extension().is_some_and(|x| x == "toml") && as_path.exists() {
+        return SceneDef::load(as_path);
+    }
+    let defs = all()?;
+    let names: Vec<&str> = defs.iter().map(|d| d.name.as_str()).collect();
+    defs.iter()
+        .find(|d| d.name == name)
+        .cloned()
+        .ok_or_else(|| {
+            SceneError::in_file(
+                "scenes",
+                format!("no scene named `{name}` (known: {})", names.join(", ")),
+            )
+        })
 }
 
 /// Every definition under `dir`, sorted by name.
@@ -152,7 +209,8 @@ pub fn list(dir: &Path) -> Result<Vec<SceneDef>, SceneError> {
     Ok(defs)
 }
 
-/// Find a scene by name under `dir` (or treat `name` as a path to a file).
+/// Find a scene by name under `dir` alone (or treat `name` as a path to a
+/// file).
 pub fn find(dir: &Path, name: &str) -> Result<SceneDef, SceneError> {
     let as_path = Path::new(name);
     if as_path.extension().is_some_and(|x| x == "toml") && as_path.exists() {

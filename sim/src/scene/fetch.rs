@@ -322,7 +322,7 @@ mod tests {
 
     #[test]
     fn the_repository_scene_files_parse() {
-        let defs = super::super::def::list(&super::super::def::scenes_dir()).unwrap();
+        let defs = super::super::def::all().unwrap();
         for name in ["procedural-plane", "procedural-sprites"] {
             let d = defs.iter().find(|d| d.name == name).expect(name);
             assert_eq!(d.game, Game::Procedural);

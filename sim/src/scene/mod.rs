@@ -13,6 +13,7 @@
 //! ([`fetch::cache_dir`]: `$WASP_SCENES`, default under the user's cache
 //! directory), and scene definitions (`scenes/*.toml`) name what to load.
 
+pub mod builtin;
 pub mod characterize;
 pub mod def;
 pub mod fetch;

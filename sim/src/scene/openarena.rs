@@ -1875,8 +1875,7 @@ textures/a/anim { { animMap 5 textures/a/f1.tga textures/a/f2.tga } }
     #[ignore = "needs fetched game data: wasp scenes fetch openarena"]
     fn real_shipped_scenes() {
         let Some(root) = real_root() else { return };
-        let dir = crate::scene::def::scenes_dir();
-        for d in crate::scene::def::list(&dir).unwrap() {
+        for d in crate::scene::def::all().unwrap() {
             if d.game != Game::Openarena {
                 continue;
             }

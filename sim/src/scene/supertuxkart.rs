@@ -2176,8 +2176,7 @@ mod tests {
     #[ignore = "needs fetched game data: wasp scenes fetch supertuxkart"]
     fn real_shipped_scenes() {
         let Some(root) = real_root() else { return };
-        let dir = crate::scene::def::scenes_dir();
-        for d in crate::scene::def::list(&dir).unwrap() {
+        for d in crate::scene::def::all().unwrap() {
             if d.game != Game::Supertuxkart {
                 continue;
             }

@@ -2117,7 +2117,7 @@ mod tests {
     }
 
     fn shipped_defs() -> Vec<SceneDef> {
-        crate::scene::def::list(&crate::scene::def::scenes_dir())
+        crate::scene::def::all()
             .unwrap()
             .into_iter()
             .filter(|d| d.game == crate::scene::def::Game::Teeworlds)
