@@ -6,7 +6,9 @@
 //! `Err` with a message, never a panic; a configuration that parses builds
 //! the GPU and its memory system and runs a tiny trace for a few thousand
 //! cycles, and a trace that parses is written and read back unchanged and
-//! runs a few thousand cycles on the paper's machine.
+//! runs a few thousand cycles on the paper's machine. Every mutated trace is
+//! also read in four pieces by the multi-threaded reader, which must give
+//! the one-thread reader's trace or error.
 //!
 //! The case budget is fixed (`CASES` in release, `DEBUG_CASES` in a debug
 //! build, so `cargo test` in CI stays fast) and the random seed too, so a
@@ -474,6 +476,16 @@ fn mutated_traces_parse_or_fail_cleanly() {
             text = trace_mutation(&text, m);
         }
         count(0);
+        // The multi-threaded reader agrees with the one-thread reader on
+        // every input, valid or not.
+        if let Ok(utf8) = std::str::from_utf8(text.as_bytes()) {
+            let one = Trace::parse_pieces(utf8, "fuzz.trace", 1);
+            let four = Trace::parse_pieces(utf8, "fuzz.trace", 4);
+            prop_assert_eq!(
+                one.as_ref().map_err(|e| e.to_string()),
+                four.as_ref().map_err(|e| e.to_string())
+            );
+        }
         match Trace::parse_bytes(text.as_bytes(), "fuzz.trace") {
             Ok(t) => {
                 count(1);

@@ -56,6 +56,13 @@ impl Trace {
         Trace::parse_with(text, source, threads.min(MAX_PIECES), PIECES_MIN_BYTES)
     }
 
+    /// [`Trace::parse`] with `pieces` worker threads whatever the text's
+    /// size (1: the plain one-thread reader). The result does not depend
+    /// on `pieces`; the fuzz suite checks that on mutated traces.
+    pub fn parse_pieces(text: &str, source: &str, pieces: usize) -> Result<Trace, TraceError> {
+        Trace::parse_with(text, source, pieces.clamp(1, MAX_PIECES), 0)
+    }
+
     /// [`Trace::parse`] in up to `pieces` pieces when the text has at
     /// least `min_bytes`.
     pub(super) fn parse_with(
