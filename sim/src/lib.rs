@@ -13,4 +13,6 @@ pub mod scene;
 pub mod stats;
 pub mod synth;
 pub mod timeline;
-pub mod trace;
+/// The trace format (the `wasp-trace` crate), re-exported under its old
+/// path.
+pub use wasp_trace as trace;

@@ -205,7 +205,7 @@ fn tiny_trace_round_trips_through_the_writer() {
 
 #[test]
 fn the_example_of_format_md_parses_with_a_repeated_position() {
-    let md = include_str!("../../../tests/traces/FORMAT.md");
+    let md = include_str!("../../tests/traces/FORMAT.md");
     let start = md.find("```text\n").unwrap() + "```text\n".len();
     let text = &md[start..start + md[start..].find("```").unwrap()];
     let t = Trace::parse(text, "FORMAT.md").unwrap();
@@ -223,7 +223,7 @@ fn the_example_of_format_md_parses_with_a_repeated_position() {
     assert_eq!((t.quad_count(), t.rejected_count()), (4, 55));
     assert_eq!(t.to_text(), text, "the example is in the writer's form");
     // The module documentation repeats the same example.
-    let doc = include_str!("mod.rs");
+    let doc = include_str!("lib.rs");
     for line in text.lines() {
         assert!(doc.contains(&format!("//! {line}\n")), "{line}");
     }
@@ -247,15 +247,12 @@ fn words_between(text: &str, from: &str, to: &str) -> Vec<String> {
 
 #[test]
 fn format_md_and_the_module_documentation_state_the_same_rules() {
-    let md = include_str!("../../../tests/traces/FORMAT.md");
-    let doc = include_str!("mod.rs");
+    let md = include_str!("../../tests/traces/FORMAT.md");
+    let doc = include_str!("lib.rs");
     let rules = |text: &str, end: &str| words_between(text, "A trace is UTF-8 text", end);
     let (a, b) = (rules(md, "## Statistics"), rules(doc, "# In memory"));
     assert!(a.len() > 500, "{}", a.len());
-    assert_eq!(
-        a, b,
-        "tests/traces/FORMAT.md and sim/src/trace/mod.rs differ"
-    );
+    assert_eq!(a, b, "tests/traces/FORMAT.md and trace/src/lib.rs differ");
     let example = |text: &str| words_between(text, "The first warp, at quad", "## Rules");
     assert_eq!(example(md), example(doc));
     for phrase in [

@@ -341,7 +341,7 @@ enum Op {
 /// entry's kind and length, without borrowing its block list (the core
 /// walks a quad's blocks in order, so it knows where they start).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum OpKind {
+pub enum OpKind {
     /// A run of this many ALU instructions.
     Alu(u32),
     /// A texture instruction touching `len` blocks; `tri`: its sample is
@@ -357,7 +357,7 @@ pub(crate) enum OpKind {
 /// Where a quad's program and block accesses lie in its tile's pools
 /// (see [`Tile::op_kind`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct QuadSpan {
+pub struct QuadSpan {
     /// Index of its first instruction entry.
     pub op_start: u32,
     /// Its instruction entries.
@@ -461,7 +461,7 @@ impl Tile {
 
     /// Where quad `i`'s program and block accesses lie in the tile's pools.
     #[inline]
-    pub(crate) fn quad_span(&self, i: usize) -> Option<QuadSpan> {
+    pub fn quad_span(&self, i: usize) -> Option<QuadSpan> {
         self.quads.get(i).map(|r| QuadSpan {
             op_start: r.op_start,
             op_len: r.op_len,
@@ -472,7 +472,7 @@ impl Tile {
     /// Entry `i` of the tile's instruction pool (a quad's entries are
     /// `op_start..op_start + op_len` of its [`QuadSpan`]).
     #[inline]
-    pub(crate) fn op_kind(&self, i: usize) -> Option<OpKind> {
+    pub fn op_kind(&self, i: usize) -> Option<OpKind> {
         self.ops.get(i).map(|&op| match op {
             Op::Alu(n) => OpKind::Alu(n),
             Op::Tex { len, tri, .. } => OpKind::Tex { len, tri },
