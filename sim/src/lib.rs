@@ -9,6 +9,7 @@ pub mod gpu;
 pub mod mem;
 pub mod overrides;
 pub mod rng;
+pub mod run;
 pub mod scene;
 pub mod stats;
 pub mod synth;

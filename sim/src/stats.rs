@@ -8,8 +8,8 @@
 //! energy of the event-energy model.
 
 use crate::config::MachineConfig;
-use crate::gpu::{CoreStats, LeadStats, RasterStats, TileRecord, TileTimingStats};
-use crate::mem::{CacheStats, MemStats};
+use crate::gpu::{CoreStats, LeadStats, RasterStats, RunCounters, TileRecord, TileTimingStats};
+use crate::mem::CacheStats;
 use crate::trace::{mean_footprint_ratio, Trace};
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -216,22 +216,6 @@ impl OccupancyStats {
     }
 }
 
-/// What the GPU measures beside the cores and caches: the raster pipeline,
-/// the tiles, the lead of priority warps.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RunInstruments {
-    /// Tiles rendered.
-    pub tiles: u64,
-    /// The raster pipeline's counters.
-    pub raster: RasterStats,
-    /// The lead of priority warps.
-    pub priority_lead: LeadStats,
-    /// Means over tiles.
-    pub tile_timing: TileTimingStats,
-    /// Every tile, in trace order.
-    pub per_tile: Vec<TileRecord>,
-}
-
 /// The texture filter unit: its configuration (`core.filter_*`) and what
 /// it did, summed over the cores.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -356,14 +340,14 @@ fn mean(sum: f64, n: u64) -> f64 {
 
 impl RunStats {
     /// Gather the statistics of a finished run.
-    pub fn collect(
-        cfg: &MachineConfig,
-        trace: &Trace,
-        cycles: u64,
-        cores: &[CoreStats],
-        mem: &MemStats,
-        inst: RunInstruments,
-    ) -> Self {
+    pub fn collect(cfg: &MachineConfig, trace: &Trace, counters: RunCounters) -> Self {
+        let RunCounters {
+            cycles,
+            cores,
+            mem,
+            instruments: inst,
+        } = counters;
+        let (cores, mem) = (&cores[..], &mem);
         let n = cores.len() as u64;
         let sum = |f: &dyn Fn(&CoreStats) -> u64| cores.iter().map(f).sum::<u64>();
         let instructions = sum(&|c| c.instructions);

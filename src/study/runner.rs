@@ -17,7 +17,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 use wasp_sim::config::MachineConfig;
-use wasp_sim::gpu::{simulate, simulate_timeline, RunOptions};
+use wasp_sim::run::{simulate, simulate_timeline, RunOptions};
 use wasp_sim::scene::characterize::{characterize, Characterization};
 use wasp_sim::scene::def::{self, SceneDef};
 use wasp_sim::scene::fetch;

@@ -1064,7 +1064,8 @@ mod tests {
     //! The texture filter unit: its rate, its order and how it adds to
     //! the texture latency.
     use crate::config::{FilterTiming, MachineConfig};
-    use crate::gpu::{simulate, Gpu, RunOptions};
+    use crate::gpu::{Gpu, RunOptions};
+    use crate::run::simulate;
     use crate::stats::RunStats;
     use crate::trace::{Instr, Trace, TraceHeader};
 

@@ -44,7 +44,7 @@ impl Access {
 /// cache (L0 when present, else L1) of one core, for the last cycle given to
 /// [`MemorySystem::access`] or [`MemorySystem::tick`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct MshrEvents {
+pub struct SchedCacheMshrs {
     /// MSHR entries of the cache.
     pub capacity: u32,
     /// Entries allocated (primary misses) in this cycle.
@@ -58,7 +58,7 @@ pub struct MshrEvents {
     pub outstanding: u32,
 }
 
-impl MshrEvents {
+impl SchedCacheMshrs {
     /// Free entries as the scheduler's register counts them (an entry is free
     /// from its reply): `capacity - outstanding`.
     #[inline]
@@ -623,10 +623,10 @@ impl MemorySystem {
 
     /// The scheduler-level cache's MSHR events of `core` in the last cycle.
     #[inline]
-    pub fn mshr_events(&self, core: usize) -> MshrEvents {
+    pub fn mshr_events(&self, core: usize) -> SchedCacheMshrs {
         let f = self.cores[core].first_level();
         let current = f.cycle() == self.now;
-        MshrEvents {
+        SchedCacheMshrs {
             capacity: f.mshr_capacity(),
             allocated: if current { f.allocated_now() } else { 0 },
             replied: if current { f.replied_now() } else { 0 },
@@ -955,7 +955,7 @@ mod tests {
         mem.tick(30);
         assert_eq!(
             ev(&mem),
-            MshrEvents {
+            SchedCacheMshrs {
                 capacity: 3,
                 ..Default::default()
             }

@@ -121,6 +121,6 @@ pub use config::{
     BlockedOn, CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
     FREE_MSHR_REGISTER_MAX,
 };
-pub use hierarchy::{Access, MemorySystem, MshrEvents, MshrFileView};
+pub use hierarchy::{Access, MemorySystem, MshrFileView, SchedCacheMshrs};
 pub use mshr::MSHR_HOLD_CYCLES;
 pub use stats::{CacheStats, CoreMemStats, DramStats, MemStats};

@@ -23,7 +23,7 @@
 use super::raster::{rasterize_timed, Frame, RasterOptions};
 use super::{Scene, SceneError};
 use crate::config::MachineConfig;
-use crate::gpu::{simulate_recording, RunOptions, SimError, WarpRecord};
+use crate::run::{simulate_recording, RunOptions, SimError, WarpRecord};
 use crate::stats::RunStats;
 use std::fmt;
 use std::path::Path;
