@@ -5,6 +5,7 @@ mod charts;
 mod cost_cmd;
 mod example_cmd;
 mod fonts;
+mod heat;
 mod reproduce;
 mod run_cmd;
 mod scene_cmd;
@@ -133,7 +134,7 @@ fn main() -> ExitCode {
             );
             return ExitCode::from(2);
         }
-        wasp_sim::scene::def::set_scenes_dir(d.clone());
+        wasp_frontend::def::set_scenes_dir(d.clone());
     }
     let result = match cli.command {
         Some(Command::Example(args)) => example_cmd::run(&args),

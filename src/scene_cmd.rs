@@ -7,14 +7,16 @@ use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
+use wasp_frontend::characterize::{self, Characterization};
+use wasp_frontend::def::{self, Game, SceneDef};
+use wasp_frontend::fetch;
+use wasp_frontend::raster::Frame;
+use wasp_frontend::render::{self, HeatStat, Overlay, RenderRequest, WarpValue};
 use wasp_rtl::policy::PolicySpec;
 use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::MachineConfig;
-use wasp_sim::gpu::RunOptions;
-use wasp_sim::scene::characterize::{self, Characterization};
-use wasp_sim::scene::def::{self, Game, SceneDef};
-use wasp_sim::scene::fetch;
-use wasp_sim::scene::render::{self, Overlay, RenderRequest};
+use wasp_sim::run::{simulate_recording, RunOptions, WarpRecord};
+use wasp_sim::stats::RunStats;
 
 /// Options of `wasp scenes`.
 #[derive(Args, Debug, Clone)]
@@ -275,14 +277,15 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     best.load = clock.lap();
     let req = RenderRequest {
         overlays: args.overlay.clone(),
-        config,
-        run: RunOptions {
-            policy: args.policy,
-            subset: args.subset.clone(),
-            ..RunOptions::default()
-        },
+        tile: config.gpu.tile_size,
         depth_prepass: args.depth_prepass,
         threads: args.threads,
+    };
+    let run = RunOptions {
+        policy: args.policy,
+        subset: args.subset.clone(),
+        record_warps: true,
+        ..RunOptions::default()
     };
     let pb = if args.quiet || !std::io::stderr().is_terminal() {
         ProgressBar::hidden()
@@ -296,28 +299,41 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         pb.set_prefix("heat-map run");
         pb
     };
-    let mut progress = |done: usize, total: usize| {
-        pb.set_length(total as u64);
-        pb.set_position(done as u64);
+    // A heat overlay runs the cycle model once on the frame's trace; its
+    // warp records give every heat statistic.
+    let mut heat_run: Option<(RunStats, Vec<WarpRecord>)> = None;
+    let mut heat = |frame: &Frame, stat: HeatStat| -> Result<Vec<WarpValue>, String> {
+        if heat_run.is_none() {
+            let mut progress = |done: usize, total: usize| {
+                pb.set_length(total as u64);
+                pb.set_position(done as u64);
+            };
+            heat_run = Some(
+                simulate_recording(&config, &frame.trace, &run, &mut progress)
+                    .map_err(|e| e.to_string())?,
+            );
+        }
+        let (_, records) = heat_run.as_ref().expect("run");
+        Ok(crate::heat::warp_values(records, stat))
     };
     let clock = Stopwatch::start();
-    let mut out = render::render(&scene, w, h, &req, &mut progress).map_err(scene_err)?;
+    let mut out = render::render(&scene, w, h, &req, &mut heat).map_err(scene_err)?;
     best.render = clock.lap();
     best.raster = out.frame.timings;
-    pb.finish_and_clear();
     for _ in 1..args.repeat {
         // The same work again; results are deterministic, times are not.
         let clock = Stopwatch::start();
         scene = fetch::load_scene(&d).map_err(scene_err)?;
         best.load = best.load.min(clock.lap());
         let clock = Stopwatch::start();
-        out = render::render(&scene, w, h, &req, &mut |_, _| {}).map_err(scene_err)?;
+        out = render::render(&scene, w, h, &req, &mut heat).map_err(scene_err)?;
         best.render = best.render.min(clock.lap());
         let t = &out.frame.timings;
         best.raster.textures = best.raster.textures.min(t.textures);
         best.raster.geometry = best.raster.geometry.min(t.geometry);
         best.raster.tiles = best.raster.tiles.min(t.tiles);
     }
+    pb.finish_and_clear();
     let s = &out.frame.stats;
     eprintln!(
         "wasp: {} {}x{}: {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
@@ -335,7 +351,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         s.quads_rejected_early_z,
         out.raster_seconds
     );
-    if let Some(run) = &out.run {
+    if let Some((run, _)) = &heat_run {
         eprintln!("wasp: heat-map run ({}): {} cycles", run.policy, run.cycles);
     }
     if let Some((lo, hi)) = out.heat_range {
@@ -436,7 +452,7 @@ fn process_cpu_seconds() -> Option<f64> {
 struct PhaseTimes {
     load: Times,
     render: Times,
-    raster: wasp_sim::scene::raster::RasterTimings,
+    raster: wasp_frontend::raster::RasterTimings,
     png: Times,
     trace: Times,
 }

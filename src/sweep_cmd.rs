@@ -11,7 +11,7 @@ use crate::study::sweep::{self, Sweep, SweepPoint};
 use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
-use wasp_sim::scene::{def, fetch};
+use wasp_frontend::{def, fetch};
 
 /// Options of `wasp sweep`.
 #[derive(Args, Debug, Clone)]

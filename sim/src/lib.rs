@@ -8,9 +8,9 @@ pub mod example;
 pub mod gpu;
 pub mod mem;
 pub mod overrides;
-pub mod rng;
+/// The deterministic generator (in `wasp-trace`), under its old path.
+pub use wasp_trace::rng;
 pub mod run;
-pub mod scene;
 pub mod stats;
 pub mod synth;
 pub mod timeline;

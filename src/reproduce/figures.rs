@@ -743,7 +743,7 @@ pub fn pct_opt(v: Option<f64>) -> String {
 pub fn scene_figures(plan: &Plan, out: &Outcome) -> Vec<Figure> {
     let axis = Axis::new(plan);
     let (separators, highlight) = axis.marks();
-    let per = |f: &dyn Fn(&wasp_sim::scene::characterize::Characterization) -> Option<f64>| {
+    let per = |f: &dyn Fn(&wasp_frontend::characterize::Characterization) -> Option<f64>| {
         let v = axis
             .scenes
             .iter()
@@ -752,7 +752,7 @@ pub fn scene_figures(plan: &Plan, out: &Outcome) -> Vec<Figure> {
         axis.with_means(v)
     };
     let fp = |name: &'static str| {
-        move |c: &wasp_sim::scene::characterize::Characterization| {
+        move |c: &wasp_frontend::characterize::Characterization| {
             c.footprints
                 .iter()
                 .find(|f| f.subset == name || f.subset.starts_with(&format!("{name}:")))

@@ -20,8 +20,8 @@ use crate::CliError;
 use clap::Args;
 use plan::Plan;
 use std::path::{Path, PathBuf};
+use wasp_frontend::def::{self, SceneDef};
 use wasp_sim::config::Dispatch;
-use wasp_sim::scene::def::{self, SceneDef};
 
 /// Options of `wasp reproduce`.
 #[derive(Args, Debug, Clone)]

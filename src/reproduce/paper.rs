@@ -107,7 +107,7 @@ pub const WIDTH2_WASP32_OVER_BEST: Claim = Claim {
 /// from the characterisation module.
 pub fn footprint(subset: &str) -> Option<f64> {
     let spec: wasp_rtl::subset::SubsetSpec = subset.parse().ok()?;
-    wasp_sim::scene::characterize::paper_footprint(&spec)
+    wasp_frontend::characterize::paper_footprint(&spec)
 }
 
 #[cfg(test)]

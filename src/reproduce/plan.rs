@@ -8,9 +8,9 @@
 use crate::study::point::Point;
 use crate::study::runner::Task;
 use std::path::Path;
+use wasp_frontend::def::{Game, SceneDef};
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
-use wasp_sim::scene::def::{Game, SceneDef};
 
 /// The scene of each game in the quick look: the one of its game that
 /// simulates fastest on the shipped machine (`wasp run` wall time on a
@@ -306,7 +306,7 @@ impl Plan {
 mod tests {
     use super::*;
     use std::path::PathBuf;
-    use wasp_sim::scene::def;
+    use wasp_frontend::def;
 
     fn defs() -> Vec<SceneDef> {
         def::all().unwrap()

@@ -11,7 +11,7 @@
 use super::point::Point;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-use wasp_sim::scene::characterize::Characterization;
+use wasp_frontend::characterize::Characterization;
 use wasp_sim::stats::RunStats;
 
 /// The result of one point.

@@ -19,9 +19,9 @@ use std::collections::HashMap;
 use std::hash::Hasher;
 use std::path::Path;
 use std::sync::OnceLock;
+use wasp_frontend::def::SceneDef;
+use wasp_frontend::fetch;
 use wasp_sim::config::MachineConfig;
-use wasp_sim::scene::def::SceneDef;
-use wasp_sim::scene::fetch;
 
 /// One scene on one machine.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]

@@ -16,12 +16,12 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
+use wasp_frontend::characterize::{characterize, Characterization};
+use wasp_frontend::def::{self, SceneDef};
+use wasp_frontend::fetch;
+use wasp_frontend::raster::{rasterize_timed, Frame, RasterOptions};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::run::{simulate, simulate_timeline, RunOptions};
-use wasp_sim::scene::characterize::{characterize, Characterization};
-use wasp_sim::scene::def::{self, SceneDef};
-use wasp_sim::scene::fetch;
-use wasp_sim::scene::raster::{rasterize_timed, Frame, RasterOptions};
 
 /// One piece of work on a scene.
 #[derive(Clone, Debug, PartialEq)]

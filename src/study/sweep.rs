@@ -121,7 +121,7 @@ impl Sweep {
             std::fs::read_to_string(path).map_err(|e| format!("cannot read {shown}: {e}"))?;
         let abs = std::path::absolute(path).map_err(|e| format!("{shown}: {e}"))?;
         let dir = abs.parent().unwrap_or(Path::new("/")).to_path_buf();
-        let defs = wasp_sim::scene::def::all().map_err(|e| e.to_string())?;
+        let defs = wasp_frontend::def::all().map_err(|e| e.to_string())?;
         let known: Vec<String> = defs.into_iter().map(|d| d.name).collect();
         Sweep::parse(&text, &shown, &dir, &known)
     }

@@ -156,12 +156,15 @@
 //! writes and the reader reads back identically.
 
 mod read;
+pub mod rng;
 mod stats;
 #[cfg(test)]
 mod tests;
 mod write;
+mod zorder;
 
 pub use stats::{footprint_ratio, mean_footprint_ratio, TileStats, TraceStats};
+pub use zorder::{morton, z_order};
 
 use std::collections::HashSet;
 use std::fmt;

@@ -1720,7 +1720,7 @@ fn index_textures(dir: &Path, out: &mut HashMap<String, PathBuf>, depth: u32) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::def::Game;
+    use crate::def::Game;
     use proptest::prelude::*;
 
     fn def(map: &str, camera: &str) -> SceneDef {
@@ -2112,7 +2112,7 @@ mod tests {
     /// The real data root in the scene cache (`$WASP_SCENES`, else the
     /// user's cache directory), if fetched.
     pub(super) fn real_root() -> Option<PathBuf> {
-        let cache = crate::scene::fetch::cache_dir();
+        let cache = crate::fetch::cache_dir();
         let found = find_data_root(&cache);
         if found.is_none() {
             eprintln!(
@@ -2176,7 +2176,7 @@ mod tests {
     #[ignore = "needs fetched game data: wasp scenes fetch supertuxkart"]
     fn real_shipped_scenes() {
         let Some(root) = real_root() else { return };
-        for d in crate::scene::def::all().unwrap() {
+        for d in crate::def::all().unwrap() {
             if d.game != Game::Supertuxkart {
                 continue;
             }
@@ -2251,7 +2251,7 @@ mod tests {
 #[cfg(test)]
 mod all_tracks {
     use super::*;
-    use crate::scene::def::Game;
+    use crate::def::Game;
 
     /// Every track of the fetched package with `start:0`: reports each
     /// and fails on any load error.

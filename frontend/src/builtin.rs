@@ -5,73 +5,70 @@
 
 /// (name, TOML text) of every shipped scene, sorted by name.
 pub const BUILTIN: &[(&str, &str)] = &[
-    ("fb-level1", include_str!("../../../scenes/fb-level1.toml")),
+    ("fb-level1", include_str!("../../scenes/fb-level1.toml")),
     (
         "fb-level100-wide",
-        include_str!("../../../scenes/fb-level100-wide.toml"),
+        include_str!("../../scenes/fb-level100-wide.toml"),
     ),
-    (
-        "fb-level50",
-        include_str!("../../../scenes/fb-level50.toml"),
-    ),
+    ("fb-level50", include_str!("../../scenes/fb-level50.toml")),
     (
         "oa-dm1-spawn0",
-        include_str!("../../../scenes/oa-dm1-spawn0.toml"),
+        include_str!("../../scenes/oa-dm1-spawn0.toml"),
     ),
     (
         "oa-dm5-spawn1",
-        include_str!("../../../scenes/oa-dm5-spawn1.toml"),
+        include_str!("../../scenes/oa-dm5-spawn1.toml"),
     ),
     (
         "oa-wrackdm17-spawn2",
-        include_str!("../../../scenes/oa-wrackdm17-spawn2.toml"),
+        include_str!("../../scenes/oa-wrackdm17-spawn2.toml"),
     ),
     (
         "procedural-plane",
-        include_str!("../../../scenes/procedural-plane.toml"),
+        include_str!("../../scenes/procedural-plane.toml"),
     ),
     (
         "procedural-plane-lit",
-        include_str!("../../../scenes/procedural-plane-lit.toml"),
+        include_str!("../../scenes/procedural-plane-lit.toml"),
     ),
     (
         "procedural-sprites",
-        include_str!("../../../scenes/procedural-sprites.toml"),
+        include_str!("../../scenes/procedural-sprites.toml"),
     ),
     (
         "stk-blackforest-start",
-        include_str!("../../../scenes/stk-blackforest-start.toml"),
+        include_str!("../../scenes/stk-blackforest-start.toml"),
     ),
     (
         "stk-cocoatemple-start",
-        include_str!("../../../scenes/stk-cocoatemple-start.toml"),
+        include_str!("../../scenes/stk-cocoatemple-start.toml"),
     ),
     (
         "stk-lighthouse-start",
-        include_str!("../../../scenes/stk-lighthouse-start.toml"),
+        include_str!("../../scenes/stk-lighthouse-start.toml"),
     ),
     (
         "stk-zengarden-driveline",
-        include_str!("../../../scenes/stk-zengarden-driveline.toml"),
+        include_str!("../../scenes/stk-zengarden-driveline.toml"),
     ),
     (
         "tw-dm1-spawn0",
-        include_str!("../../../scenes/tw-dm1-spawn0.toml"),
+        include_str!("../../scenes/tw-dm1-spawn0.toml"),
     ),
     (
         "tw-dm6-center",
-        include_str!("../../../scenes/tw-dm6-center.toml"),
+        include_str!("../../scenes/tw-dm6-center.toml"),
     ),
     (
         "tw-dm8-center",
-        include_str!("../../../scenes/tw-dm8-center.toml"),
+        include_str!("../../scenes/tw-dm8-center.toml"),
     ),
 ];
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::def::{list, SceneDef};
+    use crate::def::{list, SceneDef};
     use std::path::{Path, PathBuf};
 
     #[test]

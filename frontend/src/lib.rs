@@ -1,6 +1,11 @@
 //! Real workloads: scenes from real games, a TBR raster front end and the
 //! texture path that turns a frame into the cycle model's trace.
 //!
+//! This crate stands on `wasp-trace` (its output) and `wasp-rtl` (the
+//! priority subsets its overlays and footprint ratios use); it knows
+//! nothing of the machine. The CLI runs the cycle model on its traces
+//! (heat maps included).
+//!
 //! One [`Scene`] model serves every game: meshes with UVs, materials with
 //! textures and a shader template, and a camera. Loaders (one file per
 //! game) build a `Scene` from the game's own files; the raster front end
@@ -27,6 +32,10 @@ pub mod supertuxkart;
 pub mod teeworlds;
 pub mod texture;
 mod vec3;
+
+// The trace crate and its generator under the paths the modules use.
+use wasp_trace as trace;
+use wasp_trace::rng;
 
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -969,7 +969,7 @@ pub fn sprites(camera: &str, width: u32, height: u32) -> Result<Scene, SceneErro
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::raster::{rasterize, RasterOptions};
+    use crate::raster::{rasterize, RasterOptions};
     use wasp_rtl::subset::SubsetSpec;
 
     fn def(map: &str, w: u32, h: u32) -> SceneDef {
@@ -1024,7 +1024,7 @@ mod tests {
             "top16 {top} mesh4 {mesh4} mesh2 {mesh2}"
         );
         // Distant ground minifies: mip levels beyond 0 are touched.
-        let tex = crate::scene::texture::TextureSet::new(&scene.textures);
+        let tex = crate::texture::TextureSet::new(&scene.textures);
         let stone = &tex.textures()[0];
         let lvl1 = stone.levels[1].first_block;
         let end = stone.base / 64 + stone.bytes / 64;

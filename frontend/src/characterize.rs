@@ -371,7 +371,7 @@ pub fn csv(rows: &[Characterization]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::def::Game;
+    use crate::def::Game;
 
     #[test]
     fn table_and_csv_of_a_procedural_scene() {
@@ -413,8 +413,8 @@ mod tests {
 
     #[test]
     fn batched_footprints_equal_the_trace_module_definition() {
-        let scene = crate::scene::procedural::plane("ground", "standard").unwrap();
-        let f = crate::scene::raster::rasterize(
+        let scene = crate::procedural::plane("ground", "standard").unwrap();
+        let f = crate::raster::rasterize(
             &scene,
             320,
             192,

@@ -1916,7 +1916,7 @@ mod tests {
     fn def(map: &str, camera: &str) -> SceneDef {
         SceneDef {
             name: "t".into(),
-            game: crate::scene::def::Game::Teeworlds,
+            game: crate::def::Game::Teeworlds,
             map: map.into(),
             camera: camera.into(),
             width: 1960,
@@ -2117,10 +2117,10 @@ mod tests {
     }
 
     fn shipped_defs() -> Vec<SceneDef> {
-        crate::scene::def::all()
+        crate::def::all()
             .unwrap()
             .into_iter()
-            .filter(|d| d.game == crate::scene::def::Game::Teeworlds)
+            .filter(|d| d.game == crate::def::Game::Teeworlds)
             .collect()
     }
 
@@ -2169,7 +2169,7 @@ mod tests {
     /// user's cache directory): unpacked per game by `wasp scenes fetch`,
     /// or per package by a manual `dpkg-deb -x`.
     fn real_data_root() -> Option<PathBuf> {
-        let cache = crate::scene::fetch::cache_dir();
+        let cache = crate::fetch::cache_dir();
         ["teeworlds", PACKAGE]
             .iter()
             .map(|d| cache.join(d).join(DATA_SUBDIR))

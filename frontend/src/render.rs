@@ -22,9 +22,6 @@
 
 use super::raster::{rasterize_timed, Frame, RasterOptions};
 use super::{Scene, SceneError};
-use crate::config::MachineConfig;
-use crate::run::{simulate_recording, RunOptions, SimError, WarpRecord};
-use crate::stats::RunStats;
 use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
@@ -103,8 +100,8 @@ impl fmt::Display for Overlay {
 pub enum RenderError {
     /// Loading or rasterizing the scene.
     Scene(SceneError),
-    /// The cycle-model run for a heat map.
-    Sim(SimError),
+    /// The values of a heat map (the caller's cycle-model run).
+    Heat(String),
     /// Encoding or writing the picture.
     Image(String),
 }
@@ -113,7 +110,7 @@ impl fmt::Display for RenderError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             RenderError::Scene(e) => write!(f, "{e}"),
-            RenderError::Sim(e) => write!(f, "cycle model: {e}"),
+            RenderError::Heat(e) => write!(f, "cycle model: {e}"),
             RenderError::Image(m) => f.write_str(m),
         }
     }
@@ -126,11 +123,8 @@ impl std::error::Error for RenderError {}
 pub struct RenderRequest {
     /// Overlays in drawing order.
     pub overlays: Vec<Overlay>,
-    /// The machine (its tile size is the raster tile size; a heat map runs
-    /// on it).
-    pub config: MachineConfig,
-    /// Policy and other overrides of the heat map's run.
-    pub run: RunOptions,
+    /// Tile edge in pixels (the machine's `gpu.tile_size`).
+    pub tile: u32,
     /// Hidden-surface removal by a depth pre-pass (see
     /// [`RasterOptions::depth_prepass`]).
     pub depth_prepass: bool,
@@ -148,56 +142,69 @@ pub struct Rendered {
     pub image: Vec<u8>,
     /// Seconds the front end took.
     pub raster_seconds: f64,
-    /// The cycle-model run, if a heat map needed one.
-    pub run: Option<RunStats>,
     /// The heat map's value range, if drawn.
     pub heat_range: Option<(f64, f64)>,
 }
 
-/// Rasterize `scene` at `width` x `height` and draw the overlays (running
-/// the cycle model if a heat map asks for it).
+/// One warp's value of a heat-map statistic: the warp is quad `quad` of
+/// tile `tile` (indices into the frame's trace).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WarpValue {
+    /// Tile index in the trace.
+    pub tile: u32,
+    /// Quad (warp) index in the tile.
+    pub quad: u32,
+    /// The value.
+    pub value: f64,
+}
+
+/// Gives every warp's value of a heat statistic for a rendered frame (the
+/// caller's cycle-model run), or why it could not.
+pub type HeatSource<'a> = dyn FnMut(&Frame, HeatStat) -> Result<Vec<WarpValue>, String> + 'a;
+
+/// Rasterize `scene` at `width` x `height` and draw the overlays. A heat
+/// overlay asks `heat` for every warp's value of its statistic (the caller
+/// runs the cycle model on the frame's trace; the front end knows nothing
+/// of the machine).
 pub fn render(
     scene: &Scene,
     width: u32,
     height: u32,
     req: &RenderRequest,
-    progress: &mut dyn FnMut(usize, usize),
+    heat: &mut HeatSource<'_>,
 ) -> Result<Rendered, RenderError> {
     let opts = RasterOptions {
-        tile: req.config.gpu.tile_size,
+        tile: req.tile,
         depth_prepass: req.depth_prepass,
         threads: req.threads,
         ..RasterOptions::default()
     };
     let (frame, raster_seconds) =
         rasterize_timed(scene, width, height, &opts).map_err(RenderError::Scene)?;
-    let needs_run = req.overlays.iter().any(|o| matches!(o, Overlay::Heat(_)));
-    let (run, records) = if needs_run {
-        let mut run = req.run.clone();
-        run.record_warps = true;
-        let (stats, recs) = simulate_recording(&req.config, &frame.trace, &run, progress)
-            .map_err(RenderError::Sim)?;
-        (Some(stats), Some(recs))
-    } else {
-        (None, None)
-    };
-    let (image, heat_range) = compose(&frame, &req.overlays, records.as_deref());
+    let mut values: Vec<(HeatStat, Vec<WarpValue>)> = Vec::new();
+    for o in &req.overlays {
+        if let Overlay::Heat(stat) = o {
+            if !values.iter().any(|(s, _)| s == stat) {
+                values.push((*stat, heat(&frame, *stat).map_err(RenderError::Heat)?));
+            }
+        }
+    }
+    let (image, heat_range) = compose(&frame, &req.overlays, &values);
     Ok(Rendered {
         frame,
         image,
         raster_seconds,
-        run,
         heat_range,
     })
 }
 
-/// The frame's picture with `overlays` drawn in order; heat maps use
-/// `records` (none: heat overlays are skipped). Returns the picture and
-/// the last heat map's value range.
+/// The frame's picture with `overlays` drawn in order; a heat map uses the
+/// values given for its statistic (none: it is skipped). Returns the
+/// picture and the last heat map's value range.
 pub fn compose(
     frame: &Frame,
     overlays: &[Overlay],
-    records: Option<&[WarpRecord]>,
+    heat_values_by_stat: &[(HeatStat, Vec<WarpValue>)],
 ) -> (Vec<u8>, Option<(f64, f64)>) {
     let mut img = Canvas {
         w: frame.width,
@@ -229,8 +236,8 @@ pub fn compose(
                 }
             }
             Overlay::Heat(stat) => {
-                if let Some(recs) = records {
-                    range = heat(&mut img, frame, recs, *stat);
+                if let Some((_, v)) = heat_values_by_stat.iter().find(|(s, _)| s == stat) {
+                    range = heat(&mut img, frame, v, *stat);
                 }
             }
         }
@@ -240,11 +247,26 @@ pub fn compose(
 
 /// Per-quad values of a statistic: (top-left pixel x, y, value), one per
 /// quad position with a value, in scanline order of the frame; the value is
-/// the mean over the position's warps that have one (in record order, so
-/// the result is deterministic).
-pub fn heat_values(frame: &Frame, records: &[WarpRecord], stat: HeatStat) -> Vec<(u32, u32, f64)> {
-    let mut per_warp = warp_values(frame, records, stat);
-    // Stable: a position's values stay in record order.
+/// the mean over the position's warps (in the given order, so the result is
+/// deterministic). Values naming no quad of the trace, or not finite, are
+/// left out.
+pub fn heat_values(frame: &Frame, values: &[WarpValue]) -> Vec<(u32, u32, f64)> {
+    let tiles = frame.trace.tiles();
+    let t = frame.trace.header().tile;
+    let mut per_warp: Vec<(u32, u32, f64)> = values
+        .iter()
+        .filter(|w| w.value.is_finite())
+        .filter_map(|w| {
+            let tile = tiles.get(w.tile as usize)?;
+            let q = tile.quad(w.quad as usize)?;
+            Some((
+                tile.tx() * t + 2 * q.x(),
+                tile.ty() * t + 2 * q.y(),
+                w.value,
+            ))
+        })
+        .collect();
+    // Stable: a position's values stay in the given order.
     per_warp.sort_by_key(|&(x, y, _)| (y, x));
     let mut out: Vec<(u32, u32, f64)> = Vec::new();
     let mut n = 0u32;
@@ -263,45 +285,13 @@ pub fn heat_values(frame: &Frame, records: &[WarpRecord], stat: HeatStat) -> Vec
     out
 }
 
-/// One value per warp with a value: (top-left pixel x, y, value).
-fn warp_values(frame: &Frame, records: &[WarpRecord], stat: HeatStat) -> Vec<(u32, u32, f64)> {
-    let tiles = frame.trace.tiles();
-    let t = frame.trace.header().tile;
-    let mut first_launch = vec![u64::MAX; tiles.len()];
-    for r in records {
-        if let Some(f) = first_launch.get_mut(r.tile as usize) {
-            *f = (*f).min(r.launched);
-        }
-    }
-    let mut out = Vec::with_capacity(records.len());
-    for r in records {
-        let Some(tile) = tiles.get(r.tile as usize) else {
-            continue;
-        };
-        let Some(q) = tile.quad(r.quad as usize) else {
-            continue;
-        };
-        let v = match stat {
-            HeatStat::Latency => r.mem_latency,
-            HeatStat::Cycles => Some(r.finished.saturating_sub(r.launched) as f64),
-            HeatStat::Launch => {
-                Some(r.launched.saturating_sub(first_launch[r.tile as usize]) as f64)
-            }
-        };
-        if let Some(v) = v.filter(|v| v.is_finite()) {
-            out.push((tile.tx() * t + 2 * q.x(), tile.ty() * t + 2 * q.y(), v));
-        }
-    }
-    out
-}
-
 fn heat(
     img: &mut Canvas,
     frame: &Frame,
-    records: &[WarpRecord],
+    values: &[WarpValue],
     stat: HeatStat,
 ) -> Option<(f64, f64)> {
-    let vals = heat_values(frame, records, stat);
+    let vals = heat_values(frame, values);
     // Dim the picture: the heat reads on top of a grey frame.
     for p in img.px.chunks_exact_mut(4) {
         let l = (u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10;
@@ -498,7 +488,7 @@ pub fn write_png(path: &Path, rgba: &[u8], width: u32, height: u32) -> Result<()
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::procedural;
+    use crate::procedural;
 
     fn small_frame() -> Frame {
         let scene = procedural::plane("ground", "lightmapped").unwrap();
@@ -508,7 +498,7 @@ mod tests {
     #[test]
     fn png_decodes_with_the_frame_size() {
         let f = small_frame();
-        let (img, _) = compose(&f, &[Overlay::Grid], None);
+        let (img, _) = compose(&f, &[Overlay::Grid], &[]);
         let png = encode_png(&img, f.width, f.height).unwrap();
         let back = image::load_from_memory(&png).unwrap().to_rgba8();
         assert_eq!((back.width(), back.height()), (192, 128));
@@ -523,11 +513,25 @@ mod tests {
     #[test]
     fn heat_overlay_changes_pixels_and_subset_tints_mesh4() {
         let f = small_frame();
-        let mut cfg = MachineConfig::paper();
-        cfg.gpu.tile_size = 64;
-        let (_, recs) =
-            simulate_recording(&cfg, &f.trace, &RunOptions::default(), &mut |_, _| {}).unwrap();
-        let (heat, range) = compose(&f, &[Overlay::Heat(HeatStat::Latency)], Some(&recs));
+        // Every warp's value: its quad index.
+        let vals: Vec<WarpValue> = f
+            .trace
+            .tiles()
+            .iter()
+            .enumerate()
+            .flat_map(|(t, tile)| {
+                (0..tile.quad_count()).map(move |q| WarpValue {
+                    tile: t as u32,
+                    quad: q as u32,
+                    value: q as f64,
+                })
+            })
+            .collect();
+        let (heat, range) = compose(
+            &f,
+            &[Overlay::Heat(HeatStat::Latency)],
+            &[(HeatStat::Latency, vals)],
+        );
         let (lo, hi) = range.expect("values");
         assert!(lo >= 0.0 && hi > lo, "{lo} {hi}");
         let changed = heat
@@ -536,7 +540,10 @@ mod tests {
             .filter(|(a, b)| a != b)
             .count();
         assert!(changed > (192 * 128) / 2, "{changed}");
-        let (sub, _) = compose(&f, &[Overlay::Subset(SubsetSpec::Mesh(4))], None);
+        // Without values for its statistic a heat overlay draws nothing.
+        let (none, r) = compose(&f, &[Overlay::Heat(HeatStat::Cycles)], &[]);
+        assert_eq!((none, r), (f.image.clone(), None));
+        let (sub, _) = compose(&f, &[Overlay::Subset(SubsetSpec::Mesh(4))], &[]);
         // Quad (0, 0) of tile 0 is Mesh4 priority, quad (1, 0) is not.
         assert_ne!(sub[0..4], f.image[0..4]);
         assert_eq!(sub[8..12], f.image[8..12]);
@@ -557,27 +564,22 @@ mod tests {
             stats: Default::default(),
             timings: Default::default(),
         };
-        let rec = |quad: u32, lat: Option<f64>, launched: u64| WarpRecord {
+        let w = |quad: u32, value: f64| WarpValue {
             tile: 0,
             quad,
-            core: 0,
-            priority: false,
-            mem_latency: lat,
-            launched,
-            finished: launched + 100,
+            value,
         };
         // Quads 5 and 6 share position (1, 1); 2 and 4 share (0, 1).
-        let recs = [
-            rec(6, Some(30.0), 9),
-            rec(0, Some(7.0), 1),
-            rec(5, Some(10.0), 5),
-            rec(2, None, 2),
-            rec(4, Some(4.0), 3),
+        let vals = [
+            w(6, 30.0),
+            w(0, 7.0),
+            w(5, 10.0),
+            w(2, f64::NAN),
+            w(4, 4.0),
+            w(99, 1.0),
         ];
-        let v = heat_values(&frame, &recs, HeatStat::Latency);
+        let v = heat_values(&frame, &vals);
         assert_eq!(v, vec![(0, 0, 7.0), (0, 2, 4.0), (2, 2, 20.0)]);
-        let l = heat_values(&frame, &recs, HeatStat::Launch);
-        assert_eq!(l, vec![(0, 0, 0.0), (0, 2, 1.5), (2, 2, 6.0)]);
         assert!(HeatStat::Latency.label().starts_with("MEAN"));
     }
 

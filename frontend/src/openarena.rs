@@ -1391,7 +1391,7 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::def::Game;
+    use crate::def::Game;
     use proptest::prelude::*;
     use std::io::Write;
 
@@ -1815,7 +1815,7 @@ textures/a/anim { { animMap 5 textures/a/f1.tga textures/a/f2.tga } }
     /// The real data root in the scene cache (`$WASP_SCENES`, else the
     /// user's cache directory), if fetched.
     pub(super) fn real_root() -> Option<PathBuf> {
-        let cache = crate::scene::fetch::cache_dir();
+        let cache = crate::fetch::cache_dir();
         let found = find_data_root(&cache);
         if found.is_none() {
             eprintln!(
@@ -1848,7 +1848,7 @@ textures/a/anim { { animMap 5 textures/a/f1.tga textures/a/f2.tga } }
         }
         for mat in &s.materials {
             for op in &mat.shader {
-                if let crate::scene::ShaderOp::Tex(t) = op {
+                if let crate::ShaderOp::Tex(t) = op {
                     let tex = &s.textures[t.texture];
                     assert!(
                         tex.width > 0
@@ -1875,7 +1875,7 @@ textures/a/anim { { animMap 5 textures/a/f1.tga textures/a/f2.tga } }
     #[ignore = "needs fetched game data: wasp scenes fetch openarena"]
     fn real_shipped_scenes() {
         let Some(root) = real_root() else { return };
-        for d in crate::scene::def::all().unwrap() {
+        for d in crate::def::all().unwrap() {
             if d.game != Game::Openarena {
                 continue;
             }
@@ -1967,7 +1967,7 @@ textures/a/anim { { animMap 5 textures/a/f1.tga textures/a/f2.tga } }
             let (map, cam) = item.split_once(':').unwrap();
             let s = load(&root, &def(map, cam)).unwrap();
             let out = std::env::temp_dir().join(format!("oa-{map}-{}.png", cam.replace(':', "")));
-            crate::scene::supertuxkart::preview::render(&s, 980, 384, &out);
+            crate::supertuxkart::preview::render(&s, 980, 384, &out);
             eprintln!("{}", out.display());
         }
     }
@@ -1976,7 +1976,7 @@ textures/a/anim { { animMap 5 textures/a/f1.tga textures/a/f2.tga } }
 #[cfg(test)]
 mod all_maps {
     use super::*;
-    use crate::scene::def::Game;
+    use crate::def::Game;
 
     /// Every map of the fetched packages with `spawn:0`: reports each and
     /// fails on any load error.

@@ -1060,7 +1060,7 @@ mod tests {
     fn def(camera: &str) -> SceneDef {
         SceneDef {
             name: "t".into(),
-            game: crate::scene::def::Game::FrozenBubble,
+            game: crate::def::Game::FrozenBubble,
             map: "levels".into(),
             camera: camera.into(),
             width: 1024,
@@ -1140,10 +1140,10 @@ mod tests {
     }
 
     fn shipped_defs() -> Vec<SceneDef> {
-        crate::scene::def::all()
+        crate::def::all()
             .unwrap()
             .into_iter()
-            .filter(|d| d.game == crate::scene::def::Game::FrozenBubble)
+            .filter(|d| d.game == crate::def::Game::FrozenBubble)
             .collect()
     }
 
@@ -1189,7 +1189,7 @@ mod tests {
     /// user's cache directory): unpacked per game by `wasp scenes fetch`,
     /// or per package by a manual `dpkg-deb -x`.
     fn real_data_root() -> Option<PathBuf> {
-        let cache = crate::scene::fetch::cache_dir();
+        let cache = crate::fetch::cache_dir();
         ["frozen-bubble", PACKAGE]
             .iter()
             .map(|d| cache.join(d).join(DATA_SUBDIR))

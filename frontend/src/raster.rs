@@ -1542,7 +1542,7 @@ fn rasterize_with(
         prepass: opts.depth_prepass,
         hiz,
     };
-    let order: Vec<(u32, u32)> = crate::synth::z_order(tiles_x, tiles_y)
+    let order: Vec<(u32, u32)> = crate::trace::z_order(tiles_x, tiles_y)
         .into_iter()
         .filter(|&(tx, ty)| !lists[(ty * tiles_x + tx) as usize].is_empty())
         .collect();
@@ -1694,7 +1694,7 @@ pub fn rasterize_timed(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Filter, Material, Mesh, TexSample, Texture};
+    use crate::{Filter, Material, Mesh, TexSample, Texture};
 
     /// A camera at the origin looking down -z, y up.
     fn look_down_z(fov_y_deg: f32, near: f32, far: f32) -> Camera {
@@ -1733,7 +1733,7 @@ mod tests {
         Material {
             name: name.into(),
             blend,
-            shader: crate::scene::shader::standard(tex, Filter::Bilinear),
+            shader: crate::shader::standard(tex, Filter::Bilinear),
         }
     }
 
@@ -1777,7 +1777,7 @@ mod tests {
         );
         let f = rasterize(&scene, 256, 192, &RasterOptions::default()).unwrap();
         let got: Vec<(u32, u32)> = f.trace.tiles().iter().map(|t| (t.tx(), t.ty())).collect();
-        let want: Vec<(u32, u32)> = crate::synth::z_order(4, 3)
+        let want: Vec<(u32, u32)> = crate::trace::z_order(4, 3)
             .into_iter()
             .filter(|&p| p != (3, 2))
             .collect();
@@ -2123,7 +2123,7 @@ mod tests {
     #[test]
     #[ignore = "timing measurement; run in release with --ignored --nocapture"]
     fn raster_timing() {
-        use crate::scene::procedural;
+        use crate::procedural;
         let scenes = [
             procedural::plane("ground", "standard").unwrap(),
             procedural::plane("ground", "lightmapped").unwrap(),
@@ -2423,8 +2423,8 @@ mod tests {
 
     #[test]
     fn procedural_scenes_record_every_rejected_quad_in_the_trace() {
-        use crate::scene::def::{Game, SceneDef};
-        use crate::scene::procedural;
+        use crate::def::{Game, SceneDef};
+        use crate::procedural;
         let (w, h) = (320, 192);
         let mut rejected = 0;
         for map in procedural::MAPS {

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# The crates' layering holds (README, "A tour"): rtl, waves and trace at
+# the bottom; the cycle model (wasp-sim) on them with no image or archive
+# crate; the front end (wasp-frontend) on trace and rtl, never the model;
+# the properties (wasp-props) on the model, never the front end. Run by
+# .ci/run; fails naming the crate and the dependency that breaks it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+deps() { cargo tree --locked -p "$1" -e normal --prefix none | awk '{print $1}' | sort -u; }
+fail=0
+forbid() {
+  local crate=$1; shift
+  local have
+  have=$(deps "$crate")
+  for d in "$@"; do
+    if grep -qx "$d" <<< "$have"; then
+      echo "layering: $crate depends on $d" >&2
+      fail=1
+    fi
+  done
+}
+forbid wasp-trace wasp-rtl wasp-waves wasp-sim wasp-frontend wasp-props
+forbid wasp-waves wasp-rtl wasp-trace wasp-sim wasp-frontend wasp-props
+forbid wasp-rtl wasp-trace wasp-sim wasp-frontend wasp-props
+forbid wasp-sim wasp-frontend wasp-props image zip flate2 roxmltree
+forbid wasp-frontend wasp-sim wasp-props
+forbid wasp-props wasp-frontend image zip flate2 roxmltree
+[ "$fail" = 0 ] || exit 1
+echo "layering: rtl, waves, trace < sim, frontend < wasp; props on sim and rtl" >&2
