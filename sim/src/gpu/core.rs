@@ -49,19 +49,17 @@
 //! blocked.
 
 use crate::config::FilterTiming;
+use crate::gpu::issue::{pick, Picks};
 use crate::gpu::mask::SlotMask;
 use crate::gpu::raster::RasterCursor;
+use crate::gpu::wheel::WakeWheel;
 use crate::gpu::SimError;
 use crate::mem::{Access, BlockedOn, MemorySystem};
 use crate::trace::{OpKind, Tile, Trace};
-use std::cmp::Reverse;
-use std::collections::{BinaryHeap, VecDeque};
+use std::collections::VecDeque;
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
 
 const FREE_MSHR_MAX: u32 = (1 << FREE_MSHR_BITS) - 1;
-
-/// Size of the wake-up timing wheel (a power of two, in cycles).
-const WHEEL: usize = 64;
 
 /// Warp slots a core can have (the slot masks' width). The slot array
 /// always has this many entries, so that indexing it with a slot number
@@ -276,16 +274,10 @@ pub struct ShaderCore {
     ready_tex: u128,
     /// Every slot fits in a `u64` mask (the hot loops then use `u64`).
     narrow: bool,
-    /// Timing wheel of wake-ups: slot bitmasks by cycle modulo its size,
-    /// as two 64-bit halves (slots 0-63, 64-127): setting a bit is then a
-    /// 64-bit shift.
-    wheel: [[u64; 2]; WHEEL],
-    /// The same wheel for warps in the middle of an ALU run: their next
-    /// instruction is known to be another ALU one, so at their cycle they
-    /// join the ready set as a whole mask, with no per-warp look.
-    wheel_ready: [[u64; 2]; WHEEL],
-    /// Wake-ups further than the wheel reaches.
-    far: BinaryHeap<Reverse<(u64, u8)>>,
+    /// Wake-ups ([`WakeWheel`]): due ones (the core looks at the warp's
+    /// next instruction entry) and ready ones (warps in the middle of an
+    /// ALU run join the ready set as a whole mask, with no per-warp look).
+    wakes: WakeWheel,
     /// The LDST unit's texture instructions, `ldst_len` of them: the
     /// oldest, whose blocks are being presented, then the others in order.
     ldst_cur: LdstEntry,
@@ -387,9 +379,7 @@ impl ShaderCore {
             ready: 0,
             ready_tex: 0,
             narrow: n <= 64,
-            wheel: [[0; 2]; WHEEL],
-            wheel_ready: [[0; 2]; WHEEL],
-            far: BinaryHeap::new(),
+            wakes: WakeWheel::new(),
             ldst_cur: LdstEntry {
                 slot: 0,
                 next: 0,
@@ -516,22 +506,10 @@ impl ShaderCore {
     /// Wake warp `slot` at cycle `at` (> the current cycle).
     #[inline]
     fn schedule(&mut self, now: u64, at: u64, slot: usize) {
-        if at - now < WHEEL as u64 {
-            self.wheel[(at as usize) & (WHEEL - 1)][(slot >> 6) & 1] |= 1u64 << (slot & 63);
-        } else {
-            self.far.push(Reverse((at, slot as u8)));
-        }
+        self.wakes.schedule(now, at, slot);
     }
 
     fn wakeups(&mut self, now: u64, tile: &Tile) {
-        while let Some(&Reverse((t, slot))) = self.far.peek() {
-            if t - now >= WHEEL as u64 {
-                break;
-            }
-            self.far.pop();
-            let slot = slot as usize;
-            self.wheel[(t as usize) & (WHEEL - 1)][(slot >> 6) & 1] |= 1u64 << (slot & 63);
-        }
         if self.narrow {
             self.wake_due::<u64>(now, tile);
         } else {
@@ -542,11 +520,9 @@ impl ShaderCore {
     /// The wake-ups due at `now`, on masks of width `M` (every slot fits).
     #[inline(always)]
     fn wake_due<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
-        let i = (now as usize) & (WHEEL - 1);
-        let [lo, hi] = std::mem::take(&mut self.wheel_ready[i]);
-        self.ready |= u128::from(lo) | u128::from(hi) << 64;
-        let [lo, hi] = std::mem::take(&mut self.wheel[i]);
-        let mut due = M::from_wide(u128::from(lo) | u128::from(hi) << 64);
+        let (ready_now, due_now) = self.wakes.take(now);
+        self.ready |= ready_now;
+        let mut due = M::from_wide(due_now);
         let mut ready = M::ZERO;
         let mut ready_tex = M::ZERO;
         while due != M::ZERO {
@@ -689,48 +665,34 @@ impl ShaderCore {
 
     /// Issue on masks of width `M` (every slot fits).
     ///
-    /// The picks are found first (one bit scan each; an ALU pick only
-    /// counts its run down), then the ALU picks are put on the wake-up
-    /// wheels as whole masks: those with more of their run to go on the
-    /// ready wheel, those that ended it on the wheel that looks at them.
+    /// The picks are found first ([`pick`], checked against its plain
+    /// reference; each ALU pick counts its run down), then the ALU picks
+    /// are put on the wake-up wheels as whole masks: those with more of
+    /// their run to go on the ready wheel, those that ended it on the wheel
+    /// that looks at them.
     #[inline(always)]
     fn issue_with<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
         let tex_ok = self.ldst_len < self.ldst_cap;
         let ready = M::from_wide(self.ready);
-        let cand = ready
-            | if tex_ok {
-                M::from_wide(self.ready_tex)
-            } else {
-                M::ZERO
-            };
-        // Loose round-robin: each pick is the first candidate slot at or
-        // after the slot past the previous pick (wrapping), starting at
-        // `rr`; that is the candidates in ascending order of the set
-        // rotated right by `rr`.
-        let rr = self.rr;
-        let mut rot = cand.rotate_right(rr);
-        let mut issued = 0;
-        let mut last = 0;
-        let mut alu = M::ZERO;
-        let mut run_end = M::ZERO;
-        let mut tex = None;
-        while issued < self.width && rot != M::ZERO {
-            let s = (rot.lowest() + rr as usize) & (M::BITS as usize - 1);
-            rot = rot.without_lowest();
-            let bit = M::bit(s);
-            if ready & bit != M::ZERO {
-                let left = &mut self.alu_left[s % MAX_SLOTS];
-                *left -= 1;
-                alu |= bit;
-                run_end |= M::bit_if(s, *left == 0);
-            } else {
-                // One texture instruction enters the LDST unit per cycle.
-                tex = Some(s);
-                rot &= ready.rotate_right(rr);
-            }
-            issued += 1;
-            last = s as u32;
-        }
+        let tex_cand = if tex_ok {
+            M::from_wide(self.ready_tex)
+        } else {
+            M::ZERO
+        };
+        // Each ALU pick counts its run down; those that end it wait on the
+        // wheel that looks at their next instruction.
+        let alu_left = &mut self.alu_left;
+        let Picks {
+            alu,
+            run_end,
+            tex,
+            issued,
+            last,
+        } = pick(ready, tex_cand, self.rr, self.width, |s| {
+            let left = &mut alu_left[s % MAX_SLOTS];
+            *left -= 1;
+            *left == 0
+        });
         self.signals.issued = issued;
         self.signals.tex_issued = tex.is_some();
         if issued == 0 {
@@ -745,15 +707,10 @@ impl ShaderCore {
         self.progress(now);
         self.ready = (ready & !alu).to_wide();
         let at = now + self.alu_latency;
-        if self.alu_latency < WHEEL as u64 {
-            let i = (at as usize) & (WHEEL - 1);
-            let mid = (alu & !run_end).to_wide();
-            let end = run_end.to_wide();
+        if WakeWheel::reaches(now, at) {
             // Mid-run warps are ready again at `at`, nothing to decide.
-            self.wheel_ready[i][0] |= mid as u64;
-            self.wheel_ready[i][1] |= (mid >> 64) as u64;
-            self.wheel[i][0] |= end as u64;
-            self.wheel[i][1] |= (end >> 64) as u64;
+            self.wakes
+                .schedule_masks(at, (alu & !run_end).to_wide(), run_end.to_wide());
         } else {
             let mut m = alu;
             while m != M::ZERO {

@@ -18,9 +18,11 @@
 
 mod core;
 mod core_map;
+mod issue;
 mod mask;
 mod raster;
 mod tiles;
+mod wheel;
 
 pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
 pub use self::core_map::{CoreMap, CoreMapTable};
