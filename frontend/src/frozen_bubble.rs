@@ -64,6 +64,7 @@
 //! the `sprite` template with [`Filter::Bilinear`] (a GPU port scales the
 //! 640x480 screen to the frame).
 
+use super::bytes::Bytes;
 use super::def::SceneDef;
 use super::teeworlds::program;
 use super::{Blend, Camera, Filter, Material, Mesh, Scene, SceneError, Texture};
@@ -237,52 +238,15 @@ pub fn bubble_position(col: u8, row: u8) -> (f32, f32) {
 /// Largest GIF canvas accepted (pixels).
 const MAX_GIF_PIXELS: usize = 4096 * 4096;
 
-struct GifReader<'a> {
-    path: &'a Path,
-    bytes: &'a [u8],
-    pos: usize,
-}
-
-impl GifReader<'_> {
-    fn err(&self, at: usize, msg: impl Into<String>) -> SceneError {
-        SceneError::at(self.path, at as u64, msg)
-    }
-
-    fn take(&mut self, n: usize, what: &str) -> Result<&[u8], SceneError> {
-        if self.bytes.len() - self.pos < n {
-            return Err(self.err(
-                self.bytes.len(),
-                format!(
-                    "truncated: {what} needs {n} bytes at {}, the file has {}",
-                    self.pos,
-                    self.bytes.len()
-                ),
-            ));
+/// GIF data sub-blocks up to the terminator, concatenated.
+fn sub_blocks(r: &mut Bytes, what: &str) -> Result<Vec<u8>, SceneError> {
+    let mut out = Vec::new();
+    loop {
+        let n = r.u8(what)? as usize;
+        if n == 0 {
+            return Ok(out);
         }
-        let s = &self.bytes[self.pos..self.pos + n];
-        self.pos += n;
-        Ok(s)
-    }
-
-    fn u8(&mut self, what: &str) -> Result<u8, SceneError> {
-        Ok(self.take(1, what)?[0])
-    }
-
-    fn u16(&mut self, what: &str) -> Result<u16, SceneError> {
-        let b = self.take(2, what)?;
-        Ok(u16::from_le_bytes([b[0], b[1]]))
-    }
-
-    /// Data sub-blocks up to the terminator, concatenated.
-    fn sub_blocks(&mut self, what: &str) -> Result<Vec<u8>, SceneError> {
-        let mut out = Vec::new();
-        loop {
-            let n = self.u8(what)? as usize;
-            if n == 0 {
-                return Ok(out);
-            }
-            out.extend_from_slice(self.take(n, what)?);
-        }
+        out.extend_from_slice(r.take(n, what)?);
     }
 }
 
@@ -383,11 +347,7 @@ fn lzw_decode(data: &[u8], min_size: u8, limit: usize) -> Result<Vec<u8>, String
 /// and pixels outside the frame are transparent black. Errors name the
 /// file and the byte offset.
 pub fn decode_gif(path: &Path, bytes: &[u8]) -> Result<(u32, u32, Vec<u8>), SceneError> {
-    let mut r = GifReader {
-        path,
-        bytes,
-        pos: 0,
-    };
+    let mut r = Bytes::new(bytes, path);
     let sig = r.take(6, "GIF signature")?.to_vec();
     if sig != b"GIF87a" && sig != b"GIF89a" {
         return Err(r.err(0, format!("not a GIF: signature {sig:?}")));
@@ -410,11 +370,11 @@ pub fn decode_gif(path: &Path, bytes: &[u8]) -> Result<(u32, u32, Vec<u8>), Scen
     };
     let mut transparent: Option<u8> = None;
     loop {
-        let at = r.pos;
+        let at = r.pos();
         match r.u8("block introducer")? {
             0x21 => {
                 let label = r.u8("extension label")?;
-                let body = r.sub_blocks("extension")?;
+                let body = sub_blocks(&mut r, "extension")?;
                 if label == 0xf9 {
                     if body.len() < 4 {
                         return Err(r.err(at, "graphic control extension shorter than 4 bytes"));
@@ -437,13 +397,13 @@ pub fn decode_gif(path: &Path, bytes: &[u8]) -> Result<(u32, u32, Vec<u8>), Scen
                 let table = local
                     .or(global)
                     .ok_or_else(|| r.err(at, "image without a local or a global colour table"))?;
-                let min_at = r.pos;
+                let min_at = r.pos();
                 let min_size = r.u8("LZW minimum code size")?;
                 if !(1..=11).contains(&min_size) {
                     return Err(r.err(min_at, format!("LZW minimum code size {min_size}")));
                 }
-                let data_at = r.pos;
-                let data = r.sub_blocks("image data")?;
+                let data_at = r.pos();
+                let data = sub_blocks(&mut r, "image data")?;
                 if w * h > MAX_GIF_PIXELS {
                     return Err(r.err(at, format!("GIF image {w}x{h} too large")));
                 }

@@ -19,6 +19,7 @@
 //! directory), and scene definitions (`scenes/*.toml`) name what to load.
 
 pub mod builtin;
+pub mod bytes;
 pub mod characterize;
 pub mod def;
 pub mod fetch;

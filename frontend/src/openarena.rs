@@ -77,6 +77,7 @@
 //! Z, 0 = +X). Vertical field of view [`FOV_Y_DEG`] (Quake 3's
 //! default `cg_fov 90` horizontal at 4:3), near [`NEAR`], far [`FAR`].
 
+use super::bytes::Bytes;
 use super::def::SceneDef;
 use super::vec3::{cross, dot, sub};
 use super::{
@@ -129,47 +130,6 @@ pub fn find_data_root(cache: &Path) -> Option<PathBuf> {
         .iter()
         .map(|d| cache.join(d))
         .find(|r| r.join("baseoa").is_dir())
-}
-
-// ---------------------------------------------------------------------------
-// Binary reading
-
-struct Reader<'a> {
-    bytes: &'a [u8],
-    file: &'a Path,
-}
-
-impl Reader<'_> {
-    fn err(&self, at: usize, msg: impl Into<String>) -> SceneError {
-        SceneError::at(self.file, at as u64, msg)
-    }
-
-    fn slice(&self, at: usize, n: usize, what: &str) -> Result<&[u8], SceneError> {
-        match at.checked_add(n) {
-            Some(end) if end <= self.bytes.len() => Ok(&self.bytes[at..end]),
-            _ => Err(self.err(
-                at,
-                format!(
-                    "truncated: {what} needs {n} bytes, {} left",
-                    self.bytes.len().saturating_sub(at)
-                ),
-            )),
-        }
-    }
-
-    fn i32(&self, at: usize, what: &str) -> Result<i32, SceneError> {
-        let b = self.slice(at, 4, what)?;
-        Ok(i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-    }
-
-    fn f32(&self, at: usize, what: &str) -> Result<f32, SceneError> {
-        let v = f32::from_bits(self.i32(at, what)? as u32);
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(self.err(at, format!("{what} is not finite ({v})")))
-        }
-    }
 }
 
 // ---------------------------------------------------------------------------
@@ -245,18 +205,18 @@ pub struct Bsp {
 
 /// Parse an IBSP version 46 file (`file` names it in errors).
 pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
-    let r = Reader { bytes, file };
+    let r = Bytes::new(bytes, file);
     if r.slice(0, 4, "magic")? != b"IBSP" {
         return Err(r.err(0, "not a Quake 3 BSP: magic is not \"IBSP\""));
     }
-    let version = r.i32(4, "version")?;
+    let version = r.i32_at(4, "version")?;
     if version != 46 {
         return Err(r.err(4, format!("BSP version {version} (expected 46)")));
     }
     let lump = |i: usize, rec: usize, what: &str| -> Result<(usize, usize), SceneError> {
         let at = 8 + 8 * i;
-        let off = r.i32(at, "lump directory")?;
-        let len = r.i32(at + 4, "lump directory")?;
+        let off = r.i32_at(at, "lump directory")?;
+        let len = r.i32_at(at + 4, "lump directory")?;
         if off < 0 || len < 0 || off as usize + len as usize > bytes.len() {
             return Err(r.err(
                 at,
@@ -287,8 +247,8 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         let end = raw.iter().position(|&c| c == 0).unwrap_or(64);
         shaders.push(BspShader {
             name: String::from_utf8_lossy(&raw[..end]).into_owned(),
-            flags: r.i32(at + 64, "shader flags")?,
-            contents: r.i32(at + 68, "shader contents")?,
+            flags: r.i32_at(at + 64, "shader flags")?,
+            contents: r.i32_at(at + 68, "shader contents")?,
         });
     }
 
@@ -296,7 +256,7 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
     let mut vertices = Vec::with_capacity(vn);
     for i in 0..vn {
         let at = voff + 44 * i;
-        let f = |k: usize| r.f32(at + 4 * k, "vertex position");
+        let f = |k: usize| r.f32_at(at + 4 * k, "vertex position");
         // Attributes other than the position: non-finite values (q3map2
         // leaves NaN lightmap coordinates on a few vertices of six shipped
         // maps) become 0.
@@ -315,14 +275,14 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
 
     let (moff, mn) = lump(11, 4, "mesh vertices")?;
     let meshverts = (0..mn)
-        .map(|i| r.i32(moff + 4 * i, "mesh vertex"))
+        .map(|i| r.i32_at(moff + 4 * i, "mesh vertex"))
         .collect::<Result<Vec<_>, _>>()?;
 
     let (foff, fcount) = lump(13, 104, "faces")?;
     let mut faces = Vec::with_capacity(fcount);
     for i in 0..fcount {
         let at = foff + 104 * i;
-        let g = |k: usize| r.i32(at + 4 * k, "face");
+        let g = |k: usize| r.i32_at(at + 4 * k, "face");
         let idx = |v: i32, what: &str| -> Result<usize, SceneError> {
             usize::try_from(v).map_err(|_| r.err(at, format!("face {i}: negative {what} {v}")))
         };
@@ -334,9 +294,9 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         let n_meshverts = idx(g(6)?, "mesh vertex count")?;
         let lightmap = g(7)?;
         let normal = [
-            r.f32(at + 84, "face normal")?,
-            r.f32(at + 88, "face normal")?,
-            r.f32(at + 92, "face normal")?,
+            r.f32_at(at + 84, "face normal")?,
+            r.f32_at(at + 88, "face normal")?,
+            r.f32_at(at + 92, "face normal")?,
         ];
         let size = [idx(g(24)?, "patch width")?, idx(g(25)?, "patch height")?];
         if shader >= shaders.len() {
@@ -686,7 +646,7 @@ pub fn parse_shaders(text: &str, file: &Path) -> Result<Vec<ShaderDef>, SceneErr
 /// Decode a TGA image (types 2, 3, 10, 11: true-colour 24/32 bit or grey
 /// 8 bit, uncompressed or RLE) to RGBA8, top row first.
 pub fn decode_tga(bytes: &[u8], file: &Path) -> Result<(u32, u32, Vec<u8>), SceneError> {
-    let r = Reader { bytes, file };
+    let r = Bytes::new(bytes, file);
     let h = r.slice(0, 18, "TGA header")?;
     let id_len = h[0] as usize;
     let cmap_type = h[1];

@@ -106,6 +106,7 @@
 //!
 //! Vertical field of view [`FOV_Y_DEG`], near [`NEAR`], far [`FAR`].
 
+use super::bytes::Bytes;
 use super::def::SceneDef;
 use super::{
     shader, Blend, Camera, Filter, Material, Mesh, Scene, SceneError, ShaderOp, Texture, Vec2, Vec3,
@@ -207,83 +208,21 @@ pub struct Spm {
     pub buffers: Vec<SpmBuffer>,
 }
 
-/// A little-endian reader that reports the file and offset of a problem.
-struct Reader<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    file: &'a Path,
+/// The next IEEE 754 binary16, which must be finite, as f32.
+fn half(r: &mut Bytes, what: &str) -> Result<f32, SceneError> {
+    let at = r.pos();
+    let v = half_to_f32(r.u16(what)?);
+    r.finite(at, v, what)
 }
 
-impl<'a> Reader<'a> {
-    fn err(&self, at: usize, msg: impl Into<String>) -> SceneError {
-        SceneError::at(self.file, at as u64, msg)
+/// A name: a length byte, then that many bytes (none: no name).
+fn name(r: &mut Bytes, what: &str) -> Result<Option<String>, SceneError> {
+    let n = r.u8(what)? as usize;
+    if n == 0 {
+        return Ok(None);
     }
-
-    fn remaining(&self) -> usize {
-        self.bytes.len() - self.pos
-    }
-
-    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], SceneError> {
-        if self.remaining() < n {
-            return Err(self.err(
-                self.pos,
-                format!(
-                    "truncated: {what} needs {n} bytes, {} left",
-                    self.remaining()
-                ),
-            ));
-        }
-        let s = &self.bytes[self.pos..self.pos + n];
-        self.pos += n;
-        Ok(s)
-    }
-
-    fn u8(&mut self, what: &str) -> Result<u8, SceneError> {
-        Ok(self.take(1, what)?[0])
-    }
-
-    fn u16(&mut self, what: &str) -> Result<u16, SceneError> {
-        let b = self.take(2, what)?;
-        Ok(u16::from_le_bytes([b[0], b[1]]))
-    }
-
-    fn u32(&mut self, what: &str) -> Result<u32, SceneError> {
-        let b = self.take(4, what)?;
-        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-    }
-
-    fn f32(&mut self, what: &str) -> Result<f32, SceneError> {
-        Ok(f32::from_bits(self.u32(what)?))
-    }
-
-    fn finite_f32(&mut self, what: &str) -> Result<f32, SceneError> {
-        let at = self.pos;
-        let v = self.f32(what)?;
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(self.err(at, format!("{what} is not finite ({v})")))
-        }
-    }
-
-    fn half(&mut self, what: &str) -> Result<f32, SceneError> {
-        let at = self.pos;
-        let v = half_to_f32(self.u16(what)?);
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(self.err(at, format!("{what} is not finite ({v})")))
-        }
-    }
-
-    fn name(&mut self, what: &str) -> Result<Option<String>, SceneError> {
-        let n = self.u8(what)? as usize;
-        if n == 0 {
-            return Ok(None);
-        }
-        let b = self.take(n, what)?;
-        Ok(Some(String::from_utf8_lossy(b).into_owned()))
-    }
+    let b = r.take(n, what)?;
+    Ok(Some(String::from_utf8_lossy(b).into_owned()))
 }
 
 /// IEEE 754 binary16 to f32.
@@ -306,11 +245,7 @@ pub fn half_to_f32(h: u16) -> f32 {
 
 /// Parse an SPM file (`file` names it in errors).
 pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
-    let mut r = Reader {
-        bytes,
-        pos: 0,
-        file,
-    };
+    let mut r = Bytes::new(bytes, file);
     if r.take(2, "magic")? != b"SP" {
         return Err(r.err(0, "not an SPM file: magic is not \"SP\""));
     }
@@ -332,8 +267,8 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
     let nmat = r.u16("material count")? as usize;
     let mut materials = Vec::with_capacity(nmat);
     for _ in 0..nmat {
-        let texture = r.name("texture name")?;
-        let texture2 = r.name("second texture name")?;
+        let texture = name(&mut r, "texture name")?;
+        let texture2 = name(&mut r, "second texture name")?;
         materials.push(SpmMaterial { texture, texture2 });
     }
     let nsec = r.u16("sector count")?;
@@ -341,7 +276,7 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
     for _ in 0..nsec {
         let nbuf = r.u16("buffer count")?;
         for _ in 0..nbuf {
-            let at = r.pos;
+            let at = r.pos();
             let nv = r.u32("vertex count")? as usize;
             if nv > 65535 {
                 return Err(r.err(at, format!("{nv} vertices in a buffer (at most 65535)")));
@@ -350,7 +285,7 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
             if !ni.is_multiple_of(3) {
                 return Err(r.err(at + 4, format!("index count {ni} is not a multiple of 3")));
             }
-            let mat_at = r.pos;
+            let mat_at = r.pos();
             let material = r.u16("material id")? as usize;
             if material >= materials.len() {
                 return Err(r.err(
@@ -372,7 +307,7 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
                 + 16 * skinned as usize;
             if nv * min_vertex > r.remaining() {
                 return Err(r.err(
-                    r.pos,
+                    r.pos(),
                     format!(
                         "truncated: {nv} vertices need at least {} bytes, {} left",
                         nv * min_vertex,
@@ -397,9 +332,9 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
                     r.take(3, "colour")?;
                 }
                 if let Some(uv) = uv.as_mut() {
-                    uv.push([r.half("uv")?, r.half("uv")?]);
+                    uv.push([half(&mut r, "uv")?, half(&mut r, "uv")?]);
                     if let Some(uv2) = uv2.as_mut() {
-                        uv2.push([r.half("second uv")?, r.half("second uv")?]);
+                        uv2.push([half(&mut r, "second uv")?, half(&mut r, "second uv")?]);
                     }
                     if has_tangent {
                         r.take(4, "tangent")?;
@@ -412,7 +347,7 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
             let wide = nv > 255;
             let isize = if wide { 2 } else { 1 };
             let raw = r.take(ni * isize, "indices")?;
-            let base = r.pos - raw.len();
+            let base = r.pos() - raw.len();
             let mut indices = Vec::with_capacity(ni);
             for k in 0..ni {
                 let i = if wide {
