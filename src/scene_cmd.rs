@@ -9,9 +9,9 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use wasp_frontend::characterize::{self, Characterization};
 use wasp_frontend::def::{self, Game, SceneDef};
-use wasp_frontend::fetch;
 use wasp_frontend::raster::Frame;
 use wasp_frontend::render::{self, HeatStat, Overlay, RenderRequest, WarpValue};
+use wasp_frontend::{fetch, load};
 use wasp_rtl::policy::PolicySpec;
 use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::MachineConfig;
@@ -273,7 +273,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     };
     let mut best = PhaseTimes::default();
     let clock = Stopwatch::start();
-    let mut scene = fetch::load_scene(&d).map_err(scene_err)?;
+    let mut scene = load::load_scene(&d).map_err(scene_err)?;
     best.load = clock.lap();
     let req = RenderRequest {
         overlays: args.overlay.clone(),
@@ -323,7 +323,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     for _ in 1..args.repeat {
         // The same work again; results are deterministic, times are not.
         let clock = Stopwatch::start();
-        scene = fetch::load_scene(&d).map_err(scene_err)?;
+        scene = load::load_scene(&d).map_err(scene_err)?;
         best.load = best.load.min(clock.lap());
         let clock = Stopwatch::start();
         out = render::render(&scene, w, h, &req, &mut heat).map_err(scene_err)?;

@@ -23,7 +23,7 @@
 
 use super::def::SceneDef;
 use super::raster::{rasterize_timed, Frame, RasterOptions};
-use super::{fetch, SceneError};
+use super::{load, SceneError};
 #[cfg(test)]
 use crate::trace::mean_footprint_ratio;
 use crate::trace::Trace;
@@ -204,7 +204,7 @@ pub fn characterize_def(
     def: &SceneDef,
     depth_prepass: bool,
 ) -> Result<Characterization, SceneError> {
-    let scene = fetch::load_scene(def)?;
+    let scene = load::load_scene(def)?;
     let opts = RasterOptions {
         colour: false,
         depth_prepass,

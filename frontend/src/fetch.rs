@@ -20,8 +20,8 @@
 //! | teeworlds | teeworlds-data | `usr/share/games/teeworlds/data` |
 //! | frozen-bubble | frozen-bubble-data | `usr/share/games/frozen-bubble` |
 
-use super::def::{Game, SceneDef};
-use super::{procedural, Scene, SceneError};
+use super::def::Game;
+use super::SceneError;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -264,40 +264,12 @@ pub fn fetch(game: Game, progress: &mut dyn FnMut(&str)) -> Result<PathBuf, Scen
     result
 }
 
-/// Load the scene a definition names: procedural scenes directly, game
-/// scenes from the cache through the game's loader.
-pub fn load_scene(def: &SceneDef) -> Result<Scene, SceneError> {
-    let game = def.game;
-    if game == Game::Procedural {
-        return procedural::load(def);
-    }
-    if !is_fetched(game) {
-        return Err(SceneError::in_file(
-            package_root(game),
-            format!(
-                "scene {} needs the {} data: run `wasp scenes fetch {}` first",
-                def.name,
-                game.name(),
-                game.name()
-            ),
-        ));
-    }
-    let root = data_root(game);
-    match game {
-        Game::Supertuxkart => super::supertuxkart::load(&root, def),
-        Game::Openarena => super::openarena::load(&root, def),
-        Game::Teeworlds => super::teeworlds::load(&root, def),
-        Game::FrozenBubble => super::frozen_bubble::load(&root, def),
-        Game::Procedural => procedural::load(def),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn layout_and_procedural_dispatch() {
+    fn layout_of_the_cache() {
         for g in Game::ALL {
             if g != Game::Procedural {
                 let r = data_root(g);
@@ -307,26 +279,5 @@ mod tests {
             }
         }
         assert!(is_fetched(Game::Procedural));
-        let def = SceneDef {
-            name: "procedural-sprites".into(),
-            game: Game::Procedural,
-            map: "sprites".into(),
-            camera: "full".into(),
-            width: 128,
-            height: 64,
-            description: String::new(),
-            shader: None,
-        };
-        assert_eq!(load_scene(&def).unwrap().name, "procedural:sprites");
-    }
-
-    #[test]
-    fn the_repository_scene_files_parse() {
-        let defs = super::super::def::all().unwrap();
-        for name in ["procedural-plane", "procedural-sprites"] {
-            let d = defs.iter().find(|d| d.name == name).expect(name);
-            assert_eq!(d.game, Game::Procedural);
-            assert!(load_scene(d).is_ok());
-        }
     }
 }

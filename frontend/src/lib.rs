@@ -24,6 +24,7 @@ pub mod characterize;
 pub mod def;
 pub mod fetch;
 pub mod frozen_bubble;
+pub mod load;
 pub mod openarena;
 pub mod procedural;
 pub mod raster;

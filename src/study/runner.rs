@@ -18,8 +18,8 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 use wasp_frontend::characterize::{characterize, Characterization};
 use wasp_frontend::def::{self, SceneDef};
-use wasp_frontend::fetch;
 use wasp_frontend::raster::{rasterize_timed, Frame, RasterOptions};
+use wasp_frontend::{fetch, load};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::run::{simulate, simulate_timeline, RunOptions};
 
@@ -428,7 +428,7 @@ fn frame_of(g: &Group) -> Result<Arc<Frame>, String> {
 /// The scene's frame as `wasp render SCENE --trace-out` makes it (the
 /// trace does not depend on the colour pass, which is skipped).
 pub fn render(d: &SceneDef, tile: u32) -> Result<Frame, String> {
-    let scene = fetch::load_scene(d).map_err(|e| e.to_string())?;
+    let scene = load::load_scene(d).map_err(|e| e.to_string())?;
     let opts = RasterOptions {
         tile,
         colour: false,
