@@ -1,0 +1,566 @@
+//! Geometry before the tiles: the view and projection, clipping in
+//! homogeneous space against the guard band, triangle setup in fixed-point
+//! screen coordinates, and binning into tiles.
+
+use super::*;
+
+/// A vertex in clip space with its attributes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct ClipVert {
+    pub(super) p: [f64; 4],
+    pub(super) uv: [f64; 2],
+    pub(super) uv2: [f64; 2],
+}
+
+impl ClipVert {
+    pub(super) fn lerp(&self, o: &ClipVert, t: f64) -> ClipVert {
+        let l = |a: f64, b: f64| a + (b - a) * t;
+        ClipVert {
+            p: [
+                l(self.p[0], o.p[0]),
+                l(self.p[1], o.p[1]),
+                l(self.p[2], o.p[2]),
+                l(self.p[3], o.p[3]),
+            ],
+            uv: [l(self.uv[0], o.uv[0]), l(self.uv[1], o.uv[1])],
+            uv2: [l(self.uv2[0], o.uv2[0]), l(self.uv2[1], o.uv2[1])],
+        }
+    }
+}
+
+/// The clip planes, as `dot(plane, p) >= 0` inside.
+pub(super) const CLIP_PLANES: [[f64; 4]; 6] = [
+    [0.0, 0.0, 1.0, 1.0],    // near: z >= -w
+    [0.0, 0.0, -1.0, 1.0],   // far: z <= w
+    [1.0, 0.0, 0.0, GUARD],  // guard left
+    [-1.0, 0.0, 0.0, GUARD], // guard right
+    [0.0, 1.0, 0.0, GUARD],  // guard bottom
+    [0.0, -1.0, 0.0, GUARD], // guard top
+];
+
+#[inline]
+pub(super) fn plane_dist(pl: &[f64; 4], p: &[f64; 4]) -> f64 {
+    pl[0] * p[0] + pl[1] * p[1] + pl[2] * p[2] + pl[3] * p[3]
+}
+
+/// Clips a triangle against the near, far and guard-band planes; `out`
+/// receives the polygon (empty when nothing is left). Returns whether any
+/// plane cut the triangle.
+pub(super) fn clip_triangle(
+    tri: [ClipVert; 3],
+    out: &mut Vec<ClipVert>,
+    tmp: &mut Vec<ClipVert>,
+) -> bool {
+    out.clear();
+    out.extend_from_slice(&tri);
+    let mut cut = false;
+    for pl in &CLIP_PLANES {
+        if out.iter().all(|v| plane_dist(pl, &v.p) >= 0.0) {
+            continue;
+        }
+        cut = true;
+        tmp.clear();
+        let n = out.len();
+        for i in 0..n {
+            let a = out[i];
+            let b = out[(i + 1) % n];
+            let (da, db) = (plane_dist(pl, &a.p), plane_dist(pl, &b.p));
+            if da >= 0.0 {
+                tmp.push(a);
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                let t = da / (da - db);
+                tmp.push(a.lerp(&b, t));
+            }
+        }
+        std::mem::swap(out, tmp);
+        if out.len() < 3 {
+            out.clear();
+            return true;
+        }
+    }
+    cut
+}
+
+/// A triangle ready to rasterize.
+#[derive(Clone, Debug)]
+pub(super) struct Setup {
+    /// Edge functions `A x + B y + C` in fixed point (inside: >= 0; C
+    /// includes the fill-rule bias).
+    pub(super) edges: [[i64; 3]; 3],
+    /// Pixel bounding box, clamped to the frame: x0..x1, y0..y1 (exclusive).
+    pub(super) bbox: [u32; 4],
+    /// Attribute planes `a + b (x - x0) + c (y - y0)` at pixel coordinates:
+    /// depth, 1/w, u/w, v/w, u2/w, v2/w.
+    pub(super) planes: [[f64; 3]; 6],
+    /// Origin of the planes.
+    pub(super) origin: [f64; 2],
+    /// Smallest 1/w of the vertices (helper pixels are clamped above half
+    /// of it, so extrapolation never divides by ~0).
+    pub(super) min_inv_w: f64,
+    /// Mesh material.
+    pub(super) material: u32,
+    /// Depth key for back-to-front sorting (mean clip w).
+    pub(super) sort_w: f64,
+}
+
+impl Setup {
+    /// Depth (0 near to 1 far) at pixel position (x, y).
+    #[inline]
+    pub(super) fn depth_at(&self, x: f64, y: f64) -> f32 {
+        let p = &self.planes[0];
+        (p[0] + p[1] * (x - self.origin[0]) + p[2] * (y - self.origin[1])) as f32
+    }
+
+    /// Perspective-correct uv and uv2 at pixel position (x, y).
+    #[inline]
+    pub(super) fn uvs_at(&self, x: f64, y: f64) -> ([f32; 2], [f32; 2]) {
+        let (_, a, b) = self.attributes(x, y);
+        (a, b)
+    }
+
+    /// Perspective-correct uv at pixel position (x, y): the same as
+    /// `uvs_at(x, y).0`, without uv2.
+    #[inline]
+    pub(super) fn uv_at(&self, x: f64, y: f64) -> [f32; 2] {
+        let dx = x - self.origin[0];
+        let dy = y - self.origin[1];
+        let ev = |p: &[f64; 3]| p[0] + p[1] * dx + p[2] * dy;
+        let w = 1.0 / ev(&self.planes[1]).max(0.5 * self.min_inv_w);
+        [
+            (ev(&self.planes[2]) * w) as f32,
+            (ev(&self.planes[3]) * w) as f32,
+        ]
+    }
+
+    /// Perspective-correct attributes at pixel position (x, y) (pixel
+    /// centres are at half-integers): depth, uv, uv2.
+    #[inline]
+    pub(super) fn attributes(&self, x: f64, y: f64) -> (f32, [f32; 2], [f32; 2]) {
+        let dx = x - self.origin[0];
+        let dy = y - self.origin[1];
+        let ev = |p: &[f64; 3]| p[0] + p[1] * dx + p[2] * dy;
+        let depth = ev(&self.planes[0]);
+        let inv_w = ev(&self.planes[1]).max(0.5 * self.min_inv_w);
+        let w = 1.0 / inv_w;
+        let uv = [
+            (ev(&self.planes[2]) * w) as f32,
+            (ev(&self.planes[3]) * w) as f32,
+        ];
+        let uv2 = [
+            (ev(&self.planes[4]) * w) as f32,
+            (ev(&self.planes[5]) * w) as f32,
+        ];
+        (depth as f32, uv, uv2)
+    }
+}
+
+/// Column-major 4x4 matrix times a point.
+pub(super) fn transform(m: &[[f64; 4]; 4], p: Vec3) -> [f64; 4] {
+    let (x, y, z) = (f64::from(p[0]), f64::from(p[1]), f64::from(p[2]));
+    let mut o = [0.0; 4];
+    for (r, row) in m.iter().enumerate() {
+        o[r] = row[0] * x + row[1] * y + row[2] * z + row[3];
+    }
+    o
+}
+
+pub(super) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+pub(super) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+pub(super) fn normalize(a: [f64; 3]) -> Option<[f64; 3]> {
+    let l = dot(a, a).sqrt();
+    (l > 1e-12 && l.is_finite()).then(|| [a[0] / l, a[1] / l, a[2] / l])
+}
+pub(super) fn v64(v: Vec3) -> [f64; 3] {
+    [f64::from(v[0]), f64::from(v[1]), f64::from(v[2])]
+}
+
+/// The camera's view-projection matrix (rows) for a frame of this aspect.
+pub(super) fn view_projection(scene: &Scene, aspect: f64) -> Result<[[f64; 4]; 4], SceneError> {
+    let bad = |m: &str| SceneError::in_file(&scene.name, format!("camera: {m}"));
+    match scene.camera {
+        Camera::Perspective {
+            eye,
+            target,
+            up,
+            fov_y_deg,
+            near,
+            far,
+        } => {
+            let (n, f) = (f64::from(near), f64::from(far));
+            if !(n > 0.0 && f > n && f.is_finite()) {
+                return Err(bad(&format!(
+                    "near {near} and far {far}: expected 0 < near < far"
+                )));
+            }
+            let fov = f64::from(fov_y_deg);
+            if !(fov > 0.0 && fov < 180.0) {
+                return Err(bad(&format!(
+                    "fov_y_deg {fov_y_deg}: expected 0 to 180 degrees"
+                )));
+            }
+            let e = v64(eye);
+            let fw =
+                normalize(sub(v64(target), e)).ok_or_else(|| bad("eye and target coincide"))?;
+            let s = normalize(cross(fw, v64(up)))
+                .ok_or_else(|| bad("up is parallel to the view direction"))?;
+            let u = cross(s, fw);
+            let t = 1.0 / (fov.to_radians() / 2.0).tan();
+            let view = [
+                [s[0], s[1], s[2], -dot(s, e)],
+                [u[0], u[1], u[2], -dot(u, e)],
+                [-fw[0], -fw[1], -fw[2], dot(fw, e)],
+                [0.0, 0.0, 0.0, 1.0],
+            ];
+            let proj = [
+                [t / aspect, 0.0, 0.0, 0.0],
+                [0.0, t, 0.0, 0.0],
+                [0.0, 0.0, (f + n) / (n - f), 2.0 * f * n / (n - f)],
+                [0.0, 0.0, -1.0, 0.0],
+            ];
+            let mut m = [[0.0; 4]; 4];
+            for r in 0..4 {
+                for c in 0..4 {
+                    m[r][c] = (0..4).map(|k| proj[r][k] * view[k][c]).sum();
+                }
+            }
+            Ok(m)
+        }
+        Camera::Ortho {
+            left,
+            top,
+            width,
+            height,
+        } => {
+            let (l, t, w, h) = (
+                f64::from(left),
+                f64::from(top),
+                f64::from(width),
+                f64::from(height),
+            );
+            if !(w > 0.0 && h > 0.0 && w.is_finite() && h.is_finite()) {
+                return Err(bad(&format!(
+                    "ortho width {width} and height {height}: expected > 0"
+                )));
+            }
+            // z range of the scene: larger z is nearer (smaller depth).
+            let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
+            for m in &scene.meshes {
+                for p in &m.positions {
+                    zmin = zmin.min(f64::from(p[2]));
+                    zmax = zmax.max(f64::from(p[2]));
+                }
+            }
+            // zmax (nearest) -> ndc -0.9, zmin -> +0.9 (a margin, so
+            // rounding never puts a layer outside the near or far plane).
+            let span = if zmax > zmin { zmax - zmin } else { 1.0 };
+            let zref = if zmax > zmin { zmax } else { zmax + 0.5 };
+            Ok([
+                [2.0 / w, 0.0, 0.0, -2.0 * l / w - 1.0],
+                [0.0, -2.0 / h, 0.0, 2.0 * t / h + 1.0],
+                [0.0, 0.0, -1.8 / span, 1.8 * zref / span - 0.9],
+                [0.0, 0.0, 0.0, 1.0],
+            ])
+        }
+    }
+}
+
+/// Checks the scene's references so the pipeline cannot index out of range.
+pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
+    let err = |m: String| Err(SceneError::in_file(&scene.name, m));
+    for (i, t) in scene.textures.iter().enumerate() {
+        if t.width == 0 || t.height == 0 || t.rgba.len() != t.width as usize * t.height as usize * 4
+        {
+            return err(format!(
+                "texture {i} ({}): {}x{} with {} bytes (expected width x height x 4 > 0)",
+                t.name,
+                t.width,
+                t.height,
+                t.rgba.len()
+            ));
+        }
+    }
+    for (i, m) in scene.materials.iter().enumerate() {
+        if m.shader.is_empty() || m.shader.iter().all(|op| matches!(op, ShaderOp::Alu(0))) {
+            return err(format!(
+                "material {i} ({}) has an empty shader program",
+                m.name
+            ));
+        }
+        for op in &m.shader {
+            if let ShaderOp::Tex(s) = op {
+                if s.texture >= scene.textures.len() {
+                    return err(format!(
+                        "material {i} ({}) samples texture {} of {}",
+                        m.name,
+                        s.texture,
+                        scene.textures.len()
+                    ));
+                }
+                if s.uv_set > 1 {
+                    return err(format!(
+                        "material {i} ({}) uses UV set {} (expected 0 or 1)",
+                        m.name, s.uv_set
+                    ));
+                }
+            }
+        }
+    }
+    for (i, m) in scene.meshes.iter().enumerate() {
+        let n = m.positions.len();
+        if m.material >= scene.materials.len() {
+            return err(format!(
+                "mesh {i} uses material {} of {}",
+                m.material,
+                scene.materials.len()
+            ));
+        }
+        if m.uv.len() != n {
+            return err(format!("mesh {i}: {} UVs for {n} positions", m.uv.len()));
+        }
+        match &m.uv2 {
+            Some(uv2) if uv2.len() != n => {
+                return err(format!(
+                    "mesh {i}: {} second UVs for {n} positions",
+                    uv2.len()
+                ))
+            }
+            None => {
+                let needs = scene.materials[m.material]
+                    .shader
+                    .iter()
+                    .any(|op| matches!(op, ShaderOp::Tex(s) if s.uv_set == 1));
+                if needs {
+                    return err(format!(
+                        "mesh {i}: material {} samples UV set 1 but the mesh has no second UVs",
+                        scene.materials[m.material].name
+                    ));
+                }
+            }
+            _ => {}
+        }
+        if m.indices.len() % 3 != 0 {
+            return err(format!(
+                "mesh {i}: {} indices (expected a multiple of 3)",
+                m.indices.len()
+            ));
+        }
+        if let Some(&bad) = m.indices.iter().find(|&&x| x as usize >= n) {
+            return err(format!("mesh {i}: index {bad} of {n} vertices"));
+        }
+    }
+    Ok(())
+}
+
+/// Builds the setup of one screen triangle; `None` if degenerate or culled.
+pub(super) fn setup(
+    v: &[ClipVert; 3],
+    width: u32,
+    height: u32,
+    material: u32,
+    sort_w: f64,
+    cull_back: bool,
+    stats: &mut RasterStats,
+) -> Option<Setup> {
+    let (wf, hf) = (f64::from(width), f64::from(height));
+    let mut sx = [0i64; 3];
+    let mut sy = [0i64; 3];
+    let mut attrs = [[0.0f64; 6]; 3];
+    for i in 0..3 {
+        let p = v[i].p;
+        let inv_w = 1.0 / p[3];
+        let (nx, ny, nz) = (p[0] * inv_w, p[1] * inv_w, p[2] * inv_w);
+        let x = (nx * 0.5 + 0.5) * wf;
+        let y = (0.5 - ny * 0.5) * hf;
+        if !(x.is_finite() && y.is_finite() && inv_w.is_finite()) {
+            stats.degenerate += 1;
+            return None;
+        }
+        sx[i] = (x * SUB as f64).round() as i64;
+        sy[i] = (y * SUB as f64).round() as i64;
+        attrs[i] = [
+            nz * 0.5 + 0.5,
+            inv_w,
+            v[i].uv[0] * inv_w,
+            v[i].uv[1] * inv_w,
+            v[i].uv2[0] * inv_w,
+            v[i].uv2[1] * inv_w,
+        ];
+    }
+    let area2 = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sx[2] - sx[0]) * (sy[1] - sy[0]);
+    if area2 == 0 {
+        stats.degenerate += 1;
+        return None;
+    }
+    // Screen y grows down: counter-clockwise in NDC is negative here.
+    if cull_back && area2 > 0 {
+        stats.culled_back_faces += 1;
+        return None;
+    }
+    let order: [usize; 3] = if area2 > 0 { [0, 1, 2] } else { [0, 2, 1] };
+    let px = order.map(|i| sx[i]);
+    let py = order.map(|i| sy[i]);
+    let mut edges = [[0i64; 3]; 3];
+    for (a, edge) in edges.iter_mut().enumerate() {
+        let b = (a + 1) % 3;
+        let ea = py[a] - py[b];
+        let eb = px[b] - px[a];
+        let ec = -(ea * px[a] + eb * py[a]);
+        // Top-left rule: a pixel centre exactly on an edge belongs to the
+        // triangle only if the edge is a left edge (inside to its right) or
+        // a top edge (horizontal, inside below).
+        let top_left = ea > 0 || (ea == 0 && eb > 0);
+        *edge = [ea, eb, ec - i64::from(!top_left)];
+    }
+    let xmin = *px.iter().min().expect("3");
+    let xmax = *px.iter().max().expect("3");
+    let ymin = *py.iter().min().expect("3");
+    let ymax = *py.iter().max().expect("3");
+    // Pixel i has its centre at (i + 0.5): covered range of centres.
+    let lo = |v: i64| ((v - SUB / 2 + SUB - 1).div_euclid(SUB)).max(0);
+    let hi = |v: i64, lim: u32| ((v - SUB / 2).div_euclid(SUB) + 1).min(i64::from(lim));
+    let bbox = [lo(xmin), hi(xmax, width), lo(ymin), hi(ymax, height)];
+    if bbox[0] >= bbox[1] || bbox[2] >= bbox[3] {
+        // Covers no pixel centre of the frame.
+        stats.culled_outside += 1;
+        return None;
+    }
+    // Attribute planes over the snapped positions, in pixels.
+    let fx = |i: usize| sx[i] as f64 / SUB as f64;
+    let fy = |i: usize| sy[i] as f64 / SUB as f64;
+    let (x0, y0) = (fx(0), fy(0));
+    let (x1, y1, x2, y2) = (fx(1) - x0, fy(1) - y0, fx(2) - x0, fy(2) - y0);
+    let det = x1 * y2 - x2 * y1;
+    let mut planes = [[0.0f64; 3]; 6];
+    for (k, plane) in planes.iter_mut().enumerate() {
+        let (a0, a1, a2) = (
+            attrs[0][k],
+            attrs[1][k] - attrs[0][k],
+            attrs[2][k] - attrs[0][k],
+        );
+        *plane = [a0, (a1 * y2 - a2 * y1) / det, (a2 * x1 - a1 * x2) / det];
+    }
+    let min_inv_w = attrs.iter().map(|a| a[1]).fold(f64::INFINITY, f64::min);
+    Some(Setup {
+        edges,
+        bbox: [
+            bbox[0] as u32,
+            bbox[1] as u32,
+            bbox[2] as u32,
+            bbox[3] as u32,
+        ],
+        planes,
+        origin: [x0, y0],
+        min_inv_w,
+        material,
+        sort_w,
+    })
+}
+
+/// Whether a triangle's edges overlap the pixel centres of a rectangle.
+pub(super) fn overlaps(s: &Setup, x0: u32, x1: u32, y0: u32, y1: u32) -> bool {
+    let cx = |x: u32| i64::from(x) * SUB + SUB / 2;
+    for e in &s.edges {
+        // The corner where the edge function is largest.
+        let x = if e[0] > 0 { cx(x1 - 1) } else { cx(x0) };
+        let y = if e[1] > 0 { cx(y1 - 1) } else { cx(y0) };
+        if e[0] * x + e[1] * y + e[2] < 0 {
+            return false;
+        }
+    }
+    true
+}
+
+/// Geometry and tiling: every triangle set up, in draw order.
+pub(super) fn geometry(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    opts: &RasterOptions,
+    stats: &mut RasterStats,
+) -> Result<Vec<Setup>, SceneError> {
+    let m = view_projection(scene, f64::from(width) / f64::from(height))?;
+    let mut opaque = Vec::new();
+    let mut blended = Vec::new();
+    let (mut poly, mut tmp) = (Vec::with_capacity(12), Vec::with_capacity(12));
+    let mut clip = Vec::new();
+    for mesh in &scene.meshes {
+        let material = &scene.materials[mesh.material];
+        let blend = material.blend == Blend::AlphaBlend;
+        clip.clear();
+        clip.extend(mesh.positions.iter().map(|&p| transform(&m, p)));
+        let tris = mesh.indices.len() as u64 / 3;
+        stats.primitives += tris;
+        stats.materials[mesh.material].triangles += tris;
+        for t in mesh.indices.chunks_exact(3) {
+            let idx = [t[0] as usize, t[1] as usize, t[2] as usize];
+            let p = [clip[idx[0]], clip[idx[1]], clip[idx[2]]];
+            // Trivial reject against the real frustum.
+            let outside = |k: usize, sgn: f64| p.iter().all(|q| sgn * q[k] > q[3]);
+            if outside(0, 1.0)
+                || outside(0, -1.0)
+                || outside(1, 1.0)
+                || outside(1, -1.0)
+                || outside(2, 1.0)
+                || outside(2, -1.0)
+                || p.iter().any(|q| q.iter().any(|c| !c.is_finite()))
+            {
+                stats.culled_outside += 1;
+                continue;
+            }
+            let vert = |k: usize| ClipVert {
+                p: p[k],
+                uv: [f64::from(mesh.uv[idx[k]][0]), f64::from(mesh.uv[idx[k]][1])],
+                uv2: mesh.uv2.as_ref().map_or([0.0; 2], |u| {
+                    [f64::from(u[idx[k]][0]), f64::from(u[idx[k]][1])]
+                }),
+            };
+            let tri = [vert(0), vert(1), vert(2)];
+            let sort_w = (p[0][3] + p[1][3] + p[2][3]) / 3.0;
+            let cut = clip_triangle(tri, &mut poly, &mut tmp);
+            if cut {
+                stats.clipped += 1;
+            }
+            if poly.len() < 3 {
+                stats.culled_outside += 1;
+                continue;
+            }
+            for k in 1..poly.len() - 1 {
+                let tri = [poly[0], poly[k], poly[k + 1]];
+                if let Some(s) = setup(
+                    &tri,
+                    width,
+                    height,
+                    mesh.material as u32,
+                    sort_w,
+                    opts.cull_back_faces,
+                    stats,
+                ) {
+                    if blend {
+                        blended.push(s);
+                    } else {
+                        opaque.push(s);
+                    }
+                }
+            }
+        }
+    }
+    if matches!(scene.camera, Camera::Perspective { .. }) {
+        // Back to front; sort_by is stable, so ties keep submission order.
+        blended.sort_by(|a, b| b.sort_w.total_cmp(&a.sort_w));
+    }
+    opaque.extend(blended);
+    stats.setup_triangles = opaque.len() as u64;
+    Ok(opaque)
+}
