@@ -10,6 +10,8 @@ use super::stats::{CacheStats, CoreMemStats, MemStats};
 use wasp_waves::Tracer;
 
 mod observe;
+#[cfg(test)]
+mod plain;
 pub use observe::MshrFileView;
 
 /// What happened to one access presented by a core.
@@ -1350,7 +1352,7 @@ mod tests {
         }
     }
 
-    fn arb_cache(max_hit: u32) -> impl Strategy<Value = CacheConfig> {
+    pub(super) fn arb_cache(max_hit: u32) -> impl Strategy<Value = CacheConfig> {
         (0u32..3, 0u32..2, 1..=max_hit, 1u32..5, 0u32..4, 1u32..3).prop_map(
             |(size_log, ways_log, hit, mshrs, merged, ports)| {
                 small_cache(128 << size_log, 1 << ways_log, hit, mshrs, merged, ports)
@@ -1358,7 +1360,8 @@ mod tests {
         )
     }
 
-    fn arb_config() -> impl Strategy<Value = MemConfig> {
+    /// Small random hierarchies (also for the plain twin's tests).
+    pub(super) fn arb_config() -> impl Strategy<Value = MemConfig> {
         (
             1u32..4,
             proptest::option::of(arb_cache(2)),
