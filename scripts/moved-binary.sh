@@ -23,7 +23,8 @@ fail() { echo "moved-binary: $*" >&2; exit 1; }
 
 "$W" -q > example.txt
 grep -q "cycles" example.txt || fail "the worked example printed no cycles"
-n=$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6' | wc -l)
+"$W" scenes list > shipped.txt
+n=$(awk 'NR > 1 && $1 != "scene" && NF >= 6' shipped.txt | wc -l)
 [ "$n" -ge 16 ] || fail "scenes list shows $n scenes, expected the 16 shipped"
 "$W" render procedural-plane --size 256x128 --trace-out plane.trace -q 2> /dev/null
 "$W" run --trace plane.trace -q --json plane.json > /dev/null
@@ -37,8 +38,8 @@ camera = "ground"
 width = 1
 height = 1
 TOML
-"$W" --scenes-dir "$work/defs" scenes list | grep -q "^moved-plane " \
-    || fail "--scenes-dir did not add its scene"
+"$W" --scenes-dir "$work/defs" scenes list > list.txt
+grep -q "^moved-plane " list.txt || fail "--scenes-dir did not add its scene"
 WASP_SCENES_DIR="$work/defs" "$W" render moved-plane --trace-out moved.trace -q 2> /dev/null
 if command -v yosys > /dev/null; then
   "$W" cost > cost.txt

@@ -125,6 +125,16 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // A reader that stops early (`wasp scenes list | head -3`) ends wasp
+    // quietly, as it does other Unix tools, instead of `println!`
+    // panicking on the broken pipe: the Rust runtime ignores SIGPIPE, so
+    // the default action is restored before anything is written.
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to its default at start, with
+    // no other thread running and no handler involved.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     if let Some(d) = &cli.scenes_dir {
         if !d.is_dir() {

@@ -209,3 +209,46 @@ fn a_scenes_folder_adds_and_replaces_definitions() {
     assert!(String::from_utf8_lossy(&r.stderr).contains("/nonexistent/defs"));
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A reader that stops early ends wasp quietly (as `head` does to other
+/// tools), never with a panic message.
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_the_listing_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::{Command, Stdio};
+    // Enough lines that the pipe is closed before the listing ends.
+    let d = dir("pipe");
+    for i in 0..2000 {
+        std::fs::write(
+            d.join(format!("p{i}.toml")),
+            format!(
+                "name = \"pipe-plane-{i}\"\ngame = \"procedural\"\nmap = \"plane\"\n\
+                 camera = \"ground\"\nwidth = 64\nheight = 64\n"
+            ),
+        )
+        .unwrap();
+    }
+    let mut child = Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .args(["--scenes-dir", d.to_str().unwrap(), "scenes", "list"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    assert!(first.starts_with("scene "), "{first}");
+    // The reader is gone; wasp finishes by the signal or by success.
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        out.status.success() || out.status.signal() == Some(13),
+        "{:?}",
+        out.status
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
