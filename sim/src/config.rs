@@ -171,12 +171,23 @@ pub struct RasterConfig {
     /// Shared-tile: the one rasterizer's rate; per-core-tile: split evenly
     /// over the cores' rasterizers (must divide by the core count).
     pub quads_per_cycle: u32,
+    /// Early-Z-rejected quads that one raster slot disposes of: 1 (the
+    /// default) charges each rejected quad a full slot, as the paper's
+    /// pipeline order reads (the rasterizer produces every quad, then the
+    /// Early-Z test discards it); larger values model a coarse
+    /// (hierarchical) depth test rejecting several quads at once.
+    #[serde(default = "one")]
+    pub rejected_per_slot: u32,
     /// Which core shades a quad, by its in-tile position (shared-tile):
     /// `latin:B` or `rowmajor:B` over blocks of BxB quads (see
     /// [`crate::gpu::CoreMap`]).
     pub core_map: String,
     /// The colour-buffer flush after each tile.
     pub color_flush: ColorFlush,
+}
+
+fn one() -> u32 {
+    1
 }
 
 /// The launch scheduler.
@@ -326,6 +337,9 @@ pub mod limits {
     pub const MAX_FILTER_CYCLES: u32 = 1_000;
     /// Most quads rasterized per cycle by the GPU.
     pub const MAX_QUADS_PER_CYCLE: u32 = 256;
+    /// Most Early-Z-rejected quads one raster slot disposes of (a 32x32-quad
+    /// tile at once).
+    pub const MAX_REJECTED_PER_SLOT: u32 = 1024;
     /// Largest LDST queue.
     pub const MAX_LDST_QUEUE: u32 = 1024;
     /// Most 32-bit registers per thread (GPUs address at most 255).
@@ -499,6 +513,13 @@ impl MachineConfig {
             self.raster.quads_per_cycle as u64,
             1,
             limits::MAX_QUADS_PER_CYCLE as u64,
+            "",
+        )?;
+        range(
+            "raster.rejected_per_slot",
+            self.raster.rejected_per_slot as u64,
+            1,
+            limits::MAX_REJECTED_PER_SLOT as u64,
             "",
         )?;
         if self.raster.dispatch == Dispatch::PerCoreTile
@@ -917,6 +938,7 @@ mod tests {
         // A power of two: the next one above the bound is 128.
         ("gpu.tile_size", "64", "128", "4..=64", &[]),
         ("raster.quads_per_cycle", "256", "257", "1..=256", &[]),
+        ("raster.rejected_per_slot", "1024", "1025", "1..=1024", &[]),
         ("core.pipeline_width", "16", "17", "1..=16", &[]),
         ("core.max_warps", "128", "129", "1..=128", &[]),
         ("core.input_queue", "4096", "4097", "1..=4096", &[]),

@@ -657,6 +657,39 @@ mod tests {
         }
     }
 
+    /// With `raster.rejected_per_slot = k` a raster slot disposes of k
+    /// rejected quads: the hidden trace costs a k-th of the raster cycles,
+    /// shared or per core, with the same counts.
+    #[test]
+    fn a_coarse_early_z_rejects_several_quads_a_slot() {
+        let t = hidden_trace(4, 4000, false);
+        for d in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+            let one = run_dispatch(&t, d, ColorFlush::None);
+            for k in [2u32, 8] {
+                let mut cfg = MachineConfig::paper();
+                cfg.raster.color_flush = ColorFlush::None;
+                cfg.raster.rejected_per_slot = k;
+                let opts = RunOptions {
+                    dispatch: Some(d),
+                    ..Default::default()
+                };
+                let fast = simulate(&cfg, &t, &opts, &mut |_, _| {}).unwrap();
+                assert_eq!(
+                    fast.raster.quads_rejected, one.raster.quads_rejected,
+                    "{d} {k}"
+                );
+                assert_eq!(fast.raster.quads_rasterized, one.raster.quads_rasterized);
+                assert_eq!(fast.cycles, one.cycles / u64::from(k), "{d} {k}");
+            }
+        }
+        let mut cfg = MachineConfig::paper();
+        cfg.raster.rejected_per_slot = 0;
+        assert!(cfg
+            .validate()
+            .unwrap_err()
+            .contains("raster.rejected_per_slot"));
+    }
+
     #[test]
     fn shared_tile_dispatch_renders_one_tile_at_a_time() {
         let t = small_synth(13);

@@ -244,6 +244,7 @@ pub struct ShaderCore {
     filter_free: u64,
     ldst_cap: usize,
     raster_rate: u32,
+    rejected_per_slot: u32,
     sched: LaunchScheduler<u32>,
     /// Whether the free-MSHR register follows the cache (policies that
     /// read it).
@@ -313,6 +314,8 @@ pub struct CoreParams {
     /// Quads its own rasterizer produces per cycle (per-core-tile
     /// dispatch; unused when `external_raster`).
     pub raster_rate: u32,
+    /// Early-Z-rejected quads one of its raster slots disposes of (>= 1).
+    pub rejected_per_slot: u32,
     /// The GPU's one rasterizer fills the input queue (shared-tile).
     pub external_raster: bool,
     /// ALU latency.
@@ -362,6 +365,7 @@ impl ShaderCore {
             filter_free: 0,
             ldst_cap: p.ldst_queue as usize,
             raster_rate: p.raster_rate,
+            rejected_per_slot: p.rejected_per_slot.max(1),
             sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy, rule),
             track_mshrs,
             measures_cf,
@@ -585,10 +589,12 @@ impl ShaderCore {
     fn raster(&mut self, tile: &Tile) {
         let mut budget = self.raster_rate;
         while budget > 0 {
-            // Early-Z-rejected quads: a slot each, no warp.
-            let k = self.cursor.reject(budget);
+            // Early-Z-rejected quads: `rejected_per_slot` a slot, no warp.
+            let k = self
+                .cursor
+                .reject(budget.saturating_mul(self.rejected_per_slot));
             if k > 0 {
-                budget -= k;
+                budget -= k.div_ceil(self.rejected_per_slot);
                 self.stats.quads_rasterized += u64::from(k);
                 self.stats.quads_rejected += u64::from(k);
                 continue;

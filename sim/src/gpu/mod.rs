@@ -207,6 +207,7 @@ impl<'t> Gpu<'t> {
             max_warps: cfg.core.max_warps,
             input_queue: cfg.core.input_queue,
             raster_rate: cfg.raster.quads_per_cycle / cfg.gpu.cores,
+            rejected_per_slot: cfg.raster.rejected_per_slot,
             external_raster: shared,
             alu_latency: cfg.core.alu_latency,
             texture_latency: cfg.core.texture_latency,
@@ -231,7 +232,8 @@ impl<'t> Gpu<'t> {
                 cfg.raster.quads_per_cycle,
                 map.table(side, cfg.gpu.cores),
                 cfg.raster.color_flush,
-            );
+            )
+            .with_rejected_per_slot(cfg.raster.rejected_per_slot);
             (Dispatcher::Shared(raster), vec![TileTracker::new()])
         } else {
             (

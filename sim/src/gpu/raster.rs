@@ -68,6 +68,8 @@ pub struct RasterStats {
 #[derive(Debug)]
 pub struct SharedRaster {
     rate: u32,
+    /// Early-Z-rejected quads one slot disposes of.
+    rejected_per_slot: u32,
     map: CoreMapTable,
     flush_mode: ColorFlush,
     /// The open tile.
@@ -98,10 +100,18 @@ struct RasterSignals {
 }
 
 impl SharedRaster {
+    /// The same pipeline disposing of `k` (>= 1) Early-Z-rejected quads per
+    /// raster slot (`raster.rejected_per_slot`).
+    pub fn with_rejected_per_slot(mut self, k: u32) -> Self {
+        self.rejected_per_slot = k.max(1);
+        self
+    }
+
     /// A pipeline with no tile open.
     pub fn new(rate: u32, map: CoreMapTable, flush_mode: ColorFlush) -> Self {
         SharedRaster {
             rate,
+            rejected_per_slot: 1,
             map,
             flush_mode,
             tile: None,
@@ -182,9 +192,11 @@ impl SharedRaster {
             return;
         }
         while budget > 0 {
-            let k = self.cursor.reject(budget);
+            let k = self
+                .cursor
+                .reject(budget.saturating_mul(self.rejected_per_slot));
             if k > 0 {
-                budget -= k;
+                budget -= k.div_ceil(self.rejected_per_slot);
                 self.stats.quads_rasterized += u64::from(k);
                 self.stats.quads_rejected += u64::from(k);
                 self.signals.rejected += k;
