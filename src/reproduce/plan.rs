@@ -92,6 +92,9 @@ pub struct Plan {
     pub thresholds: Vec<u32>,
     /// Mesh sizes of the subset study (mesh4 is the shipped subset).
     pub meshes: Vec<u32>,
+    /// Early-Z-rejected quads per raster slot beyond the shipped 1 (beyond
+    /// the paper: how much the raster rate matters).
+    pub early_z: Vec<u32>,
     /// Widths of the sensitivity study.
     pub widths: Vec<Width>,
     /// Warp counts of the sensitivity study.
@@ -170,6 +173,7 @@ impl Plan {
             ],
             thresholds: (0..l0).step_by(step).collect(),
             meshes: vec![2, 4, 8, 16],
+            early_z: if quick { vec![16] } else { vec![4, 16] },
             widths: if quick {
                 vec![Width {
                     width: 4,
@@ -228,6 +232,22 @@ impl Plan {
         self.policy_point(scene, d, PolicySpec::Wasp { threshold: t, cf })
     }
 
+    /// `policy` with a coarse Early-Z disposing of `k` rejected quads a
+    /// raster slot (`k` = 1: the shipped machine).
+    pub fn early_z_point(&self, scene: &str, d: Dispatch, k: u32, policy: PolicySpec) -> Point {
+        let p = self.policy_point(scene, d, policy);
+        if k == 1 {
+            p
+        } else {
+            p.with(format!("raster.rejected_per_slot={k}"))
+        }
+    }
+
+    /// The policies of the Early-Z study.
+    pub fn early_z_policies(&self) -> [PolicySpec; 3] {
+        [PolicySpec::Baseline, PolicySpec::FullPriority, self.wasp]
+    }
+
     /// WaSP with the MeshN subset.
     pub fn mesh_point(&self, scene: &str, d: Dispatch, n: u32) -> Point {
         self.policy_point(scene, d, self.wasp)
@@ -279,6 +299,11 @@ impl Plan {
                 for &m in &self.meshes {
                     t.push(Task::Run(self.mesh_point(n, d, m)));
                 }
+                for &k in &self.early_z {
+                    for p in self.early_z_policies() {
+                        t.push(Task::Run(self.early_z_point(n, d, k, p)));
+                    }
+                }
                 for w in &self.widths {
                     for &k in &self.warps {
                         for p in [PolicySpec::Baseline, self.wasp] {
@@ -321,7 +346,12 @@ mod tests {
         assert_eq!(p.timeline_scenes.len(), 5, "one scene per game");
         let tasks = p.tasks(&PathBuf::from("f"));
         let runs = tasks.iter().filter(|t| matches!(t, Task::Run(_))).count();
-        let per_scene = p.policies.len() + 1 + p.thresholds.len() + p.meshes.len() + 2 * 5 * 2;
+        let per_scene = p.policies.len()
+            + 1
+            + p.thresholds.len()
+            + p.meshes.len()
+            + 3 * p.early_z.len()
+            + 2 * 5 * 2;
         assert_eq!(runs, 2 * d.len() * per_scene);
         // The shipped WaSP at mesh4 is the heuristics' WaSP point described
         // another way: the same machine.
