@@ -242,6 +242,33 @@ pub struct FilterStats {
     pub avg_wait: f64,
 }
 
+/// How the launch policy's gate chose between the two FIFOs, over the
+/// launches made while warps waited in both (summed over cores).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GateStats {
+    /// Launches with warps waiting in the priority and the regular FIFO.
+    pub both_waiting: u64,
+    /// Of those, launches of the regular warp (the gate closed).
+    pub regular_first: u64,
+    /// regular_first / both_waiting (0 with none).
+    pub closed_share: f64,
+}
+
+impl GateStats {
+    /// The statistics of `both` such launches, `regular` of them regular.
+    pub fn new(both: u64, regular: u64) -> Self {
+        GateStats {
+            both_waiting: both,
+            regular_first: regular,
+            closed_share: if both == 0 {
+                0.0
+            } else {
+                regular as f64 / both as f64
+            },
+        }
+    }
+}
+
 /// Everything a run reports.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RunStats {
@@ -307,6 +334,8 @@ pub struct RunStats {
     pub held_cycles: u64,
     /// The same per core.
     pub held_cycles_per_core: Vec<u64>,
+    /// How the policy's gate chose when warps waited in both FIFOs.
+    pub gate: GateStats,
     /// `wasp-m`: the mean over cores and cycles of the CF meter's register
     /// (the measured CF the datapath used); absent for other policies.
     pub measured_cf_mean: Option<f64>,
@@ -459,6 +488,7 @@ impl RunStats {
             tile_timing: inst.tile_timing,
             held_cycles: sum(&|c| c.held_cycles),
             held_cycles_per_core: cores.iter().map(|c| c.held_cycles).collect(),
+            gate: GateStats::new(sum(&|c| c.both_waiting), sum(&|c| c.regular_first)),
             measured_cf_mean: {
                 let n = sum(&|c| c.cf_samples);
                 (n > 0).then(|| sum(&|c| c.cf_quarters_sum) as f64 / 4.0 / n as f64)
@@ -613,6 +643,13 @@ impl RunStats {
             "hold idle core-cycles {} (per core {}): a free slot, a priority warp waiting, nothing launched",
             self.held_cycles,
             per_core.join(" ")
+        );
+        let _ = writeln!(
+            s,
+            "gate: {} launches with both FIFOs waiting, {} of them regular ({:.1}%: the priority warp waited)",
+            self.gate.both_waiting,
+            self.gate.regular_first,
+            100.0 * self.gate.closed_share
         );
         let b = &self.blocked;
         let _ = writeln!(

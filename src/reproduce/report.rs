@@ -472,14 +472,16 @@ fn why(md: &mut String, plan: &Plan, out: &Outcome, machines: &[(Dispatch, Figur
             "  On {} scenes the baseline holds {} of 64 warps per core; the single rasterizer is \
              busy {} of the cycles, {} of its quads are rejected by Early-Z (they cost a raster \
              slot and launch no warp), and a full core queue holds it back in {} of the cycles; \
-             WaSP's priority warps launch {} positions ahead of their raster order; the L0 is \
-             stalled {} of the time under the baseline and {} under WaSP.",
+             WaSP's priority warps launch {} positions ahead of their raster order, its gate \
+             keeps the waiting priority warp back in {} of the launches where both FIFOs wait; \
+             the L0 is stalled {} of the time under the baseline and {} under WaSP.",
             g.label(),
             f1(stat(&base, &|r| r.get("occupancy.mean"))),
             pc(stat(&base, &raster_busy)),
             pc(stat(&base, &ratio("raster.quads_rejected", "raster.quads_rasterized"))),
             pc(stat(&base, &per_cycle("raster.backpressure_cycles"))),
             f1(stat(&wasp, &|r| r.get("priority_lead.mean"))),
+            pc(stat(&wasp, &|r| r.get("gate.closed_share"))),
             pc(stat(&base, &|r| r.get("l0.stall_fraction"))),
             pc(stat(&wasp, &|r| r.get("l0.stall_fraction")))
         );

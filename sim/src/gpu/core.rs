@@ -166,6 +166,12 @@ pub struct CoreStats {
     /// regular warp waited and the launch rule is `hold` (WaSP:
     /// Real_freeMSHRs too low). Always 0 under `launch`.
     pub held_cycles: u64,
+    /// Launches made with warps waiting in both FIFOs (the priority one and
+    /// the regular one): the launches in which the policy's gate chose.
+    pub both_waiting: u64,
+    /// Of those, launches of the regular warp: the gate was closed, and the
+    /// waiting priority warp fell behind its raster order.
+    pub regular_first: u64,
     /// Sum over cycles of the CF meter's register, in quarters (`wasp-m`;
     /// 0 for other policies).
     pub cf_quarters_sum: u64,
@@ -620,9 +626,15 @@ impl ShaderCore {
             // waveform signals keep their last values, `launch` reads 0).
             return;
         }
+        let both = self.sched.queue().has(QueueClass::Priority)
+            && self.sched.queue().has(QueueClass::Regular);
         let decision = self.sched.decide();
         match self.sched.launch(decision, have_slot) {
             Some((quad, class)) => {
+                if both {
+                    self.stats.both_waiting += 1;
+                    self.stats.regular_first += u64::from(class == QueueClass::Regular);
+                }
                 let s = self.free_slots.trailing_zeros() as usize;
                 self.free_slots &= !(1u128 << s);
                 let priority = class == QueueClass::Priority;
