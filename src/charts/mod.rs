@@ -53,7 +53,8 @@ mod lines;
 pub use bars::draw_bars;
 pub use lines::draw_lines;
 
-use plotters::coord::Shift;
+use crate::picture::palette_colour;
+pub(crate) use crate::picture::{save, Picture};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -236,30 +237,9 @@ impl LineChart {
     }
 }
 
-/// Distinguishable series colours (matplotlib's tab10, as in the
-/// timeline); repeated darker past ten series.
-const PALETTE: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
-
-/// The colour of series `s`.
+/// The colour of series `s` ([`crate::picture::palette_colour`]).
 fn series_colour(s: usize) -> RGBColor {
-    let RGBColor(r, g, b) = PALETTE[s % PALETTE.len()];
-    if (s / PALETTE.len()).is_multiple_of(2) {
-        RGBColor(r, g, b)
-    } else {
-        let dark = |v: u8| (u16::from(v) * 3 / 5) as u8;
-        RGBColor(dark(r), dark(g), dark(b))
-    }
+    palette_colour(s)
 }
 
 /// A darker shade of `c` for marks and text drawn over or beside its bars.
@@ -282,20 +262,9 @@ fn who(title: &str) -> String {
     }
 }
 
-/// Whether `path` asks for an SVG (`.svg`) or a PNG (`.png`), in any case.
+/// Whether `path` asks for an SVG or a PNG ([`crate::picture::is_svg`]).
 fn is_svg(path: &Path) -> Result<bool, String> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("png") => Ok(false),
-        Some("svg") => Ok(true),
-        _ => Err(format!(
-            "{}: cannot draw a chart in this format; the file must end in .png or .svg",
-            path.display()
-        )),
-    }
+    crate::picture::is_svg(path, "a chart")
 }
 
 /// Checks the series against `n` categories (or x positions, by `what`):
@@ -373,42 +342,6 @@ fn check_marks(
         ));
     }
     Ok(())
-}
-
-/// A chart laid out and ready to draw on any backend.
-trait Picture {
-    /// The picture's size in pixels.
-    fn size(&self) -> (u32, u32);
-    /// Draws the picture on `root` (of [`Picture::size`]).
-    fn render<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static;
-}
-
-/// Draws `picture` into `path`: an SVG when `svg`, else a PNG.
-fn save(picture: &impl Picture, who: &str, path: &Path, svg: bool) -> Result<(), String> {
-    let (w, h) = picture.size();
-    let failed = |e: DrawingAreaErrorKind<_>| format!("{who}: {e}");
-    if svg {
-        let mut text = String::new();
-        {
-            let root = SVGBackend::with_string(&mut text, (w, h)).into_drawing_area();
-            picture.render(&root)?;
-            root.present().map_err(failed)?;
-        }
-        std::fs::write(path, text).map_err(|e| format!("writing {}: {e}", path.display()))
-    } else {
-        let mut pixels = vec![0u8; w as usize * h as usize * 3];
-        {
-            let root = BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area();
-            picture.render(&root)?;
-            root.present().map_err(|e| format!("{who}: {e}"))?;
-        }
-        let img = image::RgbImage::from_raw(w, h, pixels)
-            .ok_or_else(|| format!("{who}: the pixel buffer has the wrong size"))?;
-        img.save_with_format(path, image::ImageFormat::Png)
-            .map_err(|e| format!("writing {}: {e}", path.display()))
-    }
 }
 
 #[cfg(test)]

@@ -44,6 +44,7 @@
 //! labels and legends on a machine with no fonts installed. (An SVG names
 //! the `sans-serif` family; its viewer supplies the glyphs.)
 
+use crate::picture::{is_svg, palette_colour, save, Picture};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
@@ -69,20 +70,6 @@ const LEGEND_W: u32 = 230;
 /// Height of the title strip.
 const TITLE_H: u32 = 58;
 
-/// Distinguishable colours for the cores (repeated darker past ten cores).
-const CORE_COLOURS: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
-
 /// Colours of the cache levels L0, L1, L2.
 const LEVEL_COLOURS: [RGBColor; 3] = [
     RGBColor(106, 61, 154),
@@ -100,42 +87,25 @@ const MARK_COLOUR: RGBColor = RGBColor(40, 40, 40);
 /// that do not match its core count or are out of cycle order, and a file
 /// that cannot be written.
 pub fn draw(t: &Timeline, path: &Path) -> Result<(), String> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let svg = match ext.as_deref() {
-        Some("png") => false,
-        Some("svg") => true,
-        _ => {
-            return Err(format!(
-                "{}: cannot draw a timeline in this format; the file must end in .png or .svg",
-                path.display()
-            ))
-        }
-    };
+    let svg = is_svg(path, "a timeline")?;
     check(t)?;
     register_fonts().map_err(drawing)?;
-    if svg {
-        let mut text = String::new();
-        {
-            let root = SVGBackend::with_string(&mut text, (WIDTH, HEIGHT)).into_drawing_area();
-            render(t, &root)?;
-            root.present().map_err(drawing)?;
-        }
-        std::fs::write(path, text).map_err(|e| format!("writing {}: {e}", path.display()))
-    } else {
-        let mut pixels = vec![0u8; WIDTH as usize * HEIGHT as usize * 3];
-        {
-            let root = BitMapBackend::with_buffer(&mut pixels, (WIDTH, HEIGHT)).into_drawing_area();
-            render(t, &root)?;
-            root.present().map_err(drawing)?;
-        }
-        let img = image::RgbImage::from_raw(WIDTH, HEIGHT, pixels).ok_or_else(|| {
-            "drawing the timeline: the pixel buffer has the wrong size".to_string()
-        })?;
-        img.save_with_format(path, image::ImageFormat::Png)
-            .map_err(|e| format!("writing {}: {e}", path.display()))
+    save(&TimelinePicture(t), "drawing the timeline", path, svg)
+}
+
+/// A timeline as a [`Picture`] of [`WIDTH`] x [`HEIGHT`] pixels.
+struct TimelinePicture<'a>(&'a Timeline);
+
+impl Picture for TimelinePicture<'_> {
+    fn size(&self) -> (u32, u32) {
+        (WIDTH, HEIGHT)
+    }
+
+    fn render<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        render(self.0, root)
     }
 }
 
@@ -177,14 +147,7 @@ fn check(t: &Timeline) -> Result<(), String> {
 
 /// The colour of core `c`.
 fn core_colour(c: usize) -> RGBColor {
-    let RGBColor(r, g, b) = CORE_COLOURS[c % CORE_COLOURS.len()];
-    if (c / CORE_COLOURS.len()).is_multiple_of(2) {
-        RGBColor(r, g, b)
-    } else {
-        // The second round of colours: darker.
-        let dark = |v: u8| (u16::from(v) * 3 / 5) as u8;
-        RGBColor(dark(r), dark(g), dark(b))
-    }
+    palette_colour(c)
 }
 
 /// How a legend entry shows its series.
