@@ -40,7 +40,7 @@ use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::queue::QueueClass;
-use wasp_rtl::scheduler::LaunchScheduler;
+use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
 use wasp_rtl::subset::{PrioritySubset, SubsetSpec};
 use wasp_rtl::RegisterFault;
 
@@ -267,7 +267,7 @@ impl SchedulerCheck {
             cfg.queue_capacity,
             cfg.subset.build(32),
             reg,
-            policy,
+            policy.as_ref(),
             cfg.launch_rule,
         );
         let model = Model {
@@ -372,7 +372,10 @@ impl SchedulerCheck {
         let (free, nb) = (self.model.free(), self.model.nonblocked);
         let pw = !self.model.priority.is_empty();
         let rw = !self.model.regular.is_empty();
-        let d = self.sched.decide();
+        let room = self.model.in_core() < self.model.max_warps;
+        let enable = enable && room;
+        let launch = self.sched.launch(enable);
+        let d = launch.decision;
         let rule = self.model.rule;
         let want = self.model.policy.select(rule, pw, rw, free, nb);
         match (self.model.policy, d.datapath) {
@@ -423,9 +426,7 @@ impl SchedulerCheck {
             self.cex("`held` differs from: hold, a lone priority warp, gate closed")
         })?;
         // 3. Launch.
-        let room = self.model.in_core() < self.model.max_warps;
-        let enable = enable && room;
-        let got = self.sched.launch(d, enable);
+        let got = launch.warp;
         let expect = match want {
             Some(c) if enable => self.model.fifo_mut(c).pop_front().map(|t| (t, c)),
             _ => None,
@@ -513,8 +514,10 @@ impl SchedulerCheck {
     pub fn back(&mut self, ev: CycleEvents) -> Result<Option<RegisterFault>, Cex> {
         let legal = self.legal(&ev);
         let before = (self.sched.free_mshrs(), self.sched.nonblocked());
-        let r = self.sched.clock(ev.mshr, ev.prio);
-        self.sched.end_cycle();
+        let r = self.sched.clock(EdgeEvents {
+            mshr: ev.mshr,
+            prio: ev.prio,
+        });
         self.cycle += 1;
         let l = self.prio_launched as i64;
         let free_next = self.model.free() - ev.mshr.allocs as i64 + ev.mshr.replies as i64;
@@ -876,11 +879,10 @@ mod tests {
             .unwrap();
         assert_eq!(l.warp, None);
         assert_eq!(s.sched.nonblocked().count().get(), 127);
-        let d = s.sched.decide();
+        let d = s.sched.launch(false).decision;
         let out = d.datapath.unwrap();
         assert_eq!(out.real_free.get(), 31 - 984);
         assert_eq!(d.select, None);
-        s.sched.end_cycle();
         // And back down: all 127 finish in one cycle.
         s.cycle(&CycleChoice {
             finished: 127,

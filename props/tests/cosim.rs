@@ -38,7 +38,7 @@ use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::queue::QueueClass;
-use wasp_rtl::scheduler::{launch_code, LaunchScheduler};
+use wasp_rtl::scheduler::{launch_code, EdgeEvents, LaunchScheduler};
 use wasp_rtl::subset::Mesh;
 
 /// The most priority warps a core may hold (the 7-bit counter's maximum).
@@ -121,7 +121,10 @@ impl Config {
             self.queue_cap,
             Box::new(Mesh::new(self.mesh_k).expect("mesh k")),
             FreeMshrReg::with_capacity(self.mshrs).expect("capacity fits 5 bits"),
-            self.spec().build(self.mshrs).expect("valid policy"),
+            self.spec()
+                .build(self.mshrs)
+                .expect("valid policy")
+                .as_ref(),
             self.launch_rule,
         )
     }
@@ -427,9 +430,10 @@ fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
                 run.coverage.pushes_accepted += ok as u64;
                 run.coverage.pushes_refused += !ok as u64;
             }
-            // 2. decide
+            // 2. decide, and 3. launch (the pop at the FIFO's read port)
             let prio_waiting = s.queue().has(QueueClass::Priority);
-            let d = s.decide();
+            let l = s.launch(inp.launch_enable);
+            let d = l.decision;
             let dpo = dp.eval(s.free_mshrs().free(), s.nonblocked().count());
             if let Some(got) = d.datapath {
                 assert_eq!(
@@ -442,8 +446,7 @@ fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
             out.real_free = dpo.real_free.get() as i64;
             out.priority_over_regular = dpo.priority_over_regular as i64;
             out.select = launch_code(d.select) as i64;
-            // 3. launch
-            let launched = s.launch(d, inp.launch_enable).map(|(_, c)| c);
+            let launched = l.warp.map(|(_, c)| c);
             out.launch = launch_code(launched) as i64;
             let lp = (launched == Some(QueueClass::Priority)) as i64;
             let lr = (launched == Some(QueueClass::Regular)) as i64;
@@ -472,20 +475,19 @@ fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
                 inp.unblocked,
                 inp.finished,
             ] = ev;
-            let r = s.clock(
-                MshrEvents {
+            let r = s.clock(EdgeEvents {
+                mshr: MshrEvents {
                     allocs: inp.allocs,
                     replies: inp.replies,
                 },
-                PriorityEvents {
+                prio: PriorityEvents {
                     launched: false,
                     blocked: inp.blocked,
                     unblocked: inp.unblocked,
                     finished: inp.finished,
                     misses: 0,
                 },
-            );
-            s.end_cycle();
+            });
             out.fault = r.is_err() as i64;
             if r.is_ok() {
                 blocked += inp.blocked as i64 - inp.unblocked as i64;

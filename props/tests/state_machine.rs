@@ -15,7 +15,7 @@ use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchRule, Wasp};
 use wasp_rtl::queue::QueueClass;
-use wasp_rtl::scheduler::LaunchScheduler;
+use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
 use wasp_rtl::subset::Mesh;
 
 /// The reference: unbounded counters and queues.
@@ -220,7 +220,7 @@ impl StateMachineTest for SchedulerTest {
                 s.queue_cap,
                 Box::new(Mesh::new(4).unwrap()),
                 FreeMshrReg::with_capacity(s.mshrs as u32).unwrap(),
-                Box::new(Wasp::new(dp)),
+                &Wasp::new(dp),
                 if s.launch {
                     LaunchRule::Launch
                 } else {
@@ -239,25 +239,23 @@ impl StateMachineTest for SchedulerTest {
             }
             assert_eq!(Some(accepted), after.last_push_accepted, "push refusal");
         }
-        let d = sut.sched.decide();
-        let launched = sut.sched.launch(d, c.enable);
+        let launched = sut.sched.launch(c.enable).warp;
         assert_eq!(launched, after.last_launch, "launch (warp, queue)");
         sut.sched
-            .clock(
-                MshrEvents {
+            .clock(EdgeEvents {
+                mshr: MshrEvents {
                     allocs: c.allocs,
                     replies: c.replies,
                 },
-                PriorityEvents {
+                prio: PriorityEvents {
                     launched: false,
                     blocked: c.block,
                     unblocked: c.unblock,
                     finished: c.finish,
                     misses: 0,
                 },
-            )
+            })
             .expect("legal events never fault");
-        sut.sched.end_cycle();
         sut
     }
 

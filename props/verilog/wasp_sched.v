@@ -23,7 +23,7 @@
 // capacity, CF, threshold, N, queue capacity and launch rule at once.
 //
 // Timing: cycle-exact with wasp-rtl under the call order of one cycle
-//     enqueue -> decide -> launch -> clock -> end_cycle
+//     enqueue -> launch -> clock
 //   * free_mshrs, nonblocked, prio_occ, reg_occ are register outputs (Q): the
 //     values at the start of the cycle, before this cycle's push and pop.
 //   * is_priority, push_accepted: the Mesh-k comparator on (qx, qy) (always 0

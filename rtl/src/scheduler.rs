@@ -3,15 +3,29 @@
 //! priority-warp counter, the decision datapath, the launch policy and the
 //! launch rule for a closed gate ([`LaunchRule`]).
 //!
-//! One cycle, two phases:
-//! 1. [`LaunchScheduler::decide`] reads only current register values (Q)
-//!    and returns which FIFO to launch from; [`LaunchScheduler::launch`]
-//!    pops that warp if the core can take it this cycle.
-//! 2. [`LaunchScheduler::clock`] takes the cycle's MSHR and priority-warp
-//!    events and loads the registers (D -> Q). The launch of this cycle is
-//!    counted by the scheduler itself.
+//! A value: the policy is wired in at construction (its gate, datapath and
+//! CF meter are fields, read without a virtual call), and a cycle is two
+//! calls with typed inputs and outputs, as a two-phase RTL simulation
+//! evaluates and then clocks:
+//! 1. [`LaunchScheduler::launch`] (combinational) reads only current
+//!    register values (Q) and the queue, and returns the [`Launch`]: which
+//!    FIFO the policy picks and, if the core can take a warp this cycle, the
+//!    warp it pops (the FIFO's read port);
+//! 2. [`LaunchScheduler::clock`] (the clock edge) loads the registers
+//!    (D -> Q) with the cycle's [`EdgeEvents`]. The launch of this cycle
+//!    is counted by the scheduler itself.
+//!
+//! Two calls and not one `step`, because the outputs of phase 1 feed the
+//! inputs of phase 2 within the same cycle: a warp launched in cycle t can
+//! present its access in cycle t (the worked example), and the MSHR events
+//! the edge loads come from those accesses. A caller may skip phase 1 in a
+//! cycle where nothing can launch; the edge is clocked every cycle.
+//! Warps enter between edges through [`LaunchScheduler::enqueue`] (the
+//! queue's write port, before phase 1).
 //!
 //! A decision in cycle t therefore sees the events of cycles up to t-1.
+//! The cycle's signals (decision, launch) stay readable for a waveform
+//! until the next cycle's first call.
 
 use crate::cf_meter::{CfMeter, MeterEvents, MISSES_BITS};
 use crate::datapath::{DatapathOut, WaspDatapath};
@@ -46,10 +60,32 @@ pub struct LaunchDecision {
     pub held: bool,
 }
 
+/// The outputs of phase 1: the decision and the warp it launched.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Launch<T> {
+    /// The decision, from the registers' current values.
+    pub decision: LaunchDecision,
+    /// The warp popped from the selected FIFO and its class (`None` when
+    /// nothing is selected or the core cannot take a warp).
+    pub warp: Option<(T, QueueClass)>,
+}
+
+/// The inputs of the clock edge: the cycle's events from the memory system
+/// and the warps.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EdgeEvents {
+    /// MSHR allocations and replies at the scheduler's cache level.
+    pub mshr: MshrEvents,
+    /// Priority-warp events (the cycle's own priority launch is added by
+    /// the scheduler).
+    pub prio: PriorityEvents,
+}
+
 /// The launch scheduler of one core, holding warp tickets of type `T`.
 #[derive(Debug)]
 pub struct LaunchScheduler<T> {
     queue: SplitQueue<T>,
+    // The subset comparator, asked only for coordinates beyond its table.
     subset: Box<dyn PrioritySubset>,
     // The subset comparator's answers for in-tile coordinates, with the
     // policy's use of the priority FIFO folded in (empty for the baseline):
@@ -57,10 +93,9 @@ pub struct LaunchScheduler<T> {
     priority_table: SubsetTable,
     free_mshrs: FreeMshrReg,
     nonblocked: NonblockedCounter,
-    policy: Box<dyn LaunchPolicy>,
-    // The policy's constants, read once at construction: a policy is
-    // fixed wiring (its methods take `&self` and the scheduler owns it), so
-    // they cannot change, and the per-cycle paths need not ask it again.
+    // The policy's wiring, read once at construction: a policy is fixed
+    // wiring (its methods take `&self`), so the scheduler keeps its
+    // constants and never asks it again.
     uses_priority_queue: bool,
     datapath: Option<WaspDatapath>,
     gate: PriorityGate,
@@ -70,16 +105,20 @@ pub struct LaunchScheduler<T> {
     // Signals of the current cycle, for the waveform.
     decision: LaunchDecision,
     launched: Option<QueueClass>,
+    // The current cycle's edge has been clocked: the next call begins a
+    // new cycle and clears `launched` first.
+    edge_passed: bool,
 }
 
 impl<T: Copy> LaunchScheduler<T> {
-    /// A scheduler in its reset state, launching under `rule` when the
-    /// policy's gate is closed and only a priority warp waits.
+    /// A scheduler in its reset state, wired for `policy`, launching under
+    /// `rule` when the policy's gate is closed and only a priority warp
+    /// waits.
     pub fn new(
         queue_capacity: usize,
         subset: Box<dyn PrioritySubset>,
         free_mshrs: FreeMshrReg,
-        policy: Box<dyn LaunchPolicy>,
+        policy: &dyn LaunchPolicy,
         rule: LaunchRule,
     ) -> Self {
         let priority_table = if policy.uses_priority_queue() {
@@ -98,19 +137,14 @@ impl<T: Copy> LaunchScheduler<T> {
             gate: policy.gate(),
             rule,
             meter: policy.measures_cf().then(CfMeter::reset),
-            policy,
             decision: LaunchDecision {
                 select: None,
                 datapath: None,
                 held: false,
             },
             launched: None,
+            edge_passed: false,
         }
-    }
-
-    /// The policy.
-    pub fn policy(&self) -> &dyn LaunchPolicy {
-        self.policy.as_ref()
     }
 
     /// The launch rule for a closed gate.
@@ -165,8 +199,17 @@ impl<T: Copy> LaunchScheduler<T> {
         }
     }
 
-    /// Phase 1: the policy's choice from the current register values.
-    pub fn decide(&mut self) -> LaunchDecision {
+    /// Start a new cycle's signals if the last edge has passed.
+    #[inline]
+    fn begin_cycle(&mut self) {
+        if self.edge_passed {
+            self.launched = None;
+            self.edge_passed = false;
+        }
+    }
+
+    /// The policy's choice from the current register values and queue.
+    fn decide(&self) -> LaunchDecision {
         let datapath = self.datapath.map(|dp| {
             // A measured CF replaces the wired constant.
             let dp = match self.meter {
@@ -181,36 +224,41 @@ impl<T: Copy> LaunchScheduler<T> {
             free_mshrs: self.free_mshrs.free(),
             datapath,
         };
-        let select = self.gate.select(self.rule, &view);
-        let held = self.rule == LaunchRule::Hold && self.gate.rule_decides(&view);
-        let decision = LaunchDecision {
-            select,
+        LaunchDecision {
+            select: self.gate.select(self.rule, &view),
             datapath,
-            held,
-        };
+            held: self.rule == LaunchRule::Hold && self.gate.rule_decides(&view),
+        }
+    }
+
+    /// Phase 1: the policy's decision from the current register values,
+    /// and the warp it pops from the selected FIFO when the core can take
+    /// one this cycle (`enable`). At most one launch per cycle.
+    pub fn launch(&mut self, enable: bool) -> Launch<T> {
+        self.begin_cycle();
+        let decision = self.decide();
         self.decision = decision;
-        decision
+        let warp = match decision.select.filter(|_| enable) {
+            Some(class) => self.queue.pop(class).map(|t| (t, class)),
+            None => None,
+        };
+        self.launched = warp.map(|(_, c)| c);
+        Launch { decision, warp }
     }
 
-    /// Phase 1, continued: pop the chosen warp, when the core can take one
-    /// this cycle (`enable`). At most one launch per cycle.
-    pub fn launch(&mut self, decision: LaunchDecision, enable: bool) -> Option<(T, QueueClass)> {
-        let class = decision.select.filter(|_| enable)?;
-        let t = self.queue.pop(class)?;
-        self.launched = Some(class);
-        Some((t, class))
-    }
-
-    /// Phase 2: load the registers with this cycle's events. The priority
-    /// launch of this cycle (if any) is added to `prio` here.
+    /// Phase 2, the clock edge: load the registers with this cycle's
+    /// events. The priority launch of this cycle (if any) is added to the
+    /// priority events here. On a fault neither register loads.
     #[inline]
-    pub fn clock(&mut self, mshr: MshrEvents, prio: PriorityEvents) -> Result<(), RegisterFault> {
+    pub fn clock(&mut self, ev: EdgeEvents) -> Result<(), RegisterFault> {
+        self.begin_cycle();
+        self.edge_passed = true;
         let prio = PriorityEvents {
             // An OR gate (`|`, no short circuit: both inputs are ready).
-            launched: prio.launched | (self.launched == Some(QueueClass::Priority)),
-            ..prio
+            launched: ev.prio.launched | (self.launched == Some(QueueClass::Priority)),
+            ..ev.prio
         };
-        let free = self.free_mshrs.next(mshr)?;
+        let free = self.free_mshrs.next(ev.mshr)?;
         let nb = self.nonblocked.next(prio)?;
         self.free_mshrs = free;
         self.nonblocked = nb;
@@ -224,12 +272,6 @@ impl<T: Copy> LaunchScheduler<T> {
             });
         }
         Ok(())
-    }
-
-    /// Forget this cycle's launch signal (call after tracing, before the
-    /// next cycle's phase 1).
-    pub fn end_cycle(&mut self) {
-        self.launched = None;
     }
 }
 
@@ -261,6 +303,29 @@ mod tests {
     use crate::policy::{PolicySpec, Wasp};
     use crate::subset::{Explicit, Mesh};
 
+    /// The edge of a cycle in which one warp took a miss and, if it is a
+    /// priority warp, blocked on it.
+    fn miss_and_block() -> EdgeEvents {
+        EdgeEvents {
+            mshr: MshrEvents {
+                allocs: 1,
+                replies: 0,
+            },
+            prio: PriorityEvents {
+                blocked: 1,
+                ..Default::default()
+            },
+        }
+    }
+
+    /// The edge of a cycle with only priority-warp events.
+    fn prio_only(prio: PriorityEvents) -> EdgeEvents {
+        EdgeEvents {
+            mshr: MshrEvents::default(),
+            prio,
+        }
+    }
+
     #[test]
     fn launch_signal_encoding_and_traced_signals() {
         assert_eq!(launch_code(None), 0);
@@ -270,13 +335,12 @@ mod tests {
             4,
             Box::new(Mesh::new(4).unwrap()),
             FreeMshrReg::with_capacity(6).unwrap(),
-            PolicySpec::wasp(1).build(6).unwrap(),
+            PolicySpec::wasp(1).build(6).unwrap().as_ref(),
             LaunchRule::Hold,
         );
         s.enqueue(7, 0, 0).unwrap();
         s.enqueue(8, 1, 0).unwrap();
-        let d = s.decide();
-        assert_eq!(s.launch(d, true), Some((7, QueueClass::Priority)));
+        assert_eq!(s.launch(true).warp, Some((7, QueueClass::Priority)));
         let names: Vec<(String, u32, u64)> = crate::recorder::signals_of(&s);
         assert_eq!(
             names,
@@ -299,7 +363,7 @@ mod tests {
             8,
             Box::new(Mesh::new(4).unwrap()),
             FreeMshrReg::with_capacity(4).unwrap(),
-            PolicySpec::Baseline.build(4).unwrap(),
+            PolicySpec::Baseline.build(4).unwrap().as_ref(),
             LaunchRule::Hold,
         );
         for i in 0..8u32 {
@@ -307,14 +371,9 @@ mod tests {
         }
         assert_eq!(s.enqueue(99, 0, 0), Err(99));
         let mut order = vec![];
-        while let Some((w, _)) = {
-            let d = s.decide();
-            s.launch(d, true)
-        } {
+        while let Some((w, _)) = s.launch(true).warp {
             order.push(w);
-            s.clock(MshrEvents::default(), PriorityEvents::default())
-                .unwrap();
-            s.end_cycle();
+            s.clock(EdgeEvents::default()).unwrap();
         }
         assert_eq!(order, (0..8).collect::<Vec<_>>());
     }
@@ -329,49 +388,26 @@ mod tests {
             16,
             Box::new(Explicit::new([(0, 0), (5, 0), (10, 0)])),
             FreeMshrReg::with_capacity(3).unwrap(),
-            Box::new(Wasp::new(dp)),
+            &Wasp::new(dp),
             LaunchRule::Hold,
         );
         for i in 0..15u32 {
             s.enqueue(i, i, 0).unwrap();
         }
         // Cycle 1: 3 free, nothing in flight: priority W0.
-        let d = s.decide();
-        assert_eq!(d.datapath.unwrap().real_free.get(), 3);
-        assert_eq!(s.launch(d, true), Some((0, QueueClass::Priority)));
+        let l = s.launch(true);
+        assert_eq!(l.decision.datapath.unwrap().real_free.get(), 3);
+        assert_eq!(l.warp, Some((0, QueueClass::Priority)));
         // W0 launched and blocked on its miss in the same cycle.
-        s.clock(
-            MshrEvents {
-                allocs: 1,
-                replies: 0,
-            },
-            PriorityEvents {
-                blocked: 1,
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        s.end_cycle();
+        s.clock(miss_and_block()).unwrap();
         assert_eq!(s.nonblocked().count().get(), 0);
         // Cycle 2: 2 free > 1: priority W5.
-        let d = s.decide();
-        assert_eq!(s.launch(d, true), Some((5, QueueClass::Priority)));
-        s.clock(
-            MshrEvents {
-                allocs: 1,
-                replies: 0,
-            },
-            PriorityEvents {
-                blocked: 1,
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        s.end_cycle();
+        assert_eq!(s.launch(true).warp, Some((5, QueueClass::Priority)));
+        s.clock(miss_and_block()).unwrap();
         // Cycle 3: 1 free, not > 1: regular W1.
-        let d = s.decide();
-        assert!(!d.datapath.unwrap().priority_over_regular);
-        assert_eq!(s.launch(d, true), Some((1, QueueClass::Regular)));
+        let l = s.launch(true);
+        assert!(!l.decision.datapath.unwrap().priority_over_regular);
+        assert_eq!(l.warp, Some((1, QueueClass::Regular)));
     }
 
     #[test]
@@ -391,7 +427,7 @@ mod tests {
                     4,
                     subset,
                     FreeMshrReg::with_capacity(4).unwrap(),
-                    spec.build(4).unwrap(),
+                    spec.build(4).unwrap().as_ref(),
                     LaunchRule::Hold,
                 );
                 for y in (0..48).chain([u32::MAX]) {
@@ -414,13 +450,13 @@ mod tests {
             4,
             Box::new(Mesh::new(4).unwrap()),
             FreeMshrReg::with_capacity(4).unwrap(),
-            PolicySpec::FullPriority.build(4).unwrap(),
+            PolicySpec::FullPriority.build(4).unwrap().as_ref(),
             LaunchRule::Hold,
         );
         s.enqueue(7u32, 0, 0).unwrap();
-        let d = s.decide();
-        assert_eq!(d.select, Some(QueueClass::Priority));
-        assert_eq!(s.launch(d, false), None);
+        let l = s.launch(false);
+        assert_eq!(l.decision.select, Some(QueueClass::Priority));
+        assert_eq!(l.warp, None);
         assert_eq!(s.queue().len(), 1);
     }
 
@@ -439,7 +475,7 @@ mod tests {
                 16,
                 Box::new(Explicit::new([(0, 0), (1, 0), (2, 0)])),
                 FreeMshrReg::with_capacity(3).unwrap(),
-                Box::new(Wasp::new(dp)),
+                &Wasp::new(dp),
                 rule,
             );
             assert_eq!(s.launch_rule(), rule);
@@ -447,34 +483,24 @@ mod tests {
                 assert_eq!(s.enqueue(i, i, 0), Ok(QueueClass::Priority));
             }
             for w in 0..2u32 {
-                let d = s.decide();
-                assert!(!d.held);
-                assert_eq!(s.launch(d, true), Some((w, QueueClass::Priority)));
-                s.clock(
-                    MshrEvents {
-                        allocs: 1,
-                        replies: 0,
-                    },
-                    PriorityEvents {
-                        blocked: 1,
-                        ..Default::default()
-                    },
-                )
-                .unwrap();
-                s.end_cycle();
+                let l = s.launch(true);
+                assert!(!l.decision.held);
+                assert_eq!(l.warp, Some((w, QueueClass::Priority)));
+                s.clock(miss_and_block()).unwrap();
             }
-            let d = s.decide();
+            let l = s.launch(true);
+            let d = l.decision;
             assert!(!d.datapath.unwrap().priority_over_regular);
             match rule {
                 LaunchRule::Hold => {
                     assert!(d.held);
                     assert_eq!(d.select, None);
-                    assert_eq!(s.launch(d, true), None);
+                    assert_eq!(l.warp, None);
                     assert_eq!(s.queue().len(), 1);
                 }
                 LaunchRule::Launch => {
                     assert!(!d.held);
-                    assert_eq!(s.launch(d, true), Some((2, QueueClass::Priority)));
+                    assert_eq!(l.warp, Some((2, QueueClass::Priority)));
                     assert_eq!(s.queue().len(), 0);
                 }
             }
@@ -489,7 +515,7 @@ mod tests {
                 8,
                 Box::new(Mesh::new(4).unwrap()),
                 FreeMshrReg::with_capacity(4).unwrap(),
-                PolicySpec::Baseline.build(4).unwrap(),
+                PolicySpec::Baseline.build(4).unwrap().as_ref(),
                 rule,
             );
             for i in 0..8u32 {
@@ -497,15 +523,13 @@ mod tests {
             }
             let mut order = vec![];
             loop {
-                let d = s.decide();
-                assert!(!d.held);
-                let Some((w, class)) = s.launch(d, true) else {
+                let l = s.launch(true);
+                assert!(!l.decision.held);
+                let Some((w, class)) = l.warp else {
                     break;
                 };
                 order.push((w, class));
-                s.clock(MshrEvents::default(), PriorityEvents::default())
-                    .unwrap();
-                s.end_cycle();
+                s.clock(EdgeEvents::default()).unwrap();
             }
             runs.push(order);
         }
@@ -522,7 +546,10 @@ mod tests {
                 64,
                 Box::new(Mesh::new(4).unwrap()),
                 FreeMshrReg::with_capacity(16).unwrap(),
-                PolicySpec::WaspMeasured { threshold: 1 }.build(16).unwrap(),
+                PolicySpec::WaspMeasured { threshold: 1 }
+                    .build(16)
+                    .unwrap()
+                    .as_ref(),
                 LaunchRule::Hold,
             )
         };
@@ -531,23 +558,17 @@ mod tests {
         // A window: 16 priority launches, 3 misses each cycle (clamped input
         // saturates the accumulator at 127: CF 7.75).
         for _ in 0..16 {
-            s.clock(
-                MshrEvents::default(),
-                PriorityEvents {
-                    launched: true,
-                    misses: 9,
-                    ..Default::default()
-                },
-            )
+            s.clock(prio_only(PriorityEvents {
+                launched: true,
+                misses: 9,
+                ..Default::default()
+            }))
             .unwrap();
             // Each launched warp blocks at once, so the counter stays 0.
-            s.clock(
-                MshrEvents::default(),
-                PriorityEvents {
-                    blocked: 1,
-                    ..Default::default()
-                },
-            )
+            s.clock(prio_only(PriorityEvents {
+                blocked: 1,
+                ..Default::default()
+            }))
             .unwrap();
         }
         assert_eq!(
@@ -562,36 +583,37 @@ mod tests {
             64,
             Box::new(Mesh::new(4).unwrap()),
             FreeMshrReg::with_capacity(16).unwrap(),
-            PolicySpec::wasp(1).build(16).unwrap(),
+            PolicySpec::wasp(1).build(16).unwrap().as_ref(),
             LaunchRule::Hold,
         );
         for sched in [&mut s as &mut LaunchScheduler<u32>, &mut c] {
+            let launched = PriorityEvents {
+                launched: true,
+                ..Default::default()
+            };
             sched
-                .clock(
-                    MshrEvents {
+                .clock(EdgeEvents {
+                    mshr: MshrEvents {
                         allocs: 9,
                         replies: 0,
                     },
-                    PriorityEvents {
-                        launched: true,
-                        ..Default::default()
-                    },
-                )
+                    prio: launched,
+                })
                 .unwrap();
-            sched
-                .clock(
-                    MshrEvents::default(),
-                    PriorityEvents {
-                        launched: true,
-                        ..Default::default()
-                    },
-                )
-                .unwrap();
+            sched.clock(prio_only(launched)).unwrap();
             sched.enqueue(1, 0, 0).unwrap();
             assert_eq!(sched.free_mshrs().free().get(), 7);
             assert_eq!(sched.nonblocked().count().get(), 2);
         }
-        assert_eq!(c.decide().select, Some(QueueClass::Priority), "7 - 5 > 1");
-        assert_eq!(s.decide().select, None, "7 - 6 = 1 is not above 1: hold");
+        assert_eq!(
+            c.launch(true).decision.select,
+            Some(QueueClass::Priority),
+            "7 - 5 > 1"
+        );
+        assert_eq!(
+            s.launch(true).decision.select,
+            None,
+            "7 - 6 = 1 is not above 1: hold"
+        );
     }
 }

@@ -42,7 +42,7 @@ use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchPolicy, LaunchRule, PolicySpec, Wasp};
 use wasp_rtl::queue::QueueClass;
-use wasp_rtl::scheduler::LaunchScheduler;
+use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
 use wasp_rtl::subset::Explicit;
 use wasp_waves::{CycleSink, Traceable, Tracer};
 
@@ -343,7 +343,7 @@ impl Machine {
             WARPS as usize,
             Box::new(subset),
             free,
-            policy,
+            policy.as_ref(),
             cfg.launch_rule,
         );
         let mut priority = [false; WARPS as usize];
@@ -383,7 +383,7 @@ impl Machine {
 
     /// Phase 1 (combinational, from current state) of cycle `t`, then the
     /// events of the cycle. Returns the events for the clock edge.
-    fn evaluate(&mut self, t: u64) -> (MshrEvents, PriorityEvents) {
+    fn evaluate(&mut self, t: u64) -> EdgeEvents {
         self.cache.begin_cycle(t);
         let mut row = CycleRow {
             cycle: t,
@@ -403,12 +403,13 @@ impl Machine {
         let mut prio = PriorityEvents::default();
 
         // Launch stage: a warp enters the LDST register when it is empty.
-        let decision = self.sched.decide();
+        let launch = self.sched.launch(self.ldst.is_none());
+        let decision = launch.decision;
         row.real_free_mshrs = decision.datapath.map(|d| d.real_free.get());
         if decision.held && self.ldst.is_none() {
             self.chrono.held_cycles += 1;
         }
-        if let Some((w, class)) = self.sched.launch(decision, self.ldst.is_none()) {
+        if let Some((w, class)) = launch.warp {
             self.ldst = Some(w);
             self.chrono.launch_order.push(w);
             row.launched = Some((
@@ -483,7 +484,7 @@ impl Machine {
             self.done_at = Some(t);
             self.chrono.cycles = t;
         }
-        (mshr, prio)
+        EdgeEvents { mshr, prio }
     }
 }
 
@@ -619,10 +620,9 @@ fn run_inner<S: CycleSink>(
             s.end_cycle().map_err(ExampleError::Io)?;
         }
         for (m, ev) in machines.iter_mut().zip(events) {
-            if let Some((mshr, prio)) = ev {
-                m.sched.clock(mshr, prio).map_err(ExampleError::Register)?;
+            if let Some(ev) = ev {
+                m.sched.clock(ev).map_err(ExampleError::Register)?;
             }
-            m.sched.end_cycle();
         }
     }
     let [a, b, c] = machines;

@@ -68,7 +68,7 @@ const MAX_SLOTS: usize = 128;
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
 use wasp_rtl::queue::QueueClass;
-use wasp_rtl::scheduler::LaunchScheduler;
+use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
 use wasp_rtl::subset::PrioritySubset;
 use wasp_waves::{Traceable, Tracer};
 
@@ -347,7 +347,7 @@ impl ShaderCore {
     pub fn new(
         id: usize,
         p: CoreParams,
-        policy: Box<dyn LaunchPolicy>,
+        policy: &dyn LaunchPolicy,
         rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,
     ) -> Self {
@@ -628,8 +628,8 @@ impl ShaderCore {
         }
         let both = self.sched.queue().has(QueueClass::Priority)
             && self.sched.queue().has(QueueClass::Regular);
-        let decision = self.sched.decide();
-        match self.sched.launch(decision, have_slot) {
+        let launch = self.sched.launch(have_slot);
+        match launch.warp {
             Some((quad, class)) => {
                 if both {
                     self.stats.both_waiting += 1;
@@ -667,8 +667,8 @@ impl ShaderCore {
                 // A free slot and a waiting warp but no launch: only the
                 // launch rule `hold` does that (a closed gate, only
                 // priority warps waiting).
-                debug_assert!(decision.held);
-                self.stats.held_cycles += u64::from(decision.held);
+                debug_assert!(launch.decision.held);
+                self.stats.held_cycles += u64::from(launch.decision.held);
             }
         }
     }
@@ -878,7 +878,10 @@ impl ShaderCore {
             MshrEvents::default()
         };
         self.sched
-            .clock(mshr, self.prio)
+            .clock(EdgeEvents {
+                mshr,
+                prio: self.prio,
+            })
             .map_err(|e| SimError::Register {
                 core: self.id,
                 cycle: now,
@@ -926,11 +929,9 @@ impl ShaderCore {
         Ok(())
     }
 
-    /// End of cycle: forget per-cycle signals; release the tile when every
-    /// warp of it has finished (fill and drain). Returns whether a tile
-    /// finished.
+    /// End of cycle: release the tile when every warp of it has finished
+    /// (fill and drain). Returns whether a tile finished.
     pub fn end_cycle(&mut self) -> bool {
-        self.sched.end_cycle();
         if self.tile.is_none() || self.external_raster {
             return false;
         }

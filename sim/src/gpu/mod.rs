@@ -220,9 +220,10 @@ impl<'t> Gpu<'t> {
         };
         let side = cfg.quads_per_side();
         let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);
+        let wiring = policy.build(sc.mshrs.min(31)).map_err(SimError::Config)?;
         for id in 0..cfg.gpu.cores as usize {
-            let p = policy.build(sc.mshrs.min(31)).map_err(SimError::Config)?;
-            cores.push(ShaderCore::new(id, params, p, rule, subset.build(side)));
+            let core = ShaderCore::new(id, params, wiring.as_ref(), rule, subset.build(side));
+            cores.push(core);
         }
         let mem =
             MemorySystem::new(&cfg.mem_config()).map_err(|e| SimError::Config(e.to_string()))?;
