@@ -22,7 +22,7 @@ out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 sim=()
 [ "${ICOUNT_SIM:-0}" = 1 ] && sim=(--branch-sim=yes --cache-sim=yes)
 valgrind --tool=callgrind "${sim[@]}" --callgrind-out-file="$out/cg" \
-  --toggle-collect='wasp_sim::gpu::Gpu::step' \
+  --toggle-collect='wasp_sim::gpu::Gpu*::step' \
   "$bin" run -q --trace "$out/bench.trace" ${ICOUNT_ARGS:-} --json "$out/run.json" > /dev/null 2> "$out/log"
 python3 - "$out" <<'PY'
 import json, re, signal, subprocess, sys

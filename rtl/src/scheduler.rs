@@ -209,6 +209,7 @@ impl<T: Copy> LaunchScheduler<T> {
     }
 
     /// The policy's choice from the current register values and queue.
+    #[inline]
     fn decide(&self) -> LaunchDecision {
         let datapath = self.datapath.map(|dp| {
             // A measured CF replaces the wired constant.
@@ -234,6 +235,7 @@ impl<T: Copy> LaunchScheduler<T> {
     /// Phase 1: the policy's decision from the current register values,
     /// and the warp it pops from the selected FIFO when the core can take
     /// one this cycle (`enable`). At most one launch per cycle.
+    #[inline]
     pub fn launch(&mut self, enable: bool) -> Launch<T> {
         self.begin_cycle();
         let decision = self.decide();
