@@ -53,27 +53,33 @@ use crate::gpu::issue::{pick, Picks};
 use crate::gpu::mask::SlotMask;
 use crate::gpu::raster::RasterCursor;
 use crate::gpu::wheel::WakeWheel;
-use crate::gpu::SimError;
 use crate::mem::{Access, BlockedOn, MemorySystem};
 use crate::trace::{OpKind, Tile, Trace};
 use std::collections::VecDeque;
-use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
+use wasp_rtl::free_mshr::{FreeMshrReg, FREE_MSHR_BITS};
+use wasp_rtl::nonblocked::PriorityEvents;
+use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
+use wasp_rtl::queue::QueueClass;
+use wasp_rtl::scheduler::LaunchScheduler;
+use wasp_rtl::subset::PrioritySubset;
 
+mod complete;
+mod observe;
+mod params;
+#[cfg(test)]
+pub(crate) mod plain;
+mod stats;
+pub use observe::{CoreSnapshot, WarpView};
+pub use params::CoreParams;
+pub use stats::{CoreStats, WarpRecord};
+
+/// The largest value of the 5-bit free-MSHR register.
 const FREE_MSHR_MAX: u32 = (1 << FREE_MSHR_BITS) - 1;
 
 /// Warp slots a core can have (the slot masks' width). The slot array
 /// always has this many entries, so that indexing it with a slot number
 /// masked to this power of two needs no bounds check.
 const MAX_SLOTS: usize = 128;
-use wasp_rtl::nonblocked::PriorityEvents;
-use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
-use wasp_rtl::queue::QueueClass;
-use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
-use wasp_rtl::subset::PrioritySubset;
-use wasp_waves::{Traceable, Tracer};
-
-mod observe;
-pub use observe::{CoreSnapshot, WarpView};
 
 /// A warp in a slot.
 #[derive(Clone, Copy, Debug, Default)]
@@ -108,25 +114,6 @@ struct Warp {
     launched_at: u64,
 }
 
-/// What one warp did, for per-quad pictures (heat maps) and analysis.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct WarpRecord {
-    /// Index of its tile in the trace.
-    pub tile: u32,
-    /// Index of its quad in the tile.
-    pub quad: u32,
-    /// Core that ran it.
-    pub core: u32,
-    /// Whether it was launched as a priority warp.
-    pub priority: bool,
-    /// Mean memory latency of its texture instructions (cycles), if any.
-    pub mem_latency: Option<f64>,
-    /// Cycle it was launched.
-    pub launched: u64,
-    /// Cycle it finished.
-    pub finished: u64,
-}
-
 /// A texture instruction in the LDST unit: its blocks are
 /// `next..end` of the tile's block accesses.
 #[derive(Clone, Copy, Debug)]
@@ -136,70 +123,6 @@ struct LdstEntry {
     next: u32,
     /// One past its last block.
     end: u32,
-}
-
-/// Counters of one core.
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
-pub struct CoreStats {
-    /// Tiles rendered.
-    pub tiles: u64,
-    /// Warps launched.
-    pub warps_launched: u64,
-    /// Warps finished.
-    pub warps_finished: u64,
-    /// Priority warps launched.
-    pub priority_launches: u64,
-    /// Warp instructions issued (ALU and texture).
-    pub instructions: u64,
-    /// Texture instructions issued.
-    pub tex_instructions: u64,
-    /// Of those, trilinear ones.
-    pub tri_tex_instructions: u64,
-    /// Cycles the filter unit was busy: the sum of the filter cycles of
-    /// the texture instructions it served.
-    pub filter_busy_cycles: u64,
-    /// Sum over texture instructions of the cycles their data waited for
-    /// the filter unit (filter start - last block's arrival).
-    pub filter_wait_cycles: u64,
-    /// Hold idle cycles: cycles with a free slot and a warp waiting in the
-    /// priority FIFO but no launch, because the policy's gate was closed, no
-    /// regular warp waited and the launch rule is `hold` (WaSP:
-    /// Real_freeMSHRs too low). Always 0 under `launch`.
-    pub held_cycles: u64,
-    /// Launches made with warps waiting in both FIFOs (the priority one and
-    /// the regular one): the launches in which the policy's gate chose.
-    pub both_waiting: u64,
-    /// Of those, launches of the regular warp: the gate was closed, and the
-    /// waiting priority warp fell behind its raster order.
-    pub regular_first: u64,
-    /// Sum over cycles of the CF meter's register, in quarters (`wasp-m`;
-    /// 0 for other policies).
-    pub cf_quarters_sum: u64,
-    /// Cycles summed in `cf_quarters_sum`.
-    pub cf_samples: u64,
-    /// Sum over warps of each warp's mean texture latency.
-    pub warp_latency_sum: [f64; 2],
-    /// Warps with at least one texture instruction, [regular, priority].
-    pub warps_with_tex: [u64; 2],
-    /// Cycles with no tile (idle core).
-    pub idle_cycles: u64,
-    /// Sum over cycles of active warps (for average occupancy).
-    pub occupancy_sum: u64,
-    /// Cycles by warps resident at the end of the launch stage: entry `n`
-    /// counts the cycles with `n` warps (`max_warps + 1` entries).
-    pub occupancy_hist: Vec<u64>,
-    /// Quads its own rasterizer rasterized, rejected ones included
-    /// (per-core-tile dispatch).
-    pub quads_rasterized: u64,
-    /// Of those, quads Early-Z rejected.
-    pub quads_rejected: u64,
-    /// Blocked episodes: texture instructions whose warp became blocked
-    /// (`[regular, priority]` warps).
-    pub blocked_episodes: [u64; 2],
-    /// Cycles from the cycle a warp became blocked to the cycle its last
-    /// block arrived (unblocking it), summed over the episodes
-    /// (`[regular, priority]`).
-    pub blocked_cycles: [u64; 2],
 }
 
 /// Per-cycle signals of the core, for the waveform.
@@ -306,40 +229,6 @@ pub struct ShaderCore {
     stats: CoreStats,
     /// Per-warp records, when asked for.
     records: Option<Vec<WarpRecord>>,
-}
-
-/// What a core needs from the configuration.
-#[derive(Clone, Copy, Debug)]
-pub struct CoreParams {
-    /// Instructions issued per cycle.
-    pub width: u32,
-    /// Warp slots (at most 128).
-    pub max_warps: u32,
-    /// Input queue entries.
-    pub input_queue: u32,
-    /// Quads its own rasterizer produces per cycle (per-core-tile
-    /// dispatch; unused when `external_raster`).
-    pub raster_rate: u32,
-    /// Early-Z-rejected quads one of its raster slots disposes of (>= 1).
-    pub rejected_per_slot: u32,
-    /// The GPU's one rasterizer fills the input queue (shared-tile).
-    pub external_raster: bool,
-    /// ALU latency.
-    pub alu_latency: u32,
-    /// Texture unit latency after the data.
-    pub texture_latency: u32,
-    /// Filter cycles per bilinear quad-sample.
-    pub filter_cycles_bilinear: u32,
-    /// Filter cycles per trilinear quad-sample.
-    pub filter_cycles_trilinear: u32,
-    /// How the filter pass and the texture latency add up.
-    pub filter_timing: FilterTiming,
-    /// LDST queue entries.
-    pub ldst_queue: u32,
-    /// MSHRs of the scheduler-level cache.
-    pub sched_mshrs: u32,
-    /// Which miss blocks a warp (the memory system must report the same).
-    pub blocked_on: BlockedOn,
 }
 
 impl ShaderCore {
@@ -593,29 +482,14 @@ impl ShaderCore {
     }
 
     fn raster(&mut self, tile: &Tile) {
-        let mut budget = self.raster_rate;
-        while budget > 0 {
-            // Early-Z-rejected quads: `rejected_per_slot` a slot, no warp.
-            let k = self
-                .cursor
-                .reject(budget.saturating_mul(self.rejected_per_slot));
-            if k > 0 {
-                budget -= k.div_ceil(self.rejected_per_slot);
-                self.stats.quads_rasterized += u64::from(k);
-                self.stats.quads_rejected += u64::from(k);
-                continue;
-            }
-            let Some(i) = self.cursor.peek() else {
-                break;
-            };
-            let q = tile.quad(i as usize).expect("quad in tile");
-            if !self.push_quad(i, q.x(), q.y()) {
-                break;
-            }
-            self.cursor.advance(tile);
-            budget -= 1;
-            self.stats.quads_rasterized += 1;
-        }
+        let sched = &mut self.sched;
+        let (rasterized, rejected) =
+            self.cursor
+                .own_cycle(tile, self.raster_rate, self.rejected_per_slot, |i, x, y| {
+                    !sched.queue().is_full() && sched.enqueue(i, x, y).is_ok()
+                });
+        self.stats.quads_rasterized += rasterized;
+        self.stats.quads_rejected += rejected;
     }
 
     fn launch(&mut self, now: u64, tile: &Tile) {
@@ -812,123 +686,6 @@ impl ShaderCore {
         }
     }
 
-    /// Phase 2 of cycle `now`: take the memory completions, then clock the
-    /// scheduler's registers.
-    pub fn complete(
-        &mut self,
-        now: u64,
-        mem: &mut MemorySystem,
-        scratch: &mut Vec<u32>,
-    ) -> Result<(), SimError> {
-        if self.blocked_on != BlockedOn::FirstLevel {
-            self.block_long_latency(now, mem)?;
-        }
-        scratch.clear();
-        mem.take_completions(self.id, scratch);
-        for &tag in scratch.iter() {
-            let s = tag as usize;
-            let w = &mut self.slots[s % MAX_SLOTS];
-            // An empty slot, or a warp with every block already back.
-            if w.pending == 0 || s >= MAX_SLOTS {
-                return Err(SimError::Internal(format!(
-                    "core {}: completion for slot {s}, which waits for no block, at cycle {now}",
-                    self.id
-                )));
-            }
-            w.pending -= 1;
-            if w.pending == 0 {
-                let lat = now - w.tex_start;
-                w.lat_sum += lat;
-                w.tex_done += 1;
-                if w.blocked {
-                    w.blocked = false;
-                    self.stats.blocked_cycles[w.priority as usize & 1] +=
-                        now - self.blocked_at[s % MAX_SLOTS];
-                    if w.priority {
-                        self.prio.unblocked += 1;
-                    }
-                }
-                // The filter unit serves the instructions in order of data
-                // arrival (completion order within a cycle).
-                let f = self.filter_cycles[w.tex_tri as usize];
-                let start = now.max(self.filter_free);
-                self.filter_free = start + f;
-                self.stats.filter_busy_cycles += f;
-                self.stats.filter_wait_cycles += start - now;
-                let lat = self.texture_latency.max(1);
-                let at = if self.filter_overlap {
-                    (start + f).max(now + lat)
-                } else {
-                    start + f + lat
-                };
-                self.schedule(now, at, s);
-            }
-        }
-        if !scratch.is_empty() {
-            self.last_progress = now;
-        }
-        let ev = mem.mshr_events(self.id);
-        self.tile_misses += u64::from(ev.allocated);
-        let mshr = if self.track_mshrs {
-            MshrEvents {
-                allocs: ev.allocated as u8,
-                replies: ev.replied as u8,
-            }
-        } else {
-            MshrEvents::default()
-        };
-        self.sched
-            .clock(EdgeEvents {
-                mshr,
-                prio: self.prio,
-            })
-            .map_err(|e| SimError::Register {
-                core: self.id,
-                cycle: now,
-                fault: e,
-            })?;
-        if let Some(m) = self.sched.cf_meter() {
-            self.stats.cf_quarters_sum += u64::from(m.cf().quarters());
-            self.stats.cf_samples += 1;
-        }
-        // Self-check: the register counts an entry free from its reply.
-        let free = self.sched.free_mshrs().free().get();
-        if self.track_mshrs && free != ev.free_from_reply() {
-            return Err(SimError::Internal(format!(
-                "core {}: free-MSHR register {free} != capacity - outstanding {} at cycle {now}",
-                self.id,
-                ev.free_from_reply()
-            )));
-        }
-        Ok(())
-    }
-
-    /// Mark blocked the warps whose requests the memory system reports
-    /// waiting on a long-latency miss in this cycle (before the cycle's
-    /// completions: a report always precedes its tag's completion).
-    fn block_long_latency(&mut self, now: u64, mem: &mut MemorySystem) -> Result<(), SimError> {
-        self.long.clear();
-        mem.take_long_latency(self.id, &mut self.long);
-        for &tag in &self.long {
-            let s = tag as usize;
-            let w = &mut self.slots[s % MAX_SLOTS];
-            if w.pending == 0 || s >= MAX_SLOTS {
-                return Err(SimError::Internal(format!(
-                    "core {}: long-latency report for slot {s}, which waits for no block, at cycle {now}",
-                    self.id
-                )));
-            }
-            block_warp(
-                w,
-                &mut self.blocked_at[s % MAX_SLOTS],
-                &mut self.stats.blocked_episodes,
-                &mut self.prio,
-                now,
-            );
-        }
-        Ok(())
-    }
-
     /// End of cycle: release the tile when every warp of it has finished
     /// (fill and drain). Returns whether a tile finished.
     pub fn end_cycle(&mut self) -> bool {
@@ -947,47 +704,6 @@ impl ShaderCore {
         false
     }
 
-    /// A description of the core's state (for the watchdog).
-    pub fn describe(&self, trace: &Trace) -> String {
-        let tile = self
-            .tile
-            .map(|t| {
-                let tl = &trace.tiles()[t];
-                if self.external_raster {
-                    return format!(
-                        "tile {} at ({}, {}), shared by every core",
-                        t,
-                        tl.tx(),
-                        tl.ty()
-                    );
-                }
-                format!(
-                    "tile {} at ({}, {}), {} of {} quads rasterized",
-                    t,
-                    tl.tx(),
-                    tl.ty(),
-                    self.cursor.next,
-                    tl.quad_count()
-                )
-            })
-            .unwrap_or_else(|| "no tile".into());
-        let blocked = (0..self.n_slots)
-            .filter(|&s| self.free_slots & (1u128 << s) == 0 && self.slots[s].blocked)
-            .count();
-        format!(
-            "core {}: {tile}; {} warps active ({} blocked, {} ready), queue {} priority + {} regular, LDST {} entries, free_mshrs {}, nonblocked_priority {}",
-            self.id,
-            self.active,
-            blocked,
-            (self.ready | self.ready_tex).count_ones(),
-            self.sched.queue().occupancy(QueueClass::Priority),
-            self.sched.queue().occupancy(QueueClass::Regular),
-            self.ldst_len,
-            self.sched.free_mshrs().free(),
-            self.sched.nonblocked().count(),
-        )
-    }
-
     /// Start recording every warp (see [`WarpRecord`]).
     pub fn record_warps(&mut self) {
         self.records = Some(Vec::new());
@@ -1001,37 +717,6 @@ impl ShaderCore {
     /// Warps in flight (launched, not finished).
     pub fn active(&self) -> u32 {
         self.active
-    }
-}
-
-impl Traceable for ShaderCore {
-    fn trace<T: Tracer + ?Sized>(&self, t: &mut T) {
-        t.push_scope("scheduler");
-        self.sched.trace(t);
-        t.pop_scope();
-        let sw = (usize::BITS - self.n_slots.leading_zeros()).max(1);
-        t.signal("warps_active", sw, self.active as u64);
-        t.signal(
-            "warps_ready",
-            sw,
-            (self.ready | self.ready_tex).count_ones() as u64,
-        );
-        t.signal("issued", 5, self.signals.issued.min(31) as u64);
-        t.bit("tex_issued", self.signals.tex_issued);
-        let lw = (usize::BITS - self.ldst_cap.leading_zeros()).max(1);
-        t.signal("ldst_occupancy", lw, self.ldst_len as u64);
-        t.signal(
-            "ldst_presented",
-            4,
-            self.signals.ldst_presented.min(15) as u64,
-        );
-        t.bit("ldst_refused", self.signals.ldst_refused);
-        t.signal("warps_finished", sw, self.signals.finished as u64);
-        t.signal(
-            "tile",
-            32,
-            self.tile.map(|t| t as u64 + 1).unwrap_or(0) & 0xffff_ffff,
-        );
     }
 }
 

@@ -18,7 +18,10 @@
 
 mod core;
 mod core_map;
+mod core_model;
 mod issue;
+#[cfg(test)]
+mod lockstep;
 mod mask;
 mod raster;
 mod tiles;
@@ -26,6 +29,7 @@ mod wheel;
 
 pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
 pub use self::core_map::{CoreMap, CoreMapTable};
+pub use self::core_model::CoreModel;
 pub use self::raster::{RasterStats, SharedRaster};
 pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
@@ -172,11 +176,12 @@ enum Dispatcher {
     Shared(SharedRaster),
 }
 
-/// The assembled GPU.
-pub struct Gpu<'t> {
+/// The assembled GPU, its shader cores of type `C` (the fast
+/// [`ShaderCore`] unless a test asks for its plain twin).
+pub struct Gpu<'t, C = ShaderCore> {
     cfg: MachineConfig,
     trace: &'t Trace,
-    cores: Vec<ShaderCore>,
+    cores: Vec<C>,
     mem: MemorySystem,
     dispatch: Dispatcher,
     /// One per renderer: the GPU (shared-tile) or each core (per-core).
@@ -190,6 +195,14 @@ pub struct Gpu<'t> {
 impl<'t> Gpu<'t> {
     /// Build the GPU for `cfg` (already validated) and `trace`.
     pub fn new(cfg: &MachineConfig, trace: &'t Trace) -> Result<Self, SimError> {
+        Self::build(cfg, trace)
+    }
+}
+
+impl<'t, C: CoreModel> Gpu<'t, C> {
+    /// Build the GPU for `cfg` (already validated) and `trace`, with
+    /// shader cores of type `C`.
+    pub fn build(cfg: &MachineConfig, trace: &'t Trace) -> Result<Self, SimError> {
         if trace.header().tile != cfg.gpu.tile_size {
             return Err(SimError::Config(format!(
                 "the trace has {}-pixel tiles but gpu.tile_size is {}",
@@ -222,7 +235,7 @@ impl<'t> Gpu<'t> {
         let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);
         let wiring = policy.build(sc.mshrs.min(31)).map_err(SimError::Config)?;
         for id in 0..cfg.gpu.cores as usize {
-            let core = ShaderCore::new(id, params, wiring.as_ref(), rule, subset.build(side));
+            let core = C::build(id, params, wiring.as_ref(), rule, subset.build(side));
             cores.push(core);
         }
         let mem =
@@ -277,7 +290,7 @@ impl<'t> Gpu<'t> {
     }
 
     /// The shader cores.
-    pub fn cores(&self) -> &[ShaderCore] {
+    pub fn cores(&self) -> &[C] {
         &self.cores
     }
 

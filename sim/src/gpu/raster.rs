@@ -31,8 +31,8 @@
 //! tile's first quads are rasterized in the cycle after the barrier and can
 //! launch in that cycle, so only the queues' head start is lost.)
 
-use super::core::ShaderCore;
 use super::core_map::CoreMapTable;
+use super::core_model::CoreModel;
 use crate::config::ColorFlush;
 use crate::mem::MemorySystem;
 use crate::trace::{Tile, Trace};
@@ -146,11 +146,11 @@ impl SharedRaster {
 
     /// Phase 1 of cycle `now`: flush a line, open a tile if none is open,
     /// rasterize. Returns the tile opened in this cycle, if any.
-    pub fn evaluate(
+    pub fn evaluate<C: CoreModel>(
         &mut self,
         now: u64,
         trace: &Trace,
-        cores: &mut [ShaderCore],
+        cores: &mut [C],
         mem: &mut MemorySystem,
     ) -> Option<usize> {
         self.signals = RasterSignals::default();
@@ -185,7 +185,7 @@ impl SharedRaster {
         opened
     }
 
-    fn rasterize(&mut self, tile: &Tile, cores: &mut [ShaderCore], now: u64) {
+    fn rasterize<C: CoreModel>(&mut self, tile: &Tile, cores: &mut [C], now: u64) {
         let mut budget = self.rate;
         if self.cursor.done() {
             self.stats.barrier_cycles += 1;
@@ -224,10 +224,10 @@ impl SharedRaster {
     /// After the cores' end of cycle `now`: close the open tile if every
     /// quad is rasterized and every core has drained it (the barrier), and
     /// queue its colour-buffer flush. Returns the closed tile.
-    pub fn end_cycle(
+    pub fn end_cycle<C: CoreModel>(
         &mut self,
         trace: &Trace,
-        cores: &mut [ShaderCore],
+        cores: &mut [C],
         now: u64,
     ) -> Option<usize> {
         let t = self.tile?;
@@ -320,6 +320,44 @@ impl RasterCursor {
         } else {
             tile.rejected_after_last()
         };
+    }
+
+    /// One cycle of a core's own rasterizer (per-core-tile dispatch): up
+    /// to `slots` raster slots, each disposing of `rejected_per_slot`
+    /// Early-Z-rejected quads (no warp) or delivering one surviving quad
+    /// (index, in-tile x, y) through `push`, which returns `false` when the
+    /// input queue refuses it (the rasterizer then waits). Returns the
+    /// quads rasterized and, of them, the rejected ones.
+    #[inline]
+    pub(crate) fn own_cycle(
+        &mut self,
+        tile: &Tile,
+        slots: u32,
+        rejected_per_slot: u32,
+        mut push: impl FnMut(u32, u32, u32) -> bool,
+    ) -> (u64, u64) {
+        let (mut rasterized, mut rejected) = (0u64, 0u64);
+        let mut budget = slots;
+        while budget > 0 {
+            let k = self.reject(budget.saturating_mul(rejected_per_slot));
+            if k > 0 {
+                budget -= k.div_ceil(rejected_per_slot);
+                rasterized += u64::from(k);
+                rejected += u64::from(k);
+                continue;
+            }
+            let Some(i) = self.peek() else {
+                break;
+            };
+            let q = tile.quad(i as usize).expect("quad in tile");
+            if !push(i, q.x(), q.y()) {
+                break;
+            }
+            self.advance(tile);
+            budget -= 1;
+            rasterized += 1;
+        }
+        (rasterized, rejected)
     }
 
     /// Every quad of the tile rasterized.

@@ -1,9 +1,14 @@
 //! The core's observation port: a read-only snapshot of the state a
 //! property checker compares against its own model (the scheduler's two
 //! registers, the warp slots, the tile), like a scan chain read between
-//! clock edges. Nothing here is on the simulation's hot path.
+//! clock edges; the description the watchdog prints; the signals of the
+//! waveform. Nothing here is on the simulation's hot path.
 
-use super::ShaderCore;
+use super::{CoreSignals, ShaderCore};
+use crate::trace::Trace;
+use wasp_rtl::queue::QueueClass;
+use wasp_rtl::scheduler::LaunchScheduler;
+use wasp_waves::{Traceable, Tracer};
 
 /// One occupied warp slot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -18,6 +23,16 @@ pub struct WarpView {
     pub blocked: bool,
     /// Cycle of its launch.
     pub launched: u64,
+    /// Ready to issue an ALU instruction.
+    pub ready_alu: bool,
+    /// Ready to hand a texture instruction to the LDST unit.
+    pub ready_tex: bool,
+    /// ALU instructions left in its current ALU run.
+    pub alu_left: u32,
+    /// Its next instruction entry, as an index in the tile's pool.
+    pub next_op: u32,
+    /// Blocks of its current texture instruction not yet returned.
+    pub pending: u32,
 }
 
 /// The observable state of one core after a cycle.
@@ -48,7 +63,6 @@ pub struct CoreSnapshot {
 impl ShaderCore {
     /// Read the core's observable state (see [`CoreSnapshot`]).
     pub fn snapshot(&self) -> CoreSnapshot {
-        use wasp_rtl::queue::QueueClass;
         let warps = (0..self.n_slots)
             .filter(|&s| self.free_slots & (1 << s) == 0)
             .map(|s| {
@@ -59,6 +73,11 @@ impl ShaderCore {
                     priority: w.priority,
                     blocked: w.blocked,
                     launched: w.launched_at,
+                    ready_alu: self.ready >> s & 1 == 1,
+                    ready_tex: self.ready_tex >> s & 1 == 1,
+                    alu_left: self.alu_left[s],
+                    next_op: w.op,
+                    pending: w.pending,
                 }
             })
             .collect();
@@ -78,5 +97,124 @@ impl ShaderCore {
             warps,
             ldst: self.ldst_len,
         }
+    }
+
+    /// The view the waveform and the watchdog read.
+    fn view(&self) -> CoreView<'_> {
+        let blocked = (0..self.n_slots)
+            .filter(|&s| self.free_slots & (1u128 << s) == 0 && self.slots[s].blocked)
+            .count();
+        CoreView {
+            id: self.id,
+            sched: &self.sched,
+            slots: self.n_slots,
+            active: self.active,
+            ready: (self.ready | self.ready_tex).count_ones(),
+            blocked,
+            ldst_cap: self.ldst_cap,
+            ldst_len: self.ldst_len,
+            signals: &self.signals,
+            tile: self.tile,
+            external_raster: self.external_raster,
+            rasterized: self.cursor.next,
+        }
+    }
+
+    /// A description of the core's state (for the watchdog).
+    pub fn describe(&self, trace: &Trace) -> String {
+        self.view().describe(trace)
+    }
+}
+
+impl Traceable for ShaderCore {
+    fn trace<T: Tracer + ?Sized>(&self, t: &mut T) {
+        self.view().trace(t);
+    }
+}
+
+/// What the waveform and the watchdog show of a core, whichever core
+/// model keeps it.
+pub(super) struct CoreView<'a> {
+    pub(super) id: usize,
+    pub(super) sched: &'a LaunchScheduler<u32>,
+    pub(super) slots: usize,
+    pub(super) active: u32,
+    /// Warps ready to issue (ALU or texture).
+    pub(super) ready: u32,
+    /// Warps blocked on a long-latency miss.
+    pub(super) blocked: usize,
+    pub(super) ldst_cap: usize,
+    pub(super) ldst_len: usize,
+    pub(super) signals: &'a CoreSignals,
+    pub(super) tile: Option<usize>,
+    pub(super) external_raster: bool,
+    /// Surviving quads of the tile its own rasterizer delivered.
+    pub(super) rasterized: u32,
+}
+
+impl CoreView<'_> {
+    /// The core's state in words.
+    pub(super) fn describe(&self, trace: &Trace) -> String {
+        let tile = self
+            .tile
+            .map(|t| {
+                let tl = &trace.tiles()[t];
+                if self.external_raster {
+                    return format!(
+                        "tile {} at ({}, {}), shared by every core",
+                        t,
+                        tl.tx(),
+                        tl.ty()
+                    );
+                }
+                format!(
+                    "tile {} at ({}, {}), {} of {} quads rasterized",
+                    t,
+                    tl.tx(),
+                    tl.ty(),
+                    self.rasterized,
+                    tl.quad_count()
+                )
+            })
+            .unwrap_or_else(|| "no tile".into());
+        format!(
+            "core {}: {tile}; {} warps active ({} blocked, {} ready), queue {} priority + {} regular, LDST {} entries, free_mshrs {}, nonblocked_priority {}",
+            self.id,
+            self.active,
+            self.blocked,
+            self.ready,
+            self.sched.queue().occupancy(QueueClass::Priority),
+            self.sched.queue().occupancy(QueueClass::Regular),
+            self.ldst_len,
+            self.sched.free_mshrs().free(),
+            self.sched.nonblocked().count(),
+        )
+    }
+}
+
+impl Traceable for CoreView<'_> {
+    fn trace<T: Tracer + ?Sized>(&self, t: &mut T) {
+        t.push_scope("scheduler");
+        self.sched.trace(t);
+        t.pop_scope();
+        let sw = (usize::BITS - self.slots.leading_zeros()).max(1);
+        t.signal("warps_active", sw, self.active as u64);
+        t.signal("warps_ready", sw, self.ready as u64);
+        t.signal("issued", 5, self.signals.issued.min(31) as u64);
+        t.bit("tex_issued", self.signals.tex_issued);
+        let lw = (usize::BITS - self.ldst_cap.leading_zeros()).max(1);
+        t.signal("ldst_occupancy", lw, self.ldst_len as u64);
+        t.signal(
+            "ldst_presented",
+            4,
+            self.signals.ldst_presented.min(15) as u64,
+        );
+        t.bit("ldst_refused", self.signals.ldst_refused);
+        t.signal("warps_finished", sw, self.signals.finished as u64);
+        t.signal(
+            "tile",
+            32,
+            self.tile.map(|t| t as u64 + 1).unwrap_or(0) & 0xffff_ffff,
+        );
     }
 }

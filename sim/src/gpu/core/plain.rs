@@ -1,0 +1,621 @@
+//! The plain twin of the shader core: the machine of [`ShaderCore`]
+//! (wake-ups, launch, issue, the LDST unit, completions through the filter
+//! unit, blocking and the scheduler's edge) written to be read rather than
+//! to be fast.
+//!
+//! Where the fast core keeps slot masks, a timing wheel, per-slot arrays
+//! apart from the warps and one LDST entry out of its queue, the twin keeps
+//! one `Option<PlainWarp>` a slot, each warp in one [`State`], and visits
+//! every slot every cycle:
+//! - a warp asleep until cycle `t` wakes at `t`: in the middle of an ALU run
+//!   it is ready again; otherwise it starts its next instruction entry
+//!   (an ALU run, or a texture instruction that waits for the LDST unit)
+//!   or, past its last, finishes;
+//! - issue visits the slots from the round-robin pointer, wrapping, and
+//!   takes ready warps until the pipeline width is used; at most one
+//!   texture instruction a cycle, and only while the LDST queue has room;
+//! - the LDST unit presents the oldest instruction's blocks in order until
+//!   the cache refuses one.
+//!
+//! The lockstep tests (`gpu/lockstep.rs`) run a GPU of these beside a GPU
+//! of fast cores and compare every core's observable state every cycle.
+//! Only the input queue and registers ([`LaunchScheduler`]) and a core's
+//! own rasterizer ([`RasterCursor::own_cycle`]) are shared with the fast
+//! core: they have their own references and tests.
+//!
+//! [`ShaderCore`]: super::ShaderCore
+
+use super::observe::CoreView;
+use super::{CoreParams, CoreSignals, CoreSnapshot, CoreStats, WarpRecord, WarpView};
+use crate::config::FilterTiming;
+use crate::gpu::core_model::CoreModel;
+use crate::gpu::raster::RasterCursor;
+use crate::gpu::SimError;
+use crate::mem::{Access, BlockedOn, MemorySystem};
+use crate::trace::{OpKind, Tile, Trace};
+use std::collections::VecDeque;
+use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
+use wasp_rtl::nonblocked::PriorityEvents;
+use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
+use wasp_rtl::queue::QueueClass;
+use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
+use wasp_rtl::subset::PrioritySubset;
+use wasp_waves::{Traceable, Tracer};
+
+/// Where a warp is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum State {
+    /// Waiting until the cycle given: its launch, an ALU result, or its
+    /// texture data through the filter unit and the texture latency.
+    Asleep(u64),
+    /// Ready to issue the next ALU instruction of its run.
+    ReadyAlu,
+    /// Ready to hand its texture instruction to the LDST unit.
+    ReadyTex,
+    /// Its texture instruction is in the LDST unit or waits for blocks.
+    Texture,
+}
+
+/// A warp in a slot.
+#[derive(Clone, Copy, Debug)]
+struct PlainWarp {
+    quad: u32,
+    priority: bool,
+    state: State,
+    /// Its next instruction entry in the tile's pool, and one past its last.
+    next_op: u32,
+    end_op: u32,
+    /// ALU instructions left in its current run.
+    alu_left: u32,
+    /// The current texture instruction: its blocks, whether trilinear, the
+    /// index of its first block in the tile's block accesses, the blocks
+    /// not yet returned, and the cycle it entered the LDST unit.
+    tex_len: u32,
+    tex_tri: bool,
+    blk: u32,
+    pending: u32,
+    tex_start: u64,
+    /// Waiting on a long-latency miss since `blocked_at`.
+    blocked: bool,
+    blocked_at: u64,
+    /// Sum of its texture instructions' latencies, and their number.
+    lat_sum: u64,
+    tex_done: u32,
+    launched_at: u64,
+}
+
+/// A texture instruction in the LDST unit: the warp in `slot` presents
+/// blocks `next..end` of the tile's block accesses.
+#[derive(Clone, Copy, Debug)]
+struct LdstInstr {
+    slot: usize,
+    next: u32,
+    end: u32,
+}
+
+/// The plain shader core.
+#[derive(Debug)]
+pub(crate) struct PlainCore {
+    id: usize,
+    p: CoreParams,
+    sched: LaunchScheduler<u32>,
+    track_mshrs: bool,
+    measures_cf: bool,
+    warps: Vec<Option<PlainWarp>>,
+    ldst: VecDeque<LdstInstr>,
+    /// First cycle the filter unit is free.
+    filter_free: u64,
+    tile: Option<usize>,
+    cursor: RasterCursor,
+    tile_misses: u64,
+    /// The slot issue visits first.
+    rr: usize,
+    /// The cycle's priority-warp events, for the scheduler's edge.
+    prio: PriorityEvents,
+    signals: CoreSignals,
+    last_progress: u64,
+    stats: CoreStats,
+    records: Option<Vec<WarpRecord>>,
+}
+
+impl PlainCore {
+    fn active_count(&self) -> u32 {
+        self.warps.iter().flatten().count() as u32
+    }
+
+    fn warp(&mut self, slot: usize) -> &mut PlainWarp {
+        self.warps[slot].as_mut().expect("a warp in the slot")
+    }
+
+    /// Block the warp in `slot` at `now`, unless it is blocked already.
+    fn block(&mut self, slot: usize, now: u64) {
+        let w = self.warps[slot].as_mut().expect("a warp in the slot");
+        if w.blocked {
+            return;
+        }
+        w.blocked = true;
+        w.blocked_at = now;
+        self.stats.blocked_episodes[usize::from(w.priority)] += 1;
+        if w.priority {
+            self.prio.blocked += 1;
+        }
+    }
+
+    fn wake(&mut self, now: u64, tile: &Tile) {
+        for s in 0..self.warps.len() {
+            let Some(w) = self.warps[s].as_mut() else {
+                continue;
+            };
+            if w.state != State::Asleep(now) {
+                continue;
+            }
+            if w.alu_left > 0 {
+                w.state = State::ReadyAlu;
+            } else if w.next_op >= w.end_op {
+                self.finish(s, now);
+            } else {
+                match tile.op_kind(w.next_op as usize).expect("op in program") {
+                    OpKind::Alu(n) => {
+                        w.alu_left = n;
+                        w.state = State::ReadyAlu;
+                    }
+                    OpKind::Tex { len, tri } => {
+                        w.tex_len = len;
+                        w.tex_tri = tri;
+                        w.state = State::ReadyTex;
+                    }
+                }
+                w.next_op += 1;
+            }
+        }
+    }
+
+    fn finish(&mut self, slot: usize, now: u64) {
+        let w = self.warps[slot].take().expect("a warp in the slot");
+        self.stats.warps_finished += 1;
+        self.signals.finished += 1;
+        self.last_progress = now;
+        if w.priority && !w.blocked {
+            self.prio.finished += 1;
+        }
+        if let (Some(r), Some(tile)) = (self.records.as_mut(), self.tile) {
+            r.push(WarpRecord {
+                tile: tile as u32,
+                quad: w.quad,
+                core: self.id as u32,
+                priority: w.priority,
+                mem_latency: (w.tex_done > 0).then(|| w.lat_sum as f64 / w.tex_done as f64),
+                launched: w.launched_at,
+                finished: now,
+            });
+        }
+        if w.tex_done > 0 {
+            let c = usize::from(w.priority);
+            self.stats.warp_latency_sum[c] += w.lat_sum as f64 / w.tex_done as f64;
+            self.stats.warps_with_tex[c] += 1;
+        }
+    }
+
+    fn launch(&mut self, now: u64, tile: &Tile) {
+        let Some(slot) = self.warps.iter().position(Option::is_none) else {
+            return;
+        };
+        let queue = self.sched.queue();
+        if queue.is_empty() {
+            return;
+        }
+        let both = queue.has(QueueClass::Priority) && queue.has(QueueClass::Regular);
+        let launch = self.sched.launch(true);
+        let Some((quad, class)) = launch.warp else {
+            self.stats.held_cycles += u64::from(launch.decision.held);
+            return;
+        };
+        if both {
+            self.stats.both_waiting += 1;
+            self.stats.regular_first += u64::from(class == QueueClass::Regular);
+        }
+        let priority = class == QueueClass::Priority;
+        let span = tile.quad_span(quad as usize).expect("quad in tile");
+        self.warps[slot] = Some(PlainWarp {
+            quad,
+            priority,
+            // It can issue from the next cycle.
+            state: State::Asleep(now + 1),
+            next_op: span.op_start,
+            end_op: span.op_start + span.op_len,
+            alu_left: 0,
+            tex_len: 0,
+            tex_tri: false,
+            blk: span.block_start,
+            pending: 0,
+            tex_start: 0,
+            blocked: false,
+            blocked_at: 0,
+            lat_sum: 0,
+            tex_done: 0,
+            launched_at: now,
+        });
+        self.stats.warps_launched += 1;
+        self.stats.priority_launches += u64::from(priority);
+        self.signals.launched = Some((quad, priority));
+        self.last_progress = now;
+    }
+
+    fn issue(&mut self, now: u64) {
+        let n = self.warps.len();
+        let mut tex_room = self.ldst.len() < self.p.ldst_queue as usize;
+        let mut issued = 0;
+        let mut last = None;
+        for k in 0..n {
+            if issued == self.p.width {
+                break;
+            }
+            let s = (self.rr + k) % n;
+            let Some(w) = self.warps[s].as_mut() else {
+                continue;
+            };
+            match w.state {
+                State::ReadyAlu => {
+                    w.alu_left -= 1;
+                    w.state = State::Asleep(now + u64::from(self.p.alu_latency));
+                }
+                State::ReadyTex if tex_room => {
+                    tex_room = false;
+                    w.pending = w.tex_len;
+                    w.tex_start = now;
+                    w.state = State::Texture;
+                    self.ldst.push_back(LdstInstr {
+                        slot: s,
+                        next: w.blk,
+                        end: w.blk + w.tex_len,
+                    });
+                    w.blk += w.tex_len;
+                    self.stats.tex_instructions += 1;
+                    self.stats.tri_tex_instructions += u64::from(w.tex_tri);
+                    self.signals.tex_issued = true;
+                }
+                _ => continue,
+            }
+            issued += 1;
+            last = Some(s);
+        }
+        self.signals.issued = issued;
+        if let Some(s) = last {
+            self.rr = (s + 1) % n;
+            self.stats.instructions += u64::from(issued);
+            self.last_progress = now;
+        }
+    }
+
+    fn present(&mut self, now: u64, tile: &Tile, mem: &mut MemorySystem) {
+        let blocks = tile.block_accesses();
+        // Under first-level the LDST unit blocks warps at their misses.
+        let at_access = self.p.blocked_on == BlockedOn::FirstLevel;
+        while let Some(mut e) = self.ldst.front().copied() {
+            while e.next < e.end {
+                let r = mem.access(now, self.id, blocks[e.next as usize], e.slot as u32);
+                if !r.accepted() {
+                    self.ldst[0] = e;
+                    self.signals.ldst_refused = true;
+                    return;
+                }
+                e.next += 1;
+                self.signals.ldst_presented += 1;
+                self.last_progress = now;
+                if self.measures_cf && r == Access::Miss && self.warp(e.slot).priority {
+                    self.prio.misses = self.prio.misses.saturating_add(1);
+                }
+                if at_access && matches!(r, Access::Miss | Access::SecondaryMiss) {
+                    self.block(e.slot, now);
+                }
+            }
+            self.ldst.pop_front();
+        }
+    }
+
+    /// The warp in slot `tag` waits for a block, or the model is wrong.
+    fn waiting_warp(&self, tag: u32, what: &str, now: u64) -> Result<usize, SimError> {
+        let s = tag as usize;
+        match self.warps.get(s).copied().flatten() {
+            Some(w) if w.pending > 0 => Ok(s),
+            _ => Err(SimError::Internal(format!(
+                "core {}: {what} for slot {s}, which waits for no block, at cycle {now}",
+                self.id
+            ))),
+        }
+    }
+
+    /// The data of the warp in `slot` arrived at `now`: through the filter
+    /// unit, in order of arrival, then the texture latency.
+    fn data_arrived(&mut self, slot: usize, now: u64) {
+        let (overlap, latency) = (
+            self.p.filter_timing == FilterTiming::Overlap,
+            u64::from(self.p.texture_latency.max(1)),
+        );
+        let f = u64::from(if self.warp(slot).tex_tri {
+            self.p.filter_cycles_trilinear
+        } else {
+            self.p.filter_cycles_bilinear
+        });
+        let start = now.max(self.filter_free);
+        self.filter_free = start + f;
+        self.stats.filter_busy_cycles += f;
+        self.stats.filter_wait_cycles += start - now;
+        let w = self.warp(slot);
+        w.lat_sum += now - w.tex_start;
+        w.tex_done += 1;
+        let unblocked = w.blocked.then_some((w.priority, w.blocked_at));
+        w.blocked = false;
+        w.state = State::Asleep(if overlap {
+            (start + f).max(now + latency)
+        } else {
+            start + f + latency
+        });
+        if let Some((priority, at)) = unblocked {
+            self.stats.blocked_cycles[usize::from(priority)] += now - at;
+            if priority {
+                self.prio.unblocked += 1;
+            }
+        }
+    }
+
+    fn view(&self) -> CoreView<'_> {
+        let warps = self.warps.iter().flatten();
+        CoreView {
+            id: self.id,
+            sched: &self.sched,
+            slots: self.warps.len(),
+            active: self.active_count(),
+            ready: warps
+                .clone()
+                .filter(|w| matches!(w.state, State::ReadyAlu | State::ReadyTex))
+                .count() as u32,
+            blocked: warps.filter(|w| w.blocked).count(),
+            ldst_cap: self.p.ldst_queue as usize,
+            ldst_len: self.ldst.len(),
+            signals: &self.signals,
+            tile: self.tile,
+            external_raster: self.p.external_raster,
+            rasterized: self.cursor.next,
+        }
+    }
+}
+
+impl CoreModel for PlainCore {
+    fn build(
+        id: usize,
+        p: CoreParams,
+        policy: &dyn LaunchPolicy,
+        rule: LaunchRule,
+        subset: Box<dyn PrioritySubset>,
+    ) -> Self {
+        let largest = (1 << FREE_MSHR_BITS) - 1;
+        let free = FreeMshrReg::with_capacity(p.sched_mshrs.min(largest)).expect("clamped");
+        let slots = p.max_warps.min(128) as usize;
+        Self {
+            id,
+            p,
+            sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy, rule),
+            track_mshrs: policy.reads_free_mshrs(),
+            measures_cf: policy.measures_cf(),
+            warps: vec![None; slots],
+            ldst: VecDeque::new(),
+            filter_free: 0,
+            tile: None,
+            cursor: RasterCursor::default(),
+            tile_misses: 0,
+            rr: 0,
+            prio: PriorityEvents::default(),
+            signals: CoreSignals::default(),
+            last_progress: 0,
+            stats: CoreStats {
+                occupancy_hist: vec![0; slots + 1],
+                ..CoreStats::default()
+            },
+            records: None,
+        }
+    }
+
+    fn tile(&self) -> Option<usize> {
+        self.tile
+    }
+
+    fn idle(&self) -> bool {
+        self.tile.is_none()
+    }
+
+    fn assign_tile(&mut self, index: usize, tile: &Tile, now: u64) {
+        self.tile = Some(index);
+        self.cursor = RasterCursor::start(tile);
+        self.tile_misses = 0;
+        self.last_progress = now;
+    }
+
+    fn begin_shared_tile(&mut self, tile: usize, now: u64) {
+        self.tile = Some(tile);
+        self.cursor = RasterCursor::default();
+        self.tile_misses = 0;
+        self.last_progress = now;
+    }
+
+    fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool {
+        self.sched.enqueue(quad, x, y).is_ok()
+    }
+
+    fn drained(&self) -> bool {
+        self.active_count() == 0 && self.ldst.is_empty() && self.sched.queue().is_empty()
+    }
+
+    fn end_shared_tile(&mut self) {
+        self.tile = None;
+    }
+
+    fn tile_misses(&self) -> u64 {
+        self.tile_misses
+    }
+
+    fn launched_now(&self) -> Option<(u32, bool)> {
+        self.signals.launched
+    }
+
+    fn stats(&self) -> &CoreStats {
+        &self.stats
+    }
+
+    fn last_progress(&self) -> u64 {
+        self.last_progress
+    }
+
+    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) {
+        self.signals = CoreSignals::default();
+        self.prio = PriorityEvents::default();
+        let Some(t) = self.tile else {
+            self.stats.idle_cycles += 1;
+            self.stats.occupancy_hist[0] += 1;
+            return;
+        };
+        let tile = &trace.tiles()[t];
+        self.wake(now, tile);
+        if !self.p.external_raster {
+            let sched = &mut self.sched;
+            let (rasterized, rejected) = self.cursor.own_cycle(
+                tile,
+                self.p.raster_rate,
+                self.p.rejected_per_slot.max(1),
+                |i, x, y| sched.enqueue(i, x, y).is_ok(),
+            );
+            self.stats.quads_rasterized += rasterized;
+            self.stats.quads_rejected += rejected;
+        }
+        self.launch(now, tile);
+        self.issue(now);
+        self.present(now, tile, mem);
+        let active = self.active_count();
+        self.stats.occupancy_sum += u64::from(active);
+        self.stats.occupancy_hist[active as usize] += 1;
+    }
+
+    fn complete(
+        &mut self,
+        now: u64,
+        mem: &mut MemorySystem,
+        scratch: &mut Vec<u32>,
+    ) -> Result<(), SimError> {
+        if self.p.blocked_on != BlockedOn::FirstLevel {
+            let mut long = Vec::new();
+            mem.take_long_latency(self.id, &mut long);
+            for tag in long {
+                let s = self.waiting_warp(tag, "long-latency report", now)?;
+                self.block(s, now);
+            }
+        }
+        scratch.clear();
+        mem.take_completions(self.id, scratch);
+        for &tag in scratch.iter() {
+            let s = self.waiting_warp(tag, "completion", now)?;
+            let w = self.warp(s);
+            w.pending -= 1;
+            if w.pending == 0 {
+                self.data_arrived(s, now);
+            }
+        }
+        if !scratch.is_empty() {
+            self.last_progress = now;
+        }
+        let ev = mem.mshr_events(self.id);
+        self.tile_misses += u64::from(ev.allocated);
+        let mshr = if self.track_mshrs {
+            MshrEvents {
+                allocs: ev.allocated as u8,
+                replies: ev.replied as u8,
+            }
+        } else {
+            MshrEvents::default()
+        };
+        let prio = self.prio;
+        self.sched
+            .clock(EdgeEvents { mshr, prio })
+            .map_err(|fault| SimError::Register {
+                core: self.id,
+                cycle: now,
+                fault,
+            })?;
+        if let Some(m) = self.sched.cf_meter() {
+            self.stats.cf_quarters_sum += u64::from(m.cf().quarters());
+            self.stats.cf_samples += 1;
+        }
+        Ok(())
+    }
+
+    fn end_cycle(&mut self) -> bool {
+        if self.tile.is_none() || self.p.external_raster {
+            return false;
+        }
+        let done = self.cursor.done() && self.sched.queue().is_empty() && self.drained();
+        if done {
+            self.tile = None;
+            self.stats.tiles += 1;
+        }
+        done
+    }
+
+    fn describe(&self, trace: &Trace) -> String {
+        self.view().describe(trace)
+    }
+
+    fn record_warps(&mut self) {
+        self.records = Some(Vec::new());
+    }
+
+    fn take_records(&mut self) -> Vec<WarpRecord> {
+        self.records.take().unwrap_or_default()
+    }
+
+    fn active(&self) -> u32 {
+        self.active_count()
+    }
+
+    fn snapshot(&self) -> CoreSnapshot {
+        let q = self.sched.queue();
+        CoreSnapshot {
+            tile: self.tile,
+            rasterized: self.cursor.next,
+            queued: [
+                q.occupancy(QueueClass::Priority),
+                q.occupancy(QueueClass::Regular),
+            ],
+            free_mshrs: self.sched.free_mshrs().free().get(),
+            tracks_free_mshrs: self.track_mshrs,
+            nonblocked: self.sched.nonblocked().count().get(),
+            active: self.active_count(),
+            slots: self.warps.len(),
+            warps: self
+                .warps
+                .iter()
+                .enumerate()
+                .filter_map(|(slot, w)| {
+                    let w = w.as_ref()?;
+                    Some(WarpView {
+                        slot,
+                        quad: w.quad,
+                        priority: w.priority,
+                        blocked: w.blocked,
+                        launched: w.launched_at,
+                        ready_alu: w.state == State::ReadyAlu,
+                        ready_tex: w.state == State::ReadyTex,
+                        alu_left: w.alu_left,
+                        next_op: w.next_op,
+                        pending: w.pending,
+                    })
+                })
+                .collect(),
+            ldst: self.ldst.len(),
+        }
+    }
+}
+
+impl Traceable for PlainCore {
+    fn trace<T: Tracer + ?Sized>(&self, t: &mut T) {
+        self.view().trace(t);
+    }
+}
