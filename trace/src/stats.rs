@@ -272,6 +272,25 @@ impl TraceStats {
     }
 }
 
+impl Tile {
+    /// This tile's statistics.
+    pub fn stats(&self) -> TileStats {
+        TileStats::of(self)
+    }
+}
+
+impl Trace {
+    /// Per-tile statistics in traversal order.
+    pub fn tile_stats(&self) -> Vec<TileStats> {
+        self.tiles.iter().map(Tile::stats).collect()
+    }
+
+    /// Whole-trace statistics (see [`TraceStats`] for the definitions).
+    pub fn stats(&self) -> TraceStats {
+        self.stats.0.get_or_init(|| TraceStats::of(self)).clone()
+    }
+}
+
 /// Texture footprint ratio of the warps of `tile` whose in-tile quad
 /// position (x, y) satisfies `is_priority`: distinct blocks they touch /
 /// distinct blocks the whole tile touches. 1 for a tile without blocks.

@@ -1,4 +1,6 @@
 use super::*;
+use crate::instr::Op;
+use crate::memo::Memo;
 use proptest::prelude::*;
 
 const TINY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/traces/tiny.trace");
