@@ -443,3 +443,228 @@ fn first_duplicate(blocks: &[u64]) -> Option<u64> {
         v.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builder_merges_alu_runs_and_rejects_without_changing_state() {
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        assert_eq!(b.alu(1), Err(Problem::InstrWithoutQuad));
+        assert_eq!(b.begin_quad(0, 0), Err(Problem::QuadWithoutTile));
+        b.begin_tile(0, 0).unwrap();
+        assert_eq!(b.end_tile(), Err(Problem::EmptyTile { tx: 0, ty: 0 }));
+        b.begin_quad(0, 1).unwrap();
+        assert_eq!(b.begin_quad(0, 2), Err(Problem::EmptyQuad { x: 0, y: 1 }));
+        b.alu(3).unwrap();
+        b.alu(2).unwrap();
+        assert_eq!(b.tex(&[5, 5]), Err(Problem::DuplicateBlock(5)));
+        assert_eq!(b.tex(&[]), Err(Problem::TexNoBlock));
+        b.tex(&[5, 6]).unwrap();
+        b.alu(1).unwrap();
+        assert_eq!(
+            b.alu(MAX_ALU_RUN),
+            Err(Problem::AluRunTooLong(1 + u64::from(MAX_ALU_RUN)))
+        );
+        b.quad(1, 1, &[Instr::Tex(&[7]), Instr::Alu(4)]).unwrap();
+        assert_eq!(
+            b.finish().unwrap_err(),
+            Problem::TileNotClosed { tx: 0, ty: 0 }
+        );
+
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        b.quad(
+            0,
+            1,
+            &[
+                Instr::Alu(3),
+                Instr::Alu(2),
+                Instr::Tex(&[5, 6]),
+                Instr::Alu(1),
+            ],
+        )
+        .unwrap();
+        b.quad(1, 1, &[Instr::Tex(&[7]), Instr::Alu(4)]).unwrap();
+        b.end_tile().unwrap();
+        assert_eq!(
+            b.begin_tile(0, 0),
+            Err(Problem::DuplicateTile { tx: 0, ty: 0 })
+        );
+        let t = b.finish().unwrap();
+        let q = t.tiles()[0].quad(0).unwrap();
+        assert_eq!(
+            q.instrs().collect::<Vec<_>>(),
+            vec![Instr::Alu(5), Instr::Tex(&[5, 6]), Instr::Alu(1)]
+        );
+        assert_eq!(t.tiles()[0].quad(1).unwrap().block_accesses(), &[7]);
+        assert_eq!(t.instr_count(), 7 + 5);
+        assert_eq!(t.tex_count(), 2);
+    }
+
+    #[test]
+    fn builder_appends_tiles_built_elsewhere() {
+        let part = |tx: u32, quads: &[(u32, u32)]| {
+            let mut b = Trace::builder(TraceHeader::new("part", 128, 64, 64)).unwrap();
+            b.begin_tile(tx, 0).unwrap();
+            for &(x, y) in quads {
+                b.quad(x, y, &[Instr::Alu(x + 1)]).unwrap();
+            }
+            b.end_tile().unwrap();
+            b.finish().unwrap()
+        };
+        let mut b = Trace::builder(TraceHeader::new("w", 128, 64, 64)).unwrap();
+        b.append(part(1, &[(3, 0), (1, 0), (3, 0)])).unwrap();
+        b.append(part(0, &[(0, 0)])).unwrap();
+        assert_eq!(
+            b.append(part(1, &[(0, 0)])),
+            Err(Problem::DuplicateTile { tx: 1, ty: 0 })
+        );
+        let other = Trace::builder(TraceHeader::new("w", 64, 64, 64))
+            .unwrap()
+            .finish()
+            .unwrap();
+        assert!(matches!(
+            b.append(other),
+            Err(Problem::FrameMismatch { .. })
+        ));
+        b.begin_tile(0, 0).unwrap_err(); // already appended
+        let t = b.finish().unwrap();
+        assert_eq!(t.header().workload, "w");
+        let order: Vec<(u32, usize)> = t.tiles().iter().map(|t| (t.tx(), t.quad_count())).collect();
+        assert_eq!(order, vec![(1, 3), (0, 1)]);
+        // A version-1 builder checks the appended tiles' order.
+        let mut b = Trace::builder(TraceHeader::new("w", 128, 64, 64)).unwrap();
+        b.require_scanline_order();
+        assert_eq!(
+            b.append(part(1, &[(3, 0), (1, 0)])),
+            Err(Problem::QuadOutOfOrder {
+                x: 1,
+                y: 0,
+                prev_x: 3,
+                prev_y: 0
+            })
+        );
+        b.append(part(1, &[(1, 0), (3, 0)])).unwrap();
+    }
+
+    #[test]
+    fn builder_allows_repeats_unless_scanline_order_is_required() {
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        b.quad(0, 1, &[Instr::Alu(1)]).unwrap();
+        b.quad(0, 1, &[Instr::Alu(2)]).unwrap();
+        b.quad(0, 0, &[Instr::Alu(3)]).unwrap();
+        b.end_tile().unwrap();
+        let t = b.finish().unwrap();
+        let counts: Vec<u64> = t.tiles()[0].quads().map(|q| q.instr_count()).collect();
+        assert_eq!(counts, vec![1, 2, 3], "never merged, never reordered");
+
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        b.require_scanline_order();
+        b.begin_tile(0, 0).unwrap();
+        b.quad(0, 1, &[Instr::Alu(1)]).unwrap();
+        assert_eq!(
+            b.begin_quad(0, 1),
+            Err(Problem::DuplicateQuad { x: 0, y: 1 })
+        );
+        assert_eq!(
+            b.begin_quad(0, 0),
+            Err(Problem::QuadOutOfOrder {
+                x: 0,
+                y: 0,
+                prev_x: 0,
+                prev_y: 1
+            })
+        );
+        b.quad(1, 1, &[Instr::Alu(1)]).unwrap();
+        b.end_tile().unwrap();
+        assert_eq!(b.finish().unwrap().quad_count(), 2);
+    }
+
+    #[test]
+    fn the_builder_adds_up_rejections_and_keeps_them_canonical() {
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        assert_eq!(b.rejected(1), Err(Problem::RejectedWithoutTile));
+        b.begin_tile(0, 0).unwrap();
+        assert_eq!(b.rejected(0), Err(Problem::ZeroRejected));
+        b.rejected(2).unwrap();
+        b.rejected(3).unwrap();
+        b.quad(0, 0, &[Instr::Alu(1)]).unwrap();
+        b.quad(1, 0, &[Instr::Alu(1)]).unwrap();
+        b.rejected(MAX_REJECTED_RUN).unwrap();
+        assert!(matches!(b.rejected(1), Err(Problem::RejectedRunTooLong(_))));
+        b.end_tile().unwrap();
+        let t = b.finish().unwrap();
+        let tile = &t.tiles()[0];
+        assert_eq!(tile.rejected_before(0), 5);
+        assert_eq!(tile.rejected_before(1), 0);
+        assert_eq!(tile.rejected_after_last(), MAX_REJECTED_RUN);
+        assert!(t
+            .to_text()
+            .contains("tile 0 0\nz 5\nq 0 0 a1\nq 1 0 a1\nz 4194304\nend\n"));
+        // A tile with rejections after its quads only keeps no per-quad list:
+        // it equals the same tile read back.
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        b.quad(0, 0, &[Instr::Alu(1)]).unwrap();
+        b.rejected(4).unwrap();
+        b.end_tile().unwrap();
+        let t = b.finish().unwrap();
+        assert_eq!(Trace::parse(&t.to_text(), "rt").unwrap(), t);
+    }
+
+    #[test]
+    fn a_failed_rejection_changes_nothing() {
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        b.begin_quad(0, 0).unwrap();
+        // The open quad has no instruction yet.
+        assert_eq!(b.rejected(2), Err(Problem::EmptyQuad { x: 0, y: 0 }));
+        b.alu(1).unwrap();
+        b.rejected(MAX_REJECTED_RUN - 1).unwrap();
+        assert_eq!(
+            b.rejected(2),
+            Err(Problem::RejectedRunTooLong(u64::from(MAX_REJECTED_RUN) + 1))
+        );
+        b.rejected(1).unwrap();
+        b.end_tile().unwrap();
+        assert_eq!(b.rejected(1), Err(Problem::RejectedWithoutTile));
+        let t = b.finish().unwrap();
+        assert_eq!(t.tiles()[0].rejected_after_last(), MAX_REJECTED_RUN);
+        assert_eq!(t.tiles()[0].rejected_before(0), 0);
+        // A tile with no line at all is still refused.
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        assert_eq!(b.rejected(0), Err(Problem::ZeroRejected));
+        assert_eq!(b.end_tile(), Err(Problem::EmptyTile { tx: 0, ty: 0 }));
+    }
+
+    #[test]
+    fn the_builder_holds_a_quad_program_to_its_bound() {
+        let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        b.begin_quad(0, 0).unwrap();
+        let runs = MAX_QUAD_INSTRS / MAX_ALU_RUN - 1;
+        for _ in 0..runs {
+            b.alu(MAX_ALU_RUN).unwrap();
+            b.tex(&[1]).unwrap();
+        }
+        b.alu(MAX_QUAD_INSTRS - runs * (MAX_ALU_RUN + 1)).unwrap();
+        // The program is full: nothing more fits, and a refusal changes nothing.
+        assert_eq!(
+            b.alu(1),
+            Err(Problem::QuadTooLong(u64::from(MAX_QUAD_INSTRS) + 1))
+        );
+        assert_eq!(
+            b.tex(&[2]),
+            Err(Problem::QuadTooLong(u64::from(MAX_QUAD_INSTRS) + 1))
+        );
+        // The next quad starts from zero.
+        b.begin_quad(1, 0).unwrap();
+        b.alu(MAX_ALU_RUN).unwrap();
+        b.end_tile().unwrap();
+        b.finish().unwrap();
+    }
+}

@@ -98,3 +98,40 @@ pub(crate) fn check_text(s: &str, field: TextField) -> Result<(), Problem> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Trace;
+
+    #[test]
+    fn builder_rejects_bad_headers() {
+        let bad = |h: TraceHeader| Trace::builder(h).unwrap_err();
+        assert_eq!(bad(TraceHeader::new("", 1, 1, 2)), Problem::EmptyWorkload);
+        assert!(matches!(
+            bad(TraceHeader::new(" w", 1, 1, 2)),
+            Problem::BadText { .. }
+        ));
+        assert!(matches!(
+            bad(TraceHeader::new("a\nb", 1, 1, 2)),
+            Problem::BadText { .. }
+        ));
+        assert!(matches!(
+            bad(TraceHeader::new("w", 1, 0, 2)),
+            Problem::BadFrame { .. }
+        ));
+        assert_eq!(
+            bad(TraceHeader::new("w", 1, 1, 514)),
+            Problem::BadTileSize(514)
+        );
+        let mut h = TraceHeader::new("w", 1, 1, 2);
+        h.notes.push("x\ry".into());
+        assert!(matches!(
+            bad(h),
+            Problem::BadText {
+                field: TextField::Note,
+                ..
+            }
+        ));
+    }
+}

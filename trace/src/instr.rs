@@ -62,3 +62,13 @@ pub enum OpKind {
         tri: bool,
     },
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_instruction_entry_stays_twelve_bytes() {
+        assert_eq!(std::mem::size_of::<Op>(), 12);
+    }
+}

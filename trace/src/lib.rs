@@ -166,6 +166,8 @@ mod read;
 pub mod rng;
 mod stats;
 #[cfg(test)]
+mod testkit;
+#[cfg(test)]
 mod tests;
 mod tile;
 mod trace;

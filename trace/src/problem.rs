@@ -464,3 +464,41 @@ fn clip(s: &str) -> String {
         format!("{head}...")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::testkit::*;
+
+    #[test]
+    fn error_messages_read_well() {
+        let (_, _, msg) = fail(&body("tile 0 0\nq 40 3 a1\n"));
+        assert_eq!(
+            msg,
+            "x.trace:5: quad 40 3 outside the tile (expected x and y from 0 to 31)"
+        );
+        let (_, _, msg) = fail("wasp-trace 5\n");
+        assert_eq!(
+            msg,
+            "x.trace:1: unsupported format version `5` (expected 4, 3, 2 or 1)"
+        );
+        let (_, _, msg) = fail(&body1("tile 0 0\nq 1 0 a1\nq 1 0 a2\n"));
+        assert_eq!(
+            msg,
+            "x.trace:6: quad 1 0 appears twice in the tile (expected each quad at most once in \
+             format 1; formats 2 to 4 allow repeats)"
+        );
+        let (_, _, msg) = fail(&body1("tile 0 0\nq 1 1 a1\nq 2 0 a1\n"));
+        assert_eq!(
+            msg,
+            "x.trace:6: quad 2 0 after quad 1 1 (expected scanline order in format 1: y, then x \
+             increasing)"
+        );
+        let (_, _, msg) = fail(&body("tile 0 0\nq 0 0 t1,1\n"));
+        assert_eq!(
+            msg,
+            "x.trace:5: block 1 listed twice in one texture instruction (expected distinct blocks)"
+        );
+        let (_, _, msg) = fail(&body(&format!("tile 0 0\nq 0 0 a{}\n", "9".repeat(200))));
+        assert!(msg.len() < 200, "{msg}");
+    }
+}

@@ -88,3 +88,27 @@ const PIECES_MIN_BYTES: usize = 4 << 20;
 
 /// Most pieces a text is read in.
 const MAX_PIECES: usize = 8;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::*;
+
+    #[test]
+    fn read_reports_missing_file() {
+        let e = Trace::read("/nonexistent/dir/x.trace").unwrap_err();
+        assert!(matches!(e, TraceError::Io { .. }));
+        assert!(e
+            .to_string()
+            .starts_with("/nonexistent/dir/x.trace: cannot read: "));
+    }
+
+    #[test]
+    fn invalid_utf8_reports_its_line() {
+        let mut bytes = body("tile 0 0\n").into_bytes();
+        bytes.extend_from_slice(b"q 0 0 t\xff\n");
+        let e = Trace::parse_bytes(&bytes, "b.trace").unwrap_err();
+        assert_eq!(e.line(), Some(5));
+        assert_eq!(e.problem(), Some(&Problem::InvalidUtf8));
+    }
+}

@@ -365,3 +365,51 @@ impl<'a> Iterator for Instrs<'a> {
 }
 
 impl ExactSizeIterator for Instrs<'_> {}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Instr, Trace, TraceHeader};
+
+    #[test]
+    fn a_hand_built_tile_answers_where_its_rejected_quads_are() {
+        let build = |split: bool, tail: u32| {
+            let mut b = Trace::builder(TraceHeader::new("w", 64, 64, 64)).unwrap();
+            b.begin_tile(0, 0).unwrap();
+            b.rejected(3).unwrap();
+            b.quad(0, 0, &[Instr::Alu(1)]).unwrap();
+            b.quad(1, 0, &[Instr::Tex(&[9])]).unwrap();
+            if split {
+                b.rejected(2).unwrap();
+                b.rejected(3).unwrap();
+            } else {
+                b.rejected(5).unwrap();
+            }
+            b.quad(1, 0, &[Instr::Alu(2)]).unwrap();
+            b.quad(0, 1, &[Instr::Alu(3)]).unwrap();
+            if tail > 0 {
+                b.rejected(tail).unwrap();
+            }
+            b.end_tile().unwrap();
+            b.finish().unwrap()
+        };
+        let t = build(false, 4);
+        let tile = &t.tiles()[0];
+        assert_eq!(tile.quad_count(), 4);
+        let before: Vec<u32> = (0..4).map(|i| tile.rejected_before(i)).collect();
+        assert_eq!(before, vec![3, 0, 5, 0]);
+        assert_eq!(tile.rejected_after_last(), 4);
+        assert_eq!((tile.rejected_count(), tile.raster_count()), (12, 16));
+        assert_eq!(t.rejected_count(), 12);
+        assert_eq!(tile.stats().rejected_quads, 12);
+        assert_eq!(t.stats().rejected_quads, 12);
+        // Split calls add up to the same tile; other rejections make another.
+        assert_eq!(build(true, 4), t);
+        assert_ne!(build(false, 5), t);
+        assert_ne!(build(false, 0), t);
+        assert_eq!(
+            t.to_text().split_once("tile 0 0\n").unwrap().1,
+            "z 3\nq 0 0 a1\nq 1 0 t9\nz 5\nq 1 0 a2\nq 0 1 a3\nz 4\nend\n"
+        );
+        assert_eq!(Trace::parse(&t.to_text(), "rt").unwrap(), t);
+    }
+}

@@ -82,6 +82,7 @@ pub(super) fn parse_in_pieces(text: &str, pieces: usize) -> Option<Trace> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{Instr, TraceHeader};
 
     #[test]
     fn a_trace_is_read_in_pieces_alike() {
@@ -122,5 +123,56 @@ mod tests {
             Trace::parse_with(&broken, "s", 1, usize::MAX).unwrap_err()
         );
         assert!(e.to_string().starts_with(&format!("s:{line}:")), "{e}");
+    }
+
+    #[test]
+    fn a_trace_with_rejections_reads_alike_in_pieces() {
+        // Enough tiles for several pieces, rejections in each.
+        let mut b = Trace::builder(TraceHeader::new("w", 64 * 60, 64 * 60, 64)).unwrap();
+        for ty in 0..60 {
+            for tx in 0..60 {
+                b.begin_tile(tx, ty).unwrap();
+                b.rejected(1 + tx).unwrap();
+                for i in 0..160 {
+                    b.quad(
+                        i % 32,
+                        i / 32,
+                        &[Instr::Alu(1 + i), Instr::Tex(&[u64::from(i)])],
+                    )
+                    .unwrap();
+                    if i % 7 == 3 {
+                        b.rejected(i).unwrap();
+                    }
+                }
+                b.end_tile().unwrap();
+            }
+        }
+        let t = b.finish().unwrap();
+        let text = t.to_text();
+        assert!(text.len() > 4 << 20, "large enough for the pieces path");
+        assert_eq!(Trace::parse(&text, "big").unwrap(), t);
+    }
+
+    #[test]
+    fn a_trilinear_error_in_a_piece_is_reported_as_on_one_thread() {
+        // A version-3 text long enough to be read in pieces, with one `T`
+        // near the end: the pieces fail, the one-thread read names its line.
+        let mut text = String::from("wasp-trace 3\nworkload w\nframe 4096 64 tile 64\n");
+        for tx in 0..64 {
+            text.push_str(&format!("tile {tx} 0\nq 0 0 a1 t{tx:x}\nend\n"));
+        }
+        let good = Trace::parse_with(&text, "p", 4, 0).unwrap();
+        assert_eq!(good.trilinear_count(), 0);
+        let bad = text.replacen("q 0 0 a1 t3e\n", "q 0 0 a1 T3e\n", 1);
+        let line = bad.lines().position(|l| l.ends_with("T3e")).unwrap() + 1;
+        let e = Trace::parse_with(&bad, "p", 4, 0).unwrap_err();
+        assert_eq!(e, Trace::parse_with(&bad, "p", 1, usize::MAX).unwrap_err());
+        assert_eq!(e.line(), Some(line));
+        assert!(e.to_string().contains("`T3e` in a format-3 trace"), "{e}");
+        // As version 4 it reads, in pieces or not, the same.
+        let v4 = bad.replacen("wasp-trace 3\n", "wasp-trace 4\n", 1);
+        let a = Trace::parse_with(&v4, "p", 4, 0).unwrap();
+        assert_eq!(a, Trace::parse_with(&v4, "p", 1, usize::MAX).unwrap());
+        assert_eq!(a.trilinear_count(), 1);
     }
 }
