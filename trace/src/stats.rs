@@ -272,6 +272,25 @@ impl TraceStats {
     }
 }
 
+impl Tile {
+    /// This tile's statistics.
+    pub fn stats(&self) -> TileStats {
+        TileStats::of(self)
+    }
+}
+
+impl Trace {
+    /// Per-tile statistics in traversal order.
+    pub fn tile_stats(&self) -> Vec<TileStats> {
+        self.tiles.iter().map(Tile::stats).collect()
+    }
+
+    /// Whole-trace statistics (see [`TraceStats`] for the definitions).
+    pub fn stats(&self) -> TraceStats {
+        self.stats.0.get_or_init(|| TraceStats::of(self)).clone()
+    }
+}
+
 /// Texture footprint ratio of the warps of `tile` whose in-tile quad
 /// position (x, y) satisfies `is_priority`: distinct blocks they touch /
 /// distinct blocks the whole tile touches. 1 for a tile without blocks.
@@ -309,4 +328,202 @@ pub fn mean_footprint_ratio(trace: &Trace, is_priority: impl Fn(u32, u32) -> boo
         }
     }
     ratio(num, den)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn tiny_trace_statistics_match_hand_computation() {
+        let t = Trace::read(TINY).unwrap();
+        let s0 = t.tiles()[0].stats();
+        assert_eq!(
+            s0,
+            TileStats {
+                tx: 0,
+                ty: 0,
+                warps: 16,
+                rejected_quads: 0,
+                positions: 16,
+                instrs: 16 * 9,
+                tex_instrs: 32,
+                tri_tex_instrs: 0,
+                block_accesses: 36 + 16,
+                warp_blocks: 52,
+                unique_blocks: 10,
+            }
+        );
+        assert!(close(s0.reuse(), 5.2));
+        assert!(close(s0.cf(), 3.25));
+        assert!(close(s0.min_estimate1(), 10.0 / 16.0));
+        assert!(close(s0.min_estimate2(), 10.0 / 52.0));
+        assert!(close(s0.mem_instr_ratio(), 2.0 / 9.0));
+        let s1 = t.tiles()[1].stats();
+        assert_eq!((s1.warps, s1.warp_blocks, s1.unique_blocks), (10, 23, 8));
+
+        let s = t.stats();
+        assert_eq!(s.workload, "hand:tiny");
+        assert_eq!((s.tiles, s.warp_tiles, s.warps), (2, 2, 26));
+        assert_eq!((s.rejected_quads, s.frame_quads), (0, 32));
+        assert_eq!((s.instrs, s.tex_instrs), (224, 42));
+        assert_eq!(
+            (s.warp_blocks, s.tile_unique_blocks, s.frame_unique_blocks),
+            (75, 18, 18)
+        );
+        assert!(close(s.coverage, 26.0 / 32.0));
+        assert_eq!(s.positions, 26);
+        assert!(close(s.warps_per_position, 1.0));
+        assert!(close(s.mem_instr_ratio, 42.0 / 224.0));
+        assert!(close(s.cf, 75.0 / 26.0));
+        assert!(close(s.min_estimate1, 18.0 / 26.0));
+        assert!(close(s.min_estimate2, 18.0 / 75.0));
+        assert!(close(s.reuse, (16.0 * 5.2 + 10.0 * 2.875) / 26.0));
+        assert!(close(s.warps_per_tile, 13.0));
+
+        // Footprint of one quad in four (x, y even) and of Mesh4's (0, 0).
+        let tile0 = &t.tiles()[0];
+        assert!(close(
+            footprint_ratio(tile0, |x, y| x % 2 == 0 && y % 2 == 0),
+            0.5
+        ));
+        assert!(close(
+            footprint_ratio(tile0, |x, y| x % 4 == 0 && y % 4 == 0),
+            0.2
+        ));
+        assert!(close(footprint_ratio(tile0, |_, _| true), 1.0));
+        assert!(close(footprint_ratio(tile0, |_, _| false), 0.0));
+        // Tile 1 0: (0, 0) touches 1 of 8 blocks; (0,2),(2,2) add 3412 and 3413.
+        let mesh2 = mean_footprint_ratio(&t, |x, y| x % 2 == 0 && y % 2 == 0);
+        assert!(close(mesh2, (16.0 * 0.5 + 10.0 * 3.0 / 8.0) / 26.0));
+    }
+
+    #[test]
+    fn statistics_are_remembered_and_not_part_of_equality() {
+        let t = Trace::read(TINY).unwrap();
+        let fresh = t.clone();
+        let first = t.stats();
+        // The remembered statistics are the computed ones, and a trace that
+        // has them equals one that has not computed them yet.
+        assert_eq!(first, TraceStats::of(&t));
+        assert_eq!(t.stats(), first);
+        assert_eq!(t, fresh);
+        assert!(format!("{t:?}").contains("Memo(computed)"));
+        assert!(format!("{fresh:?}").contains("Memo(not computed)"));
+        assert_eq!(fresh.stats(), first);
+        // A tile's distinct-block count likewise.
+        let tile = &t.tiles()[0];
+        let plain = tile.unique_blocks().len();
+        assert!(plain > 0);
+        assert_eq!(tile.unique_block_count(), plain);
+        assert_eq!(tile.unique_block_count(), plain);
+        assert_eq!(tile, &fresh.tiles()[0]);
+    }
+
+    #[test]
+    fn a_tile_without_warps_stays_out_of_per_tile_means() {
+        let text =
+            format!("{HEAD3}tile 0 0\nq 0 0 a1 t1,2\nq 1 0 a1 t2\nz 4\nend\ntile 1 0\nz 9\nend\n");
+        let t = Trace::parse(&text, "z").unwrap();
+        let hidden = &t.tiles()[1];
+        let hs = hidden.stats();
+        assert_eq!((hs.warps, hs.positions, hs.unique_blocks), (0, 0, 0));
+        assert_eq!(hs.rejected_quads, 9);
+        for x in [
+            hs.cf(),
+            hs.reuse(),
+            hs.min_estimate1(),
+            hs.min_estimate2(),
+            hs.mem_instr_ratio(),
+        ] {
+            assert_eq!(x, 0.0);
+        }
+        assert_eq!(footprint_ratio(hidden, |_, _| true), 1.0);
+        assert_eq!(hidden.position_count(), 0);
+        assert!(hidden.quad(0).is_none() && hidden.quads().next().is_none());
+        let s = t.stats();
+        assert_eq!(
+            (s.tiles, s.warp_tiles, s.warps, s.rejected_quads),
+            (2, 1, 2, 13)
+        );
+        // Means over the tile with warps only: as if the hidden tile were not there.
+        assert!(close(s.warps_per_tile, 2.0));
+        assert!(close(s.cf, 1.5));
+        assert!(close(s.min_estimate1, 1.0));
+        assert!(close(s.reuse, 1.5));
+        assert!(close(mean_footprint_ratio(&t, |x, _| x == 0), 1.0));
+        assert!(close(mean_footprint_ratio(&t, |x, _| x == 1), 0.5));
+        // A trace of hidden tiles only.
+        let text = format!("{HEAD3}tile 1 0\nz 9\nend\n");
+        let s = Trace::parse(&text, "z").unwrap().stats();
+        assert_eq!(
+            (s.tiles, s.warp_tiles, s.warps, s.rejected_quads),
+            (1, 0, 0, 9)
+        );
+        assert_eq!(
+            (s.warps_per_tile, s.cf, s.reuse, s.coverage),
+            (0.0, 0.0, 0.0, 0.0)
+        );
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+        #[test]
+        fn statistics_are_consistent(t in arb_trace()) {
+            let s = t.stats();
+            prop_assert_eq!(s.warps as usize, t.quad_count());
+            prop_assert_eq!(s.rejected_quads, t.rejected_count());
+            prop_assert!(s.positions <= s.warps && s.positions >= s.warp_tiles);
+            prop_assert!(s.warp_tiles <= s.tiles);
+            let least = if s.warps > 0 { 1.0 } else { 0.0 };
+            prop_assert!(s.warps_per_tile >= least);
+            for x in [s.warps_per_position, s.coverage, s.warps_per_tile, s.instrs_per_warp,
+                      s.mem_instr_ratio, s.reuse, s.cf, s.min_estimate1, s.min_estimate2] {
+                prop_assert!(x.is_finite(), "{:?}", s);
+            }
+            prop_assert!(s.coverage <= 1.0);
+            prop_assert_eq!(s.instrs, t.instr_count());
+            prop_assert!(s.warp_blocks >= s.tile_unique_blocks);
+            prop_assert!(s.block_accesses >= s.warp_blocks);
+            prop_assert!(s.tile_unique_blocks >= s.frame_unique_blocks);
+            // The frame's distinct blocks, the plain way: every access of every
+            // tile, sorted and deduplicated.
+            let mut all: Vec<u64> = t
+                .tiles()
+                .iter()
+                .flat_map(|tile| tile.block_accesses().iter().copied())
+                .collect();
+            all.sort_unstable();
+            all.dedup();
+            prop_assert_eq!(s.frame_unique_blocks, all.len() as u64);
+            let tile_unique: usize = t.tiles().iter().map(|tile| tile.unique_block_count()).sum();
+            prop_assert_eq!(s.tile_unique_blocks, tile_unique as u64);
+            let warp_blocks: u64 = t.tile_stats().iter().map(|ts| ts.warp_blocks).sum();
+            prop_assert_eq!(s.warp_blocks, warp_blocks);
+            for tile in t.tiles() {
+                let ts = tile.stats();
+                prop_assert!(tile.quad_count() > 0 || tile.rejected_count() > 0);
+                prop_assert_eq!(ts.rejected_quads, tile.rejected_count());
+                prop_assert_eq!(
+                    tile.raster_count(),
+                    tile.quad_count() as u64 + tile.rejected_count()
+                );
+                let by_gap: u64 = (0..tile.quad_count())
+                    .map(|i| u64::from(tile.rejected_before(i)))
+                    .sum::<u64>()
+                    + u64::from(tile.rejected_after_last());
+                prop_assert_eq!(by_gap, tile.rejected_count());
+                for x in [ts.cf(), ts.reuse(), ts.min_estimate1(), ts.min_estimate2(), ts.mem_instr_ratio()] {
+                    prop_assert!(x.is_finite());
+                }
+                prop_assert!(ts.unique_blocks == 0 || ts.reuse() >= 1.0);
+                prop_assert!(close(footprint_ratio(tile, |_, _| true), 1.0));
+                let f = footprint_ratio(tile, |x, _| x % 2 == 0);
+                prop_assert!((0.0..=1.0).contains(&f));
+            }
+        }
+    }
 }

@@ -1,0 +1,35 @@
+//! The format's fixed words and numbers: the magic word of line 1, the
+//! versions a reader accepts and the bounds on every number of a trace.
+
+/// The magic word on line 1.
+pub const MAGIC: &str = "wasp-trace";
+/// The format version this module writes (and reads).
+pub const FORMAT_VERSION: u32 = 4;
+/// The previous version, which this module also reads: no trilinear
+/// marker (`T`), every texture instruction taken as bilinear.
+pub const FORMAT_VERSION_3: u32 = 3;
+/// The version before, which this module also reads: no `z` records.
+pub const FORMAT_VERSION_2: u32 = 2;
+/// The older version this module also reads: one quad per position, in
+/// scanline order.
+pub const FORMAT_VERSION_1: u32 = 1;
+/// Largest frame width or height, in pixels.
+pub const MAX_FRAME_DIM: u32 = 65_536;
+/// Largest tile edge, in pixels.
+pub const MAX_TILE_SIZE: u32 = 512;
+/// Longest ALU run of one `aN` entry (wasp): 4096, far above the
+/// straight-line ALU stretch of any fragment shader of the paper's
+/// workloads (a handful to a few dozen), so a typo or a corrupt number is
+/// refused instead of keeping the model busy for minutes.
+pub const MAX_ALU_RUN: u32 = 4096;
+/// Most instructions of one quad's program (wasp), ALU runs counted by
+/// their length and a texture instruction as one: 65536, 16 runs of
+/// [`MAX_ALU_RUN`] with texture instructions between them. It bounds the
+/// cycles one warp can occupy a core.
+pub const MAX_QUAD_INSTRS: u32 = 65_536;
+/// Most Early-Z-rejected quads one `z N` record may count (wasp): 2^22 =
+/// 4194304, the quads of the largest tile (256 x 256 for 512 pixels) times
+/// an overdraw of 64, or 4096 times the quads of the paper's 64-pixel tile.
+pub const MAX_REJECTED_RUN: u32 = 1 << 22;
+/// Most blocks one texture instruction may touch.
+pub const MAX_TEX_BLOCKS: usize = 1024;

@@ -1,0 +1,312 @@
+//! The line-by-line parser: the header lines, then each directive, fed to
+//! a [`TraceBuilder`] that enforces the format's rules.
+
+use super::lex::{check_line, check_magic, dec_u32, instr_token, lines, tokens, Tok};
+use crate::{
+    Problem, Trace, TraceBuilder, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_3,
+    MAX_QUAD_INSTRS,
+};
+
+/// Checks line 1 (the magic line) and returns a parser for the rest of
+/// `text`, which starts at line 2.
+pub(super) fn header(text: &str) -> Result<(Parser<'_>, &str), Problem> {
+    let Some(first) = lines(text).next() else {
+        return Err(Problem::EmptyInput);
+    };
+    check_line(first)?;
+    let version = check_magic(first)?;
+    let rest = text.find('\n').map_or("", |i| &text[i + 1..]);
+    Ok((Parser::new(None, version), rest))
+}
+
+pub(super) struct Parser<'a> {
+    /// The fields of the current line (kept to reuse its allocation).
+    fields: Vec<&'a str>,
+    /// The instructions of the current quad line, checked before any is
+    /// given to the builder, and the block numbers of its texture
+    /// instructions (kept to reuse their allocations).
+    instrs: Vec<Tok>,
+    blocks: Vec<u64>,
+    notes: Vec<String>,
+    workload: Option<String>,
+    /// Present once the `frame` line has been read.
+    pub(super) builder: Option<TraceBuilder>,
+    /// A version-1 file: quads in strictly increasing scanline order.
+    pub(super) scanline_order: bool,
+    /// The file's format version.
+    pub(super) version: u32,
+    /// The last line other than a comment or blank line was a `z` line
+    /// (two `z` lines are never adjacent, whatever lies between them).
+    after_z: bool,
+}
+
+const FRAME_USAGE: &str = "frame W H tile T";
+const TILE_USAGE: &str = "tile TX TY";
+
+impl<'a> Parser<'a> {
+    /// A parser after line 1: before the header when `builder` is `None`,
+    /// else in the body of a trace that `builder` is building.
+    pub(super) fn new(builder: Option<TraceBuilder>, version: u32) -> Self {
+        Parser {
+            fields: Vec::new(),
+            instrs: Vec::new(),
+            blocks: Vec::new(),
+            notes: Vec::new(),
+            workload: None,
+            builder,
+            scanline_order: version == FORMAT_VERSION_1,
+            version,
+            after_z: false,
+        }
+    }
+
+    /// Every line of `text`, numbered from `first`. Returns the number of
+    /// the last line (`first - 1` if none), or the first problem and its
+    /// line's number.
+    pub(super) fn lines(&mut self, text: &'a str, first: usize) -> Result<usize, (usize, Problem)> {
+        let mut n = first - 1;
+        for line in lines(text) {
+            n += 1;
+            self.line(line).map_err(|p| (n, p))?;
+        }
+        Ok(n)
+    }
+
+    fn line(&mut self, line: &'a str) -> Result<(), Problem> {
+        check_line(line)?;
+        let trimmed = line.trim_start_matches([' ', '\t']);
+        if let Some(comment) = trimmed.strip_prefix('#') {
+            // Comments before the `frame` line are header notes.
+            if self.builder.is_none() {
+                self.notes.push(comment.to_string());
+            }
+            return Ok(());
+        }
+        let mut fields = std::mem::take(&mut self.fields);
+        fields.clear();
+        fields.extend(tokens(line));
+        let r = self.directive(trimmed, &fields);
+        self.fields = fields;
+        r
+    }
+
+    /// A line that is not a comment, split into `fields`.
+    fn directive(&mut self, trimmed: &str, fields: &[&str]) -> Result<(), Problem> {
+        let Some(&directive) = fields.first() else {
+            return Ok(()); // blank line
+        };
+        let after_z = std::mem::replace(&mut self.after_z, directive == "z");
+        match directive {
+            "z" => {
+                if self.version < FORMAT_VERSION_3 {
+                    return Err(Problem::RejectedInOldVersion(self.version));
+                }
+                let b = self.body(directive)?;
+                if fields.len() != 2 {
+                    return Err(Problem::WrongFieldCount {
+                        directive: "z",
+                        found: fields.len(),
+                        usage: "z N",
+                    });
+                }
+                if after_z {
+                    return Err(Problem::AdjacentRejected);
+                }
+                let n = dec_u32(
+                    fields[1],
+                    "rejected quads",
+                    u64::from(crate::MAX_REJECTED_RUN),
+                )?;
+                b.rejected(n)
+            }
+            "workload" => self.workload_line(trimmed),
+            "frame" => self.frame_line(fields),
+            "tile" => {
+                let b = self.body(directive)?;
+                if fields.len() != 3 {
+                    return Err(Problem::WrongFieldCount {
+                        directive: "tile",
+                        found: fields.len(),
+                        usage: TILE_USAGE,
+                    });
+                }
+                let tx = dec_u32(fields[1], "tile x", u64::from(u32::MAX))?;
+                let ty = dec_u32(fields[2], "tile y", u64::from(u32::MAX))?;
+                b.begin_tile(tx, ty)
+            }
+            "q" => {
+                let version = self.version;
+                let mut instrs = std::mem::take(&mut self.instrs);
+                let mut blocks = std::mem::take(&mut self.blocks);
+                let r = self
+                    .body(directive)
+                    .and_then(|b| quad_line(b, fields, version, &mut instrs, &mut blocks));
+                self.instrs = instrs;
+                self.blocks = blocks;
+                r
+            }
+            "end" => {
+                let b = self.body(directive)?;
+                if fields.len() != 1 {
+                    return Err(Problem::WrongFieldCount {
+                        directive: "end",
+                        found: fields.len(),
+                        usage: "end",
+                    });
+                }
+                b.end_tile()
+            }
+            other => Err(Problem::UnknownDirective {
+                found: other.to_string(),
+                expected: match &self.builder {
+                    None if self.workload.is_none() => "`workload NAME`",
+                    None => "`frame W H tile T`",
+                    Some(b) if b.open_tile().is_some() => "`q X Y ...`, `z N` or `end`",
+                    Some(_) => "`tile TX TY`",
+                },
+            }),
+        }
+    }
+
+    fn workload_line(&mut self, trimmed: &str) -> Result<(), Problem> {
+        if self.workload.is_some() || self.builder.is_some() {
+            return Err(Problem::MisplacedHeader("workload"));
+        }
+        // The first token is `workload`, so what follows starts with a blank.
+        let rest = trimmed["workload".len()..].trim_matches([' ', '\t']);
+        if rest.is_empty() {
+            return Err(Problem::EmptyWorkload);
+        }
+        self.workload = Some(rest.to_string());
+        Ok(())
+    }
+
+    fn frame_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
+        if self.builder.is_some() {
+            return Err(Problem::MisplacedHeader("frame"));
+        }
+        let Some(workload) = self.workload.clone() else {
+            return Err(Problem::MissingHeader {
+                missing: "workload NAME",
+                found: "frame".to_string(),
+            });
+        };
+        if fields.len() != 5 || fields[3] != "tile" {
+            return Err(Problem::WrongFieldCount {
+                directive: "frame",
+                found: fields.len(),
+                usage: FRAME_USAGE,
+            });
+        }
+        let w = dec_u32(fields[1], "frame width", u64::from(crate::MAX_FRAME_DIM))?;
+        let h = dec_u32(fields[2], "frame height", u64::from(crate::MAX_FRAME_DIM))?;
+        let t = dec_u32(fields[4], "tile size", u64::from(crate::MAX_TILE_SIZE))?;
+        let mut header = TraceHeader::new(workload, w, h, t);
+        header.notes = self.notes.clone();
+        let mut builder = TraceBuilder::new(header)?;
+        if self.scanline_order {
+            builder.require_scanline_order();
+        }
+        self.builder = Some(builder);
+        Ok(())
+    }
+
+    /// The builder, once the header is complete.
+    fn body(&mut self, directive: &str) -> Result<&mut TraceBuilder, Problem> {
+        match &mut self.builder {
+            Some(b) => Ok(b),
+            None => Err(Problem::MissingHeader {
+                missing: if self.workload.is_none() {
+                    "workload NAME"
+                } else {
+                    FRAME_USAGE
+                },
+                found: directive.to_string(),
+            }),
+        }
+    }
+
+    pub(super) fn finish(self) -> Result<Trace, Problem> {
+        match self.builder {
+            Some(b) => b.finish(),
+            None => Err(Problem::MissingHeader {
+                missing: if self.workload.is_none() {
+                    "workload NAME"
+                } else {
+                    FRAME_USAGE
+                },
+                found: "end of input".to_string(),
+            }),
+        }
+    }
+}
+
+/// A `q X Y INSTR...` line of a format-`version` file. `instrs` and
+/// `blocks` are scratch space (their contents on entry are ignored).
+fn quad_line(
+    b: &mut TraceBuilder,
+    fields: &[&str],
+    version: u32,
+    instrs: &mut Vec<Tok>,
+    blocks: &mut Vec<u64>,
+) -> Result<(), Problem> {
+    if b.open_tile().is_none() {
+        return Err(Problem::QuadWithoutTile);
+    }
+    if fields.len() < 3 {
+        return Err(Problem::WrongFieldCount {
+            directive: "q",
+            found: fields.len(),
+            usage: "q X Y INSTR...",
+        });
+    }
+    let x = dec_u32(fields[1], "quad x", u64::from(u32::MAX))?;
+    let y = dec_u32(fields[2], "quad y", u64::from(u32::MAX))?;
+    if fields.len() == 3 {
+        return Err(Problem::EmptyQuad { x, y });
+    }
+    // Check every instruction token before touching the builder, so an
+    // error leaves no half-built quad behind.
+    instrs.clear();
+    blocks.clear();
+    let mut prev_alu: Option<u32> = None;
+    let mut count: u64 = 0;
+    for tok in &fields[3..] {
+        let instr = instr_token(tok, blocks)?;
+        count += match instr {
+            Tok::Alu(n) => u64::from(n),
+            Tok::Tex { .. } => 1,
+        };
+        if count > u64::from(MAX_QUAD_INSTRS) {
+            return Err(Problem::QuadTooLong(count));
+        }
+        if matches!(instr, Tok::Tex { tri: true, .. }) && version < FORMAT_VERSION {
+            return Err(Problem::TrilinearInOldVersion {
+                version,
+                token: tok.to_string(),
+            });
+        }
+        match instr {
+            Tok::Alu(n) => {
+                if let Some(first) = prev_alu {
+                    return Err(Problem::AdjacentAlu { first, second: n });
+                }
+                prev_alu = Some(n);
+            }
+            Tok::Tex { .. } => prev_alu = None,
+        }
+        instrs.push(instr);
+    }
+    b.begin_quad(x, y)?;
+    let mut start = 0;
+    for instr in instrs.iter() {
+        match *instr {
+            Tok::Alu(n) => b.alu(n)?,
+            Tok::Tex { len, tri } => {
+                b.tex_filtered(&blocks[start..start + len], tri)?;
+                start += len;
+            }
+        }
+    }
+    Ok(())
+}
