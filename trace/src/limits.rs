@@ -3,14 +3,14 @@
 
 /// The magic word on line 1.
 pub const MAGIC: &str = "wasp-trace";
-/// The format version this module writes (and reads).
+/// The format version this crate writes (and reads).
 pub const FORMAT_VERSION: u32 = 4;
-/// The previous version, which this module also reads: no trilinear
+/// The previous version, which this crate also reads: no trilinear
 /// marker (`T`), every texture instruction taken as bilinear.
 pub const FORMAT_VERSION_3: u32 = 3;
-/// The version before, which this module also reads: no `z` records.
+/// The version before, which this crate also reads: no `z` records.
 pub const FORMAT_VERSION_2: u32 = 2;
-/// The older version this module also reads: one quad per position, in
+/// The older version this crate also reads: one quad per position, in
 /// scanline order.
 pub const FORMAT_VERSION_1: u32 = 1;
 /// Largest frame width or height, in pixels.
