@@ -1,0 +1,549 @@
+//! The machine configuration: the shipped machines, parsing and round
+//! trips, errors that name the key, line and range, the register limits,
+//! and the bounds table (every field at and just above its bound).
+
+use super::*;
+
+#[test]
+fn lines_and_columns_count_from_one() {
+    let b = b"ab\ncd\n\nxyz";
+    assert_eq!(line_and_column(b, 0), (1, 1));
+    assert_eq!(line_and_column(b, 1), (1, 2));
+    assert_eq!(line_and_column(b, 3), (2, 1));
+    assert_eq!(line_and_column(b, 6), (3, 1));
+    assert_eq!(line_and_column(b, 9), (4, 3));
+}
+
+fn with(edit: impl Fn(&str) -> String) -> Result<MachineConfig, ConfigError> {
+    MachineConfig::parse(&edit(PAPER_TOML), "test.toml")
+}
+
+#[test]
+fn shipped_configs_are_the_papers_machines() {
+    let p = MachineConfig::paper();
+    assert_eq!(p.core.pipeline_width, 4);
+    assert_eq!(p.core.max_warps, 64);
+    assert_eq!(p.gpu.tile_size, 64);
+    assert_eq!(p.gpu.frequency_mhz, 600);
+    let l0 = p.l0.expect("L0 present at width 4");
+    assert_eq!((l0.size_bytes, l0.ports), (512, 2));
+    assert_eq!(
+        (p.l1.size_bytes, p.l1.ways, p.l1.hit_latency),
+        (65536, 4, 1)
+    );
+    assert_eq!(
+        (p.l2.size_bytes, p.l2.ways, p.l2.hit_latency),
+        (1 << 20, 8, 18)
+    );
+    assert_eq!(p.scheduler_cache().0, "l0");
+    let w2 = MachineConfig::paper_width2();
+    assert_eq!(w2.core.pipeline_width, 2);
+    assert!(w2.l0.is_none());
+    assert_eq!(w2.scheduler_cache().0, "l1");
+    // The paper's rule: a closed gate holds the priority warp.
+    for c in [&p, &w2] {
+        assert_eq!(c.launch_rule(), Ok(LaunchRule::Hold));
+    }
+}
+
+#[test]
+fn launch_rule_is_required_and_parsed() {
+    let e = with(|s| {
+        s.lines()
+            .filter(|l| !l.starts_with("launch_rule"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    })
+    .unwrap_err();
+    assert!(e.message.contains("launch_rule"), "{e}");
+    let c = with(|s| s.replace("launch_rule = \"hold\"", "launch_rule = \"launch\"")).unwrap();
+    assert_eq!(c.launch_rule(), Ok(LaunchRule::Launch));
+}
+
+#[test]
+fn round_trips_through_toml() {
+    let p = MachineConfig::paper();
+    let again = MachineConfig::parse(&p.to_toml(), "again").unwrap();
+    assert_eq!(p, again);
+}
+
+#[test]
+fn unknown_keys_name_the_key_and_the_line() {
+    let e = with(|s| s.replace("max_warps = 64", "max_warps = 64\nmax_wraps = 3")).unwrap_err();
+    assert_eq!(e.source, "test.toml");
+    assert!(e.message.contains("max_wraps"), "{e}");
+    assert!(e.message.contains("line"), "{e}");
+}
+
+#[test]
+fn unknown_keys_in_cache_sections_are_errors() {
+    let e =
+        with(|s| s.replacen("hit_latency = 18", "hit_latency = 18\nlatnecy = 3", 1)).unwrap_err();
+    assert!(e.message.contains("latnecy"), "{e}");
+}
+
+#[test]
+fn values_out_of_range_name_the_field() {
+    let cases: &[(&str, &str, &str)] = &[
+        ("max_warps = 64", "max_warps = 0", "core.max_warps"),
+        ("max_warps = 64", "max_warps = 129", "core.max_warps"),
+        (
+            "pipeline_width = 4",
+            "pipeline_width = 0",
+            "core.pipeline_width",
+        ),
+        ("tile_size = 64", "tile_size = 48", "gpu.tile_size"),
+        ("cores = 4", "cores = 0", "cores"),
+        (
+            "policy = \"wasp:0:3\"",
+            "policy = \"wasp:40\"",
+            "scheduler.policy",
+        ),
+        (
+            "policy = \"wasp:0:3\"",
+            "policy = \"fifo\"",
+            "scheduler.policy",
+        ),
+        (
+            "subset = \"mesh4\"",
+            "subset = \"mesh5\"",
+            "scheduler.subset",
+        ),
+        (
+            "launch_rule = \"hold\"",
+            "launch_rule = \"idle\"",
+            "scheduler.launch_rule",
+        ),
+        (
+            "watchdog_cycles = 1000000",
+            "watchdog_cycles = 0",
+            "sim.watchdog_cycles",
+        ),
+        (
+            "core_static_mw = 50.0",
+            "core_static_mw = -1.0",
+            "energy.core_static_mw",
+        ),
+    ];
+    for (from, to, field) in cases {
+        assert!(PAPER_TOML.contains(from), "fixture: {from}");
+        let e = with(|s| s.replacen(from, to, 1)).unwrap_err();
+        assert!(e.message.contains(field), "{to}: {e}");
+    }
+}
+
+#[test]
+fn filter_fields_are_required_and_checked() {
+    let p = MachineConfig::paper();
+    assert_eq!(
+        (
+            p.core.filter_cycles_bilinear,
+            p.core.filter_cycles_trilinear,
+            p.core.filter_timing
+        ),
+        (1, 2, FilterTiming::Overlap)
+    );
+    let w2 = MachineConfig::paper_width2();
+    assert_eq!(
+        (
+            w2.core.filter_cycles_bilinear,
+            w2.core.filter_cycles_trilinear,
+            w2.core.filter_timing
+        ),
+        (1, 2, FilterTiming::Overlap)
+    );
+    for key in [
+        "filter_cycles_bilinear = 1",
+        "filter_cycles_trilinear = 2",
+        "filter_timing = \"overlap\"",
+    ] {
+        let name = key.split(' ').next().unwrap();
+        assert!(PAPER_TOML.contains(key), "fixture: {key}");
+        let e = with(|s| s.replacen(key, "", 1)).unwrap_err();
+        assert!(
+            e.message.contains(&format!("missing field `{name}`")),
+            "{e}"
+        );
+    }
+    for (from, to, msg) in [
+        (
+            "filter_cycles_bilinear = 1",
+            "filter_cycles_bilinear = 1001",
+            "core.filter_cycles_bilinear = 1001",
+        ),
+        (
+            "filter_cycles_trilinear = 2",
+            "filter_cycles_trilinear = 5000",
+            "core.filter_cycles_trilinear = 5000",
+        ),
+        (
+            "filter_cycles_trilinear = 2",
+            "filter_cycles_trilinear = -1",
+            "filter_cycles_trilinear",
+        ),
+        (
+            "filter_timing = \"overlap\"",
+            "filter_timing = \"after\"",
+            "unknown variant `after`",
+        ),
+    ] {
+        let e = with(|s| s.replacen(from, to, 1)).unwrap_err();
+        assert!(e.message.contains(msg), "{to}: {e}");
+    }
+    let e = with(|s| {
+        s.replacen(
+            "filter_cycles_bilinear = 1",
+            "filter_cycles_bilinear = 1001",
+            1,
+        )
+    })
+    .unwrap_err();
+    assert!(e.message.contains("1000"), "names the limit: {e}");
+    // 0 and the serial timing are allowed.
+    let c = with(|s| {
+        s.replacen(
+            "filter_cycles_bilinear = 1",
+            "filter_cycles_bilinear = 0",
+            1,
+        )
+        .replacen(
+            "filter_timing = \"overlap\"",
+            "filter_timing = \"serial\"",
+            1,
+        )
+    })
+    .unwrap();
+    assert_eq!(c.core.filter_cycles_bilinear, 0);
+    assert_eq!(c.core.filter_timing, FilterTiming::Serial);
+    assert_eq!(c.core.filter_timing.to_string(), "serial");
+}
+
+#[test]
+fn cache_geometry_errors() {
+    // 64 KiB / 64 B / 3 ways is not a whole power-of-two set count.
+    let e = with(|s| s.replacen("ways = 4", "ways = 3", 1)).unwrap_err();
+    assert!(e.message.contains("l1"), "{e}");
+    let e = with(|s| s.replacen("size_bytes = 65536", "size_bytes = 0", 1)).unwrap_err();
+    assert!(
+        e.message.contains("l1") && e.message.contains("size_bytes"),
+        "{e}"
+    );
+}
+
+#[test]
+fn registers_limit_mshrs_and_warps() {
+    let e = with(|s| s.replacen("mshrs = 16", "mshrs = 32", 1)).unwrap_err();
+    assert!(
+        e.message.contains("l0.mshrs") && e.message.contains("5-bit"),
+        "{e}"
+    );
+    // Policies that do not read the register may have more MSHRs.
+    with(|s| {
+        s.replacen("mshrs = 16", "mshrs = 64", 1)
+            .replace("policy = \"wasp:0:3\"", "policy = \"fullpriority\"")
+    })
+    .unwrap();
+    // Mesh2 puts 256 priority quads in a tile; with 128 warp slots the
+    // 7-bit counter could need to count 128.
+    let e = with(|s| {
+        s.replace("max_warps = 64", "max_warps = 128")
+            .replace("subset = \"mesh4\"", "subset = \"mesh2\"")
+    })
+    .unwrap_err();
+    assert!(e.message.contains("7-bit"), "{e}");
+    // 128 warps with Mesh4 (64 priority quads per tile) is fine.
+    with(|s| s.replace("max_warps = 64", "max_warps = 128")).unwrap();
+}
+
+#[test]
+fn blocked_on_is_required_and_checked() {
+    assert_eq!(
+        MachineConfig::paper().scheduler.blocked_on,
+        BlockedOn::L1Miss
+    );
+    assert_eq!(
+        MachineConfig::paper_width2().scheduler.blocked_on,
+        BlockedOn::L1Miss
+    );
+    let line = "blocked_on = \"l1-miss\"";
+    assert!(PAPER_TOML.contains(line));
+    for rule in BlockedOn::ALL {
+        let c = with(|s| s.replacen(line, &format!("blocked_on = \"{rule}\""), 1)).unwrap();
+        assert_eq!(c.scheduler.blocked_on, rule);
+        assert_eq!(c.mem_config().blocked_on, rule);
+        assert_eq!(rule.to_string().parse::<BlockedOn>(), Ok(rule));
+    }
+    let e = with(|s| s.replacen(line, "blocked_on = \"l2\"", 1)).unwrap_err();
+    assert!(
+        e.message.contains("l2") && e.message.contains("l1-miss") && e.message.contains("line"),
+        "{e}"
+    );
+    let e = with(|s| s.replacen(line, "", 1)).unwrap_err();
+    assert!(e.message.contains("blocked_on"), "{e}");
+    assert!("l2"
+        .parse::<BlockedOn>()
+        .unwrap_err()
+        .contains("first-level"));
+}
+
+/// Every numeric field of the machine configuration with its bound: the
+/// dotted path, the largest accepted value, the smallest refused one
+/// above it, the range the error must name, and the other fields that
+/// must change for the bound itself to pass the rest of the validation.
+/// Not here: `sim.seed` (every u64 is a seed), the numbers inside the
+/// `scheduler.policy`, `scheduler.subset` and `raster.core_map` strings
+/// (checked by their parsers, see `values_out_of_range_name_the_field`)
+/// and the `line_bytes` fields (64 exactly).
+const BOUNDS: &[(&str, &str, &str, &str, &[&str])] = &[
+    ("gpu.cores", "64", "65", "1..=64", &[]),
+    ("gpu.frequency_mhz", "10000", "10001", "1..=10000", &[]),
+    // A power of two: the next one above the bound is 128.
+    ("gpu.tile_size", "64", "128", "4..=64", &[]),
+    ("raster.quads_per_cycle", "256", "257", "1..=256", &[]),
+    ("raster.rejected_per_slot", "1024", "1025", "1..=1024", &[]),
+    ("core.pipeline_width", "16", "17", "1..=16", &[]),
+    ("core.max_warps", "128", "129", "1..=128", &[]),
+    ("core.input_queue", "4096", "4097", "1..=4096", &[]),
+    ("core.alu_latency", "10000", "10001", "1..=10000", &[]),
+    ("core.texture_latency", "10000", "10001", "0..=10000", &[]),
+    (
+        "core.filter_cycles_bilinear",
+        "1000",
+        "1001",
+        "0..=1000",
+        &[],
+    ),
+    (
+        "core.filter_cycles_trilinear",
+        "1000",
+        "1001",
+        "0..=1000",
+        &[],
+    ),
+    ("core.ldst_queue", "1024", "1025", "1..=1024", &[]),
+    ("core.registers_per_thread", "1024", "1025", "1..=1024", &[]),
+    ("l0.size_bytes", "1048576", "1048577", "64..=1048576", &[]),
+    // 64 ways need at least 64 lines: a 4 KiB L0.
+    ("l0.ways", "64", "65", "1..=64", &["l0.size_bytes=4096"]),
+    ("l0.hit_latency", "10000", "10001", "1..=10000", &[]),
+    // More than 31 MSHRs at the scheduler's level only for a policy
+    // that does not read the 5-bit free-MSHR register.
+    (
+        "l0.mshrs",
+        "4096",
+        "4097",
+        "1..=4096",
+        &["scheduler.policy=fullpriority"],
+    ),
+    ("l0.max_merged", "1024", "1025", "0..=1024", &[]),
+    ("l0.ports", "64", "65", "1..=64", &[]),
+    (
+        "l1.size_bytes",
+        "16777216",
+        "16777217",
+        "64..=16777216",
+        &[],
+    ),
+    ("l1.ways", "64", "65", "1..=64", &[]),
+    ("l1.hit_latency", "10000", "10001", "1..=10000", &[]),
+    ("l1.mshrs", "4096", "4097", "1..=4096", &[]),
+    ("l1.max_merged", "1024", "1025", "0..=1024", &[]),
+    ("l1.ports", "64", "65", "1..=64", &[]),
+    (
+        "l2.size_bytes",
+        "268435456",
+        "268435457",
+        "64..=268435456",
+        &[],
+    ),
+    ("l2.ways", "64", "65", "1..=64", &[]),
+    ("l2.hit_latency", "10000", "10001", "1..=10000", &[]),
+    ("l2.mshrs", "4096", "4097", "1..=4096", &[]),
+    ("l2.max_merged", "1024", "1025", "0..=1024", &[]),
+    ("l2.ports", "64", "65", "1..=64", &[]),
+    ("dram.channels", "16", "17", "1..=16", &[]),
+    ("dram.banks", "64", "65", "1..=64", &[]),
+    ("dram.row_bytes", "65536", "65537", "64..=65536", &[]),
+    ("dram.row_hit_latency", "10000", "10001", "1..=10000", &[]),
+    ("dram.row_miss_latency", "10000", "10001", "1..=10000", &[]),
+    ("dram.requests_per_cycle", "64", "65", "1..=64", &[]),
+    ("dram.t_rcd", "1000", "1001", "1..=1000", &[]),
+    ("dram.t_rp", "1000", "1001", "1..=1000", &[]),
+    ("dram.t_ras", "1000", "1001", "0..=1000", &[]),
+    ("dram.t_cl", "1000", "1001", "1..=1000", &[]),
+    ("dram.t_burst", "1000", "1001", "1..=1000", &[]),
+    (
+        "dram.controller_latency",
+        "10000",
+        "10001",
+        "0..=10000",
+        &[],
+    ),
+    ("dram.scheduler_window", "256", "257", "1..=256", &[]),
+    (
+        "energy.alu_instruction_pj",
+        "1000000.0",
+        "1000000.5",
+        "0..=1000000",
+        &[],
+    ),
+    (
+        "energy.texture_instruction_pj",
+        "1000000.0",
+        "1000000.5",
+        "0..=1000000",
+        &[],
+    ),
+    (
+        "energy.l0_access_pj",
+        "1000000.0",
+        "1000000.5",
+        "0..=1000000",
+        &[],
+    ),
+    (
+        "energy.l1_access_pj",
+        "1000000.0",
+        "1000000.5",
+        "0..=1000000",
+        &[],
+    ),
+    (
+        "energy.l2_access_pj",
+        "1000000.0",
+        "1000000.5",
+        "0..=1000000",
+        &[],
+    ),
+    (
+        "energy.dram_row_hit_pj",
+        "1000000.0",
+        "1000000.5",
+        "0..=1000000",
+        &[],
+    ),
+    (
+        "energy.dram_row_miss_pj",
+        "1000000.0",
+        "1000000.5",
+        "0..=1000000",
+        &[],
+    ),
+    (
+        "energy.core_static_mw",
+        "100000.0",
+        "100000.5",
+        "0..=100000",
+        &[],
+    ),
+    (
+        "energy.uncore_static_mw",
+        "100000.0",
+        "100000.5",
+        "0..=100000",
+        &[],
+    ),
+    (
+        "sim.watchdog_cycles",
+        "1000000000",
+        "1000000001",
+        "1..=1000000000",
+        &[],
+    ),
+];
+
+fn set(extra: &[&str], field: &str, value: &str) -> Result<MachineConfig, ConfigError> {
+    let mut sets: Vec<String> = extra.iter().map(|s| s.to_string()).collect();
+    sets.push(format!("{field}={value}"));
+    crate::overrides::apply(&MachineConfig::paper(), &sets)
+}
+
+#[test]
+fn every_numeric_field_is_in_the_bounds_table() {
+    // A field added to the config without a bound fails here.
+    let root = toml::Value::try_from(MachineConfig::paper()).unwrap();
+    let mut numeric = Vec::new();
+    for (section, table) in root.as_table().unwrap() {
+        let Some(table) = table.as_table() else {
+            continue;
+        };
+        for (key, v) in table {
+            if v.is_integer() || v.is_float() {
+                numeric.push(format!("{section}.{key}"));
+            }
+        }
+    }
+    for path in &numeric {
+        let exempt = path == "sim.seed" || path.ends_with(".line_bytes");
+        assert!(
+            exempt || BOUNDS.iter().any(|b| b.0 == path),
+            "{path} has no bound in the table"
+        );
+    }
+    assert_eq!(numeric.len(), BOUNDS.len() + 1 + 3, "{numeric:?}");
+}
+
+#[test]
+fn each_field_just_above_its_bound_is_refused_naming_field_and_range() {
+    for (field, _, above, range, extra) in BOUNDS {
+        let e = set(extra, field, above).expect_err(field);
+        assert!(
+            e.message.contains(&format!("{field} = {above}")),
+            "{field}={above}: {e}"
+        );
+        assert!(e.message.contains(range), "{field}={above}: {e}");
+        // The same text from a file.
+        let mut doc = toml::Value::try_from(MachineConfig::paper()).unwrap();
+        for kv in extra
+            .iter()
+            .map(|s| s.to_string())
+            .chain([format!("{field}={above}")])
+        {
+            let (path, v) = kv.split_once('=').unwrap();
+            let (sec, key) = path.split_once('.').unwrap();
+            let v: toml::Value = toml::from_str::<toml::Table>(&format!("v = {v}"))
+                .map(|t| t["v"].clone())
+                .unwrap_or(toml::Value::String(v.into()));
+            doc[sec][key] = v;
+        }
+        let e =
+            MachineConfig::parse(&toml::to_string(&doc).unwrap(), "bounds.toml").expect_err(field);
+        assert!(e.message.contains(range), "{field}={above} in a file: {e}");
+    }
+}
+
+#[test]
+fn each_field_at_its_bound_is_accepted() {
+    for (field, at, _, _, extra) in BOUNDS {
+        let c = set(extra, field, at).unwrap_or_else(|e| panic!("{field}={at}: {e}"));
+        let doc = toml::Value::try_from(&c).unwrap();
+        let (sec, key) = field.split_once('.').unwrap();
+        assert_eq!(doc[sec][key].to_string(), *at, "{field}");
+    }
+}
+
+#[test]
+fn the_memory_systems_host_memory_is_budgeted() {
+    // Each at its bound is accepted (above); together these would
+    // allocate more than 1 GiB: 64 cores x (640 000 L0 completion
+    // entries + a 16 MiB L1's 262 144 lines).
+    let e = set(
+        &["gpu.cores=64", "l0.ports=64", "l0.hit_latency=10000"],
+        "l1.size_bytes",
+        "16777216",
+    )
+    .unwrap_err();
+    assert!(
+        e.message.contains("gpu.cores = 64") && e.message.contains("budget of 1024 MiB"),
+        "{e}"
+    );
+    let p = MachineConfig::paper().mem_config();
+    assert!(p.host_bytes() < 1 << 20, "{}", p.host_bytes());
+}
+
+#[test]
+fn bad_toml_reports_line() {
+    let e = MachineConfig::parse("name = \"x\"\n[gpu\ncores = 1", "broken.toml").unwrap_err();
+    assert!(e.to_string().starts_with("broken.toml: "));
+    assert!(e.message.contains("line 2"), "{e}");
+}
