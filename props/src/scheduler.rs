@@ -32,7 +32,7 @@
 //! legal event (up to the raw range) is some choice.
 
 use crate::cex::{ensure, Cex};
-use crate::counters::{MshrModel, PriorityModel, MAX_PRIORITY_WARPS};
+use crate::counters::MAX_PRIORITY_WARPS;
 use crate::datapath::{exact_priority, exact_product};
 use crate::policy::{class_code, RefPolicy};
 use std::collections::VecDeque;
@@ -41,8 +41,14 @@ use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
-use wasp_rtl::subset::{PrioritySubset, SubsetSpec};
+use wasp_rtl::subset::SubsetSpec;
 use wasp_rtl::RegisterFault;
+
+mod explore;
+mod model;
+
+pub use explore::{explore_wasp, small_alphabet, Explored};
+pub use model::Model;
 
 /// Property name used in counterexamples.
 pub const PROP: &str = "(a) scheduler vs model";
@@ -104,109 +110,6 @@ pub struct CycleEvents {
 pub struct Launched {
     /// The warp launched, if any, and its FIFO.
     pub warp: Option<(u32, QueueClass)>,
-}
-
-/// The reference model of one core's launch path.
-#[derive(Debug)]
-pub struct Model {
-    /// The exact launch rule.
-    pub policy: RefPolicy,
-    /// What a closed gate does with a lone waiting priority warp.
-    pub rule: LaunchRule,
-    subset_spec: SubsetSpec,
-    subset: Box<dyn PrioritySubset>,
-    /// Priority FIFO (tickets), oldest first.
-    pub priority: VecDeque<u32>,
-    /// Regular FIFO (tickets), oldest first.
-    pub regular: VecDeque<u32>,
-    /// Shared queue slots.
-    pub queue_capacity: usize,
-    /// MSHR entries.
-    pub mshrs: i64,
-    /// MSHR entries in flight.
-    pub in_flight: i64,
-    /// Non-blocked priority warps in the core.
-    pub nonblocked: i64,
-    /// Blocked priority warps in the core.
-    pub blocked: i64,
-    /// Regular warps in the core.
-    pub regular_in_core: i64,
-    /// Warp slots of the core.
-    pub max_warps: i64,
-    /// The next fresh ticket.
-    pub next_ticket: u32,
-    /// Warps accepted into the queue.
-    pub accepted: u64,
-    /// Warps launched.
-    pub launched: u64,
-}
-
-impl Model {
-    /// Free MSHR entries.
-    pub fn free(&self) -> i64 {
-        self.mshrs - self.in_flight
-    }
-
-    /// Warps waiting in the queue.
-    pub fn waiting(&self) -> usize {
-        self.priority.len() + self.regular.len()
-    }
-
-    /// Warps in the core.
-    pub fn in_core(&self) -> i64 {
-        self.nonblocked + self.blocked + self.regular_in_core
-    }
-
-    /// The reference classification of the quad at (`qx`, `qy`).
-    pub fn classify(&self, qx: u32, qy: u32) -> QueueClass {
-        let prio = self.policy.uses_priority_queue()
-            && match self.subset_spec {
-                // Mesh-k in arithmetic, independent of the comparator.
-                SubsetSpec::Mesh(k) => (qx % 32).is_multiple_of(k) && (qy % 32).is_multiple_of(k),
-                _ => self.subset.is_priority(qx, qy),
-            };
-        if prio {
-            QueueClass::Priority
-        } else {
-            QueueClass::Regular
-        }
-    }
-
-    fn fifo_mut(&mut self, c: QueueClass) -> &mut VecDeque<u32> {
-        match c {
-            QueueClass::Priority => &mut self.priority,
-            QueueClass::Regular => &mut self.regular,
-        }
-    }
-
-    /// The MSHR part of the model.
-    pub fn mshr_model(&self) -> MshrModel {
-        MshrModel {
-            capacity: self.mshrs as u32,
-            in_flight: self.in_flight as u32,
-        }
-    }
-
-    /// The priority-warp part of the model.
-    pub fn priority_model(&self) -> PriorityModel {
-        PriorityModel {
-            nonblocked: self.nonblocked as u32,
-            blocked: self.blocked as u32,
-        }
-    }
-
-    /// A state key: everything the scheduler's and the model's future
-    /// behaviour depends on, except the ticket numbers and the regular
-    /// warps in the core (see [`explore_wasp`]).
-    pub fn key(&self) -> (usize, usize, i64, i64, i64) {
-        (
-            self.priority.len(),
-            self.regular.len(),
-            self.in_flight,
-            self.nonblocked,
-            self.blocked,
-        )
-    }
 }
 
 /// What a run exercised (to tell a vacuous pass from a real one).
@@ -594,110 +497,6 @@ pub fn run(cfg: &SchedConfig, choices: &[CycleChoice]) -> Result<(), Cex> {
         s.cycle(c)?;
     }
     Ok(())
-}
-
-/// Per-cycle input alphabet of [`explore_wasp`]: enqueue nothing, a
-/// priority quad (0, 0) or a regular quad (1, 0) (under Mesh4); enable or
-/// not; each event count 0 or 1 (reduced to legal values).
-pub fn small_alphabet() -> Vec<CycleChoice> {
-    let mut v = Vec::new();
-    for enqueue in [None, Some((0, 0)), Some((1, 0))] {
-        for enable in [false, true] {
-            for bits in 0u8..32 {
-                let b = |i: u8| (bits >> i) & 1;
-                v.push(CycleChoice {
-                    enqueue,
-                    enable,
-                    allocs: b(0),
-                    replies: b(1),
-                    blocked: b(2),
-                    unblocked: b(3),
-                    finished: b(4),
-                    regular_finished: 0,
-                });
-            }
-        }
-    }
-    v
-}
-
-/// Statistics of an exploration.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Explored {
-    /// Distinct states reached (including reset).
-    pub states: usize,
-    /// Transitions checked.
-    pub transitions: u64,
-    /// Priority launches seen.
-    pub priority_launches: u64,
-    /// Cycles where a priority warp waited but WaSP chose otherwise.
-    pub priority_held_back: u64,
-}
-
-/// Every input sequence of length up to `depth` over `alphabet`, from
-/// reset, explored breadth-first as a state graph: two runs that reach the
-/// same [`Model::key`] are merged. This is sound because, with the model
-/// equal to the scheduler (checked every cycle), the key fixes everything
-/// that later cycles depend on: the FIFO lengths (tickets are opaque to the
-/// scheduler), the free-MSHR register, the non-blocked counter, the
-/// blocked warps; the per-cycle launch and decision signals are cleared by
-/// `end_cycle`/`decide`. Regular warps in the core only gate `enable`, and
-/// with `max_warps` above `depth` they never do (asserted). The scheduler is
-/// not `Clone`, so each state is re-reached by replaying its shortest path.
-pub fn explore_wasp(
-    cfg: &SchedConfig,
-    alphabet: &[CycleChoice],
-    depth: usize,
-) -> Result<Explored, String> {
-    use std::collections::HashSet;
-    if cfg.max_warps as usize <= depth {
-        return Err("max_warps must exceed the depth".into());
-    }
-    let fresh = || SchedulerCheck::new(cfg);
-    let start = fresh()?;
-    let mut seen = HashSet::new();
-    seen.insert(start.model.key());
-    let mut frontier: Vec<Vec<usize>> = vec![Vec::new()];
-    let mut stats = Explored::default();
-    for _ in 0..depth {
-        let mut next = Vec::new();
-        for path in &frontier {
-            for (i, choice) in alphabet.iter().enumerate() {
-                let mut s = fresh()?;
-                for &p in path {
-                    s.cycle(&alphabet[p]).map_err(|c| c.to_string())?;
-                }
-                let pw = !s.model.priority.is_empty();
-                let launched = s
-                    .cycle(choice)
-                    .map_err(|c| format!("{c}\npath: {:?}", trace(alphabet, path, i)))?;
-                stats.transitions += 1;
-                match launched.warp {
-                    Some((_, QueueClass::Priority)) => stats.priority_launches += 1,
-                    _ if pw && choice.enable => stats.priority_held_back += 1,
-                    _ => {}
-                }
-                if s.model.in_core() >= s.model.max_warps {
-                    return Err("core filled up: the key would be unsound".into());
-                }
-                if seen.insert(s.model.key()) {
-                    let mut p = path.clone();
-                    p.push(i);
-                    next.push(p);
-                }
-            }
-        }
-        frontier = next;
-    }
-    stats.states = seen.len();
-    Ok(stats)
-}
-
-fn trace(alphabet: &[CycleChoice], path: &[usize], last: usize) -> Vec<CycleChoice> {
-    path.iter()
-        .chain(std::iter::once(&last))
-        .map(|&i| alphabet[i])
-        .collect()
 }
 
 #[cfg(kani)]
