@@ -5,7 +5,7 @@ use super::Outcome;
 
 /// An MSHR entry of the example cache.
 #[derive(Clone, Debug)]
-pub(super) struct Entry {
+pub(super) struct ExampleMshr {
     pub(super) block: usize,
     pub(super) reply: u64,
     pub(super) waiters: Vec<u32>,
@@ -17,7 +17,7 @@ pub(super) struct Entry {
 pub(super) struct ExampleCache {
     pub(super) mshrs: usize,
     pub(super) latency: u64,
-    pub(super) entries: Vec<Entry>,
+    pub(super) entries: Vec<ExampleMshr>,
     pub(super) filled_at: [Option<u64>; 3],
 }
 
@@ -52,7 +52,7 @@ impl ExampleCache {
             e.waiters.push(warp);
             return Some(Outcome::Secondary);
         }
-        self.entries.push(Entry {
+        self.entries.push(ExampleMshr {
             block,
             reply: t + self.latency,
             waiters: vec![warp],

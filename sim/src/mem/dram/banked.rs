@@ -72,8 +72,9 @@ const WRITE: u32 = u32::MAX;
 /// `first_command` of a request that has issued none.
 const NOT_YET: u64 = u64::MAX;
 
+/// A request in a channel's queue, waiting for the scheduler.
 #[derive(Debug, Clone, Copy)]
-struct Request {
+struct QueuedRequest {
     /// First cycle the scheduler sees it.
     ready: u64,
     /// Cycle of the L2 miss (or of the write).
@@ -112,7 +113,7 @@ struct Reply {
 #[derive(Debug, Clone)]
 struct Channel {
     banks: Vec<Bank>,
-    queue: VecDeque<Request>,
+    queue: VecDeque<QueuedRequest>,
     /// Reads issued, in issue (= reply) order.
     replies: Ring<Reply>,
     /// First cycle the data bus is free.
@@ -224,7 +225,7 @@ impl BankedDram {
         let (ch, bank, row) = self.place(block);
         let c = &mut self.channels[ch];
         c.wake = c.wake.min(now + 1);
-        c.queue.push_back(Request {
+        c.queue.push_back(QueuedRequest {
             ready: now + 1,
             missed: now,
             bank,
