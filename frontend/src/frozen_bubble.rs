@@ -1145,15 +1145,9 @@ mod tests {
         }
     }
 
-    /// The real data root in the scene cache (`$WASP_SCENES`, else the
-    /// user's cache directory): unpacked per game by `wasp scenes fetch`,
-    /// or per package by a manual `dpkg-deb -x`.
+    /// The real data root in the scene cache, if it holds `data/levels`.
     fn real_data_root() -> Option<PathBuf> {
-        let cache = crate::fetch::cache_dir();
-        ["frozen-bubble", PACKAGE]
-            .iter()
-            .map(|d| cache.join(d).join(DATA_SUBDIR))
-            .find(|r| r.join("data/levels").exists())
+        crate::fetch::cached_data_root(crate::def::Game::FrozenBubble, "data/levels")
     }
 
     #[test]

@@ -634,7 +634,7 @@ mod tests {
     /// user's cache directory), if fetched.
     pub(super) fn real_root() -> Option<PathBuf> {
         let cache = crate::fetch::cache_dir();
-        let found = find_data_root(&cache);
+        let found = crate::fetch::cached_data_root(Game::Openarena, "baseoa");
         if found.is_none() {
             eprintln!(
                 "skipped: no OpenArena data under {} ({DATA_DIRS:?}); run `wasp scenes fetch`",

@@ -958,15 +958,9 @@ mod tests {
         }
     }
 
-    /// The real data root in the scene cache (`$WASP_SCENES`, else the
-    /// user's cache directory): unpacked per game by `wasp scenes fetch`,
-    /// or per package by a manual `dpkg-deb -x`.
+    /// The real data root in the scene cache, if it holds `maps/dm1.map`.
     fn real_data_root() -> Option<PathBuf> {
-        let cache = crate::fetch::cache_dir();
-        ["teeworlds", PACKAGE]
-            .iter()
-            .map(|d| cache.join(d).join(DATA_SUBDIR))
-            .find(|r| r.join("maps/dm1.map").exists())
+        crate::fetch::cached_data_root(crate::def::Game::Teeworlds, "maps/dm1.map")
     }
 
     #[test]
