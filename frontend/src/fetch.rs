@@ -68,6 +68,21 @@ pub fn data_root(game: Game) -> PathBuf {
     package_root(game).join(data_subdir(game))
 }
 
+/// The game's data root in the scene cache, for tests that need real game
+/// data: under the package root `wasp scenes fetch` unpacks into
+/// ([`package_root`]), else under a directory named after the game's first
+/// package (`<cache>/<package>`, as a manual `dpkg-deb -x` of it lays it
+/// out); the first whose data root holds `probe` (a path relative to it),
+/// None when neither does.
+#[cfg(test)]
+pub(crate) fn cached_data_root(game: Game, probe: &str) -> Option<PathBuf> {
+    let per_package = cache_dir().join(game.packages().first()?);
+    [package_root(game), per_package]
+        .into_iter()
+        .map(|p| p.join(data_subdir(game)))
+        .find(|r| r.join(probe).exists())
+}
+
 /// The subtree of the package's files wasp unpacks.
 fn games_subtree(game: Game) -> String {
     let dir = match game {

@@ -226,3 +226,150 @@ impl CoarseDepth {
         z > m
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::fixtures::*;
+
+    #[test]
+    fn row_spans_hold_every_covered_quad() {
+        // Triangles of every orientation and size, thin slivers included.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: f32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32 * m
+        };
+        let mut mesh = quad_mesh(0.0, 0.0, 1.0, 1.0, 0.0, 0);
+        mesh.positions.clear();
+        mesh.uv.clear();
+        mesh.indices.clear();
+        for t in 0..400u32 {
+            let (cx, cy, r) = (
+                next(96.0),
+                next(96.0),
+                next(if t % 4 == 0 { 4.0 } else { 60.0 }),
+            );
+            for _ in 0..3 {
+                mesh.positions
+                    .push([cx + next(2.0 * r) - r, cy + next(2.0 * r) - r, 0.0]);
+                mesh.uv.push([0.0, 0.0]);
+            }
+            mesh.indices.extend([3 * t, 3 * t + 1, 3 * t + 2]);
+        }
+        let scene = ortho_scene(vec![mesh], vec![mat("m", Blend::Opaque, 0)], 96.0, 96.0);
+        let mut stats = RasterStats {
+            materials: vec![MaterialStats::default()],
+            ..Default::default()
+        };
+        let setups = geometry(&scene, 96, 96, &RasterOptions::default(), &mut stats).unwrap();
+        assert!(setups.len() > 350);
+        let (mut visited, mut full) = (0u64, 0u64);
+        for s in &setups {
+            let (x0, x1) = (s.bbox[0] & !1, s.bbox[1]);
+            for qy in (s.bbox[2] & !1..s.bbox[3]).step_by(2) {
+                let (a, b) = row_span(s, qy, x0, x1);
+                assert!(a % 2 == 0 && x0 <= a && b <= x1.max(a));
+                for qx in (x0..x1).step_by(2) {
+                    full += 1;
+                    if coverage(s, qx, qy, 96, 96) != 0 {
+                        assert!(a <= qx && qx < b, "quad {qx},{qy} outside {a}..{b}");
+                    }
+                }
+                visited += u64::from(b.saturating_sub(a).div_ceil(2));
+            }
+        }
+        assert!(visited < full, "the spans skip quads: {visited} of {full}");
+    }
+
+    #[test]
+    fn top_left_rule_shares_edges_exactly() {
+        // A fan of 4 triangles around a centre, edges through pixel
+        // centres (diagonals and the square's sides): every pixel once.
+        let mut m = quad_mesh(0.5, 0.5, 40.5, 40.5, 0.0, 0);
+        m.positions.push([20.5, 20.5, 0.0]);
+        m.uv.push([0.5, 0.5]);
+        m.indices = vec![4, 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0];
+        let scene = ortho_scene(vec![m], vec![mat("m", Blend::Opaque, 0)], 64.0, 64.0);
+        let f = rasterize(&scene, 64, 64, &RasterOptions::default()).unwrap();
+        assert_eq!(f.stats.pixels_shaded, 40 * 40);
+    }
+
+    #[test]
+    fn coarse_depth_bounds_its_blocks() {
+        let t = 16u32;
+        let mut depth = vec![1.0f32; (t * t) as usize];
+        let mut c = CoarseDepth::new(t);
+        assert!(!c.hidden(&depth, 3, 1, 1.0), "a tie passes");
+        assert!(c.hidden(&depth, 3, 1, 1.5));
+        // Block (0..8, 0..2): all but one pixel nearer.
+        for y in 0..2 {
+            for x in 0..8 {
+                if (x, y) != (7, 1) {
+                    depth[(y * t + x) as usize] = 0.25;
+                    c.wrote(x, y);
+                }
+            }
+        }
+        assert!(!c.hidden(&depth, 0, 0, 0.5), "pixel (7, 1) is still at 1");
+        depth[(t + 7) as usize] = 0.5;
+        c.wrote(7, 1);
+        assert!(!c.hidden(&depth, 6, 1, 0.5), "tie with the farthest pixel");
+        assert!(c.hidden(&depth, 6, 1, 0.51));
+        // Other blocks keep their bounds.
+        assert!(!c.hidden(&depth, 8, 0, 0.9));
+        assert!(!c.hidden(&depth, 0, 2, 0.9));
+        // A stale bound is still an upper bound; clear starts over.
+        depth[0] = 0.1;
+        assert!(c.hidden(&depth, 0, 0, 0.6));
+        c.clear();
+        assert!(!c.hidden(&depth, 0, 0, 0.6));
+        // A tile edge that is not a multiple of the block width.
+        let mut c = CoarseDepth::new(6);
+        let depth = vec![0.5f32; 36];
+        c.invalidate();
+        assert!(c.hidden(&depth, 5, 5, 0.75));
+        assert!(!c.hidden(&depth, 5, 5, 0.5));
+    }
+
+    #[test]
+    fn covered_quads_and_depth_bounds_match_the_quad_by_quad_test() {
+        let scene = random_scene(0x51ed_270b_3d9a_4c1f, 400);
+        let mut stats = RasterStats {
+            materials: vec![MaterialStats::default(); 3],
+            ..Default::default()
+        };
+        let (w, h) = (150u32, 100u32);
+        let setups = geometry(&scene, w, h, &RasterOptions::default(), &mut stats).unwrap();
+        assert!(setups.len() > 300);
+        let mut covered = 0;
+        for (k, s) in setups.iter().enumerate() {
+            // Clip rectangles like a tile's, at odd edges too.
+            let (xend, yend) = (w - (k as u32 % 3), h - (k as u32 % 5));
+            let (x0, x1) = (s.bbox[0] & !1, s.bbox[1].min(xend));
+            for qy in (s.bbox[2] & !1..s.bbox[3].min(yend)).step_by(2) {
+                for seg in (x0..x1.max(x0)).step_by(8) {
+                    let xb = (seg + 8).min(x1);
+                    let want = (seg..xb)
+                        .step_by(2)
+                        .filter(|&qx| coverage(s, qx, qy, xend, yend) != 0)
+                        .count() as u64;
+                    let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
+                    assert_eq!(covered_quads(&cover, qy, seg, xb, xend, yend), want);
+                    covered += want;
+                    let (xl, yl) = ((xb + 1).min(xend - 1), (qy + 1).min(yend - 1));
+                    let lb = depth_lower_bound(s, seg, xl, qy, yl);
+                    for y in qy..=yl {
+                        for x in seg..=xl {
+                            let z = s.depth_at(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                            assert!(lb <= z, "bound {lb} above depth {z}");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(covered > 1000);
+    }
+}

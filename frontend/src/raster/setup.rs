@@ -564,3 +564,131 @@ pub(super) fn geometry(
     stats.setup_triangles = opaque.len() as u64;
     Ok(opaque)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::fixtures::*;
+    use crate::{Filter, Mesh, TexSample};
+
+    /// A tilted textured plane: y = -1, z from -1 to -20, uv = (x, -z).
+    fn tilted() -> Scene {
+        Scene {
+            name: "test:tilted".into(),
+            source: "unit test".into(),
+            meshes: vec![Mesh {
+                positions: vec![
+                    [-10.0, -1.0, -1.0],
+                    [10.0, -1.0, -1.0],
+                    [10.0, -1.0, -20.0],
+                    [-10.0, -1.0, -20.0],
+                ],
+                uv: vec![[-10.0, 1.0], [10.0, 1.0], [10.0, 20.0], [-10.0, 20.0]],
+                uv2: None,
+                indices: vec![0, 1, 2, 0, 2, 3],
+                material: 0,
+            }],
+            materials: vec![mat("ground", Blend::Opaque, 0)],
+            textures: vec![checker("c", 64)],
+            camera: look_down_z(90.0, 0.1, 100.0),
+        }
+    }
+
+    #[test]
+    fn uvs_are_perspective_correct() {
+        let scene = tilted();
+        let (w, h) = (200u32, 200u32);
+        let mut stats = RasterStats {
+            materials: vec![MaterialStats::default()],
+            ..Default::default()
+        };
+        let setups = geometry(&scene, w, h, &RasterOptions::default(), &mut stats).unwrap();
+        // Analytic: the ray through pixel centre (px, py) of a 90-degree
+        // camera at the origin hits y = -1 at t = 1 / -ndc_y, so
+        // x = ndc_x * t, z = -t; the plane's uv = (x, -z).
+        let mut checked = 0;
+        for &(px, py) in &[(100u32, 150u32), (37, 120), (160, 190), (100, 101)] {
+            let (x, y) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+            let nx = x / f64::from(w) * 2.0 - 1.0;
+            let ny = 1.0 - y / f64::from(h) * 2.0;
+            let t = 1.0 / -ny;
+            let want = [nx * t, t];
+            if !(1.0..=20.0).contains(&t) || want[0].abs() > 10.0 {
+                continue;
+            }
+            let s = setups
+                .iter()
+                .find(|s| {
+                    let (cx, cy) = (i64::from(px) * SUB + SUB / 2, i64::from(py) * SUB + SUB / 2);
+                    s.edges.iter().all(|e| e[0] * cx + e[1] * cy + e[2] >= 0)
+                })
+                .expect("covered");
+            let (_, uv, _) = s.attributes(x, y);
+            assert!(
+                (f64::from(uv[0]) - want[0]).abs() < 1e-3 * t.max(1.0)
+                    && (f64::from(uv[1]) - want[1]).abs() < 1e-3 * t.max(1.0),
+                "pixel ({px},{py}): got {uv:?}, want {want:?}"
+            );
+            // Affine interpolation would be far off on this plane.
+            checked += 1;
+        }
+        assert!(checked >= 3);
+    }
+
+    #[test]
+    fn a_triangle_crossing_the_near_plane_is_clipped() {
+        let a = ClipVert {
+            p: [0.0, 0.0, -2.0, 0.5], // behind the near plane (z < -w)
+            uv: [0.0, 0.0],
+            uv2: [0.0, 0.0],
+        };
+        let b = ClipVert {
+            p: [1.0, 0.0, 0.5, 1.0],
+            uv: [1.0, 0.0],
+            uv2: [0.0, 0.0],
+        };
+        let c = ClipVert {
+            p: [0.0, 1.0, 0.5, 1.0],
+            uv: [0.0, 1.0],
+            uv2: [0.0, 0.0],
+        };
+        let (mut out, mut tmp) = (Vec::new(), Vec::new());
+        assert!(clip_triangle([a, b, c], &mut out, &mut tmp));
+        assert_eq!(out.len(), 4, "one vertex cut off: a quadrilateral");
+        for v in &out {
+            assert!(v.p[2] + v.p[3] >= -1e-12, "{v:?}");
+        }
+        // The ground plane extends behind the camera: it is clipped and
+        // still rasterizes without NaNs, covering the bottom of the frame.
+        let mut scene = tilted();
+        scene.meshes[0].positions[0][2] = 5.0;
+        scene.meshes[0].positions[1][2] = 5.0;
+        let f = rasterize(&scene, 128, 64, &RasterOptions::default()).unwrap();
+        assert!(f.stats.clipped >= 1);
+        assert!(f.stats.warps > 0);
+        // The bottom-left quad is covered.
+        assert!(f.trace.tiles().iter().any(|t| t.tx() == 0 && t.ty() == 0));
+        let img_bottom = &f.image[((63 * 128) * 4) as usize..((63 * 128 + 1) * 4) as usize];
+        assert_ne!(img_bottom, to_u8(CLEAR));
+    }
+
+    #[test]
+    fn bad_scenes_are_errors_not_panics() {
+        let mut scene = ortho_scene(
+            vec![quad_mesh(0.0, 0.0, 8.0, 8.0, 0.0, 0)],
+            vec![mat("m", Blend::Opaque, 0)],
+            8.0,
+            8.0,
+        );
+        scene.meshes[0].indices.push(9);
+        assert!(rasterize(&scene, 8, 8, &RasterOptions::default()).is_err());
+        scene.meshes[0].indices.truncate(6);
+        scene.materials[0].shader = vec![ShaderOp::Tex(TexSample {
+            texture: 3,
+            uv_set: 0,
+            filter: Filter::Nearest,
+        })];
+        let e = rasterize(&scene, 8, 8, &RasterOptions::default()).unwrap_err();
+        assert!(e.message.contains("texture 3"), "{e}");
+    }
+}

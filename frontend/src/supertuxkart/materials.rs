@@ -1,5 +1,7 @@
-//! `materials.xml` blend and alpha modes, and the textures decoded (in
-//! parallel, in order) and downscaled.
+//! Materials and textures: `materials.xml` blend and alpha modes, the
+//! output material of each SPM material (found textures, shader
+//! template), the index of the shared texture tree, and the textures
+//! decoded (in parallel, in order) and downscaled.
 
 use super::*;
 
@@ -120,6 +122,159 @@ pub(super) fn decode_images(
             r.expect("decoded")
         })
         .collect()
+}
+
+impl Builder<'_> {
+    pub(super) fn mat_props(&self, name: &str) -> MatProps {
+        let base = Path::new(name)
+            .file_name()
+            .map(|f| f.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        for map in [&self.track_mats, &self.lib_mats, &self.global_mats] {
+            if let Some(p) = map.get(&base) {
+                return *p;
+            }
+        }
+        MatProps {
+            blend: Blend::Opaque,
+            unlit: false,
+            clamp: false,
+        }
+    }
+
+    /// Find a texture file: the model's directory, the track, the shared
+    /// texture tree.
+    pub(super) fn find_texture(&self, name: &str, dir: &Path) -> Option<PathBuf> {
+        let file = Path::new(name).file_name()?.to_string_lossy().into_owned();
+        for d in [dir, self.track_dir.as_path()] {
+            let p = d.join(&file);
+            if p.is_file() {
+                return Some(p);
+            }
+        }
+        self.tex_index.get(&file.to_ascii_lowercase()).cloned()
+    }
+
+    pub(super) fn texture(&mut self, path: &Path, repeat: bool) -> Result<usize, SceneError> {
+        let key = (path.to_path_buf(), repeat);
+        if let Some(&i) = self.tex_ids.get(&key) {
+            return Ok(i);
+        }
+        let name = path
+            .strip_prefix(self.root)
+            .unwrap_or(path)
+            .to_string_lossy()
+            .into_owned();
+        // Decoded later, all at once on several threads.
+        self.textures.push(Texture {
+            name,
+            width: 0,
+            height: 0,
+            rgba: Vec::new(),
+            repeat,
+        });
+        self.tex_paths.push(path.to_path_buf());
+        let i = self.textures.len() - 1;
+        self.tex_ids.insert(key, i);
+        Ok(i)
+    }
+
+    /// The material for an SPM material in `dir`; None if it has no usable
+    /// texture (then ALU-only), with whether a second UV set is used.
+    pub(super) fn material(
+        &mut self,
+        m: &SpmMaterial,
+        dir: &Path,
+    ) -> Result<(usize, bool), SceneError> {
+        let base = m
+            .texture
+            .as_deref()
+            .and_then(|t| self.find_texture(t, dir).map(|p| (t, p)));
+        let Some((base_name, base_path)) = base else {
+            if let Some(t) = &m.texture {
+                self.missing.push(t.clone());
+            }
+            return Ok((self.untextured(), false));
+        };
+        let props = self.mat_props(base_name);
+        let second = m
+            .texture2
+            .as_deref()
+            .and_then(|t| self.find_texture(t, dir));
+        if let (Some(t), None) = (&m.texture2, &second) {
+            self.missing.push(t.clone());
+        }
+        let key = (
+            MatKey::Textured {
+                base: base_path.clone(),
+                second: second.clone(),
+            },
+            props.blend as u8,
+        );
+        if let Some(&i) = self.mat_ids.get(&key) {
+            return Ok((i, second.is_some()));
+        }
+        let t0 = self.texture(&base_path, !props.clamp)?;
+        let shader = match &second {
+            Some(p) => {
+                let t1 = self.texture(p, true)?;
+                shader::lightmapped(t0, t1, Filter::Trilinear)
+            }
+            None if props.unlit => shader::unlit(t0, Filter::Trilinear),
+            None => shader::standard(t0, Filter::Trilinear),
+        };
+        self.materials.push(Material {
+            name: base_name.to_string(),
+            blend: props.blend,
+            shader,
+        });
+        let i = self.materials.len() - 1;
+        self.mat_ids.insert(key, i);
+        Ok((i, second.is_some()))
+    }
+
+    fn untextured(&mut self) -> usize {
+        let key = (MatKey::Untextured, Blend::Opaque as u8);
+        if let Some(&i) = self.mat_ids.get(&key) {
+            return i;
+        }
+        self.materials.push(Material {
+            name: "untextured (vertex colour)".into(),
+            blend: Blend::Opaque,
+            shader: vec![ShaderOp::Alu(10)],
+        });
+        let i = self.materials.len() - 1;
+        self.mat_ids.insert(key, i);
+        i
+    }
+}
+
+/// Index image files under `dir` by lower-case file name (first found wins,
+/// directories visited in name order).
+pub(super) fn index_textures(dir: &Path, out: &mut HashMap<String, PathBuf>, depth: u32) {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = rd.flatten().map(|e| e.path()).collect();
+    entries.sort();
+    let (dirs, files): (Vec<PathBuf>, Vec<PathBuf>) = entries.into_iter().partition(|p| p.is_dir());
+    for f in files {
+        let ext = f
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default();
+        if matches!(ext.as_str(), "png" | "jpg" | "jpeg") {
+            if let Some(n) = f.file_name() {
+                out.entry(n.to_string_lossy().to_ascii_lowercase())
+                    .or_insert(f.clone());
+            }
+        }
+    }
+    if depth < 4 {
+        for d in dirs {
+            index_textures(&d, out, depth + 1);
+        }
+    }
 }
 
 #[cfg(test)]

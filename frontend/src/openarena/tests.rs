@@ -1,0 +1,253 @@
+//! End-to-end tests of the OpenArena loader: a synthetic game on disk,
+//! and the fetched game data (ignored unless asked for).
+
+use super::*;
+use crate::def::Game;
+use std::io::Write;
+
+fn def(map: &str, camera: &str) -> SceneDef {
+    SceneDef {
+        name: format!("test-{map}"),
+        game: Game::Openarena,
+        map: map.into(),
+        camera: camera.into(),
+        width: 1960,
+        height: 768,
+        description: String::new(),
+        shader: None,
+    }
+}
+
+/// A whole synthetic game on disk: a pk3 with the map, a shader
+/// script, a TGA and a JPEG.
+#[test]
+fn loads_a_synthetic_map() {
+    let root = std::env::temp_dir().join(format!("wasp-oa-test-{}", std::process::id()));
+    std::fs::create_dir_all(root.join("baseoa")).unwrap();
+    let mut jpg = Vec::new();
+    image::RgbImage::from_pixel(8, 8, image::Rgb([200, 100, 50]))
+        .write_to(
+            &mut std::io::Cursor::new(&mut jpg),
+            image::ImageFormat::Jpeg,
+        )
+        .unwrap();
+    let write_pk3 = |name: &str, files: &[(&str, &[u8])]| {
+        let f = File::create(root.join("baseoa").join(name)).unwrap();
+        let mut z = zip::ZipWriter::new(f);
+        let o = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Deflated);
+        for (n, d) in files {
+            z.start_file(*n, o).unwrap();
+            z.write_all(d).unwrap();
+        }
+        z.finish().unwrap();
+    };
+    let script = b"textures/t/floor\n{\n{\nmap $lightmap\n}\n{\nmap textures/t/floor.tga\nblendfunc filter\n}\n}\n";
+    write_pk3(
+        "pak0.pk3",
+        &[("scripts/t.shader", script), ("textures/t/floor.jpg", &jpg)],
+    );
+    write_pk3(
+        "pak1.pk3",
+        &[
+            ("maps/mini.bsp", &tiny_bsp()),
+            ("Textures/T/Floor.tga", &tiny_tga(true, true)),
+        ],
+    );
+    assert_eq!(maps(&root).unwrap(), vec!["mini".to_string()]);
+    let s = load(&root, &def("mini", "spawn:0")).unwrap();
+    // The floor polygon (lightmapped) and the patch (no lightmap);
+    // the nodraw face and the flare are dropped.
+    assert_eq!(s.meshes.len(), 2);
+    let tris: usize = s.meshes.iter().map(|m| m.indices.len() / 3).sum();
+    assert_eq!(tris, 2 + 2 * PATCH_LEVEL * PATCH_LEVEL);
+    let lit = s.meshes.iter().find(|m| m.uv2.is_some()).unwrap();
+    assert_eq!(lit.uv2.as_ref().unwrap()[2], [0.5, 0.5]);
+    let mat = &s.materials[lit.material];
+    assert_eq!(mat.blend, Blend::Opaque);
+    // The script's .tga wins over the JPEG of the same stem; the later
+    // pk3's mixed-case entry matches case-insensitively.
+    assert_eq!(s.textures[0].name, "Textures/T/Floor.tga");
+    assert_eq!((s.textures[0].width, s.textures[0].height), (3, 2));
+    assert_eq!(s.textures[1].width, LIGHTMAP_SIDE as u32);
+    assert_eq!(&s.textures[1].rgba[0..4], &[0, 1, 2, 255]);
+    let Camera::Perspective {
+        eye, target, up, ..
+    } = s.camera
+    else {
+        panic!()
+    };
+    assert_eq!(eye, [16.0, 32.0, 24.0 + EYE_HEIGHT]);
+    assert!((target[1] - eye[1] - 1.0).abs() < 1e-6 && (target[0] - eye[0]).abs() < 1e-6);
+    assert_eq!(up, [0.0, 0.0, 1.0]);
+    let e = load(&root, &def("mini", "spawn:1")).unwrap_err();
+    assert!(e.message.contains("1 spawn points"), "{e}");
+    let e = load(&root, &def("nope", "spawn:0")).unwrap_err();
+    assert!(e.message.contains("maps/nope.bsp"), "{e}");
+    // A corrupt BSP inside a pk3: the error names pk3/entry and offset.
+    write_pk3("pak2.pk3", &[("maps/mini.bsp", &tiny_bsp()[..500])]);
+    let e = load(&root, &def("mini", "spawn:0")).unwrap_err();
+    assert!(
+        e.file.ends_with("pak2.pk3/maps/mini.bsp") && e.offset.is_some(),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+/// The real data root in the scene cache (`$WASP_SCENES`, else the
+/// user's cache directory), if fetched.
+pub(super) fn real_root() -> Option<PathBuf> {
+    let cache = crate::fetch::cache_dir();
+    let found = crate::fetch::cached_data_root(Game::Openarena, "baseoa");
+    if found.is_none() {
+        eprintln!(
+            "skipped: no OpenArena data under {} ({DATA_DIRS:?}); run `wasp scenes fetch`",
+            cache.display()
+        );
+    }
+    found
+}
+
+/// Checks on a loaded real scene: UVs finite, textures well-formed,
+/// the eye inside the bounds of the geometry.
+pub(super) fn check_real(s: &Scene, min_tris: usize) {
+    let tris: usize = s.meshes.iter().map(|m| m.indices.len() / 3).sum();
+    assert!(tris >= min_tris, "{}: {tris} triangles", s.name);
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for m in &s.meshes {
+        assert_eq!(m.uv.len(), m.positions.len());
+        assert!(m.uv.iter().all(|u| u[0].is_finite() && u[1].is_finite()));
+        if let Some(uv2) = &m.uv2 {
+            assert!(uv2.iter().all(|u| u[0].is_finite() && u[1].is_finite()));
+        }
+        assert!(m.indices.iter().all(|&i| (i as usize) < m.positions.len()));
+        for p in &m.positions {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+    }
+    for mat in &s.materials {
+        for op in &mat.shader {
+            if let crate::ShaderOp::Tex(t) = op {
+                let tex = &s.textures[t.texture];
+                assert!(
+                    tex.width > 0
+                        && tex.width <= MAX_TEXTURE_SIDE
+                        && tex.height <= MAX_TEXTURE_SIDE
+                );
+                assert_eq!(tex.rgba.len(), (tex.width * tex.height * 4) as usize);
+            }
+        }
+    }
+    let Camera::Perspective { eye, .. } = s.camera else {
+        panic!()
+    };
+    for k in 0..3 {
+        assert!(
+            eye[k] >= lo[k] && eye[k] <= hi[k],
+            "{}: eye {eye:?} outside {lo:?}..{hi:?}",
+            s.name
+        );
+    }
+}
+
+#[test]
+#[ignore = "needs fetched game data: wasp scenes fetch openarena"]
+fn real_shipped_scenes() {
+    let Some(root) = real_root() else { return };
+    for d in crate::def::all().unwrap() {
+        if d.game != Game::Openarena {
+            continue;
+        }
+        let t = std::time::Instant::now();
+        let s = load(&root, &d).unwrap();
+        let el = t.elapsed();
+        check_real(&s, 2_000);
+        assert!(
+            !s.textures.iter().any(|t| t.name == "missing"),
+            "{}",
+            s.source
+        );
+        let tris: usize = s.meshes.iter().map(|m| m.indices.len() / 3).sum();
+        eprintln!(
+            "{}: {tris} triangles, {} meshes, {} materials, {} textures ({:.1} MiB), loaded in {el:.2?}",
+            d.name,
+            s.meshes.len(),
+            s.materials.len(),
+            s.textures.len(),
+            s.textures.iter().map(|t| t.rgba.len()).sum::<usize>() as f64 / (1 << 20) as f64
+        );
+    }
+}
+
+#[test]
+#[ignore = "needs fetched game data: wasp scenes fetch openarena"]
+fn real_polygons_wind_with_their_normals_and_spawns_float_24_above_the_floor() {
+    let Some(root) = real_root() else { return };
+    let mut paks = Paks::open(&root).unwrap();
+    let bytes = paks.read("maps/oa_dm1.bsp").unwrap();
+    let bsp = parse_bsp(&bytes, Path::new("oa_dm1.bsp")).unwrap();
+    let (mut agree, mut disagree) = (0, 0);
+    for f in bsp.faces.iter().filter(|f| f.kind == 1) {
+        let (v, i) = face_triangles(&bsp, f).unwrap();
+        for t in i.chunks_exact(3) {
+            let n = cross(
+                sub(v[t[1] as usize].pos, v[t[0] as usize].pos),
+                sub(v[t[2] as usize].pos, v[t[0] as usize].pos),
+            );
+            if dot(n, f.normal) > 0.0 {
+                agree += 1
+            } else {
+                disagree += 1
+            }
+        }
+    }
+    assert!(agree > 100 * disagree, "{agree} {disagree}");
+    let s = load(&root, &def("oa_dm1", "spawn:0")).unwrap();
+    check_real(&s, 5_000);
+    let ents = parse_entities(&bsp.entities, Path::new("x"), 0).unwrap();
+    for (o, _) in spawn_points(&ents) {
+        // Nearest surface straight below the origin.
+        let mut best = f32::MAX;
+        for m in &s.meshes {
+            for t in m.indices.chunks_exact(3) {
+                let (a, b, c) = (
+                    m.positions[t[0] as usize],
+                    m.positions[t[1] as usize],
+                    m.positions[t[2] as usize],
+                );
+                let e = |p: Vec3, q: Vec3| {
+                    (q[0] - p[0]) * (o[1] - p[1]) - (q[1] - p[1]) * (o[0] - p[0])
+                };
+                let (w0, w1, w2) = (e(b, c), e(c, a), e(a, b));
+                let sum = w0 + w1 + w2;
+                if sum.abs() < 1e-6 {
+                    continue;
+                }
+                if (w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0) || (w0 <= 0.0 && w1 <= 0.0 && w2 <= 0.0) {
+                    let z = (w0 * a[2] + w1 * b[2] + w2 * c[2]) / sum;
+                    if z <= o[2] && o[2] - z < best {
+                        best = o[2] - z;
+                    }
+                }
+            }
+        }
+        assert!((best - 24.0).abs() < 1.0, "spawn {o:?}: floor {best} below");
+    }
+}
+
+#[test]
+#[ignore = "needs fetched game data: wasp scenes fetch openarena"]
+fn preview_images() {
+    let Some(root) = real_root() else { return };
+    let list = std::env::var("OA_PREVIEW").unwrap_or("oa_dm1:spawn:0".into());
+    for item in list.split(',') {
+        let (map, cam) = item.split_once(':').unwrap();
+        let s = load(&root, &def(map, cam)).unwrap();
+        let out = std::env::temp_dir().join(format!("oa-{map}-{}.png", cam.replace(':', "")));
+        crate::supertuxkart::preview::render(&s, 980, 384, &out);
+        eprintln!("{}", out.display());
+    }
+}

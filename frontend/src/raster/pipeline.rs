@@ -1,0 +1,425 @@
+//! The frame: the scene checked and set up, the textures it samples laid
+//! out, the tiling engine's polygon lists, and the tiles rasterized on
+//! worker threads and joined in Z-order into the trace and the picture.
+
+use super::*;
+
+/// [`rasterize`], with or without the hierarchical depth test (`hiz`; the
+/// results are the same, [`RasterStats::quads_rejected_hiz`] aside).
+pub(super) fn rasterize_with(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    opts: &RasterOptions,
+    hiz: bool,
+) -> Result<Frame, SceneError> {
+    let fail = |m: String| SceneError::in_file(&scene.name, m);
+    if width == 0 || height == 0 || width > 16384 || height > 16384 {
+        return Err(fail(format!(
+            "frame {width}x{height}: expected 1 to 16384 pixels each"
+        )));
+    }
+    if opts.tile < 2 || !opts.tile.is_multiple_of(2) || opts.tile > 512 {
+        return Err(fail(format!(
+            "tile {}: expected an even size from 2 to 512",
+            opts.tile
+        )));
+    }
+    validate(scene)?;
+    let mut stats = RasterStats {
+        materials: scene
+            .materials
+            .iter()
+            .map(|m| MaterialStats {
+                name: m.name.clone(),
+                blend: format!("{:?}", m.blend).to_lowercase(),
+                ..Default::default()
+            })
+            .collect(),
+        ..Default::default()
+    };
+    let clock = std::time::Instant::now();
+    let mut timings = RasterTimings::default();
+    let threads = match opts.threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n,
+    }
+    .clamp(1, 64);
+    let setups = geometry(scene, width, height, opts, &mut stats)?;
+    timings.geometry = clock.elapsed().as_secs_f64();
+    // Textures: only those of materials a set-up triangle uses are sampled;
+    // an alpha test reads its material's first texture's alpha.
+    let tex_clock = std::time::Instant::now();
+    let mut uses = vec![
+        TextureUse {
+            sampled: false,
+            alpha_tested: false,
+        };
+        scene.textures.len()
+    ];
+    let mut used_mat = vec![false; scene.materials.len()];
+    for s in &setups {
+        used_mat[s.material as usize] = true;
+    }
+    for (m, _) in scene.materials.iter().zip(&used_mat).filter(|(_, &u)| u) {
+        let mut first = true;
+        for op in &m.shader {
+            if let ShaderOp::Tex(s) = op {
+                uses[s.texture].sampled = true;
+                uses[s.texture].alpha_tested |= first && m.blend == Blend::AlphaTest;
+                first = false;
+            }
+        }
+    }
+    let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
+    timings.textures = tex_clock.elapsed().as_secs_f64();
+    let mats: Vec<MatInfo> = scene
+        .materials
+        .iter()
+        .map(|m| {
+            let tex: Vec<_> = m
+                .shader
+                .iter()
+                .filter_map(|op| match op {
+                    ShaderOp::Tex(s) => Some(*s),
+                    ShaderOp::Alu(_) => None,
+                })
+                .collect();
+            MatInfo {
+                blend: m.blend,
+                tex,
+                shader: m.shader.clone(),
+            }
+        })
+        .collect();
+
+    // Tiling engine: polygon lists.
+    let t = opts.tile;
+    let (tiles_x, tiles_y) = (width.div_ceil(t), height.div_ceil(t));
+    let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (tiles_x * tiles_y) as usize];
+    for (i, s) in setups.iter().enumerate() {
+        let [x0, x1, y0, y1] = s.bbox;
+        for ty in y0 / t..=(y1 - 1) / t {
+            for tx in x0 / t..=(x1 - 1) / t {
+                let (tx0, ty0) = ((tx * t).max(x0), (ty * t).max(y0));
+                let (tx1, ty1) = (((tx + 1) * t).min(x1), ((ty + 1) * t).min(y1));
+                if overlaps(s, tx0, tx1, ty0, ty1) {
+                    lists[(ty * tiles_x + tx) as usize].push(i as u32);
+                    stats.bin_entries += 1;
+                }
+            }
+        }
+    }
+
+    // Geometry includes the binning.
+    timings.geometry = clock.elapsed().as_secs_f64() - timings.textures;
+
+    // Raster pipeline, tile by tile in Z-order; tiles are independent, so
+    // batches of them run on worker threads and are emitted in order.
+    let mut header = TraceHeader::new(scene.name.clone(), width, height, t);
+    header
+        .notes
+        .push(format!(" scene {} ({})", scene.name, scene.source));
+    let mut builder = Trace::builder(header).map_err(|e| fail(format!("trace header: {e}")))?;
+    let mut image = vec![0u8; width as usize * height as usize * 4];
+    for px in image.chunks_exact_mut(4) {
+        px.copy_from_slice(&to_u8(CLEAR));
+    }
+    let ctx = TileCtx {
+        setups: &setups,
+        mats: &mats,
+        textures: &textures,
+        tile: t,
+        width,
+        height,
+        colour: opts.colour,
+        prepass: opts.depth_prepass,
+        hiz,
+    };
+    let order: Vec<(u32, u32)> = crate::trace::z_order(tiles_x, tiles_y)
+        .into_iter()
+        .filter(|&(tx, ty)| !lists[(ty * tiles_x + tx) as usize].is_empty())
+        .collect();
+    // Tiles are handed out one at a time (costs vary a lot), each worker
+    // building its tile's trace records too; results are used in order.
+    let batch = threads * 16;
+    let bufs: Vec<std::sync::Mutex<TileBuf>> = (0..batch.min(order.len().max(1)))
+        .map(|_| std::sync::Mutex::new(TileBuf::new(t, scene.materials.len())))
+        .collect();
+    let part_header = builder.header().clone();
+    for chunk in order.chunks(batch) {
+        let next = std::sync::atomic::AtomicUsize::new(0);
+        let work = || loop {
+            let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let Some(&(tx, ty)) = chunk.get(i) else {
+                break;
+            };
+            let mut b = bufs[i].lock().unwrap_or_else(|e| e.into_inner());
+            raster_tile(&ctx, tx, ty, &lists[(ty * tiles_x + tx) as usize], &mut b);
+            b.part = build_tile(&ctx, &part_header, tx, ty, &mut b);
+        };
+        if threads > 1 && chunk.len() > 1 {
+            std::thread::scope(|sc| {
+                for _ in 1..threads.min(chunk.len()) {
+                    sc.spawn(work);
+                }
+                work();
+            });
+        } else {
+            work();
+        }
+        for (&(tx, ty), b) in chunk.iter().zip(&bufs) {
+            let mut b = b.lock().unwrap_or_else(|e| e.into_inner());
+            stats.quads_covered += b.covered;
+            stats.quads_rejected_early_z += b.rejected;
+            stats.quads_rejected_hiz += b.rejected_hiz;
+            stats.warps += b.frags.len() as u64;
+            stats.positions += b.positions;
+            stats.pixels_shaded += b.pixels;
+            for (m, c) in stats.materials.iter_mut().zip(&b.per_material) {
+                m.warps += c[0];
+                m.quads_rejected_early_z += c[1];
+                m.pixels += c[2];
+            }
+            let (ox, oy) = (tx * t, ty * t);
+            let (tw, th) = (t.min(width - ox), t.min(height - oy));
+            if opts.colour {
+                for ly in 0..th {
+                    let row = ((oy + ly) * width + ox) as usize * 4;
+                    for lx in 0..tw {
+                        let c = to_u8(b.colour[(ly * t + lx) as usize]);
+                        let at = row + lx as usize * 4;
+                        image[at..at + 4].copy_from_slice(&c);
+                    }
+                }
+            }
+            let part = std::mem::replace(&mut b.part, Ok(None))
+                .map_err(|e| fail(format!("building the trace: {e}")))?;
+            if let Some(part) = part {
+                stats.tiles += 1;
+                builder
+                    .append(part)
+                    .map_err(|e| fail(format!("building the trace: {e}")))?;
+            }
+        }
+    }
+    let note = format!(
+        " rasterized by wasp scene::raster: {} triangles ({} clipped, {} culled), {} quads \
+         covered, {} rejected by early-Z, {} fragments shaded, one warp each in \
+         rasterization order, at {} quad positions ({:.2} warps per position); texture heap \
+         {} KiB at {:#x}, 4x4-texel 64-byte blocks in Morton order",
+        stats.primitives,
+        stats.clipped,
+        stats.culled_outside + stats.culled_back_faces,
+        stats.quads_covered,
+        stats.quads_rejected_early_z,
+        stats.warps,
+        stats.positions,
+        if stats.positions == 0 {
+            0.0
+        } else {
+            stats.warps as f64 / stats.positions as f64
+        },
+        textures.heap_bytes() / 1024,
+        crate::texture::HEAP_BASE
+    );
+    builder
+        .note(note)
+        .map_err(|e| fail(format!("trace note: {e}")))?;
+    let trace = builder
+        .finish()
+        .map_err(|e| fail(format!("building the trace: {e}")))?;
+    timings.tiles = clock.elapsed().as_secs_f64() - timings.textures - timings.geometry;
+    Ok(Frame {
+        trace,
+        width,
+        height,
+        image,
+        stats,
+        timings,
+    })
+}
+
+pub(super) fn to_u8(c: [f32; 4]) -> [u8; 4] {
+    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    [q(c[0]), q(c[1]), q(c[2]), q(c[3])]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::fixtures::*;
+
+    #[test]
+    fn tiles_are_visited_in_z_order_and_empty_tiles_skipped() {
+        // 256x192 frame: 4x3 tiles; the quad leaves tile (3, 2) empty.
+        let scene = ortho_scene(
+            vec![
+                quad_mesh(0.0, 0.0, 256.0, 128.0, 0.0, 0),
+                quad_mesh(0.0, 128.0, 192.0, 192.0, 0.0, 0),
+            ],
+            vec![mat("m", Blend::Opaque, 0)],
+            256.0,
+            192.0,
+        );
+        let f = rasterize(&scene, 256, 192, &RasterOptions::default()).unwrap();
+        let got: Vec<(u32, u32)> = f.trace.tiles().iter().map(|t| (t.tx(), t.ty())).collect();
+        let want: Vec<(u32, u32)> = crate::trace::z_order(4, 3)
+            .into_iter()
+            .filter(|&p| p != (3, 2))
+            .collect();
+        assert_eq!(got, want);
+        assert_eq!(
+            got[..5],
+            [(0, 0), (1, 0), (0, 1), (1, 1), (2, 0)],
+            "Morton order"
+        );
+        // Every tile is fully covered: 32x32 quad positions each, one warp
+        // each but where a rectangle's diagonal crosses a quad: both of its
+        // triangles shade a fragment there (each pixel exactly once).
+        let mut extra = 0;
+        for tile in f.trace.tiles() {
+            assert_eq!(tile.position_count(), 1024);
+            extra += tile.quad_count() - 1024;
+        }
+        assert_eq!(extra as u64, f.stats.warps - f.stats.positions);
+        assert!(extra > 0);
+        assert_eq!(f.stats.pixels_shaded, 256 * 128 + 192 * 64);
+    }
+
+    /// Timing of the front end on the procedural scenes at the paper's
+    /// 1960x768 (a measurement, not a check: run with
+    /// `cargo test --release -p wasp-sim raster_timing -- --ignored --nocapture`).
+    #[test]
+    #[ignore = "timing measurement; run in release with --ignored --nocapture"]
+    fn raster_timing() {
+        use crate::procedural;
+        let scenes = [
+            procedural::plane("ground", "standard").unwrap(),
+            procedural::plane("ground", "lightmapped").unwrap(),
+            procedural::sprites("full", 1960, 768).unwrap(),
+        ];
+        // CPU seconds of this process (user + system), from /proc (Linux):
+        // the machine may be shared, so wall time alone misleads.
+        fn cpu_seconds() -> f64 {
+            let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+            let after = stat.rsplit_once(')').map_or("", |x| x.1);
+            let f: Vec<f64> = after
+                .split_whitespace()
+                .map(|t| t.parse().unwrap_or(0.0))
+                .collect();
+            // Fields 14 and 15 (utime, stime) are the 12th and 13th after
+            // the command name; clock ticks of 1/100 s.
+            (f.get(11).copied().unwrap_or(0.0) + f.get(12).copied().unwrap_or(0.0)) / 100.0
+        }
+        for scene in &scenes {
+            for (colour, threads) in [(false, 1), (true, 1), (false, 0), (true, 0)] {
+                let opts = RasterOptions {
+                    colour,
+                    threads,
+                    ..RasterOptions::default()
+                };
+                let cpu0 = cpu_seconds();
+                let runs = 5;
+                let best = (0..runs)
+                    .map(|_| rasterize_timed(scene, 1960, 768, &opts).unwrap().1)
+                    .fold(f64::INFINITY, f64::min);
+                let cpu = (cpu_seconds() - cpu0) / f64::from(runs);
+                println!(
+                    "{:<24} colour {:<5} threads {:<4} wall best of {runs}: {:.3} s, CPU per run: {:.3} s",
+                    scene.name,
+                    colour,
+                    if threads == 0 { "auto".to_string() } else { threads.to_string() },
+                    best,
+                    cpu
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn hierarchical_z_changes_no_result() {
+        let mut rejected = 0;
+        for (seed, (w, h), tile, prepass) in [
+            (1u64, (200u32, 150u32), 64u32, false),
+            (2, (200, 150), 64, true),
+            (3, (97, 61), 10, false),
+            (4, (128, 96), 6, false),
+            (5, (130, 70), 16, true),
+        ] {
+            let scene = random_scene(0x9e37_79b9_7f4a_7c15 ^ seed, 300);
+            let opts = RasterOptions {
+                tile,
+                depth_prepass: prepass,
+                threads: 1,
+                ..Default::default()
+            };
+            let fast = rasterize_with(&scene, w, h, &opts, true).unwrap();
+            let slow = rasterize_with(&scene, w, h, &opts, false).unwrap();
+            assert_eq!(slow.stats.quads_rejected_hiz, 0);
+            assert!(fast.stats.quads_rejected_hiz <= fast.stats.quads_rejected_early_z);
+            rejected += fast.stats.quads_rejected_hiz;
+            assert_eq!(trace_bytes(&fast), trace_bytes(&slow), "seed {seed}");
+            assert_eq!(
+                fast.trace.rejected_count(),
+                fast.stats.quads_rejected_early_z,
+                "seed {seed}: every rejected quad is in the trace"
+            );
+            assert!(fast.image == slow.image, "seed {seed}: picture differs");
+            let stats = RasterStats {
+                quads_rejected_hiz: 0,
+                ..fast.stats.clone()
+            };
+            assert_eq!(stats, slow.stats, "seed {seed}");
+            assert!(
+                slow.stats.quads_rejected_early_z > 0,
+                "seed {seed}: no overdraw"
+            );
+        }
+        assert!(rejected > 0, "the coarse test rejected nothing");
+    }
+
+    #[test]
+    fn procedural_scenes_record_every_rejected_quad_in_the_trace() {
+        use crate::def::{Game, SceneDef};
+        use crate::procedural;
+        let (w, h) = (320, 192);
+        let mut rejected = 0;
+        for map in procedural::MAPS {
+            let def = SceneDef {
+                name: format!("procedural-{map}"),
+                game: Game::Procedural,
+                map: map.into(),
+                camera: if map == "plane" { "ground" } else { "full" }.into(),
+                width: w,
+                height: h,
+                description: String::new(),
+                shader: None,
+            };
+            let scene = procedural::load(&def).unwrap();
+            for depth_prepass in [false, true] {
+                let opts = RasterOptions {
+                    colour: false,
+                    depth_prepass,
+                    ..RasterOptions::default()
+                };
+                let f = rasterize(&scene, w, h, &opts).unwrap();
+                let what = format!("{map}, prepass {depth_prepass}");
+                let want = f.stats.quads_rejected_early_z;
+                // Every rejected quad (coarse ones included) is in the
+                // trace once: with the warps, every covered quad.
+                assert_eq!(f.trace.rejected_count(), want, "{what}");
+                assert_eq!(f.trace.stats().rejected_quads, want, "{what}");
+                let produced: u64 = f.trace.tiles().iter().map(|t| t.raster_count()).sum();
+                assert_eq!(produced, f.stats.quads_covered, "{what}");
+                assert_eq!(f.stats.warps + want, f.stats.quads_covered, "{what}");
+                assert_eq!(f.trace.tiles().len() as u64, f.stats.tiles, "{what}");
+                // Written as format 4 and read back, each stays in place.
+                let back = Trace::parse(&f.trace.to_text(), "rt").unwrap();
+                assert_eq!(back, f.trace, "{what}");
+                rejected += want;
+            }
+        }
+        assert!(rejected > 0, "no procedural scene rejected a quad");
+    }
+}

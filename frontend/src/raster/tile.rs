@@ -1,0 +1,533 @@
+//! The raster pipeline of one tile: its triangles rasterized into 2x2
+//! quads in draw order, Early-Z against the tile's depth buffer (the
+//! coarse, hierarchical test first), the texture blocks of every
+//! surviving fragment, and the picture's colours (opaque ones shaded once
+//! per visible pixel, blended fragments over them).
+
+use super::*;
+
+/// One surviving (triangle, quad) fragment of a tile.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Frag {
+    /// Quad position in the tile: y * side + x.
+    pub(super) pos: u32,
+    pub(super) material: u32,
+    /// First entry of the tile's block ranges for its texture instructions.
+    pub(super) range: u32,
+    /// Quads Early-Z rejected since the previous fragment (in
+    /// rasterization order): the trace's `z` record before this warp.
+    pub(super) rej: u32,
+}
+
+/// Per-shader facts the inner loop needs.
+pub(super) struct MatInfo {
+    pub(super) blend: Blend,
+    /// Texture instructions in program order.
+    pub(super) tex: Vec<crate::TexSample>,
+    /// The whole program.
+    pub(super) shader: Vec<ShaderOp>,
+}
+
+/// What every tile's rasterization reads.
+pub(super) struct TileCtx<'a> {
+    pub(super) setups: &'a [Setup],
+    pub(super) mats: &'a [MatInfo],
+    pub(super) textures: &'a TextureSet<'a>,
+    pub(super) tile: u32,
+    pub(super) width: u32,
+    pub(super) height: u32,
+    pub(super) colour: bool,
+    pub(super) prepass: bool,
+    /// Reject quads by the tile's coarse depth before testing them one by
+    /// one (the same results; off only to check that in tests).
+    pub(super) hiz: bool,
+}
+
+/// One tile's working state and results, reused from tile to tile.
+pub(super) struct TileBuf {
+    pub(super) depth: Vec<f32>,
+    pub(super) colour: Vec<[f32; 4]>,
+    pub(super) frags: Vec<Frag>,
+    /// Per texture instruction: its blocks in `pool` (start, length) and
+    /// whether it is trilinear (it read two mip levels).
+    pub(super) ranges: Vec<(u32, u32, bool)>,
+    pub(super) pool: Vec<u64>,
+    pub(super) scratch: Vec<u64>,
+    pub(super) covered: u64,
+    pub(super) rejected: u64,
+    /// Of `rejected`, those the coarse depth rejected.
+    pub(super) rejected_hiz: u64,
+    /// Quads rejected since the last surviving fragment (after the last
+    /// one once the tile is done: the `z` record that ends the tile). It
+    /// saturates, and the trace builder refuses more than a `z` record
+    /// holds, so a count too large for the trace is an error, never a
+    /// wrong count.
+    pub(super) rej_since: u32,
+    pub(super) pixels: u64,
+    /// The depth buffer's coarse bounds.
+    pub(super) coarse: CoarseDepth,
+    /// Per material: fragments shaded (warps), quads rejected, pixels.
+    pub(super) per_material: Vec<[u64; 3]>,
+    /// Deferred colour: per pixel, 1 + the fragment whose colour the pixel
+    /// shows (the last opaque or alpha-tested fragment written there), 0
+    /// when the colour is already in `colour`; and that pixel's UVs.
+    pub(super) pending: Vec<u32>,
+    pub(super) pending_uv: Vec<[[f32; 2]; 2]>,
+    /// Per fragment, the level of detail of each texture instruction.
+    pub(super) lambdas: Vec<[f32; 8]>,
+    /// Distinct quad positions of the fragments.
+    pub(super) positions: u64,
+    /// Per quad position, whether a fragment is there (all false between
+    /// tiles).
+    pub(super) seen: Vec<bool>,
+    /// The tile's trace records (None: the tile rasterized no quad, so it
+    /// has no record).
+    pub(super) part: Result<Option<Trace>, crate::trace::Problem>,
+}
+
+impl TileBuf {
+    pub(super) fn new(tile: u32, materials: usize) -> TileBuf {
+        TileBuf {
+            depth: vec![1.0; (tile * tile) as usize],
+            colour: vec![CLEAR; (tile * tile) as usize],
+            frags: Vec::new(),
+            ranges: Vec::new(),
+            pool: Vec::new(),
+            scratch: Vec::with_capacity(64),
+            covered: 0,
+            rejected: 0,
+            rejected_hiz: 0,
+            rej_since: 0,
+            pixels: 0,
+            coarse: CoarseDepth::new(tile),
+            per_material: vec![[0; 3]; materials],
+            pending: vec![0; (tile * tile) as usize],
+            pending_uv: vec![[[0.0; 2]; 2]; (tile * tile) as usize],
+            lambdas: Vec::new(),
+            positions: 0,
+            seen: vec![false; (tile / 2 * (tile / 2)) as usize],
+            part: Ok(None),
+        }
+    }
+
+    /// Shades the deferred pixel `at`, if any, into `colour`.
+    #[inline]
+    pub(super) fn resolve(&mut self, ctx: &TileCtx, at: usize) {
+        let f = self.pending[at];
+        if f != 0 {
+            let frag = (f - 1) as usize;
+            let mat = &ctx.mats[self.frags[frag].material as usize];
+            let [uv, uv2] = &self.pending_uv[at];
+            let c = shade(ctx.textures, mat, uv, uv2, &self.lambdas[frag]);
+            self.colour[at] = [c[0], c[1], c[2], 1.0];
+            self.pending[at] = 0;
+        }
+    }
+}
+
+/// Rasterize, early-Z test, texture and shade the triangles `list` of tile
+/// (tx, ty) into `b`.
+pub(super) fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
+    let t = ctx.tile;
+    let (ox, oy) = (tx * t, ty * t);
+    let (tw, th) = (t.min(ctx.width - ox), t.min(ctx.height - oy));
+    let (xend, yend) = (ox + tw, oy + th);
+    let side = t / 2;
+    b.depth.fill(1.0);
+    b.colour.fill(CLEAR);
+    b.pending.fill(0);
+    b.lambdas.clear();
+    b.frags.clear();
+    b.ranges.clear();
+    b.pool.clear();
+    b.covered = 0;
+    b.rejected = 0;
+    b.rejected_hiz = 0;
+    b.rej_since = 0;
+    b.coarse.clear();
+    b.pixels = 0;
+    b.per_material.iter_mut().for_each(|c| *c = [0; 3]);
+    // The quads of a triangle inside the tile: (x0, x1, y0, y1), x0 and
+    // y0 aligned to quads.
+    let span = |s: &Setup| {
+        (
+            s.bbox[0].max(ox) & !1,
+            s.bbox[1].min(xend),
+            s.bbox[2].max(oy) & !1,
+            s.bbox[3].min(yend),
+        )
+    };
+    if ctx.prepass {
+        // Depth pre-pass (hidden-surface removal): the nearest opaque depth
+        // of every pixel first, so only visible fragments survive early-Z.
+        for &si in list {
+            let s = &ctx.setups[si as usize];
+            if ctx.mats[s.material as usize].blend != Blend::Opaque {
+                continue;
+            }
+            let (x0, x1, y0, y1) = span(s);
+            for qy in (y0..y1).step_by(2) {
+                let (rx0, rx1) = row_span(s, qy, x0, x1);
+                for qx in (rx0..rx1).step_by(2) {
+                    let mask = coverage(s, qx, qy, xend, yend);
+                    for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
+                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+                        let z = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
+                        let at = ((py - oy) * t + px - ox) as usize;
+                        b.depth[at] = b.depth[at].min(z);
+                    }
+                }
+            }
+        }
+    }
+    if ctx.prepass {
+        b.coarse.invalidate();
+    }
+    for &si in list {
+        let s = &ctx.setups[si as usize];
+        let mat = &ctx.mats[s.material as usize];
+        let mc = s.material as usize;
+        let (x0, x1, y0, y1) = span(s);
+        for qy in (y0..y1).step_by(2) {
+            let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
+            let (rx0, rx1) = span_of(&cover, x0, x1);
+            // The row in segments of one coarse-depth block each.
+            let mut xa = rx0;
+            while xa < rx1 {
+                let xb =
+                    (ox + ((xa - ox) / CoarseDepth::BLOCK_W + 1) * CoarseDepth::BLOCK_W).min(rx1);
+                let seg = (xa, xb);
+                xa = xb;
+                if ctx.hiz {
+                    // Hierarchical Z: the segment's pixels span columns
+                    // seg.0..xb (the last quad's second pixel at xb when
+                    // xb is odd) and rows qy, qy + 1, within the tile.
+                    let lb =
+                        depth_lower_bound(s, seg.0, xb.min(xend - 1), qy, (qy + 1).min(yend - 1));
+                    if b.coarse.hidden(&b.depth, seg.0 - ox, qy - oy, lb) {
+                        let n = covered_quads(&cover, qy, seg.0, xb, xend, yend);
+                        b.covered += n;
+                        b.rejected += n;
+                        b.rejected_hiz += n;
+                        b.rej_since = b.rej_since.saturating_add(n as u32);
+                        b.per_material[mc][1] += n;
+                        continue;
+                    }
+                }
+                for qx in (seg.0..seg.1).step_by(2) {
+                    let mask = coverage(s, qx, qy, xend, yend);
+                    if mask == 0 {
+                        continue;
+                    }
+                    b.covered += 1;
+                    // Early-Z on the covered pixels.
+                    let mut z = [0.0f32; 4];
+                    let mut live = 0u8;
+                    for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
+                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+                        z[i as usize] = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
+                        if z[i as usize] <= b.depth[((py - oy) * t + px - ox) as usize] {
+                            live |= 1 << i;
+                        }
+                    }
+                    if live == 0 {
+                        b.rejected += 1;
+                        b.rej_since = b.rej_since.saturating_add(1);
+                        b.per_material[mc][1] += 1;
+                        continue;
+                    }
+                    let npix = u64::from(live.count_ones());
+                    b.pixels += npix;
+                    b.per_material[mc][0] += 1;
+                    b.per_material[mc][2] += npix;
+                    // UVs at all 4 pixel centres (helper pixels included).
+                    let mut uv = [[0.0f32; 2]; 4];
+                    let mut uv2 = [[0.0f32; 2]; 4];
+                    // (uv2 only when a sample reads it.)
+                    let with_uv2 = mat.tex.iter().any(|smp| smp.uv_set == 1);
+                    for i in 0..4u32 {
+                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+                        let (x, y) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+                        if with_uv2 {
+                            (uv[i as usize], uv2[i as usize]) = s.uvs_at(x, y);
+                        } else {
+                            uv[i as usize] = s.uv_at(x, y);
+                        }
+                    }
+                    // Texture instructions: the quad's blocks.
+                    let first = b.ranges.len() as u32;
+                    let mut lambdas = [0.0f32; 8];
+                    // An alpha test reads the first sample's alpha at the
+                    // texels its blocks were found from.
+                    let alpha_tested = mat.blend == Blend::AlphaTest;
+                    let mut texels = None;
+                    for (k, smp) in mat.tex.iter().enumerate() {
+                        let set = if smp.uv_set == 1 { &uv2 } else { &uv };
+                        let lambda = if k == 0 && alpha_tested {
+                            let q = texels.insert(QuadTexels::default());
+                            ctx.textures
+                                .quad_blocks_texels(smp, *set, &mut b.scratch, q)
+                        } else {
+                            ctx.textures.quad_blocks_lambda(smp, *set, &mut b.scratch)
+                        };
+                        if k < lambdas.len() {
+                            lambdas[k] = lambda;
+                        }
+                        // Trilinear in the trace: the sample filtered two mip
+                        // levels (a trilinear sample that magnifies or sits
+                        // at the last level reads one level: one bilinear
+                        // pass).
+                        let tri = ctx.textures.reads_two_levels(smp, lambda);
+                        b.ranges
+                            .push((b.pool.len() as u32, b.scratch.len() as u32, tri));
+                        b.pool.extend_from_slice(&b.scratch);
+                    }
+                    let frag = b.frags.len() as u32;
+                    b.frags.push(Frag {
+                        pos: ((qy - oy) / 2) * side + (qx - ox) / 2,
+                        material: s.material,
+                        range: first,
+                        rej: std::mem::take(&mut b.rej_since),
+                    });
+                    if ctx.colour {
+                        b.lambdas.push(lambdas);
+                    }
+                    // Depth writes and colour. An opaque or alpha-tested pixel's
+                    // colour is deferred: only the last one written to a pixel
+                    // shows, so it is shaded once, when a blended fragment needs
+                    // it as the destination or at the end of the tile (same
+                    // inputs, same colour as shading every fragment).
+                    for i in (0..4u32).filter(|i| live & (1 << i) != 0) {
+                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+                        let at = ((py - oy) * t + px - ox) as usize;
+                        let k = i as usize;
+                        let write = match mat.blend {
+                            Blend::Opaque => true,
+                            Blend::AlphaTest => {
+                                // Without texture, alpha 1 (as `shade`).
+                                texels
+                                    .as_ref()
+                                    .map_or(1.0, |q| ctx.textures.quad_alpha(q, k))
+                                    >= 0.5
+                            }
+                            Blend::AlphaBlend => {
+                                if ctx.colour {
+                                    b.resolve(ctx, at);
+                                    let c = shade(ctx.textures, mat, &uv[k], &uv2[k], &lambdas);
+                                    let d = b.colour[at];
+                                    let a = c[3];
+                                    b.colour[at] = [
+                                        c[0] * a + d[0] * (1.0 - a),
+                                        c[1] * a + d[1] * (1.0 - a),
+                                        c[2] * a + d[2] * (1.0 - a),
+                                        1.0,
+                                    ];
+                                }
+                                false
+                            }
+                        };
+                        if write {
+                            b.depth[at] = z[k];
+                            b.coarse.wrote(px - ox, py - oy);
+                            if ctx.colour {
+                                b.pending[at] = frag + 1;
+                                b.pending_uv[at] = [uv[k], uv2[k]];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if ctx.colour {
+        for ly in 0..th {
+            for lx in 0..tw {
+                b.resolve(ctx, (ly * t + lx) as usize);
+            }
+        }
+    }
+}
+
+/// The colour of one pixel: the product of its shader's texture samples,
+/// alpha from the first.
+#[inline]
+fn shade(
+    textures: &TextureSet,
+    mat: &MatInfo,
+    uv: &[f32; 2],
+    uv2: &[f32; 2],
+    lambdas: &[f32; 8],
+) -> [f32; 4] {
+    let mut c = [1.0f32; 4];
+    for (k, smp) in mat.tex.iter().enumerate() {
+        let at = if smp.uv_set == 1 { uv2 } else { uv };
+        let lambda = lambdas.get(k).copied().unwrap_or(0.0);
+        let s = textures.sample_rgba(smp.texture, smp.filter, *at, lambda);
+        c[0] *= s[0];
+        c[1] *= s[1];
+        c[2] *= s[2];
+        if k == 0 {
+            c[3] = s[3];
+        }
+    }
+    if mat.tex.is_empty() {
+        c = [0.7, 0.7, 0.7, 1.0];
+    }
+    c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::fixtures::*;
+    use crate::{Material, Mesh};
+
+    #[test]
+    fn early_z_rejects_hidden_quads_but_blended_sprites_do_not() {
+        // Perspective: a near opaque square drawn first hides a far one.
+        let persp = |meshes: Vec<Mesh>, materials: Vec<Material>| Scene {
+            name: "test:persp".into(),
+            source: "unit test".into(),
+            meshes,
+            materials,
+            textures: vec![checker("c", 64)],
+            camera: look_down_z(60.0, 0.1, 100.0),
+        };
+        let near = quad_mesh(-5.0, -5.0, 5.0, 5.0, -2.0, 0);
+        let far = quad_mesh(-1.0, -1.0, 1.0, 1.0, -10.0, 1);
+        let scene = persp(
+            vec![near.clone(), far.clone()],
+            vec![mat("near", Blend::Opaque, 0), mat("far", Blend::Opaque, 0)],
+        );
+        let f = rasterize(&scene, 128, 128, &RasterOptions::default()).unwrap();
+        assert!(f.stats.quads_rejected_early_z > 0);
+        assert_eq!(
+            f.stats.materials[1].quads_rejected_early_z,
+            f.stats.quads_rejected_early_z
+        );
+        assert_eq!(f.stats.materials[1].warps, 0, "far square hidden");
+        // The trace records every rejected quad where it was rasterized:
+        // the far square is drawn last, so after each tile's warps.
+        assert_eq!(f.trace.rejected_count(), f.stats.quads_rejected_early_z);
+        for t in f.trace.tiles() {
+            assert_eq!(u64::from(t.rejected_after_last()), t.rejected_count());
+        }
+        assert_eq!(f.stats.positions, 64 * 64);
+        // The near square's two triangles share a diagonal: the 64 quads it
+        // crosses hold one fragment of each, two warps.
+        assert_eq!(f.stats.warps, f.stats.positions + 64);
+        assert_eq!(f.trace.quad_count() as u64, f.stats.warps);
+        assert_eq!(f.trace.stats().positions, f.stats.positions);
+        // The same far square, but the near one alpha-blended: both shade.
+        let scene = persp(
+            vec![near, far],
+            vec![
+                mat("near", Blend::AlphaBlend, 0),
+                mat("far", Blend::Opaque, 0),
+            ],
+        );
+        let g = rasterize(&scene, 128, 128, &RasterOptions::default()).unwrap();
+        assert_eq!(g.stats.quads_rejected_early_z, 0);
+        let far_quads = g.stats.materials[1].warps;
+        assert!(far_quads > 0);
+        assert_eq!(g.stats.materials[0].warps, f.stats.warps);
+        assert_eq!(g.stats.positions, 64 * 64);
+        assert_eq!(g.stats.warps, f.stats.warps + far_quads);
+        // Where the sprite covers the far square, the position holds two
+        // warps of one 11-instruction program each (never merged): the far
+        // square's first (opaque, drawn first), then the sprite's
+        // (blended, drawn last).
+        let tile = g
+            .trace
+            .tiles()
+            .iter()
+            .find(|t| t.tx() == 0 && t.ty() == 0)
+            .unwrap();
+        let at: Vec<_> = tile.quads_at(31, 31).collect();
+        assert_eq!(at.len(), 2);
+        for q in &at {
+            assert_eq!((q.instr_count(), q.tex_count()), (11, 1));
+        }
+        assert!(at[0].index() < at[1].index());
+    }
+
+    #[test]
+    fn alpha_tested_texels_below_half_write_no_depth() {
+        let mut tex = checker("c", 8);
+        for px in tex.rgba.chunks_exact_mut(4) {
+            px[3] = 0; // fully cut out
+        }
+        let mut scene = ortho_scene(
+            vec![
+                quad_mesh(0.0, 0.0, 32.0, 32.0, 1.0, 0),
+                quad_mesh(0.0, 0.0, 32.0, 32.0, 0.0, 1),
+            ],
+            vec![
+                mat("cutout", Blend::AlphaTest, 0),
+                mat("behind", Blend::Opaque, 0),
+            ],
+            32.0,
+            32.0,
+        );
+        scene.textures = vec![tex];
+        let f = rasterize(&scene, 32, 32, &RasterOptions::default()).unwrap();
+        assert_eq!(f.stats.quads_rejected_early_z, 0);
+        // 256 quads each, plus the 16 quads on each square's diagonal.
+        assert_eq!(f.stats.materials[0].warps, 16 * 16 + 16);
+        assert_eq!(f.stats.materials[1].warps, 16 * 16 + 16);
+        assert_eq!(f.stats.positions, 16 * 16);
+        assert_eq!(f.stats.warps, 2 * (16 * 16 + 16));
+        // With an opaque texture the cut-out hides the square behind.
+        for px in scene.textures[0].rgba.chunks_exact_mut(4) {
+            px[3] = 255;
+        }
+        let g = rasterize(&scene, 32, 32, &RasterOptions::default()).unwrap();
+        assert_eq!(g.stats.materials[1].warps, 0);
+    }
+
+    #[test]
+    fn hidden_triangles_are_rejected_coarsely_and_visible_ones_are_not() {
+        let persp = |meshes: Vec<Mesh>| Scene {
+            name: "test:hiz".into(),
+            source: "unit test".into(),
+            meshes,
+            materials: vec![
+                mat("near", Blend::Opaque, 0),
+                mat("far", Blend::Opaque, 0),
+                mat("nearer", Blend::Opaque, 0),
+                mat("tie", Blend::Opaque, 0),
+            ],
+            textures: vec![checker("c", 64)],
+            camera: look_down_z(60.0, 0.1, 100.0),
+        };
+        // The near square fills the frame; the far one behind it is
+        // hidden, the tie (the near square again: a later triangle at the
+        // same depth wins) and then the nearer one in front are not.
+        let near = quad_mesh(-5.0, -5.0, 5.0, 5.0, -2.0, 0);
+        let far = quad_mesh(-1.0, -1.0, 1.0, 1.0, -10.0, 1);
+        let nearer = quad_mesh(-0.5, -0.5, 0.5, 0.5, -1.5, 2);
+        let tie = Mesh {
+            material: 3,
+            ..near.clone()
+        };
+        let scene = persp(vec![near, far, tie, nearer]);
+        let f = rasterize(&scene, 128, 128, &RasterOptions::default()).unwrap();
+        let m = &f.stats.materials;
+        assert!(m[1].quads_rejected_early_z > 0);
+        assert_eq!(m[1].warps, 0);
+        assert!(m[2].warps > 0 && m[3].warps > 0);
+        assert_eq!(m[2].quads_rejected_early_z, 0);
+        assert_eq!(m[3].quads_rejected_early_z, 0);
+        assert_eq!(m[3].warps, m[0].warps);
+        assert_eq!(
+            f.stats.quads_rejected_hiz, m[1].quads_rejected_early_z,
+            "every hidden quad of the far square, nothing else, rejected coarsely"
+        );
+        let g = rasterize_with(&scene, 128, 128, &RasterOptions::default(), false).unwrap();
+        assert_eq!(trace_bytes(&f), trace_bytes(&g));
+        assert_eq!(
+            g.stats.quads_rejected_early_z,
+            f.stats.quads_rejected_early_z
+        );
+    }
+}

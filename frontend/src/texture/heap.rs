@@ -1,0 +1,264 @@
+//! The texture heap: each texture's mip levels laid out block-linear
+//! (4x4-texel blocks in Morton order, levels one after another, textures
+//! aligned to [`TEXTURE_ALIGN`] from [`HEAP_BASE`]), the chains built on
+//! worker threads.
+
+use super::*;
+
+/// One mip level: its texels and where its blocks are.
+#[derive(Clone, Debug)]
+pub struct MipLevel<'a> {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// Texels, RGBA8, row-major, top row first (level 0 borrowed from the
+    /// scene's texture).
+    pub rgba: Cow<'a, [u8]>,
+    /// Block number (byte address / 64) of the level's first block.
+    pub first_block: u64,
+    /// Blocks the level occupies (its padded block grid).
+    pub block_count: u64,
+    /// log2 of the padded block grid's width.
+    pw_log2: u32,
+    /// log2 of the Morton square edge in blocks.
+    k: u32,
+    /// The alpha channel alone (empty unless asked for): a 4x denser copy
+    /// for the alpha test, which reads alpha only.
+    pub(super) alpha: Vec<u8>,
+}
+
+impl MipLevel<'_> {
+    /// Block number of the block holding texel (`x`, `y`) (inside the level).
+    #[inline]
+    pub fn block_of(&self, x: u32, y: u32) -> u64 {
+        let (bx, by) = (x / BLOCK_TEXELS, y / BLOCK_TEXELS);
+        let mask = (1u32 << self.k) - 1;
+        let inner = morton2(bx & mask, by & mask);
+        let squares_per_row = 1u64 << (self.pw_log2 - self.k);
+        let square = u64::from(by >> self.k) * squares_per_row + u64::from(bx >> self.k);
+        self.first_block + (square << (2 * self.k)) + inner
+    }
+}
+
+/// One texture in the heap: its mip chain and address range.
+#[derive(Clone, Debug)]
+pub struct HeapTexture<'a> {
+    /// Name (from the scene).
+    pub name: String,
+    /// Repeat (true) or clamp to edge.
+    pub repeat: bool,
+    /// Byte address of level 0.
+    pub base: u64,
+    /// Bytes of the whole chain (a multiple of 64).
+    pub bytes: u64,
+    /// Levels, level 0 first, down to 1x1.
+    pub levels: Vec<MipLevel<'a>>,
+}
+
+/// Every texture of a scene laid out in the texture heap.
+#[derive(Clone, Debug)]
+pub struct TextureSet<'a> {
+    pub(super) textures: Vec<HeapTexture<'a>>,
+    end: u64,
+}
+
+/// Interleaves the low 16 bits of x (even bit positions) and y (odd).
+#[inline]
+fn morton2(x: u32, y: u32) -> u64 {
+    fn spread(v: u32) -> u64 {
+        let mut v = u64::from(v & 0xffff);
+        v = (v | (v << 8)) & 0x00ff_00ff;
+        v = (v | (v << 4)) & 0x0f0f_0f0f;
+        v = (v | (v << 2)) & 0x3333_3333;
+        v = (v | (v << 1)) & 0x5555_5555;
+        v
+    }
+    spread(x) | (spread(y) << 1)
+}
+
+/// How the front end uses a texture ([`TextureSet::with_threads`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureUse {
+    /// Whether any visible triangle samples it (if not, its levels beyond
+    /// 0 keep their size and place in the heap but get no texels).
+    pub sampled: bool,
+    /// Whether an alpha test reads its alpha (then its levels get an
+    /// alpha-only copy).
+    pub alpha_tested: bool,
+}
+
+impl Default for TextureUse {
+    fn default() -> Self {
+        TextureUse {
+            sampled: true,
+            alpha_tested: false,
+        }
+    }
+}
+
+impl<'a> TextureSet<'a> {
+    /// Builds every texture's mip chain and places it in the heap. A texture
+    /// with a zero edge or a texel array of the wrong size is replaced by a
+    /// 1x1 magenta texture (the raster front end checks scenes before).
+    pub fn new(textures: &'a [Texture]) -> TextureSet<'a> {
+        TextureSet::with_threads(textures, 1, &[])
+    }
+
+    /// [`TextureSet::new`], building the mip chains on up to `threads`
+    /// threads (the result does not depend on it), as `uses` says (default
+    /// for textures beyond its end): an alpha-only copy of every level of
+    /// alpha-tested textures (it speeds up [`TextureSet::sample_alpha`],
+    /// same results), and no texels beyond level 0 for textures never
+    /// sampled (same layout, so the same block addresses; sampling one
+    /// anyway gives transparent black).
+    pub fn with_threads(
+        textures: &'a [Texture],
+        threads: usize,
+        uses: &[TextureUse],
+    ) -> TextureSet<'a> {
+        let use_of = |i: usize| uses.get(i).copied().unwrap_or_default();
+        // Largest textures first, dealt round-robin, so threads get similar
+        // work; each chain lands in its texture's slot.
+        let mut order: Vec<usize> = (0..textures.len()).collect();
+        order.sort_by_key(|&i| std::cmp::Reverse(textures[i].rgba.len()));
+        let threads = threads.clamp(1, textures.len().max(1));
+        let mut chains: Vec<Chain<'a>> = vec![Vec::new(); textures.len()];
+        if threads == 1 {
+            for (i, t) in textures.iter().enumerate() {
+                chains[i] = mip_chain(t, use_of(i).sampled);
+            }
+        } else {
+            let built: Vec<Vec<(usize, Chain<'a>)>> = std::thread::scope(|sc| {
+                let handles: Vec<_> = (0..threads)
+                    .map(|k| {
+                        let mine: Vec<usize> =
+                            order.iter().copied().skip(k).step_by(threads).collect();
+                        sc.spawn(move || {
+                            mine.into_iter()
+                                .map(|i| (i, mip_chain(&textures[i], use_of(i).sampled)))
+                                .collect::<Vec<_>>()
+                        })
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().expect("mip chain thread"))
+                    .collect()
+            });
+            for (i, chain) in built.into_iter().flatten() {
+                chains[i] = chain;
+            }
+        }
+        let mut out = Vec::with_capacity(textures.len());
+        let mut addr = HEAP_BASE;
+        for (i, (t, chain)) in textures.iter().zip(chains).enumerate() {
+            let with_alpha = use_of(i).alpha_tested && use_of(i).sampled;
+            let base = addr;
+            let mut levels = Vec::with_capacity(chain.len());
+            let mut block = base / BLOCK_BYTES;
+            for (w, h, rgba) in chain {
+                let bw = w.div_ceil(BLOCK_TEXELS).next_power_of_two();
+                let bh = h.div_ceil(BLOCK_TEXELS).next_power_of_two();
+                let (pw_log2, ph_log2) = (bw.trailing_zeros(), bh.trailing_zeros());
+                let block_count = u64::from(bw) * u64::from(bh);
+                let alpha = if with_alpha {
+                    rgba.chunks_exact(4).map(|p| p[3]).collect()
+                } else {
+                    Vec::new()
+                };
+                levels.push(MipLevel {
+                    width: w,
+                    height: h,
+                    rgba,
+                    first_block: block,
+                    block_count,
+                    pw_log2,
+                    k: pw_log2.min(ph_log2),
+                    alpha,
+                });
+                block += block_count;
+            }
+            let bytes = block * BLOCK_BYTES - base;
+            addr = (block * BLOCK_BYTES).div_ceil(TEXTURE_ALIGN) * TEXTURE_ALIGN;
+            out.push(HeapTexture {
+                name: t.name.clone(),
+                repeat: t.repeat,
+                base,
+                bytes,
+                levels,
+            });
+        }
+        TextureSet {
+            textures: out,
+            end: addr,
+        }
+    }
+
+    /// The textures in scene order.
+    pub fn textures(&self) -> &[HeapTexture<'a>] {
+        &self.textures
+    }
+
+    /// Bytes of the heap in use (textures and their alignment padding).
+    pub fn heap_bytes(&self) -> u64 {
+        self.end - HEAP_BASE
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::texture::fixtures::*;
+
+    #[test]
+    fn block_layout_one_block_per_4x4_texels_and_textures_never_share() {
+        let texs = [tex("a", 64, 64, true), tex("b", 100, 20, false)];
+        let set = TextureSet::new(&texs);
+        let a = &set.textures()[0];
+        let b = &set.textures()[1];
+        assert_eq!(a.base, HEAP_BASE);
+        assert_eq!(b.base % TEXTURE_ALIGN, 0);
+        assert!(b.base >= a.base + a.bytes);
+        let l0 = &a.levels[0];
+        // All 16 texels of a 4x4 block are one line; neighbours are others.
+        for y in 4..8 {
+            for x in 8..12 {
+                assert_eq!(l0.block_of(x, y), l0.block_of(8, 4));
+            }
+        }
+        assert_ne!(l0.block_of(12, 4), l0.block_of(8, 4));
+        assert_ne!(l0.block_of(8, 8), l0.block_of(8, 4));
+        // Morton order: the 2x2 blocks of the top-left corner are consecutive.
+        let base = l0.first_block;
+        assert_eq!(l0.block_of(0, 0), base);
+        assert_eq!(l0.block_of(4, 0), base + 1);
+        assert_eq!(l0.block_of(0, 4), base + 2);
+        assert_eq!(l0.block_of(4, 4), base + 3);
+        // Every block of every level of every texture is distinct and inside
+        // its texture's range.
+        let mut all = Vec::new();
+        for (t, ht) in set.textures().iter().enumerate() {
+            let (lo, hi) = (ht.base / 64, (ht.base + ht.bytes) / 64);
+            for l in &ht.levels {
+                let mut mine = Vec::new();
+                for y in 0..l.height {
+                    for x in 0..l.width {
+                        let blk = l.block_of(x, y);
+                        assert!(blk >= lo && blk < hi, "texture {t}");
+                        mine.push(blk);
+                    }
+                }
+                mine.sort_unstable();
+                mine.dedup();
+                let expect = l.width.div_ceil(4) as usize * l.height.div_ceil(4) as usize;
+                assert_eq!(mine.len(), expect);
+                all.extend(mine);
+            }
+        }
+        let n = all.len();
+        all.sort_unstable();
+        all.dedup();
+        assert_eq!(all.len(), n, "no block shared between levels or textures");
+    }
+}
