@@ -289,7 +289,7 @@ mod tests {
 
     /// Timing of the front end on the procedural scenes at the paper's
     /// 1960x768 (a measurement, not a check: run with
-    /// `cargo test --release -p wasp-sim raster_timing -- --ignored --nocapture`).
+    /// `cargo test --release -p wasp-frontend raster_timing -- --ignored --nocapture`).
     #[test]
     #[ignore = "timing measurement; run in release with --ignored --nocapture"]
     fn raster_timing() {
