@@ -44,7 +44,7 @@ pub struct Explored {
 
 /// Every input sequence of length up to `depth` over `alphabet`, from
 /// reset, explored breadth-first as a state graph: two runs that reach the
-/// same [`Model::key`] are merged. This is sound because, with the model
+/// same [`Model::key`](super::Model::key) are merged. This is sound because, with the model
 /// equal to the scheduler (checked every cycle), the key fixes everything
 /// that later cycles depend on: the FIFO lengths (tickets are opaque to the
 /// scheduler), the free-MSHR register, the non-blocked counter, the

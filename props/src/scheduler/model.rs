@@ -100,7 +100,7 @@ impl Model {
 
     /// A state key: everything the scheduler's and the model's future
     /// behaviour depends on, except the ticket numbers and the regular
-    /// warps in the core (see [`explore_wasp`]).
+    /// warps in the core (see [`explore_wasp`](super::explore_wasp)).
     pub fn key(&self) -> (usize, usize, i64, i64, i64) {
         (
             self.priority.len(),

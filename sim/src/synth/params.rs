@@ -198,7 +198,7 @@ impl GenParams {
     /// measured on a probe frame of at most 512x256 pixels with the same
     /// seed. Returns the parameters and the reuse measured on the probe;
     /// when the target is out of reach the scale ends at a bound, so check
-    /// the returned reuse (and measure the full trace, see [`GenReport`]).
+    /// the returned reuse (and measure the full trace, see [`GenReport`](super::GenReport)).
     pub fn with_target_reuse(&self, target: f64) -> Result<(GenParams, f64), GenError> {
         self.validate()?;
         if !(target.is_finite() && target > 0.0) {
