@@ -722,8 +722,9 @@ impl ShaderCore {
 
 #[cfg(test)]
 mod tests {
-    //! The texture filter unit: its rate, its order and how it adds to
-    //! the texture latency.
+    //! The launch and issue stages and the LDST unit's intake on one core,
+    //! cycle by cycle; the texture filter unit: its rate, its order and how
+    //! it adds to the texture latency.
     use crate::config::{FilterTiming, MachineConfig};
     use crate::gpu::{Gpu, RunOptions};
     use crate::run::simulate;
@@ -886,5 +887,101 @@ mod tests {
         // With a rate, trilinear costs more than bilinear.
         let c = cfg(1, 8, SERIAL);
         assert!(run(&c, &t).1.cycles > run(&c, &b).1.cycles);
+    }
+
+    /// A one-core machine (the paper's otherwise) with `width`, `warps`
+    /// slots and ALU latency `alu`.
+    fn one_core(width: u32, warps: u32, alu: u32) -> MachineConfig {
+        let mut c = cfg(1, 2, OVERLAP);
+        c.gpu.cores = 1;
+        c.raster.quads_per_cycle = 4;
+        c.core.pipeline_width = width;
+        c.core.max_warps = warps;
+        c.core.alu_latency = alu;
+        c.validate().unwrap();
+        c
+    }
+
+    /// Each cycle's counters of core 0 (instructions, texture
+    /// instructions, warps launched) and its snapshot, to the end.
+    fn cycles(c: &MachineConfig, t: &Trace) -> Vec<([u64; 3], super::CoreSnapshot)> {
+        let mut gpu = Gpu::new(c, t).unwrap();
+        let mut out = vec![];
+        while !gpu.done() {
+            gpu.step().unwrap();
+            let core = &gpu.cores()[0];
+            let s = core.stats();
+            out.push((
+                [s.instructions, s.tex_instructions, s.warps_launched],
+                core.snapshot(),
+            ));
+        }
+        out
+    }
+
+    /// At most one warp launches a cycle, into the lowest free slot, and it
+    /// issues from the cycle after its launch.
+    #[test]
+    fn one_launch_a_cycle_into_the_lowest_free_slot() {
+        let quads: Vec<(u32, u32)> = (0..4).map(|x| (x, 0)).collect();
+        let t = trace(&quads, &[Instr::Alu(2)]);
+        let run = cycles(&one_core(4, 8, 1), &t);
+        let mut launched = 0;
+        for w in run.windows(2) {
+            let (a, b) = (&w[0].0, &w[1].0);
+            assert!(b[2] - a[2] <= 1, "one launch a cycle");
+            if b[2] > a[2] {
+                // Warps finish before the launch stage, so the slots the
+                // others hold after the cycle are those held at the launch.
+                let newest = w[1].1.warps.iter().max_by_key(|v| v.launched).unwrap();
+                let held = |s: usize| w[1].1.warps.iter().any(|v| v.slot == s);
+                assert!((0..newest.slot).all(held), "the lowest free slot");
+                assert!(!newest.ready_alu, "not ready in its launch cycle");
+                launched += 1;
+            }
+        }
+        assert_eq!(launched + run[0].0[2], 4);
+    }
+
+    /// Issue takes at most `pipeline_width` instructions a cycle, and a warp
+    /// in an ALU run issues once every `alu_latency` cycles.
+    #[test]
+    fn issue_keeps_the_width_and_the_alu_latency() {
+        let quads: Vec<(u32, u32)> = (0..4).flat_map(|y| (0..4).map(move |x| (x, y))).collect();
+        for (width, alu) in [(1, 1), (2, 3), (4, 5)] {
+            let run = cycles(&one_core(width, 16, alu), &trace(&quads, &[Instr::Alu(6)]));
+            let per_cycle: Vec<u64> = run.windows(2).map(|w| w[1].0[0] - w[0].0[0]).collect();
+            assert!(per_cycle.iter().all(|&n| n <= u64::from(width)));
+            assert_eq!(run.last().unwrap().0[0], 16 * 6);
+            // A lone warp: its six instructions `alu` cycles apart.
+            let lone = cycles(
+                &one_core(width, 16, alu),
+                &trace(&[(0, 0)], &[Instr::Alu(6)]),
+            );
+            let at: Vec<usize> = lone
+                .windows(2)
+                .enumerate()
+                .filter(|(_, w)| w[1].0[0] > w[0].0[0])
+                .map(|(i, _)| i)
+                .collect();
+            assert_eq!(at.len(), 6 - usize::from(lone[0].0[0] > 0));
+            assert!(at.windows(2).all(|d| d[1] - d[0] == alu as usize));
+        }
+    }
+
+    /// One texture instruction enters the LDST unit a cycle.
+    #[test]
+    fn one_texture_instruction_a_cycle() {
+        let quads: Vec<(u32, u32)> = (0..4).flat_map(|y| (0..4).map(move |x| (x, y))).collect();
+        let run = cycles(
+            &one_core(4, 16, 1),
+            &trace(&quads, &[Instr::Tex(&[1]), Instr::Tex(&[2, 3])]),
+        );
+        assert!(run.windows(2).all(|w| w[1].0[1] - w[0].0[1] <= 1));
+        assert_eq!(run.last().unwrap().0[1], 32);
+        assert!(
+            run.iter().all(|(_, s)| s.ldst <= 8),
+            "the LDST queue's size"
+        );
     }
 }
