@@ -69,9 +69,13 @@ mod params;
 #[cfg(test)]
 pub(crate) mod plain;
 mod stats;
+#[cfg(test)]
+mod testkit;
+mod warp;
 pub use observe::{CoreSnapshot, WarpView};
 pub use params::CoreParams;
 pub use stats::{CoreStats, WarpRecord};
+use warp::{block_warp, Warp};
 
 /// The largest value of the 5-bit free-MSHR register.
 const FREE_MSHR_MAX: u32 = (1 << FREE_MSHR_BITS) - 1;
@@ -80,39 +84,6 @@ const FREE_MSHR_MAX: u32 = (1 << FREE_MSHR_BITS) - 1;
 /// always has this many entries, so that indexing it with a slot number
 /// masked to this power of two needs no bounds check.
 const MAX_SLOTS: usize = 128;
-
-/// A warp in a slot.
-#[derive(Clone, Copy, Debug, Default)]
-struct Warp {
-    /// Index of its quad in the tile.
-    quad: u32,
-    /// Next instruction entry to start, as an index in the tile's
-    /// instruction pool (the one in progress is `op - 1`): a wake-up with no
-    /// ALU run under way starts entry `op`, or finishes the warp past its
-    /// last.
-    op: u32,
-    /// One past its last instruction entry in the pool.
-    n_ops: u32,
-    priority: bool,
-    blocked: bool,
-    /// Blocks of the current texture instruction not yet returned.
-    pending: u32,
-    /// Blocks of the current texture instruction (set when it is decoded).
-    tex_len: u32,
-    /// The current texture instruction is trilinear (set when decoded).
-    tex_tri: bool,
-    /// Index in the tile's block accesses of the next texture
-    /// instruction's first block.
-    blk: u32,
-    /// Cycle the current texture instruction entered the LDST queue.
-    tex_start: u64,
-    /// Sum of the memory latencies of its texture instructions.
-    lat_sum: u64,
-    /// Texture instructions completed.
-    tex_done: u32,
-    /// Cycle of its launch.
-    launched_at: u64,
-}
 
 /// A texture instruction in the LDST unit: its blocks are
 /// `next..end` of the tile's block accesses.
@@ -135,27 +106,6 @@ struct CoreSignals {
     finished: u32,
     /// The warp launched in the cycle: (quad index, priority).
     launched: Option<(u32, bool)>,
-}
-
-/// Start a blocked episode of warp `w` in cycle `now` unless it is blocked
-/// already: its block cycle, the episode count of its class, and for a
-/// priority warp one `blocked` event for the non-blocked counter.
-#[inline]
-fn block_warp(
-    w: &mut Warp,
-    blocked_at: &mut u64,
-    episodes: &mut [u64; 2],
-    prio: &mut PriorityEvents,
-    now: u64,
-) {
-    if !w.blocked {
-        w.blocked = true;
-        *blocked_at = now;
-        episodes[w.priority as usize & 1] += 1;
-        if w.priority {
-            prio.blocked += 1;
-        }
-    }
 }
 
 /// One shader core.
@@ -723,171 +673,11 @@ impl ShaderCore {
 #[cfg(test)]
 mod tests {
     //! The launch and issue stages and the LDST unit's intake on one core,
-    //! cycle by cycle; the texture filter unit: its rate, its order and how
-    //! it adds to the texture latency.
-    use crate::config::{FilterTiming, MachineConfig};
-    use crate::gpu::{Gpu, RunOptions};
-    use crate::run::simulate;
-    use crate::stats::RunStats;
-    use crate::trace::{Instr, Trace, TraceHeader};
-
-    /// A 8x8-pixel frame whose quads (x, y) each run `program`.
-    fn trace(quads: &[(u32, u32)], program: &[Instr]) -> Trace {
-        let mut b = Trace::builder(TraceHeader::new("filter", 8, 8, 8)).unwrap();
-        b.begin_tile(0, 0).unwrap();
-        for &(x, y) in quads {
-            b.quad(x, y, program).unwrap();
-        }
-        b.end_tile().unwrap();
-        b.finish().unwrap()
-    }
-
-    fn cfg(bil: u32, tri: u32, timing: FilterTiming) -> MachineConfig {
-        let mut c = MachineConfig::paper();
-        c.gpu.tile_size = 8;
-        c.core.filter_cycles_bilinear = bil;
-        c.core.filter_cycles_trilinear = tri;
-        c.core.filter_timing = timing;
-        c.validate().unwrap();
-        c
-    }
-
-    /// (launch, finish) of each warp, by quad index, and the statistics.
-    fn run(c: &MachineConfig, t: &Trace) -> (Vec<(u64, u64)>, RunStats) {
-        let mut gpu = Gpu::new(c, t).unwrap();
-        gpu.record_warps();
-        while !gpu.done() {
-            gpu.step().unwrap();
-        }
-        let mut r = gpu.take_records();
-        r.sort_by_key(|w| w.quad);
-        let times = r.iter().map(|w| (w.launched, w.finished)).collect();
-        let s = simulate(c, t, &RunOptions::default(), &mut |_, _| {}).unwrap();
-        (times, s)
-    }
-
-    const OVERLAP: FilterTiming = FilterTiming::Overlap;
-    const SERIAL: FilterTiming = FilterTiming::Serial;
-
-    /// A lone warp: under `overlap` a pass no longer than the texture
-    /// latency (4) costs nothing, a longer one its excess; under `serial`
-    /// every filter cycle adds.
-    #[test]
-    fn a_lone_warp_pays_the_filter_pass_beyond_the_latency() {
-        let bil = trace(&[(0, 0)], &[Instr::Alu(1), Instr::Tex(&[9]), Instr::Alu(1)]);
-        let tri = trace(
-            &[(0, 0)],
-            &[Instr::Alu(1), Instr::TriTex(&[9]), Instr::Alu(1)],
-        );
-        let span = |c: &MachineConfig, t: &Trace| {
-            let (w, _) = run(c, t);
-            w[0].1 - w[0].0
-        };
-        let base = span(&cfg(0, 0, OVERLAP), &bil);
-        assert_eq!(span(&cfg(0, 0, OVERLAP), &tri), base);
-        assert_eq!(span(&cfg(0, 0, SERIAL), &tri), base);
-        assert_eq!(span(&cfg(1, 2, OVERLAP), &bil), base);
-        assert_eq!(span(&cfg(1, 2, OVERLAP), &tri), base);
-        assert_eq!(span(&cfg(1, 4, OVERLAP), &tri), base, "f = latency");
-        assert_eq!(span(&cfg(1, 7, OVERLAP), &tri), base + 3);
-        assert_eq!(span(&cfg(7, 1, OVERLAP), &bil), base + 3);
-        assert_eq!(span(&cfg(7, 1, OVERLAP), &tri), base);
-        assert_eq!(span(&cfg(1, 2, SERIAL), &bil), base + 1);
-        assert_eq!(span(&cfg(1, 2, SERIAL), &tri), base + 2);
-        let (_, s) = run(&cfg(1, 7, OVERLAP), &tri);
-        assert_eq!(s.filter.busy_cycles, 7);
-        assert_eq!(s.filter.wait_cycles, 0);
-        assert_eq!(s.filter.trilinear_instructions, 1);
-        assert_eq!(
-            (s.filter.cycles_bilinear, s.filter.cycles_trilinear),
-            (1, 7)
-        );
-        assert_eq!(s.filter.timing, "overlap");
-    }
-
-    /// Quads of one core whose one block arrives in the same cycle (the
-    /// first misses, the others merge into its MSHR) queue at the filter:
-    /// the k-th waits k filter passes, and finishes a pass after the one
-    /// before it once the queue outgrows the latency.
-    #[test]
-    fn data_arriving_together_queues_at_the_one_filter() {
-        // Shared-tile dispatch sends an 8x8-quad block to one core: the 16
-        // quads of the 8x8-pixel tile all run on it.
-        let quads: Vec<(u32, u32)> = (0..4).flat_map(|y| (0..4).map(move |x| (x, y))).collect();
-        let tri = trace(&quads, &[Instr::TriTex(&[9]), Instr::Alu(1)]);
-        let (free, s0) = run(&cfg(0, 0, OVERLAP), &tri);
-        assert_eq!(s0.filter.wait_cycles, 0);
-        assert_eq!(s0.filter.busy_cycles, 0);
-        let (w, s) = run(&cfg(1, 8, SERIAL), &tri);
-        assert_eq!(s.tex_instructions, 16);
-        assert_eq!(s.filter.trilinear_instructions, 16);
-        assert!((s.filter.trilinear_share - 1.0).abs() < 1e-12);
-        assert_eq!(s.filter.busy_cycles, 16 * 8);
-        // Each warp's data arrives when it would have without a filter:
-        // it waits for the passes of those before it.
-        let mut ends: Vec<u64> = w.iter().map(|x| x.1).collect();
-        ends.sort_unstable();
-        for pair in ends.windows(2) {
-            assert!(pair[1] - pair[0] >= 8, "{ends:?}");
-        }
-        assert!(
-            s.filter.wait_cycles >= 8 * (15 * 16 / 2) / 2,
-            "{:?}",
-            s.filter
-        );
-        assert!(
-            s.cycles > s0.cycles + 15 * 8,
-            "{} vs {}",
-            s.cycles,
-            s0.cycles
-        );
-        assert!(s.filter.avg_wait > 0.0 && s.filter.busy_fraction > 0.0);
-        // No filter cycles: every warp as without a filter.
-        let (w0, _) = run(&cfg(0, 0, SERIAL), &tri);
-        assert_eq!(w0, free);
-    }
-
-    /// With both filter cycles 0 a trilinear trace runs exactly as the
-    /// same trace bilinear, either timing: the marker changes nothing but
-    /// the count.
-    #[test]
-    fn no_filter_cycles_make_trilinear_cost_nothing() {
-        let quads: Vec<(u32, u32)> = (0..4).flat_map(|y| (0..4).map(move |x| (x, y))).collect();
-        let prog_b = [
-            Instr::Alu(2),
-            Instr::Tex(&[1, 2]),
-            Instr::Alu(1),
-            Instr::Tex(&[3]),
-        ];
-        let prog_t = [
-            Instr::Alu(2),
-            Instr::TriTex(&[1, 2]),
-            Instr::Alu(1),
-            Instr::Tex(&[3]),
-        ];
-        let (b, t) = (trace(&quads, &prog_b), trace(&quads, &prog_t));
-        for timing in [OVERLAP, SERIAL] {
-            let c = cfg(0, 0, timing);
-            let (wb, mut sb) = run(&c, &b);
-            let (wt, mut st) = run(&c, &t);
-            assert_eq!(wb, wt);
-            assert_eq!(
-                (
-                    sb.filter.trilinear_instructions,
-                    st.filter.trilinear_instructions
-                ),
-                (0, 16)
-            );
-            sb.filter.trilinear_instructions = 0;
-            st.filter.trilinear_instructions = 0;
-            sb.filter.trilinear_share = 0.0;
-            st.filter.trilinear_share = 0.0;
-            assert_eq!(sb.to_json(), st.to_json());
-        }
-        // With a rate, trilinear costs more than bilinear.
-        let c = cfg(1, 8, SERIAL);
-        assert!(run(&c, &t).1.cycles > run(&c, &b).1.cycles);
-    }
+    //! cycle by cycle.
+    use super::testkit::{cfg, trace, OVERLAP};
+    use crate::config::MachineConfig;
+    use crate::gpu::Gpu;
+    use crate::trace::{Instr, Trace};
 
     /// A one-core machine (the paper's otherwise) with `width`, `warps`
     /// slots and ALU latency `alu`.
