@@ -1,7 +1,10 @@
 //! Helpers shared by the whole-program tests: run the `wasp` binary as a
-//! user does, read what it printed, and make scratch folders.
+//! user does, read what it printed, and make scratch folders; [`run`] has
+//! those of the `wasp run` tests.
 // Each test file uses its own part of this module.
 #![allow(dead_code)]
+
+pub mod run;
 
 use std::path::PathBuf;
 use std::process::{Command, Output};

@@ -1,0 +1,110 @@
+//! The category axis of the per-scene figures: the scenes in figure order
+//! (3D games, then 2D games, then procedural scenes) and the group means
+//! after them.
+
+use crate::reproduce::plan::{Group, Plan};
+
+/// The scenes in figure order and the mean columns after them.
+pub struct Axis {
+    /// Scene names in order (3D, 2D, procedural; by name within).
+    pub scenes: Vec<String>,
+    /// Each scene's group.
+    pub groups: Vec<Group>,
+    /// The mean columns: label and the scene indices it averages.
+    pub means: Vec<(String, Vec<usize>)>,
+}
+
+impl Axis {
+    /// The axis of a plan.
+    pub fn new(plan: &Plan) -> Axis {
+        let mut s: Vec<(Group, String)> = plan
+            .scenes
+            .iter()
+            .map(|x| (x.group, x.name.clone()))
+            .collect();
+        s.sort();
+        let groups: Vec<Group> = s.iter().map(|x| x.0).collect();
+        let idx = |f: &dyn Fn(Group) -> bool| -> Vec<usize> {
+            (0..groups.len()).filter(|&i| f(groups[i])).collect()
+        };
+        let mut means = Vec::new();
+        let games = idx(&|g| g != Group::Procedural);
+        for (label, v) in [
+            ("mean 3D", idx(&|g| g == Group::ThreeD)),
+            ("mean 2D", idx(&|g| g == Group::TwoD)),
+            ("mean games", games),
+            ("mean procedural", idx(&|g| g == Group::Procedural)),
+        ] {
+            if !v.is_empty() {
+                means.push((label.to_string(), v));
+            }
+        }
+        Axis {
+            scenes: s.into_iter().map(|x| x.1).collect(),
+            groups,
+            means,
+        }
+    }
+
+    /// Scene names, then mean labels.
+    pub fn categories(&self) -> Vec<String> {
+        let mut c = self.scenes.clone();
+        c.extend(self.means.iter().map(|m| m.0.clone()));
+        c
+    }
+
+    /// Per-scene values extended with the means (a mean skips missing
+    /// scenes; None if all are missing).
+    pub fn with_means(&self, v: Vec<Option<f64>>) -> Vec<Option<f64>> {
+        let mut out = v.clone();
+        for (_, idx) in &self.means {
+            out.push(mean(idx.iter().filter_map(|&i| v[i])));
+        }
+        out
+    }
+
+    /// The mean columns' separator and highlight.
+    pub(super) fn marks(&self) -> (Vec<usize>, Vec<usize>) {
+        let n = self.scenes.len();
+        let mut sep: Vec<usize> = Vec::new();
+        for i in 1..n {
+            if self.groups[i] != self.groups[i - 1] {
+                sep.push(i);
+            }
+        }
+        sep.push(n);
+        (sep, (n..n + self.means.len()).collect())
+    }
+}
+
+/// Arithmetic mean (None for no values).
+pub fn mean(v: impl Iterator<Item = f64>) -> Option<f64> {
+    let (s, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    (n > 0).then(|| s / n as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn means_skip_missing_scenes() {
+        assert_eq!(mean([1.0, 2.0, 6.0].into_iter()), Some(3.0));
+        assert_eq!(mean(std::iter::empty()), None);
+        let axis = Axis {
+            scenes: vec!["a".into(), "b".into(), "c".into()],
+            groups: vec![Group::ThreeD, Group::ThreeD, Group::TwoD],
+            means: vec![
+                ("mean 3D".into(), vec![0, 1]),
+                ("mean games".into(), vec![0, 1, 2]),
+            ],
+        };
+        assert_eq!(
+            axis.with_means(vec![Some(1.0), None, Some(3.0)]),
+            [Some(1.0), None, Some(3.0), Some(1.0), Some(2.0)]
+        );
+        let (sep, hi) = axis.marks();
+        assert_eq!(sep, [2, 3]);
+        assert_eq!(hi, [3, 4]);
+    }
+}

@@ -1,0 +1,155 @@
+//! What the policies do to the memory system and the energy of one
+//! machine: L0 stalls (Figure 10), L1 and L2 misses (Figure 12), memory
+//! latency (Figure 13) and energy (Figure 14).
+
+use super::figure::{Figure, SeriesData};
+use super::numbers::change;
+use super::Figures;
+use crate::reproduce::paper;
+use crate::study::point::Point;
+use wasp_rtl::policy::PolicySpec;
+use wasp_sim::config::Dispatch;
+
+impl Figures<'_> {
+    /// Percentage of time the L0 is stalled (Figure 10).
+    pub fn l0_stall(&self, d: Dispatch) -> Figure {
+        let p = self.plan;
+        let mut f = self.bars(
+            format!("l0-stall.{d}"),
+            "Share of time the L0 is stalled",
+            format!("{d} machine, mean over cores"),
+            "L0 stalled",
+        );
+        f.reference = None;
+        for pol in [
+            PolicySpec::Baseline,
+            PolicySpec::FullPriority,
+            PolicySpec::FreeMshr(10),
+            p.wasp,
+        ] {
+            f.series.push(SeriesData {
+                name: pol.to_string(),
+                values: self.single(
+                    |s| p.policy_point(s, d, pol),
+                    |r| r.get("l0.stall_fraction"),
+                ),
+            });
+        }
+        f.caption = "Cycles in which the L0 refuses accesses for want of an MSHR, over all \
+                     cycles: the stalls Fullpriority adds and WaSP's gate avoids (Figure 10)."
+            .into();
+        f
+    }
+
+    /// Change of L1 and L2 misses under WaSP (Figure 12).
+    pub fn misses(&self, d: Dispatch) -> Figure {
+        let p = self.plan;
+        let mut f = self.bars(
+            format!("misses.{d}"),
+            "Change in L1 and L2 misses under WaSP",
+            format!("{d} machine, {} over the baseline", p.wasp),
+            "change in misses",
+        );
+        for (name, path) in [("L1 misses", "l1.misses"), ("L2 misses", "l2.misses")] {
+            f.series.push(SeriesData {
+                name: name.into(),
+                values: self.pair(
+                    |s| p.policy_point(s, d, PolicySpec::Baseline),
+                    |s| p.policy_point(s, d, p.wasp),
+                    |b, x| change(b, x, path),
+                ),
+            });
+        }
+        f.paper
+            .push(self.paper_line(None, paper::MISS_CHANGE, "unchanged"));
+        f.caption = "WaSP reorders warps inside a tile; the tile's working set fits the L1 and \
+                     L2, so the paper sees no change in their misses."
+            .into();
+        f
+    }
+
+    /// Average memory latency: all warps, priority and regular (Figure 13).
+    pub fn latency(&self, d: Dispatch) -> Figure {
+        let p = self.plan;
+        let mut f = self.bars(
+            format!("latency.{d}"),
+            "Average memory latency of warps",
+            format!("{d} machine"),
+            "cycles",
+        );
+        f.percent = false;
+        f.reference = None;
+        let base = |s: &str| p.policy_point(s, d, PolicySpec::Baseline);
+        let wasp = |s: &str| p.policy_point(s, d, p.wasp);
+        for (name, point, path) in [
+            (
+                "baseline, all",
+                &base as &dyn Fn(&str) -> Point,
+                "memory_latency.all",
+            ),
+            ("WaSP, all", &wasp, "memory_latency.all"),
+            ("WaSP, priority warps", &wasp, "memory_latency.priority"),
+            ("WaSP, regular warps", &wasp, "memory_latency.regular"),
+        ] {
+            f.series.push(SeriesData {
+                name: name.into(),
+                values: self.single(point, |r| r.get(path)),
+            });
+        }
+        f.caption = "Mean cycles a warp's texture accesses wait for memory. The paper: \"The \
+                     average memory latency for priority warps notably exceeds that of regular \
+                     warps\"."
+            .into();
+        f
+    }
+
+    /// Change in average memory latency under WaSP (Figure 13, -9%).
+    pub fn latency_change(&self, d: Dispatch) -> Figure {
+        let p = self.plan;
+        let mut f = self.bars(
+            format!("latency-change.{d}"),
+            "Change in average memory latency under WaSP",
+            format!("{d} machine, {} over the baseline", p.wasp),
+            "change in latency",
+        );
+        f.series.push(SeriesData {
+            name: "memory latency".into(),
+            values: self.pair(
+                |s| p.policy_point(s, d, PolicySpec::Baseline),
+                |s| p.policy_point(s, d, p.wasp),
+                |b, x| change(b, x, "memory_latency.all"),
+            ),
+        });
+        f.paper
+            .push(self.paper_line(Some(0), paper::LATENCY_CHANGE, "mean"));
+        f.caption = "The prefetching effect WaSP is built for: regular warps find their blocks \
+                     already requested."
+            .into();
+        f
+    }
+
+    /// Change in total energy under WaSP (Figure 14).
+    pub fn energy(&self, d: Dispatch) -> Figure {
+        let p = self.plan;
+        let mut f = self.bars(
+            format!("energy.{d}"),
+            "Change in total GPU energy under WaSP",
+            format!("{d} machine, {} over the baseline", p.wasp),
+            "change in energy",
+        );
+        f.series.push(SeriesData {
+            name: "energy".into(),
+            values: self.pair(
+                |s| p.policy_point(s, d, PolicySpec::Baseline),
+                |s| p.policy_point(s, d, p.wasp),
+                |b, x| change(b, x, "energy.total_nj"),
+            ),
+        });
+        f.paper
+            .push(self.paper_line(Some(0), paper::ENERGY_CHANGE, "mean"));
+        f.caption = "Dynamic energy of instructions, caches and DRAM plus static energy over the \
+                     run (docs/model.md)."
+            .into();
+        f
+    }
+}

@@ -1,0 +1,54 @@
+//! The arithmetic and the text of the figures' numbers: speedups and
+//! changes between two points, percent text, and the Mesh size ratios.
+
+use crate::study::cache::PointRecord;
+
+/// `base cycles / x cycles - 1`.
+pub fn speedup(base: &PointRecord, x: &PointRecord) -> f64 {
+    base.cycles() / x.cycles() - 1.0
+}
+
+/// `x / base - 1` of a statistic.
+pub fn change(base: &PointRecord, x: &PointRecord, path: &str) -> Option<f64> {
+    let (b, v) = (base.get(path)?, x.get(path)?);
+    (b != 0.0).then(|| v / b - 1.0)
+}
+
+pub(super) fn fmt_claim(v: f64) -> String {
+    format!("{:+.1}%", 100.0 * v)
+}
+
+fn pct(v: f64) -> String {
+    format!("{:+.1}%", 100.0 * v)
+}
+
+/// Subset size ratio of MeshN: one quad in N x N.
+pub fn size_ratio(n: u32) -> String {
+    format!("1/{}", n * n)
+}
+
+/// Percent text for tables (`-` for None).
+pub fn pct_opt(v: Option<f64>) -> String {
+    v.map_or("-".into(), pct)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::point::Point;
+
+    #[test]
+    fn speedups_and_changes() {
+        let r = |c: u64, l: f64| PointRecord {
+            key: String::new(),
+            point: Point::new("s", "paper", &[]),
+            binary: String::new(),
+            stats: serde_json::json!({"cycles": c, "memory_latency": {"all": l}}),
+        };
+        let (b, x) = (r(110, 100.0), r(100, 91.0));
+        assert!((speedup(&b, &x) - 0.1).abs() < 1e-12);
+        assert!((change(&b, &x, "memory_latency.all").unwrap() + 0.09).abs() < 1e-12);
+        assert_eq!(change(&r(1, 0.0), &x, "memory_latency.all"), None);
+        assert_eq!(change(&b, &x, "nothing"), None);
+    }
+}
