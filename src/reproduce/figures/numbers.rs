@@ -18,10 +18,6 @@ pub(super) fn fmt_claim(v: f64) -> String {
     format!("{:+.1}%", 100.0 * v)
 }
 
-fn pct(v: f64) -> String {
-    format!("{:+.1}%", 100.0 * v)
-}
-
 /// Subset size ratio of MeshN: one quad in N x N.
 pub fn size_ratio(n: u32) -> String {
     format!("1/{}", n * n)
@@ -29,7 +25,7 @@ pub fn size_ratio(n: u32) -> String {
 
 /// Percent text for tables (`-` for None).
 pub fn pct_opt(v: Option<f64>) -> String {
-    v.map_or("-".into(), pct)
+    v.map_or("-".into(), fmt_claim)
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use super::Figures;
 use wasp_sim::config::Dispatch;
 
 impl Figures<'_> {
-    /// Lead of priority warps and occupancy per policy (beyond the paper).
+    /// Lead of priority warps per policy (beyond the paper).
     pub fn lead(&self, d: Dispatch) -> Figure {
         let p = self.plan;
         let mut f = self.bars(
@@ -31,14 +31,23 @@ impl Figures<'_> {
         f
     }
 
-    /// Mean resident warps per core, and the fill and drain shares of a
-    /// tile, per policy (beyond the paper).
+    /// Mean resident warps per core, per policy (beyond the paper).
     pub fn occupancy(&self, d: Dispatch) -> Figure {
         let p = self.plan;
+        // The machine's warp slots, as its runs report them.
+        let slots = self
+            .single(
+                |s| p.policy_point(s, d, p.policies[0]),
+                |r| r.get("occupancy.max_warps"),
+            )
+            .into_iter()
+            .flatten()
+            .next()
+            .map_or("?".to_string(), |n| n.to_string());
         let mut f = self.bars(
             format!("occupancy.{d}"),
             "Mean warps resident per core",
-            format!("{d} machine, of {} warp slots", 64),
+            format!("{d} machine, of {slots} warp slots"),
             "warps",
         );
         f.percent = false;
@@ -49,9 +58,10 @@ impl Figures<'_> {
                 values: self.single(|s| p.policy_point(s, d, pol), |r| r.get("occupancy.mean")),
             });
         }
-        f.caption = "Cores sit below their 64 slots while a tile fills and drains; the \
-                     timelines below show it cycle by cycle."
-            .into();
+        f.caption = format!(
+            "Cores sit below their {slots} slots while a tile fills and drains; the \
+             timelines below show it cycle by cycle."
+        );
         f
     }
 }
