@@ -235,7 +235,9 @@ impl<T: Copy> LaunchScheduler<T> {
     /// Phase 1: the policy's decision from the current register values,
     /// and the warp it pops from the selected FIFO when the core can take
     /// one this cycle (`enable`). At most one launch per cycle.
-    #[inline]
+    // Always inlined: one call a core-cycle, and the caller reads only
+    // part of the `Launch` it returns (measured with scripts/icount.sh).
+    #[inline(always)]
     pub fn launch(&mut self, enable: bool) -> Launch<T> {
         self.begin_cycle();
         let decision = self.decide();

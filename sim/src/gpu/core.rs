@@ -433,13 +433,14 @@ impl ShaderCore {
 
     fn raster(&mut self, tile: &Tile) {
         let sched = &mut self.sched;
-        let (rasterized, rejected) =
-            self.cursor
-                .own_cycle(tile, self.raster_rate, self.rejected_per_slot, |i, x, y| {
-                    !sched.queue().is_full() && sched.enqueue(i, x, y).is_ok()
-                });
-        self.stats.quads_rasterized += rasterized;
-        self.stats.quads_rejected += rejected;
+        self.cursor.own_cycle(
+            tile,
+            self.raster_rate,
+            self.rejected_per_slot,
+            &mut self.stats.quads_rasterized,
+            &mut self.stats.quads_rejected,
+            |i, x, y| !sched.queue().is_full() && sched.enqueue(i, x, y).is_ok(),
+        );
     }
 
     fn launch(&mut self, now: u64, tile: &Tile) {

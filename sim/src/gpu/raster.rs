@@ -326,24 +326,26 @@ impl RasterCursor {
     /// to `slots` raster slots, each disposing of `rejected_per_slot`
     /// Early-Z-rejected quads (no warp) or delivering one surviving quad
     /// (index, in-tile x, y) through `push`, which returns `false` when the
-    /// input queue refuses it (the rasterizer then waits). Returns the
-    /// quads rasterized and, of them, the rejected ones.
-    #[inline]
+    /// input queue refuses it (the rasterizer then waits). Adds the quads
+    /// rasterized to `rasterized` and, of them, the rejected ones to
+    /// `rejected`.
+    #[inline(always)]
     pub(crate) fn own_cycle(
         &mut self,
         tile: &Tile,
         slots: u32,
         rejected_per_slot: u32,
+        rasterized: &mut u64,
+        rejected: &mut u64,
         mut push: impl FnMut(u32, u32, u32) -> bool,
-    ) -> (u64, u64) {
-        let (mut rasterized, mut rejected) = (0u64, 0u64);
+    ) {
         let mut budget = slots;
         while budget > 0 {
             let k = self.reject(budget.saturating_mul(rejected_per_slot));
             if k > 0 {
                 budget -= k.div_ceil(rejected_per_slot);
-                rasterized += u64::from(k);
-                rejected += u64::from(k);
+                *rasterized += u64::from(k);
+                *rejected += u64::from(k);
                 continue;
             }
             let Some(i) = self.peek() else {
@@ -355,9 +357,8 @@ impl RasterCursor {
             }
             self.advance(tile);
             budget -= 1;
-            rasterized += 1;
+            *rasterized += 1;
         }
-        (rasterized, rejected)
     }
 
     /// Every quad of the tile rasterized.

@@ -478,14 +478,14 @@ impl CoreModel for PlainCore {
         self.wake(now, tile);
         if !self.p.external_raster {
             let sched = &mut self.sched;
-            let (rasterized, rejected) = self.cursor.own_cycle(
+            self.cursor.own_cycle(
                 tile,
                 self.p.raster_rate,
                 self.p.rejected_per_slot.max(1),
+                &mut self.stats.quads_rasterized,
+                &mut self.stats.quads_rejected,
                 |i, x, y| sched.enqueue(i, x, y).is_ok(),
             );
-            self.stats.quads_rasterized += rasterized;
-            self.stats.quads_rejected += rejected;
         }
         self.launch(now, tile);
         self.issue(now);
