@@ -99,18 +99,15 @@ impl ShaderCore {
         }
     }
 
-    /// The view the waveform and the watchdog read.
+    /// The view the waveform and the watchdog read (cheap: the waveform
+    /// reads it every cycle).
     fn view(&self) -> CoreView<'_> {
-        let blocked = (0..self.n_slots)
-            .filter(|&s| self.free_slots & (1u128 << s) == 0 && self.slots[s].blocked)
-            .count();
         CoreView {
             id: self.id,
             sched: &self.sched,
             slots: self.n_slots,
             active: self.active,
             ready: (self.ready | self.ready_tex).count_ones(),
-            blocked,
             ldst_cap: self.ldst_cap,
             ldst_len: self.ldst_len,
             signals: &self.signals,
@@ -122,7 +119,10 @@ impl ShaderCore {
 
     /// A description of the core's state (for the watchdog).
     pub fn describe(&self, trace: &Trace) -> String {
-        self.view().describe(trace)
+        let blocked = (0..self.n_slots)
+            .filter(|&s| self.free_slots & (1u128 << s) == 0 && self.slots[s].blocked)
+            .count();
+        self.view().describe(trace, blocked)
     }
 }
 
@@ -141,8 +141,6 @@ pub(super) struct CoreView<'a> {
     pub(super) active: u32,
     /// Warps ready to issue (ALU or texture).
     pub(super) ready: u32,
-    /// Warps blocked on a long-latency miss.
-    pub(super) blocked: usize,
     pub(super) ldst_cap: usize,
     pub(super) ldst_len: usize,
     pub(super) signals: &'a CoreSignals,
@@ -153,8 +151,9 @@ pub(super) struct CoreView<'a> {
 }
 
 impl CoreView<'_> {
-    /// The core's state in words.
-    pub(super) fn describe(&self, trace: &Trace) -> String {
+    /// The core's state in words, with `blocked` warps blocked on a
+    /// long-latency miss.
+    pub(super) fn describe(&self, trace: &Trace, blocked: usize) -> String {
         let tile = self
             .tile
             .map(|t| {
@@ -181,7 +180,7 @@ impl CoreView<'_> {
             "core {}: {tile}; {} warps active ({} blocked, {} ready), queue {} priority + {} regular, LDST {} entries, free_mshrs {}, nonblocked_priority {}",
             self.id,
             self.active,
-            self.blocked,
+            blocked,
             self.ready,
             self.sched.queue().occupancy(QueueClass::Priority),
             self.sched.queue().occupancy(QueueClass::Regular),

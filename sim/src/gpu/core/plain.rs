@@ -360,17 +360,17 @@ impl PlainCore {
     }
 
     fn view(&self) -> CoreView<'_> {
-        let warps = self.warps.iter().flatten();
         CoreView {
             id: self.id,
             sched: &self.sched,
             slots: self.warps.len(),
             active: self.active_count(),
-            ready: warps
-                .clone()
+            ready: self
+                .warps
+                .iter()
+                .flatten()
                 .filter(|w| matches!(w.state, State::ReadyAlu | State::ReadyTex))
                 .count() as u32,
-            blocked: warps.filter(|w| w.blocked).count(),
             ldst_cap: self.p.ldst_queue as usize,
             ldst_len: self.ldst.len(),
             signals: &self.signals,
@@ -560,7 +560,8 @@ impl CoreModel for PlainCore {
     }
 
     fn describe(&self, trace: &Trace) -> String {
-        self.view().describe(trace)
+        let blocked = self.warps.iter().flatten().filter(|w| w.blocked).count();
+        self.view().describe(trace, blocked)
     }
 
     fn record_warps(&mut self) {
