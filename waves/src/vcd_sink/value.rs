@@ -27,6 +27,7 @@ pub(super) struct Slot {
 }
 
 impl Slot {
+    #[inline]
     pub(super) fn new(index: usize, width: u32, value: u64) -> Slot {
         let code = IdCode::from(index as u64).to_string();
         debug_assert!(code.len() <= MAX_ID_LEN);
@@ -43,11 +44,13 @@ impl Slot {
         }
     }
 
+    #[inline]
     fn id(&self) -> &[u8] {
         &self.id[..self.id_len as usize]
     }
 
     /// Writes the current value as one VCD value-change line.
+    #[inline]
     pub(super) fn write_value<W: Write>(&self, out: &mut W) -> io::Result<()> {
         // 'b' + 64 bits + ' ' + id + '\n'
         let mut buf = [0u8; 1 + MAX_WIDTH as usize + 1 + MAX_ID_LEN + 1];
@@ -74,6 +77,7 @@ impl Slot {
     }
 }
 
+#[inline]
 fn width_mask(width: u32) -> u64 {
     if width >= 64 {
         u64::MAX
