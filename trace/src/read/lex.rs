@@ -16,6 +16,7 @@ const VERSIONS: [u32; 4] = [
 
 /// The lines of `text`: they end at '\n' (the last one may not), and a
 /// '\r' before the end of a line is part of the line ending.
+#[inline]
 pub(super) fn lines(text: &str) -> impl Iterator<Item = &str> {
     text.split_inclusive('\n').map(|l| {
         let l = l.strip_suffix('\n').unwrap_or(l);
@@ -56,6 +57,7 @@ pub(super) fn check_magic(line: &str) -> Result<u32, Problem> {
 /// The blank-separated fields of a line. Only spaces and tabs separate:
 /// every other ASCII whitespace character is a control character, which
 /// [`check_line`] refuses before a line is split.
+#[inline]
 pub(super) fn tokens(line: &str) -> impl Iterator<Item = &str> {
     debug_assert!(check_line(line).is_ok());
     line.split_ascii_whitespace()
@@ -74,6 +76,7 @@ pub(super) enum Tok {
 
 /// Checks one instruction token; a texture instruction's block numbers
 /// are appended to `blocks`.
+#[inline]
 pub(super) fn instr_token(tok: &str, blocks: &mut Vec<u64>) -> Result<Tok, Problem> {
     if let Some(n) = tok.strip_prefix('a') {
         if n.is_empty() || !n.bytes().all(|c| c.is_ascii_digit()) {
@@ -153,12 +156,14 @@ fn dec(tok: &str, what: &'static str, max: u64) -> Result<u64, Problem> {
     Ok(v)
 }
 
+#[inline]
 pub(super) fn dec_u32(tok: &str, what: &'static str, max: u64) -> Result<u32, Problem> {
     let max = max.min(u64::from(u32::MAX));
     dec(tok, what, max).map(|v| v as u32)
 }
 
 /// A block number: 1 to 16 hex digits.
+#[inline]
 fn hex(tok: &str) -> Result<u64, Problem> {
     if tok.is_empty() || tok.len() > 16 || !tok.bytes().all(|c| c.is_ascii_hexdigit()) {
         return Err(Problem::BadHex {
