@@ -485,6 +485,21 @@ pub fn write_png(path: &Path, rgba: &[u8], width: u32, height: u32) -> Result<()
         .map_err(|e| RenderError::Image(format!("cannot write {}: {e}", path.display())))
 }
 
+/// The picture of `scene` at `width` x `height`, no overlay, written to
+/// `out` as PNG: what the loaders' preview tests write for a person to
+/// look at, through the one rasterizer every scene goes through.
+#[cfg(test)]
+pub(crate) fn write_preview(scene: &Scene, width: u32, height: u32, out: &Path) {
+    let req = RenderRequest {
+        overlays: Vec::new(),
+        tile: 64,
+        depth_prepass: false,
+        threads: 0,
+    };
+    let r = render(scene, width, height, &req, &mut |_, _| Ok(Vec::new())).expect("renders");
+    write_png(out, &r.image, width, height).expect("writes the PNG");
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

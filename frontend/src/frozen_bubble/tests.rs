@@ -214,8 +214,7 @@ fn real_previews() {
         d.width = w;
         d.height = h;
         let scene = load(&root, &d).unwrap();
-        let img = super::super::teeworlds::render_preview(&scene, w / 2, h / 2);
-        img.save(Path::new(&dir).join(format!("fb-level{n}.png")))
-            .unwrap();
+        let out = Path::new(&dir).join(format!("fb-level{n}.png"));
+        crate::render::write_preview(&scene, w / 2, h / 2, &out);
     }
 }

@@ -247,7 +247,7 @@ fn preview_images() {
         let (map, cam) = item.split_once(':').unwrap();
         let s = load(&root, &def(map, cam)).unwrap();
         let out = std::env::temp_dir().join(format!("oa-{map}-{}.png", cam.replace(':', "")));
-        crate::supertuxkart::preview::render(&s, 980, 384, &out);
+        crate::render::write_preview(&s, 980, 384, &out);
         eprintln!("{}", out.display());
     }
 }

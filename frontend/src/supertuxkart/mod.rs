@@ -323,6 +323,4 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
 #[cfg(test)]
 mod all_tracks;
 #[cfg(test)]
-pub(crate) mod preview;
-#[cfg(test)]
 mod tests;

@@ -111,8 +111,6 @@ mod map;
 mod materials;
 mod mesh;
 mod parse;
-#[cfg(test)]
-mod preview;
 mod scene;
 
 pub use camera::*;
@@ -122,8 +120,6 @@ pub(crate) use materials::*;
 use mesh::*;
 #[cfg(test)]
 use parse::tiny_map;
-#[cfg(test)]
-pub(crate) use preview::*;
 pub use scene::*;
 
 /// The Debian package holding the data.

@@ -171,9 +171,8 @@ fn real_previews() {
     for entry in list.split(',') {
         let (map, cam) = entry.split_once(':').expect("map:camera");
         let scene = load(&root, &def(map, cam)).unwrap();
-        let img = render_preview(&scene, 980, 384);
-        img.save(Path::new(&dir).join(format!("tw-{map}-{}.png", cam.replace(':', ""))))
-            .unwrap();
+        let out = Path::new(&dir).join(format!("tw-{map}-{}.png", cam.replace(':', "")));
+        crate::render::write_preview(&scene, 980, 384, &out);
     }
 }
 
