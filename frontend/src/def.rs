@@ -229,6 +229,32 @@ pub fn find(dir: &Path, name: &str) -> Result<SceneDef, SceneError> {
         })
 }
 
+/// A `width` x `height` scene of `game` on `map` seen from `camera`, for
+/// the loaders' tests.
+#[cfg(test)]
+pub(crate) fn test_def(game: Game, map: &str, camera: &str, width: u32, height: u32) -> SceneDef {
+    SceneDef {
+        name: format!("test-{map}"),
+        game,
+        map: map.into(),
+        camera: camera.into(),
+        width,
+        height,
+        description: String::new(),
+        shader: None,
+    }
+}
+
+/// The shipped scene definitions of `game`, for the loaders' tests.
+#[cfg(test)]
+pub(crate) fn shipped(game: Game) -> Vec<SceneDef> {
+    all()
+        .unwrap()
+        .into_iter()
+        .filter(|d| d.game == game)
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,16 +6,7 @@ use super::*;
 use gif::{encode_gif, PAL};
 
 fn def(camera: &str) -> SceneDef {
-    SceneDef {
-        name: "t".into(),
-        game: crate::def::Game::FrozenBubble,
-        map: "levels".into(),
-        camera: camera.into(),
-        width: 1024,
-        height: 768,
-        description: String::new(),
-        shader: None,
-    }
+    crate::def::test_def(crate::def::Game::FrozenBubble, "levels", camera, 1024, 768)
 }
 
 /// A data root with hand-made images and levels (GIF and PNG writers
@@ -88,11 +79,7 @@ fn loads_a_hand_made_level_end_to_end() {
 }
 
 fn shipped_defs() -> Vec<SceneDef> {
-    crate::def::all()
-        .unwrap()
-        .into_iter()
-        .filter(|d| d.game == crate::def::Game::FrozenBubble)
-        .collect()
+    crate::def::shipped(crate::def::Game::FrozenBubble)
 }
 
 #[test]

@@ -6,16 +6,7 @@ use crate::def::Game;
 use std::io::Write;
 
 fn def(map: &str, camera: &str) -> SceneDef {
-    SceneDef {
-        name: format!("test-{map}"),
-        game: Game::Openarena,
-        map: map.into(),
-        camera: camera.into(),
-        width: 1960,
-        height: 768,
-        description: String::new(),
-        shader: None,
-    }
+    crate::def::test_def(Game::Openarena, map, camera, 1960, 768)
 }
 
 /// A whole synthetic game on disk: a pk3 with the map, a shader

@@ -6,16 +6,7 @@ use crate::def::Game;
 use spm::tiny_spm;
 
 fn def(map: &str, camera: &str) -> SceneDef {
-    SceneDef {
-        name: format!("test-{map}"),
-        game: Game::Supertuxkart,
-        map: map.into(),
-        camera: camera.into(),
-        width: 1960,
-        height: 768,
-        description: String::new(),
-        shader: None,
-    }
+    crate::def::test_def(Game::Supertuxkart, map, camera, 1960, 768)
 }
 
 /// A whole synthetic track on disk: scene.xml with the track model, a

@@ -5,16 +5,7 @@
 use super::*;
 
 fn def(map: &str, camera: &str) -> SceneDef {
-    SceneDef {
-        name: "t".into(),
-        game: crate::def::Game::Teeworlds,
-        map: map.into(),
-        camera: camera.into(),
-        width: 1960,
-        height: 768,
-        description: String::new(),
-        shader: None,
-    }
+    crate::def::test_def(crate::def::Game::Teeworlds, map, camera, 1960, 768)
 }
 
 #[test]
@@ -65,11 +56,7 @@ fn loads_a_hand_made_map_end_to_end() {
 }
 
 fn shipped_defs() -> Vec<SceneDef> {
-    crate::def::all()
-        .unwrap()
-        .into_iter()
-        .filter(|d| d.game == crate::def::Game::Teeworlds)
-        .collect()
+    crate::def::shipped(crate::def::Game::Teeworlds)
 }
 
 #[test]
