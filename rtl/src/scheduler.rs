@@ -66,8 +66,6 @@ pub struct LaunchDecision {
     /// is closed, no regular warp waits and the rule is
     /// [`LaunchRule::Hold`] (so `select` is `None`).
     pub held: bool,
-    /// Warps waited in both FIFOs: the policy's gate chose between them.
-    pub both_waiting: bool,
 }
 
 /// The outputs of phase 1: the decision and the warp it launched.
@@ -108,8 +106,8 @@ pub struct StepOutputs<T> {
     /// The launch rule held a waiting priority warp back
     /// ([`LaunchDecision::held`]).
     pub held: bool,
-    /// Warps waited in both FIFOs at the decision
-    /// ([`LaunchDecision::both_waiting`]).
+    /// Warps waited in both FIFOs at the decision: the policy's gate chose
+    /// between them.
     pub both_waiting: bool,
 }
 
@@ -173,7 +171,6 @@ impl<T: Copy> LaunchScheduler<T> {
                 select: None,
                 datapath: None,
                 held: false,
-                both_waiting: false,
             },
             launched: None,
             edge_passed: false,
@@ -262,7 +259,6 @@ impl<T: Copy> LaunchScheduler<T> {
             select: self.gate.select(self.rule, &view),
             datapath,
             held: self.rule == LaunchRule::Hold && self.gate.rule_decides(&view),
-            both_waiting: view.priority_waiting && view.regular_waiting,
         }
     }
 
@@ -326,11 +322,13 @@ impl<T: Copy> LaunchScheduler<T> {
             both_waiting: false,
         };
         if inputs.enable && !self.queue.is_empty() {
+            let both_waiting =
+                self.queue.has(QueueClass::Priority) && self.queue.has(QueueClass::Regular);
             let l = self.launch(true);
             out = StepOutputs {
                 warp: l.warp,
                 held: l.decision.held,
-                both_waiting: l.decision.both_waiting,
+                both_waiting,
             };
         }
         self.clock(inputs.events)?;
@@ -740,6 +738,7 @@ mod tests {
                     },
                 };
                 let stepped = a.step(StepInputs { enable, events });
+                let both = b.queue().has(QueueClass::Priority) && b.queue().has(QueueClass::Regular);
                 let phased = if enable && !b.queue().is_empty() {
                     Some(b.launch(true))
                 } else {
@@ -750,10 +749,7 @@ mod tests {
                 let Ok(out) = stepped else { return Ok(()) };
                 prop_assert_eq!(out.warp, phased.and_then(|l| l.warp));
                 prop_assert_eq!(out.held, phased.is_some_and(|l| l.decision.held));
-                prop_assert_eq!(
-                    out.both_waiting,
-                    phased.is_some_and(|l| l.decision.both_waiting)
-                );
+                prop_assert_eq!(out.both_waiting, phased.is_some() && both);
                 prop_assert_eq!(a.free_mshrs(), b.free_mshrs());
                 prop_assert_eq!(a.nonblocked(), b.nonblocked());
                 prop_assert_eq!(
