@@ -173,41 +173,80 @@ impl Scenes {
 /// Run `tasks` with the results stored in `cache`.
 pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcome, String> {
     let start = Instant::now();
+    let mut scenes = Scenes::with(&opts.scenes);
+    // The games' data first: a scene's identity (and so every key) holds
+    // the versions of the packages its data came from, known once fetched.
+    fetch_games(tasks, &mut scenes, opts)?;
+    let (mut out, mut todo) = resolve(tasks, cache, &mut scenes)?;
+    // Group by scene and tile size, in scene order.
+    todo.sort_by(|a, b| {
+        (a.task.scene(), a.cfg.gpu.tile_size).cmp(&(b.task.scene(), b.cfg.gpu.tile_size))
+    });
+    let (groups, group_of) = group_by_scene(&todo, &mut scenes)?;
+    let results = execute(&todo, &groups, &group_of, cache, opts);
+    for (i, r) in results {
+        match r {
+            Ok(Done::Point(rec)) => {
+                if let Task::Run(p) = &todo[i].task {
+                    out.points.insert(p.clone(), rec);
+                }
+            }
+            Ok(Done::Scene(c)) => {
+                out.scenes.insert(c.scene.clone(), *c);
+            }
+            Ok(Done::Drawn) => {}
+            Err(e) => out
+                .failures
+                .push(format!("{}: {e}", describe(&todo[i].task))),
+        }
+        out.ran += 1;
+    }
+    share_results(&mut out);
+    out.seconds = start.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// Fetch the data of every game the tasks' scenes need and the cache
+/// lacks (or, without `opts.fetch`, name the command that fetches it).
+fn fetch_games(tasks: &[Task], scenes: &mut Scenes, opts: &RunnerOptions) -> Result<(), String> {
+    let mut games: Vec<_> = tasks
+        .iter()
+        .map(|t| scenes.def(t.scene()).map(|d| d.game))
+        .collect::<Result<_, _>>()?;
+    games.sort_by_key(|g| g.name());
+    games.dedup();
+    games.retain(|g| !fetch::is_fetched(*g));
+    if let Some(g) = games.first().filter(|_| !opts.fetch) {
+        return Err(format!(
+            "the {} data is not fetched: run `wasp scenes fetch {}`",
+            g.name(),
+            g.name()
+        ));
+    }
+    crate::game_data::fetch_missing(&games, opts.quiet)
+        .map_err(|e| format!("{e} (its scenes need it; name the other scenes to leave them out)"))
+}
+
+/// Resolve every task to its key and effective configuration (bad scenes
+/// and overrides fail here, before any run) and take the stored results:
+/// the outcome so far and the tasks left to run.
+fn resolve(
+    tasks: &[Task],
+    cache: &Cache,
+    scenes: &mut Scenes,
+) -> Result<(Outcome, Vec<Ready>), String> {
     let mut out = Outcome::default();
     let mut resolver = Resolver::default();
-    let mut scenes = Scenes::with(&opts.scenes);
     let mut ids: HashMap<String, String> = HashMap::new();
     let mut todo: Vec<Ready> = Vec::new();
     let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
-    // Resolve every task (bad scenes and overrides fail here, before any
-    // run), and take the stored results.
     for t in tasks {
         let d = scenes.def(t.scene())?.clone();
         let id = ids
             .entry(d.name.clone())
             .or_insert_with(|| scene_identity(&d))
             .clone();
-        let (key, cfg) = match t {
-            Task::Run(p) | Task::Timeline { point: p, .. } => {
-                let cfg = resolver
-                    .config(p)
-                    .map_err(|e| format!("{}: {e}", p.describe()))?;
-                (point_key(binary_id(), &id, &cfg), cfg)
-            }
-            Task::Characterize { config, .. } => {
-                let cfg = resolver
-                    .config(&Point::new(&d.name, config, &[]))
-                    .map_err(|e| format!("{config}: {e}"))?;
-                let tile = cfg.gpu.tile_size.to_string();
-                let key = hash_parts(&[
-                    b"wasp-scene-1",
-                    binary_id().as_bytes(),
-                    id.as_bytes(),
-                    tile.as_bytes(),
-                ]);
-                (key, cfg)
-            }
-        };
+        let (key, cfg) = task_key(t, &d, &id, &mut resolver)?;
         // A task on the same machine as an earlier one (the same key and
         // kind) shares its result.
         let id = match t {
@@ -228,27 +267,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             }
             continue;
         }
-        let done = match t {
-            Task::Run(p) => match cache.load_point(&p.scene, &key) {
-                Some(r) => {
-                    out.points.insert(p.clone(), r);
-                    true
-                }
-                None => false,
-            },
-            Task::Characterize { scene, .. } => match cache.load_scene(scene, &key) {
-                Some(c) => {
-                    out.scenes.insert(scene.clone(), c);
-                    true
-                }
-                None => false,
-            },
-            Task::Timeline { out: path, .. } => {
-                path.is_file()
-                    && std::fs::read_to_string(key_file(path)).is_ok_and(|k| k.trim() == key)
-            }
-        };
-        if done {
+        if take_stored(t, &key, cache, &mut out) {
             out.cached += 1;
         } else {
             todo.push(Ready {
@@ -258,51 +277,70 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             });
         }
     }
-    // Fetch the games the remaining tasks need.
-    let mut games: Vec<_> = todo
-        .iter()
-        .map(|r| scenes.def(r.task.scene()).map(|d| d.game))
-        .collect::<Result<_, _>>()?;
-    games.sort_by_key(|g| g.name());
-    games.dedup();
-    for g in games {
-        if fetch::is_fetched(g) {
-            continue;
+    Ok((out, todo))
+}
+
+/// The cache key and effective configuration of a task on the scene `d`
+/// of identity `id`.
+fn task_key(
+    t: &Task,
+    d: &SceneDef,
+    id: &str,
+    resolver: &mut Resolver,
+) -> Result<(String, MachineConfig), String> {
+    match t {
+        Task::Run(p) | Task::Timeline { point: p, .. } => {
+            let cfg = resolver
+                .config(p)
+                .map_err(|e| format!("{}: {e}", p.describe()))?;
+            Ok((point_key(binary_id(), id, &cfg), cfg))
         }
-        if !opts.fetch {
-            return Err(format!(
-                "the {} data is not fetched: run `wasp scenes fetch {}`",
-                g.name(),
-                g.name()
-            ));
+        Task::Characterize { config, .. } => {
+            let cfg = resolver
+                .config(&Point::new(&d.name, config, &[]))
+                .map_err(|e| format!("{config}: {e}"))?;
+            let tile = cfg.gpu.tile_size.to_string();
+            let key = hash_parts(&[
+                b"wasp-scene-1",
+                binary_id().as_bytes(),
+                id.as_bytes(),
+                tile.as_bytes(),
+            ]);
+            Ok((key, cfg))
         }
-        if !opts.quiet {
-            eprintln!(
-                "wasp: fetching the {} data (once, into the scene cache)",
-                g.name()
-            );
-        }
-        let quiet = opts.quiet;
-        fetch::fetch(g, &mut |m| {
-            if !quiet {
-                eprintln!("wasp:   {m}");
-            }
-        })
-        .map_err(|e| {
-            format!(
-                "fetching the {} data: {e} (its scenes need it; name the other scenes to leave \
-                 them out)",
-                g.name()
-            )
-        })?;
     }
-    // Group by scene and tile size, in scene order.
-    todo.sort_by(|a, b| {
-        (a.task.scene(), a.cfg.gpu.tile_size).cmp(&(b.task.scene(), b.cfg.gpu.tile_size))
-    });
+}
+
+/// Put the stored result of `t` (key `key`) into `out`; whether there was
+/// one.
+fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
+    match t {
+        Task::Run(p) => match cache.load_point(&p.scene, key) {
+            Some(r) => {
+                out.points.insert(p.clone(), r);
+                true
+            }
+            None => false,
+        },
+        Task::Characterize { scene, .. } => match cache.load_scene(scene, key) {
+            Some(c) => {
+                out.scenes.insert(scene.clone(), c);
+                true
+            }
+            None => false,
+        },
+        Task::Timeline { out: path, .. } => {
+            path.is_file() && std::fs::read_to_string(key_file(path)).is_ok_and(|k| k.trim() == key)
+        }
+    }
+}
+
+/// The tasks (sorted by scene and tile size) grouped by scene and tile
+/// size: the groups and each task's group.
+fn group_by_scene(todo: &[Ready], scenes: &mut Scenes) -> Result<(Vec<Group>, Vec<usize>), String> {
     let mut groups: Vec<Group> = Vec::new();
     let mut group_of = Vec::with_capacity(todo.len());
-    for r in &todo {
+    for r in todo {
         let tile = r.cfg.gpu.tile_size;
         let same = groups
             .last()
@@ -319,6 +357,18 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
         groups[g].remaining.fetch_add(1, Ordering::Relaxed);
         group_of.push(g);
     }
+    Ok((groups, group_of))
+}
+
+/// Run the tasks on `opts.jobs` workers, each scene rendered once for its
+/// group; every task's result by index, in task order.
+fn execute(
+    todo: &[Ready],
+    groups: &[Group],
+    group_of: &[usize],
+    cache: &Cache,
+    opts: &RunnerOptions,
+) -> Vec<(usize, Result<Done, String>)> {
     let pb = progress(opts, todo.len());
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<(usize, Result<Done, String>)>> = Mutex::new(Vec::new());
@@ -347,24 +397,12 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     pb.finish();
     let mut results = results.into_inner().expect("lock");
     results.sort_by_key(|(i, _)| *i);
-    for (i, r) in results {
-        match r {
-            Ok(Done::Point(rec)) => {
-                if let Task::Run(p) = &todo[i].task {
-                    out.points.insert(p.clone(), rec);
-                }
-            }
-            Ok(Done::Scene(c)) => {
-                out.scenes.insert(c.scene.clone(), *c);
-            }
-            Ok(Done::Drawn) => {}
-            Err(e) => out
-                .failures
-                .push(format!("{}: {e}", describe(&todo[i].task))),
-        }
-        out.ran += 1;
-    }
-    // Points that named a machine another point ran under another name.
+    results
+}
+
+/// Fill in the points that named a machine another point ran under
+/// another name (and drop those whose twin failed).
+fn share_results(out: &mut Outcome) {
     let by_key: HashMap<String, PointRecord> = out
         .points
         .values()
@@ -387,8 +425,6 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             true
         }
     });
-    out.seconds = start.elapsed().as_secs_f64();
-    Ok(out)
 }
 
 fn describe(t: &Task) -> String {

@@ -106,6 +106,7 @@ impl<'a> Figures<'a> {
             series: Vec::new(),
             paper: Vec::new(),
             percent: true,
+            signed: true,
             reference: Some(0.0),
             separators,
             highlight,
