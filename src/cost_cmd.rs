@@ -68,6 +68,10 @@ pub fn run(args: &CostArgs) -> Result<(), CliError> {
             "given: WaSP with {} warps matches the baseline with {}",
             rf.wasp_warps, rf.baseline_warps
         );
+        rf.caveat = "These warp counts are given on the command line: an assumption, not a \
+                     measurement. `wasp reproduce`'s sensitivity rows (REPORT.md) measure \
+                     WaSP with fewer warps against the baseline on the shipped scenes."
+            .into();
     }
     let r = report(&cfg, GateRules::default(), &rf, !args.no_yosys).map_err(CliError::usage)?;
     let json_stdout = output::to_stdout(&args.json);
