@@ -184,7 +184,7 @@ fn group_note(md: &mut String, n: &Notes, g: Group) {
     let slots = MachineConfig::paper().core.max_warps;
     let raster = match n.d {
         Dispatch::SharedTile => "the single rasterizer is",
-        Dispatch::PerCoreTile => "each core's rasterizer is",
+        Dispatch::PerCoreTile => "the cores' rasterizers are on average",
     };
     let _ = writeln!(
         md,
