@@ -129,6 +129,11 @@
 //! fault; `FreeMshrReg::legal` reports it. That is not a wrap, and the
 //! properties say exactly this.
 
+// The shim stands in for Kani's `kani` crate; under `cargo kani` both would
+// be linked under one name.
+#[cfg(all(kani, feature = "kani-shim"))]
+compile_error!("the `kani-shim` feature is for `cargo test` (scripts/harnesses.sh); run `cargo kani -p wasp-props` without it");
+
 pub mod cex;
 pub mod cf_meter;
 pub mod counters;
