@@ -103,7 +103,7 @@ pub struct RunArgs {
     pub inputs: Inputs,
 
     /// Launch policy: baseline, fullpriority, freemshr:N,
-    /// wasp[:THRESHOLD[:CF]] or wasp-m[:THRESHOLD] (WaSP with a CF measured
+    /// `wasp[:THRESHOLD[:CF]]` or `wasp-m[:THRESHOLD]` (WaSP with a CF measured
     /// per core). Overrides scheduler.policy.
     #[arg(long, value_name = "POLICY")]
     pub policy: Option<PolicySpec>,

@@ -458,36 +458,48 @@ fn misses_note(md: &mut String, n: &Notes) {
     );
 }
 
+/// A priority subset's footprint ratio: ours (games mean) and the paper's.
+struct Subset {
+    name: String,
+    ours: Option<f64>,
+    paper: Option<f64>,
+}
+
 /// The subsets' footprint ratios, and whether they order the subsets as
 /// the paper's do.
 fn footprint_note(md: &mut String, n: &Notes) {
     let sf = super::figures::scene_figures(n.plan, n.out);
     let fp = &sf[2];
-    let ours: Vec<(String, Option<f64>, Option<f64>)> = fp
+    // Each subset: its name, our games mean and the paper's value.
+    let ours: Vec<Subset> = fp
         .series
         .iter()
         .enumerate()
-        .map(|(i, s)| {
-            (
-                s.name.clone(),
-                group_values(fp, i)[0],
-                paper::footprint(&s.name),
-            )
+        .map(|(i, s)| Subset {
+            name: s.name.clone(),
+            ours: group_values(fp, i)[0],
+            paper: paper::footprint(&s.name),
         })
         .collect();
     let text: Vec<String> = ours
         .iter()
-        .map(|(name, v, _)| format!("{name} {}", v.map_or("-".into(), |x| format!("{x:.2}"))))
+        .map(|o| {
+            format!(
+                "{} {}",
+                o.name,
+                o.ours.map_or("-".into(), |x| format!("{x:.2}"))
+            )
+        })
         .collect();
-    let order = |key: &dyn Fn(&(String, Option<f64>, Option<f64>)) -> Option<f64>| {
+    let order = |key: fn(&Subset) -> Option<f64>| {
         let mut v: Vec<(&str, f64)> = ours
             .iter()
-            .filter_map(|o| Some((o.0.as_str(), key(o)?)))
+            .filter_map(|o| Some((o.name.as_str(), key(o)?)))
             .collect();
         v.sort_by(|a, b| a.1.total_cmp(&b.1));
         v.into_iter().map(|(n, _)| n).collect::<Vec<_>>()
     };
-    let (mine, theirs) = (order(&|o| o.1), order(&|o| o.2));
+    let (mine, theirs) = (order(|o| o.ours), order(|o| o.paper));
     let reading = if mine.is_empty() {
         "no measurement".to_string()
     } else if mine == theirs {

@@ -317,7 +317,7 @@ impl Sweep {
             policies.len(),
         ];
         let count = sizes.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
-        if !count.is_some_and(|n| n <= MAX_POINTS) {
+        if count.is_none_or(|n| n > MAX_POINTS) {
             return Err(format!(
                 "{shown}: {} scenes x {} configs x {} dispatches x {} policies is more than \
                  {MAX_POINTS} points: split the sweep into several files",
