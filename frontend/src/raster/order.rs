@@ -10,7 +10,7 @@
 //!   box (every draw call of the object counts towards its bounds), each
 //!   object's opaque draw calls in the order loaded. This is the key
 //!   Unity documents for its distance sorts ("distance from camera
-//!   position to the object center", `TransparencySortMode.Default`);
+//!   position to the object center", `TransparencySortMode.Perspective`);
 //!   its opaque sort (`SortingCriteria.CommonOpaque`) groups objects "in
 //!   rough front-to-back buckets" on the GPUs where that helps, which
 //!   here is exact, unbucketed, order (wasp: no bucket size to choose).
