@@ -250,7 +250,7 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         &r,
         lump(4, 48, "leaves")?,
         lump(5, 4, "leaf faces")?,
-        { lump(7, 40, "models")? },
+        lump(7, 40, "models")?,
         faces.len(),
     )?;
 
@@ -466,6 +466,54 @@ mod tests {
             assert!(n[2] > 0.0);
         }
         assert!(face_triangles(&b, &b.faces[3]).is_none());
+    }
+
+    #[test]
+    fn faces_belong_to_their_first_leaf_else_their_model_else_themselves() {
+        // Leaves (48 bytes: leaf faces at 32, count at 36), then leaf
+        // faces, then models (40 bytes: faces at 24, count at 28).
+        let mut b = Vec::new();
+        for (first, n) in [(0, 1), (1, 2)] {
+            let mut leaf = [0u8; 48];
+            leaf[32..36].copy_from_slice(&i32::to_le_bytes(first));
+            leaf[36..40].copy_from_slice(&i32::to_le_bytes(n));
+            b.extend_from_slice(&leaf);
+        }
+        for f in [2i32, 0, 2] {
+            b.extend_from_slice(&f.to_le_bytes());
+        }
+        for (first, n) in [(0, 3), (3, 1)] {
+            let mut model = [0u8; 40];
+            model[24..28].copy_from_slice(&i32::to_le_bytes(first));
+            model[28..32].copy_from_slice(&i32::to_le_bytes(n));
+            b.extend_from_slice(&model);
+        }
+        let file = Path::new("m.bsp");
+        let objects = |b: &[u8], n_faces| {
+            face_objects(&Bytes::new(b, file), (0, 2), (96, 3), (108, 2), n_faces)
+        };
+        // Face 2 is in leaves 0 and 1 (the first wins), face 0 in leaf 1,
+        // face 1 only in the world model (2 leaves + model 0), face 3 in
+        // model 1, face 4 in nothing (2 + 2 + its own index).
+        assert_eq!(objects(&b, 5).unwrap(), [1, 2, 0, 3, 8]);
+        // A leaf face naming no face, and a model past the faces.
+        let e = objects(&b, 2).unwrap_err();
+        assert!(e.message.contains("leaf face 2 out of range (2)"), "{e}");
+        let mut bad = b.clone();
+        bad[96 + 4..96 + 8].copy_from_slice(&1i32.to_le_bytes());
+        let e = objects(&bad, 3).unwrap_err();
+        assert!(
+            e.message.contains("model 1: faces 3+1 out of range (3)"),
+            "{e}"
+        );
+        // A leaf whose leaf faces run past their lump.
+        bad[36..40].copy_from_slice(&9i32.to_le_bytes());
+        let e = objects(&bad, 5).unwrap_err();
+        assert!(
+            e.message
+                .contains("leaf 0: leaf faces 0+9 out of range (3)"),
+            "{e}"
+        );
     }
 
     #[test]
