@@ -617,10 +617,13 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
     let mut failed = Vec::new();
     for (i, d) in defs.iter().enumerate() {
         if !args.quiet {
+            let order = match args.draw_order.is_empty() {
+                true => String::new(),
+                false => format!(" in draw order {}", d.draw_order),
+            };
             eprintln!(
-                "wasp: characterising {} ({}; {} of {})",
+                "wasp: characterising {}{order} ({} of {})",
                 d.name,
-                d.draw_order,
                 i + 1,
                 defs.len()
             );
