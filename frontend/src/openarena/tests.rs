@@ -126,11 +126,11 @@ pub(super) fn check_real(s: &Scene, min_tris: usize) {
         }
         assert!(m.indices.iter().all(|&i| (i as usize) < m.positions.len()));
         let drawn: u32 = m.draws.iter().map(|d| d.triangles).sum();
-        assert_eq!(
-            drawn as usize,
-            m.indices.len() / 3,
-            "{}: draw calls",
-            s.name
+        assert!(
+            m.draws.is_empty() || drawn as usize == m.indices.len() / 3,
+            "{}: draw calls cover {drawn} of {} triangles",
+            s.name,
+            m.indices.len() / 3
         );
         for p in &m.positions {
             for k in 0..3 {

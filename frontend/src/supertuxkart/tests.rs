@@ -147,11 +147,11 @@ pub(super) fn check_real(s: &Scene, min_tris: usize, check_camera: bool) {
         assert!(m.uv.iter().all(|u| u[0].is_finite() && u[1].is_finite()));
         assert!(m.indices.iter().all(|&i| (i as usize) < m.positions.len()));
         let drawn: u32 = m.draws.iter().map(|d| d.triangles).sum();
-        assert_eq!(
-            drawn as usize,
-            m.indices.len() / 3,
-            "{}: draw calls",
-            s.name
+        assert!(
+            m.draws.is_empty() || drawn as usize == m.indices.len() / 3,
+            "{}: draw calls cover {drawn} of {} triangles",
+            s.name,
+            m.indices.len() / 3
         );
         assert!(!m.sky || s.materials[m.material].name.starts_with("sky "));
         if s.materials[m.material].name.starts_with("sky") {
