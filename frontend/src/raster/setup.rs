@@ -489,6 +489,42 @@ pub(super) fn overlaps(s: &Setup, x0: u32, x1: u32, y0: u32, y1: u32) -> bool {
     true
 }
 
+/// Each mesh's clip-space positions, kept from its first run to its last
+/// (a sorted draw order visits a mesh many times).
+struct ClipCache {
+    last_run: Vec<usize>,
+    clips: Vec<Vec<[f64; 4]>>,
+}
+
+impl ClipCache {
+    fn new(meshes: usize, runs: &[Run]) -> Self {
+        let mut last_run = vec![0; meshes];
+        for (i, r) in runs.iter().enumerate() {
+            last_run[r.mesh] = i;
+        }
+        Self {
+            last_run,
+            clips: vec![Vec::new(); meshes],
+        }
+    }
+
+    /// Mesh `mesh`'s positions transformed by `m` (on first use).
+    fn positions(&mut self, m: &[[f64; 4]; 4], scene: &Scene, mesh: usize) -> &[[f64; 4]] {
+        let (clip, from) = (&mut self.clips[mesh], &scene.meshes[mesh].positions);
+        if clip.len() != from.len() {
+            clip.extend(from.iter().map(|&p| transform(m, p)));
+        }
+        clip
+    }
+
+    /// Drop mesh `mesh`'s positions if run `i` was its last.
+    fn release(&mut self, i: usize, mesh: usize) {
+        if self.last_run[mesh] == i {
+            self.clips[mesh] = Vec::new();
+        }
+    }
+}
+
 /// Geometry and tiling: every triangle of the `runs` (the draw order,
 /// [`runs`]) set up, in that order, the alpha-blended ones last.
 pub(super) fn geometry(
@@ -503,21 +539,12 @@ pub(super) fn geometry(
     let mut opaque = Vec::new();
     let mut blended = Vec::new();
     let (mut poly, mut tmp) = (Vec::with_capacity(12), Vec::with_capacity(12));
-    // Each mesh's clip-space positions, kept from its first run to its
-    // last (a sorted order visits a mesh many times).
-    let mut last_run = vec![0; scene.meshes.len()];
-    for (i, r) in runs.iter().enumerate() {
-        last_run[r.mesh] = i;
-    }
-    let mut clips: Vec<Vec<[f64; 4]>> = vec![Vec::new(); scene.meshes.len()];
+    let mut clips = ClipCache::new(scene.meshes.len(), runs);
     for (i, run) in runs.iter().enumerate() {
         let mesh = &scene.meshes[run.mesh];
         let material = &scene.materials[mesh.material];
         let blend = material.blend == Blend::AlphaBlend;
-        let clip = &mut clips[run.mesh];
-        if clip.len() != mesh.positions.len() {
-            clip.extend(mesh.positions.iter().map(|&p| transform(&m, p)));
-        }
+        let clip = clips.positions(&m, scene, run.mesh);
         let tris = run.count as u64;
         stats.primitives += tris;
         stats.materials[mesh.material].triangles += tris;
@@ -574,9 +601,7 @@ pub(super) fn geometry(
                 }
             }
         }
-        if last_run[run.mesh] == i {
-            clips[run.mesh] = Vec::new();
-        }
+        clips.release(i, run.mesh);
     }
     if matches!(scene.camera, Camera::Perspective { .. }) {
         // Back to front; sort_by is stable, so ties keep submission order.
