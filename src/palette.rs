@@ -57,8 +57,10 @@ pub const LEVELS: [RGBColor; 3] = [
 pub const GRID: RGBColor = RGBColor(225, 225, 225);
 /// Reference and zero lines; marks that belong to no series.
 pub const INK: RGBColor = RGBColor(60, 60, 60);
-/// Tile boundaries in the timeline.
+/// Tile starts in the timeline.
 pub const TILE_START: RGBColor = RGBColor(40, 40, 40);
+/// Tile ends in the timeline.
+pub const TILE_END: RGBColor = RGBColor(200, 30, 30);
 
 /// The key of a series name: its first word, lower case, after a leading
 /// `mean ` (`"WaSP, all"` -> `wasp`, `"wasp:0:3"` -> `wasp`, `"mean 3D"`
