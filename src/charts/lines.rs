@@ -114,11 +114,8 @@ impl<'a> Plot<'a> {
         let ys = points()
             .map(|p| p.1)
             .chain(self.paper.iter().map(|m| m.value));
-        let base = if self.rings.is_empty() {
-            vec![0.0]
-        } else {
-            vec![]
-        };
+        // Line charts hold 0 (or the reference); points over x do not.
+        let base = vec![0.0; usize::from(!self.x.is_empty())];
         let y = range(ys, &self.reference.map_or(base, |r| vec![r]));
         let xs = points().map(|p| p.0);
         let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
