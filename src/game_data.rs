@@ -1,5 +1,6 @@
 //! Fetching the game data a command needs, as `wasp scenes fetch` does:
-//! `render`, `reproduce` and `sweep` fetch a game's Debian packages into
+//! `render`, `characterize` (of named scenes), `reproduce` and `sweep`
+//! fetch a game's Debian packages into
 //! the scene cache the first time one of its scenes is used, saying what
 //! they download and how much.
 
@@ -11,11 +12,19 @@ pub fn megabytes(bytes: u64) -> String {
     format!("{:.0} MB", bytes as f64 / 1e6)
 }
 
-/// Fetch every game of `games` whose data is not in the scene cache;
+/// Fetch every game of `games` (repeats allowed) whose data is not in the
+/// scene cache;
 /// `quiet` silences the notes of what is downloaded (errors still name
 /// the game).
 pub fn fetch_missing(games: &[Game], quiet: bool) -> Result<(), String> {
-    for &g in games.iter().filter(|g| !fetch::is_fetched(**g)) {
+    let mut missing: Vec<Game> = games
+        .iter()
+        .copied()
+        .filter(|g| !fetch::is_fetched(*g))
+        .collect();
+    missing.sort_by_key(|g| g.name());
+    missing.dedup();
+    for g in missing {
         if !quiet {
             let size = fetch::download_bytes(g)
                 .map_or_else(String::new, |b| format!(", {} to download", megabytes(b)));

@@ -10,6 +10,7 @@ mod game_data;
 mod heat;
 mod interrupt;
 mod output;
+mod palette;
 mod picture;
 mod reproduce;
 mod run_cmd;

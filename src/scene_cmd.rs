@@ -10,7 +10,7 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use wasp_frontend::characterize::{self, Characterization};
 use wasp_frontend::def::{self, Game, SceneDef};
-use wasp_frontend::raster::Frame;
+use wasp_frontend::raster::{DrawOrder, Frame};
 use wasp_frontend::render::{self, HeatStat, Overlay, RenderRequest, WarpValue};
 use wasp_frontend::{fetch, load};
 use wasp_rtl::policy::PolicySpec;
@@ -118,6 +118,12 @@ pub struct RenderArgs {
     /// deferred renderer). Default: plain early-Z in submission order.
     #[arg(long)]
     pub depth_prepass: bool,
+    /// Order of the opaque geometry: as-loaded, front-to-back-object or
+    /// front-to-back-draw (default: the scene definition's `draw_order`,
+    /// as-loaded for every shipped scene). A 2D scene is drawn in
+    /// painter's order whatever this says.
+    #[arg(long, value_name = "ORDER")]
+    pub draw_order: Option<DrawOrder>,
     /// Print where the time went: loading the scene (parsing meshes,
     /// decoding textures) and the front end (mip chains, geometry and
     /// binning, raster + early-Z + texturing + shading + trace), wall-clock
@@ -157,10 +163,26 @@ pub struct CharacterizeArgs {
     /// Hidden-surface removal by a depth pre-pass (see `wasp render`).
     #[arg(long)]
     pub depth_prepass: bool,
+    /// Order of the opaque geometry (see `wasp render`); repeat it to
+    /// characterise every scene in each order given (default: each
+    /// scene's own `draw_order`).
+    #[arg(long, value_name = "ORDER")]
+    pub draw_order: Vec<DrawOrder>,
     /// No progress output on stderr (progress bars, notes of what is being
     /// done); results, warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
+}
+
+/// The note for a draw order that changes nothing on a 2D scene, if
+/// `asked` is not what takes effect.
+fn painter_note(scene: &str, asked: DrawOrder, took: DrawOrder) -> Option<String> {
+    (asked != took).then(|| {
+        format!(
+            "wasp: note: {scene} is a 2D scene drawn in painter's order without a depth test \
+             (its order is its picture): draw order {asked} changes nothing, it is drawn {took}"
+        )
+    })
 }
 
 fn parse_game(s: &str) -> Result<Game, CliError> {
@@ -311,7 +333,8 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
     if args.repeat == 0 {
         return Err(CliError::usage("--repeat 0: expected at least 1"));
     }
-    let def = find_def(&args.scene)?;
+    let mut def = find_def(&args.scene)?;
+    def.draw_order = args.draw_order.unwrap_or(def.draw_order);
     let (width, height) = match &args.size {
         Some(s) => parse_size(s)?,
         None => (def.width, def.height),
@@ -344,6 +367,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         tile: job.config.gpu.tile_size,
         depth_prepass: args.depth_prepass,
         threads: args.threads,
+        draw_order: job.def.draw_order,
     };
     let run = RunOptions {
         policy: args.policy,
@@ -449,17 +473,22 @@ fn render_best(
     Ok((name, out.expect("at least one repeat"), best))
 }
 
-/// The notes on stderr of a rendered frame: its counts, the heat-map run
-/// and the heat range.
+/// The notes on stderr of a rendered frame: its draw order (and, where
+/// the painter's order changed what it shows, a note), its counts, the
+/// heat-map run and the heat range.
 fn note_frame(name: &str, job: &RenderJob, out: &render::Rendered, heat: Option<&RunStats>) {
     let s = &out.frame.stats;
+    if let Some(n) = painter_note(&job.def.name, job.def.draw_order, s.draw_order) {
+        eprintln!("{n}");
+    }
     eprintln!(
-        "wasp: {} {}x{}: {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
+        "wasp: {} {}x{} ({}): {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
          positions ({:.2} per position) over {} tiles, {} quads rejected by early-Z; front end \
          {:.3} s",
         name,
         job.width,
         job.height,
+        s.draw_order,
         s.primitives,
         s.clipped,
         s.warps,
@@ -654,12 +683,10 @@ fn crop(img: &[u8], w: u32, r: Rect) -> (Vec<u8>, u32, u32) {
     (out, r.w, r.h)
 }
 
-/// Run `wasp characterize`.
-pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
-    output::check(&[
-        Output::new("--json", args.json.as_deref()),
-        Output::new("--csv", args.csv.as_deref()),
-    ])?;
+/// The scenes `wasp characterize` takes, each in every draw order asked
+/// for: the named ones (their games' data fetched if missing), else every
+/// scene whose data is in the cache.
+fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError> {
     let defs: Vec<SceneDef> = if args.scenes.is_empty() {
         let all = def::all().map_err(scene_err)?;
         let (have, missing): (Vec<_>, Vec<_>) =
@@ -673,27 +700,65 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
         }
         have
     } else {
-        args.scenes
+        let named: Vec<SceneDef> = args
+            .scenes
             .iter()
             .map(|s| find_def(s))
-            .collect::<Result<_, _>>()?
+            .collect::<Result<_, _>>()?;
+        let games: Vec<Game> = named.iter().map(|d| d.game).collect();
+        crate::game_data::fetch_missing(&games, args.quiet).map_err(CliError::failed)?;
+        named
     };
+    // Each scene in each order asked for (none: its own), scene by scene.
+    Ok(defs
+        .into_iter()
+        .flat_map(|d| {
+            let orders = match args.draw_order.is_empty() {
+                true => vec![d.draw_order],
+                false => args.draw_order.clone(),
+            };
+            orders.into_iter().map(move |o| SceneDef {
+                draw_order: o,
+                ..d.clone()
+            })
+        })
+        .collect())
+}
+
+/// Run `wasp characterize`.
+pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
+    output::check(&[
+        Output::new("--json", args.json.as_deref()),
+        Output::new("--csv", args.csv.as_deref()),
+    ])?;
+    let defs = characterize_defs(args)?;
     let mut rows: Vec<Characterization> = Vec::new();
     let mut failed = Vec::new();
     for (i, d) in defs.iter().enumerate() {
         if !args.quiet {
+            let order = match args.draw_order.is_empty() {
+                true => String::new(),
+                false => format!(" in draw order {}", d.draw_order),
+            };
             eprintln!(
-                "wasp: characterising {} ({} of {})",
+                "wasp: characterising {}{order} ({} of {})",
                 d.name,
                 i + 1,
                 defs.len()
             );
         }
         match characterize::characterize_def(d, args.depth_prepass) {
-            Ok(c) => rows.push(c),
+            Ok(c) => {
+                if let Some(n) = painter_note(&d.name, d.draw_order, c.draw_order) {
+                    if !args.quiet {
+                        eprintln!("{n}");
+                    }
+                }
+                rows.push(c)
+            }
             Err(e) => {
-                eprintln!("wasp: {}: {e}", d.name);
-                failed.push(d.name.clone());
+                eprintln!("wasp: {} ({}): {e}", d.name, d.draw_order);
+                failed.push(format!("{} ({})", d.name, d.draw_order));
             }
         }
     }

@@ -1,28 +1,32 @@
-//! A sweep file: a user's grid of scenes x configurations x dispatch modes
-//! x launch policies (docs/sweep.md), and its expansion into points (see
+//! A sweep file: a user's grid of scenes x draw orders x configurations x
+//! dispatch modes x launch policies (docs/sweep.md), and its expansion
+//! into points (see
 //! [`super::jobs`] for running them one at a time on a cluster).
 //!
 //! ```toml
 //! scenes = ["procedural-plane"]          # or ["all"]
 //! policies = ["baseline", "wasp:0:3"]    # scheduler.policy values
 //! dispatches = ["shared-tile"]           # optional: default the config's own
+//! draw_orders = ["as-loaded", "front-to-back-draw"]  # optional: default the scene's own
 //! [[configs]]
 //! name = "shipped"                       # the label in the results
 //! base = "paper"                         # paper | paper-width2 | a TOML file
 //! set = ["l0.mshrs=8"]                   # --set overrides, in order
 //! ```
 //!
-//! Points are numbered from 1 in the order scene, configuration, dispatch,
-//! policy (the last varies fastest). Everything is checked when the file is
-//! read and expanded, before any simulation: unknown fields, scenes,
-//! policies and dispatch modes, duplicate names, missing base files, and
-//! every point's effective configuration.
+//! Points are numbered from 1 in the order scene, draw order,
+//! configuration, dispatch, policy (the last varies fastest). Everything
+//! is checked when the file is read and expanded, before any simulation:
+//! unknown fields, scenes, draw orders, policies and dispatch modes,
+//! duplicate names, missing base files, and every point's effective
+//! configuration.
 
 use super::point::{Point, Resolver};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use toml::Spanned;
+use wasp_frontend::raster::DrawOrder;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
 
@@ -36,6 +40,7 @@ struct RawSweep {
     scenes: Spanned<Vec<Spanned<String>>>,
     policies: Spanned<Vec<Spanned<String>>>,
     dispatches: Option<Spanned<Vec<Spanned<String>>>>,
+    draw_orders: Option<Spanned<Vec<Spanned<String>>>>,
     configs: Option<Spanned<Vec<Spanned<RawConfig>>>>,
 }
 
@@ -74,6 +79,9 @@ pub struct Sweep {
     /// Dispatch modes, in order; `[None]` when the file names none (each
     /// configuration's own).
     pub dispatches: Vec<Option<String>>,
+    /// Draw orders, in order; `[None]` when the file names none (each
+    /// scene's own).
+    pub draw_orders: Vec<Option<DrawOrder>>,
     /// Launch policies (`scheduler.policy` values), in order.
     pub policies: Vec<String>,
 }
@@ -91,6 +99,8 @@ pub struct SweepPoint {
     pub dispatch: String,
     /// The policy as written in the file.
     pub policy: String,
+    /// The effective draw order (the file's, else the scene's own).
+    pub draw_order: DrawOrder,
     /// The point the runner runs.
     pub point: Point,
     /// Its effective configuration (shared by the point's scenes).
@@ -98,12 +108,17 @@ pub struct SweepPoint {
 }
 
 impl SweepPoint {
-    /// `scene, config NAME, DISPATCH, POLICY` for listings and messages.
+    /// `scene, config NAME, DISPATCH, POLICY` for listings and messages,
+    /// with `, draw order ORDER` when the point names one.
     pub fn describe(&self) -> String {
-        format!(
+        let mut s = format!(
             "{}, config {}, {}, {}",
             self.scene, self.config, self.dispatch, self.policy
-        )
+        );
+        if let Some(o) = self.point.draw_order {
+            s.push_str(&format!(", draw order {o}"));
+        }
+        s
     }
 }
 
@@ -146,6 +161,34 @@ impl SweepFile<'_> {
             }
         }
         Ok(())
+    }
+
+    /// An optional list field whose values parse as `T`: each value as
+    /// written and parsed, or `[None]` when the field is absent (the
+    /// configuration keeps its own).
+    fn optional<T: std::str::FromStr>(
+        &self,
+        field: &str,
+        v: Option<&Spanned<Vec<Spanned<String>>>>,
+    ) -> Result<Vec<Option<(String, T)>>, String>
+    where
+        T::Err: std::fmt::Display,
+    {
+        let Some(v) = v else {
+            return Ok(vec![None]);
+        };
+        self.list(field, v)?;
+        v.get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, x)| {
+                let parsed = x
+                    .get_ref()
+                    .parse::<T>()
+                    .map_err(|e| format!("{}: {field}[{i}]: {e}", self.at(x.span().start)))?;
+                Ok(Some((x.get_ref().clone(), parsed)))
+            })
+            .collect()
     }
 
     /// The scenes named (`all`: every one of `known`).
@@ -295,23 +338,20 @@ impl Sweep {
                 .map_err(|e| format!("{}: policies[{i}]: {e}", f.at(p.span().start)))?;
             policies.push(p.get_ref().clone());
         }
-        let dispatches = match &raw.dispatches {
-            None => vec![None],
-            Some(d) => {
-                f.list("dispatches", d)?;
-                let mut v = Vec::new();
-                for (i, x) in d.get_ref().iter().enumerate() {
-                    x.get_ref()
-                        .parse::<Dispatch>()
-                        .map_err(|e| format!("{}: dispatches[{i}]: {e}", f.at(x.span().start)))?;
-                    v.push(Some(x.get_ref().clone()));
-                }
-                v
-            }
-        };
+        let dispatches: Vec<Option<String>> = f
+            .optional::<Dispatch>("dispatches", raw.dispatches.as_ref())?
+            .into_iter()
+            .map(|d| d.map(|(text, _)| text))
+            .collect();
+        let draw_orders: Vec<Option<DrawOrder>> = f
+            .optional::<DrawOrder>("draw_orders", raw.draw_orders.as_ref())?
+            .into_iter()
+            .map(|d| d.map(|(_, o)| o))
+            .collect();
         let configs = f.configs(raw.configs.as_ref())?;
         let sizes = [
             scenes.len(),
+            draw_orders.len(),
             configs.len(),
             dispatches.len(),
             policies.len(),
@@ -319,9 +359,9 @@ impl Sweep {
         let count = sizes.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
         if count.is_none_or(|n| n > MAX_POINTS) {
             return Err(format!(
-                "{shown}: {} scenes x {} configs x {} dispatches x {} policies is more than \
-                 {MAX_POINTS} points: split the sweep into several files",
-                sizes[0], sizes[1], sizes[2], sizes[3]
+                "{shown}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
+                 policies is more than {MAX_POINTS} points: split the sweep into several files",
+                sizes[0], sizes[1], sizes[2], sizes[3], sizes[4]
             ));
         }
         Ok(Sweep {
@@ -329,13 +369,18 @@ impl Sweep {
             scenes,
             configs,
             dispatches,
+            draw_orders,
             policies,
         })
     }
 
     /// The number of points.
     pub fn len(&self) -> usize {
-        self.scenes.len() * self.configs.len() * self.dispatches.len() * self.policies.len()
+        self.scenes.len()
+            * self.draw_orders.len()
+            * self.configs.len()
+            * self.dispatches.len()
+            * self.policies.len()
     }
 
     /// Every point in sweep order, each machine resolved (base, overrides,
@@ -357,6 +402,7 @@ impl Sweep {
                         scene: String::new(),
                         config: c.base.clone(),
                         sets,
+                        draw_order: None,
                     };
                     let cfg = resolver.config(&p).map_err(|e| {
                         let d = d.as_deref().unwrap_or("its own dispatch");
@@ -371,19 +417,27 @@ impl Sweep {
         }
         let mut out = Vec::with_capacity(self.len());
         for scene in &self.scenes {
-            for (c, pol, p, cfg) in &machines {
-                out.push(SweepPoint {
-                    index: out.len() + 1,
-                    scene: scene.clone(),
-                    config: c.name.clone(),
-                    dispatch: cfg.raster.dispatch.to_string(),
-                    policy: (*pol).clone(),
-                    point: Point {
+            // The scene's own order, for the points that name none.
+            let own = wasp_frontend::def::lookup(scene)
+                .map_err(|e| format!("{}: {e}", self.shown))?
+                .draw_order;
+            for &order in &self.draw_orders {
+                for (c, pol, p, cfg) in &machines {
+                    let point = Point {
                         scene: scene.clone(),
                         ..p.clone()
-                    },
-                    machine: cfg.clone(),
-                });
+                    };
+                    out.push(SweepPoint {
+                        index: out.len() + 1,
+                        scene: scene.clone(),
+                        config: c.name.clone(),
+                        dispatch: cfg.raster.dispatch.to_string(),
+                        policy: (*pol).clone(),
+                        draw_order: order.unwrap_or(own),
+                        point: order.map_or(point.clone(), |o| point.drawn(o)),
+                        machine: cfg.clone(),
+                    });
+                }
             }
         }
         Ok(out)
@@ -548,6 +602,48 @@ set = ["l0.mshrs=8"]
     }
 
     #[test]
+    fn draw_orders_vary_after_the_scene_and_are_checked() {
+        let s = parse(
+            "scenes = [\"procedural-plane\", \"procedural-sprites\"]\ndraw_orders = [\"as-loaded\", \"front-to-back-draw\"]\npolicies = [\"baseline\", \"wasp\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+        )
+        .unwrap();
+        assert_eq!(s.len(), 2 * 2 * 2);
+        let pts = s.points().unwrap();
+        let orders: Vec<DrawOrder> = pts.iter().map(|p| p.draw_order).collect();
+        use DrawOrder::{AsLoaded as A, FrontToBackDraw as D};
+        assert_eq!(orders, [A, A, D, D, A, A, D, D]);
+        assert_eq!(pts[2].point.draw_order, Some(D));
+        assert_eq!(pts[2].point, pts[0].point.drawn(D));
+        assert_eq!(
+            pts[3].describe(),
+            "procedural-plane, config a, shared-tile, wasp, draw order front-to-back-draw"
+        );
+        assert_eq!(pts[4].scene, "procedural-sprites");
+        // Without the list, each scene keeps its own order.
+        let pts = parse(GOOD).unwrap().points().unwrap();
+        assert!(pts.iter().all(|p| p.point.draw_order.is_none()));
+        assert!(pts.iter().all(|p| p.draw_order == A));
+        for (text, want) in [
+            (
+                "scenes = [\"procedural-plane\"]\ndraw_orders = [\"sideways\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+                "sweep.toml:2: draw_orders[0]: unknown draw order `sideways` (expected as-loaded, \
+                 front-to-back-object or front-to-back-draw)",
+            ),
+            (
+                "scenes = [\"procedural-plane\"]\ndraw_orders = [\"as-loaded\", \"as-loaded\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+                "sweep.toml:2: draw_orders[1] `as-loaded` is listed twice (also draw_orders[0])",
+            ),
+            (
+                "scenes = [\"procedural-plane\"]\ndraw_orders = []\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+                "sweep.toml:2: draw_orders is empty",
+            ),
+        ] {
+            let e = parse(text).unwrap_err();
+            assert!(e.starts_with(want), "got: {e}\nwant: {want}");
+        }
+    }
+
+    #[test]
     fn an_override_that_does_not_resolve_names_its_machine() {
         let s = parse(
             "scenes = [\"procedural-plane\"]\npolicies = [\"baseline\", \"wasp\"]\n[[configs]]\nname = \"ok\"\nbase = \"paper\"\n[[configs]]\nname = \"bad\"\nbase = \"paper\"\nset = [\"l0.mshrs=0\"]\n",
@@ -576,7 +672,8 @@ set = ["l0.mshrs=8"]
         let e = parse(&text).unwrap_err();
         assert!(
             e.contains(
-                "1 scenes x 300 configs x 1 dispatches x 400 policies is more than 100000 points"
+                "1 scenes x 1 draw orders x 300 configs x 1 dispatches x 400 policies is more \
+                 than 100000 points"
             ),
             "{e}"
         );
