@@ -27,15 +27,18 @@ use std::fmt;
 
 /// The order in which the issue stage visits ready warps (`core.issue`).
 /// The paper does not say (wasp's choice: `lrr`, the order of the model
-/// before the option existed).
+/// before the option existed). docs/machine.md, "Issue order", defines
+/// both.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum IssueOrder {
-    /// Loose round-robin from the slot after the last pick ([`lrr`]).
+    /// Loose round-robin: every slot from the one after the last pick of
+    /// the last issuing cycle, ascending, wrapping (`gpu/issue/lrr.rs`).
     #[default]
     Lrr,
-    /// Greedy-then-oldest: the warps that issued last first, then the
-    /// oldest by launch ([`gto`]).
+    /// Greedy-then-oldest: the slots that issued in the last issuing cycle
+    /// first, then every other slot, each group oldest first by launch
+    /// cycle (`gpu/issue/gto.rs`).
     Gto,
 }
 
