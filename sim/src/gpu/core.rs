@@ -529,12 +529,11 @@ impl ShaderCore {
 
     /// Issue on masks of width `M` (every slot fits).
     ///
-    /// The picks are found first (by the issue order, each checked against
-    /// its plain reference; each ALU pick counts its run down), then the
-    /// ALU picks
-    /// are put on the wake-up wheels as whole masks: those with more of
-    /// their run to go on the ready wheel, those that ended it on the wheel
-    /// that looks at them.
+    /// The picks are found first (by the issue order `O`, whose fast pick
+    /// is checked against its plain reference; each ALU pick counts its run
+    /// down), then the ALU picks are put on the wake-up wheels as whole
+    /// masks: those with more of their run to go on the ready wheel, those
+    /// that ended it on the wheel that looks at them.
     #[inline(always)]
     fn issue_with<M: SlotMask, O: Order>(&mut self, now: u64, tile: &Tile) {
         let tex_ok = self.ldst_len < self.ldst_cap;
