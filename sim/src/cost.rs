@@ -11,12 +11,17 @@
 //! (WaSP at 32 warps matches the baseline at 48 at width 2; at 48 beats it
 //! at 64 at width 4), sized from the register-file parameters. The claim is
 //! the paper's: this command runs no simulation, and wasp's reproduction
-//! measures it separately (`wasp reproduce`'s sensitivity rows).
+//! measures it separately (`wasp reproduce`'s sensitivity rows). (d) The
+//! measured-CF variant. (e) The issue orders (`core.issue`) beside each
+//! other ([`issue_order`]).
 //!
 //! Gate equivalents are sums of multiples of 0.5 GE, printed exactly
 //! ([`ge`]), so that parts and totals agree.
 
+pub mod issue_order;
+
 use crate::config::MachineConfig;
+pub use issue_order::{issue_order_cost, IssueOrderCost};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -132,6 +137,8 @@ pub struct CostReport {
     pub savings: Savings,
     /// The measured-CF variant's cost beside WaSP's.
     pub measured_cf_variant: VariantCost,
+    /// The issue orders' hardware (`core.issue`).
+    pub issue_order: IssueOrderCost,
 }
 
 /// Register-file parameters for the savings column.
@@ -404,6 +411,7 @@ pub fn report(
             ge_saved_per_core: (rf_bits * saved_warps) as f64 * rf.ge_per_bit,
         },
         measured_cf_variant: variant,
+        issue_order: issue_order_cost(cfg, &rules),
     })
 }
 
@@ -434,6 +442,7 @@ impl CostReport {
         self.yosys_table(&mut s);
         self.savings_table(&mut s);
         self.variant_table(&mut s);
+        self.issue_order_table(&mut s);
         s
     }
 
@@ -619,6 +628,33 @@ impl CostReport {
             }
         }
     }
+
+    /// Section (e): the issue orders.
+    fn issue_order_table(&self, s: &mut String) {
+        let o = &self.issue_order;
+        let _ = writeln!(
+            s,
+            "\n(e) the issue order (core.issue, this machine: {}), per core: {} slots, {} picks a cycle",
+            o.configured, o.slots, o.width
+        );
+        for c in o.lrr.iter().chain(&o.gto) {
+            item_line(s, c, "");
+        }
+        let _ = writeln!(
+            s,
+            "lrr: {} flip-flops, {} GE; gto: {} flip-flops, {} GE ({:+} GE); gto split as \
+             GPGPU-Sim's cores ({} schedulers of {} slots): {} flip-flops, {} GE",
+            o.register_bits[0],
+            ge(o.ge[0]),
+            o.register_bits[1],
+            ge(o.ge[1]),
+            o.ge[1] - o.ge[0],
+            o.width,
+            o.slots.div_ceil(o.width),
+            o.gto_split.0,
+            ge(o.gto_split.1)
+        );
+    }
 }
 
 fn item_line(s: &mut String, c: &CostedItem, sign: &str) {
@@ -690,6 +726,9 @@ mod tests {
         assert_eq!(m.removed.len(), 1);
         assert!(m.per_core_ge > r.per_core_ge);
         assert!(t.contains("(d) the measured-CF variant") && t.contains("+ cf_meter"));
+        assert!(t.contains("(e) the issue order (core.issue, this machine: lrr)"));
+        assert!(t.contains("issue_lrr") && t.contains("age matrix"));
+        assert_eq!(r.issue_order.register_bits, [6, 2080]);
         assert!(m.yosys.is_none() && m.yosys_meter.is_none());
         // Exact parts and totals: 591 + 621.5 - 66 = 1146.5.
         assert!(
