@@ -9,7 +9,7 @@
 //! the field and the limit.
 
 use crate::mem::config::check_range;
-use crate::mem::{BlockedOn, CacheConfig, DramConfig, MemConfig};
+use crate::mem::{BlockedOn, CacheConfig, DramConfig, MemConfig, PrefetchConfig};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::Path;
@@ -281,6 +281,9 @@ pub struct MachineConfig {
     pub dram: DramConfig,
     /// Ideal-memory switch.
     pub memory: MemoryConfig,
+    /// The prefetcher into the L1s (`none` when the section is absent).
+    #[serde(default)]
+    pub prefetch: PrefetchConfig,
     /// Energy model.
     pub energy: EnergyConfig,
     /// Simulation controls.
@@ -461,6 +464,7 @@ impl MachineConfig {
             dram: self.dram,
             ideal_memory: self.memory.ideal,
             blocked_on: self.scheduler.blocked_on,
+            prefetch: self.prefetch,
         }
     }
 

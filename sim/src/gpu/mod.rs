@@ -34,6 +34,7 @@ pub use self::raster::{RasterStats, SharedRaster};
 pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
 use crate::config::{Dispatch, MachineConfig};
+use crate::mem::prefetch::{self, Prefetcher};
 use crate::mem::MemStats;
 use crate::mem::MemorySystem;
 use crate::timeline::{Timeline, TimelineSample};
@@ -184,6 +185,8 @@ pub struct Gpu<'t, C = ShaderCore> {
     cores: Vec<C>,
     mem: MemorySystem,
     dispatch: Dispatcher,
+    /// The prefetcher into the L1s (`prefetch.kind`), if any.
+    prefetch: Option<Box<dyn Prefetcher>>,
     /// One per renderer: the GPU (shared-tile) or each core (per-core).
     trackers: Vec<TileTracker>,
     timeline: Option<Timeline>,
@@ -255,12 +258,20 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 vec![TileTracker::new(); cfg.gpu.cores as usize],
             )
         };
+        let prefetch = match &dispatch {
+            Dispatcher::Shared(r) => {
+                let core_of = |x: u32, y: u32| r.core_of(x, y);
+                prefetch::build(&cfg.prefetch, trace, cores.len(), Some(&core_of))
+            }
+            Dispatcher::PerCore { .. } => prefetch::build(&cfg.prefetch, trace, cores.len(), None),
+        };
         Ok(Self {
             cfg: cfg.clone(),
             trace,
             cores,
             mem,
             dispatch,
+            prefetch,
             trackers,
             timeline: None,
             tiles_done: 0,
@@ -357,9 +368,17 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                         if let Some(tl) = self.timeline.as_mut() {
                             tl.mark(now, *next_tile as u32, Some(i as u32), true);
                         }
+                        if let Some(pf) = self.prefetch.as_deref_mut() {
+                            pf.tile_opened(*next_tile, Some(i), &mut self.mem);
+                        }
                         *next_tile += 1;
                     }
+                    let entered = c.quads_entered();
                     c.evaluate(now, self.trace, &mut self.mem);
+                    if let (Some(pf), Some(t)) = (self.prefetch.as_deref_mut(), c.tile()) {
+                        let quads = entered..c.quads_entered();
+                        prefetch::quads_entered(pf, &tiles[t], quads, |_, _| i, &mut self.mem);
+                    }
                     if let Some((q, prio)) = c.launched_now() {
                         let quad = tiles[c.tile().expect("launching")].quad(q as usize);
                         let quad = quad.expect("quad in tile");
@@ -373,6 +392,21 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             }
             Dispatcher::Shared(r) => {
                 let opened = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
+                if let Some(pf) = self.prefetch.as_deref_mut() {
+                    if let Some(t) = opened {
+                        pf.tile_opened(t, None, &mut self.mem);
+                    }
+                    if let Some(t) = r.tile() {
+                        let core_of = |x, y| r.core_of(x, y);
+                        prefetch::quads_entered(
+                            pf,
+                            &tiles[t],
+                            r.placed_now(),
+                            core_of,
+                            &mut self.mem,
+                        );
+                    }
+                }
                 if let Some(t) = opened {
                     self.trackers[0].start(t as u32, None, now);
                     if let Some(tl) = self.timeline.as_mut() {

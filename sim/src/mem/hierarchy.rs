@@ -5,6 +5,7 @@
 use super::cache::{bits_for, Cache, Lookup};
 use super::config::{BlockedOn, MemConfig, MemConfigError};
 use super::dram::Dram;
+use super::prefetch::{PrefetchQueue, PrefetchQueues, PrefetchStats};
 use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
 use wasp_waves::Tracer;
@@ -119,6 +120,9 @@ struct CoreMem {
     long: Vec<u32>,
     /// Not quiet at the start of the current tick (tick scratch).
     active: bool,
+    /// Prefetches waiting for the L1 (`mem/prefetch`; never filled
+    /// without a prefetcher).
+    pf: PrefetchQueue,
 }
 
 impl CoreMem {
@@ -138,7 +142,38 @@ impl CoreMem {
             && self.to_l2.is_empty()
             && self.to_l0.is_empty()
             && self.completing.is_empty()
+            && self.pf.is_empty()
     }
+}
+
+/// Cycle `now`'s prefetch step of core `c`, after the cycle's demand
+/// lookups of its L1: the queue's head goes to the L1 on the ports demand
+/// left free, above the MSHR reserve; each miss's request joins the L1's
+/// queue to the L2 like a demand miss's (see `mem/prefetch`).
+#[inline(never)]
+fn prefetch_step(now: u64, c: &mut CoreMem, track: Track, reserve: u32) {
+    let CoreMem {
+        pf,
+        l1,
+        to_l2,
+        l1_long,
+        ..
+    } = c;
+    pf.issue(
+        |block| l1.prefetch(now, block, reserve),
+        |block, entry| {
+            to_l2.push_back(Request {
+                ready: now + 1,
+                block,
+                entry,
+            });
+            // A new L1 entry starts unmarked for the L2-miss reports (it
+            // has no target to report yet; later merges are reported).
+            if track == Track::L2 {
+                l1_long[entry as usize] = false;
+            }
+        },
+    );
 }
 
 /// The L1's reply for L0 MSHR entry `entry` reaches the L0 in cycle `now`:
@@ -311,6 +346,10 @@ impl MemorySystem {
         let mut cores = Vec::with_capacity(n_cores);
         for _ in 0..n_cores {
             let l0 = cfg.l0.as_ref().map(Cache::new).transpose()?;
+            let mut l1 = Cache::new(&cfg.l1)?;
+            if cfg.prefetch.enabled() {
+                l1.enable_prefetch_marks();
+            }
             let l1_mshrs = cfg.l1.mshrs as usize;
             let l0_mshrs = cfg.l0.map_or(0, |c| c.mshrs as usize);
             // Bound on tags completing at once: every hit still in its latency
@@ -319,7 +358,7 @@ impl MemorySystem {
                 + first.mshrs as usize * (1 + first.max_merged as usize);
             cores.push(CoreMem {
                 l0,
-                l1: Cache::new(&cfg.l1)?,
+                l1,
                 to_l1: Ring::with_capacity(l0_mshrs),
                 to_l2: Ring::with_capacity(l1_mshrs),
                 to_l0: Ring::with_capacity(l0_mshrs),
@@ -334,6 +373,7 @@ impl MemorySystem {
                     completing
                 }),
                 active: false,
+                pf: PrefetchQueue::new(cfg.prefetch.queue as usize, cfg.prefetch.queue_filter),
             });
         }
         Ok(MemorySystem {
@@ -442,6 +482,7 @@ impl MemorySystem {
         // An L1 hit of this tick is due at `l1_reply`, now when `l1_direct`.
         let l1_reply = now + u64::from(self.cfg.l1.hit_latency) - 1;
         let l1_direct = l1_reply <= now;
+        let reserve = self.cfg.prefetch.l1_reserve;
         for (k, c) in self.cores.iter_mut().enumerate() {
             c.active = !c.is_quiet();
             if c.active {
@@ -491,6 +532,9 @@ impl MemorySystem {
                         }
                         c.to_l1.drop_front();
                     }
+                }
+                if !c.pf.is_empty() {
+                    prefetch_step(now, c, track, reserve);
                 }
                 if c.to_l2.front().is_some_and(|r| r.ready <= now) {
                     self.l2_order.push(k as u32);
@@ -639,7 +683,8 @@ impl MemorySystem {
 
     /// Nothing in flight anywhere: no MSHR entry occupied (awaiting its
     /// reply or in the cycle after it), no request or reply travelling, no
-    /// tag completing or completed and not taken. While this holds, ticks
+    /// prefetch queued, no tag completing or completed and not taken.
+    /// While this holds, ticks
     /// change nothing but the tick count. (Long-latency reports not taken
     /// do not count: they are notices, not work in flight.)
     pub fn is_idle(&self) -> bool {
@@ -701,7 +746,22 @@ impl MemorySystem {
             l2: with_cycles(&self.l2),
             dram: *self.dram.stats(),
             per_core,
+            prefetch: self.prefetch_stats(),
         }
+    }
+
+    /// The prefetch counters of every core, summed (all zero without a
+    /// prefetcher).
+    pub fn prefetch_stats(&self) -> PrefetchStats {
+        let mut sum = PrefetchStats::default();
+        for c in &self.cores {
+            sum.add(&PrefetchStats {
+                queue: *c.pf.counts(),
+                lines: c.l1.prefetch_counts(),
+                unused_at_end: c.l1.prefetch_unused(),
+            });
+        }
+        sum
     }
 
     /// Signals of `core`'s private levels in the last cycle: scopes `l0` (when
@@ -721,6 +781,9 @@ impl MemorySystem {
         c.l1.trace(self.now, t);
         let w = bits_for(u64::from(c.l1.mshr_capacity()));
         t.signal("miss_queue", w, c.to_l2.len() as u64);
+        if self.cfg.prefetch.enabled() {
+            t.signal("prefetch_queue", 16, c.pf.len().min(0xffff) as u64);
+        }
         t.pop_scope();
     }
 
@@ -734,6 +797,13 @@ impl MemorySystem {
         t.push_scope("dram");
         self.dram.trace(self.now, t);
         t.pop_scope();
+    }
+}
+
+/// The memory system keeps the prefetch queues, one in front of each L1.
+impl PrefetchQueues for MemorySystem {
+    fn prefetch_queue(&mut self, core: usize) -> &mut PrefetchQueue {
+        &mut self.cores[core].pf
     }
 }
 
