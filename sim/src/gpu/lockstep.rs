@@ -16,7 +16,7 @@
 use super::core::plain::PlainCore;
 use super::{CoreModel, Gpu, ShaderCore};
 use crate::config::{Dispatch, FilterTiming, MachineConfig};
-use crate::mem::BlockedOn;
+use crate::mem::{BlockedOn, PrefetchKind};
 use crate::trace::{Instr, Trace, TraceHeader};
 use proptest::prelude::*;
 use wasp_waves::VcdSink;
@@ -131,6 +131,8 @@ struct Knobs {
     blocked_on: BlockedOn,
     shared: bool,
     raster: (u32, u32),
+    /// Prefetcher, L1 reserve, queue entries.
+    prefetch: (PrefetchKind, u32, u32),
 }
 
 impl Knobs {
@@ -175,6 +177,9 @@ impl Knobs {
         };
         c.raster.quads_per_cycle = self.cores * self.raster.0;
         c.raster.rejected_per_slot = self.raster.1;
+        c.prefetch.kind = self.prefetch.0;
+        c.prefetch.l1_reserve = self.prefetch.1.min(c.l1.mshrs - 1);
+        c.prefetch.queue = self.prefetch.2;
         c.sim.watchdog_cycles = 100_000;
         c
     }
@@ -210,12 +215,28 @@ fn arb_knobs() -> impl Strategy<Value = Knobs> {
             prop::sample::select(BlockedOn::ALL.to_vec()),
             any::<bool>(),
             (1u32..=2, 1u32..=3),
+            (
+                prop::sample::select(PrefetchKind::ALL.to_vec()),
+                0u32..=2,
+                1u32..=4,
+            ),
         ),
     )
         .prop_map(
             |(
                 (l0, cores, warps, width, queue, ldst, alu_latency, texture_latency),
-                (filter, mshrs, merged, policy, launch, mesh2, blocked_on, shared, raster),
+                (
+                    filter,
+                    mshrs,
+                    merged,
+                    policy,
+                    launch,
+                    mesh2,
+                    blocked_on,
+                    shared,
+                    raster,
+                    prefetch,
+                ),
             )| Knobs {
                 l0,
                 cores,
@@ -234,6 +255,7 @@ fn arb_knobs() -> impl Strategy<Value = Knobs> {
                 blocked_on,
                 shared,
                 raster,
+                prefetch,
             },
         )
 }
@@ -331,6 +353,37 @@ fn fast_and_plain_cores_agree_on_the_shipped_traces() {
         }
     }
     assert_eq!(runs, 3 * 5 * 2 * 3);
+}
+
+/// The shipped traces with each prefetcher, under the baseline and WaSP,
+/// both dispatch modes, on both machines of the paper (at width 2 the
+/// prefetches share the scheduler-level cache's MSHRs).
+#[test]
+fn fast_and_plain_cores_agree_with_each_prefetcher() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/traces");
+    let mut runs = 0;
+    for name in ["tiny", "overdraw", "synthetic-small"] {
+        let trace = Trace::read(dir.join(format!("{name}.trace"))).unwrap();
+        for kind in [PrefetchKind::OracleTile, PrefetchKind::Raster] {
+            for machine in [MachineConfig::paper(), MachineConfig::paper_width2()] {
+                for policy in ["baseline", "wasp:0:3"] {
+                    for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+                        let mut cfg = machine.clone();
+                        cfg.gpu.tile_size = trace.header().tile;
+                        cfg.scheduler.policy = policy.into();
+                        cfg.raster.dispatch = dispatch;
+                        cfg.prefetch.kind = kind;
+                        cfg.validate().unwrap();
+                        if let Err(e) = lockstep(&cfg, &trace) {
+                            panic!("{name} {kind} {} {policy} {dispatch}: {e}", cfg.name);
+                        }
+                        runs += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(runs, 3 * 2 * 2 * 2 * 2);
 }
 
 /// Frames of the workload generator (a few thousand warps each) on both
