@@ -176,6 +176,31 @@ impl Cache {
     /// [`Cache::fill_entry`].
     #[inline(always)]
     pub fn access_entry(&mut self, now: u64, block: u64, target: u32) -> (Lookup, u32) {
+        self.access_with::<true>(now, block, target)
+    }
+
+    /// [`Cache::access_entry`] for a cache that never takes a prefetch
+    /// (the L0, the L2): the same lookup without the prefetch marks' tests,
+    /// which the L0's accesses, the model's hottest path, do not carry.
+    #[inline(always)]
+    pub fn access_entry_unmarked(&mut self, now: u64, block: u64, target: u32) -> (Lookup, u32) {
+        debug_assert!(
+            !self.marks.live(),
+            "a cache with prefetches keeps its marks"
+        );
+        self.access_with::<false>(now, block, target)
+    }
+
+    /// The lookup, keeping the prefetch marks when `MARKS` (a demand hit
+    /// is the first use of a prefetched line, a merge into a prefetch's
+    /// entry makes it late).
+    #[inline(always)]
+    fn access_with<const MARKS: bool>(
+        &mut self,
+        now: u64,
+        block: u64,
+        target: u32,
+    ) -> (Lookup, u32) {
         self.advance(now);
         if self.ports_used >= self.cfg.ports {
             self.stats.port_busy += 1;
@@ -194,7 +219,7 @@ impl Cache {
             let base = set * self.ways;
             if let Some(w) = find_way(&self.tags[base..base + self.ways], block) {
                 self.touch(set, base, w as u32);
-                if self.marks.live() {
+                if MARKS && self.marks.live() {
                     self.marks.hit(base + w);
                 }
                 self.ports_used += 1;
@@ -207,7 +232,7 @@ impl Cache {
         debug_assert!(!self.contains(block));
         match self.mshr.merge(block, target, now) {
             Merge::Merged(e) => {
-                if self.marks.live() {
+                if MARKS && self.marks.live() {
                     self.marks.merged(e);
                 }
                 self.ports_used += 1;
@@ -249,6 +274,23 @@ impl Cache {
     /// no search for the entry.
     #[inline(always)]
     pub fn fill_entry(&mut self, now: u64, e: u32) -> &[u32] {
+        self.fill_with::<true>(now, e)
+    }
+
+    /// [`Cache::fill_entry`] for a cache that never takes a prefetch (see
+    /// [`Cache::access_entry_unmarked`]).
+    #[inline(always)]
+    pub fn fill_entry_unmarked(&mut self, now: u64, e: u32) -> &[u32] {
+        debug_assert!(
+            !self.marks.live(),
+            "a cache with prefetches keeps its marks"
+        );
+        self.fill_with::<false>(now, e)
+    }
+
+    /// The fill, keeping the prefetch marks when `MARKS`.
+    #[inline(always)]
+    fn fill_with<const MARKS: bool>(&mut self, now: u64, e: u32) -> &[u32] {
         self.advance(now);
         let block = self.mshr.complete(e, now);
         self.replied += 1;
@@ -291,7 +333,7 @@ impl Cache {
         if evicted != INVALID {
             self.filter[bucket(evicted)] -= 1;
         }
-        if self.marks.live() {
+        if MARKS && self.marks.live() {
             self.marks.evicted(base + way);
             self.marks.filled(e, base + way);
         }

@@ -120,9 +120,6 @@ struct CoreMem {
     long: Vec<u32>,
     /// Not quiet at the start of the current tick (tick scratch).
     active: bool,
-    /// Prefetches waiting for the L1 (`mem/prefetch`; never filled
-    /// without a prefetcher).
-    pf: PrefetchQueue,
 }
 
 impl CoreMem {
@@ -131,9 +128,10 @@ impl CoreMem {
         self.l0.as_ref().unwrap_or(&self.l1)
     }
 
-    /// No MSHR entry occupied and nothing queued or completing: a tick has
-    /// nothing to do for this core (its caches' per-cycle values are then
-    /// simply not advanced; readers check the cycle they describe).
+    /// No MSHR entry occupied and nothing queued or completing, queued
+    /// prefetches aside (the tick checks those itself): a tick has nothing
+    /// to do for this core (its caches' per-cycle values are then simply
+    /// not advanced; readers check the cycle they describe).
     #[inline]
     fn is_quiet(&self) -> bool {
         self.l1.mshr_occupied() == 0
@@ -142,22 +140,18 @@ impl CoreMem {
             && self.to_l2.is_empty()
             && self.to_l0.is_empty()
             && self.completing.is_empty()
-            && self.pf.is_empty()
     }
 }
 
-/// Cycle `now`'s prefetch step of core `c`, after the cycle's demand
-/// lookups of its L1: the queue's head goes to the L1 on the ports demand
-/// left free, above the MSHR reserve; each miss's request joins the L1's
-/// queue to the L2 like a demand miss's (see `mem/prefetch`).
+/// Cycle `now`'s prefetch step of core `c` and its queue `pf`, after the
+/// cycle's demand lookups of its L1: the queue's head goes to the L1 on
+/// the ports demand left free, above the MSHR reserve; each miss's request
+/// joins the L1's queue to the L2 like a demand miss's (see
+/// `mem/prefetch`).
 #[inline(never)]
-fn prefetch_step(now: u64, c: &mut CoreMem, track: Track, reserve: u32) {
+fn prefetch_step(now: u64, c: &mut CoreMem, pf: &mut PrefetchQueue, track: Track, reserve: u32) {
     let CoreMem {
-        pf,
-        l1,
-        to_l2,
-        l1_long,
-        ..
+        l1, to_l2, l1_long, ..
     } = c;
     pf.issue(
         |block| l1.prefetch(now, block, reserve),
@@ -187,7 +181,13 @@ fn fill_l0(
     entry: u32,
 ) {
     let at = now + u64::from(l0.config().hit_latency) - 1;
-    complete_all(completing, ready, now, at, l0.fill_entry(now, entry));
+    complete_all(
+        completing,
+        ready,
+        now,
+        at,
+        l0.fill_entry_unmarked(now, entry),
+    );
 }
 
 /// Record that `tags` complete in cycle `at` (never before `now`), in
@@ -319,6 +319,9 @@ pub struct MemorySystem {
     cfg: MemConfig,
     cores: Vec<CoreMem>,
     l2: Cache,
+    /// Each core's prefetch queue, in front of its L1 (`mem/prefetch`;
+    /// never filled without a prefetcher).
+    pf: Vec<PrefetchQueue>,
     /// Which misses are reported to the cores as long-latency.
     track: Track,
     /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
@@ -373,12 +376,15 @@ impl MemorySystem {
                     completing
                 }),
                 active: false,
-                pf: PrefetchQueue::new(cfg.prefetch.queue as usize, cfg.prefetch.queue_filter),
             });
         }
+        let pf = (0..n_cores)
+            .map(|_| PrefetchQueue::new(cfg.prefetch.queue as usize, cfg.prefetch.queue_filter))
+            .collect();
         Ok(MemorySystem {
             cfg: cfg.clone(),
             cores,
+            pf,
             l2: Cache::new(&cfg.l2)?,
             track: match cfg.blocked_on {
                 BlockedOn::FirstLevel => Track::Nothing,
@@ -415,11 +421,18 @@ impl MemorySystem {
         self.now = now;
         let track = self.track;
         let c = &mut self.cores[core];
-        let (first, queue) = match c.l0.as_mut() {
-            Some(l0) => (l0, &mut c.to_l1),
-            None => (&mut c.l1, &mut c.to_l2),
+        // The L0 never takes a prefetch: its lookups skip the marks.
+        let (first, queue, lookup) = match c.l0.as_mut() {
+            Some(l0) => {
+                let lookup = l0.access_entry_unmarked(now, block, tag);
+                (l0, &mut c.to_l1, lookup)
+            }
+            None => {
+                let lookup = c.l1.access_entry(now, block, tag);
+                (&mut c.l1, &mut c.to_l2, lookup)
+            }
         };
-        match first.access_entry(now, block, tag) {
+        match lookup {
             (Lookup::Hit, _) => {
                 let at = now + u64::from(first.config().hit_latency) - 1;
                 complete_all(&mut c.completing, &mut c.ready, now, at, &[tag]);
@@ -483,8 +496,11 @@ impl MemorySystem {
         let l1_reply = now + u64::from(self.cfg.l1.hit_latency) - 1;
         let l1_direct = l1_reply <= now;
         let reserve = self.cfg.prefetch.l1_reserve;
+        let pf_on = self.cfg.prefetch.enabled();
         for (k, c) in self.cores.iter_mut().enumerate() {
-            c.active = !c.is_quiet();
+            // Queued prefetches are work too (without a prefetcher there
+            // are none: one test of a local).
+            c.active = !c.is_quiet() || (pf_on && !self.pf[k].is_empty());
             if c.active {
                 // Only the MSHR occupancy must be current for the readers;
                 // the per-cycle values move to `now` with the first access
@@ -533,8 +549,8 @@ impl MemorySystem {
                         c.to_l1.drop_front();
                     }
                 }
-                if !c.pf.is_empty() {
-                    prefetch_step(now, c, track, reserve);
+                if pf_on && !self.pf[k].is_empty() {
+                    prefetch_step(now, c, &mut self.pf[k], track, reserve);
                 }
                 if c.to_l2.front().is_some_and(|r| r.ready <= now) {
                     self.l2_order.push(k as u32);
@@ -563,7 +579,7 @@ impl MemorySystem {
                 let Some(&r) = c.to_l2.front() else {
                     unreachable!("an L2 candidate has a request")
                 };
-                match self.l2.access_entry(now, r.block, core) {
+                match self.l2.access_entry_unmarked(now, r.block, core) {
                     (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
                         at: l2_reply,
                         core,
@@ -596,7 +612,7 @@ impl MemorySystem {
         self.dram.accept(now);
         while let Some(entry) = self.dram.pop_reply(now) {
             let block = self.l2.pending_block(entry);
-            for &core in self.l2.fill_entry(now, entry) {
+            for &core in self.l2.fill_entry_unmarked(now, entry) {
                 self.to_l1.push_back(L2Reply {
                     at: l2_reply,
                     core,
@@ -691,6 +707,7 @@ impl MemorySystem {
         self.cores
             .iter()
             .all(|c| c.is_quiet() && c.ready.is_empty())
+            && self.pf.iter().all(PrefetchQueue::is_empty)
             && self.l2.mshr_occupied() == 0
             && self.to_l1.is_empty()
             && self.dram.is_idle()
@@ -754,9 +771,9 @@ impl MemorySystem {
     /// prefetcher).
     pub fn prefetch_stats(&self) -> PrefetchStats {
         let mut sum = PrefetchStats::default();
-        for c in &self.cores {
+        for (c, pf) in self.cores.iter().zip(&self.pf) {
             sum.add(&PrefetchStats {
-                queue: *c.pf.counts(),
+                queue: *pf.counts(),
                 lines: c.l1.prefetch_counts(),
                 unused_at_end: c.l1.prefetch_unused(),
             });
@@ -782,7 +799,7 @@ impl MemorySystem {
         let w = bits_for(u64::from(c.l1.mshr_capacity()));
         t.signal("miss_queue", w, c.to_l2.len() as u64);
         if self.cfg.prefetch.enabled() {
-            t.signal("prefetch_queue", 16, c.pf.len().min(0xffff) as u64);
+            t.signal("prefetch_queue", 16, self.pf[core].len().min(0xffff) as u64);
         }
         t.pop_scope();
     }
@@ -803,7 +820,7 @@ impl MemorySystem {
 /// The memory system keeps the prefetch queues, one in front of each L1.
 impl PrefetchQueues for MemorySystem {
     fn prefetch_queue(&mut self, core: usize) -> &mut PrefetchQueue {
-        &mut self.cores[core].pf
+        &mut self.pf[core]
     }
 }
 

@@ -22,11 +22,11 @@ impl MemorySystem {
         //    the L1 in order until the L1 refuses one, then the prefetch
         //    queue's head on the ports they left.
         let reserve = self.cfg.prefetch.l1_reserve;
-        for c in self.cores.iter_mut() {
+        for (c, pf) in self.cores.iter_mut().zip(&mut self.pf) {
             c.active = !c.is_quiet();
             c.l1.release(now);
             let Some(l0) = c.l0.as_mut() else {
-                prefetch_step(now, c, track, reserve);
+                prefetch_step(now, c, pf, track, reserve);
                 continue;
             };
             l0.release(now);
@@ -60,7 +60,7 @@ impl MemorySystem {
                 }
                 c.to_l1.drop_front();
             }
-            prefetch_step(now, c, track, reserve);
+            prefetch_step(now, c, pf, track, reserve);
         }
 
         // 2. L1 misses to the L2: rounds over the cores from core `now %
@@ -78,7 +78,7 @@ impl MemorySystem {
             for &k in &order {
                 let c = &mut self.cores[k];
                 let r = *c.to_l2.front().expect("a candidate has a request");
-                match self.l2.access_entry(now, r.block, k as u32) {
+                match self.l2.access_entry_unmarked(now, r.block, k as u32) {
                     (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
                         at: l2_reply,
                         core: k as u32,
@@ -110,7 +110,7 @@ impl MemorySystem {
         self.dram.accept(now);
         while let Some(entry) = self.dram.pop_reply(now) {
             let block = self.l2.pending_block(entry);
-            for &core in self.l2.fill_entry(now, entry) {
+            for &core in self.l2.fill_entry_unmarked(now, entry) {
                 self.to_l1.push_back(L2Reply {
                     at: l2_reply,
                     core,
