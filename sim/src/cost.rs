@@ -11,6 +11,7 @@
 //! 48), sized from the register-file parameters.
 
 use crate::config::MachineConfig;
+use crate::mem::prefetch::cost::{self as prefetch_cost, SramItem, SRAM_GE_PER_BIT};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -118,6 +119,52 @@ pub struct CostReport {
     pub savings: Savings,
     /// The measured-CF variant's cost beside WaSP's.
     pub measured_cf_variant: VariantCost,
+    /// The prefetchers (`prefetch.kind`), per core.
+    pub prefetchers: Vec<PrefetcherCost>,
+}
+
+/// One prefetcher's hardware per core ([`crate::mem::prefetch::cost`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct PrefetcherCost {
+    /// The kind (`raster`, `oracle-tile`).
+    pub kind: String,
+    /// Flip-flops and logic.
+    pub items: Vec<CostedItem>,
+    /// SRAM.
+    pub sram: Vec<SramItem>,
+    /// Per-core flip-flops.
+    pub register_bits: u32,
+    /// Per-core SRAM bits.
+    pub sram_bits: u64,
+    /// Per-core GE: logic and flip-flops, plus SRAM at
+    /// [`SRAM_GE_PER_BIT`].
+    pub ge: f64,
+    /// A design, or a bound.
+    pub note: String,
+}
+
+/// Both prefetchers' inventories for `cfg`'s limits.
+fn prefetcher_costs(cfg: &MachineConfig, rules: &GateRules) -> Vec<PrefetcherCost> {
+    let p = &cfg.prefetch;
+    [
+        prefetch_cost::raster_inventory(p.queue, p.queue_filter, cfg.l1.mshrs),
+        prefetch_cost::oracle_inventory(prefetch_cost::ORACLE_LONGEST_LIST, cfg.l1.mshrs),
+    ]
+    .into_iter()
+    .map(|inv| {
+        let items = costed(inv.items, rules);
+        let sram_bits: u64 = inv.sram.iter().map(|s| s.bits).sum();
+        PrefetcherCost {
+            kind: inv.kind.to_string(),
+            register_bits: items.iter().map(|c| c.register_bits).sum(),
+            ge: items.iter().map(|c| c.ge).sum::<f64>() + sram_bits as f64 * SRAM_GE_PER_BIT,
+            items,
+            sram: inv.sram,
+            sram_bits,
+            note: inv.note,
+        }
+    })
+    .collect()
 }
 
 /// Register-file parameters for the savings column.
@@ -332,6 +379,7 @@ pub fn report(
             ge_saved_per_core: (rf_bits * saved_warps) as f64 * rf.ge_per_bit,
         },
         measured_cf_variant: variant,
+        prefetchers: prefetcher_costs(cfg, &rules),
     })
 }
 
@@ -457,7 +505,44 @@ impl CostReport {
             m.per_core_ge - self.per_core_ge,
             self.cf
         );
+        self.prefetchers_table(&mut s);
         s
+    }
+
+    /// Section (e): the prefetchers beside WaSP.
+    fn prefetchers_table(&self, s: &mut String) {
+        let _ = writeln!(
+            s,
+            "\n(e) the prefetchers (prefetch.kind; beyond the paper), per core"
+        );
+        for p in &self.prefetchers {
+            let _ = writeln!(s, "{}: {}", p.kind, p.note);
+            for c in &p.items {
+                item_line(s, c, "");
+            }
+            for m in &p.sram {
+                let _ = writeln!(
+                    s,
+                    "{:<22}{:<52}{:<22}{:>6}{:>9.1}",
+                    m.block,
+                    m.purpose,
+                    format!("SRAM {}b", m.bits),
+                    0,
+                    m.bits as f64 * SRAM_GE_PER_BIT
+                );
+            }
+            let _ = writeln!(
+                s,
+                "per core: {} flip-flops, {} SRAM bits ({:.1} KiB), {:.0} GE ({:.1}x WaSP's {:.0} GE; SRAM at {} GE/bit)",
+                p.register_bits,
+                p.sram_bits,
+                p.sram_bits as f64 / 8192.0,
+                p.ge,
+                p.ge / self.per_core_ge.max(1.0),
+                self.per_core_ge,
+                SRAM_GE_PER_BIT
+            );
+        }
     }
 }
 
@@ -530,5 +615,17 @@ mod tests {
         assert_eq!(m.removed.len(), 1);
         assert!(m.per_core_ge > r.per_core_ge);
         assert!(t.contains("(d) the measured-CF variant") && t.contains("+ cf_meter"));
+        // The prefetchers, at the shipped limits: a 32-entry filtered
+        // queue (32 x 25 bits, two 5-bit pointers, a 6-bit count) and the
+        // oracle's list in SRAM.
+        assert_eq!(r.prefetchers.len(), 2);
+        let raster = &r.prefetchers[0];
+        assert_eq!(raster.kind, "raster");
+        assert_eq!(raster.register_bits, 32 * 25 + 5 + 5 + 6);
+        assert!(raster.ge > 10.0 * r.per_core_ge, "{} GE", raster.ge);
+        let oracle = &r.prefetchers[1];
+        assert_eq!(oracle.kind, "oracle-tile");
+        assert!(oracle.sram_bits > 0 && oracle.note.contains("bound"));
+        assert!(t.contains("(e) the prefetchers") && t.contains("duplicate_filter"));
     }
 }

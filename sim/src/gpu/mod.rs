@@ -195,6 +195,25 @@ pub struct Gpu<'t, C = ShaderCore> {
     scratch: Vec<u32>,
 }
 
+/// Tell the prefetcher what the shared raster pipeline did in the cycle:
+/// the tile it opened, the quads it placed in input FIFOs.
+#[inline(never)]
+fn feed_prefetcher(
+    pf: &mut dyn Prefetcher,
+    r: &SharedRaster,
+    opened: Option<usize>,
+    tiles: &[crate::trace::Tile],
+    mem: &mut MemorySystem,
+) {
+    if let Some(t) = opened {
+        pf.tile_opened(t, None, mem);
+    }
+    if let Some(t) = r.tile() {
+        let core_of = |x, y| r.core_of(x, y);
+        prefetch::quads_entered(pf, &tiles[t], r.placed_now(), core_of, mem);
+    }
+}
+
 impl<'t> Gpu<'t> {
     /// Build the GPU for `cfg` (already validated) and `trace`.
     pub fn new(cfg: &MachineConfig, trace: &'t Trace) -> Result<Self, SimError> {
@@ -361,6 +380,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 // released at the end of a cycle), so taking tiles in core
                 // order within the evaluate pass is the same as taking them
                 // all first.
+                let pf_on = self.prefetch.is_some();
                 for (i, c) in self.cores.iter_mut().enumerate() {
                     if c.idle() && *next_tile < tiles.len() {
                         c.assign_tile(*next_tile, &tiles[*next_tile], now);
@@ -373,11 +393,13 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                         }
                         *next_tile += 1;
                     }
-                    let entered = c.quads_entered();
+                    let entered = if pf_on { c.quads_entered() } else { 0 };
                     c.evaluate(now, self.trace, &mut self.mem);
-                    if let (Some(pf), Some(t)) = (self.prefetch.as_deref_mut(), c.tile()) {
-                        let quads = entered..c.quads_entered();
-                        prefetch::quads_entered(pf, &tiles[t], quads, |_, _| i, &mut self.mem);
+                    if pf_on {
+                        if let (Some(pf), Some(t)) = (self.prefetch.as_deref_mut(), c.tile()) {
+                            let quads = entered..c.quads_entered();
+                            prefetch::quads_entered(pf, &tiles[t], quads, |_, _| i, &mut self.mem);
+                        }
                     }
                     if let Some((q, prio)) = c.launched_now() {
                         let quad = tiles[c.tile().expect("launching")].quad(q as usize);
@@ -393,19 +415,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             Dispatcher::Shared(r) => {
                 let opened = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
                 if let Some(pf) = self.prefetch.as_deref_mut() {
-                    if let Some(t) = opened {
-                        pf.tile_opened(t, None, &mut self.mem);
-                    }
-                    if let Some(t) = r.tile() {
-                        let core_of = |x, y| r.core_of(x, y);
-                        prefetch::quads_entered(
-                            pf,
-                            &tiles[t],
-                            r.placed_now(),
-                            core_of,
-                            &mut self.mem,
-                        );
-                    }
+                    feed_prefetcher(pf, r, opened, tiles, &mut self.mem);
                 }
                 if let Some(t) = opened {
                     self.trackers[0].start(t as u32, None, now);

@@ -765,6 +765,33 @@ pub(crate) mod tests {
         assert!(evictions > 500);
     }
 
+    /// The lookups and fills without the marks' tests are the same as
+    /// with them, on a cache that takes no prefetch (a random script).
+    #[test]
+    fn unmarked_lookups_and_fills_match_the_marked_ones() {
+        let mut rng = crate::rng::Rng::new(0x51ab_7e01);
+        let mut rnd = |n: u32| rng.below(u64::from(n)) as u32;
+        let mut a = Cache::new(&cfg(512, 2, 4, 2, 2)).unwrap();
+        let mut b = a.clone();
+        let mut pending: Vec<u32> = Vec::new();
+        for now in 1..3000u64 {
+            for _ in 0..rnd(3) {
+                let block = u64::from(rnd(20));
+                let x = a.access_entry(now, block, now as u32);
+                assert_eq!(x, b.access_entry_unmarked(now, block, now as u32));
+                if x.0 == Lookup::Miss {
+                    pending.push(x.1);
+                }
+            }
+            if !pending.is_empty() && rnd(2) == 0 {
+                let e = pending.swap_remove(rnd(pending.len() as u32) as usize);
+                assert_eq!(a.fill_entry(now, e), b.fill_entry_unmarked(now, e));
+            }
+        }
+        assert_eq!(a.stats(), b.stats());
+        assert!(a.stats().hits > 100 && a.stats().secondary_misses > 100);
+    }
+
     #[test]
     fn occupancy_integral() {
         let mut c = Cache::new(&cfg(512, 2, 2, 4, 4)).unwrap();

@@ -495,12 +495,8 @@ impl MemorySystem {
         // An L1 hit of this tick is due at `l1_reply`, now when `l1_direct`.
         let l1_reply = now + u64::from(self.cfg.l1.hit_latency) - 1;
         let l1_direct = l1_reply <= now;
-        let reserve = self.cfg.prefetch.l1_reserve;
-        let pf_on = self.cfg.prefetch.enabled();
         for (k, c) in self.cores.iter_mut().enumerate() {
-            // Queued prefetches are work too (without a prefetcher there
-            // are none: one test of a local).
-            c.active = !c.is_quiet() || (pf_on && !self.pf[k].is_empty());
+            c.active = !c.is_quiet();
             if c.active {
                 // Only the MSHR occupancy must be current for the readers;
                 // the per-cycle values move to `now` with the first access
@@ -549,9 +545,6 @@ impl MemorySystem {
                         c.to_l1.drop_front();
                     }
                 }
-                if pf_on && !self.pf[k].is_empty() {
-                    prefetch_step(now, c, &mut self.pf[k], track, reserve);
-                }
                 if c.to_l2.front().is_some_and(|r| r.ready <= now) {
                     self.l2_order.push(k as u32);
                     if k < first {
@@ -563,6 +556,11 @@ impl MemorySystem {
         }
         if wrapped > 0 {
             self.l2_order.rotate_left(wrapped);
+        }
+        // Prefetches on the L1 ports demand left (their requests are ready
+        // for the L2 from the next cycle, so the candidates above stand).
+        if self.cfg.prefetch.enabled() {
+            self.prefetch_tick(now);
         }
 
         // L1 -> L2 requests, round robin over cores (core `now % cores` first,
@@ -814,6 +812,20 @@ impl MemorySystem {
         t.push_scope("dram");
         self.dram.trace(self.now, t);
         t.pop_scope();
+    }
+}
+
+impl MemorySystem {
+    /// The prefetch step of every core with a prefetch queued, after the
+    /// cycle's demand lookups (see [`prefetch_step`]).
+    #[inline(never)]
+    fn prefetch_tick(&mut self, now: u64) {
+        let reserve = self.cfg.prefetch.l1_reserve;
+        for (c, pf) in self.cores.iter_mut().zip(&mut self.pf) {
+            if !pf.is_empty() {
+                prefetch_step(now, c, pf, self.track, reserve);
+            }
+        }
     }
 }
 
