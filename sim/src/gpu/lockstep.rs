@@ -435,7 +435,10 @@ fn fast_and_plain_cores_draw_the_same_waveform() {
 
 /// Every trace in the folder `WASP_LOCKSTEP_TRACES` (for example the 16
 /// real scenes' traces in `target/machines/traces`), on the paper's
-/// machine under the baseline and WaSP, both dispatch modes.
+/// machine under the baseline and WaSP, both dispatch modes; with
+/// `WASP_LOCKSTEP_PREFETCH` (a comma-separated list of `prefetch.kind`
+/// values, e.g. `raster,oracle-tile`) under each of those prefetchers
+/// instead of none.
 #[test]
 #[ignore = "long: set WASP_LOCKSTEP_TRACES to a folder of traces"]
 fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
@@ -447,21 +450,25 @@ fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
         .collect();
     paths.sort();
     assert!(!paths.is_empty(), "no .trace file in {dir}");
+    let kinds: Vec<PrefetchKind> = match std::env::var("WASP_LOCKSTEP_PREFETCH") {
+        Ok(list) => list.split(',').map(|k| k.trim().parse().unwrap()).collect(),
+        Err(_) => vec![PrefetchKind::None],
+    };
     for path in paths {
         let trace = Trace::read(&path).unwrap();
-        for policy in ["baseline", "wasp:0:3"] {
-            for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
-                let mut cfg = MachineConfig::paper();
-                cfg.gpu.tile_size = trace.header().tile;
-                cfg.scheduler.policy = policy.into();
-                cfg.raster.dispatch = dispatch;
-                cfg.validate().unwrap();
-                let cycles = lockstep(&cfg, &trace)
-                    .unwrap_or_else(|e| panic!("{}: {policy} {dispatch}: {e}", path.display()));
-                eprintln!(
-                    "{}: {policy} {dispatch}: {cycles} cycles agree",
-                    path.display()
-                );
+        for &kind in &kinds {
+            for policy in ["baseline", "wasp:0:3"] {
+                for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+                    let mut cfg = MachineConfig::paper();
+                    cfg.gpu.tile_size = trace.header().tile;
+                    cfg.scheduler.policy = policy.into();
+                    cfg.raster.dispatch = dispatch;
+                    cfg.prefetch.kind = kind;
+                    cfg.validate().unwrap();
+                    let what = format!("{}: {kind} {policy} {dispatch}", path.display());
+                    let cycles = lockstep(&cfg, &trace).unwrap_or_else(|e| panic!("{what}: {e}"));
+                    eprintln!("{what}: {cycles} cycles agree");
+                }
             }
         }
     }
