@@ -34,7 +34,7 @@
 //! - A later demand miss to a block whose prefetch is in flight merges into
 //!   that entry (a secondary miss): the *late* prefetch. Every L1 line a
 //!   prefetch filled carries a "prefetched, not yet used" bit
-//!   ([`marks`]): the first demand hit clears it (the prefetch was
+//!   (`marks.rs`): the first demand hit clears it (the prefetch was
 //!   *useful*), an eviction with the bit set counts the prefetch *useless*.
 //!
 //! # The MSHRs each kind uses, and WaSP's register
