@@ -308,6 +308,47 @@ mod tests {
         assert!(!md.contains("A subset of the scenes"), "{md}");
     }
 
+    /// The whole report, built from a run whose numbers contradict the
+    /// paper: its table, its figures' tables and its prose say what those
+    /// numbers show.
+    #[test]
+    fn the_report_follows_data_that_contradicts_the_paper() {
+        let (plan, out) = super::super::contrary::outcome(vec![Dispatch::SharedTile]);
+        let dir = std::env::temp_dir().join(format!("wasp-contrary-report-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let cmd = Command {
+            line: "wasp reproduce --quick --machines shared-tile".into(),
+            subset: false,
+        };
+        let path = write(&plan, &out, &dir, &cmd).unwrap();
+        let md = std::fs::read_to_string(path).unwrap();
+        for said in [
+            // The side-by-side table: ours as measured, beside the paper's.
+            "| WaSP speedup | +3.9% | -9.1% | -9.1% | -9.1% | -9.1% |",
+            "| Memory latency change (WaSP) | -9.0% | +10.0% |",
+            "| Priority warps' latency above regular warps' | yes | 0 of 4 |",
+            "| WaSP@48 over the baseline@64, width 4 | +2.0% | -15.8% |",
+            // Shares of time print without a sign.
+            "| baseline | 10.0% | 10.0% | 10.0% | 10.0% |",
+            "| wasp:0:3 | 20.0% | 20.0% | 20.0% | 20.0% |",
+            // The prose says what the numbers show.
+            "a slowdown, where the paper measures a gain of +3.9%",
+            "WaSP stalls it more than the baseline (more than Fullpriority), unlike the paper",
+            "the mean latency rises (+10.0%), where the paper's falls (-9.0%)",
+        ] {
+            assert!(md.contains(said), "REPORT.md lacks {said:?}:\n{md}");
+        }
+        // The L0 stall figure's table holds shares: no sign anywhere in it.
+        let stalls = md
+            .split("### Share of time the L0 is stalled")
+            .nth(1)
+            .unwrap();
+        let stalls = stalls.split("\n### ").next().unwrap();
+        assert!(stalls.contains("| fullpriority | 5.0% |"), "{stalls}");
+        assert!(!stalls.contains('+'), "{stalls}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn the_timelines_say_how_many_there_are() {
         let defs = def::all().unwrap();

@@ -531,7 +531,7 @@ impl Progress {
     fn tick_line(&self, done: usize, total: usize) {
         if self.lines && (done * 10 / total) != ((done - 1) * 10 / total) {
             eprintln!(
-                "wasp: {}: {done}/{total} tasks, {:.0} s",
+                "wasp: {}: {done}/{total} tasks to run, {:.0} s",
                 self.label,
                 self.start.elapsed().as_secs_f64()
             );
@@ -550,7 +550,7 @@ fn progress(opts: &RunnerOptions, total: usize) -> Progress {
         let pb = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
         pb.set_style(
             ProgressStyle::with_template(
-                "{prefix:>12} [{bar:40}] {pos}/{len} tasks {elapsed_precise} eta {eta} {msg}",
+                "{prefix:>12} [{bar:40}] {pos}/{len} tasks to run {elapsed_precise} eta {eta} {msg}",
             )
             .expect("valid template")
             .progress_chars("=> "),
