@@ -98,8 +98,11 @@ pub fn check(outputs: &[Output]) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Whether a file can be created at `path`: its folder exists and it is
-/// not itself a folder. `flag` names the option in the error.
+/// Whether a file can be created at `path`: its folder exists, it is not
+/// itself a folder, and a file can be made in that folder (tried with a
+/// probe file, removed at once: permissions, a read-only file system or a
+/// full disk fail here, not after the work). `flag` names the option in
+/// the error.
 pub fn writable(flag: &str, path: &Path) -> Result<(), CliError> {
     if path.is_dir() {
         return Err(CliError::usage(format!(
@@ -109,7 +112,7 @@ pub fn writable(flag: &str, path: &Path) -> Result<(), CliError> {
     }
     let folder = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
-        _ => return Ok(()),
+        _ => Path::new("."),
     };
     if !folder.exists() {
         return Err(CliError::usage(format!(
@@ -125,7 +128,24 @@ pub fn writable(flag: &str, path: &Path) -> Result<(), CliError> {
             folder.display()
         )));
     }
-    Ok(())
+    let probe = folder.join(format!(".wasp-probe-{}", std::process::id()));
+    match std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+    {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        // A probe left by an earlier process of this id: the folder took it.
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
+        Err(e) => Err(CliError::usage(format!(
+            "{flag} {}: cannot write in the folder {}: {e}",
+            path.display(),
+            folder.display()
+        ))),
+    }
 }
 
 /// Write `text` to FILE, or to standard output for `-`.
@@ -213,6 +233,16 @@ mod tests {
         assert!(e.starts_with("--json and --csv both name a.out"), "{e}");
         // A bare file name is in the current folder.
         assert!(check(&[Output::new("--json", Some(p("x.json")))]).is_ok());
+        // A folder that takes no files (even for root: /proc).
+        if cfg!(target_os = "linux") {
+            let e = check(&[Output::new("--json", Some(p("/proc/x.json")))])
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.starts_with("--json /proc/x.json: cannot write in the folder /proc: "),
+                "{e}"
+            );
+        }
         let e = check(&[Output::file_only("--timeline", Some(p("-")))])
             .unwrap_err()
             .to_string();
