@@ -35,7 +35,9 @@ struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
 
-    /// With no subcommand: run the worked example without notes on stderr.
+    /// No progress output on stderr, before any subcommand as after it
+    /// (`wasp -q reproduce` is `wasp reproduce -q`); with no subcommand, the
+    /// worked example without notes.
     #[arg(long, short)]
     quiet: bool,
 }
@@ -136,7 +138,10 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = Cli::parse();
+    let mut cli = Cli::parse();
+    if let Some(c) = cli.command.as_mut() {
+        *c.quiet_mut() |= cli.quiet;
+    }
     let result = cli
         .command
         .as_ref()
@@ -153,6 +158,24 @@ fn main() -> ExitCode {
 }
 
 impl Command {
+    /// The subcommand's own `-q`, which a `-q` before it sets too.
+    fn quiet_mut(&mut self) -> &mut bool {
+        match self {
+            Command::Example(a) => &mut a.quiet,
+            Command::Run(a) => &mut a.inputs.quiet,
+            Command::Compare(a) => &mut a.inputs.quiet,
+            Command::Synth(a) => &mut a.quiet,
+            Command::Cost(a) => &mut a.quiet,
+            Command::Bench(a) => &mut a.quiet,
+            Command::Scenes(a) => a.quiet_mut(),
+            Command::Render(a) => &mut a.quiet,
+            Command::Characterize(a) => &mut a.quiet,
+            Command::Reproduce(a) => &mut a.quiet,
+            Command::Sweep(a) => &mut a.quiet,
+            Command::Merge(a) => &mut a.quiet,
+        }
+    }
+
     /// The `--scenes-dir` option of the commands that read scene
     /// definitions.
     fn scenes_dir(&self) -> Option<&scenes_dir::ScenesDir> {

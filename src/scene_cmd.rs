@@ -24,9 +24,23 @@ use wasp_sim::stats::RunStats;
 pub struct ScenesArgs {
     #[command(subcommand)]
     pub command: ScenesCommand,
+    /// No progress output on stderr (as `-q` after `list` or `fetch`).
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 impl ScenesArgs {
+    /// The `-q` of `list` or `fetch`, set also by a `-q` before them.
+    pub fn quiet_mut(&mut self) -> &mut bool {
+        let before = self.quiet;
+        let q = match &mut self.command {
+            ScenesCommand::List(a) => &mut a.quiet,
+            ScenesCommand::Fetch(a) => &mut a.quiet,
+        };
+        *q |= before;
+        q
+    }
+
     /// The `--scenes-dir` of `scenes list` (fetching reads no definition).
     pub fn scenes_dir(&self) -> Option<&ScenesDir> {
         match &self.command {
@@ -404,11 +418,13 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         };
         let bytes = render::encode_png(&img, cw, ch).map_err(scene_err)?;
         output::write_bytes(p, &bytes)?;
-        eprintln!("wasp: wrote {}", output::name(p));
+        if !args.quiet {
+            eprintln!("wasp: wrote {}", output::name(p));
+        }
     }
     best.png = clock.lap();
     if let Some(p) = &args.trace_out {
-        write_trace(p, &out.frame.trace)?;
+        write_trace(p, &out.frame.trace, args.quiet)?;
     }
     best.trace = clock.lap();
     if args.timings {
@@ -506,13 +522,21 @@ fn note_frame(name: &str, job: &RenderJob, out: &render::Rendered, heat: Option<
     }
 }
 
-/// Write a frame's trace to FILE (or standard output).
-fn write_trace(p: &std::path::Path, trace: &wasp_sim::trace::Trace) -> Result<(), CliError> {
+/// Write a frame's trace to FILE (or standard output); say so unless
+/// `quiet`.
+fn write_trace(
+    p: &std::path::Path,
+    trace: &wasp_sim::trace::Trace,
+    quiet: bool,
+) -> Result<(), CliError> {
     let mut w = output::create(p)?;
     trace
         .write(&mut w)
         .and_then(|_| w.flush())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(p))))?;
+    if quiet {
+        return Ok(());
+    }
     if output::is_stdout(p) {
         eprintln!("wasp: wrote the trace to standard output");
     } else {
