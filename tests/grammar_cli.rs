@@ -62,6 +62,36 @@ fn every_command_takes_quiet_and_only_scene_readers_take_a_scenes_folder() {
     let d = scratch("grammar", "quiet-merge");
     let e = wasp(&["merge", "-q", d.to_str().unwrap()]);
     assert_eq!(e.status.code(), Some(1), "{}", stderr(&e));
+    ok(&wasp(&["scenes", "-q", "list"]));
+}
+
+/// `-q` before the subcommand quiets it as `-q` after it does.
+#[test]
+fn quiet_before_the_subcommand_is_quiet_after_it() {
+    let d = scratch("grammar", "quiet-before");
+    let trace = d.join("p.trace");
+    let t = trace.to_str().unwrap();
+    let render = [
+        "render",
+        "procedural-plane",
+        "--size",
+        "128x64",
+        "--trace-out",
+        t,
+    ];
+    let loud = wasp(&render);
+    ok(&loud);
+    assert!(stderr(&loud).contains("wasp: wrote"), "{}", stderr(&loud));
+    for quiet in [
+        [&["-q"][..], &render[..]].concat(),
+        [&render[..], &["-q"][..]].concat(),
+    ] {
+        let o = wasp(&quiet);
+        ok(&o);
+        // The frame's counts are its result; the note of what was written goes.
+        assert!(stderr(&o).contains("procedural:plane 128x64"), "{quiet:?}");
+        assert!(!stderr(&o).contains("wasp: wrote"), "{quiet:?}");
+    }
 }
 
 #[test]
@@ -230,6 +260,30 @@ fn render_fetches_missing_game_data() {
     );
 }
 
+/// Start wasp with `args`, wait for its first finished point in
+/// `points`, send SIGINT and return its exit code and standard error.
+#[cfg(unix)]
+fn interrupt_after_the_first_point(args: &[&str], points: &std::path::Path) -> (i32, String) {
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while std::fs::read_dir(points).map_or(0, |d| d.count()) == 0 {
+        assert!(start.elapsed().as_secs() < 600, "no point finished");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    // SAFETY: sends SIGINT to the child this test spawned.
+    unsafe {
+        libc::kill(child.id() as libc::pid_t, libc::SIGINT);
+    }
+    let o = child.wait_with_output().unwrap();
+    let code = o.status.code().unwrap_or(-1);
+    (code, String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
 /// Ctrl-C during a sweep keeps the finished points and says that the same
 /// command resumes.
 #[cfg(unix)]
@@ -247,28 +301,11 @@ fn an_interrupted_sweep_says_a_rerun_resumes() {
     }
     let sweep = d.join("many.toml");
     std::fs::write(&sweep, file).unwrap();
-    let child = std::process::Command::new(env!("CARGO_BIN_EXE_wasp"))
-        .args(["sweep", "--jobs", "1", "--out"])
-        .arg(&out)
-        .arg(&sweep)
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    // Wait for the first finished point, then interrupt.
+    let (o, s) = (out.to_str().unwrap(), sweep.to_str().unwrap());
     let points = out.join("points");
-    let start = std::time::Instant::now();
-    while std::fs::read_dir(&points).map_or(0, |d| d.count()) == 0 {
-        assert!(start.elapsed().as_secs() < 600, "no point finished");
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
-    // SAFETY: sends SIGINT to the child this test spawned.
-    unsafe {
-        libc::kill(child.id() as libc::pid_t, libc::SIGINT);
-    }
-    let o = child.wait_with_output().unwrap();
-    let e = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(130), "{e}");
+    let (code, e) =
+        interrupt_after_the_first_point(&["sweep", "--jobs", "1", "--out", o, s], &points);
+    assert_eq!(code, 130, "{e}");
     assert!(
         e.contains("wasp: interrupted: the finished points are kept in")
             && e.contains("many.toml")
@@ -276,5 +313,36 @@ fn an_interrupted_sweep_says_a_rerun_resumes() {
         "{e}"
     );
     assert!(std::fs::read_dir(&points).unwrap().count() >= 1);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Ctrl-C during `reproduce` says the same: a rerun of the same command
+/// resumes.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_reproduction_says_a_rerun_resumes() {
+    let d = scratch("grammar", "interrupt-reproduce");
+    let out = d.join("out");
+    let o = out.to_str().unwrap();
+    let args = [
+        "reproduce",
+        "--quick",
+        "--scenes",
+        "procedural-plane",
+        "--jobs",
+        "1",
+        "--out",
+        o,
+    ];
+    let (code, e) = interrupt_after_the_first_point(&args, &out.join("points"));
+    assert_eq!(code, 130, "{e}");
+    assert!(
+        e.contains(&format!(
+            "wasp: interrupted: the finished points are kept in {o}; run `wasp reproduce \
+             --quick --scenes procedural-plane --jobs 1 --out {o}` again to resume"
+        )),
+        "{e}"
+    );
+    assert!(!out.join("REPORT.md").exists());
     let _ = std::fs::remove_dir_all(&d);
 }
