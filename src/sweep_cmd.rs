@@ -28,8 +28,9 @@ pub struct SweepArgs {
     #[arg(long, value_name = "DIR", default_value = "sweep-out")]
     pub out: PathBuf,
 
-    /// Simulations at once (default: the machine's cores).
-    #[arg(long, value_name = "N")]
+    /// Simulations at once (default: the machine's cores). Not with
+    /// --jobs-file or --list, which run nothing.
+    #[arg(long, value_name = "N", conflicts_with_all = ["jobs_file", "list"])]
     pub jobs: Option<usize>,
 
     /// Write one shell command per point to FILE (`-` for standard output;

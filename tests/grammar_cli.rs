@@ -63,6 +63,10 @@ fn every_command_takes_quiet_and_only_scene_readers_take_a_scenes_folder() {
     let e = wasp(&["merge", "-q", d.to_str().unwrap()]);
     assert_eq!(e.status.code(), Some(1), "{}", stderr(&e));
     ok(&wasp(&["scenes", "-q", "list"]));
+    // Options only where they apply: nothing runs under --jobs-file.
+    let e = wasp(&["sweep", "x.toml", "--jobs", "2", "--jobs-file", "-"]);
+    assert_eq!(e.status.code(), Some(2));
+    assert!(stderr(&e).contains("cannot be used with"), "{}", stderr(&e));
 }
 
 /// `-q` before the subcommand quiets it as `-q` after it does.
