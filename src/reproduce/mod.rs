@@ -10,6 +10,7 @@
 
 pub mod draw;
 pub mod figures;
+pub mod map;
 pub mod paper;
 pub mod plan;
 pub mod report;
@@ -136,6 +137,12 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
             jobs,
             args.out.display()
         );
+        if let Some(map) = &plan.map {
+            eprintln!(
+                "wasp: including {}",
+                map::report::plan_text(map, plan.scenes.len())
+            );
+        }
     }
     let opts = RunnerOptions {
         jobs,
@@ -144,9 +151,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         label: "reproducing".into(),
         scenes: defs.clone(),
     };
-    let outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let cells = map::run_grid(&plan, &mut outcome, &cache, &opts).map_err(CliError::failed)?;
     let subset = args.scenes.is_some();
-    let written = report::write(&plan, &outcome, &args.out, subset).map_err(CliError::failed)?;
+    let written =
+        report::write(&plan, &outcome, &cells, &args.out, subset).map_err(CliError::failed)?;
     eprintln!("wasp: {}", outcome.summary());
     eprintln!("wasp: wrote {}", written.display());
     if !outcome.failures.is_empty() {
