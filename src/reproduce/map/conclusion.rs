@@ -239,7 +239,7 @@ fn fewer_warps_claim(md: &mut String, t: &MapTable, g: Group) {
         Some((1.0 + m.baseline_cycles?) / (1.0 + m.wasp?) - 1.0)
     };
     let mut text = Vec::new();
-    for (k, k2) in [("48", "64"), ("32", "48")] {
+    for (k, k2) in [("48", "64"), ("32", "48"), ("32", "64")] {
         let (Some(a), Some(b)) = (
             warps.rows.iter().find(|r| r.value == k),
             warps.rows.iter().find(|r| r.value == k2),
@@ -333,6 +333,7 @@ mod tests {
             value: value.into(),
             label: format!("{value} {knob}"),
             shipped: value == "64",
+            repeats: false,
             groups: [m, m, Metrics::default()],
         }
     }

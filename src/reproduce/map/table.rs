@@ -21,6 +21,10 @@ pub struct Row {
     pub label: String,
     /// Whether this is the shipped machine.
     pub shipped: bool,
+    /// A grid cell at one knob's shipped value: the same machine as a row
+    /// of the other knob (kept in the grid, counted once in
+    /// [`MapTable::machines`]).
+    pub repeats: bool,
     /// Per group, in [`GROUPS`] order.
     pub groups: [Metrics; 3],
 }
@@ -126,6 +130,7 @@ fn row(
         value,
         label,
         shipped,
+        repeats: false,
         groups: GROUPS.map(|g| data::metrics(out, scenes, g, point, &ship)),
     }
 }
@@ -220,7 +225,9 @@ impl MapTable {
                     format!("{} and {}", (ka.unit)(c.a.1), (kb.unit)(c.b.1)),
                     c.a.1 == ka.shipped && c.b.1 == kb.shipped,
                 );
-                row(out, scenes, plan, id, &|s, v| plan.cell_point(s, c, v))
+                let mut r = row(out, scenes, plan, id, &|s, v| plan.cell_point(s, c, v));
+                r.repeats = c.a.1 == ka.shipped || c.b.1 == kb.shipped;
+                r
             })
             .collect();
         self.grid = Some((a, b, rows));
@@ -235,7 +242,7 @@ impl MapTable {
             v.extend(k.rows.iter().filter(|r| !r.shipped));
         }
         if let Some((_, _, cells)) = &self.grid {
-            v.extend(cells.iter().filter(|r| !r.shipped));
+            v.extend(cells.iter().filter(|r| !r.repeats));
         }
         v
     }
@@ -255,6 +262,7 @@ mod tests {
             value: label.into(),
             label: label.into(),
             shipped: false,
+            repeats: false,
             groups: [m, m, Metrics::default()],
         }
     }
