@@ -56,6 +56,14 @@ pub struct ReproduceArgs {
     /// No progress output on stderr.
     #[arg(long, short)]
     pub quiet: bool,
+
+    /// Write the map "What decides WaSP's gain" as sweep files into DIR
+    /// (map-policies.toml, map-bounds.toml, map-deep-queue.toml) and run
+    /// nothing: run them with `wasp sweep FILE --out OUT` (or one job per
+    /// point with --jobs-file), then `wasp reproduce --out OUT` finds those
+    /// points done (docs/reproduce.md).
+    #[arg(long, value_name = "DIR")]
+    pub sweep_files: Option<PathBuf>,
 }
 
 /// Which machines a reproduction runs.
@@ -122,6 +130,9 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         return Err(CliError::usage("--scenes: name at least one scene"));
     }
     let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
+    if let (Some(dir), Some(map)) = (&args.sweep_files, &plan.map) {
+        return write_sweep_files(dir, map, &plan, args.quiet);
+    }
     let cache = Cache::open(&args.out).map_err(CliError::failed)?;
     let figures = args.out.join("figures");
     std::fs::create_dir_all(&figures)
@@ -167,6 +178,26 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
             outcome.failures.len(),
             tasks.len()
         )));
+    }
+    Ok(())
+}
+
+/// `--sweep-files DIR`: the map's sweep files.
+fn write_sweep_files(
+    dir: &Path,
+    map: &map::plan::MapPlan,
+    plan: &Plan,
+    quiet: bool,
+) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", dir.display())))?;
+    let scenes: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
+    for (name, text) in map::sweeps::files(map, &scenes) {
+        let path = dir.join(name);
+        crate::study::cache::write_atomic(&path, &text).map_err(CliError::failed)?;
+        if !quiet {
+            eprintln!("wasp: wrote {}", path.display());
+        }
     }
     Ok(())
 }

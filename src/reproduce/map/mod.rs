@@ -15,13 +15,15 @@
 //! - [`data`]: one machine's numbers over a group of scenes;
 //! - [`table`]: every machine's numbers, the ranges, the grid's choice;
 //! - [`report`]: the REPORT.md section and `data/map.*`;
-//! - [`conclusion`]: the sentences on warp slots and the paper's claims.
+//! - [`conclusion`]: the sentences on warp slots and the paper's claims;
+//! - [`sweeps`]: the map as sweep files, for one cluster job a point.
 
 pub mod conclusion;
 pub mod data;
 pub mod knobs;
 pub mod plan;
 pub mod report;
+pub mod sweeps;
 pub mod table;
 
 use super::plan::Plan;
