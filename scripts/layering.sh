@@ -2,7 +2,8 @@
 # The crates' layering holds (README, "A tour"): rtl, waves and trace at
 # the bottom; the cycle model (wasp-sim) on them with no image or archive
 # crate; the front end (wasp-frontend) on trace and rtl, never the model;
-# the properties (wasp-props) on the model, never the front end. Run by
+# the properties (wasp-props) on the model, never the front end; the Kani
+# shim (wasp-kani-shim) on no crate of the workspace. Run by
 # .ci/run; fails naming the crate and the dependency that breaks it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,5 +26,7 @@ forbid wasp-rtl wasp-trace wasp-sim wasp-frontend wasp-props
 forbid wasp-sim wasp-frontend wasp-props image zip flate2 roxmltree
 forbid wasp-frontend wasp-sim wasp-props
 forbid wasp-props wasp-frontend image zip flate2 roxmltree
+# The Kani shim stands alone (wasp-props uses it under its feature kani-shim).
+forbid wasp-kani-shim wasp-rtl wasp-trace wasp-waves wasp-sim wasp-frontend wasp-props
 [ "$fail" = 0 ] || exit 1
-echo "layering: rtl, waves, trace < sim, frontend < wasp; props on sim and rtl" >&2
+echo "layering: rtl, waves, trace < sim, frontend < wasp; props on sim and rtl; kani shim alone" >&2
