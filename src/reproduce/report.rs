@@ -99,7 +99,16 @@ pub fn write(
             .into_iter()
             .filter(|&g| plan.scenes.iter().any(|s| s.group == g))
             .collect();
-        super::map::report::write(&mut md, map, &table, &groups, &data)?;
+        let section = super::map::report::Section {
+            plan,
+            map,
+            out,
+            table: &table,
+            groups: &groups,
+            data: &data,
+            figs: &figs,
+        };
+        super::map::report::write(&mut md, &section)?;
     }
     footer(&mut md, plan);
     let path = dir.join("REPORT.md");

@@ -8,6 +8,7 @@
 //! always one of the values, so every knob's range passes through the
 //! shipped machine.
 
+use wasp_frontend::raster::DrawOrder;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::MachineConfig;
 
@@ -31,17 +32,28 @@ pub struct Knob {
     pub sets: fn(&str) -> Vec<String>,
     /// A value as a label ("32 warps").
     pub unit: fn(&str) -> String,
+    /// Whether the knob is the scene's draw order (the front end's, not a
+    /// machine field): its values are draw orders and `sets` is unused.
+    pub draw_order: bool,
 }
 
 impl Knob {
     /// The overrides of `value` (none for the shipped value, so that the
     /// shipped point is the shipped machine, spelled the same way).
     pub fn overrides(&self, value: &str) -> Vec<String> {
-        if value == self.shipped {
+        if value == self.shipped || self.draw_order {
             Vec::new()
         } else {
             (self.sets)(value)
         }
+    }
+
+    /// The draw order of `value` for a draw-order knob (None for the
+    /// shipped value, so that the shipped point keeps the scene's own).
+    pub fn order(&self, value: &str) -> Option<DrawOrder> {
+        (self.draw_order && value != self.shipped)
+            .then(|| value.parse().ok())
+            .flatten()
     }
 
     /// The values of a plan.
@@ -132,6 +144,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["32", "64", "128"],
             sets: warps,
             unit: |v| format!("{v} warps"),
+            draw_order: false,
         },
         Knob {
             id: "l0-mshrs",
@@ -142,6 +155,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["16", "31"],
             sets: l0_mshrs,
             unit: |v| format!("{v} L0 MSHRs"),
+            draw_order: false,
         },
         Knob {
             id: "l1-mshrs",
@@ -152,6 +166,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["16"],
             sets: l1_mshrs,
             unit: |v| format!("{v} L1 MSHRs"),
+            draw_order: false,
         },
         Knob {
             id: "dram-latency",
@@ -162,6 +177,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["50"],
             sets: dram_latency,
             unit: |v| format!("{v}-cycle row hit"),
+            draw_order: false,
         },
         Knob {
             id: "input-queue",
@@ -172,6 +188,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["64"],
             sets: input_queue,
             unit: |v| format!("{v}-entry queue"),
+            draw_order: false,
         },
         Knob {
             id: "raster-rate",
@@ -182,6 +199,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["4"],
             sets: raster_rate,
             unit: |v| format!("{v} quads/cycle"),
+            draw_order: false,
         },
         Knob {
             id: "early-z",
@@ -192,6 +210,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["1"],
             sets: early_z,
             unit: |v| format!("{v} rejected/slot"),
+            draw_order: false,
         },
         Knob {
             id: "texture-latency",
@@ -202,6 +221,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["4"],
             sets: texture_latency,
             unit: |v| format!("{v}-cycle texture"),
+            draw_order: false,
         },
         Knob {
             id: "filter",
@@ -212,6 +232,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["1"],
             sets: filter,
             unit: |v| format!("{v} cycles/quad filter"),
+            draw_order: false,
         },
         Knob {
             id: "issue",
@@ -222,6 +243,7 @@ pub fn all() -> Vec<Knob> {
             quick: &["lrr", "gto"],
             sets: issue,
             unit: plain,
+            draw_order: false,
         },
         Knob {
             id: "core-map",
@@ -232,6 +254,18 @@ pub fn all() -> Vec<Knob> {
             quick: &["latin:8"],
             sets: core_map,
             unit: plain,
+            draw_order: false,
+        },
+        Knob {
+            id: "draw-order",
+            field: "draw_order (scene)",
+            label: "opaque draw order",
+            shipped: "as-loaded",
+            values: &["as-loaded", "front-to-back-object", "front-to-back-draw"],
+            quick: &["as-loaded"],
+            sets: |_| Vec::new(),
+            unit: plain,
+            draw_order: true,
         },
     ]
 }

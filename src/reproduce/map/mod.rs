@@ -15,11 +15,13 @@
 //! - [`data`]: one machine's numbers over a group of scenes;
 //! - [`table`]: every machine's numbers, the ranges, the grid's choice;
 //! - [`report`]: the REPORT.md section and `data/map.*`;
+//! - [`figures`]: the tornado, warps, grid and area figures;
 //! - [`conclusion`]: the sentences on warp slots and the paper's claims;
 //! - [`sweeps`]: the map as sweep files, for one cluster job a point.
 
 pub mod conclusion;
 pub mod data;
+pub mod figures;
 pub mod knobs;
 pub mod plan;
 pub mod report;

@@ -64,7 +64,11 @@ impl MapPlan {
 
     /// Knob `k` at `value` on `scene` under `v`.
     pub fn knob_point(&self, scene: &str, k: &Knob, value: &str, v: Variant) -> Point {
-        self.point(scene, &k.overrides(value), v)
+        let p = self.point(scene, &k.overrides(value), v);
+        match k.order(value) {
+            Some(o) => p.drawn(o),
+            None => p,
+        }
     }
 
     /// The shipped machine on `scene` under `v`.
@@ -83,9 +87,14 @@ impl MapPlan {
 
     /// A cell of the 2-D grid.
     pub fn cell_point(&self, scene: &str, c: &Cell, v: Variant) -> Point {
-        let mut sets = self.knobs[c.a.0].overrides(c.a.1);
-        sets.extend(self.knobs[c.b.0].overrides(c.b.1));
-        self.point(scene, &sets, v)
+        let (ka, kb) = (&self.knobs[c.a.0], &self.knobs[c.b.0]);
+        let mut sets = ka.overrides(c.a.1);
+        sets.extend(kb.overrides(c.b.1));
+        let p = self.point(scene, &sets, v);
+        match ka.order(c.a.1).or(kb.order(c.b.1)) {
+            Some(o) => p.drawn(o),
+            None => p,
+        }
     }
 
     /// The variants of the deep-queue series.

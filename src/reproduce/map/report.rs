@@ -6,12 +6,14 @@
 
 use super::conclusion;
 use super::data::{Metrics, GROUPS};
+use super::figures;
 use super::knobs::Variant;
 use super::plan::{MapPlan, DEEP_QUEUE};
 use super::table::{movement, MapTable, Row};
 use crate::reproduce::figures::pct_opt;
-use crate::reproduce::plan::Group;
+use crate::reproduce::plan::{Group, Plan};
 use crate::study::cache::write_atomic;
+use crate::study::runner::Outcome;
 use crate::study::table::csv;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -45,26 +47,61 @@ const COLUMNS: [Column; 9] = [
     ("drain", |m| share(m.drain)),
 ];
 
-/// The section, appended to `md`; the data files are written to `data`.
-pub fn write(
-    md: &mut String,
-    map: &MapPlan,
-    t: &MapTable,
-    groups: &[Group],
-    data: &Path,
-) -> Result<(), String> {
-    write_atomic(&data.join("map.csv"), &to_csv(t))?;
+/// Where the section's inputs and outputs are.
+pub struct Section<'a> {
+    /// The reproduction's plan (its sensitivity points feed the area
+    /// figure).
+    pub plan: &'a Plan,
+    /// The map's plan.
+    pub map: &'a MapPlan,
+    /// The run's results.
+    pub out: &'a Outcome,
+    /// The map's numbers.
+    pub table: &'a MapTable,
+    /// The groups with scenes.
+    pub groups: &'a [Group],
+    /// `data/`.
+    pub data: &'a Path,
+    /// `figures/`.
+    pub figs: &'a Path,
+}
+
+fn embed(md: &mut String, d: Option<figures::Drawn>) {
+    if let Some(d) = d {
+        let _ = writeln!(md, "![{}](figures/{}.png)\n", d.title, d.id);
+    }
+}
+
+/// The section, appended to `md`, with its figures and data files.
+pub fn write(md: &mut String, x: &Section) -> Result<(), String> {
+    let (map, t, groups) = (x.map, x.table, x.groups);
+    write_atomic(&x.data.join("map.csv"), &to_csv(t))?;
     let json = serde_json::to_string_pretty(t).map_err(|e| e.to_string())? + "\n";
-    write_atomic(&data.join("map.json"), &json)?;
+    write_atomic(&x.data.join("map.json"), &json)?;
     let _ = writeln!(md, "\n## What decides WaSP's gain\n");
     intro(md, map, t);
     knobs_table(md, map);
     ranking(md, t, groups);
+    embed(md, figures::tornado(t, x.figs, x.data)?);
     for &g in groups {
         group_table(md, t, g);
     }
+    let _ = writeln!(md, "### WaSP and the oracle bound against warps per core\n");
+    embed(md, figures::warps(t, x.figs, x.data)?);
     grid(md, map, t, groups);
+    for d in figures::grid(map, t, groups, x.figs)? {
+        embed(md, Some(d));
+    }
     conclusion::warp_slots(md, t, groups);
+    let _ = writeln!(
+        md,
+        "### Area and performance\n\nCycles against the register file of one core (warps x \
+         4 threads x `core.registers_per_thread` 32-bit registers, as `wasp cost` sizes it) \
+         for the baseline and WaSP at every warp count of the sensitivity study (input queue \
+         as deep as the warp slots); the paper's highlighted pairs are ringed. Data: \
+         `data/map-area.csv`.\n"
+    );
+    embed(md, figures::area(x.plan, x.out, x.figs, x.data)?);
     conclusion::claims(md, t, groups);
     Ok(())
 }

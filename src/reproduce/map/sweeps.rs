@@ -26,7 +26,15 @@ fn toml_list(v: &[String]) -> String {
     format!("[{}]", q.join(", "))
 }
 
-fn file(comment: &str, scenes: &[String], policies: &[PolicySpec], configs: &[Entry]) -> String {
+/// A sweep file's text; `orders` are its `draw_orders` (none: the
+/// scenes' own).
+fn file(
+    comment: &str,
+    scenes: &[String],
+    policies: &[PolicySpec],
+    configs: &[Entry],
+    orders: &[&str],
+) -> String {
     let mut s = String::new();
     for line in comment.lines() {
         let _ = writeln!(s, "# {line}");
@@ -35,6 +43,10 @@ fn file(comment: &str, scenes: &[String], policies: &[PolicySpec], configs: &[En
     let p: Vec<String> = policies.iter().map(|p| p.to_string()).collect();
     let _ = writeln!(s, "policies = {}", toml_list(&p));
     let _ = writeln!(s, "dispatches = [\"shared-tile\"]");
+    if !orders.is_empty() {
+        let o: Vec<String> = orders.iter().map(|o| o.to_string()).collect();
+        let _ = writeln!(s, "draw_orders = {}", toml_list(&o));
+    }
     for (name, set) in configs {
         let _ = writeln!(
             s,
@@ -48,7 +60,7 @@ fn file(comment: &str, scenes: &[String], policies: &[PolicySpec], configs: &[En
 /// The knob values as configuration entries (the shipped machine once).
 fn knob_entries(map: &MapPlan) -> Vec<Entry> {
     let mut v: Vec<Entry> = vec![("shipped".into(), Vec::new())];
-    for k in &map.knobs {
+    for k in map.knobs.iter().filter(|k| !k.draw_order) {
         for value in k.values_for(map.quick) {
             if *value != k.shipped {
                 v.push((entry_name(k, value), k.overrides(value)));
@@ -78,15 +90,27 @@ fn bound(v: Variant) -> (&'static str, Vec<String>) {
 pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
     let knobs = knob_entries(map);
     let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
-    let mut bounds = Vec::new();
-    for (name, set) in &knobs {
-        for v in [Variant::Raster, Variant::Oracle, Variant::Ideal] {
-            let (suffix, extra) = bound(v);
-            let mut s = set.clone();
-            s.extend(extra);
-            bounds.push((format!("{name}+{suffix}"), s));
+    let with_bounds = |configs: &[Entry]| {
+        let mut v = Vec::new();
+        for (name, set) in configs {
+            for b in [Variant::Raster, Variant::Oracle, Variant::Ideal] {
+                let (suffix, extra) = bound(b);
+                let mut s = set.clone();
+                s.extend(extra);
+                v.push((format!("{name}+{suffix}"), s));
+            }
         }
-    }
+        v
+    };
+    let bounds = with_bounds(&knobs);
+    let shipped: Vec<Entry> = vec![("shipped".into(), Vec::new())];
+    let orders: Vec<&str> = map
+        .knobs
+        .iter()
+        .filter(|k| k.draw_order)
+        .flat_map(|k| k.values_for(map.quick).iter().filter(|v| **v != k.shipped))
+        .copied()
+        .collect();
     let mut deep = Vec::new();
     for &w in &map.deep_queue_warps {
         let set = vec![
@@ -101,7 +125,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
     let head = "The map \"What decides WaSP's gain\" of `wasp reproduce`, written by \
                 `wasp reproduce --sweep-files`.\nRun it into the reproduction's folder, \
                 then `wasp reproduce --out` that folder for the grid and the report.";
-    vec![
+    let mut out = vec![
         (
             "map-policies.toml".into(),
             file(
@@ -109,6 +133,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 scenes,
                 &policies,
                 &knobs,
+                &[],
             ),
         ),
         (
@@ -121,6 +146,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 scenes,
                 &[PolicySpec::Baseline],
                 &bounds,
+                &[],
             ),
         ),
         (
@@ -134,9 +160,39 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 scenes,
                 &[PolicySpec::Baseline, map.wasp],
                 &deep,
+                &[],
             ),
         ),
-    ]
+    ];
+    if !orders.is_empty() {
+        out.push((
+            "map-draw-order.toml".into(),
+            file(
+                &format!(
+                    "{head}\nThe shipped machine with the scenes drawn in other opaque \
+                     orders, under the baseline, Fullpriority and WaSP."
+                ),
+                scenes,
+                &policies,
+                &shipped,
+                &orders,
+            ),
+        ));
+        out.push((
+            "map-draw-order-bounds.toml".into(),
+            file(
+                &format!(
+                    "{head}\nThe same orders with the raster prefetcher, the oracle and \
+                     ideal memory, under the baseline."
+                ),
+                scenes,
+                &[PolicySpec::Baseline],
+                &with_bounds(&shipped),
+                &orders,
+            ),
+        ));
+    }
+    out
 }
 
 #[cfg(test)]
@@ -153,7 +209,7 @@ mod tests {
                 threshold: 0,
                 cf: 3.0,
             },
-            true,
+            false,
         );
         let scenes = vec!["procedural-plane".to_string()];
         let dir = std::env::temp_dir().join(format!("wasp-map-sweeps-{}", std::process::id()));
@@ -165,7 +221,7 @@ mod tests {
             std::fs::write(&path, text).unwrap();
             let sweep = Sweep::load(&path).unwrap();
             for p in sweep.points().unwrap() {
-                swept.insert(toml::to_string(&*p.machine).unwrap());
+                swept.insert((toml::to_string(&*p.machine).unwrap(), p.point.draw_order));
             }
         }
         std::fs::remove_dir_all(&dir).ok();
@@ -175,7 +231,7 @@ mod tests {
                 continue;
             };
             let cfg = r.config(&p).unwrap();
-            let key = toml::to_string(&cfg).unwrap();
+            let key = (toml::to_string(&cfg).unwrap(), p.draw_order);
             assert!(swept.contains(&key), "{} is in no sweep file", p.describe());
         }
     }
