@@ -8,6 +8,7 @@
 //! every value the model or the scheduler's registers cannot hold, naming
 //! the field and the limit.
 
+pub use crate::gpu::IssueOrder;
 use crate::mem::config::check_range;
 use crate::mem::{BlockedOn, CacheConfig, DramConfig, MemConfig};
 use serde::{Deserialize, Serialize};
@@ -67,6 +68,11 @@ pub struct CoreConfig {
     /// 32-bit registers per thread; a warp (a quad) has 4 threads. Sizes the
     /// register file that `wasp cost` sets against WaSP's hardware.
     pub registers_per_thread: u32,
+    /// The order in which the issue stage visits ready warps: `lrr` (loose
+    /// round-robin) or `gto` (greedy-then-oldest); see [`IssueOrder`]. A
+    /// file without the key has `lrr`, the order before the key existed.
+    #[serde(default)]
+    pub issue: IssueOrder,
 }
 
 /// How the tiles of a frame reach the cores.

@@ -294,6 +294,12 @@ pub struct RunStats {
     pub ideal_memory: bool,
     /// Which miss blocks a warp (`scheduler.blocked_on`).
     pub blocked_on: String,
+    /// The issue order (`core.issue`). Left out of the JSON and the table
+    /// under the default, `lrr`, so that their outputs are those of the
+    /// model before the option existed; a run that names no issue order
+    /// ran `lrr`.
+    #[serde(skip_serializing_if = "is_default_issue")]
+    pub issue: String,
     /// GPU cycles until every tile is rendered and memory is idle.
     pub cycles: u64,
     /// Warp instructions per GPU cycle.
@@ -357,6 +363,10 @@ pub struct RunStats {
     pub energy: EnergyStats,
     /// Every tile: start, end, fill, drain, peak occupancy, primary misses.
     pub per_tile: Vec<TileRecord>,
+}
+
+fn is_default_issue(issue: &str) -> bool {
+    issue == crate::config::IssueOrder::default().to_string()
 }
 
 fn mean(sum: f64, n: u64) -> f64 {
@@ -434,6 +444,7 @@ impl RunStats {
             dram_model: cfg.dram.describe(),
             ideal_memory: cfg.memory.ideal,
             blocked_on: cfg.scheduler.blocked_on.to_string(),
+            issue: cfg.core.issue.to_string(),
             cycles,
             ipc: instructions as f64 / cycles.max(1) as f64,
             warps: sum(&|c| c.warps_finished),
@@ -563,11 +574,15 @@ impl RunStats {
     pub fn to_table(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(s, "machine {}  |  workload {}", self.machine, self.workload);
-        let _ = writeln!(
+        let _ = write!(
             s,
             "policy {}  launch rule {}  subset {}  ideal memory {}",
             self.policy, self.launch_rule, self.subset.subset, self.ideal_memory
         );
+        if !is_default_issue(&self.issue) {
+            let _ = write!(s, "  issue {}", self.issue);
+        }
+        s.push('\n');
         let _ = writeln!(
             s,
             "dispatch {}  core map {}  colour flush {}  dram {}",
@@ -756,17 +771,27 @@ fn csv_field(s: &str) -> String {
     }
 }
 
-/// Several runs as one CSV table (header from the first run's fields).
+/// Several runs as one CSV table: the header holds the first run's fields,
+/// then those of later runs that it lacks (such as `issue`, which only a
+/// run off the default order has), in order of appearance; a run without
+/// a field leaves it empty.
 pub fn csv_table(runs: &[RunStats]) -> String {
     let mut s = String::new();
-    let Some(first) = runs.first() else {
+    let all: Vec<Vec<(String, String)>> = runs.iter().map(RunStats::to_csv_rows).collect();
+    let mut header: Vec<String> = Vec::new();
+    for rows in &all {
+        for (k, _) in rows {
+            if !header.contains(k) {
+                header.push(k.clone());
+            }
+        }
+    }
+    if all.is_empty() {
         return s;
-    };
-    let header: Vec<String> = first.to_csv_rows().into_iter().map(|(k, _)| k).collect();
+    }
     s.push_str(&header.join(","));
     s.push('\n');
-    for r in runs {
-        let rows = r.to_csv_rows();
+    for rows in &all {
         let vals: Vec<String> = header
             .iter()
             .map(|k| {

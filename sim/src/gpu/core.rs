@@ -15,8 +15,9 @@
 //!    cycle in which `hold` keeps a lone priority warp back is a hold idle
 //!    cycle ([`CoreStats::held_cycles`]);
 //! 4. issue: up to `pipeline_width` ready warps issue one instruction each,
-//!    in loose round-robin order; a texture instruction enters the LDST
-//!    queue (one per cycle, if it has room);
+//!    in the order `core.issue` names (loose round-robin or
+//!    greedy-then-oldest, `gpu/issue/`); a texture instruction enters the
+//!    LDST queue (one per cycle, if it has room);
 //! 5. LDST: the oldest texture instruction presents its unique blocks to the
 //!    first cache level, in order, until the cache refuses (ports used or
 //!    MSHRs full).
@@ -49,7 +50,9 @@
 //! blocked.
 
 use crate::config::FilterTiming;
-use crate::gpu::issue::{pick, Picks};
+use crate::gpu::issue::gto::Gto;
+use crate::gpu::issue::lrr::Lrr;
+use crate::gpu::issue::{IssueOrder, Issuer, Order, Picks};
 use crate::gpu::mask::SlotMask;
 use crate::gpu::raster::RasterCursor;
 use crate::gpu::wheel::WakeWheel;
@@ -172,7 +175,8 @@ pub struct ShaderCore {
     /// Primary misses at the scheduler-level cache since the tile began.
     tile_misses: u64,
     active: u32,
-    rr: u32,
+    /// The issue order and its state.
+    issuer: Issuer,
     prio: PriorityEvents,
     signals: CoreSignals,
     last_progress: u64,
@@ -241,7 +245,7 @@ impl ShaderCore {
             external_raster: p.external_raster,
             tile_misses: 0,
             active: 0,
-            rr: 0,
+            issuer: Issuer::new(p.issue, n),
             prio: PriorityEvents::default(),
             signals: CoreSignals::default(),
             last_progress: 0,
@@ -498,23 +502,40 @@ impl ShaderCore {
         }
     }
 
+    /// Issue in the core's order: one copy of the stage per order and mask
+    /// width. Loose round-robin's copies are inlined into the cycle;
+    /// greedy-then-oldest's stay out of it, so that they do not change how
+    /// the compiler lays out the default's path.
     fn issue(&mut self, now: u64, tile: &Tile) {
+        match self.issuer.order {
+            IssueOrder::Lrr => self.issue_in::<Lrr>(now, tile),
+            IssueOrder::Gto => self.issue_gto(now, tile),
+        }
+    }
+
+    #[inline(never)]
+    fn issue_gto(&mut self, now: u64, tile: &Tile) {
+        self.issue_in::<Gto>(now, tile);
+    }
+
+    #[inline(always)]
+    fn issue_in<O: Order>(&mut self, now: u64, tile: &Tile) {
         if self.narrow {
-            self.issue_with::<u64>(now, tile);
+            self.issue_with::<u64, O>(now, tile);
         } else {
-            self.issue_with::<u128>(now, tile);
+            self.issue_with::<u128, O>(now, tile);
         }
     }
 
     /// Issue on masks of width `M` (every slot fits).
     ///
-    /// The picks are found first ([`pick`], checked against its plain
-    /// reference; each ALU pick counts its run down), then the ALU picks
-    /// are put on the wake-up wheels as whole masks: those with more of
-    /// their run to go on the ready wheel, those that ended it on the wheel
-    /// that looks at them.
+    /// The picks are found first (by the issue order `O`, whose fast pick
+    /// is checked against its plain reference; each ALU pick counts its run
+    /// down), then the ALU picks are put on the wake-up wheels as whole
+    /// masks: those with more of their run to go on the ready wheel, those
+    /// that ended it on the wheel that looks at them.
     #[inline(always)]
-    fn issue_with<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
+    fn issue_with<M: SlotMask, O: Order>(&mut self, now: u64, tile: &Tile) {
         let tex_ok = self.ldst_len < self.ldst_cap;
         let ready = M::from_wide(self.ready);
         let tex_cand = if tex_ok {
@@ -525,27 +546,27 @@ impl ShaderCore {
         // Each ALU pick counts its run down; those that end it wait on the
         // wheel that looks at their next instruction.
         let alu_left = &mut self.alu_left;
+        let on_alu = |s: usize| {
+            let left = &mut alu_left[s % MAX_SLOTS];
+            *left -= 1;
+            *left == 0
+        };
         let Picks {
             alu,
             run_end,
             tex,
             issued,
-            last,
-        } = pick(ready, tex_cand, self.rr, self.width, |s| {
-            let left = &mut alu_left[s % MAX_SLOTS];
-            *left -= 1;
-            *left == 0
-        });
+            ..
+        } = {
+            let slots = &self.slots;
+            let age = |s: usize| slots[s % MAX_SLOTS].launched_at;
+            O::state(&mut self.issuer).pick(ready, tex_cand, self.width, age, on_alu)
+        };
         self.signals.issued = issued;
         self.signals.tex_issued = tex.is_some();
         if issued == 0 {
             return;
         }
-        self.rr = if last + 1 >= self.n_slots as u32 {
-            0
-        } else {
-            last + 1
-        };
         self.stats.instructions += u64::from(issued);
         self.progress(now);
         self.ready = (ready & !alu).to_wide();

@@ -30,6 +30,7 @@ mod wheel;
 pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
 pub use self::core_map::{CoreMap, CoreMapTable};
 pub use self::core_model::CoreModel;
+pub use self::issue::IssueOrder;
 pub use self::raster::{RasterStats, SharedRaster};
 pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
@@ -230,6 +231,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             ldst_queue: cfg.core.ldst_queue,
             sched_mshrs: sc.mshrs,
             blocked_on: cfg.scheduler.blocked_on,
+            issue: cfg.core.issue,
         };
         let side = cfg.quads_per_side();
         let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);

@@ -1,6 +1,7 @@
 //! What a shader core takes from the machine configuration.
 
 use crate::config::FilterTiming;
+use crate::gpu::IssueOrder;
 use crate::mem::BlockedOn;
 
 /// What a core needs from the configuration.
@@ -35,4 +36,6 @@ pub struct CoreParams {
     pub sched_mshrs: u32,
     /// Which miss blocks a warp (the memory system must report the same).
     pub blocked_on: BlockedOn,
+    /// The order in which the issue stage visits ready warps.
+    pub issue: IssueOrder,
 }
