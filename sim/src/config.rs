@@ -10,7 +10,7 @@
 
 pub use crate::gpu::IssueOrder;
 use crate::mem::config::check_range;
-use crate::mem::{BlockedOn, CacheConfig, DramConfig, MemConfig};
+use crate::mem::{BlockedOn, CacheConfig, DramConfig, MemConfig, PrefetchConfig};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::Path;
@@ -287,6 +287,9 @@ pub struct MachineConfig {
     pub dram: DramConfig,
     /// Ideal-memory switch.
     pub memory: MemoryConfig,
+    /// The prefetcher into the L1s (`none` when the section is absent).
+    #[serde(default)]
+    pub prefetch: PrefetchConfig,
     /// Energy model.
     pub energy: EnergyConfig,
     /// Simulation controls.
@@ -467,6 +470,7 @@ impl MachineConfig {
             dram: self.dram,
             ideal_memory: self.memory.ideal,
             blocked_on: self.scheduler.blocked_on,
+            prefetch: self.prefetch,
         }
     }
 

@@ -14,6 +14,9 @@ use crate::trace::{mean_footprint_ratio, Trace};
 use serde::Serialize;
 use std::fmt::Write as _;
 
+mod prefetch;
+pub use prefetch::PrefetchReport;
+
 /// One cache level's counters, summed over cores.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LevelStats {
@@ -361,6 +364,10 @@ pub struct RunStats {
     pub block_reuse: f64,
     /// Energy.
     pub energy: EnergyStats,
+    /// The prefetcher and its requests (absent without one, `prefetch.kind
+    /// = "none"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prefetch: Option<PrefetchReport>,
     /// Every tile: start, end, fill, drain, peak occupancy, primary misses.
     pub per_tile: Vec<TileRecord>,
 }
@@ -417,7 +424,8 @@ impl RunStats {
         let alu_nj = alu_instr as f64 * e.alu_instruction_pj / 1000.0;
         let texture_nj = tex as f64 * e.texture_instruction_pj / 1000.0;
         let l0_nj = l0_acc as f64 * e.l0_access_pj / 1000.0;
-        let l1_nj = mem.l1.accesses as f64 * e.l1_access_pj / 1000.0;
+        // Prefetch lookups read the L1's tags like any access.
+        let l1_nj = (mem.l1.accesses + mem.prefetch.queue.issued) as f64 * e.l1_access_pj / 1000.0;
         let l2_nj = mem.l2.accesses as f64 * e.l2_access_pj / 1000.0;
         // Writes (the colour-buffer flush) cost like reads: a row hit's
         // transfer, plus activation for those that opened their row.
@@ -540,6 +548,7 @@ impl RunStats {
                 static_nj,
                 total_nj,
             },
+            prefetch: PrefetchReport::of(cfg, &mem.prefetch),
             per_tile: inst.per_tile,
         }
     }
@@ -683,6 +692,9 @@ impl RunStats {
             "raster: {} quads ({} rejected by Early-Z), back-pressure {} cycles, barrier wait {} cycles, {} colour lines flushed",
             r.quads_rasterized, r.quads_rejected, r.backpressure_cycles, r.barrier_cycles, r.flush_lines
         );
+        if let Some(p) = &self.prefetch {
+            p.table_lines(&mut s);
+        }
         let t = &self.tile_timing;
         let _ = writeln!(
             s,

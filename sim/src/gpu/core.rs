@@ -296,6 +296,13 @@ impl ShaderCore {
         !self.sched.queue().is_full() && self.sched.enqueue(quad, x, y).is_ok()
     }
 
+    /// Surviving quads of its own tile the core's rasterizer has put in
+    /// the input queue so far (per-core-tile dispatch).
+    #[inline]
+    pub fn quads_entered(&self) -> u32 {
+        self.cursor.next
+    }
+
     /// Nothing of the open tile is queued, resident or in the LDST unit.
     pub fn drained(&self) -> bool {
         self.active == 0 && self.ldst_len == 0 && self.sched.queue().is_empty()

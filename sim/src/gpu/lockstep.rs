@@ -17,7 +17,7 @@
 use super::core::plain::PlainCore;
 use super::{CoreModel, Gpu, ShaderCore};
 use crate::config::{Dispatch, FilterTiming, IssueOrder, MachineConfig};
-use crate::mem::BlockedOn;
+use crate::mem::{BlockedOn, PrefetchKind};
 use crate::trace::{Instr, Trace, TraceHeader};
 use proptest::prelude::*;
 use wasp_waves::VcdSink;
@@ -133,6 +133,8 @@ struct Knobs {
     shared: bool,
     raster: (u32, u32),
     issue: IssueOrder,
+    /// Prefetcher, L1 reserve, queue entries.
+    prefetch: (PrefetchKind, u32, u32),
 }
 
 impl Knobs {
@@ -178,6 +180,9 @@ impl Knobs {
         };
         c.raster.quads_per_cycle = self.cores * self.raster.0;
         c.raster.rejected_per_slot = self.raster.1;
+        c.prefetch.kind = self.prefetch.0;
+        c.prefetch.l1_reserve = self.prefetch.1.min(c.l1.mshrs - 1);
+        c.prefetch.queue = self.prefetch.2;
         c.sim.watchdog_cycles = 100_000;
         c
     }
@@ -214,12 +219,29 @@ fn arb_knobs() -> impl Strategy<Value = Knobs> {
             any::<bool>(),
             (1u32..=2, 1u32..=3),
             prop::sample::select(IssueOrder::ALL.to_vec()),
+            (
+                prop::sample::select(PrefetchKind::ALL.to_vec()),
+                0u32..=2,
+                1u32..=4,
+            ),
         ),
     )
         .prop_map(
             |(
                 (l0, cores, warps, width, queue, ldst, alu_latency, texture_latency),
-                (filter, mshrs, merged, policy, launch, mesh2, blocked_on, shared, raster, issue),
+                (
+                    filter,
+                    mshrs,
+                    merged,
+                    policy,
+                    launch,
+                    mesh2,
+                    blocked_on,
+                    shared,
+                    raster,
+                    issue,
+                    prefetch,
+                ),
             )| Knobs {
                 l0,
                 cores,
@@ -239,6 +261,7 @@ fn arb_knobs() -> impl Strategy<Value = Knobs> {
                 shared,
                 raster,
                 issue,
+                prefetch,
             },
         )
 }
@@ -341,6 +364,37 @@ fn fast_and_plain_cores_agree_on_the_shipped_traces() {
     assert_eq!(runs, 3 * 5 * 2 * 3 * 2);
 }
 
+/// The shipped traces with each prefetcher, under the baseline and WaSP,
+/// both dispatch modes, on both machines of the paper (at width 2 the
+/// prefetches share the scheduler-level cache's MSHRs).
+#[test]
+fn fast_and_plain_cores_agree_with_each_prefetcher() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/traces");
+    let mut runs = 0;
+    for name in ["tiny", "overdraw", "synthetic-small"] {
+        let trace = Trace::read(dir.join(format!("{name}.trace"))).unwrap();
+        for kind in [PrefetchKind::OracleTile, PrefetchKind::Raster] {
+            for machine in [MachineConfig::paper(), MachineConfig::paper_width2()] {
+                for policy in ["baseline", "wasp:0:3"] {
+                    for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+                        let mut cfg = machine.clone();
+                        cfg.gpu.tile_size = trace.header().tile;
+                        cfg.scheduler.policy = policy.into();
+                        cfg.raster.dispatch = dispatch;
+                        cfg.prefetch.kind = kind;
+                        cfg.validate().unwrap();
+                        if let Err(e) = lockstep(&cfg, &trace) {
+                            panic!("{name} {kind} {} {policy} {dispatch}: {e}", cfg.name);
+                        }
+                        runs += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(runs, 3 * 2 * 2 * 2 * 2);
+}
+
 /// Frames of the workload generator (a few thousand warps each) on both
 /// machines of the paper: loose round-robin under both dispatch modes,
 /// greedy-then-oldest under the paper's (shared-tile).
@@ -397,7 +451,9 @@ fn fast_and_plain_cores_draw_the_same_waveform() {
 /// Every trace in the folder `WASP_LOCKSTEP_TRACES` (for example the 16
 /// real scenes' traces in `target/machines/traces`), on the paper's
 /// machine under the baseline and WaSP, both dispatch modes and both issue
-/// orders.
+/// orders; with `WASP_LOCKSTEP_PREFETCH` (a comma-separated list of
+/// `prefetch.kind` values, e.g. `raster,oracle-tile`) under each of those
+/// prefetchers instead of none.
 #[test]
 #[ignore = "long: set WASP_LOCKSTEP_TRACES to a folder of traces"]
 fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
@@ -409,24 +465,29 @@ fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
         .collect();
     paths.sort();
     assert!(!paths.is_empty(), "no .trace file in {dir}");
+    let kinds: Vec<PrefetchKind> = match std::env::var("WASP_LOCKSTEP_PREFETCH") {
+        Ok(list) => list.split(',').map(|k| k.trim().parse().unwrap()).collect(),
+        Err(_) => vec![PrefetchKind::None],
+    };
     for path in paths {
         let trace = Trace::read(&path).unwrap();
-        for policy in ["baseline", "wasp:0:3"] {
-            for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
-                for issue in IssueOrder::ALL {
-                    let mut cfg = MachineConfig::paper();
-                    cfg.gpu.tile_size = trace.header().tile;
-                    cfg.scheduler.policy = policy.into();
-                    cfg.raster.dispatch = dispatch;
-                    cfg.core.issue = issue;
-                    cfg.validate().unwrap();
-                    let cycles = lockstep(&cfg, &trace).unwrap_or_else(|e| {
-                        panic!("{}: {policy} {dispatch} {issue}: {e}", path.display())
-                    });
-                    eprintln!(
-                        "{}: {policy} {dispatch} {issue}: {cycles} cycles agree",
-                        path.display()
-                    );
+        for &kind in &kinds {
+            for policy in ["baseline", "wasp:0:3"] {
+                for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+                    for issue in IssueOrder::ALL {
+                        let mut cfg = MachineConfig::paper();
+                        cfg.gpu.tile_size = trace.header().tile;
+                        cfg.scheduler.policy = policy.into();
+                        cfg.raster.dispatch = dispatch;
+                        cfg.core.issue = issue;
+                        cfg.prefetch.kind = kind;
+                        cfg.validate().unwrap();
+                        let what =
+                            format!("{}: {kind} {policy} {dispatch} {issue}", path.display());
+                        let cycles =
+                            lockstep(&cfg, &trace).unwrap_or_else(|e| panic!("{what}: {e}"));
+                        eprintln!("{what}: {cycles} cycles agree");
+                    }
                 }
             }
         }

@@ -35,6 +35,7 @@ pub use self::raster::{RasterStats, SharedRaster};
 pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
 use crate::config::{Dispatch, MachineConfig};
+use crate::mem::prefetch::{self, Prefetcher};
 use crate::mem::MemStats;
 use crate::mem::MemorySystem;
 use crate::timeline::{Timeline, TimelineSample};
@@ -185,12 +186,33 @@ pub struct Gpu<'t, C = ShaderCore> {
     cores: Vec<C>,
     mem: MemorySystem,
     dispatch: Dispatcher,
+    /// The prefetcher into the L1s (`prefetch.kind`), if any.
+    prefetch: Option<Box<dyn Prefetcher>>,
     /// One per renderer: the GPU (shared-tile) or each core (per-core).
     trackers: Vec<TileTracker>,
     timeline: Option<Timeline>,
     tiles_done: usize,
     now: u64,
     scratch: Vec<u32>,
+}
+
+/// Tell the prefetcher what the shared raster pipeline did in the cycle:
+/// the tile it opened, the quads it placed in input FIFOs.
+#[inline(never)]
+fn feed_prefetcher(
+    pf: &mut dyn Prefetcher,
+    r: &SharedRaster,
+    opened: Option<usize>,
+    tiles: &[crate::trace::Tile],
+    mem: &mut MemorySystem,
+) {
+    if let Some(t) = opened {
+        pf.tile_opened(t, None, mem);
+    }
+    if let Some(t) = r.tile() {
+        let core_of = |x, y| r.core_of(x, y);
+        prefetch::quads_entered(pf, &tiles[t], r.placed_now(), core_of, mem);
+    }
 }
 
 impl<'t> Gpu<'t> {
@@ -257,12 +279,20 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 vec![TileTracker::new(); cfg.gpu.cores as usize],
             )
         };
+        let prefetch = match &dispatch {
+            Dispatcher::Shared(r) => {
+                let core_of = |x: u32, y: u32| r.core_of(x, y);
+                prefetch::build(&cfg.prefetch, trace, cores.len(), Some(&core_of))
+            }
+            Dispatcher::PerCore { .. } => prefetch::build(&cfg.prefetch, trace, cores.len(), None),
+        };
         Ok(Self {
             cfg: cfg.clone(),
             trace,
             cores,
             mem,
             dispatch,
+            prefetch,
             trackers,
             timeline: None,
             tiles_done: 0,
@@ -352,6 +382,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 // released at the end of a cycle), so taking tiles in core
                 // order within the evaluate pass is the same as taking them
                 // all first.
+                let pf_on = self.prefetch.is_some();
                 for (i, c) in self.cores.iter_mut().enumerate() {
                     if c.idle() && *next_tile < tiles.len() {
                         c.assign_tile(*next_tile, &tiles[*next_tile], now);
@@ -359,9 +390,19 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                         if let Some(tl) = self.timeline.as_mut() {
                             tl.mark(now, *next_tile as u32, Some(i as u32), true);
                         }
+                        if let Some(pf) = self.prefetch.as_deref_mut() {
+                            pf.tile_opened(*next_tile, Some(i), &mut self.mem);
+                        }
                         *next_tile += 1;
                     }
+                    let entered = if pf_on { c.quads_entered() } else { 0 };
                     c.evaluate(now, self.trace, &mut self.mem);
+                    if pf_on {
+                        if let (Some(pf), Some(t)) = (self.prefetch.as_deref_mut(), c.tile()) {
+                            let quads = entered..c.quads_entered();
+                            prefetch::quads_entered(pf, &tiles[t], quads, |_, _| i, &mut self.mem);
+                        }
+                    }
                     if let Some((q, prio)) = c.launched_now() {
                         let quad = tiles[c.tile().expect("launching")].quad(q as usize);
                         let quad = quad.expect("quad in tile");
@@ -375,6 +416,9 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             }
             Dispatcher::Shared(r) => {
                 let opened = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
+                if let Some(pf) = self.prefetch.as_deref_mut() {
+                    feed_prefetcher(pf, r, opened, tiles, &mut self.mem);
+                }
                 if let Some(t) = opened {
                     self.trackers[0].start(t as u32, None, now);
                     if let Some(tl) = self.timeline.as_mut() {

@@ -2,6 +2,7 @@
 //! plus wasp's stated choices) and the structural checks that
 //! [`MemorySystem::new`](super::MemorySystem::new) applies.
 
+use super::prefetch::PrefetchConfig;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -287,6 +288,9 @@ pub struct MemConfig {
     /// [`MemorySystem::take_long_latency`](super::MemorySystem::take_long_latency)
     /// reports. Changes no timing.
     pub blocked_on: BlockedOn,
+    /// The prefetcher into the L1s (`none` by default).
+    #[serde(default)]
+    pub prefetch: PrefetchConfig,
 }
 
 impl MemConfig {
@@ -346,6 +350,7 @@ impl MemConfig {
             dram: DramConfig::default(),
             ideal_memory: false,
             blocked_on: BlockedOn::L1Miss,
+            prefetch: PrefetchConfig::default(),
         }
     }
 
@@ -366,6 +371,7 @@ impl MemConfig {
         self.l1.check("l1")?;
         self.l2.check("l2")?;
         self.dram.check()?;
+        self.prefetch.check(self.l1.mshrs).map_err(MemConfigError)?;
         let bytes = self.host_bytes();
         if bytes > HOST_BYTES_BUDGET {
             return Err(MemConfigError(format!(

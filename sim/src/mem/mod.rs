@@ -113,6 +113,7 @@ pub mod config;
 pub mod dram;
 pub mod hierarchy;
 pub mod mshr;
+pub mod prefetch;
 mod ring;
 pub mod stats;
 
@@ -123,4 +124,5 @@ pub use config::{
 };
 pub use hierarchy::{Access, MemorySystem, MshrFileView, SchedCacheMshrs};
 pub use mshr::MSHR_HOLD_CYCLES;
+pub use prefetch::{PrefetchConfig, PrefetchKind, PrefetchStats};
 pub use stats::{CacheStats, CoreMemStats, DramStats, MemStats};

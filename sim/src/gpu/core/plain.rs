@@ -466,6 +466,10 @@ impl CoreModel for PlainCore {
         self.sched.enqueue(quad, x, y).is_ok()
     }
 
+    fn quads_entered(&self) -> u32 {
+        self.cursor.next
+    }
+
     fn drained(&self) -> bool {
         self.active_count() == 0 && self.ldst.is_empty() && self.sched.queue().is_empty()
     }

@@ -19,11 +19,14 @@ impl MemorySystem {
         let l1_reply = now + u64::from(self.cfg.l1.hit_latency) - 1;
 
         // 1. Every core: MSHR occupancy current, L0 misses presented to
-        //    the L1 in order until the L1 refuses one.
-        for c in self.cores.iter_mut() {
+        //    the L1 in order until the L1 refuses one, then the prefetch
+        //    queue's head on the ports they left.
+        let reserve = self.cfg.prefetch.l1_reserve;
+        for (c, pf) in self.cores.iter_mut().zip(&mut self.pf) {
             c.active = !c.is_quiet();
             c.l1.release(now);
             let Some(l0) = c.l0.as_mut() else {
+                prefetch_step(now, c, pf, track, reserve);
                 continue;
             };
             l0.release(now);
@@ -57,6 +60,7 @@ impl MemorySystem {
                 }
                 c.to_l1.drop_front();
             }
+            prefetch_step(now, c, pf, track, reserve);
         }
 
         // 2. L1 misses to the L2: rounds over the cores from core `now %
@@ -74,7 +78,7 @@ impl MemorySystem {
             for &k in &order {
                 let c = &mut self.cores[k];
                 let r = *c.to_l2.front().expect("a candidate has a request");
-                match self.l2.access_entry(now, r.block, k as u32) {
+                match self.l2.access_entry_unmarked(now, r.block, k as u32) {
                     (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
                         at: l2_reply,
                         core: k as u32,
@@ -106,7 +110,7 @@ impl MemorySystem {
         self.dram.accept(now);
         while let Some(entry) = self.dram.pop_reply(now) {
             let block = self.l2.pending_block(entry);
-            for &core in self.l2.fill_entry(now, entry) {
+            for &core in self.l2.fill_entry_unmarked(now, entry) {
                 self.to_l1.push_back(L2Reply {
                     at: l2_reply,
                     core,
@@ -172,6 +176,14 @@ mod tests {
                     Some(&(0, _, _)) => {}
                     Some(&(_, count, block)) => {
                         for k in 0..n {
+                            // A prefetch too, when the machine has a
+                            // prefetcher: queued on both, served by each
+                            // tick on the ports demand leaves.
+                            if cfg.prefetch.enabled() {
+                                let blk = block + 3 + k as u64 * 5;
+                                fast.prefetch_queue(k).offer(blk);
+                                plain.prefetch_queue(k).offer(blk);
+                            }
                             for j in 0..u64::from(count) {
                                 let blk = block + j * 7 + k as u64;
                                 let (x, y) = (
@@ -215,6 +227,9 @@ mod tests {
             prop_assert!(now < 100_000, "no drain");
         }
         prop_assert_eq!(fast.stats(), plain.stats());
+        if cfg.prefetch.enabled() {
+            prop_assert_eq!(fast.prefetch_stats(), plain.prefetch_stats());
+        }
         Ok(now)
     }
 
@@ -244,7 +259,11 @@ mod tests {
             })
             .collect();
         for width4 in [false, true] {
-            let cycles = lockstep(&MemConfig::paper(width4), &ops).unwrap();
+            let mut cfg = MemConfig::paper(width4);
+            let cycles = lockstep(&cfg, &ops).unwrap();
+            assert!(cycles > 3000, "{cycles}");
+            cfg.prefetch.kind = crate::mem::PrefetchKind::Raster;
+            let cycles = lockstep(&cfg, &ops).unwrap();
             assert!(cycles > 3000, "{cycles}");
         }
     }
