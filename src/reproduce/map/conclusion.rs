@@ -276,10 +276,12 @@ fn bound_claim(md: &mut String, t: &MapTable, machines: &[&Row], g: Group) {
     let (Some(w), Some(o)) = (s.wasp, s.oracle) else {
         return;
     };
-    let of_oracle = if o > 0.0 {
-        format!("{:.0}% of the oracle's gain", 100.0 * w / o)
+    let of_oracle = if o <= 0.0 {
+        "nothing: the oracle gains nothing either".into()
+    } else if w <= 0.0 {
+        "none of the oracle's gain".into()
     } else {
-        "the oracle gains nothing to share".into()
+        format!("{:.0}% of the oracle's gain", 100.0 * w / o)
     };
     let below: Vec<&str> = machines
         .iter()

@@ -240,7 +240,7 @@ pub fn all() -> Vec<Knob> {
             label: "issue order",
             shipped: "lrr",
             values: &["lrr", "gto"],
-            quick: &["lrr", "gto"],
+            quick: &["lrr"],
             sets: issue,
             unit: plain,
             draw_order: false,

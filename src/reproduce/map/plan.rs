@@ -97,9 +97,16 @@ impl MapPlan {
         }
     }
 
-    /// The variants of the deep-queue series.
-    pub const DEEP_QUEUE_VARIANTS: [Variant; 3] =
-        [Variant::Baseline, Variant::Wasp, Variant::Oracle];
+    /// The variants of the deep-queue series: the baseline, WaSP and the
+    /// oracle; the quick look runs the baseline only (what the warp-slot
+    /// question reads).
+    pub fn deep_queue_variants(&self) -> &'static [Variant] {
+        if self.quick {
+            &[Variant::Baseline]
+        } else {
+            &[Variant::Baseline, Variant::Wasp, Variant::Oracle]
+        }
+    }
 
     /// The variants of the 2-D grid.
     pub const GRID_VARIANTS: [Variant; 2] = [Variant::Baseline, Variant::Wasp];
@@ -117,7 +124,7 @@ impl MapPlan {
                 }
             }
             for &w in &self.deep_queue_warps {
-                for v in Self::DEEP_QUEUE_VARIANTS {
+                for &v in self.deep_queue_variants() {
                     t.push(Task::Run(self.deep_queue_point(s, w, v)));
                 }
             }

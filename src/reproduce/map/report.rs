@@ -312,7 +312,8 @@ pub fn plan_text(map: &MapPlan, scenes: usize) -> String {
         .iter()
         .map(|k| k.values_for(map.quick).len() - 1)
         .sum();
-    let runs = scenes * ((values + 1) * Variant::ALL.len() + map.deep_queue_warps.len() * 3);
+    let deep = map.deep_queue_warps.len() * map.deep_queue_variants().len();
+    let runs = scenes * ((values + 1) * Variant::ALL.len() + deep);
     format!(
         "the map \"What decides WaSP's gain\": {} knobs, {values} values besides the shipped \
          machine, {} warp counts with a {DEEP_QUEUE}-entry input queue, on {scenes} scenes: \
