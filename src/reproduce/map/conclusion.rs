@@ -293,11 +293,33 @@ fn bound_claim(md: &mut String, t: &MapTable, machines: &[&Row], g: Group) {
         Some(r) => format!("the raster prefetcher gains {} (not more)", pct(Some(r))),
         None => "the raster prefetcher did not run".into(),
     };
+    let why = below
+        .iter()
+        .filter_map(|l| machines.iter().find(|r| r.label == *l))
+        .max_by(|a, b| {
+            let gap = |r: &&&Row| r.of(g).wasp.unwrap_or(0.0) - r.of(g).oracle.unwrap_or(0.0);
+            gap(a).total_cmp(&gap(b))
+        })
+        .map(|r| {
+            let m = r.of(g);
+            format!(
+                " At {}, where the gap is widest, the oracle's queue waits for free L1 MSHRs in \
+                 {} of the core-cycles, {} of its prefetches arrive late, {} are evicted unused, \
+                 and a DRAM request waits {} cycles in the queue against {} under WaSP.",
+                r.label,
+                share(m.oracle_reserve_wait),
+                share(m.oracle_late),
+                share(m.oracle_useless),
+                f1(m.dram_wait.0),
+                f1(m.dram_wait.1)
+            )
+        })
+        .unwrap_or_default();
     let _ = writeln!(
         md,
         "- **WaSP against the bounds, {} scenes**: on the shipped machine WaSP gains {}, the \
          oracle tile prefetcher {} and ideal memory {}: WaSP takes {}; {}. The oracle is \
-         slower than WaSP at {} of {} machines{}.",
+         slower than WaSP at {} of {} machines{}.{why}",
         g.label(),
         pct(Some(w)),
         pct(Some(o)),

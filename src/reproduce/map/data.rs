@@ -53,6 +53,16 @@ pub struct Metrics {
     pub l0_misses_per_warp: Option<f64>,
     /// The baseline's share of DRAM requests that met another row open.
     pub row_conflicts: Option<f64>,
+    /// The oracle's share of prefetch misses a demand access merged into
+    /// while in flight (late prefetches).
+    pub oracle_late: Option<f64>,
+    /// The oracle's share of prefetched lines evicted before any use.
+    pub oracle_useless: Option<f64>,
+    /// The oracle's share of core-cycles its queue head waited for free
+    /// L1 MSHRs beyond the reserve.
+    pub oracle_reserve_wait: Option<f64>,
+    /// The DRAM's mean queue wait under the oracle, and under WaSP.
+    pub dram_wait: (Option<f64>, Option<f64>),
 }
 
 impl Metrics {
@@ -132,6 +142,21 @@ pub fn metrics(
             let r = rec(s, Variant::Baseline)?;
             Some(r.get("dram.row_conflicts")? / r.get("dram.requests")?)
         }),
+        oracle_late: stat(Variant::Oracle, "prefetch.late_share"),
+        oracle_useless: per_scene(&|s: &str| {
+            let r = rec(s, Variant::Oracle)?;
+            let misses = r.get("prefetch.misses")?;
+            (misses > 0.0).then(|| r.get("prefetch.useless").unwrap_or(0.0) / misses)
+        }),
+        oracle_reserve_wait: per_scene(&|s: &str| {
+            let r = rec(s, Variant::Oracle)?;
+            let cores = r.stats.get("held_cycles_per_core")?.as_array()?.len() as f64;
+            Some(r.get("prefetch.reserve_waits")? / (r.cycles() * cores))
+        }),
+        dram_wait: (
+            stat(Variant::Oracle, "dram.avg_queue_wait"),
+            stat(Variant::Wasp, "dram.avg_queue_wait"),
+        ),
     }
 }
 
