@@ -19,7 +19,8 @@
 //! - `vcd`: every signal written to a VCD (into a byte sink).
 
 use crate::config::{Dispatch, MachineConfig};
-use crate::gpu::{Gpu, RunOptions, SimError};
+use crate::gpu::{Gpu, SimError};
+use crate::run::RunOptions;
 use crate::synth::{generate, GenParams};
 use crate::trace::Trace;
 use serde::Serialize;

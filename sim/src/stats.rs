@@ -393,13 +393,10 @@ impl RunStats {
         let (rs, rn) = lat(0);
         let (ps, pn) = lat(1);
         let ts = trace.stats();
-        let subset_spec = cfg.subset().expect("validated");
+        let subset_spec = &cfg.scheduler.subset;
         let side = cfg.quads_per_side();
         let subset = subset_spec.build(side);
-        let uses_priority = cfg
-            .policy()
-            .map(|p| p != wasp_rtl::policy::PolicySpec::Baseline)
-            .unwrap_or(true);
+        let uses_priority = cfg.scheduler.policy != wasp_rtl::policy::PolicySpec::Baseline;
         let footprint = mean_footprint_ratio(trace, |x, y| subset.is_priority(x, y));
         let e = &cfg.energy;
         let alu_instr = instructions - tex;
@@ -426,10 +423,10 @@ impl RunStats {
         RunStats {
             machine: cfg.name.clone(),
             workload: trace.header().workload.clone(),
-            policy: cfg.scheduler.policy.clone(),
-            launch_rule: cfg.scheduler.launch_rule.clone(),
+            policy: cfg.scheduler.policy.to_string(),
+            launch_rule: cfg.scheduler.launch_rule.to_string(),
             dispatch: cfg.raster.dispatch.to_string(),
-            core_map: cfg.raster.core_map.clone(),
+            core_map: cfg.raster.core_map.to_string(),
             color_flush: cfg.raster.color_flush.to_string(),
             dram_model: cfg.dram.describe(),
             ideal_memory: cfg.memory.ideal,

@@ -3,6 +3,8 @@
 //! and the bounds table (every field at and just above its bound).
 
 use super::*;
+use crate::mem::BlockedOn;
+use wasp_rtl::policy::LaunchRule;
 
 #[test]
 fn lines_and_columns_count_from_one() {
@@ -42,7 +44,7 @@ fn shipped_configs_are_the_papers_machines() {
     assert_eq!(w2.scheduler_cache().0, "l1");
     // The paper's rule: a closed gate holds the priority warp.
     for c in [&p, &w2] {
-        assert_eq!(c.launch_rule(), Ok(LaunchRule::Hold));
+        assert_eq!(c.scheduler.launch_rule, LaunchRule::Hold);
     }
 }
 
@@ -57,7 +59,7 @@ fn launch_rule_is_required_and_parsed() {
     .unwrap_err();
     assert!(e.message.contains("launch_rule"), "{e}");
     let c = with(|s| s.replace("launch_rule = \"hold\"", "launch_rule = \"launch\"")).unwrap();
-    assert_eq!(c.launch_rule(), Ok(LaunchRule::Launch));
+    assert_eq!(c.scheduler.launch_rule, LaunchRule::Launch);
 }
 
 #[test]
@@ -67,12 +69,23 @@ fn round_trips_through_toml() {
     assert_eq!(p, again);
 }
 
+/// The line of the first line of `text` that starts with `start`.
+fn line_of(text: &str, start: &str) -> usize {
+    1 + text
+        .lines()
+        .position(|l| l.starts_with(start))
+        .expect(start)
+}
+
 #[test]
 fn unknown_keys_name_the_key_and_the_line() {
     let e = with(|s| s.replace("max_warps = 64", "max_warps = 64\nmax_wraps = 3")).unwrap_err();
-    assert_eq!(e.source, "test.toml");
-    assert!(e.message.contains("max_wraps"), "{e}");
-    assert!(e.message.contains("line"), "{e}");
+    let line = line_of(PAPER_TOML, "max_warps = 64") + 1;
+    assert_eq!(e.source, format!("test.toml:{line}"));
+    assert!(
+        e.message.starts_with("core.max_wraps: unknown field"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -115,6 +128,16 @@ fn values_out_of_range_name_the_field() {
             "scheduler.launch_rule",
         ),
         (
+            "core_map = \"latin:8\"",
+            "core_map = \"diagonal:8\"",
+            "raster.core_map",
+        ),
+        (
+            "dispatch = \"shared-tile\"",
+            "dispatch = \"per-tile\"",
+            "raster.dispatch",
+        ),
+        (
             "watchdog_cycles = 1000000",
             "watchdog_cycles = 0",
             "sim.watchdog_cycles",
@@ -129,7 +152,21 @@ fn values_out_of_range_name_the_field() {
         assert!(PAPER_TOML.contains(from), "fixture: {from}");
         let e = with(|s| s.replacen(from, to, 1)).unwrap_err();
         assert!(e.message.contains(field), "{to}: {e}");
+        // The line that set it.
+        let key = from.split(' ').next().unwrap();
+        assert_eq!(
+            e.source,
+            format!("test.toml:{}", line_of(PAPER_TOML, key)),
+            "{to}: {e}"
+        );
     }
+    // A text parameter's error names the value and the allowed forms.
+    let e = with(|s| s.replacen("policy = \"wasp:0:3\"", "policy = \"fifo\"", 1)).unwrap_err();
+    assert!(
+        e.message
+            .starts_with("scheduler.policy: unknown policy `fifo` (expected baseline,"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -275,9 +312,12 @@ fn blocked_on_is_required_and_checked() {
     }
     let e = with(|s| s.replacen(line, "blocked_on = \"l2\"", 1)).unwrap_err();
     assert!(
-        e.message.contains("l2") && e.message.contains("l1-miss") && e.message.contains("line"),
+        e.message.contains("scheduler.blocked_on")
+            && e.message.contains("l2")
+            && e.message.contains("l1-miss"),
         "{e}"
     );
+    assert_eq!(e.source, format!("test.toml:{}", line_of(PAPER_TOML, line)));
     let e = with(|s| s.replacen(line, "", 1)).unwrap_err();
     assert!(e.message.contains("blocked_on"), "{e}");
     assert!("l2"

@@ -48,15 +48,14 @@
 //! a warp waiting on shorter misses cannot issue either, but counts as not
 //! blocked.
 
-use crate::config::FilterTiming;
 use crate::gpu::issue::{pick, Picks};
 use crate::gpu::mask::SlotMask;
-use crate::gpu::raster::RasterCursor;
+use crate::gpu::raster_cursor::RasterCursor;
 use crate::gpu::wheel::WakeWheel;
 use crate::mem::{Access, BlockedOn, MemorySystem};
 use crate::trace::{OpKind, Tile, Trace};
 use std::collections::VecDeque;
-use wasp_rtl::free_mshr::{FreeMshrReg, FREE_MSHR_BITS};
+use wasp_rtl::free_mshr::FreeMshrReg;
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
 use wasp_rtl::queue::QueueClass;
@@ -76,9 +75,6 @@ pub use observe::{CoreSnapshot, WarpView};
 pub use params::CoreParams;
 pub use stats::{CoreStats, WarpRecord};
 use warp::{block_warp, Warp};
-
-/// The largest value of the 5-bit free-MSHR register.
-const FREE_MSHR_MAX: u32 = (1 << FREE_MSHR_BITS) - 1;
 
 /// Warp slots a core can have (the slot masks' width). The slot array
 /// always has this many entries, so that indexing it with a slot number
@@ -112,18 +108,9 @@ struct CoreSignals {
 #[derive(Debug)]
 pub struct ShaderCore {
     id: usize,
-    width: u32,
-    alu_latency: u64,
-    texture_latency: u64,
-    /// Filter cycles per quad-sample, [bilinear, trilinear].
-    filter_cycles: [u64; 2],
-    /// The filter pass overlaps the texture latency (else precedes it).
-    filter_overlap: bool,
+    p: CoreParams,
     /// First cycle the filter unit is free.
     filter_free: u64,
-    ldst_cap: usize,
-    raster_rate: u32,
-    rejected_per_slot: u32,
     sched: LaunchScheduler<u32>,
     /// Whether the free-MSHR register follows the cache (policies that
     /// read it).
@@ -131,12 +118,10 @@ pub struct ShaderCore {
     /// Whether the scheduler has a CF meter (`wasp-m`): primary misses of
     /// priority warps are then counted for it.
     measures_cf: bool,
-    /// Which miss blocks a warp.
-    blocked_on: BlockedOn,
     /// Tags reported by the memory system (scratch of phase 2).
     long: Vec<u32>,
     /// Warp slots; a slot holds a warp when its bit in `free_slots` is 0.
-    /// Only the first `n_slots` are used.
+    /// Only the first `p.slots()` are used.
     slots: Box<[Warp; MAX_SLOTS]>,
     /// Per slot, the cycle its warp became blocked (meaningful while the
     /// warp is blocked), apart from the warp like `alu_left`.
@@ -145,15 +130,11 @@ pub struct ShaderCore {
     /// (0: not started), apart from the rest of the warp: the issue stage
     /// counts a run down without touching the warp.
     alu_left: Box<[u32; MAX_SLOTS]>,
-    /// Warp slots of the core.
-    n_slots: usize,
     free_slots: u128,
     /// Warps ready to issue an ALU instruction.
     ready: u128,
     /// Warps ready to issue a texture instruction (to the LDST queue).
     ready_tex: u128,
-    /// Every slot fits in a `u64` mask (the hot loops then use `u64`).
-    narrow: bool,
     /// Wake-ups ([`WakeWheel`]): due ones (the core looks at the warp's
     /// next instruction entry) and ready ones (warps in the middle of an
     /// ALU run join the ready set as a whole mask, with no per-warp look).
@@ -167,8 +148,6 @@ pub struct ShaderCore {
     tile: Option<usize>,
     /// Where its own rasterizer is in the tile (per-core-tile dispatch).
     cursor: RasterCursor,
-    /// The GPU's rasterizer fills the input queue (shared-tile dispatch).
-    external_raster: bool,
     /// Primary misses at the scheduler-level cache since the tile began.
     tile_misses: u64,
     active: u32,
@@ -185,7 +164,7 @@ impl ShaderCore {
     /// A core in its reset state.
     pub fn new(
         id: usize,
-        p: CoreParams,
+        p: &CoreParams,
         policy: &dyn LaunchPolicy,
         rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,
@@ -194,32 +173,22 @@ impl ShaderCore {
         // with more entries than it holds; the register then stays at reset.
         let track_mshrs = policy.reads_free_mshrs();
         let measures_cf = policy.measures_cf();
-        let free = FreeMshrReg::with_capacity(p.sched_mshrs.min(FREE_MSHR_MAX))
-            .expect("capacity clamped to the register");
-        let n = (p.max_warps as usize).min(MAX_SLOTS);
+        let free =
+            FreeMshrReg::with_capacity(p.watched_mshrs).expect("watched MSHRs fit the register");
+        let n = p.slots();
+        debug_assert!(n <= MAX_SLOTS);
+        let queue = p.core.input_queue as usize;
         Self {
             id,
-            width: p.width,
-            alu_latency: p.alu_latency as u64,
-            texture_latency: p.texture_latency as u64,
-            filter_cycles: [
-                u64::from(p.filter_cycles_bilinear),
-                u64::from(p.filter_cycles_trilinear),
-            ],
-            filter_overlap: p.filter_timing == FilterTiming::Overlap,
+            p: *p,
             filter_free: 0,
-            ldst_cap: p.ldst_queue as usize,
-            raster_rate: p.raster_rate,
-            rejected_per_slot: p.rejected_per_slot.max(1),
-            sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy, rule),
+            sched: LaunchScheduler::new(queue, subset, free, policy, rule),
             track_mshrs,
             measures_cf,
-            blocked_on: p.blocked_on,
             long: Vec::new(),
             slots: Box::new([Warp::default(); MAX_SLOTS]),
             alu_left: Box::new([0; MAX_SLOTS]),
             blocked_at: Box::new([0; MAX_SLOTS]),
-            n_slots: n,
             free_slots: if n == 128 {
                 u128::MAX
             } else {
@@ -227,18 +196,16 @@ impl ShaderCore {
             },
             ready: 0,
             ready_tex: 0,
-            narrow: n <= 64,
             wakes: WakeWheel::new(),
             ldst_cur: LdstEntry {
                 slot: 0,
                 next: 0,
                 end: 0,
             },
-            ldst_wait: VecDeque::with_capacity(p.ldst_queue as usize),
+            ldst_wait: VecDeque::with_capacity(p.core.ldst_queue as usize),
             ldst_len: 0,
             tile: None,
             cursor: RasterCursor::default(),
-            external_raster: p.external_raster,
             tile_misses: 0,
             active: 0,
             rr: 0,
@@ -267,7 +234,7 @@ impl ShaderCore {
     /// Give the core tile `index` of the trace, `tile`, to rasterize itself
     /// (per-core-tile dispatch; the core must be idle).
     pub fn assign_tile(&mut self, index: usize, tile: &Tile, now: u64) {
-        debug_assert!(self.tile.is_none() && !self.external_raster);
+        debug_assert!(self.tile.is_none() && !self.p.external_raster);
         self.tile = Some(index);
         self.cursor = RasterCursor::start(tile);
         self.tile_misses = 0;
@@ -277,7 +244,7 @@ impl ShaderCore {
     /// The GPU opens tile `tile` for every core (shared-tile dispatch): its
     /// quads arrive through [`push_quad`](Self::push_quad).
     pub fn begin_shared_tile(&mut self, tile: usize, now: u64) {
-        debug_assert!(self.tile.is_none() && self.external_raster);
+        debug_assert!(self.tile.is_none() && self.p.external_raster);
         self.tile = Some(tile);
         self.cursor = RasterCursor::default();
         self.tile_misses = 0;
@@ -338,7 +305,7 @@ impl ShaderCore {
         };
         let tile = &trace.tiles()[ti];
         self.wakeups(now, tile);
-        if !self.external_raster {
+        if !self.p.external_raster {
             self.raster(tile);
         }
         self.launch(now, tile);
@@ -352,6 +319,12 @@ impl ShaderCore {
         self.last_progress = now;
     }
 
+    /// Every slot fits in a `u64` mask (the hot loops then use `u64`).
+    #[inline]
+    fn narrow(&self) -> bool {
+        self.p.core.max_warps <= 64
+    }
+
     /// Wake warp `slot` at cycle `at` (> the current cycle).
     #[inline]
     fn schedule(&mut self, now: u64, at: u64, slot: usize) {
@@ -359,7 +332,7 @@ impl ShaderCore {
     }
 
     fn wakeups(&mut self, now: u64, tile: &Tile) {
-        if self.narrow {
+        if self.narrow() {
             self.wake_due::<u64>(now, tile);
         } else {
             self.wake_due::<u128>(now, tile);
@@ -435,8 +408,8 @@ impl ShaderCore {
         let sched = &mut self.sched;
         self.cursor.own_cycle(
             tile,
-            self.raster_rate,
-            self.rejected_per_slot,
+            self.p.raster_rate,
+            self.p.rejected_per_slot,
             &mut self.stats.quads_rasterized,
             &mut self.stats.quads_rejected,
             |i, x, y| !sched.queue().is_full() && sched.enqueue(i, x, y).is_ok(),
@@ -499,7 +472,7 @@ impl ShaderCore {
     }
 
     fn issue(&mut self, now: u64, tile: &Tile) {
-        if self.narrow {
+        if self.narrow() {
             self.issue_with::<u64>(now, tile);
         } else {
             self.issue_with::<u128>(now, tile);
@@ -515,7 +488,7 @@ impl ShaderCore {
     /// that looks at them.
     #[inline(always)]
     fn issue_with<M: SlotMask>(&mut self, now: u64, tile: &Tile) {
-        let tex_ok = self.ldst_len < self.ldst_cap;
+        let tex_ok = self.ldst_len < self.p.core.ldst_queue as usize;
         let ready = M::from_wide(self.ready);
         let tex_cand = if tex_ok {
             M::from_wide(self.ready_tex)
@@ -531,7 +504,7 @@ impl ShaderCore {
             tex,
             issued,
             last,
-        } = pick(ready, tex_cand, self.rr, self.width, |s| {
+        } = pick(ready, tex_cand, self.rr, self.p.core.pipeline_width, |s| {
             let left = &mut alu_left[s % MAX_SLOTS];
             *left -= 1;
             *left == 0
@@ -541,7 +514,7 @@ impl ShaderCore {
         if issued == 0 {
             return;
         }
-        self.rr = if last + 1 >= self.n_slots as u32 {
+        self.rr = if last + 1 >= self.p.core.max_warps {
             0
         } else {
             last + 1
@@ -549,7 +522,7 @@ impl ShaderCore {
         self.stats.instructions += u64::from(issued);
         self.progress(now);
         self.ready = (ready & !alu).to_wide();
-        let at = now + self.alu_latency;
+        let at = now + u64::from(self.p.core.alu_latency);
         if WakeWheel::reaches(now, at) {
             // Mid-run warps are ready again at `at`, nothing to decide.
             self.wakes
@@ -600,7 +573,7 @@ impl ShaderCore {
         let blocks = tile.block_accesses();
         // Under first-level the LDST unit blocks warps at their misses; the
         // other rules block in phase 2.
-        let at_access = self.blocked_on == BlockedOn::FirstLevel;
+        let at_access = self.p.blocked_on == BlockedOn::FirstLevel;
         loop {
             let e = &mut self.ldst_cur;
             while e.next < e.end {
@@ -640,7 +613,7 @@ impl ShaderCore {
     /// End of cycle: release the tile when every warp of it has finished
     /// (fill and drain). Returns whether a tile finished.
     pub fn end_cycle(&mut self) -> bool {
-        if self.tile.is_none() || self.external_raster {
+        if self.tile.is_none() || self.p.external_raster {
             return false;
         }
         if self.cursor.done()

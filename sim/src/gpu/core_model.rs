@@ -34,7 +34,7 @@ pub trait CoreModel: Traceable + Sized {
     /// A core in its reset state, its scheduler wired for `policy`.
     fn build(
         id: usize,
-        p: CoreParams,
+        p: &CoreParams,
         policy: &dyn LaunchPolicy,
         rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,
@@ -90,7 +90,7 @@ pub trait CoreModel: Traceable + Sized {
 impl CoreModel for ShaderCore {
     fn build(
         id: usize,
-        p: CoreParams,
+        p: &CoreParams,
         policy: &dyn LaunchPolicy,
         rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,

@@ -19,6 +19,8 @@ use crate::config::{Dispatch, FilterTiming, MachineConfig};
 use crate::mem::BlockedOn;
 use crate::trace::{Instr, Trace, TraceHeader};
 use proptest::prelude::*;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
+use wasp_rtl::subset::SubsetSpec;
 use wasp_waves::VcdSink;
 
 /// Step both GPUs to the end, comparing them after every cycle; then
@@ -106,9 +108,10 @@ fn compare<C: CoreModel, D: CoreModel>(
 /// The whole run's waveform from a GPU of cores `C`.
 fn waveform<C: CoreModel>(cfg: &MachineConfig, trace: &Trace) -> Vec<u8> {
     let mut sink = VcdSink::new(Vec::new(), "gpu");
-    let gpu = Gpu::<C>::build(cfg, trace).expect("valid machine");
-    let counters = gpu.run(Some(&mut sink), None, &mut |_, _| {}).expect("run");
-    sink.finish(counters.cycles).expect("written")
+    let opts = crate::run::RunOptions::default();
+    let run = crate::run::run_on::<C, _>(cfg, trace, &opts, Some(&mut sink), &mut |_, _| {});
+    sink.finish(run.expect("run").stats.cycles)
+        .expect("written")
 }
 
 /// A small machine from the drawn knobs.
@@ -164,9 +167,13 @@ impl Knobs {
         c.l2.hit_latency = 2;
         c.dram.row_hit_latency = 3;
         c.dram.row_miss_latency = 6;
-        c.scheduler.policy = self.policy.into();
-        c.scheduler.launch_rule = if self.launch { "launch" } else { "hold" }.into();
-        c.scheduler.subset = if self.mesh2 { "mesh2" } else { "mesh4" }.into();
+        c.scheduler.policy = self.policy.parse().unwrap();
+        c.scheduler.launch_rule = if self.launch {
+            LaunchRule::Launch
+        } else {
+            LaunchRule::Hold
+        };
+        c.scheduler.subset = SubsetSpec::Mesh(if self.mesh2 { 2 } else { 4 });
         c.scheduler.blocked_on = self.blocked_on;
         c.raster.dispatch = if self.shared {
             Dispatch::SharedTile
@@ -318,7 +325,7 @@ fn fast_and_plain_cores_agree_on_the_shipped_traces() {
                 for blocked_on in BlockedOn::ALL {
                     let mut cfg = MachineConfig::paper();
                     cfg.gpu.tile_size = trace.header().tile;
-                    cfg.scheduler.policy = policy.into();
+                    cfg.scheduler.policy = policy.parse().unwrap();
                     cfg.raster.dispatch = dispatch;
                     cfg.scheduler.blocked_on = blocked_on;
                     cfg.validate().unwrap();
@@ -351,7 +358,7 @@ fn fast_and_plain_cores_agree_on_generated_frames() {
         ] {
             for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
                 let mut cfg = machine.clone();
-                cfg.scheduler.policy = policy.into();
+                cfg.scheduler.policy = policy.parse().unwrap();
                 cfg.raster.dispatch = dispatch;
                 cfg.validate().unwrap();
                 let cycles = lockstep(&cfg, &trace)
@@ -370,7 +377,7 @@ fn fast_and_plain_cores_draw_the_same_waveform() {
     for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
         let mut cfg = MachineConfig::paper();
         cfg.gpu.tile_size = trace.header().tile;
-        cfg.scheduler.policy = "wasp-m:0".into();
+        cfg.scheduler.policy = PolicySpec::WaspMeasured { threshold: 0 };
         cfg.raster.dispatch = dispatch;
         cfg.validate().unwrap();
         let a = waveform::<ShaderCore>(&cfg, &trace);
@@ -400,7 +407,7 @@ fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
             for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
                 let mut cfg = MachineConfig::paper();
                 cfg.gpu.tile_size = trace.header().tile;
-                cfg.scheduler.policy = policy.into();
+                cfg.scheduler.policy = policy.parse().unwrap();
                 cfg.raster.dispatch = dispatch;
                 cfg.validate().unwrap();
                 let cycles = lockstep(&cfg, &trace)

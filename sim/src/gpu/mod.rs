@@ -6,7 +6,8 @@
 //!
 //! * **shared-tile** (the paper's machine, `gpu/raster.rs`): one tile at a
 //!   time for the whole GPU; one rasterizer places each surviving quad in
-//!   the input queue of the core its position names ([`CoreMap`]); no warp
+//!   the input queue of the core its position names
+//!   ([`CoreMap`](crate::config::CoreMap)); no warp
 //!   of the next tile launches until every warp of this one has retired on
 //!   every core; then the colour buffer is flushed.
 //! * **per-core-tile**: each idle core takes the next tile, lowest core
@@ -17,30 +18,27 @@
 //! rendered, every colour buffer flushed and the memory system is idle.
 
 mod core;
-mod core_map;
 mod core_model;
 mod issue;
 #[cfg(test)]
 mod lockstep;
 mod mask;
 mod raster;
+mod raster_cursor;
 mod tiles;
 mod wheel;
 
 pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
-pub use self::core_map::{CoreMap, CoreMapTable};
 pub use self::core_model::CoreModel;
 pub use self::raster::{RasterStats, SharedRaster};
 pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
-use crate::config::{Dispatch, MachineConfig};
+use crate::config::MachineConfig;
 use crate::mem::MemStats;
 use crate::mem::MemorySystem;
 use crate::timeline::{Timeline, TimelineSample};
 use crate::trace::Trace;
 use std::fmt;
-use wasp_rtl::policy::{LaunchRule, PolicySpec};
-use wasp_rtl::subset::SubsetSpec;
 use wasp_rtl::RegisterFault;
 use wasp_waves::{CycleSink, NullTracer, Tracer};
 
@@ -120,51 +118,6 @@ pub struct RunCounters {
     pub instruments: RunInstruments,
 }
 
-/// Options of one run beyond the machine configuration.
-#[derive(Clone, Debug, Default)]
-pub struct RunOptions {
-    /// Override `scheduler.policy`.
-    pub policy: Option<PolicySpec>,
-    /// Override `scheduler.launch_rule`.
-    pub launch_rule: Option<LaunchRule>,
-    /// Override `scheduler.subset`.
-    pub subset: Option<SubsetSpec>,
-    /// Override `memory.ideal`.
-    pub ideal_memory: Option<bool>,
-    /// Sample the waveform only in `from..=to`.
-    pub vcd_window: Option<(u64, u64)>,
-    /// Record every warp (see [`WarpRecord`]).
-    pub record_warps: bool,
-    /// Override `raster.dispatch`.
-    pub dispatch: Option<Dispatch>,
-    /// Record a [`Timeline`] of the cycles `from..=to`.
-    pub timeline: Option<(u64, u64)>,
-}
-
-impl RunOptions {
-    /// The configuration with the overrides applied, validated.
-    pub fn apply(&self, cfg: &MachineConfig) -> Result<MachineConfig, SimError> {
-        let mut c = cfg.clone();
-        if let Some(p) = self.policy {
-            c.scheduler.policy = p.to_string();
-        }
-        if let Some(r) = self.launch_rule {
-            c.scheduler.launch_rule = r.to_string();
-        }
-        if let Some(s) = &self.subset {
-            c.scheduler.subset = s.to_string();
-        }
-        if let Some(i) = self.ideal_memory {
-            c.memory.ideal = i;
-        }
-        if let Some(d) = self.dispatch {
-            c.raster.dispatch = d;
-        }
-        c.validate().map_err(SimError::Config)?;
-        Ok(c)
-    }
-}
-
 /// Who feeds the cores.
 enum Dispatcher {
     /// Each idle core takes the next tile.
@@ -210,41 +163,25 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 cfg.gpu.tile_size
             )));
         }
-        let policy = cfg.policy().map_err(SimError::Config)?;
-        let subset = cfg.subset().map_err(SimError::Config)?;
-        let rule = cfg.launch_rule().map_err(SimError::Config)?;
-        let (_, sc) = cfg.scheduler_cache();
-        let shared = cfg.raster.dispatch == Dispatch::SharedTile;
-        let params = CoreParams {
-            width: cfg.core.pipeline_width,
-            max_warps: cfg.core.max_warps,
-            input_queue: cfg.core.input_queue,
-            raster_rate: cfg.raster.quads_per_cycle / cfg.gpu.cores,
-            rejected_per_slot: cfg.raster.rejected_per_slot,
-            external_raster: shared,
-            alu_latency: cfg.core.alu_latency,
-            texture_latency: cfg.core.texture_latency,
-            filter_cycles_bilinear: cfg.core.filter_cycles_bilinear,
-            filter_cycles_trilinear: cfg.core.filter_cycles_trilinear,
-            filter_timing: cfg.core.filter_timing,
-            ldst_queue: cfg.core.ldst_queue,
-            sched_mshrs: sc.mshrs,
-            blocked_on: cfg.scheduler.blocked_on,
-        };
         let side = cfg.quads_per_side();
-        let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);
-        let wiring = policy.build(sc.mshrs.min(31)).map_err(SimError::Config)?;
-        for id in 0..cfg.gpu.cores as usize {
-            let core = C::build(id, params, wiring.as_ref(), rule, subset.build(side));
-            cores.push(core);
-        }
+        let params = CoreParams::new(cfg);
+        let sched = &cfg.scheduler;
+        let wiring = sched
+            .policy
+            .build(params.watched_mshrs)
+            .map_err(SimError::Config)?;
+        let cores = (0..cfg.gpu.cores as usize)
+            .map(|id| {
+                let subset = sched.subset.build(side);
+                C::build(id, &params, wiring.as_ref(), sched.launch_rule, subset)
+            })
+            .collect();
         let mem =
             MemorySystem::new(&cfg.mem_config()).map_err(|e| SimError::Config(e.to_string()))?;
-        let (dispatch, trackers) = if shared {
-            let map = cfg.core_map().map_err(SimError::Config)?;
+        let (dispatch, trackers) = if params.external_raster {
             let raster = SharedRaster::new(
                 cfg.raster.quads_per_cycle,
-                map.table(side, cfg.gpu.cores),
+                cfg.raster.core_map.table(side, cfg.gpu.cores),
                 cfg.raster.color_flush,
             )
             .with_rejected_per_slot(cfg.raster.rejected_per_slot);
@@ -519,34 +456,6 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             t.pop_scope();
         }
         self.mem.trace_shared(t);
-    }
-
-    /// Run to the end and return the counters. `progress` is called every
-    /// few thousand cycles with (tiles done, tiles total).
-    pub fn run<S: CycleSink>(
-        mut self,
-        mut sink: Option<&mut S>,
-        window: Option<(u64, u64)>,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Result<RunCounters, SimError> {
-        let total = self.trace.tiles().len();
-        while !self.done() {
-            let next = self.now + 1;
-            let sample = match window {
-                Some((from, to)) => next >= from && next <= to,
-                None => true,
-            };
-            if sample && sink.is_some() {
-                self.step_traced(sink.as_deref_mut())?;
-            } else {
-                self.step()?;
-            }
-            if self.now.is_multiple_of(4096) {
-                progress(self.tiles_done, total);
-            }
-        }
-        progress(self.tiles_done, total);
-        self.finish()
     }
 
     /// Record every warp from now on.

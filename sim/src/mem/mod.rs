@@ -119,7 +119,6 @@ pub mod stats;
 pub use cache::{Cache, Lookup};
 pub use config::{
     BlockedOn, CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
-    FREE_MSHR_REGISTER_MAX,
 };
 pub use hierarchy::{Access, MemorySystem, MshrFileView, SchedCacheMshrs};
 pub use mshr::MSHR_HOLD_CYCLES;

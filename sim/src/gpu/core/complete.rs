@@ -3,6 +3,7 @@
 //! filter unit, and the scheduler's clock edge.
 
 use super::{block_warp, ShaderCore, MAX_SLOTS};
+use crate::config::FilterTiming;
 use crate::gpu::SimError;
 use crate::mem::{BlockedOn, MemorySystem};
 use wasp_rtl::free_mshr::MshrEvents;
@@ -17,7 +18,7 @@ impl ShaderCore {
         mem: &mut MemorySystem,
         scratch: &mut Vec<u32>,
     ) -> Result<(), SimError> {
-        if self.blocked_on != BlockedOn::FirstLevel {
+        if self.p.blocked_on != BlockedOn::FirstLevel {
             self.block_long_latency(now, mem)?;
         }
         scratch.clear();
@@ -47,13 +48,13 @@ impl ShaderCore {
                 }
                 // The filter unit serves the instructions in order of data
                 // arrival (completion order within a cycle).
-                let f = self.filter_cycles[w.tex_tri as usize];
+                let f = u64::from(self.p.core.filter_cycles(w.tex_tri));
                 let start = now.max(self.filter_free);
                 self.filter_free = start + f;
                 self.stats.filter_busy_cycles += f;
                 self.stats.filter_wait_cycles += start - now;
-                let lat = self.texture_latency.max(1);
-                let at = if self.filter_overlap {
+                let lat = u64::from(self.p.core.texture_latency.max(1));
+                let at = if self.p.core.filter_timing == FilterTiming::Overlap {
                     (start + f).max(now + lat)
                 } else {
                     start + f + lat
@@ -133,8 +134,9 @@ mod tests {
     //! the texture latency.
     use crate::config::MachineConfig;
     use crate::gpu::core::testkit::{cfg, trace, OVERLAP, SERIAL};
-    use crate::gpu::{Gpu, RunOptions};
+    use crate::gpu::Gpu;
     use crate::run::simulate;
+    use crate::run::RunOptions;
     use crate::stats::RunStats;
     use crate::trace::{Instr, Trace};
 

@@ -63,7 +63,7 @@ pub struct CoreSnapshot {
 impl ShaderCore {
     /// Read the core's observable state (see [`CoreSnapshot`]).
     pub fn snapshot(&self) -> CoreSnapshot {
-        let warps = (0..self.n_slots)
+        let warps = (0..self.p.slots())
             .filter(|&s| self.free_slots & (1 << s) == 0)
             .map(|s| {
                 let w = &self.slots[s];
@@ -93,7 +93,7 @@ impl ShaderCore {
             tracks_free_mshrs: self.track_mshrs,
             nonblocked: self.sched.nonblocked().count().get(),
             active: self.active,
-            slots: self.n_slots,
+            slots: self.p.slots(),
             warps,
             ldst: self.ldst_len,
         }
@@ -105,21 +105,21 @@ impl ShaderCore {
         CoreView {
             id: self.id,
             sched: &self.sched,
-            slots: self.n_slots,
+            slots: self.p.slots(),
             active: self.active,
             ready: (self.ready | self.ready_tex).count_ones(),
-            ldst_cap: self.ldst_cap,
+            ldst_cap: self.p.core.ldst_queue as usize,
             ldst_len: self.ldst_len,
             signals: &self.signals,
             tile: self.tile,
-            external_raster: self.external_raster,
+            external_raster: self.p.external_raster,
             rasterized: self.cursor.next,
         }
     }
 
     /// A description of the core's state (for the watchdog).
     pub fn describe(&self, trace: &Trace) -> String {
-        let blocked = (0..self.n_slots)
+        let blocked = (0..self.p.slots())
             .filter(|&s| self.free_slots & (1u128 << s) == 0 && self.slots[s].blocked)
             .count();
         self.view().describe(trace, blocked)

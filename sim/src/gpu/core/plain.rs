@@ -29,12 +29,12 @@ use super::observe::CoreView;
 use super::{CoreParams, CoreSignals, CoreSnapshot, CoreStats, WarpRecord, WarpView};
 use crate::config::FilterTiming;
 use crate::gpu::core_model::CoreModel;
-use crate::gpu::raster::RasterCursor;
+use crate::gpu::raster_cursor::RasterCursor;
 use crate::gpu::SimError;
 use crate::mem::{Access, BlockedOn, MemorySystem};
 use crate::trace::{OpKind, Tile, Trace};
 use std::collections::VecDeque;
-use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
+use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
 use wasp_rtl::queue::QueueClass;
@@ -243,11 +243,11 @@ impl PlainCore {
 
     fn issue(&mut self, now: u64) {
         let n = self.warps.len();
-        let mut tex_room = self.ldst.len() < self.p.ldst_queue as usize;
+        let mut tex_room = self.ldst.len() < self.p.core.ldst_queue as usize;
         let mut issued = 0;
         let mut last = None;
         for k in 0..n {
-            if issued == self.p.width {
+            if issued == self.p.core.pipeline_width {
                 break;
             }
             let s = (self.rr + k) % n;
@@ -257,7 +257,7 @@ impl PlainCore {
             match w.state {
                 State::ReadyAlu => {
                     w.alu_left -= 1;
-                    w.state = State::Asleep(now + u64::from(self.p.alu_latency));
+                    w.state = State::Asleep(now + u64::from(self.p.core.alu_latency));
                 }
                 State::ReadyTex if tex_room => {
                     tex_room = false;
@@ -329,13 +329,13 @@ impl PlainCore {
     /// unit, in order of arrival, then the texture latency.
     fn data_arrived(&mut self, slot: usize, now: u64) {
         let (overlap, latency) = (
-            self.p.filter_timing == FilterTiming::Overlap,
-            u64::from(self.p.texture_latency.max(1)),
+            self.p.core.filter_timing == FilterTiming::Overlap,
+            u64::from(self.p.core.texture_latency.max(1)),
         );
         let f = u64::from(if self.warp(slot).tex_tri {
-            self.p.filter_cycles_trilinear
+            self.p.core.filter_cycles_trilinear
         } else {
-            self.p.filter_cycles_bilinear
+            self.p.core.filter_cycles_bilinear
         });
         let start = now.max(self.filter_free);
         self.filter_free = start + f;
@@ -371,7 +371,7 @@ impl PlainCore {
                 .flatten()
                 .filter(|w| matches!(w.state, State::ReadyAlu | State::ReadyTex))
                 .count() as u32,
-            ldst_cap: self.p.ldst_queue as usize,
+            ldst_cap: self.p.core.ldst_queue as usize,
             ldst_len: self.ldst.len(),
             signals: &self.signals,
             tile: self.tile,
@@ -384,18 +384,18 @@ impl PlainCore {
 impl CoreModel for PlainCore {
     fn build(
         id: usize,
-        p: CoreParams,
+        p: &CoreParams,
         policy: &dyn LaunchPolicy,
         rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,
     ) -> Self {
-        let largest = (1 << FREE_MSHR_BITS) - 1;
-        let free = FreeMshrReg::with_capacity(p.sched_mshrs.min(largest)).expect("clamped");
-        let slots = p.max_warps.min(128) as usize;
+        let free = FreeMshrReg::with_capacity(p.watched_mshrs).expect("fits the register");
+        let slots = p.core.max_warps as usize;
+        let queue = p.core.input_queue as usize;
         Self {
             id,
-            p,
-            sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy, rule),
+            p: *p,
+            sched: LaunchScheduler::new(queue, subset, free, policy, rule),
             track_mshrs: policy.reads_free_mshrs(),
             measures_cf: policy.measures_cf(),
             warps: vec![None; slots],
@@ -481,7 +481,7 @@ impl CoreModel for PlainCore {
             self.cursor.own_cycle(
                 tile,
                 self.p.raster_rate,
-                self.p.rejected_per_slot.max(1),
+                self.p.rejected_per_slot,
                 &mut self.stats.quads_rasterized,
                 &mut self.stats.quads_rejected,
                 |i, x, y| sched.enqueue(i, x, y).is_ok(),

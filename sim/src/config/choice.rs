@@ -1,0 +1,96 @@
+//! The named choices of the machine configuration: how tiles reach the
+//! cores, how the filter and the texture latency add up, what happens to
+//! the colour buffer after a tile.
+
+use serde::{Deserialize, Serialize};
+
+/// How the tiles of a frame reach the cores.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Dispatch {
+    /// The paper's machine: one tile at a time for the whole GPU, one
+    /// rasterizer and Early-Z stage, each surviving quad sent to the core
+    /// its screen position names, a barrier between tiles.
+    SharedTile,
+    /// Each core takes a whole tile of its own when it is idle and
+    /// rasterizes it with its own rasterizer (tiles run out of phase).
+    PerCoreTile,
+}
+
+impl std::fmt::Display for Dispatch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Dispatch::SharedTile => "shared-tile",
+            Dispatch::PerCoreTile => "per-core-tile",
+        })
+    }
+}
+
+impl std::str::FromStr for Dispatch {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "shared-tile" => Ok(Dispatch::SharedTile),
+            "per-core-tile" => Ok(Dispatch::PerCoreTile),
+            _ => Err(format!(
+                "unknown dispatch `{s}` (expected shared-tile or per-core-tile)"
+            )),
+        }
+    }
+}
+
+/// How a texture instruction's filter pass and the texture unit's
+/// pipeline latency (`core.texture_latency`) add up. The core has one
+/// filter unit, which serves texture instructions in the order their last
+/// block arrives: an instruction whose data arrives at cycle `a` starts
+/// filtering at `s = max(a, filter free)` and holds the filter for its
+/// `f` filter cycles (bilinear or trilinear), so the filter is free again
+/// at `s + f`. With `L = max(texture_latency, 1)` the warp wakes at:
+///
+/// * `overlap`: `max(s + f, a + L)`: the filter pass is part of the
+///   pipeline latency, so an idle filter adds nothing until `f > L`; only a
+///   busy filter (queueing) or a long pass delays the warp;
+/// * `serial`: `s + f + L`: the latency comes after the filter pass.
+///
+/// With both filter cycles 0 the two are the same: `a + L`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FilterTiming {
+    /// `max(s + f, a + L)` (wasp).
+    Overlap,
+    /// `s + f + L`.
+    Serial,
+}
+
+impl std::fmt::Display for FilterTiming {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            FilterTiming::Overlap => "overlap",
+            FilterTiming::Serial => "serial",
+        })
+    }
+}
+
+/// What happens to the colour buffer when a tile has retired.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ColorFlush {
+    /// Double-buffered colour buffer: the tile's lines are written to main
+    /// memory while the next tile renders.
+    Overlap,
+    /// One colour buffer: the next tile starts when the last line of the
+    /// flush has entered main memory.
+    Blocking,
+    /// No flush traffic (the model before the flush existed; for studies).
+    None,
+}
+
+impl std::fmt::Display for ColorFlush {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            ColorFlush::Overlap => "overlap",
+            ColorFlush::Blocking => "blocking",
+            ColorFlush::None => "none",
+        })
+    }
+}
