@@ -2,8 +2,10 @@
 # The crates' layering holds (README, "A tour"): rtl, waves and trace at
 # the bottom; the cycle model (wasp-sim) on them with no image or archive
 # crate; the front end (wasp-frontend) on trace and rtl, never the model;
-# the properties (wasp-props) on the model, never the front end. Run by
-# .ci/run; fails naming the crate and the dependency that breaks it.
+# the properties (wasp-props) on the model, never the front end; and no
+# import cycle between the modules of a crate (scripts/import-cycles.py).
+# Run by .ci/run; fails naming the crate and the dependency (or the cycle
+# and the lines that make it) that breaks it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 deps() { cargo tree --locked -p "$1" -e normal --prefix none | awk '{print $1}' | sort -u; }
@@ -25,5 +27,9 @@ forbid wasp-rtl wasp-trace wasp-sim wasp-frontend wasp-props
 forbid wasp-sim wasp-frontend wasp-props image zip flate2 roxmltree
 forbid wasp-frontend wasp-sim wasp-props
 forbid wasp-props wasp-frontend image zip flate2 roxmltree
+# Inside every crate, no import cycle between modules (siblings at any
+# depth), and the check itself finds the cycles it plants in a test crate.
+python3 scripts/import-cycles.py --self-test || fail=1
+python3 scripts/import-cycles.py || fail=1
 [ "$fail" = 0 ] || exit 1
 echo "layering: rtl, waves, trace < sim, frontend < wasp; props on sim and rtl" >&2
