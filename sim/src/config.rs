@@ -1,12 +1,15 @@
-//! The machine configuration: one TOML file describes the whole GPU.
+//! The machine configuration: one TOML file describes the whole GPU, or
+//! the fields in which it differs from a shipped machine.
 //!
 //! `configs/paper.toml` (embedded as [`MachineConfig::paper`]) holds the
 //! paper's Table II with its best baseline (pipeline width 4, 64 warps, L0
 //! present); `configs/paper-width2.toml` the width-2 machine (no L0, the
 //! scheduler watches the L1's MSHRs). Every field is documented in those
-//! files. Unknown keys are errors, and [`MachineConfig::validate`] refuses
-//! every value the model or the scheduler's registers cannot hold, naming
-//! the field and the limit.
+//! files and declared once, with its bound, in `config/sections.rs`. A
+//! file that sets only some fields is read on top of a base machine
+//! ([`file`]). Unknown keys are errors, and [`MachineConfig::validate`]
+//! refuses every value the model or the scheduler's registers cannot hold,
+//! naming the field and the limit.
 
 use crate::mem::{CacheConfig, DramConfig, MemConfig};
 use serde::{Deserialize, Serialize};
@@ -17,11 +20,10 @@ use wasp_rtl::nonblocked::NONBLOCKED_BITS;
 
 mod choice;
 mod core_map;
-mod file;
+pub mod file;
 mod sections;
 pub use choice::{ColorFlush, Dispatch, FilterTiming};
 pub use core_map::{CoreMap, CoreMapTable};
-use file::ConfigFile;
 pub use sections::{
     limits, CoreConfig, EnergyConfig, GpuConfig, MemoryConfig, RasterConfig, SchedulerConfig,
     SimConfig,
@@ -31,6 +33,9 @@ pub use sections::{
 pub const PAPER_TOML: &str = include_str!("../../configs/paper.toml");
 /// The width-2 machine, as shipped in `configs/paper-width2.toml`.
 pub const PAPER_WIDTH2_TOML: &str = include_str!("../../configs/paper-width2.toml");
+
+/// The shipped machines, by the name a file's `extends` gives them.
+pub const SHIPPED: [(&str, &str); 2] = [("paper", PAPER_TOML), ("paper-width2", PAPER_WIDTH2_TOML)];
 
 /// The whole machine.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -72,17 +77,6 @@ pub struct ConfigError {
     pub message: String,
 }
 
-/// The 1-based line and byte column of byte `at` of `bytes`.
-fn line_and_column(bytes: &[u8], at: usize) -> (usize, usize) {
-    let before = &bytes[..at];
-    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
-    let start = before
-        .iter()
-        .rposition(|&b| b == b'\n')
-        .map_or(0, |i| i + 1);
-    (line, at - start + 1)
-}
-
 impl fmt::Display for ConfigError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}: {}", self.source, self.message)
@@ -103,37 +97,21 @@ impl MachineConfig {
             .expect("shipped config is valid")
     }
 
-    /// Read and validate a TOML file. A file that is not UTF-8 is named with
-    /// the line and byte column of its first invalid byte.
+    /// Read and validate a TOML file: a whole machine, or a patch onto
+    /// the machine its `extends` names (a shipped machine, `paper` or
+    /// `paper-width2`, or a file, relative to this one), by default the
+    /// paper's (see [`file`] and docs/model.md). A file that is not UTF-8
+    /// is named with the line and byte column of its first invalid byte.
     pub fn load(path: &Path) -> Result<Self, ConfigError> {
-        let source = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| ConfigError {
-            source: source.clone(),
-            message: format!("cannot read: {e}"),
-        })?;
-        let text = std::str::from_utf8(&bytes).map_err(|e| {
-            let at = e.valid_up_to();
-            let (line, column) = line_and_column(&bytes, at);
-            ConfigError {
-                source: format!("{source}:{line}:{column}"),
-                message: format!(
-                    "byte 0x{:02x} is not UTF-8 (line {line}, byte column {column}); a \
-                     configuration is UTF-8 TOML text",
-                    bytes[at]
-                ),
-            }
-        })?;
-        Self::parse(text, &source)
+        file::load(path, 0)
     }
 
-    /// Parse and validate TOML text; `source` names it in errors, with
-    /// the line of the key an error is about (`file.toml:12`).
+    /// Parse and validate TOML text as [`load`](Self::load) reads a file
+    /// (an `extends` path is relative to the working directory); `source`
+    /// names it in errors, with the line of the key an error is about
+    /// (`file.toml:12`).
     pub fn parse(text: &str, source: &str) -> Result<Self, ConfigError> {
-        let file = ConfigFile::parse(text, source)?;
-        let cfg = MachineConfig::deserialize(toml::Value::Table(file.table.clone()))
-            .map_err(|e| file.deserialize_error(e))?;
-        cfg.validate().map_err(|m| file.error(m))?;
-        Ok(cfg)
+        file::read(text, source, None, 0)
     }
 
     /// The configuration as TOML (what `--config` reads back).
