@@ -9,9 +9,9 @@ use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
 use wasp_waves::Tracer;
 
-mod observe;
 #[cfg(test)]
-mod plain;
+mod lockstep;
+mod observe;
 pub use observe::MshrFileView;
 
 /// What happened to one access presented by a core.
@@ -407,109 +407,157 @@ impl MemorySystem {
         }
     }
 
-    /// Advance everything by cycle `now`, after that cycle's accesses: the L1s
-    /// take L0 requests, the L2 takes L1 requests (round robin over cores),
-    /// the DRAM accepts requests, then replies due at `now` fill the L2, the
-    /// L1s and the L0s in that order, and tags completing at `now` become
-    /// available to [`take_completions`](Self::take_completions). (An L1
-    /// hit whose reply is due at `now` with no earlier reply queued for its
-    /// L0 fills the L0 as soon as it is found: no L0 access happens within a
-    /// tick and the L0's fills keep their order, so nothing can tell.)
+    /// Advance everything by cycle `now`, after that cycle's accesses, in
+    /// five steps:
+    /// 1. [`requests_to_l1`](Self::requests_to_l1): the L1s take L0
+    ///    requests;
+    /// 2. [`requests_to_l2`](Self::requests_to_l2): the L2 takes L1
+    ///    requests, round robin over cores;
+    /// 3. [`dram_to_l2`](Self::dram_to_l2): the DRAM accepts requests and
+    ///    its replies due at `now` fill the L2;
+    /// 4. [`l2_to_l1`](Self::l2_to_l1): L2 replies due at `now` fill the
+    ///    L1s;
+    /// 5. [`l1_to_l0`](Self::l1_to_l0): L1 replies due at `now` fill the
+    ///    L0s, and tags completing at `now` become available to
+    ///    [`take_completions`](Self::take_completions).
     pub fn tick(&mut self, now: u64) {
+        self.tick_steps::<true>(now);
+    }
+
+    /// [`tick`](Self::tick) without its shortcuts: the plain reference the
+    /// lockstep tests (`hierarchy/lockstep.rs`) compare it with.
+    #[cfg(test)]
+    pub(crate) fn tick_plain(&mut self, now: u64) {
+        self.tick_steps::<false>(now);
+    }
+
+    /// The five steps of a tick. With `SHORTCUTS` (the fast form) a step
+    /// skips what cannot change anything, which the plain form
+    /// (`SHORTCUTS` false) does not:
+    /// - a quiet core (no MSHR occupied, nothing queued or completing) is
+    ///   left out of steps 1 and 5 (it stays quiet through the tick: an L2
+    ///   reply only goes to a core with an L1 MSHR entry pending);
+    /// - the L2's candidates are found while step 1 visits the cores,
+    ///   instead of by a scan from core `now % cores`;
+    /// - an L1 hit due at `now` with no earlier reply queued for its L0
+    ///   fills the L0 at once (no L0 access happens within a tick and the
+    ///   L0's fills keep their order, so nothing can tell);
+    /// - step 5 is skipped when no core has a reply or a tag queued.
+    #[inline(always)]
+    fn tick_steps<const SHORTCUTS: bool>(&mut self, now: u64) {
         debug_assert!(now >= self.now, "tick in a past cycle");
         self.now = now;
         self.ticks += 1;
         self.ticked_until = now + 1;
-        let has_l0 = self.cfg.l0.is_some();
+        let queued = self.requests_to_l1::<SHORTCUTS>(now);
+        self.requests_to_l2(now);
+        self.dram_to_l2(now);
+        let filled = self.l2_to_l1(now);
+        if !SHORTCUTS || queued || filled {
+            self.l1_to_l0::<SHORTCUTS>(now);
+        }
+    }
+
+    /// Step 1: every core's MSHR occupancy made current, and its L0
+    /// misses presented to its L1 in order until the L1 refuses one (the
+    /// cores' private levels are independent). Cores whose L2 request is
+    /// ready become the candidates of step 2, in `l2_order`, round robin
+    /// from core `now % cores`. Returns whether some core has an L1 reply
+    /// or a tag completing queued.
+    #[inline(always)]
+    fn requests_to_l1<const SHORTCUTS: bool>(&mut self, now: u64) -> bool {
         let n = self.cores.len();
         let track = self.track;
-
-        // L0 -> L1 requests, over the cores (their private levels are
-        // independent). A quiet core (no MSHR occupied,
-        // nothing queued or completing) has nothing to do this cycle and is
-        // skipped; it stays quiet through the tick (an L2 reply only goes to
-        // a core with an L1 MSHR entry pending), so `active` serves the
-        // whole tick. Cores whose L2 request is ready are the arbitration's
-        // candidates, kept in `l2_order` in round-robin order from core
-        // `now % cores`.
         let first = (now % n as u64) as usize;
         self.l2_order.clear();
         // Candidates before core `first` in index order, moved behind the
         // others at the end.
         let mut wrapped = 0;
-        // Some core has an L1 reply or a tag completing still queued.
-        let mut late = false;
+        let mut queued = false;
         // An L1 hit of this tick is due at `l1_reply`, now when `l1_direct`.
         let l1_reply = now + u64::from(self.cfg.l1.hit_latency) - 1;
-        let l1_direct = l1_reply <= now;
+        let l1_direct = SHORTCUTS && l1_reply <= now;
         for (k, c) in self.cores.iter_mut().enumerate() {
-            c.active = !c.is_quiet();
-            if c.active {
-                // Only the MSHR occupancy must be current for the readers;
-                // the per-cycle values move to `now` with the first access
-                // or fill of the cycle (readers check the cycle they
-                // describe, and read zero before it).
-                c.l1.release(now);
-                if let Some(l0) = c.l0.as_mut() {
-                    l0.release(now);
-                    while let Some(&r) = c.to_l1.front() {
-                        if r.ready > now {
-                            break;
-                        }
-                        // The L1's target is the L0 entry to fill.
-                        match c.l1.access_entry(now, r.block, r.entry) {
-                            // Due now with nothing ahead of it in `to_l0`:
-                            // fill the L0 at once, in the same order as
-                            // through the queue.
-                            (Lookup::Hit, _) if l1_direct && c.to_l0.is_empty() => {
-                                fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
-                            }
-                            (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
-                                at: l1_reply,
-                                entry: r.entry,
-                            }),
-                            (Lookup::Miss, entry) => {
-                                c.to_l2.push_back(Request {
-                                    ready: now + 1,
-                                    block: r.block,
-                                    entry,
-                                });
-                                match track {
-                                    Track::Nothing => {}
-                                    Track::L1 => mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry),
-                                    Track::L2 => c.l1_long[entry as usize] = false,
-                                }
-                            }
-                            (Lookup::Secondary, entry) => {
-                                if track == Track::L1
-                                    || (track == Track::L2 && c.l1_long[entry as usize])
-                                {
-                                    mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry);
-                                }
-                            }
-                            (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
-                        }
-                        c.to_l1.drop_front();
-                    }
-                }
-                if c.to_l2.front().is_some_and(|r| r.ready <= now) {
-                    self.l2_order.push(k as u32);
-                    if k < first {
-                        wrapped += 1;
-                    }
-                }
-                late |= !c.to_l0.is_empty() | !c.completing.is_empty();
+            c.active = !SHORTCUTS || !c.is_quiet();
+            if !c.active {
+                continue;
             }
+            // Only the MSHR occupancy must be current for the readers; the
+            // per-cycle values move to `now` with the first access or fill
+            // of the cycle (readers check the cycle they describe, and read
+            // zero before it).
+            c.l1.release(now);
+            if let Some(l0) = c.l0.as_mut() {
+                l0.release(now);
+                while let Some(&r) = c.to_l1.front() {
+                    if r.ready > now {
+                        break;
+                    }
+                    // The L1's target is the L0 entry to fill.
+                    match c.l1.access_entry(now, r.block, r.entry) {
+                        // Due now with nothing ahead of it in `to_l0`: fill
+                        // the L0 at once, in the same order as through the
+                        // queue.
+                        (Lookup::Hit, _) if l1_direct && c.to_l0.is_empty() => {
+                            fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
+                        }
+                        (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
+                            at: l1_reply,
+                            entry: r.entry,
+                        }),
+                        (Lookup::Miss, entry) => {
+                            c.to_l2.push_back(Request {
+                                ready: now + 1,
+                                block: r.block,
+                                entry,
+                            });
+                            match track {
+                                Track::Nothing => {}
+                                Track::L1 => mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry),
+                                Track::L2 => c.l1_long[entry as usize] = false,
+                            }
+                        }
+                        (Lookup::Secondary, entry) => {
+                            if track == Track::L1
+                                || (track == Track::L2 && c.l1_long[entry as usize])
+                            {
+                                mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry);
+                            }
+                        }
+                        (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
+                    }
+                    c.to_l1.drop_front();
+                }
+            }
+            if SHORTCUTS && c.to_l2.front().is_some_and(|r| r.ready <= now) {
+                self.l2_order.push(k as u32);
+                if k < first {
+                    wrapped += 1;
+                }
+            }
+            queued |= !c.to_l0.is_empty() | !c.completing.is_empty();
         }
-        if wrapped > 0 {
+        if !SHORTCUTS {
+            let ready = |c: &CoreMem| c.to_l2.front().is_some_and(|r| r.ready <= now);
+            let cores = &self.cores;
+            let order = (first..n).chain(0..first);
+            self.l2_order
+                .extend(order.filter(|&k| ready(&cores[k])).map(|k| k as u32));
+        } else if wrapped > 0 {
             self.l2_order.rotate_left(wrapped);
         }
+        queued
+    }
 
-        // L1 -> L2 requests, round robin over cores (core `now % cores` first,
-        // so the order does not depend on which cycles were ticked), one head
-        // per core per round, until the L2's ports are used or no head can go.
-        // A core leaves the rounds when the L2 refuses its head (MSHRs full
-        // or merge full) or its next head is not ready.
+    /// Step 2: L1 misses to the L2, in rounds over the candidates (core
+    /// `now % cores` first, so the order does not depend on which cycles
+    /// were ticked), one ready head per core per round, until the L2's
+    /// ports are used or no head can go. A core leaves the rounds when the
+    /// L2 refuses its head (MSHRs full or merge full) or its next head is
+    /// not ready.
+    #[inline(always)]
+    fn requests_to_l2(&mut self, now: u64) {
+        let track = self.track;
         let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
         'arbitrate: while !self.l2_order.is_empty() {
             let mut kept = 0;
@@ -547,8 +595,13 @@ impl MemorySystem {
             }
             self.l2_order.truncate(kept);
         }
+    }
 
-        // Main memory: accept, then fill the L2 with the replies due now.
+    /// Step 3: main memory accepts requests, and its replies due at `now`
+    /// fill the L2; their targets travel on to the L1s.
+    #[inline(always)]
+    fn dram_to_l2(&mut self, now: u64) {
+        let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
         self.dram.accept(now);
         while let Some(entry) = self.dram.pop_reply(now) {
             let block = self.l2.pending_block(entry);
@@ -562,15 +615,21 @@ impl MemorySystem {
         }
         // Keep the L2's MSHR occupancy current for its readers.
         self.l2.release(now);
+    }
 
-        // L2 replies fill the L1s.
+    /// Step 4: L2 replies due at `now` fill the L1s; their targets go on to
+    /// the L0 (each the MSHR entry of one L0 miss) or, without L0,
+    /// complete. Returns whether any reply arrived.
+    #[inline(always)]
+    fn l2_to_l1(&mut self, now: u64) -> bool {
+        let has_l0 = self.cfg.l0.is_some();
+        let mut filled = false;
         while let Some(r) = self.to_l1.pop_front_if(|r| r.at <= now) {
             let c = &mut self.cores[r.core as usize];
             let at = now + u64::from(c.l1.config().hit_latency) - 1;
             let targets = c.l1.fill(now, r.block);
-            late = true;
+            filled = true;
             if has_l0 {
-                // Each target is the MSHR entry of one L0 miss.
                 for &entry in targets {
                     c.to_l0.push_back(Delivery { at, entry });
                 }
@@ -578,13 +637,15 @@ impl MemorySystem {
                 complete_all(&mut c.completing, &mut c.ready, now, at, targets);
             }
         }
+        filled
+    }
 
-        // L1 replies fill the L0s; tags due now complete.
-        if !late {
-            return;
-        }
+    /// Step 5: L1 replies due at `now` fill the L0s; tags due at `now`
+    /// complete. (A core quiet at the start of the tick has neither.)
+    #[inline(always)]
+    fn l1_to_l0<const SHORTCUTS: bool>(&mut self, now: u64) {
         for c in &mut self.cores {
-            if !c.active {
+            if SHORTCUTS && !c.active {
                 continue;
             }
             if let Some(l0) = c.l0.as_mut() {
