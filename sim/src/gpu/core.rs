@@ -48,10 +48,10 @@
 //! a warp waiting on shorter misses cannot issue either, but counts as not
 //! blocked.
 
-use crate::gpu::issue::{pick, Picks};
-use crate::gpu::mask::SlotMask;
 use crate::gpu::raster_cursor::RasterCursor;
-use crate::gpu::wheel::WakeWheel;
+use issue::{pick, Picks};
+use mask::SlotMask;
+use wheel::WakeWheel;
 use crate::mem::{Access, BlockedOn, MemorySystem};
 use crate::trace::{OpKind, Tile, Trace};
 use std::collections::VecDeque;
@@ -63,6 +63,8 @@ use wasp_rtl::scheduler::LaunchScheduler;
 use wasp_rtl::subset::PrioritySubset;
 
 mod complete;
+mod issue;
+mod mask;
 mod observe;
 mod params;
 #[cfg(test)]
@@ -71,6 +73,7 @@ mod stats;
 #[cfg(test)]
 mod testkit;
 mod warp;
+mod wheel;
 pub use observe::{CoreSnapshot, WarpView};
 pub use params::CoreParams;
 pub use stats::{CoreStats, WarpRecord};

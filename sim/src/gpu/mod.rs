@@ -19,14 +19,11 @@
 
 mod core;
 mod core_model;
-mod issue;
 #[cfg(test)]
 mod lockstep;
-mod mask;
 mod raster;
 mod raster_cursor;
 mod tiles;
-mod wheel;
 
 pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
 pub use self::core_model::CoreModel;
