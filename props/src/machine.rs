@@ -28,9 +28,9 @@
 
 use crate::cex::{ensure, Cex};
 use std::collections::{BTreeMap, BTreeSet};
+use wasp_sim::config::BlockedOn;
 use wasp_sim::config::MachineConfig;
 use wasp_sim::gpu::{Gpu, WarpRecord};
-use wasp_sim::mem::BlockedOn;
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
 /// Property name used in counterexamples.

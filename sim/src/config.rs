@@ -22,7 +22,7 @@ mod choice;
 mod core_map;
 pub mod file;
 mod sections;
-pub use choice::{ColorFlush, Dispatch, FilterTiming};
+pub use choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming};
 pub use core_map::{CoreMap, CoreMapTable};
 pub use sections::{
     limits, CoreConfig, EnergyConfig, GpuConfig, MemoryConfig, RasterConfig, SchedulerConfig,
@@ -141,7 +141,10 @@ impl MachineConfig {
             l2: self.l2,
             dram: self.dram,
             ideal_memory: self.memory.ideal,
-            blocked_on: self.scheduler.blocked_on,
+            report_misses: self
+                .scheduler
+                .blocked_on
+                .reads_miss_events(self.l0.is_some()),
         }
     }
 

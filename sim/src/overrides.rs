@@ -189,7 +189,7 @@ mod tests {
     fn blocked_on_can_be_set() {
         let base = MachineConfig::paper();
         let c = apply(&base, &sets(&["scheduler.blocked_on=\"dram\""])).unwrap();
-        assert_eq!(c.scheduler.blocked_on, crate::mem::BlockedOn::Dram);
+        assert_eq!(c.scheduler.blocked_on, crate::config::BlockedOn::Dram);
     }
 
     #[test]

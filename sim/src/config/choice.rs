@@ -1,6 +1,6 @@
 //! The named choices of the machine configuration: how tiles reach the
 //! cores, how the filter and the texture latency add up, what happens to
-//! the colour buffer after a tile.
+//! the colour buffer after a tile, which miss blocks a warp.
 
 use serde::{Deserialize, Serialize};
 
@@ -92,5 +92,65 @@ impl std::fmt::Display for ColorFlush {
             ColorFlush::Blocking => "blocking",
             ColorFlush::None => "none",
         })
+    }
+}
+
+/// Which miss marks a warp *blocked*, the paper's long-latency state
+/// ("warps are marked as blocked when they encounter a long-latency miss",
+/// Section IV-C). The paper does not say at which level (wasp's choice,
+/// `scheduler.blocked_on`). The core applies the rule (`gpu/core/blocked.rs`)
+/// to its accesses' results and the miss events the memory system reports
+/// ([`MemorySystem::take_miss_events`](crate::mem::MemorySystem::take_miss_events)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BlockedOn {
+    /// Any miss (primary or secondary) in the scheduler-level cache (L0 when
+    /// present, else L1), known at the access: even an L0 miss that the
+    /// 1-cycle L1 answers.
+    FirstLevel,
+    /// A request that misses in the core's L1 (primary or merged into an L1
+    /// MSHR entry): it leaves the core for the L2 and takes at least the L2's
+    /// latency. The same as `FirstLevel` without an L0.
+    #[default]
+    L1Miss,
+    /// A request that misses in the L2 (primary or merged into an L2 MSHR
+    /// entry): it goes to main memory.
+    Dram,
+}
+
+impl BlockedOn {
+    /// Every rule, in order of the level.
+    pub const ALL: [BlockedOn; 3] = [BlockedOn::FirstLevel, BlockedOn::L1Miss, BlockedOn::Dram];
+
+    /// Whether the rule needs the memory system's miss events: the access's
+    /// own result tells a first-level miss, and, without an L0, an L1 miss.
+    pub fn reads_miss_events(self, has_l0: bool) -> bool {
+        match self {
+            BlockedOn::FirstLevel => false,
+            BlockedOn::L1Miss => has_l0,
+            BlockedOn::Dram => true,
+        }
+    }
+}
+
+impl std::fmt::Display for BlockedOn {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            BlockedOn::FirstLevel => "first-level",
+            BlockedOn::L1Miss => "l1-miss",
+            BlockedOn::Dram => "dram",
+        })
+    }
+}
+
+impl std::str::FromStr for BlockedOn {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        BlockedOn::ALL
+            .into_iter()
+            .find(|b| b.to_string() == s)
+            .ok_or_else(|| {
+                format!("unknown blocked_on {s:?}: expected first-level, l1-miss or dram")
+            })
     }
 }

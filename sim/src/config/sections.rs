@@ -2,9 +2,8 @@
 //! its description, its bound and its type (see [`crate::param`]). The
 //! shipped files (`configs/*.toml`) give every value with its source.
 
-use super::choice::{ColorFlush, Dispatch, FilterTiming};
+use super::choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming};
 use super::core_map::CoreMap;
-use crate::mem::BlockedOn;
 use crate::param::section;
 use limits::*;
 use serde::{Deserialize, Serialize};

@@ -3,7 +3,7 @@
 //! and the bounds table (every field at and just above its bound).
 
 use super::*;
-use crate::mem::BlockedOn;
+use crate::config::BlockedOn;
 use wasp_rtl::policy::LaunchRule;
 
 fn with(edit: impl Fn(&str) -> String) -> Result<MachineConfig, ConfigError> {
@@ -294,7 +294,7 @@ fn blocked_on_is_inherited_and_checked() {
     for rule in BlockedOn::ALL {
         let c = with(|s| s.replacen(line, &format!("blocked_on = \"{rule}\""), 1)).unwrap();
         assert_eq!(c.scheduler.blocked_on, rule);
-        assert_eq!(c.mem_config().blocked_on, rule);
+        assert_eq!(c.mem_config().report_misses, rule != BlockedOn::FirstLevel);
         assert_eq!(rule.to_string().parse::<BlockedOn>(), Ok(rule));
     }
     let e = with(|s| s.replacen(line, "blocked_on = \"l2\"", 1)).unwrap_err();

@@ -49,11 +49,10 @@
 //! blocked.
 
 use crate::gpu::raster_cursor::RasterCursor;
+use crate::mem::{Access, MemorySystem};
+use crate::trace::{OpKind, Tile, Trace};
 use issue::{pick, Picks};
 use mask::SlotMask;
-use wheel::WakeWheel;
-use crate::mem::{Access, BlockedOn, MemorySystem};
-use crate::trace::{OpKind, Tile, Trace};
 use std::collections::VecDeque;
 use wasp_rtl::free_mshr::FreeMshrReg;
 use wasp_rtl::nonblocked::PriorityEvents;
@@ -61,7 +60,9 @@ use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::LaunchScheduler;
 use wasp_rtl::subset::PrioritySubset;
+use wheel::WakeWheel;
 
+mod blocked;
 mod complete;
 mod issue;
 mod mask;
@@ -121,8 +122,8 @@ pub struct ShaderCore {
     /// Whether the scheduler has a CF meter (`wasp-m`): primary misses of
     /// priority warps are then counted for it.
     measures_cf: bool,
-    /// Tags reported by the memory system (scratch of phase 2).
-    long: Vec<u32>,
+    /// Which miss blocks a warp.
+    blocked: blocked::BlockedRule,
     /// Warp slots; a slot holds a warp when its bit in `free_slots` is 0.
     /// Only the first `p.slots()` are used.
     slots: Box<[Warp; MAX_SLOTS]>,
@@ -188,7 +189,7 @@ impl ShaderCore {
             sched: LaunchScheduler::new(queue, subset, free, policy, rule),
             track_mshrs,
             measures_cf,
-            long: Vec::new(),
+            blocked: p.blocked_rule(),
             slots: Box::new([Warp::default(); MAX_SLOTS]),
             alu_left: Box::new([0; MAX_SLOTS]),
             blocked_at: Box::new([0; MAX_SLOTS]),
@@ -574,13 +575,11 @@ impl ShaderCore {
             return;
         }
         let blocks = tile.block_accesses();
-        // Under first-level the LDST unit blocks warps at their misses; the
-        // other rules block in phase 2.
-        let at_access = self.p.blocked_on == BlockedOn::FirstLevel;
         loop {
             let e = &mut self.ldst_cur;
             while e.next < e.end {
-                let r = mem.access(now, self.id, blocks[e.next as usize], e.slot as u32);
+                let (r, entry) =
+                    mem.access_entry(now, self.id, blocks[e.next as usize], e.slot as u32);
                 if !r.accepted() {
                     self.signals.ldst_refused = true;
                     return;
@@ -594,7 +593,7 @@ impl ShaderCore {
                 {
                     self.prio.misses = self.prio.misses.saturating_add(1);
                 }
-                if at_access && matches!(r, Access::Miss | Access::SecondaryMiss) {
+                if self.blocked.at_access(r, entry, e.slot as usize) {
                     let s = e.slot as usize % MAX_SLOTS;
                     block_warp(
                         &mut self.slots[s],

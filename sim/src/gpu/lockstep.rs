@@ -15,8 +15,8 @@
 
 use super::core::plain::PlainCore;
 use super::{CoreModel, Gpu, ShaderCore};
+use crate::config::BlockedOn;
 use crate::config::{Dispatch, FilterTiming, MachineConfig};
-use crate::mem::BlockedOn;
 use crate::trace::{Instr, Trace, TraceHeader};
 use proptest::prelude::*;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};

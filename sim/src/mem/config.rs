@@ -66,56 +66,6 @@ pub mod bounds {
 }
 use bounds::*;
 
-/// Which miss marks a warp *blocked*, the paper's long-latency state
-/// ("warps are marked as blocked when they encounter a long-latency miss",
-/// Section IV-C). The paper does not say at which level (wasp's choice,
-/// `scheduler.blocked_on`). The memory system reports the waiting tags of
-/// misses at the chosen level through
-/// [`MemorySystem::take_long_latency`](super::MemorySystem::take_long_latency).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum BlockedOn {
-    /// Any miss (primary or secondary) in the scheduler-level cache (L0 when
-    /// present, else L1), known at the access: even an L0 miss that the
-    /// 1-cycle L1 answers.
-    FirstLevel,
-    /// A request that misses in the core's L1 (primary or merged into an L1
-    /// MSHR entry): it leaves the core for the L2 and takes at least the L2's
-    /// latency. The same as `FirstLevel` without an L0.
-    #[default]
-    L1Miss,
-    /// A request that misses in the L2 (primary or merged into an L2 MSHR
-    /// entry): it goes to main memory.
-    Dram,
-}
-
-impl BlockedOn {
-    /// Every rule, in order of the level.
-    pub const ALL: [BlockedOn; 3] = [BlockedOn::FirstLevel, BlockedOn::L1Miss, BlockedOn::Dram];
-}
-
-impl fmt::Display for BlockedOn {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            BlockedOn::FirstLevel => "first-level",
-            BlockedOn::L1Miss => "l1-miss",
-            BlockedOn::Dram => "dram",
-        })
-    }
-}
-
-impl std::str::FromStr for BlockedOn {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        BlockedOn::ALL
-            .into_iter()
-            .find(|b| b.to_string() == s)
-            .ok_or_else(|| {
-                format!("unknown blocked_on {s:?}: expected first-level, l1-miss or dram")
-            })
-    }
-}
-
 section! {
     /// One cache level.
     ///
@@ -296,10 +246,11 @@ pub struct MemConfig {
     /// without bandwidth limit. The `dram` parameters are still validated but
     /// otherwise unused. Used for the paper's motivation figure.
     pub ideal_memory: bool,
-    /// Which miss blocks a warp: the level whose misses
-    /// [`MemorySystem::take_long_latency`](super::MemorySystem::take_long_latency)
-    /// reports. Changes no timing.
-    pub blocked_on: BlockedOn,
+    /// Record the [`MissEvent`](super::MissEvent)s that the cores' rule of
+    /// which miss blocks a warp reads
+    /// ([`MemorySystem::take_miss_events`](super::MemorySystem::take_miss_events)).
+    /// Changes no timing.
+    pub report_misses: bool,
 }
 
 impl MemConfig {
@@ -358,7 +309,7 @@ impl MemConfig {
             },
             dram: DramConfig::default(),
             ideal_memory: false,
-            blocked_on: BlockedOn::L1Miss,
+            report_misses: true,
         }
     }
 

@@ -3,7 +3,7 @@
 //! See the [module docs](super) for the timing model.
 
 use super::cache::{bits_for, Cache, Lookup};
-use super::config::{BlockedOn, MemConfig, MemConfigError};
+use super::config::{MemConfig, MemConfigError};
 use super::dram::Dram;
 use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
@@ -109,14 +109,8 @@ struct CoreMem {
     completing: Ring<(u64, u32)>,
     /// Tags completed and not yet taken.
     ready: Vec<u32>,
-    /// Per L0 MSHR entry (long-latency reporting with an L0): its targets
-    /// have been reported, and so is every target merged into it later.
-    /// Meaningful while the entry is pending (cleared at allocation).
-    l0_long: Box<[bool]>,
-    /// The same per L1 MSHR entry (reporting L2 misses).
-    l1_long: Box<[bool]>,
-    /// Tags reported waiting on a long-latency miss and not yet taken.
-    long: Vec<u32>,
+    /// Miss events of the core's requests not yet taken.
+    misses: Vec<MissEvent>,
     /// Not quiet at the start of the current tick (tick scratch).
     active: bool,
 }
@@ -176,71 +170,30 @@ fn complete_all(
     }
 }
 
-/// Which misses [`MemorySystem::take_long_latency`] reports.
+/// What became of the request of one of a core's MSHR entries at the next
+/// level, when it missed there: the events a core needs to know which of
+/// its warps wait on a miss at which level (its rule of which miss blocks
+/// a warp, `scheduler.blocked_on`). Reported only when
+/// [`MemConfig::report_misses`] asks, in the order they happen, by
+/// [`MemorySystem::take_miss_events`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Track {
-    /// None ([`BlockedOn::FirstLevel`]: the access's result tells).
-    Nothing,
-    /// Misses in the L1.
-    L1,
-    /// Misses in the L2.
-    L2,
-}
-
-/// Report every target of L0 MSHR entry `e` (pending) as waiting on a
-/// long-latency miss, once: the entry is marked, and targets merged into it
-/// later are reported at merge.
-#[inline]
-fn mark_l0(l0: &Cache, l0_long: &mut [bool], long: &mut Vec<u32>, e: u32) {
-    let m = &mut l0_long[e as usize];
-    if !*m {
-        *m = true;
-        long.extend_from_slice(l0.pending_targets(e));
-    }
-}
-
-/// The same for L1 MSHR entry `e` (pending) of core `c`: its targets are
-/// tags, or L0 MSHR entries whose targets are reported in turn.
-#[inline]
-fn mark_l1(c: &mut CoreMem, e: u32) {
-    let m = &mut c.l1_long[e as usize];
-    if *m {
-        return;
-    }
-    *m = true;
-    match c.l0.as_ref() {
-        Some(l0) => {
-            for &e0 in c.l1.pending_targets(e) {
-                mark_l0(l0, &mut c.l0_long, &mut c.long, e0);
-            }
-        }
-        None => c.long.extend_from_slice(c.l1.pending_targets(e)),
-    }
-}
-
-/// Long-latency bookkeeping of an access of tag `tag` that missed in the
-/// first level of core `c`, allocating (`merged` false) or merging into
-/// its MSHR entry `entry`: without an L0 under [`Track::L1`] the access
-/// itself is reported; otherwise a new entry starts unmarked and a merge
-/// into a marked entry is reported. Out of line: the accesses' hot path
-/// only tests `track`.
-#[inline(never)]
-fn first_level_miss(c: &mut CoreMem, track: Track, tag: u32, entry: u32, merged: bool) {
-    let marks = if c.l0.is_some() {
-        &mut c.l0_long
-    } else if track == Track::L1 {
-        // The access itself misses in the L1.
-        c.long.push(tag);
-        return;
-    } else {
-        &mut c.l1_long
-    };
-    let m = &mut marks[entry as usize];
-    if !merged {
-        *m = false;
-    } else if *m {
-        c.long.push(tag);
-    }
+pub enum MissEvent {
+    /// The request of L0 MSHR entry `l0` missed in the L1: it allocated L1
+    /// MSHR entry `l1` (`merged` false) or merged into it.
+    L1 {
+        /// The L0 entry.
+        l0: u32,
+        /// The L1 entry it allocated or merged into.
+        l1: u32,
+        /// It merged into a pending entry.
+        merged: bool,
+    },
+    /// The request of L1 MSHR entry `l1` missed in the L2 (allocating an
+    /// L2 entry or merging into one).
+    L2 {
+        /// The L1 entry.
+        l1: u32,
+    },
 }
 
 /// Move the tags of `from` to the end of `out`, leaving `from` empty. The
@@ -268,8 +221,8 @@ struct L2Reply {
 /// Per cycle `now` the owner calls, in this order: [`access`](Self::access)
 /// for that cycle's accesses (any cores, any order; the order within a core
 /// is the order of its ports), [`tick`](Self::tick) once, then any of
-/// [`take_long_latency`](Self::take_long_latency) (before the
-/// completions), [`take_completions`](Self::take_completions),
+/// [`take_miss_events`](Self::take_miss_events),
+/// [`take_completions`](Self::take_completions),
 /// [`mshr_events`](Self::mshr_events), [`trace`](Self::trace). Cycles must
 /// not go backwards and `tick` should be called for every cycle; cycles in
 /// which [`is_idle`](Self::is_idle) holds and no access is made may be
@@ -284,8 +237,8 @@ pub struct MemorySystem {
     cfg: MemConfig,
     cores: Vec<CoreMem>,
     l2: Cache,
-    /// Which misses are reported to the cores as long-latency.
-    track: Track,
+    /// Record [`MissEvent`]s.
+    report_misses: bool,
     /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
     to_l1: Ring<L2Reply>,
     /// Cores taking part in the L2 arbitration of the current tick, in
@@ -325,13 +278,12 @@ impl MemorySystem {
                 to_l0: Ring::with_capacity(l0_mshrs),
                 completing: Ring::with_capacity(completing),
                 ready: Vec::with_capacity(completing),
-                l0_long: vec![false; l0_mshrs].into(),
-                l1_long: vec![false; l1_mshrs].into(),
-                // Each waiting tag is reported at most once.
-                long: Vec::with_capacity(if cfg.blocked_on == BlockedOn::FirstLevel {
-                    0
+                // At most one event per MSHR entry of the L0 and the L1 in
+                // a tick.
+                misses: Vec::with_capacity(if cfg.report_misses {
+                    l0_mshrs + l1_mshrs
                 } else {
-                    completing
+                    0
                 }),
                 active: false,
             });
@@ -340,11 +292,7 @@ impl MemorySystem {
             cfg: cfg.clone(),
             cores,
             l2: Cache::new(&cfg.l2)?,
-            track: match cfg.blocked_on {
-                BlockedOn::FirstLevel => Track::Nothing,
-                BlockedOn::L1Miss => Track::L1,
-                BlockedOn::Dram => Track::L2,
-            },
+            report_misses: cfg.report_misses,
             to_l1: Ring::with_capacity(n_cores * cfg.l1.mshrs as usize),
             l2_order: Vec::with_capacity(n_cores),
             dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
@@ -371,9 +319,16 @@ impl MemorySystem {
     /// counters and must be presented again. Panics if `core` is out of range.
     #[inline(always)]
     pub fn access(&mut self, now: u64, core: usize, block: u64, tag: u32) -> Access {
+        self.access_entry(now, core, block, tag).0
+    }
+
+    /// [`access`](Self::access), with the first level's MSHR entry that a
+    /// miss allocated or a secondary miss merged into (0 for other
+    /// results): the entry the [`MissEvent`]s of its request name.
+    #[inline(always)]
+    pub fn access_entry(&mut self, now: u64, core: usize, block: u64, tag: u32) -> (Access, u32) {
         debug_assert!(now >= self.now, "access in a past cycle");
         self.now = now;
-        let track = self.track;
         let c = &mut self.cores[core];
         let (first, queue) = match c.l0.as_mut() {
             Some(l0) => (l0, &mut c.to_l1),
@@ -383,7 +338,7 @@ impl MemorySystem {
             (Lookup::Hit, _) => {
                 let at = now + u64::from(first.config().hit_latency) - 1;
                 complete_all(&mut c.completing, &mut c.ready, now, at, &[tag]);
-                Access::Hit
+                (Access::Hit, 0)
             }
             (Lookup::Miss, entry) => {
                 queue.push_back(Request {
@@ -391,19 +346,11 @@ impl MemorySystem {
                     block,
                     entry,
                 });
-                if track != Track::Nothing {
-                    first_level_miss(c, track, tag, entry, false);
-                }
-                Access::Miss
+                (Access::Miss, entry)
             }
-            (Lookup::Secondary, entry) => {
-                if track != Track::Nothing {
-                    first_level_miss(c, track, tag, entry, true);
-                }
-                Access::SecondaryMiss
-            }
-            (Lookup::Stall | Lookup::MergeFull, _) => Access::Stall,
-            (Lookup::PortBusy, _) => Access::PortBusy,
+            (Lookup::Secondary, entry) => (Access::SecondaryMiss, entry),
+            (Lookup::Stall | Lookup::MergeFull, _) => (Access::Stall, 0),
+            (Lookup::PortBusy, _) => (Access::PortBusy, 0),
         }
     }
 
@@ -467,7 +414,7 @@ impl MemorySystem {
     #[inline(always)]
     fn requests_to_l1<const SHORTCUTS: bool>(&mut self, now: u64) -> bool {
         let n = self.cores.len();
-        let track = self.track;
+        let report = self.report_misses;
         let first = (now % n as u64) as usize;
         self.l2_order.clear();
         // Candidates before core `first` in index order, moved behind the
@@ -511,17 +458,21 @@ impl MemorySystem {
                                 block: r.block,
                                 entry,
                             });
-                            match track {
-                                Track::Nothing => {}
-                                Track::L1 => mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry),
-                                Track::L2 => c.l1_long[entry as usize] = false,
+                            if report {
+                                c.misses.push(MissEvent::L1 {
+                                    l0: r.entry,
+                                    l1: entry,
+                                    merged: false,
+                                });
                             }
                         }
                         (Lookup::Secondary, entry) => {
-                            if track == Track::L1
-                                || (track == Track::L2 && c.l1_long[entry as usize])
-                            {
-                                mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry);
+                            if report {
+                                c.misses.push(MissEvent::L1 {
+                                    l0: r.entry,
+                                    l1: entry,
+                                    merged: true,
+                                });
                             }
                         }
                         (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
@@ -557,7 +508,7 @@ impl MemorySystem {
     /// not ready.
     #[inline(always)]
     fn requests_to_l2(&mut self, now: u64) {
-        let track = self.track;
+        let report = self.report_misses;
         let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
         'arbitrate: while !self.l2_order.is_empty() {
             let mut kept = 0;
@@ -575,13 +526,13 @@ impl MemorySystem {
                     }),
                     (Lookup::Miss, entry) => {
                         self.dram.request(now, r.block, entry);
-                        if track == Track::L2 {
-                            mark_l1(c, r.entry);
+                        if report {
+                            c.misses.push(MissEvent::L2 { l1: r.entry });
                         }
                     }
                     (Lookup::Secondary, _) => {
-                        if track == Track::L2 {
-                            mark_l1(c, r.entry);
+                        if report {
+                            c.misses.push(MissEvent::L2 { l1: r.entry });
                         }
                     }
                     (Lookup::PortBusy, _) => break 'arbitrate,
@@ -668,20 +619,25 @@ impl MemorySystem {
         hand_over(&mut self.cores[core].ready, out);
     }
 
-    /// Append to `out` the tags of `core` that began to wait on a
-    /// long-latency miss ([`MemConfig::blocked_on`]) in the last cycle (and
-    /// any not taken before), each reported at most once per access and
-    /// always before its completion is taken when the owner takes these
-    /// first: under [`BlockedOn::L1Miss`] the tags whose request missed in
-    /// the L1 (with an L0: every target of an L0 MSHR entry whose request
-    /// the L1 missed or merged into an L1 MSHR entry, and every later target
-    /// merged into that entry), under [`BlockedOn::Dram`] the same one level
-    /// down (a request the L2 missed or merged into an L2 MSHR entry). Under
-    /// [`BlockedOn::FirstLevel`] nothing: the access's own result
-    /// ([`Access::Miss`], [`Access::SecondaryMiss`]) tells.
+    /// Whether `core` has [`MissEvent`]s not taken.
     #[inline]
-    pub fn take_long_latency(&mut self, core: usize, out: &mut Vec<u32>) {
-        hand_over(&mut self.cores[core].long, out);
+    pub fn has_miss_events(&self, core: usize) -> bool {
+        !self.cores[core].misses.is_empty()
+    }
+
+    /// Append to `out` the [`MissEvent`]s of `core`'s requests since they
+    /// were last taken, in the order they happened (none unless
+    /// [`MemConfig::report_misses`]). A core that takes them before its
+    /// completions of the cycle sees every miss of a request before the
+    /// request's data.
+    #[inline]
+    pub fn take_miss_events(&mut self, core: usize, out: &mut Vec<MissEvent>) {
+        let from = &mut self.cores[core].misses;
+        if out.is_empty() {
+            std::mem::swap(out, from);
+        } else {
+            out.append(from);
+        }
     }
 
     /// The scheduler-level cache's MSHR events of `core` in the last cycle.
@@ -701,8 +657,8 @@ impl MemorySystem {
     /// Nothing in flight anywhere: no MSHR entry occupied (awaiting its
     /// reply or in the cycle after it), no request or reply travelling, no
     /// tag completing or completed and not taken. While this holds, ticks
-    /// change nothing but the tick count. (Long-latency reports not taken
-    /// do not count: they are notices, not work in flight.)
+    /// change nothing but the tick count. (Miss events not taken do not
+    /// count: they are notices, not work in flight.)
     pub fn is_idle(&self) -> bool {
         self.cores
             .iter()

@@ -5,9 +5,9 @@
 //! flushes, timelines, tile-size checks and the watchdog.
 
 use super::*;
+use crate::config::BlockedOn;
 use crate::config::ColorFlush;
 use crate::config::Dispatch;
-use crate::mem::BlockedOn;
 use crate::synth::{generate, GenParams};
 use crate::trace::{Instr, TraceHeader};
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
@@ -433,7 +433,7 @@ mod random_machines {
                         PolicySpec::FreeMshr(1),
                         PolicySpec::wasp(t),
                     ][policy];
-                    c.scheduler.blocked_on = crate::mem::BlockedOn::ALL[rule];
+                    c.scheduler.blocked_on = crate::config::BlockedOn::ALL[rule];
                     c.sim.watchdog_cycles = 20_000;
                     c.validate().unwrap();
                     c

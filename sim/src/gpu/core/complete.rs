@@ -5,7 +5,7 @@
 use super::{block_warp, ShaderCore, MAX_SLOTS};
 use crate::config::FilterTiming;
 use crate::gpu::SimError;
-use crate::mem::{BlockedOn, MemorySystem};
+use crate::mem::MemorySystem;
 use wasp_rtl::free_mshr::MshrEvents;
 use wasp_rtl::scheduler::EdgeEvents;
 
@@ -18,9 +18,7 @@ impl ShaderCore {
         mem: &mut MemorySystem,
         scratch: &mut Vec<u32>,
     ) -> Result<(), SimError> {
-        if self.p.blocked_on != BlockedOn::FirstLevel {
-            self.block_long_latency(now, mem)?;
-        }
+        self.block_long_latency(now, mem)?;
         scratch.clear();
         mem.take_completions(self.id, scratch);
         for &tag in scratch.iter() {
@@ -101,14 +99,15 @@ impl ShaderCore {
         Ok(())
     }
 
-    /// Mark blocked the warps whose requests the memory system reports
-    /// waiting on a long-latency miss in this cycle (before the cycle's
-    /// completions: a report always precedes its tag's completion).
+    /// Mark blocked the warps whose requests the memory system's miss
+    /// events of this cycle show waiting on a long-latency miss (before
+    /// the cycle's completions: a miss always precedes its data).
+    #[inline(always)]
     fn block_long_latency(&mut self, now: u64, mem: &mut MemorySystem) -> Result<(), SimError> {
-        self.long.clear();
-        mem.take_long_latency(self.id, &mut self.long);
-        for &tag in &self.long {
-            let s = tag as usize;
+        let mut slots = self.blocked.take_events(mem, self.id);
+        while slots != 0 {
+            let s = slots.trailing_zeros() as usize;
+            slots &= slots - 1;
             let w = &mut self.slots[s % MAX_SLOTS];
             if w.pending == 0 || s >= MAX_SLOTS {
                 return Err(SimError::Internal(format!(

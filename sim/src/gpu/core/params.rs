@@ -2,8 +2,7 @@
 //! configuration as declared there, and what the rest of the machine
 //! decides for it.
 
-use crate::config::{CoreConfig, Dispatch, MachineConfig};
-use crate::mem::BlockedOn;
+use crate::config::{BlockedOn, CoreConfig, Dispatch, MachineConfig};
 
 /// What a core is built from.
 #[derive(Clone, Copy, Debug)]
@@ -24,6 +23,10 @@ pub struct CoreParams {
     pub watched_mshrs: u32,
     /// Which miss blocks a warp (`scheduler.blocked_on`).
     pub blocked_on: BlockedOn,
+    /// MSHRs of its L0, if it has one.
+    pub l0_mshrs: Option<u32>,
+    /// MSHRs of its L1.
+    pub l1_mshrs: u32,
 }
 
 impl CoreParams {
@@ -36,7 +39,20 @@ impl CoreParams {
             rejected_per_slot: cfg.raster.rejected_per_slot,
             watched_mshrs: cfg.watched_mshrs(),
             blocked_on: cfg.scheduler.blocked_on,
+            l0_mshrs: cfg.l0.map(|l0| l0.mshrs),
+            l1_mshrs: cfg.l1.mshrs,
         }
+    }
+
+    /// The core's rule of which miss blocks a warp.
+    pub(super) fn blocked_rule(&self) -> super::blocked::BlockedRule {
+        let first = self.l0_mshrs.unwrap_or(self.l1_mshrs);
+        super::blocked::BlockedRule::new(
+            self.blocked_on,
+            self.l0_mshrs.is_some(),
+            first,
+            self.l1_mshrs,
+        )
     }
 
     /// Warp slots.

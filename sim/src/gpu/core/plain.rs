@@ -27,12 +27,14 @@
 
 use super::observe::CoreView;
 use super::{CoreParams, CoreSignals, CoreSnapshot, CoreStats, WarpRecord, WarpView};
+use crate::config::BlockedOn;
 use crate::config::FilterTiming;
 use crate::gpu::core_model::CoreModel;
 use crate::gpu::raster_cursor::RasterCursor;
 use crate::gpu::SimError;
-use crate::mem::{Access, BlockedOn, MemorySystem};
+use crate::mem::{Access, MemorySystem, MissEvent};
 use crate::trace::{OpKind, Tile, Trace};
+use std::collections::BTreeMap;
 use std::collections::VecDeque;
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
@@ -93,6 +95,32 @@ struct LdstInstr {
     end: u32,
 }
 
+/// The rule of which miss blocks a warp, written plainly: the first-level
+/// MSHR entry each waiting access went to, and whether a miss at the
+/// rule's level holds the entry.
+#[derive(Debug, Default)]
+struct PlainBlocking {
+    /// First-level entry -> (slots whose accesses allocated or merged into
+    /// it, whether a miss at the rule's level holds it).
+    first: BTreeMap<u32, (Vec<usize>, bool)>,
+    /// L1 entry -> (L0 entries whose requests allocated or merged into it,
+    /// whether its request missed in the L2), with an L0 under `dram`.
+    l1: BTreeMap<u32, (Vec<u32>, bool)>,
+}
+
+impl PlainBlocking {
+    /// The slots blocked by first-level entry `e` being held now (none if
+    /// it was already).
+    fn hold(&mut self, e: u32) -> Vec<usize> {
+        let (slots, held) = self.first.get_mut(&e).expect("a pending entry");
+        if *held {
+            return vec![];
+        }
+        *held = true;
+        slots.clone()
+    }
+}
+
 /// The plain shader core.
 #[derive(Debug)]
 pub(crate) struct PlainCore {
@@ -116,6 +144,7 @@ pub(crate) struct PlainCore {
     last_progress: u64,
     stats: CoreStats,
     records: Option<Vec<WarpRecord>>,
+    blocking: PlainBlocking,
 }
 
 impl PlainCore {
@@ -289,11 +318,14 @@ impl PlainCore {
 
     fn present(&mut self, now: u64, tile: &Tile, mem: &mut MemorySystem) {
         let blocks = tile.block_accesses();
-        // Under first-level the LDST unit blocks warps at their misses.
-        let at_access = self.p.blocked_on == BlockedOn::FirstLevel;
+        // The first level's own misses block under first-level, and under
+        // l1-miss without an L0 (the first level is the L1).
+        let at_access = self.p.blocked_on == BlockedOn::FirstLevel
+            || (self.p.blocked_on == BlockedOn::L1Miss && self.p.l0_mshrs.is_none());
         while let Some(mut e) = self.ldst.front().copied() {
             while e.next < e.end {
-                let r = mem.access(now, self.id, blocks[e.next as usize], e.slot as u32);
+                let (r, entry) =
+                    mem.access_entry(now, self.id, blocks[e.next as usize], e.slot as u32);
                 if !r.accepted() {
                     self.ldst[0] = e;
                     self.signals.ldst_refused = true;
@@ -305,11 +337,59 @@ impl PlainCore {
                 if self.measures_cf && r == Access::Miss && self.warp(e.slot).priority {
                     self.prio.misses = self.prio.misses.saturating_add(1);
                 }
-                if at_access && matches!(r, Access::Miss | Access::SecondaryMiss) {
+                let waits = &mut self.blocking.first;
+                let held = match r {
+                    Access::Miss => {
+                        waits.insert(entry, (vec![e.slot], false));
+                        false
+                    }
+                    Access::SecondaryMiss => {
+                        let (slots, held) = waits.get_mut(&entry).expect("a pending entry");
+                        slots.push(e.slot);
+                        *held
+                    }
+                    _ => false,
+                };
+                let missed = matches!(r, Access::Miss | Access::SecondaryMiss);
+                if held || (at_access && missed) {
                     self.block(e.slot, now);
                 }
             }
             self.ldst.pop_front();
+        }
+    }
+
+    /// The slots that miss event `ev` blocks under the core's rule.
+    fn miss_blocks(&mut self, ev: MissEvent) -> Vec<usize> {
+        let has_l0 = self.p.l0_mshrs.is_some();
+        match (self.p.blocked_on, ev) {
+            (BlockedOn::L1Miss, MissEvent::L1 { l0, .. }) => self.blocking.hold(l0),
+            (BlockedOn::Dram, MissEvent::L1 { l0, l1, merged }) => {
+                let (l0s, held) = self.blocking.l1.entry(l1).or_default();
+                if !merged {
+                    l0s.clear();
+                    *held = false;
+                }
+                l0s.push(l0);
+                if *held {
+                    self.blocking.hold(l0)
+                } else {
+                    vec![]
+                }
+            }
+            (BlockedOn::Dram, MissEvent::L2 { l1 }) if !has_l0 => self.blocking.hold(l1),
+            (BlockedOn::Dram, MissEvent::L2 { l1 }) => {
+                let (l0s, held) = self.blocking.l1.get_mut(&l1).expect("a pending entry");
+                if *held {
+                    return vec![];
+                }
+                *held = true;
+                let l0s = l0s.clone();
+                l0s.into_iter()
+                    .flat_map(|e| self.blocking.hold(e))
+                    .collect()
+            }
+            _ => vec![],
         }
     }
 
@@ -413,6 +493,7 @@ impl CoreModel for PlainCore {
                 ..CoreStats::default()
             },
             records: None,
+            blocking: PlainBlocking::default(),
         }
     }
 
@@ -501,11 +582,11 @@ impl CoreModel for PlainCore {
         mem: &mut MemorySystem,
         scratch: &mut Vec<u32>,
     ) -> Result<(), SimError> {
-        if self.p.blocked_on != BlockedOn::FirstLevel {
-            let mut long = Vec::new();
-            mem.take_long_latency(self.id, &mut long);
-            for tag in long {
-                let s = self.waiting_warp(tag, "long-latency report", now)?;
+        let mut events = Vec::new();
+        mem.take_miss_events(self.id, &mut events);
+        for ev in events {
+            for s in self.miss_blocks(ev) {
+                let s = self.waiting_warp(s as u32, "long-latency report", now)?;
                 self.block(s, now);
             }
         }
