@@ -63,20 +63,18 @@ pub fn cf_meter_next_exact(m: CfMeter, launched: bool, misses: u32) -> Result<()
     })
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
 
     /// Twin: `tests::exhaustive_cf_meter`.
     #[kani::proof]
     fn proof_cf_meter_next_exact() {
-        let l: u8 = kani::any();
-        let a: u8 = kani::any();
-        let q: u8 = kani::any();
-        kani::assume(u32::from(l) < WINDOW && a <= 127 && q <= 31);
+        let l: u8 = kani::any_where(|l: &u8| u32::from(*l) < WINDOW);
+        let a: u8 = kani::any_where(|a: &u8| *a <= 127);
+        let q: u8 = kani::any_where(|q: &u8| *q <= 31);
         let m = meter_at(l.into(), a.into(), q.into()).unwrap();
-        let misses: u8 = kani::any();
-        kani::assume(misses <= 3);
+        let misses: u8 = kani::any_where(|m: &u8| *m <= 3);
         assert!(cf_meter_next_exact(m, kani::any(), misses.into()).is_ok());
     }
 }

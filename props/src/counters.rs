@@ -279,17 +279,15 @@ pub fn edge_counts(limit: u8) -> impl Iterator<Item = u8> + Clone {
     (0..=limit).chain(60..=68).chain(123..=133).chain(250..=255)
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
 
     /// Twin: `tests::exhaustive_free_mshr`.
     #[kani::proof]
     fn proof_free_mshr_next_exact() {
-        let cap: u8 = kani::any();
-        kani::assume(cap <= 31);
-        let free: u8 = kani::any();
-        kani::assume(free <= cap);
+        let cap: u8 = kani::any_where(|c: &u8| *c <= 31);
+        let free: u8 = kani::any_where(|f: &u8| *f <= cap);
         let reg = free_mshr_at(cap as u32, free as u32).unwrap();
         let ev = MshrEvents {
             allocs: kani::any(),
@@ -301,8 +299,7 @@ mod proofs {
     /// Twin: `tests::edge_domain_nonblocked` (the proof covers every `u8`).
     #[kani::proof]
     fn proof_nonblocked_next_exact() {
-        let count: u8 = kani::any();
-        kani::assume(count <= 127);
+        let count: u8 = kani::any_where(|c: &u8| *c <= 127);
         let counter = counter_at(count as u32).unwrap();
         let ev = PriorityEvents {
             launched: kani::any(),
@@ -315,18 +312,32 @@ mod proofs {
     }
 
     /// Twin: `tests::exhaustive_nonblocked_legal_0_to_48` and `_49_to_127`.
+    /// Each count is drawn within the bound `PriorityModel::legal` puts on
+    /// it (the same domain as `any()` + `assume(legal)`, which a sampler
+    /// would mostly discard); the assumption then removes only a launch
+    /// into a full core.
     #[kani::proof]
     fn proof_nonblocked_tracks_model() {
+        let nonblocked = u32::from(kani::any_where(|n: &u8| {
+            u32::from(*n) <= MAX_PRIORITY_WARPS
+        }));
+        let blocked = u32::from(kani::any_where(|b: &u8| {
+            nonblocked + u32::from(*b) <= MAX_PRIORITY_WARPS
+        }));
         let model = PriorityModel {
-            nonblocked: kani::any::<u8>() as u32,
-            blocked: kani::any::<u8>() as u32,
+            nonblocked,
+            blocked,
         };
-        kani::assume(model.in_core() <= MAX_PRIORITY_WARPS);
+        let launched: bool = kani::any();
+        let unblocked: u8 = kani::any_where(|u: &u8| u32::from(*u) <= blocked);
+        let avail = nonblocked + u32::from(launched) + u32::from(unblocked);
+        let blocked_ev: u8 = kani::any_where(|b: &u8| u32::from(*b) <= avail);
+        let finished: u8 = kani::any_where(|f: &u8| u32::from(blocked_ev) + u32::from(*f) <= avail);
         let ev = PriorityEvents {
-            launched: kani::any(),
-            blocked: kani::any(),
-            unblocked: kani::any(),
-            finished: kani::any(),
+            launched,
+            blocked: blocked_ev,
+            unblocked,
+            finished,
             misses: kani::any(),
         };
         kani::assume(model.legal(ev));

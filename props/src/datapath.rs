@@ -156,31 +156,27 @@ pub fn comparator_exact(real_free: SInt<REAL_FREE_BITS>, threshold: Threshold) -
     })
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
 
     fn any_free() -> FreeMshrs {
-        let v: u8 = kani::any();
-        kani::assume(v <= 31);
+        let v: u8 = kani::any_where(|v: &u8| *v <= 31);
         FreeMshrs::masked(v as u32)
     }
 
     fn any_nonblocked() -> NonblockedCount {
-        let v: u8 = kani::any();
-        kani::assume(v <= 127);
+        let v: u8 = kani::any_where(|v: &u8| *v <= 127);
         NonblockedCount::masked(v as u32)
     }
 
     fn any_cf() -> Cf {
-        let q: u8 = kani::any();
-        kani::assume(q <= 31);
+        let q: u8 = kani::any_where(|q: &u8| *q <= 31);
         Cf::from_quarters(q as u32).unwrap()
     }
 
     fn any_threshold() -> Threshold {
-        let t: u8 = kani::any();
-        kani::assume(t <= 31);
+        let t: u8 = kani::any_where(|t: &u8| *t <= 31);
         Threshold::masked(t as u32)
     }
 
@@ -208,16 +204,14 @@ mod proofs {
     /// Twin: `tests::exhaustive_subtractor`.
     #[kani::proof]
     fn proof_subtractor_exact() {
-        let p: u16 = kani::any();
-        kani::assume(p <= 1023);
+        let p: u16 = kani::any_where(|p: &u16| *p <= 1023);
         assert!(subtractor_exact(any_free(), UInt::<PRODUCT_BITS>::masked(p as u32)).is_ok());
     }
 
     /// Twin: `tests::exhaustive_comparator`.
     #[kani::proof]
     fn proof_comparator_exact() {
-        let r: i16 = kani::any();
-        kani::assume((-1024..=1023).contains(&r));
+        let r: i16 = kani::any_where(|r: &i16| (-1024..=1023).contains(r));
         let real = SInt::<REAL_FREE_BITS>::new(r as i32).unwrap();
         assert!(comparator_exact(real, any_threshold()).is_ok());
     }

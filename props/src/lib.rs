@@ -5,9 +5,13 @@
 //! returns `Result<(), Cex>` (a [`Cex`] names the property and carries the
 //! counterexample's values). Each is called twice:
 //!
-//! * by a `#[cfg(kani)] #[kani::proof]` harness on `kani::any()` inputs
-//!   constrained by `kani::assume` (run with `cargo kani -p wasp-props`
-//!   where Kani is installed; see `README.md`);
+//! * by a `#[kani::proof]` harness on `kani::any()` inputs, bounded by
+//!   `kani::any_where` and `kani::assume`, in a `proofs` module compiled
+//!   under `cfg(kani)` (Kani proves it: `cargo kani -p wasp-props` where
+//!   Kani is installed) or under the feature `kani-shim` (the shim crate
+//!   `wasp-kani-shim` runs it as a test on every case of its domain, or on
+//!   seeded random cases where the domain is too large:
+//!   `scripts/harnesses.sh`; see `README.md`);
 //! * by a `#[test]` twin that checks every value of the finite domain, or,
 //!   for sequential properties, every input sequence up to a stated depth
 //!   (run with `cargo test -p wasp-props`).
@@ -128,6 +132,11 @@
 //! has no entry to free) is returned as the exact in-range value, not a
 //! fault; `FreeMshrReg::legal` reports it. That is not a wrap, and the
 //! properties say exactly this.
+
+// The shim stands in for Kani's `kani` crate; under `cargo kani` both would
+// be linked under one name.
+#[cfg(all(kani, feature = "kani-shim"))]
+compile_error!("the `kani-shim` feature is for `cargo test` (scripts/harnesses.sh); run `cargo kani -p wasp-props` without it");
 
 pub mod cex;
 pub mod cf_meter;

@@ -346,7 +346,7 @@ pub fn small_trace(tiles: &[&[usize]]) -> Trace {
     b.finish().expect("trace")
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
 
@@ -358,9 +358,10 @@ mod proofs {
     #[kani::proof]
     #[kani::unwind(40)]
     fn proof_machine_two_quads() {
-        let (a, b): (u8, u8) = (kani::any(), kani::any());
+        let a: u8 = kani::any_where(|p: &u8| usize::from(*p) < PROGRAMS);
+        let b: u8 = kani::any_where(|p: &u8| usize::from(*p) < PROGRAMS);
         let launch: bool = kani::any();
-        let quads = [a as usize % PROGRAMS, b as usize % PROGRAMS];
+        let quads = [usize::from(a), usize::from(b)];
         let trace = small_trace(&[&quads]);
         let m = SmallMachine {
             l0: true,

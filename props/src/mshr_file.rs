@@ -294,7 +294,7 @@ pub fn cache_sequence(cfg: &CacheConfig, ops: &[CacheOp]) -> Result<(), Cex> {
     Ok(())
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
 
@@ -306,13 +306,12 @@ mod proofs {
     #[kani::proof]
     #[kani::unwind(8)]
     fn proof_cache_sequence() {
-        let mshrs: u32 = kani::any();
-        let merged: u32 = kani::any();
-        let ports: u32 = kani::any();
-        kani::assume((1..=3).contains(&mshrs) && merged <= 1 && (1..=2).contains(&ports));
+        let mshrs = u32::from(kani::any_where(|m: &u8| (1..=3).contains(m)));
+        let merged = u32::from(kani::any_where(|m: &u8| *m <= 1));
+        let ports = u32::from(kani::any_where(|p: &u8| (1..=2).contains(p)));
         let mut ops = [CacheOp::Tick; KANI_DEPTH];
         for op in ops.iter_mut() {
-            *op = op_from_code(kani::any());
+            *op = op_from_code(kani::any_where(|c: &u8| usize::from(*c) < OPS.len()));
         }
         assert!(cache_sequence(&small_cache(mshrs, merged, ports), &ops).is_ok());
     }

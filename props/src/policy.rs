@@ -289,20 +289,18 @@ pub fn class_code(c: Option<QueueClass>) -> i64 {
     wasp_rtl::scheduler::launch_code(c) as i64
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
     use wasp_rtl::policy::{Baseline, FreeMshrN, FullPriority};
 
     fn any_u5() -> u32 {
-        let v: u8 = kani::any();
-        kani::assume(v <= 31);
+        let v: u8 = kani::any_where(|v: &u8| *v <= 31);
         v as u32
     }
 
     fn any_nonblocked() -> NonblockedCount {
-        let v: u8 = kani::any();
-        kani::assume(v <= 127);
+        let v: u8 = kani::any_where(|v: &u8| *v <= 127);
         NonblockedCount::masked(v as u32)
     }
 

@@ -192,7 +192,7 @@ pub fn queue_sequence(capacity: usize, ops: &[QueueOp]) -> Result<(), Cex> {
     Ok(())
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
 
@@ -203,11 +203,10 @@ mod proofs {
     #[kani::proof]
     #[kani::unwind(8)]
     fn proof_queue_sequence() {
-        let cap: u8 = kani::any();
-        kani::assume((1..=4).contains(&cap));
+        let cap: u8 = kani::any_where(|c: &u8| (1..=4).contains(c));
         let mut ops = [QueueOp::Push(QueueClass::Regular); KANI_DEPTH];
         for op in ops.iter_mut() {
-            *op = op_from_code(kani::any());
+            *op = op_from_code(kani::any_where(|c: &u8| usize::from(*c) < OPS.len()));
         }
         assert!(queue_sequence(cap as usize, &ops).is_ok());
     }

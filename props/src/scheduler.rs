@@ -499,7 +499,7 @@ pub fn run(cfg: &SchedConfig, choices: &[CycleChoice]) -> Result<(), Cex> {
     Ok(())
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
 
@@ -512,10 +512,8 @@ mod proofs {
     #[kani::proof]
     #[kani::unwind(8)]
     fn proof_wasp_scheduler_cycles() {
-        let q: u8 = kani::any();
-        kani::assume(q <= 31);
-        let t: u8 = kani::any();
-        kani::assume(t < 4);
+        let q: u8 = kani::any_where(|q: &u8| *q <= 31);
+        let t: u8 = kani::any_where(|t: &u8| *t < 4);
         let launch: bool = kani::any();
         let cfg = SchedConfig {
             policy: PolicySpec::Wasp {

@@ -130,7 +130,7 @@ pub fn sixteenth_subsets() -> Vec<(String, Box<dyn PrioritySubset>)> {
     v
 }
 
-#[cfg(kani)]
+#[cfg(any(kani, feature = "kani-shim"))]
 mod proofs {
     use super::*;
 
@@ -140,12 +140,10 @@ mod proofs {
     #[kani::proof]
     #[kani::unwind(6)]
     fn proof_mesh_quad_exact() {
-        let sel: u8 = kani::any();
-        kani::assume(sel < 4);
+        let sel: u8 = kani::any_where(|s: &u8| *s < 4);
         let k = MESH_KS[sel as usize];
-        let x: u8 = kani::any();
-        let y: u8 = kani::any();
-        kani::assume(x < 32 && y < 32);
+        let x: u8 = kani::any_where(|x: &u8| *x < 32);
+        let y: u8 = kani::any_where(|y: &u8| *y < 32);
         assert!(mesh_quad_exact(k, x as u32, y as u32).is_ok());
     }
 }

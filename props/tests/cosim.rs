@@ -10,7 +10,8 @@
 //! (free MSHRs, non-blocked count, both queue occupancies), the comparator,
 //! push acceptance, the datapath (product, real_free, the comparison), the
 //! policy's selection under the launch rule (`hold` or `launch`), the
-//! launch, and the fault flag.
+//! launch, the fault flag, and wasp-m's CF meter (its launch count,
+//! accumulator and the CF the datapath uses).
 //!
 //! Events are legal (a model of the MSHR file and of the priority warps in
 //! the core keeps them so, like `FreeMshrReg::legal` and the warp slots of a
@@ -97,8 +98,19 @@ fn cosim(cfg: &Config) -> Option<Coverage> {
         verilog_dir().display()
     );
     let c = run.coverage;
+    let meter = if cfg.policy == 4 {
+        format!(
+            "; meter: {} windows, {} cycles saturated, {} misses clamped, {} CF values",
+            c.meter_windows,
+            c.meter_saturated,
+            c.misses_clamped,
+            c.cf_values.count_ones()
+        )
+    } else {
+        String::new()
+    };
     eprintln!(
-        "cosim {}: {seeds} seeds x {cycles} cycles = {} cycles match; pushes {} accepted / {} refused, launches {} priority / {} regular, priority held back {}, free==0 {}, real_free<0 {} (min {}), faults {}, max nonblocked {}",
+        "cosim {}: {seeds} seeds x {cycles} cycles = {} cycles match; pushes {} accepted / {} refused, launches {} priority / {} regular, priority held back {}, free==0 {}, real_free<0 {} (min {}), faults {}, max nonblocked {}{meter}",
         cfg.name,
         c.cycles,
         c.pushes_accepted,
@@ -239,6 +251,64 @@ fn cosim_other_policies() {
             assert!(c.priority_launches > 0, "{}: {c:?}", cfg.name);
         }
     }
+}
+
+const fn wasp_m(name: &'static str, mshrs: u32, queue_cap: usize, threshold: u32) -> Config {
+    Config {
+        policy: 4,
+        ..wasp(name, mshrs, queue_cap, 10, threshold)
+    }
+}
+
+/// wasp-m (POLICY 4): the CF the datapath multiplies by comes from the CF
+/// meter, compared register by register with `wasp_rtl::cf_meter::CfMeter`
+/// every cycle: windows of 16 priority launches load the CF register, the
+/// accumulator saturates, counts above the 2-bit misses input clamp, and a
+/// fault holds the meter too.
+#[test]
+#[cfg_attr(
+    wasp_no_iverilog,
+    ignore = "iverilog/vvp not installed (apt-get install iverilog, then touch props/build.rs)"
+)]
+fn cosim_wasp_measured() {
+    let configs = [
+        Config {
+            seeds: 8,
+            ..wasp_m("waspm_paper_m16_q64_t4", 16, 64, 4)
+        },
+        wasp_m("waspm_worked_m3_q16_t1", 3, 16, 1),
+        wasp_m("waspm_m31_q8_t0", 31, 8, 0),
+        Config {
+            launch_rule: LaunchRule::Launch,
+            ..wasp_m("launch_waspm_m16_q64_t4", 16, 64, 4)
+        },
+        Config {
+            illegal_per_mille: 30,
+            ..wasp_m("illegal_waspm_m16_q64_t4", 16, 64, 4)
+        },
+    ];
+    let mut total = Coverage::default();
+    for cfg in &configs {
+        let Some(c) = cosim(cfg) else { return };
+        assert!(
+            c.priority_launches > 0 && c.regular_launches > 0 && c.meter_windows > 0,
+            "{}: vacuous stimulus: {c:?}",
+            cfg.name
+        );
+        if cfg.illegal_per_mille > 0 {
+            assert!(c.faults > 10, "{}: too few faults: {c:?}", cfg.name);
+        }
+        total.add(&c);
+    }
+    assert!(
+        total.meter_saturated > 0 && total.misses_clamped > 0 && total.priority_held_back > 0,
+        "{total:?}"
+    );
+    assert!(
+        total.cf_values.count_ones() >= 8,
+        "the meter held few CF values: {:#b}",
+        total.cf_values
+    );
 }
 
 /// Arbitrary counts on a few cycles: the twin must fault exactly when the

@@ -12,8 +12,9 @@
 # Bugs: wrap_sub (5-bit wrapping free - product), off_by_one (>= instead of
 # > against the threshold), drop_finish (the non-blocked counter ignores
 # finished warps), hold_launches (the launch rule `hold` launches a lone
-# priority warp with the gate closed). Prints which check caught which bug; exits non-zero if
-# any bug went uncaught.
+# priority warp with the gate closed), meter_wrap (wasp-m's CF meter lets
+# its accumulator wrap instead of saturating). Prints which check caught
+# which bug; exits non-zero if any bug went uncaught.
 #
 # usage: props/verilog/mutants.sh [--skip-rust] [--skip-prove] [--skip-cosim]
 # Needs yosys, yosys-smtbmc, z3, iverilog, cargo. CARGO_TARGET_DIR for the
@@ -81,6 +82,9 @@ plant_rust() { # plant_rust NAME DIR
     hold_launches)
         f="$2/rtl/src/policy/mod.rs"
         perl -0pi -e 's/\} else if v\.priority_waiting && rule == LaunchRule::Launch \{/} else if v.priority_waiting {/' "$f" ;;
+    meter_wrap)
+        f="$2/rtl/src/cf_meter.rs"
+        perl -0pi -e 's/\.saturating_add\(UInt::<ACC_BITS>::masked\(ev\.misses\.get\(\)\)\)/.wrapping_add(UInt::<ACC_BITS>::masked(ev.misses.get()))/' "$f" ;;
     esac
     ! cmp -s "$f" "$root/${f#"$2"/}"
 }

@@ -8,10 +8,12 @@
 #   drop_finish  the non-blocked counter ignores prio_finished
 #   hold_launches the launch rule `hold` launches a lone priority warp with
 #                the gate closed (as `launch` does)
+#   meter_wrap   wasp-m's CF meter: the accumulator wraps at 128 instead of
+#                saturating at 127
 #   list         print the names
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-names="wrap_sub off_by_one drop_finish hold_launches"
+names="wrap_sub off_by_one drop_finish hold_launches meter_wrap"
 
 if [[ $# -ge 1 && $1 == list ]]; then
     echo "$names"
@@ -40,6 +42,9 @@ drop_finish)
         "$src" >"$dst" ;;
 hold_launches)
     sed -e 's|^                    (prio_waiting \&\& cfg_launch_rule) ? 2'"'"'d2 :$|                    prio_waiting ? 2'"'"'d2 : // MUTANT hold_launches|' \
+        "$src" >"$dst" ;;
+meter_wrap)
+    sed -e 's|^    wire \[6:0\] acc_sat    = sum\[7\] ? 7'"'"'d127 : sum\[6:0\];$|    wire [6:0] acc_sat    = sum[6:0]; // MUTANT meter_wrap|' \
         "$src" >"$dst" ;;
 *)
     echo "mutate.sh: unknown mutant '$name' (one of: $names)" >&2

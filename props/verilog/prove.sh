@@ -5,20 +5,24 @@
 # step) and a k-induction proof (yosys-smtbmc -i), plus a cover run showing
 # that the interesting cases are reachable. Every configuration (policy,
 # capacity, CF, threshold, N, queue capacity, launch rule) is covered at once: the
-# wrapper drives them with $anyconst. Prints a summary table; exits
+# wrapper drives them with $anyconst. The rows M and MCOVER prove wasp-m's
+# CF meter alone (wasp_cf_meter_formal.sv). Prints a summary table; exits
 # non-zero if any check fails. See README.md for the properties.
 #
 # usage: props/verilog/prove.sh [options]
 #   --mutant NAME     prove a copy of wasp_sched.v with a planted bug
-#                     (mutate.sh: wrap_sub, off_by_one, drop_finish); the
+#                     (mutate.sh: wrap_sub, off_by_one, drop_finish,
+#                     hold_launches, meter_wrap); the
 #                     table says which checks caught it, and the exit
 #                     status is then 0 if some check failed (the bug was
 #                     caught) and 1 if every check passed (it was missed)
 #   --src DIR         prove DIR/wasp_sched.v instead of the shipped file
 #   --bmc-depth N     BMC steps (default 20)
 #   --ind-depth K     induction steps (default 2)
-#   --cover-depth N   cover steps (default 12)
-#   --only LIST       comma-separated rows (P34,P5,P1,P2,P6,P7,P9,P8,COVER)
+#   --cover-depth N   cover steps (default 12; the meter's MCOVER: 48, to fill
+#                     its accumulator and a window)
+#   --only LIST       comma-separated rows (P34,P5,PM,P1,P2,P6,P7,P9,P8,COVER,
+#                     M,MCOVER)
 #   --jobs N          parallel solver runs (default: number of CPUs)
 #   --keep            keep the work directory (models, logs, traces)
 set -euo pipefail
@@ -62,33 +66,41 @@ if [[ -n $mutant ]]; then
     src_dir="$work/src"
 fi
 design="$src_dir/wasp_sched.v"
-wrapper="$here/wasp_sched_formal.sv"
 [[ -f $design ]] || die "no $design"
+meter_cover_depth=48
 
-# row | defines | modes. ASSUME_P34 / ASSUME_P5 assume the invariants that
-# rows P34 / P5 prove (sound: those rows assume nothing but legal inputs,
-# so the invariants hold in every reachable state; see the wrapper).
+# row | defines | modes | top (the wrapper, $here/TOP.sv; default the
+# scheduler's). ASSUME_P34 / ASSUME_P5 / ASSUME_PM assume the invariants
+# that rows P34 / P5 / PM prove (sound: P34 and P5 assume nothing but legal
+# inputs, PM only P34, so the invariants hold in every reachable state and
+# no row assumes what it is used to prove; see the wrapper).
 rows=(
     "P34|ASSERT_P34|bmc ind"
     "P5|ASSERT_P5|bmc ind"
-    "P1|ASSERT_P1 ASSUME_P34|bmc ind"
+    "PM|ASSERT_PM ASSUME_P34|bmc ind"
+    "P1|ASSERT_P1 ASSUME_P34 ASSUME_PM|bmc ind"
     "P2|ASSERT_P2|bmc ind"
     "P6|ASSERT_P6 ASSUME_P34|bmc ind"
-    "P7|ASSERT_P7 ASSUME_P34 ASSUME_P5|bmc ind"
-    "P9|ASSERT_P9 ASSUME_P34 ASSUME_P5|bmc ind"
+    "P7|ASSERT_P7 ASSUME_P34 ASSUME_P5 ASSUME_PM|bmc ind"
+    "P9|ASSERT_P9 ASSUME_P34 ASSUME_P5 ASSUME_PM|bmc ind"
     "P8|FAULT_MODE ASSERT_P8|bmc ind"
     "COVER|COVER|cover"
+    "M|ASSERT_M|bmc ind|wasp_cf_meter_formal"
+    "MCOVER|COVER|cover|wasp_cf_meter_formal"
 )
 declare -A what=(
     [P34]="P3 free == cap - outstanding <= cap; P4 nb == model <= 127"
     [P5]="occupancies == model, sum <= cap, refuse iff full, Mesh4"
-    [P1]="priority launch only if 4*free - q*nb > 4*T (launch rule: or no regular warp)  (assumes P34)"
+    [PM]="wasp-m meter == its spec: launches <= 15, acc <= 127 saturating, CF <= 31  (assumes P34)"
+    [P1]="priority launch only if 4*free - q*nb > 4*T (launch rule: or no regular warp)  (assumes P34, PM)"
     [P2]="x CF shift-add, subtract, compare == exact, every value"
     [P6]="no fault under legal inputs  (assumes P34)"
-    [P7]="select/launch == reference policy, all 4, both launch rules  (assumes P34, P5)"
-    [P9]="hold: no priority launch, gate closed; launch: never idle with a warp waiting  (assumes P34, P5)"
-    [P8]="fault iff exact next out of range; hold / load; reset"
-    [COVER]="boundary launch, hold-back, full queue, free=0, hold idle, launch with gate closed ... reachable"
+    [P7]="select/launch == reference policy, all 5, both launch rules  (assumes P34, P5, PM)"
+    [P9]="hold: no priority launch, gate closed; launch: never idle with a warp waiting  (assumes P34, P5, PM)"
+    [P8]="fault iff exact next out of range; hold (meter too) / load; reset"
+    [COVER]="boundary launch, hold-back, full queue, free=0, hold idle, launch with gate closed, wasp-m ... reachable"
+    [M]="CF meter alone, every state: next == spec, CF loaded <= 31, acc saturates, never wraps"
+    [MCOVER]="CF meter: a window loads a new CF, the accumulator saturates, CF 31 loaded"
 )
 
 selected() { [[ -z $only ]] || [[ ",$only," == *",$1,"* ]]; }
@@ -98,14 +110,14 @@ selected() { [[ -z $only ]] || [[ ",$only," == *",$1,"* ]]; }
 # the same checks on it in seconds rather than minutes (on word-level
 # arithmetic z3's incremental solver is slow for this design).
 build() {
-    local name=$1 defs=$2 d="$work/$1"
+    local name=$1 defs=$2 top=$3 d="$work/$1"
     mkdir -p "$d"
     local flags="-DWASP_CFG_PORTS"
     for x in $defs; do flags+=" -D$x"; done
     cat >"$d/model.ys" <<EOF
 read_verilog -formal $flags $design
-read_verilog -formal $flags $wrapper
-prep -top wasp_sched_formal
+read_verilog -formal $flags $here/$top.sv
+prep -top $top
 flatten
 async2sync
 techmap
@@ -128,7 +140,7 @@ check() {
     case $mode in
     bmc) args=(--presat -t "$bmc_depth" --dump-vcd "$d/bmc_cex.vcd") ;;
     ind) args=(-i -t "$ind_depth" --dump-vcd "$d/ind_cex.vcd") ;;
-    cover) args=(-c -t "$cover_depth" --dump-vcd "$d/cover_%.vcd") ;;
+    cover) args=(-c -t "$(depth_of "$name" cover)" --dump-vcd "$d/cover_%.vcd") ;;
     esac
     t0=$(date +%s%N)
     set +e
@@ -147,15 +159,24 @@ check() {
     printf '%s %s\n' "$res" "$(secs "$t0" "$t1")" >"$d/$mode.result"
 }
 
+# the depth of a row's check
+depth_of() {
+    case $2 in
+    bmc) echo "$bmc_depth" ;;
+    ind) echo "$ind_depth" ;;
+    cover) if [[ $1 == MCOVER ]]; then echo "$meter_cover_depth"; else echo "$cover_depth"; fi ;;
+    esac
+}
+
 echo "== wasp_sched formal: $design${mutant:+ (mutant $mutant)}"
 echo "   yosys $(yosys -V | awk '{print $2}'), z3 $(z3 --version | awk '{print $3}'), BMC depth $bmc_depth, induction depth $ind_depth, cover depth $cover_depth, $jobs jobs"
 
 t_start=$(date +%s%N)
 tasks=()
 for row in "${rows[@]}"; do
-    IFS='|' read -r name defs modes <<<"$row"
+    IFS='|' read -r name defs modes top <<<"$row"
     selected "$name" || continue
-    if ! build "$name" "$defs"; then
+    if ! build "$name" "$defs" "${top:-wasp_sched_formal}"; then
         echo "prove.sh: yosys failed for $name:" >&2
         tail -20 "$work/$name/yosys.log" >&2
         exit 1
@@ -197,11 +218,11 @@ fail=0
 printf '\n%-16s %-6s %6s %-6s %8s  %s\n' property mode depth result time note
 printf '%-16s %-6s %6s %-6s %8s  %s\n' "----------------" ------ ------ ------ -------- ----
 for row in "${rows[@]}"; do
-    IFS='|' read -r name defs modes <<<"$row"
+    IFS='|' read -r name defs modes _top <<<"$row"
     selected "$name" || continue
     for m in $modes; do
         read -r res took <"$work/$name/$m.result"
-        case $m in bmc) depth=$bmc_depth ;; ind) depth=$ind_depth ;; cover) depth=$cover_depth ;; esac
+        depth=$(depth_of "$name" "$m")
         note="${what[$name]}"
         if [[ $res != PASS ]]; then
             fail=1

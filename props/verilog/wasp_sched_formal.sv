@@ -3,8 +3,8 @@
 //
 // The block is read with WASP_CFG_PORTS defined, so its configuration comes
 // from ports, driven here by $anyconst: every proof covers every
-// configuration at once -- policy 0..3 (baseline, fullpriority, freemshr-N,
-// wasp), MSHR capacity 0..31, CF_Q 0..31 (CF 0..7.75), threshold 0..31,
+// configuration at once -- policy 0..4 (baseline, fullpriority, freemshr-N,
+// wasp, wasp-m), MSHR capacity 0..31, CF_Q 0..31 (CF 0..7.75), threshold 0..31,
 // N 0..31, queue capacity 0..2**OCC_W-1 (0..127), launch rule 0 (hold) and
 // 1 (launch). MESH_BITS (Mesh4 by default) and the widths are parameters.
 //
@@ -14,6 +14,10 @@
 //   aux_inflight   MSHR entries allocated and not yet replied
 //   aux_nb/aux_bl  priority warps in the core, non-blocked / blocked
 //   aux_pw/aux_rw  warps waiting in the priority / regular FIFO
+//   aux_ml/aux_ma/aux_mq  wasp-m's CF meter as specified: priority launches
+//                  in the window, misses accumulated (min(acc + misses, 127),
+//                  misses clamped to 3), the CF loaded every 16th launch
+//                  (acc >> 2; 10 after reset)
 // Legal (as wasp-props' MshrModel / PriorityModel and FreeMshrReg::legal):
 //   replies <= inflight; allocs <= (capacity - inflight) + replies;
 //   unblocked <= blocked; blocked + finished <= nonblocked +
@@ -23,18 +27,20 @@
 //
 // "Exact" below = AW-bit (13) signed arithmetic on values that cannot
 // overflow it (-3937 <= 4*free - q*nb <= 124; event sums -510..+766), with
-// q*nb as a 5 x 7-bit multiplication into 12 bits (<= 3937 < 4096). The
+// q*nb as a 5 x 7-bit multiplication into 12 bits (<= 3937 < 4096). q is
+// CF_Q, or for wasp-m the CF of the reference meter (aux_mq). The
 // widths are sized on purpose: a 32-bit multiplier compared against the
 // shift-add is a needlessly hard problem for the SAT solver.
 //
 // Properties, each enabled by a define so that prove.sh proves them group
 // by group, each assertion labelled (the label names the property):
 //   P1  a priority selection or launch only when
-//       4*(capacity - inflight) - q*nb > 4*T on the reference model (wasp),
-//       or, under the launch rule `launch`, when no regular warp waits
+//       4*(capacity - inflight) - q*nb > 4*T on the reference model (wasp,
+//       wasp-m), or, under the launch rule `launch`, when no regular warp waits
 //   P2  product == floor(q*nb/4); real_free == free - floor(q*nb/4) as a
 //       signed value (the 11-bit subtract never wraps);
-//       priority_over_regular == (4*free - q*nb > 4*T); for EVERY register
+//       priority_over_regular == (4*free - q*nb > 4*T), q the datapath's CF
+//       input (cf_q: CF_Q, or wasp-m's meter register); for EVERY register
 //       value (asserted in every state, reachable or not)
 //   P3  free_mshrs == capacity - inflight and inflight <= capacity (so
 //       free_mshrs never exceeds the capacity and never wraps)
@@ -47,6 +53,10 @@
 //   P7  select and launch equal the reference policy on the reference
 //       model (a FIFO is non-empty if it holds a warp or accepts one now;
 //       launch = select when launch_enable)
+//   PM  wasp-m's CF meter equals the reference meter (launch count and
+//       accumulator for every policy, the CF under wasp-m), which stays in
+//       range: launches 0..15, accumulator 0..127 (saturating, never
+//       wrapping), CF 0..31 (the datapath's 5-bit CF input)
 //   P9  the launch rule, every policy: under `hold` a priority warp never
 //       launches with the gate closed (on the reference model); under
 //       `launch` the core never idles while a warp waits and launch_enable
@@ -55,6 +65,7 @@
 //   P8  (FAULT_MODE: no legality assumptions) fault == the exact next value
 //       of either register leaves its range; on a fault both registers hold,
 //       otherwise both load the exact values; a reset loads capacity and 0s
+//       (and the meter's CF 10); on a fault the CF meter holds too
 // Cover statements (COVER): the interesting cases are reachable.
 
 `default_nettype none
@@ -75,10 +86,11 @@ module wasp_sched_formal #(
     input wire [7:0] mshr_replies,
     input wire [7:0] prio_blocked,
     input wire [7:0] prio_unblocked,
-    input wire [7:0] prio_finished
+    input wire [7:0] prio_finished,
+    input wire [7:0] prio_misses
 );
     // ---- any configuration, constant over the run ----
-    wire [1:0]       cfg_policy     = $anyconst;
+    wire [2:0]       cfg_policy     = $anyconst;
     wire [4:0]       cfg_capacity   = $anyconst;
     wire [4:0]       cfg_cf_q       = $anyconst;
     wire [4:0]       cfg_threshold  = $anyconst;
@@ -95,6 +107,11 @@ module wasp_sched_formal #(
     wire             priority_over_regular;
     wire [1:0]       select, launch;
     wire             fault;
+    wire [3:0]       meter_launches;
+    wire [6:0]       meter_acc;
+    wire [4:0]       cf_q;
+
+    always @(*) assume(cfg_policy <= 3'd4);
 
     wasp_sched #(
         // the configuration parameters are unused with WASP_CFG_PORTS
@@ -110,13 +127,14 @@ module wasp_sched_formal #(
         .launch_enable(launch_enable),
         .mshr_allocs(mshr_allocs), .mshr_replies(mshr_replies),
         .prio_blocked(prio_blocked), .prio_unblocked(prio_unblocked),
-        .prio_finished(prio_finished),
+        .prio_finished(prio_finished), .prio_misses(prio_misses),
         .free_mshrs(free_mshrs), .nonblocked(nonblocked),
         .prio_occ(prio_occ), .reg_occ(reg_occ),
         .is_priority(is_priority), .push_accepted(push_accepted),
         .product(product), .real_free(real_free),
         .priority_over_regular(priority_over_regular),
-        .select(select), .launch(launch), .fault(fault)
+        .select(select), .launch(launch), .fault(fault),
+        .meter_launches(meter_launches), .meter_acc(meter_acc), .cf_q(cf_q)
     );
 
     // ---- the first cycle is a reset; f_init is high only then ----
@@ -140,30 +158,41 @@ module wasp_sched_formal #(
     wire signed [AW-1:0] reg_free = {{(AW-5){1'b0}}, free_mshrs};
     wire signed [AW-1:0] reg_nb   = {{(AW-7){1'b0}}, nonblocked};
     localparam signed [AW-1:0] ZERO = 0, MAXNB = 127, FOUR = 4;
+    wire wasp_gate = cfg_policy == 3'd3 || cfg_policy == 3'd4;   // wasp, wasp-m
 
     // ---- the auxiliary reference model ----
     reg signed [AW-1:0] aux_inflight, aux_nb, aux_bl, aux_pw, aux_rw;
+    reg signed [AW-1:0] aux_ml, aux_ma, aux_mq;   // the reference CF meter
 
     localparam [4:0] K = 5'd1 << MESH_BITS;
     // Mesh-k in arithmetic: x mod k == 0 and y mod k == 0
-    wire ref_priority = (cfg_policy != 2'd0) && (qx % K == 5'd0) && (qy % K == 5'd0);
+    wire ref_priority = (cfg_policy != 3'd0) && (qx % K == 5'd0) && (qy % K == 5'd0);
     wire ref_accept   = push_valid && (aux_pw + aux_rw < qcap);
     wire ref_pw = (aux_pw != 0) || (ref_accept && ref_priority);
     wire ref_rw = (aux_rw != 0) || (ref_accept && !ref_priority);
     wire signed [AW-1:0] aux_free = cap - aux_inflight;
     wire               aux_nb_in_range = aux_nb >= ZERO && aux_nb <= MAXNB;
-    wire        [11:0] qn_aux = cfg_cf_q * aux_nb[6:0];        // exact when in range
+    // the reference CF: the wired one, or wasp-m's reference meter (in range
+    // by PM)
+    wire         [4:0] q_ref  = (cfg_policy == 3'd4) ? aux_mq[4:0] : cfg_cf_q;
+    wire        [11:0] qn_aux = q_ref * aux_nb[6:0];           // exact when in range
     wire signed [AW-1:0] lhs_aux = (aux_free <<< 2) - $signed({{(AW-12){1'b0}}, qn_aux});
     wire signed [AW-1:0] thr4    = thr <<< 2;
     // the exact WaSP condition 4*free - q*nb > 4*T on the reference model
     wire exact_wasp = aux_nb_in_range && (lhs_aux > thr4);
-    wire ref_allowed = (cfg_policy == 2'd1) ? 1'b1 :
-                       (cfg_policy == 2'd2) ? (aux_free >= nmin) :
-                       (cfg_policy == 2'd3) ? exact_wasp : 1'b0;
+    wire ref_allowed = (cfg_policy == 3'd1) ? 1'b1 :
+                       (cfg_policy == 3'd2) ? (aux_free >= nmin) :
+                       wasp_gate ? exact_wasp : 1'b0;
     wire [1:0] ref_select = (ref_pw && ref_allowed)    ? 2'd2 :
                             ref_rw                     ? 2'd1 :
                             (ref_pw && cfg_launch_rule) ? 2'd2 : 2'd0;
     wire [1:0] ref_launch = launch_enable ? ref_select : 2'd0;
+
+    // the reference meter's next values (AW bits: nothing wraps)
+    wire signed [AW-1:0] m_in  = (prio_misses > 8'd3) ? 3 : {{(AW-8){1'b0}}, prio_misses};
+    wire signed [AW-1:0] m_sum = aux_ma + m_in;
+    wire signed [AW-1:0] m_sat = (m_sum > MAXNB) ? MAXNB : m_sum;
+    wire                 m_end = lp != ZERO && aux_ml == 15;
 
     always @(posedge clk) begin
         if (rst) begin
@@ -172,12 +201,18 @@ module wasp_sched_formal #(
             aux_bl       <= ZERO;
             aux_pw       <= ZERO;
             aux_rw       <= ZERO;
+            aux_ml       <= ZERO;
+            aux_ma       <= ZERO;
+            aux_mq       <= 10;
         end else begin
             aux_inflight <= aux_inflight + a - r;
             aux_nb       <= aux_nb + lp + u - b - f;
             aux_bl       <= aux_bl + b - u;
             aux_pw       <= aux_pw + (ref_accept && ref_priority) - lp;
             aux_rw       <= aux_rw + (ref_accept && !ref_priority) - lr;
+            aux_ml       <= m_end ? ZERO : aux_ml + lp;
+            aux_ma       <= m_end ? ZERO : m_sat;
+            aux_mq       <= m_end ? (m_sat >>> 2) : aux_mq;
         end
     end
 
@@ -200,7 +235,7 @@ module wasp_sched_formal #(
     // regular warp waits (the block's own regular FIFO: P1 assumes only P34)
     wire dut_rw = (reg_occ != {OCC_W{1'b0}}) || (push_accepted && !is_priority);
     wire p1_ok  = exact_wasp || (cfg_launch_rule && !dut_rw);
-    always @(*) if (!rst && cfg_policy == 2'd3) begin
+    always @(*) if (!rst && wasp_gate) begin
         if (select == 2'd2) p1_select: assert(p1_ok);
         if (launch == 2'd2) p1_launch: assert(p1_ok);
         if (!cfg_launch_rule && launch == 2'd2) p1_hold: assert(exact_wasp);
@@ -209,7 +244,7 @@ module wasp_sched_formal #(
 
     // ---- P2: the datapath is the exact comparison, for every value ----
 `ifdef ASSERT_P2
-    wire        [11:0] qn_reg = cfg_cf_q * nonblocked;        // exact: <= 3937
+    wire        [11:0] qn_reg = cf_q * nonblocked;            // exact: <= 3937
     wire signed [AW-1:0] exact_product = {{(AW-10){1'b0}}, qn_reg[11:2]}; // floor(q*nb/4)
     wire signed [AW-1:0] rf_ext = {{(AW-11){real_free[10]}}, real_free};
     wire signed [AW-1:0] lhs_reg = (reg_free <<< 2) - $signed({{(AW-12){1'b0}}, qn_reg});
@@ -235,6 +270,11 @@ module wasp_sched_formal #(
   `define P5_CHECK assert
 `elsif ASSUME_P5
   `define P5_CHECK assume
+`endif
+`ifdef ASSERT_PM
+  `define PM_CHECK assert
+`elsif ASSUME_PM
+  `define PM_CHECK assume
 `endif
 
 `ifdef P34_CHECK
@@ -264,6 +304,20 @@ module wasp_sched_formal #(
             p5_class:    `P5_CHECK(is_priority == ref_priority);
             p5_push:     `P5_CHECK(push_accepted == ref_accept);
         end
+    end
+`endif
+
+    // ---- PM: wasp-m's CF meter equals its specification, in range ----
+    // (the meter runs under every policy; its CF is read, and visible at
+    // cf_q, only under wasp-m)
+`ifdef PM_CHECK
+    always @(*) if (!f_init) begin
+        pm_model: `PM_CHECK(aux_ml >= ZERO && aux_ml <= 15 && aux_ma >= ZERO && aux_ma <= MAXNB &&
+                            aux_mq >= ZERO && aux_mq <= 31);
+        pm_launches: `PM_CHECK({{(AW-4){1'b0}}, meter_launches} == aux_ml);
+        pm_acc:      `PM_CHECK({{(AW-7){1'b0}}, meter_acc} == aux_ma);
+        if (cfg_policy == 3'd4) pm_cf: `PM_CHECK({{(AW-5){1'b0}}, cf_q} == aux_mq);
+        else pm_cf_wired: `PM_CHECK(cf_q == cfg_cf_q);
     end
 `endif
 
@@ -303,6 +357,7 @@ module wasp_sched_formal #(
     reg        p_valid = 1'b0;
     reg        p_rst, p_fault;
     reg [AW-1:0] p_free, p_nb, p_free_next, p_nb_next;
+    reg [15:0] p_meter;
     always @(posedge clk) begin
         p_valid     <= 1'b1;
         p_rst       <= rst;
@@ -311,13 +366,17 @@ module wasp_sched_formal #(
         p_nb        <= reg_nb;
         p_free_next <= exact_free_next;
         p_nb_next   <= exact_nb_next;
+        p_meter     <= {meter_launches, meter_acc, cf_q};
     end
     always @(*) begin
         if (!rst) p8_fault: assert(fault == exact_fault);
         if (p_valid && p_rst)
-            p8_reset: assert(reg_free == cap && reg_nb == ZERO && prio_occ == 0 && reg_occ == 0);
+            p8_reset: assert(reg_free == cap && reg_nb == ZERO && prio_occ == 0 && reg_occ == 0 &&
+                             meter_launches == 4'd0 && meter_acc == 7'd0 &&
+                             cf_q == ((cfg_policy == 3'd4) ? 5'd10 : cfg_cf_q));
         if (p_valid && !p_rst && p_fault)
-            p8_hold: assert(reg_free == p_free && reg_nb == p_nb);
+            p8_hold: assert(reg_free == p_free && reg_nb == p_nb &&
+                            {meter_launches, meter_acc, cf_q} == p_meter);
         if (p_valid && !p_rst && !p_fault)
             p8_load: assert(reg_free == p_free_next && reg_nb == p_nb_next);
     end
@@ -327,7 +386,7 @@ module wasp_sched_formal #(
 `ifdef COVER
     always @(*) if (!rst && !f_init) begin
         // a priority launch at the boundary 4*T < 4*free - q*nb <= 4*T + 4
-        c_boundary: cover(cfg_policy == 2'd3 && launch == 2'd2 && aux_nb > ZERO && q > ZERO &&
+        c_boundary: cover(cfg_policy == 3'd3 && launch == 2'd2 && aux_nb > ZERO && q > ZERO &&
                           lhs_aux <= thr4 + FOUR);
         // a waiting priority warp held back, a regular warp launched instead
         c_held_back: cover(launch == 2'd1 && aux_pw != ZERO);
@@ -340,10 +399,14 @@ module wasp_sched_formal #(
         // several warps finish, block and unblock in one cycle
         c_events: cover(prio_finished > 8'd1 && prio_blocked > 8'd1 && prio_unblocked > 8'd1);
         // hold: a lone priority warp, gate closed, a free slot, nothing launched (wasp)
-        c_hold: cover(cfg_policy == 2'd3 && !cfg_launch_rule && launch_enable && launch == 2'd0 &&
+        c_hold: cover(cfg_policy == 3'd3 && !cfg_launch_rule && launch_enable && launch == 2'd0 &&
                       aux_pw != ZERO && aux_rw == ZERO);
         // launch: a priority warp launched with the WaSP gate closed
-        c_launch_closed: cover(cfg_policy == 2'd3 && cfg_launch_rule && launch == 2'd2 && !exact_wasp);
+        c_launch_closed: cover(cfg_policy == 3'd3 && cfg_launch_rule && launch == 2'd2 && !exact_wasp);
+        // wasp-m: a priority launch counted by the meter with misses in its
+        // window, and a miss count above 3 (clamped)
+        c_waspm: cover(cfg_policy == 3'd4 && launch == 2'd2 && meter_launches > 4'd1 &&
+                       meter_acc > 7'd3 && prio_misses > 8'd3);
     end
 `endif
 endmodule

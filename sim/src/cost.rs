@@ -81,6 +81,12 @@ pub struct VariantCost {
     pub per_core_register_bits: u32,
     /// Per-core GE of the variant.
     pub per_core_ge: f64,
+    /// Yosys synthesis of the twin's CF meter alone (`wasp_cf_meter`).
+    pub yosys_meter: Option<YosysStat>,
+    /// Yosys synthesis of the twin's scheduler under wasp-m (`POLICY` 4:
+    /// the meter and the variable multiplier), beside the report's
+    /// [`CostReport::yosys`].
+    pub yosys: Option<YosysStat>,
 }
 
 /// The whole report.
@@ -282,12 +288,14 @@ pub fn report(
     let ge: f64 = per_core.iter().map(|c| c.ge).sum();
     let added = costed(measured_cf_inventory(), &rules);
     let removed = costed(constant_multiplier_inventory(&dp), &rules);
-    let variant = VariantCost {
+    let mut variant = VariantCost {
         per_core_register_bits: bits + added.iter().map(|c| c.register_bits).sum::<u32>(),
         per_core_ge: ge + added.iter().map(|c| c.ge).sum::<f64>()
             - removed.iter().map(|c| c.ge).sum::<f64>(),
         added,
         removed,
+        yosys_meter: None,
+        yosys: None,
     };
     let (ys, note) = if yosys {
         let params = [
@@ -297,7 +305,14 @@ pub fn report(
             ("THRESHOLD", threshold as i64),
         ];
         match run_yosys_on_twin(&params, "wasp_sched") {
-            Ok(s) => (Some(s), None),
+            Ok(s) => {
+                // The same machine under wasp-m (POLICY 4), and its meter.
+                let mut measured = params.to_vec();
+                measured.push(("POLICY", 4));
+                variant.yosys = run_yosys_on_twin(&measured, "wasp_sched").ok();
+                variant.yosys_meter = run_yosys_on_twin(&[], "wasp_cf_meter").ok();
+                (Some(s), None)
+            }
             Err(e) => (None, Some(e)),
         }
     } else {
@@ -456,6 +471,24 @@ impl CostReport {
             m.per_core_ge - self.per_core_ge,
             self.cf
         );
+        if let (Some(meter), Some(sched), Some(wasp)) = (&m.yosys_meter, &m.yosys, &self.yosys) {
+            let _ = writeln!(s, "synthesized by Yosys from the twin (per core):");
+            for (what, y) in [
+                ("CF meter alone (wasp_cf_meter)", meter),
+                ("scheduler under wasp-m (POLICY 4)", sched),
+                ("scheduler under WaSP, as (b)", wasp),
+            ] {
+                let _ = writeln!(
+                    s,
+                    "  {what:<36}{:>6} cells{:>5} flip-flops{:>7} transistors",
+                    y.cells,
+                    y.flip_flops,
+                    y.transistors
+                        .map(|t| t.to_string())
+                        .unwrap_or_else(|| "-".into())
+                );
+            }
+        }
         s
     }
 }
@@ -529,5 +562,40 @@ mod tests {
         assert_eq!(m.removed.len(), 1);
         assert!(m.per_core_ge > r.per_core_ge);
         assert!(t.contains("(d) the measured-CF variant") && t.contains("+ cf_meter"));
+        assert!(m.yosys.is_none() && m.yosys_meter.is_none());
+    }
+
+    /// Yosys on the twin: the meter alone has the 16 flip-flops of its
+    /// three registers (4 + 7 + 5), and the twin under wasp-m has WaSP's
+    /// flip-flops plus the meter's and more cells (the meter and the
+    /// variable multiplier). Without Yosys it passes with a note, unless
+    /// `WASP_REQUIRE_TOOLS=1` (CI).
+    #[test]
+    fn yosys_synthesizes_the_meter_beside_wasp() {
+        let cfg = MachineConfig::paper();
+        let r = report(
+            &cfg,
+            GateRules::default(),
+            &RfParams::for_config(&cfg),
+            true,
+        )
+        .unwrap();
+        let Some(wasp) = &r.yosys else {
+            assert_ne!(
+                std::env::var("WASP_REQUIRE_TOOLS").as_deref(),
+                Ok("1"),
+                "yosys required: {:?}",
+                r.yosys_note
+            );
+            eprintln!("skipped: yosys not installed ({:?})", r.yosys_note);
+            return;
+        };
+        let m = &r.measured_cf_variant;
+        let meter = m.yosys_meter.as_ref().expect("the meter synthesized");
+        let sched = m.yosys.as_ref().expect("the wasp-m twin synthesized");
+        assert_eq!(meter.flip_flops, 16);
+        assert_eq!(sched.flip_flops, wasp.flip_flops + 16);
+        assert!(sched.cells > wasp.cells + meter.cells, "{sched:?}");
+        assert!(r.to_table().contains("CF meter alone (wasp_cf_meter)"));
     }
 }

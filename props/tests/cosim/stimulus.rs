@@ -47,12 +47,13 @@ impl Rng {
 #[derive(Clone, Debug)]
 pub(crate) struct Config {
     pub(crate) name: &'static str,
-    /// Verilog POLICY: 0 baseline, 1 fullpriority, 2 freemshr-N, 3 wasp.
+    /// Verilog POLICY: 0 baseline, 1 fullpriority, 2 freemshr-N, 3 wasp,
+    /// 4 wasp-m (the CF from the meter).
     pub(crate) policy: u32,
     pub(crate) mshrs: u32,
     pub(crate) queue_cap: usize,
     /// CF in quarters (the Verilog CF_Q); the datapath is compared for
-    /// every policy, with these constants.
+    /// every policy, with these constants (wasp-m: with the meter's CF).
     pub(crate) cf_q: u32,
     pub(crate) threshold: u32,
     pub(crate) freemshr_n: u32,
@@ -73,6 +74,9 @@ impl Config {
             0 => PolicySpec::Baseline,
             1 => PolicySpec::FullPriority,
             2 => PolicySpec::FreeMshr(self.freemshr_n),
+            4 => PolicySpec::WaspMeasured {
+                threshold: self.threshold,
+            },
             _ => PolicySpec::Wasp {
                 threshold: self.threshold,
                 cf: self.cf_q as f64 / 4.0,
@@ -135,6 +139,8 @@ pub(crate) struct Inputs {
     pub(crate) blocked: u8,
     pub(crate) unblocked: u8,
     pub(crate) finished: u8,
+    /// Primary misses of priority warps (wasp-m's meter clamps them to 3).
+    pub(crate) misses: u8,
 }
 
 /// One cycle's outputs, in the testbench's column order.
@@ -152,10 +158,13 @@ pub(crate) struct Outputs {
     pub(crate) select: i64,
     pub(crate) launch: i64,
     pub(crate) fault: i64,
+    pub(crate) meter_launches: i64,
+    pub(crate) meter_acc: i64,
+    pub(crate) cf_q: i64,
 }
 
 impl Outputs {
-    pub(crate) const NAMES: [&'static str; 12] = [
+    pub(crate) const NAMES: [&'static str; 15] = [
         "free_mshrs",
         "nonblocked",
         "prio_occ",
@@ -168,9 +177,12 @@ impl Outputs {
         "select",
         "launch",
         "fault",
+        "meter_launches",
+        "meter_acc",
+        "cf_q",
     ];
 
-    pub(crate) fn to_array(self) -> [i64; 12] {
+    pub(crate) fn to_array(self) -> [i64; 15] {
         [
             self.free_mshrs,
             self.nonblocked,
@@ -184,6 +196,9 @@ impl Outputs {
             self.select,
             self.launch,
             self.fault,
+            self.meter_launches,
+            self.meter_acc,
+            self.cf_q,
         ]
     }
 
@@ -192,7 +207,7 @@ impl Outputs {
             .split_whitespace()
             .map(|t| t.parse().ok())
             .collect::<Option<_>>()?;
-        if v.len() != 12 {
+        if v.len() != Self::NAMES.len() {
             return None;
         }
         Some(Outputs {
@@ -208,6 +223,9 @@ impl Outputs {
             select: v[9],
             launch: v[10],
             fault: v[11],
+            meter_launches: v[12],
+            meter_acc: v[13],
+            cf_q: v[14],
         })
     }
 }
@@ -232,6 +250,14 @@ pub(crate) struct Coverage {
     pub(crate) faults: u64,
     pub(crate) max_nonblocked: i64,
     pub(crate) min_real_free: i64,
+    /// wasp-m: windows of 16 priority launches that loaded the CF register.
+    pub(crate) meter_windows: u64,
+    /// wasp-m: cycles with the meter's accumulator saturated (127).
+    pub(crate) meter_saturated: u64,
+    /// wasp-m: cycles with a misses input above the meter's 2-bit range.
+    pub(crate) misses_clamped: u64,
+    /// wasp-m: the distinct CF values the meter held (bit q: q quarters).
+    pub(crate) cf_values: u32,
 }
 
 impl Coverage {
@@ -249,6 +275,10 @@ impl Coverage {
         self.faults += o.faults;
         self.max_nonblocked = self.max_nonblocked.max(o.max_nonblocked);
         self.min_real_free = self.min_real_free.min(o.min_real_free);
+        self.meter_windows += o.meter_windows;
+        self.meter_saturated += o.meter_saturated;
+        self.misses_clamped += o.misses_clamped;
+        self.cf_values |= o.cf_values;
     }
 }
 
@@ -352,13 +382,18 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
         expected: Vec::new(),
         coverage: Coverage::default(),
     };
-    let dp = cfg.datapath();
     let k = cfg.mesh_k;
     for seed in 0..seeds {
         let name_hash = cfg.name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
             (h ^ b as u64).wrapping_mul(0x1000_0000_01b3)
         });
         let mut rng = Rng::new(name_hash ^ seed.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        // The misses of priority warps (read by wasp-m's meter) come from
+        // a stream of their own, so that the other inputs are those of
+        // the configurations before the meter.
+        let mut miss_rng = Rng::new(name_hash ^ seed.wrapping_mul(0xd1b5_4a32_d192_ed03) ^ 0x4d45);
+        // Per mille of cycles with misses: 100..=900.
+        let miss_rate = 100 + miss_rng.upto(800) as u32;
         let knobs = Knobs::draw(&mut rng);
         let mut s = cfg.scheduler();
         // Generator state beyond the registers: blocked priority warps and
@@ -366,16 +401,29 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
         let mut blocked: i64 = 0;
         let mut regular_in_core: i64 = 0;
         let mut ticket = 0u32;
-        run.stimulus.push_str("1 0 0 0 0 0 0 0 0 0\n");
+        run.stimulus.push_str("1 0 0 0 0 0 0 0 0 0 0\n");
         for cyc in 0..cycles {
             let free = s.free_mshrs().free().get() as i64;
             let nb = s.nonblocked().count().get() as i64;
             let in_flight = cfg.mshrs as i64 - free;
+            // wasp-m: the meter's registers at the start of the cycle, and
+            // its CF in the datapath; the other policies: the wired CF.
+            let meter = s.cf_meter();
+            let dp = match meter {
+                Some(m) => WaspDatapath {
+                    cf: m.cf(),
+                    ..cfg.datapath()
+                },
+                None => cfg.datapath(),
+            };
             let mut out = Outputs {
                 free_mshrs: free,
                 nonblocked: nb,
                 prio_occ: s.queue().occupancy(QueueClass::Priority) as i64,
                 reg_occ: s.queue().occupancy(QueueClass::Regular) as i64,
+                meter_launches: meter.map_or(0, |m| m.launches().get() as i64),
+                meter_acc: meter.map_or(0, |m| m.acc().get() as i64),
+                cf_q: dp.cf.quarters() as i64,
                 ..Outputs::default()
             };
             let mut inp = Inputs {
@@ -446,6 +494,13 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
                 inp.unblocked,
                 inp.finished,
             ] = ev;
+            // Misses of priority warps: mostly 0..=3, one cycle in forty any
+            // u8 (the meter's input clamps it to 3).
+            inp.misses = if miss_rng.per_mille(25) {
+                miss_rng.upto(255) as u8
+            } else {
+                count(&mut miss_rng, miss_rate, 3) as u8
+            };
             let r = s.clock(EdgeEvents {
                 mshr: MshrEvents {
                     allocs: inp.allocs,
@@ -456,7 +511,7 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
                     blocked: inp.blocked,
                     unblocked: inp.unblocked,
                     finished: inp.finished,
-                    misses: 0,
+                    misses: inp.misses,
                 },
             });
             out.fault = r.is_err() as i64;
@@ -482,10 +537,16 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
             c.faults += out.fault as u64;
             c.max_nonblocked = c.max_nonblocked.max(nb);
             c.min_real_free = c.min_real_free.min(out.real_free);
+            if let Some(m) = meter {
+                c.meter_windows += (lp == 1 && out.fault == 0 && m.launches().get() == 15) as u64;
+                c.meter_saturated += (m.acc().get() == 127) as u64;
+                c.misses_clamped += (inp.misses > 3) as u64;
+                c.cf_values |= 1 << m.cf().quarters();
+            }
 
             writeln!(
                 run.stimulus,
-                "0 {} {} {} {} {} {} {} {} {}",
+                "0 {} {} {} {} {} {} {} {} {} {}",
                 inp.push_valid as u8,
                 inp.qx,
                 inp.qy,
@@ -494,7 +555,8 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
                 inp.replies,
                 inp.blocked,
                 inp.unblocked,
-                inp.finished
+                inp.finished,
+                inp.misses
             )
             .unwrap();
             run.inputs.push((seed, cyc as u64, inp));

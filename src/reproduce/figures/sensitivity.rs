@@ -11,6 +11,54 @@ use crate::reproduce::plan::Width;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::Dispatch;
 
+/// The fastest baseline warp count of a sensitivity sweep and the range it
+/// was found in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BestWarps {
+    /// The fastest count measured.
+    pub warps: u32,
+    /// The smallest count measured.
+    pub lowest: u32,
+    /// The largest count measured.
+    pub highest: u32,
+}
+
+impl BestWarps {
+    /// At the largest count measured: the sweep ends before any optimum.
+    pub fn at_edge(&self) -> bool {
+        self.warps == self.highest && self.lowest < self.highest
+    }
+
+    /// "best at 48 warps (of 28-128)" or "fastest at the largest count
+    /// measured, 64 (of 32-64): still rising".
+    pub fn describe(&self) -> String {
+        if self.at_edge() {
+            format!(
+                "fastest at the largest count measured, {} warps (of {}-{}): still rising, \
+                 no optimum within the range",
+                self.warps, self.lowest, self.highest
+            )
+        } else {
+            format!(
+                "best at {} warps (of {}-{})",
+                self.warps, self.lowest, self.highest
+            )
+        }
+    }
+
+    /// The table's short form: "48", or ">= 64 (edge of 32-64)".
+    pub fn short(&self) -> String {
+        if self.at_edge() {
+            format!(
+                ">= {} (edge of {}-{})",
+                self.warps, self.lowest, self.highest
+            )
+        } else {
+            self.warps.to_string()
+        }
+    }
+}
+
 impl Figures<'_> {
     /// The mean over games of the per-scene speedup of `pol` at `k` warps
     /// over the baseline at `best` warps (width `w`).
@@ -33,18 +81,26 @@ impl Figures<'_> {
     }
 
     /// The best baseline warp count of width `w`: the highest mean speedup
-    /// over games (each scene against its own baseline at the first count).
-    pub fn best_warps(&self, d: Dispatch, w: &Width) -> Option<u32> {
+    /// over games (each scene against its own baseline at the first count),
+    /// with the range measured, so that a best count at the edge of the
+    /// range is never reported as an optimum.
+    pub fn best_warps(&self, d: Dispatch, w: &Width) -> Option<BestWarps> {
         let p = self.plan;
         let first = *p.warps.first()?;
-        p.warps
+        let best = p
+            .warps
             .iter()
             .filter_map(|&k| {
                 self.sensitivity_speedup(d, w, k, PolicySpec::Baseline, first)
                     .map(|v| (k, v))
             })
             .max_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(k, _)| k)
+            .map(|(k, _)| k)?;
+        Some(BestWarps {
+            warps: best,
+            lowest: first,
+            highest: *p.warps.iter().max()?,
+        })
     }
 
     /// The warp count the sensitivity figure is relative to: the paper's
@@ -54,7 +110,7 @@ impl Figures<'_> {
         if self.plan.warps.contains(&w.paper_best_warps) {
             Some(w.paper_best_warps)
         } else {
-            self.best_warps(d, w)
+            self.best_warps(d, w).map(|b| b.warps)
         }
     }
 
@@ -123,7 +179,8 @@ impl Figures<'_> {
             title: format!("Sensitivity at pipeline width {}", w.width),
             subtitle: format!(
                 "{d} machine, mean over games, over the baseline at {reference} warps (the \
-                 paper's optimum); our best baseline: {best} warps"
+                 paper's optimum); our baseline: {}",
+                best.describe()
             ),
             y_label: format!("speedup over the baseline at {reference} warps"),
             kind: Kind::Lines {

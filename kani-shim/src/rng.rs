@@ -1,0 +1,57 @@
+//! SplitMix64: a small seedable generator, enough for picking codes.
+
+/// The generator's state.
+#[derive(Clone, Debug)]
+pub(crate) struct Rng(u64);
+
+impl Rng {
+    pub(crate) fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+
+    pub(crate) fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `0..n` for `1 <= n <= 2^64` (the modulo bias of a
+    /// non-power-of-two `n` is at most `n / 2^64`: nothing at the domain
+    /// sizes drawn here, at most 2^16 filtered values).
+    pub(crate) fn below(&mut self, n: u128) -> u64 {
+        debug_assert!((1..=1 << 64).contains(&n));
+        if n == 1 << 64 {
+            self.next_u64()
+        } else {
+            self.next_u64() % n as u64
+        }
+    }
+}
+
+/// FNV-1a of a string (a harness's seed from its path).
+pub(crate) fn fnv(s: &str) -> u64 {
+    s.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn below_stays_in_range_and_repeats_per_seed() {
+        let mut a = Rng::new(7);
+        let mut b = Rng::new(7);
+        for n in [1u128, 2, 3, 256, 1000, 1 << 64] {
+            for _ in 0..100 {
+                let x = a.below(n);
+                assert!(u128::from(x) < n);
+                assert_eq!(x, b.below(n));
+            }
+        }
+        assert_ne!(fnv("a::b"), fnv("a::c"));
+    }
+}
