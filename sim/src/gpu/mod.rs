@@ -139,7 +139,9 @@ pub struct Gpu<'t, C = ShaderCore> {
     timeline: Option<Timeline>,
     tiles_done: usize,
     now: u64,
-    scratch: Vec<u32>,
+    /// The last cycle in which a stage of a core or the raster pipeline
+    /// made progress, or a tile began or ended (for the watchdog).
+    last_progress: u64,
 }
 
 impl<'t> Gpu<'t> {
@@ -199,7 +201,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             timeline: None,
             tiles_done: 0,
             now: 0,
-            scratch: Vec::with_capacity(64),
+            last_progress: 0,
         })
     }
 
@@ -276,118 +278,156 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
     ) -> Result<(), SimError> {
         self.now += 1;
         let now = self.now;
-        let tiles = self.trace.tiles();
-        match &mut self.dispatch {
-            Dispatcher::PerCore { next_tile } => {
-                // One pass per phase over the cores. A core's tile
-                // assignment depends only on its own idleness (tiles are
-                // released at the end of a cycle), so taking tiles in core
-                // order within the evaluate pass is the same as taking them
-                // all first.
-                for (i, c) in self.cores.iter_mut().enumerate() {
-                    if c.idle() && *next_tile < tiles.len() {
-                        c.assign_tile(*next_tile, &tiles[*next_tile], now);
-                        self.trackers[i].start(*next_tile as u32, Some(i as u32), now);
-                        if let Some(tl) = self.timeline.as_mut() {
-                            tl.mark(now, *next_tile as u32, Some(i as u32), true);
-                        }
-                        *next_tile += 1;
-                    }
-                    c.evaluate(now, self.trace, &mut self.mem);
-                    if let Some((q, prio)) = c.launched_now() {
-                        let quad = tiles[c.tile().expect("launching")].quad(q as usize);
-                        let quad = quad.expect("quad in tile");
-                        let t = &mut self.trackers[i];
-                        t.launch(now, q, quad.x(), quad.y(), prio);
-                        // Occupancy rises only at a launch: its peak is
-                        // found there.
-                        t.resident(now, c.active());
-                    }
-                }
-            }
-            Dispatcher::Shared(r) => {
-                let opened = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
-                if let Some(t) = opened {
-                    self.trackers[0].start(t as u32, None, now);
-                    if let Some(tl) = self.timeline.as_mut() {
-                        tl.mark(now, t as u32, None, true);
-                    }
-                }
-                let tile = r.tile().map(|t| &tiles[t]);
-                let mut launched = false;
-                for c in self.cores.iter_mut() {
-                    c.evaluate(now, self.trace, &mut self.mem);
-                    if let (Some((q, prio)), Some(tile)) = (c.launched_now(), tile) {
-                        let quad = tile.quad(q as usize).expect("quad in tile");
-                        self.trackers[0].launch(now, q, quad.x(), quad.y(), prio);
-                        launched = true;
-                    }
-                }
-                if launched {
-                    // Occupancy rises only at a launch: its peak is found
-                    // there.
-                    let resident = self.cores.iter().map(|c| c.active()).sum();
-                    self.trackers[0].resident(now, resident);
-                }
-            }
-        }
+        let mut progress = match self.dispatch {
+            Dispatcher::PerCore { .. } => self.evaluate_per_core(now),
+            Dispatcher::Shared(_) => self.evaluate_shared(now),
+        };
         self.mem.tick(now);
         match sink {
             Some(s) if HOOKS => {
                 for c in self.cores.iter_mut() {
-                    c.complete(now, &mut self.mem, &mut self.scratch)?;
+                    progress |= c.complete(now, &mut self.mem)?;
                 }
                 s.begin_cycle(now);
                 self.trace_signals(s);
                 s.end_cycle().map_err(SimError::Io)?;
                 for i in 0..self.cores.len() {
-                    self.core_end_cycle(i, now);
+                    progress |= self.core_end_cycle(i, now);
                 }
             }
             _ => {
                 // A core's end of cycle touches only itself: it can follow
                 // its completions directly.
                 for i in 0..self.cores.len() {
-                    self.cores[i].complete(now, &mut self.mem, &mut self.scratch)?;
-                    self.core_end_cycle(i, now);
+                    progress |= self.cores[i].complete(now, &mut self.mem)?;
+                    progress |= self.core_end_cycle(i, now);
                 }
             }
         }
-        if let Dispatcher::Shared(r) = &mut self.dispatch {
-            if let Some(t) = r.end_cycle(self.trace, &mut self.cores, now) {
-                let misses = self.cores.iter().map(|c| c.tile_misses()).sum();
-                self.trackers[0].finish(now, misses);
-                self.tiles_done += 1;
-                if let Some(tl) = self.timeline.as_mut() {
-                    tl.mark(now, t as u32, None, false);
-                }
-            }
+        progress |= self.close_shared_tile(now);
+        if progress {
+            self.last_progress = now;
         }
         if self.timeline.as_ref().is_some_and(|tl| tl.covers(now)) {
             self.sample_timeline(now);
         }
-        self.watchdog()
+        // Checked every 256 cycles: the limit is a coarse bound anyway.
+        if now.is_multiple_of(256) {
+            self.watchdog()?;
+        }
+        Ok(())
+    }
+
+    /// Phase 1 under per-core-tile dispatch: each idle core takes the next
+    /// tile, then every core evaluates. One pass over the cores: a core's
+    /// tile assignment depends only on its own idleness (tiles are released
+    /// at the end of a cycle), so taking tiles in core order within the
+    /// pass is the same as taking them all first. Whether anything made
+    /// progress.
+    #[inline(always)]
+    fn evaluate_per_core(&mut self, now: u64) -> bool {
+        let Dispatcher::PerCore { next_tile } = &mut self.dispatch else {
+            unreachable!("per-core-tile dispatch")
+        };
+        let tiles = self.trace.tiles();
+        let mut progress = false;
+        for (i, c) in self.cores.iter_mut().enumerate() {
+            if c.idle() && *next_tile < tiles.len() {
+                c.assign_tile(*next_tile, &tiles[*next_tile]);
+                self.trackers[i].start(*next_tile as u32, Some(i as u32), now);
+                if let Some(tl) = self.timeline.as_mut() {
+                    tl.mark(now, *next_tile as u32, Some(i as u32), true);
+                }
+                *next_tile += 1;
+                progress = true;
+            }
+            progress |= c.evaluate(now, self.trace, &mut self.mem);
+            if let Some((q, prio)) = c.launched_now() {
+                let quad = tiles[c.tile().expect("launching")].quad(q as usize);
+                let quad = quad.expect("quad in tile");
+                let t = &mut self.trackers[i];
+                t.launch(now, q, quad.x(), quad.y(), prio);
+                // Occupancy rises only at a launch: its peak is found
+                // there.
+                t.resident(now, c.active());
+            }
+        }
+        progress
+    }
+
+    /// Phase 1 under shared-tile dispatch: the raster pipeline, then every
+    /// core. Whether anything made progress.
+    #[inline(always)]
+    fn evaluate_shared(&mut self, now: u64) -> bool {
+        let Dispatcher::Shared(r) = &mut self.dispatch else {
+            unreachable!("shared-tile dispatch")
+        };
+        let cycle = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
+        let mut progress = cycle.progress;
+        if let Some(t) = cycle.opened {
+            self.trackers[0].start(t, None, now);
+            if let Some(tl) = self.timeline.as_mut() {
+                tl.mark(now, t, None, true);
+            }
+        }
+        let tile = r.tile().map(|t| &self.trace.tiles()[t]);
+        let mut launched = false;
+        for c in self.cores.iter_mut() {
+            progress |= c.evaluate(now, self.trace, &mut self.mem);
+            if let (Some((q, prio)), Some(tile)) = (c.launched_now(), tile) {
+                let quad = tile.quad(q as usize).expect("quad in tile");
+                self.trackers[0].launch(now, q, quad.x(), quad.y(), prio);
+                launched = true;
+            }
+        }
+        if launched {
+            // Occupancy rises only at a launch: its peak is found there.
+            let resident = self.cores.iter().map(|c| c.active()).sum();
+            self.trackers[0].resident(now, resident);
+        }
+        progress
+    }
+
+    /// Under shared-tile dispatch, the tile barrier at the end of the
+    /// cycle: whether the open tile closed.
+    #[inline(always)]
+    fn close_shared_tile(&mut self, now: u64) -> bool {
+        let Dispatcher::Shared(r) = &mut self.dispatch else {
+            return false;
+        };
+        let Some(t) = r.end_cycle(self.trace, &mut self.cores) else {
+            return false;
+        };
+        let misses = self.cores.iter().map(|c| c.tile_misses()).sum();
+        self.trackers[0].finish(now, misses);
+        self.tiles_done += 1;
+        if let Some(tl) = self.timeline.as_mut() {
+            tl.mark(now, t as u32, None, false);
+        }
+        true
     }
 
     /// A core's end of cycle; under per-core-tile dispatch, its tile's
-    /// end.
+    /// end. Whether its tile ended.
     #[inline(always)]
-    fn core_end_cycle(&mut self, i: usize, now: u64) {
+    fn core_end_cycle(&mut self, i: usize, now: u64) -> bool {
         let c = &mut self.cores[i];
         let tile = c.tile();
-        if c.end_cycle() {
-            self.tiles_done += 1;
-            let misses = c.tile_misses();
-            self.trackers[i].finish(now, misses);
-            if let Some(tl) = self.timeline.as_mut() {
-                tl.mark(
-                    now,
-                    tile.expect("a finished tile") as u32,
-                    Some(i as u32),
-                    false,
-                );
-            }
+        if !c.end_cycle() {
+            return false;
         }
+        self.tiles_done += 1;
+        let misses = c.tile_misses();
+        self.trackers[i].finish(now, misses);
+        if let Some(tl) = self.timeline.as_mut() {
+            tl.mark(
+                now,
+                tile.expect("a finished tile") as u32,
+                Some(i as u32),
+                false,
+            );
+        }
+        true
     }
 
     fn sample_timeline(&mut self, now: u64) {
@@ -406,32 +446,28 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
         });
     }
 
+    /// The last cycle in which a stage of a core or the raster pipeline
+    /// made progress, or a tile began or ended.
+    pub fn last_progress(&self) -> u64 {
+        self.last_progress
+    }
+
+    /// Stop a run in which nothing made progress for
+    /// `sim.watchdog_cycles` while a core has a tile or the raster
+    /// pipeline has work.
+    #[inline(never)]
     fn watchdog(&self) -> Result<(), SimError> {
-        // Checked every 256 cycles: the limit is a coarse bound anyway.
-        if !self.now.is_multiple_of(256) {
-            return Ok(());
-        }
-        let limit = self.cfg.sim.watchdog_cycles;
-        let raster = match &self.dispatch {
-            Dispatcher::Shared(r) if !r.done(self.trace.tiles().len()) => Some(r.last_progress()),
-            _ => None,
+        let rastering = match &self.dispatch {
+            Dispatcher::Shared(r) => !r.done(self.trace.tiles().len()),
+            Dispatcher::PerCore { .. } => false,
         };
-        let last = self
-            .cores
-            .iter()
-            .filter(|c| !c.idle())
-            .map(|c| c.last_progress())
-            .chain(raster)
-            .max();
-        if let Some(last) = last {
-            if self.now.saturating_sub(last) > limit {
-                let state: Vec<String> =
-                    self.cores.iter().map(|c| c.describe(self.trace)).collect();
-                return Err(SimError::Watchdog {
-                    cycle: self.now,
-                    state: state.join("\n"),
-                });
-            }
+        let busy = rastering || self.cores.iter().any(|c| !c.idle());
+        if busy && self.now - self.last_progress > self.cfg.sim.watchdog_cycles {
+            let state: Vec<String> = self.cores.iter().map(|c| c.describe(self.trace)).collect();
+            return Err(SimError::Watchdog {
+                cycle: self.now,
+                state: state.join("\n"),
+            });
         }
         Ok(())
     }

@@ -64,6 +64,16 @@ pub struct RasterStats {
     pub flush_lines: u64,
 }
 
+/// What the raster pipeline did in a cycle.
+#[derive(Clone, Copy, Debug)]
+pub struct RasterCycle {
+    /// The tile it opened, if any.
+    pub opened: Option<u32>,
+    /// It made progress: a line written, a tile opened, a quad
+    /// rasterized.
+    pub progress: bool,
+}
+
 /// The shared raster pipeline.
 #[derive(Debug)]
 pub struct SharedRaster {
@@ -81,7 +91,6 @@ pub struct SharedRaster {
     /// flush may still run when the next tile closes).
     flush: VecDeque<u64>,
     stats: RasterStats,
-    last_progress: u64,
     /// What the pipeline did in the last cycle (for the waveform).
     signals: RasterSignals,
 }
@@ -119,7 +128,6 @@ impl SharedRaster {
             cursor: RasterCursor::default(),
             flush: VecDeque::new(),
             stats: RasterStats::default(),
-            last_progress: 0,
             signals: RasterSignals::default(),
         }
     }
@@ -139,58 +147,63 @@ impl SharedRaster {
         &self.stats
     }
 
-    /// The last cycle the pipeline rasterized a quad or wrote a line.
-    pub fn last_progress(&self) -> u64 {
-        self.last_progress
-    }
-
     /// Phase 1 of cycle `now`: flush a line, open a tile if none is open,
-    /// rasterize. Returns the tile opened in this cycle, if any.
+    /// rasterize.
     pub fn evaluate<C: CoreModel>(
         &mut self,
         now: u64,
         trace: &Trace,
         cores: &mut [C],
         mem: &mut MemorySystem,
-    ) -> Option<usize> {
+    ) -> RasterCycle {
         self.signals = RasterSignals::default();
+        let mut progress = false;
         if let Some(block) = self.flush.pop_front() {
             self.signals.flushed = true;
             mem.write_back(now, block);
             self.stats.flush_lines += 1;
-            self.last_progress = now;
+            progress = true;
         }
         let tiles = trace.tiles();
         let mut opened = None;
         if self.tile.is_none() {
             let may_open = self.flush_mode != ColorFlush::Blocking || self.flush.is_empty();
             if self.next_tile >= tiles.len() {
-                return None;
+                return RasterCycle {
+                    opened: None,
+                    progress,
+                };
             }
             if !may_open {
                 self.stats.between_tiles_cycles += 1;
-                return None;
+                return RasterCycle {
+                    opened: None,
+                    progress,
+                };
             }
             let t = self.next_tile;
             self.next_tile += 1;
             self.tile = Some(t);
             self.cursor = RasterCursor::start(&tiles[t]);
             for c in cores.iter_mut() {
-                c.begin_shared_tile(t, now);
+                c.begin_shared_tile(t);
             }
-            opened = Some(t);
+            opened = Some(t as u32);
+            progress = true;
         }
         let t = self.tile.expect("a tile is open");
-        self.rasterize(&tiles[t], cores, now);
-        opened
+        progress |= self.rasterize(&tiles[t], cores);
+        RasterCycle { opened, progress }
     }
 
-    fn rasterize<C: CoreModel>(&mut self, tile: &Tile, cores: &mut [C], now: u64) {
+    /// Rasterize up to the rate; whether a quad was rasterized.
+    fn rasterize<C: CoreModel>(&mut self, tile: &Tile, cores: &mut [C]) -> bool {
         let mut budget = self.rate;
         if self.cursor.done() {
             self.stats.barrier_cycles += 1;
-            return;
+            return false;
         }
+        let before = self.stats.quads_rasterized;
         while budget > 0 {
             let k = self
                 .cursor
@@ -200,7 +213,6 @@ impl SharedRaster {
                 self.stats.quads_rasterized += u64::from(k);
                 self.stats.quads_rejected += u64::from(k);
                 self.signals.rejected += k;
-                self.last_progress = now;
                 continue;
             }
             let Some(i) = self.cursor.peek() else {
@@ -217,19 +229,14 @@ impl SharedRaster {
             self.cursor.advance(tile);
             budget -= 1;
             self.stats.quads_rasterized += 1;
-            self.last_progress = now;
         }
+        self.stats.quads_rasterized != before
     }
 
-    /// After the cores' end of cycle `now`: close the open tile if every
-    /// quad is rasterized and every core has drained it (the barrier), and
-    /// queue its colour-buffer flush. Returns the closed tile.
-    pub fn end_cycle<C: CoreModel>(
-        &mut self,
-        trace: &Trace,
-        cores: &mut [C],
-        now: u64,
-    ) -> Option<usize> {
+    /// After the cores' end of cycle: close the open tile if every quad is
+    /// rasterized and every core has drained it (the barrier), and queue
+    /// its colour-buffer flush. Returns the closed tile.
+    pub fn end_cycle<C: CoreModel>(&mut self, trace: &Trace, cores: &mut [C]) -> Option<usize> {
         let t = self.tile?;
         if !self.cursor.done() || !cores.iter().all(|c| c.drained()) {
             return None;
@@ -238,7 +245,6 @@ impl SharedRaster {
             c.end_shared_tile();
         }
         self.tile = None;
-        self.last_progress = now;
         if self.flush_mode != ColorFlush::None {
             flush_lines(trace, t, &mut self.flush);
         }

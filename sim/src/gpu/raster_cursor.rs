@@ -1,6 +1,6 @@
-//! Where a rasterizer is in a tile's rasterization order, and one cycle of
-//! a core's own rasterizer (per-core-tile dispatch). The shared raster
-//! pipeline (`raster.rs`) walks its open tile with the same cursor.
+//! Where a rasterizer is in a tile's rasterization order. The shared
+//! raster pipeline (`raster.rs`) and a core's own rasterizer
+//! (`core/raster.rs`, per-core-tile dispatch) walk a tile with it.
 
 use crate::trace::Tile;
 
@@ -57,45 +57,6 @@ impl RasterCursor {
         } else {
             tile.rejected_after_last()
         };
-    }
-
-    /// One cycle of a core's own rasterizer (per-core-tile dispatch): up
-    /// to `slots` raster slots, each disposing of `rejected_per_slot`
-    /// Early-Z-rejected quads (no warp) or delivering one surviving quad
-    /// (index, in-tile x, y) through `push`, which returns `false` when the
-    /// input queue refuses it (the rasterizer then waits). Adds the quads
-    /// rasterized to `rasterized` and, of them, the rejected ones to
-    /// `rejected`.
-    #[inline(always)]
-    pub(crate) fn own_cycle(
-        &mut self,
-        tile: &Tile,
-        slots: u32,
-        rejected_per_slot: u32,
-        rasterized: &mut u64,
-        rejected: &mut u64,
-        mut push: impl FnMut(u32, u32, u32) -> bool,
-    ) {
-        let mut budget = slots;
-        while budget > 0 {
-            let k = self.reject(budget.saturating_mul(rejected_per_slot));
-            if k > 0 {
-                budget -= k.div_ceil(rejected_per_slot);
-                *rasterized += u64::from(k);
-                *rejected += u64::from(k);
-                continue;
-            }
-            let Some(i) = self.peek() else {
-                break;
-            };
-            let q = tile.quad(i as usize).expect("quad in tile");
-            if !push(i, q.x(), q.y()) {
-                break;
-            }
-            self.advance(tile);
-            budget -= 1;
-            *rasterized += 1;
-        }
     }
 
     /// Every quad of the tile rasterized.

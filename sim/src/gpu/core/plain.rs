@@ -17,20 +17,25 @@
 //! - the LDST unit presents the oldest instruction's blocks in order until
 //!   the cache refuses one.
 //!
+//! Progress is whatever moved work on (a count of launches, instructions,
+//! retired warps, presented or returned blocks and rasterized quads went
+//! up), and the core is idle when no warp is ready, wakes, waits for data
+//! or waits in a queue with a free slot to go to, and the filter is free.
+//!
 //! The lockstep tests (`gpu/lockstep.rs`) run a GPU of these beside a GPU
 //! of fast cores and compare every core's observable state every cycle.
 //! Only the input queue and registers ([`LaunchScheduler`]) and a core's
-//! own rasterizer ([`RasterCursor::own_cycle`]) are shared with the fast
-//! core: they have their own references and tests.
+//! own rasterizer ([`OwnRaster`]) are shared with the fast core: they have
+//! their own references and tests.
 //!
 //! [`ShaderCore`]: super::ShaderCore
 
 use super::observe::CoreView;
+use super::raster::OwnRaster;
 use super::{CoreParams, CoreSignals, CoreSnapshot, CoreStats, WarpRecord, WarpView};
 use crate::config::BlockedOn;
 use crate::config::FilterTiming;
 use crate::gpu::core_model::CoreModel;
-use crate::gpu::raster_cursor::RasterCursor;
 use crate::gpu::SimError;
 use crate::mem::{Access, MemorySystem, MissEvent};
 use crate::trace::{OpKind, Tile, Trace};
@@ -134,15 +139,18 @@ pub(crate) struct PlainCore {
     /// First cycle the filter unit is free.
     filter_free: u64,
     tile: Option<usize>,
-    cursor: RasterCursor,
+    /// Its own rasterizer (per-core-tile dispatch).
+    raster: OwnRaster,
     tile_misses: u64,
     /// The slot issue visits first.
     rr: usize,
     /// The cycle's priority-warp events, for the scheduler's edge.
     prio: PriorityEvents,
     signals: CoreSignals,
-    last_progress: u64,
     stats: CoreStats,
+    /// Blocks presented to the cache, and blocks returned, so far.
+    presented: u64,
+    returned: u64,
     records: Option<Vec<WarpRecord>>,
     blocking: PlainBlocking,
 }
@@ -150,6 +158,19 @@ pub(crate) struct PlainCore {
 impl PlainCore {
     fn active_count(&self) -> u32 {
         self.warps.iter().flatten().count() as u32
+    }
+
+    /// Every count of work moved on, for progress.
+    fn work(&self) -> [u64; 6] {
+        let s = &self.stats;
+        [
+            s.warps_launched,
+            s.instructions,
+            s.warps_finished,
+            s.quads_rasterized,
+            self.presented,
+            self.returned,
+        ]
     }
 
     fn warp(&mut self, slot: usize) -> &mut PlainWarp {
@@ -199,29 +220,29 @@ impl PlainCore {
         }
     }
 
+    /// The warp in `slot` leaves the core at `now`: its record, and the
+    /// counts of its class.
     fn finish(&mut self, slot: usize, now: u64) {
         let w = self.warps[slot].take().expect("a warp in the slot");
-        self.stats.warps_finished += 1;
+        let class = usize::from(w.priority);
+        let mean = (w.tex_done > 0).then(|| w.lat_sum as f64 / f64::from(w.tex_done));
+        let record = WarpRecord {
+            tile: self.tile.expect("a tile") as u32,
+            quad: w.quad,
+            core: self.id as u32,
+            priority: w.priority,
+            mem_latency: mean,
+            launched: w.launched_at,
+            finished: now,
+        };
+        let st = &mut self.stats;
+        st.warps_finished += 1;
+        st.warps_with_tex[class] += u64::from(mean.is_some());
+        st.warp_latency_sum[class] += mean.unwrap_or(0.0);
         self.signals.finished += 1;
-        self.last_progress = now;
-        if w.priority && !w.blocked {
-            self.prio.finished += 1;
-        }
-        if let (Some(r), Some(tile)) = (self.records.as_mut(), self.tile) {
-            r.push(WarpRecord {
-                tile: tile as u32,
-                quad: w.quad,
-                core: self.id as u32,
-                priority: w.priority,
-                mem_latency: (w.tex_done > 0).then(|| w.lat_sum as f64 / w.tex_done as f64),
-                launched: w.launched_at,
-                finished: now,
-            });
-        }
-        if w.tex_done > 0 {
-            let c = usize::from(w.priority);
-            self.stats.warp_latency_sum[c] += w.lat_sum as f64 / w.tex_done as f64;
-            self.stats.warps_with_tex[c] += 1;
+        self.prio.finished += u8::from(w.priority && !w.blocked);
+        if let Some(r) = self.records.as_mut() {
+            r.push(record);
         }
     }
 
@@ -267,7 +288,6 @@ impl PlainCore {
         self.stats.warps_launched += 1;
         self.stats.priority_launches += u64::from(priority);
         self.signals.launched = Some((quad, priority));
-        self.last_progress = now;
     }
 
     fn issue(&mut self, now: u64) {
@@ -312,7 +332,6 @@ impl PlainCore {
         if let Some(s) = last {
             self.rr = (s + 1) % n;
             self.stats.instructions += u64::from(issued);
-            self.last_progress = now;
         }
     }
 
@@ -332,8 +351,8 @@ impl PlainCore {
                     return;
                 }
                 e.next += 1;
+                self.presented += 1;
                 self.signals.ldst_presented += 1;
-                self.last_progress = now;
                 if self.measures_cf && r == Access::Miss && self.warp(e.slot).priority {
                     self.prio.misses = self.prio.misses.saturating_add(1);
                 }
@@ -456,7 +475,7 @@ impl PlainCore {
             signals: &self.signals,
             tile: self.tile,
             external_raster: self.p.external_raster,
-            rasterized: self.cursor.next,
+            rasterized: self.raster.delivered(),
         }
     }
 }
@@ -482,16 +501,17 @@ impl CoreModel for PlainCore {
             ldst: VecDeque::new(),
             filter_free: 0,
             tile: None,
-            cursor: RasterCursor::default(),
+            raster: OwnRaster::new(p.raster_rate, p.rejected_per_slot),
             tile_misses: 0,
             rr: 0,
             prio: PriorityEvents::default(),
             signals: CoreSignals::default(),
-            last_progress: 0,
             stats: CoreStats {
                 occupancy_hist: vec![0; slots + 1],
                 ..CoreStats::default()
             },
+            presented: 0,
+            returned: 0,
             records: None,
             blocking: PlainBlocking::default(),
         }
@@ -505,18 +525,15 @@ impl CoreModel for PlainCore {
         self.tile.is_none()
     }
 
-    fn assign_tile(&mut self, index: usize, tile: &Tile, now: u64) {
+    fn assign_tile(&mut self, index: usize, tile: &Tile) {
         self.tile = Some(index);
-        self.cursor = RasterCursor::start(tile);
+        self.raster.start(tile);
         self.tile_misses = 0;
-        self.last_progress = now;
     }
 
-    fn begin_shared_tile(&mut self, tile: usize, now: u64) {
+    fn begin_shared_tile(&mut self, tile: usize) {
         self.tile = Some(tile);
-        self.cursor = RasterCursor::default();
         self.tile_misses = 0;
-        self.last_progress = now;
     }
 
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool {
@@ -543,30 +560,38 @@ impl CoreModel for PlainCore {
         &self.stats
     }
 
-    fn last_progress(&self) -> u64 {
-        self.last_progress
+    fn is_idle(&self, now: u64) -> bool {
+        let Some(_) = self.tile else {
+            return true;
+        };
+        let ldst_room = self.ldst.len() < self.p.core.ldst_queue as usize;
+        let busy_warp = self.warps.iter().flatten().any(|w| {
+            w.pending > 0
+                || w.state == State::ReadyAlu
+                || (w.state == State::ReadyTex && ldst_room)
+                || w.state == State::Asleep(now)
+        });
+        let can_launch = !self.sched.queue().is_empty() && self.warps.iter().any(Option::is_none);
+        let rasterizing = !self.p.external_raster && !self.raster.is_idle();
+        !busy_warp && !can_launch && !rasterizing && self.ldst.is_empty() && self.filter_free <= now
     }
 
-    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) {
+    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) -> bool {
         self.signals = CoreSignals::default();
         self.prio = PriorityEvents::default();
         let Some(t) = self.tile else {
             self.stats.idle_cycles += 1;
             self.stats.occupancy_hist[0] += 1;
-            return;
+            return false;
         };
+        let before = self.work();
         let tile = &trace.tiles()[t];
         self.wake(now, tile);
         if !self.p.external_raster {
             let sched = &mut self.sched;
-            self.cursor.own_cycle(
-                tile,
-                self.p.raster_rate,
-                self.p.rejected_per_slot,
-                &mut self.stats.quads_rasterized,
-                &mut self.stats.quads_rejected,
-                |i, x, y| sched.enqueue(i, x, y).is_ok(),
-            );
+            self.raster.run(tile, &mut self.stats, |i, x, y| {
+                sched.enqueue(i, x, y).is_ok()
+            });
         }
         self.launch(now, tile);
         self.issue(now);
@@ -574,14 +599,10 @@ impl CoreModel for PlainCore {
         let active = self.active_count();
         self.stats.occupancy_sum += u64::from(active);
         self.stats.occupancy_hist[active as usize] += 1;
+        self.work() != before
     }
 
-    fn complete(
-        &mut self,
-        now: u64,
-        mem: &mut MemorySystem,
-        scratch: &mut Vec<u32>,
-    ) -> Result<(), SimError> {
+    fn complete(&mut self, now: u64, mem: &mut MemorySystem) -> Result<bool, SimError> {
         let mut events = Vec::new();
         mem.take_miss_events(self.id, &mut events);
         for ev in events {
@@ -590,49 +611,48 @@ impl CoreModel for PlainCore {
                 self.block(s, now);
             }
         }
-        scratch.clear();
-        mem.take_completions(self.id, scratch);
-        for &tag in scratch.iter() {
+        let before = self.returned;
+        let mut arrived = Vec::new();
+        mem.take_completions(self.id, &mut arrived);
+        for tag in arrived {
             let s = self.waiting_warp(tag, "completion", now)?;
+            self.returned += 1;
             let w = self.warp(s);
             w.pending -= 1;
             if w.pending == 0 {
                 self.data_arrived(s, now);
             }
         }
-        if !scratch.is_empty() {
-            self.last_progress = now;
-        }
+        // The edge: the watched cache's allocations and replies (for a
+        // policy that reads them) and the cycle's priority-warp events.
         let ev = mem.mshr_events(self.id);
         self.tile_misses += u64::from(ev.allocated);
-        let mshr = if self.track_mshrs {
-            MshrEvents {
-                allocs: ev.allocated as u8,
-                replies: ev.replied as u8,
-            }
-        } else {
-            MshrEvents::default()
+        let seen = u8::from(self.track_mshrs);
+        let edge = EdgeEvents {
+            mshr: MshrEvents {
+                allocs: ev.allocated as u8 * seen,
+                replies: ev.replied as u8 * seen,
+            },
+            prio: self.prio,
         };
-        let prio = self.prio;
-        self.sched
-            .clock(EdgeEvents { mshr, prio })
-            .map_err(|fault| SimError::Register {
-                core: self.id,
-                cycle: now,
-                fault,
-            })?;
-        if let Some(m) = self.sched.cf_meter() {
-            self.stats.cf_quarters_sum += u64::from(m.cf().quarters());
-            self.stats.cf_samples += 1;
-        }
-        Ok(())
+        let id = self.id;
+        let fault = |fault| SimError::Register {
+            core: id,
+            cycle: now,
+            fault,
+        };
+        self.sched.clock(edge).map_err(fault)?;
+        let cf = self.sched.cf_meter().map(|m| u64::from(m.cf().quarters()));
+        self.stats.cf_quarters_sum += cf.unwrap_or(0);
+        self.stats.cf_samples += u64::from(cf.is_some());
+        Ok(self.returned != before)
     }
 
     fn end_cycle(&mut self) -> bool {
         if self.tile.is_none() || self.p.external_raster {
             return false;
         }
-        let done = self.cursor.done() && self.sched.queue().is_empty() && self.drained();
+        let done = self.raster.is_idle() && self.sched.queue().is_empty() && self.drained();
         if done {
             self.tile = None;
             self.stats.tiles += 1;
@@ -661,7 +681,7 @@ impl CoreModel for PlainCore {
         let q = self.sched.queue();
         CoreSnapshot {
             tile: self.tile,
-            rasterized: self.cursor.next,
+            rasterized: self.raster.delivered(),
             queued: [
                 q.occupancy(QueueClass::Priority),
                 q.occupancy(QueueClass::Regular),
