@@ -146,7 +146,10 @@ mod tests {
                 filter: &mut filter,
                 issue: &mut issue,
             };
-            if stage.run(now, &mut mem, &mut warps, to, &mut notes).unwrap() {
+            if stage
+                .run(now, &mut mem, &mut warps, to, &mut notes)
+                .unwrap()
+            {
                 arrived_at.get_or_insert(now);
             }
         }
