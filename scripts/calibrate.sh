@@ -41,10 +41,10 @@ KNEE=${KNEE:-0.01}
 export KNEE
 
 scenes=${SCENES:-$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6 {print $1}')}
-# The trace format the front end writes (FORMAT_VERSION in trace/src/lib.rs):
+# The trace format the front end writes (FORMAT_VERSION in trace/src/limits.rs):
 # a cached trace of another version is rendered again.
-version=$(sed -n 's/^pub const FORMAT_VERSION: u32 = \([0-9][0-9]*\);$/\1/p' trace/src/lib.rs)
-[ -n "$version" ] || { echo "calibrate.sh: no FORMAT_VERSION in trace/src/lib.rs" >&2; exit 1; }
+version=$(sed -n 's/^pub const FORMAT_VERSION: u32 = \([0-9][0-9]*\);$/\1/p' trace/src/limits.rs)
+[ -n "$version" ] || { echo "calibrate.sh: no FORMAT_VERSION in trace/src/limits.rs" >&2; exit 1; }
 for s in $scenes; do
   t=$repo/target/machines/traces/$s.trace
   if [ -s "$t" ] && [ "$(head -n 1 "$t")" != "wasp-trace $version" ]; then

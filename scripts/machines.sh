@@ -22,9 +22,9 @@ cargo build --release --locked -q
 W=$repo/target/release/wasp
 scenes=$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6 {print $1}')
 "$W" scenes fetch supertuxkart openarena teeworlds frozen-bubble >&2
-# The trace format the front end writes (FORMAT_VERSION in trace/src/lib.rs).
-version=$(sed -n 's/^pub const FORMAT_VERSION: u32 = \([0-9][0-9]*\);$/\1/p' trace/src/lib.rs)
-[ -n "$version" ] || { echo "machines.sh: no FORMAT_VERSION in trace/src/lib.rs" >&2; exit 1; }
+# The trace format the front end writes (FORMAT_VERSION in trace/src/limits.rs).
+version=$(sed -n 's/^pub const FORMAT_VERSION: u32 = \([0-9][0-9]*\);$/\1/p' trace/src/limits.rs)
+[ -n "$version" ] || { echo "machines.sh: no FORMAT_VERSION in trace/src/limits.rs" >&2; exit 1; }
 start=$(date +%s)
 for s in $scenes; do
   t=$repo/target/machines/traces/$s.trace

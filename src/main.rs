@@ -6,6 +6,7 @@ mod cost_cmd;
 mod example_cmd;
 mod fonts;
 mod heat;
+mod palette;
 mod picture;
 mod reproduce;
 mod run_cmd;

@@ -1,8 +1,8 @@
 //! How wasp's pictures (the timeline of `wasp run --timeline`, the
 //! reproduction's charts) are written: a picture lays itself out and draws
 //! on any plotters backend; [`save`] renders it to an SVG or a PNG file,
-//! chosen by the file's extension ([`is_svg`]); the series colours come
-//! from one palette ([`palette_colour`]).
+//! chosen by the file's extension ([`is_svg`]). Their colours come from
+//! [`crate::palette`].
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -67,32 +67,6 @@ pub(crate) fn save(
     }
 }
 
-/// Distinguishable colours (matplotlib's tab10).
-const PALETTE: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
-
-/// The colour of series (or core) `i`: the palette, repeated darker past
-/// its ten colours.
-pub(crate) fn palette_colour(i: usize) -> RGBColor {
-    let RGBColor(r, g, b) = PALETTE[i % PALETTE.len()];
-    if (i / PALETTE.len()).is_multiple_of(2) {
-        RGBColor(r, g, b)
-    } else {
-        let dark = |v: u8| (u16::from(v) * 3 / 5) as u8;
-        RGBColor(dark(r), dark(g), dark(b))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -106,12 +80,5 @@ mod tests {
             e,
             "b.jpg: cannot draw a thing in this format; the file must end in .png or .svg"
         );
-    }
-
-    #[test]
-    fn the_palette_repeats_darker() {
-        assert_eq!(palette_colour(0), RGBColor(31, 119, 180));
-        assert_eq!(palette_colour(10), RGBColor(18, 71, 108));
-        assert_eq!(palette_colour(20), palette_colour(0));
     }
 }

@@ -9,7 +9,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use wasp_frontend::characterize::{self, Characterization};
 use wasp_frontend::def::{self, Game, SceneDef};
-use wasp_frontend::raster::Frame;
+use wasp_frontend::raster::{DrawOrder, Frame};
 use wasp_frontend::render::{self, HeatStat, Overlay, RenderRequest, WarpValue};
 use wasp_frontend::{fetch, load};
 use wasp_rtl::policy::PolicySpec;
@@ -86,6 +86,12 @@ pub struct RenderArgs {
     /// deferred renderer). Default: plain early-Z in submission order.
     #[arg(long)]
     pub depth_prepass: bool,
+    /// Order of the opaque geometry: as-loaded, front-to-back-object or
+    /// front-to-back-draw (default: the scene definition's `draw_order`,
+    /// as-loaded for every shipped scene). A 2D scene is drawn in
+    /// painter's order whatever this says.
+    #[arg(long, value_name = "ORDER")]
+    pub draw_order: Option<DrawOrder>,
     /// Print where the time went: loading the scene (parsing meshes,
     /// decoding textures) and the front end (mip chains, geometry and
     /// binning, raster + early-Z + texturing + shading + trace), wall-clock
@@ -122,10 +128,26 @@ pub struct CharacterizeArgs {
     /// Hidden-surface removal by a depth pre-pass (see `wasp render`).
     #[arg(long)]
     pub depth_prepass: bool,
+    /// Order of the opaque geometry (see `wasp render`); repeat it to
+    /// characterise every scene in each order given (default: each
+    /// scene's own `draw_order`).
+    #[arg(long, value_name = "ORDER")]
+    pub draw_order: Vec<DrawOrder>,
     /// No progress output on stderr (progress bars, notes of what is being
     /// done); results, warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
+}
+
+/// The note for a draw order that changes nothing on a 2D scene, if
+/// `asked` is not what takes effect.
+fn painter_note(scene: &str, asked: DrawOrder, took: DrawOrder) -> Option<String> {
+    (asked != took).then(|| {
+        format!(
+            "wasp: note: {scene} is a 2D scene drawn in painter's order without a depth test \
+             (its order is its picture): draw order {asked} changes nothing, it is drawn {took}"
+        )
+    })
 }
 
 fn parse_game(s: &str) -> Result<Game, CliError> {
@@ -257,7 +279,8 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     if args.repeat == 0 {
         return Err(CliError::usage("--repeat 0: expected at least 1"));
     }
-    let d = find_def(&args.scene)?;
+    let mut d = find_def(&args.scene)?;
+    d.draw_order = args.draw_order.unwrap_or(d.draw_order);
     let (w, h) = match &args.size {
         Some(s) => parse_size(s)?,
         None => (d.width, d.height),
@@ -280,6 +303,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         tile: config.gpu.tile_size,
         depth_prepass: args.depth_prepass,
         threads: args.threads,
+        draw_order: d.draw_order,
     };
     let run = RunOptions {
         policy: args.policy,
@@ -335,13 +359,17 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     }
     pb.finish_and_clear();
     let s = &out.frame.stats;
+    if let Some(n) = painter_note(&d.name, d.draw_order, s.draw_order) {
+        eprintln!("{n}");
+    }
     eprintln!(
-        "wasp: {} {}x{}: {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
+        "wasp: {} {}x{} ({}): {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
          positions ({:.2} per position) over {} tiles, {} quads rejected by early-Z; front end \
          {:.3} s",
         scene.name,
         w,
         h,
+        s.draw_order,
         s.primitives,
         s.clipped,
         s.warps,
@@ -571,22 +599,47 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
             .map(|s| find_def(s))
             .collect::<Result<_, _>>()?
     };
+    // Each scene in each order asked for (none: its own), scene by scene.
+    let defs: Vec<SceneDef> = defs
+        .into_iter()
+        .flat_map(|d| {
+            let orders = match args.draw_order.is_empty() {
+                true => vec![d.draw_order],
+                false => args.draw_order.clone(),
+            };
+            orders.into_iter().map(move |o| SceneDef {
+                draw_order: o,
+                ..d.clone()
+            })
+        })
+        .collect();
     let mut rows: Vec<Characterization> = Vec::new();
     let mut failed = Vec::new();
     for (i, d) in defs.iter().enumerate() {
         if !args.quiet {
+            let order = match args.draw_order.is_empty() {
+                true => String::new(),
+                false => format!(" in draw order {}", d.draw_order),
+            };
             eprintln!(
-                "wasp: characterising {} ({} of {})",
+                "wasp: characterising {}{order} ({} of {})",
                 d.name,
                 i + 1,
                 defs.len()
             );
         }
         match characterize::characterize_def(d, args.depth_prepass) {
-            Ok(c) => rows.push(c),
+            Ok(c) => {
+                if let Some(n) = painter_note(&d.name, d.draw_order, c.draw_order) {
+                    if !args.quiet {
+                        eprintln!("{n}");
+                    }
+                }
+                rows.push(c)
+            }
             Err(e) => {
-                eprintln!("wasp: {}: {e}", d.name);
-                failed.push(d.name.clone());
+                eprintln!("wasp: {} ({}): {e}", d.name, d.draw_order);
+                failed.push(format!("{} ({})", d.name, d.draw_order));
             }
         }
     }

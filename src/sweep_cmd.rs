@@ -56,8 +56,8 @@ pub struct MergeArgs {
     pub dirs: Vec<PathBuf>,
 
     /// The sweep file: one row per point in sweep order, with its columns
-    /// (point, config, dispatch, policy, scene); points without a result
-    /// are listed and the exit code is 1.
+    /// (point, config, dispatch, policy, scene, draw_order); points without
+    /// a result are listed and the exit code is 1.
     #[arg(long, value_name = "FILE")]
     pub sweep: Option<PathBuf>,
 

@@ -22,7 +22,7 @@
 //! is the distinct blocks of the selected warps over the tile's.
 
 use super::def::SceneDef;
-use super::raster::{rasterize_timed, Frame, RasterOptions};
+use super::raster::{rasterize_timed, DrawOrder, Frame, RasterOptions};
 use super::{load, SceneError};
 #[cfg(test)]
 use crate::trace::mean_footprint_ratio;
@@ -65,10 +65,30 @@ pub struct Characterization {
     pub warps_per_tile: f64,
     /// Quad positions with at least one warp (summed over tiles).
     pub positions: u64,
-    /// warps / positions: fragments per shaded quad position (overdraw).
+    /// warps / positions: shaded warps (fragments) per quad position
+    /// covered, the overdraw in warps. Arm's guidance for mobile games is
+    /// under 3 shaded fragments per output pixel (`docs/scenes.md`).
     pub warps_per_position: f64,
+    /// The same per tile (a tile's warps over its quad positions), over
+    /// the tiles with a warp: the median (nearest rank).
+    #[serde(default)]
+    pub warps_per_position_p50: f64,
+    /// The 90th percentile over tiles.
+    #[serde(default)]
+    pub warps_per_position_p90: f64,
+    /// The 99th percentile over tiles.
+    #[serde(default)]
+    pub warps_per_position_p99: f64,
     /// Quads rejected by early-Z.
     pub rejected_early_z: u64,
+    /// Of the covered (triangle, quad) pairs, the share early-Z rejected:
+    /// rejected / (rejected + warps).
+    #[serde(default)]
+    pub rejected_early_z_share: f64,
+    /// The draw order the frame was rasterized in (the one that took
+    /// effect: a 2D scene is always drawn as loaded).
+    #[serde(default)]
+    pub draw_order: DrawOrder,
     /// Texture instructions / instructions (Table I).
     pub mem_instr_ratio: f64,
     /// Memory-block reuse in tile (Table I).
@@ -176,6 +196,15 @@ pub fn characterize(scene: &str, frame: &Frame, raster_seconds: f64) -> Characte
         })
         .collect();
     let ratio = |a: f64, b: f64| if b == 0.0 { 0.0 } else { a / b };
+    let mut per_tile: Vec<f64> = frame
+        .trace
+        .tiles()
+        .iter()
+        .filter(|t| t.position_count() > 0)
+        .map(|t| t.quad_count() as f64 / t.position_count() as f64)
+        .collect();
+    per_tile.sort_by(f64::total_cmp);
+    let rejected = frame.stats.quads_rejected_early_z;
     Characterization {
         scene: scene.to_string(),
         workload: s.workload.clone(),
@@ -186,7 +215,12 @@ pub fn characterize(scene: &str, frame: &Frame, raster_seconds: f64) -> Characte
         warps_per_tile: s.warps_per_tile,
         positions: s.positions,
         warps_per_position: s.warps_per_position,
-        rejected_early_z: frame.stats.quads_rejected_early_z,
+        warps_per_position_p50: percentile(&per_tile, 0.5),
+        warps_per_position_p90: percentile(&per_tile, 0.9),
+        warps_per_position_p99: percentile(&per_tile, 0.99),
+        rejected_early_z: rejected,
+        rejected_early_z_share: ratio(rejected as f64, (rejected + s.warps) as f64),
+        draw_order: frame.stats.draw_order,
         mem_instr_ratio: s.mem_instr_ratio,
         reuse: s.reuse,
         cf: s.cf,
@@ -198,8 +232,18 @@ pub fn characterize(scene: &str, frame: &Frame, raster_seconds: f64) -> Characte
     }
 }
 
-/// Load, rasterize (trace only, 64-pixel tiles; hidden-surface removal
-/// by a depth pre-pass if `depth_prepass`) and characterise a scene.
+/// The value at fraction `q` of `sorted` (nearest rank; 0 when empty).
+fn percentile(sorted: &[f64], q: f64) -> f64 {
+    if sorted.is_empty() {
+        return 0.0;
+    }
+    let rank = (q * sorted.len() as f64).ceil() as usize;
+    sorted[rank.clamp(1, sorted.len()) - 1]
+}
+
+/// Load, rasterize (trace only, 64-pixel tiles, in the definition's draw
+/// order; hidden-surface removal by a depth pre-pass if `depth_prepass`)
+/// and characterise a scene.
 pub fn characterize_def(
     def: &SceneDef,
     depth_prepass: bool,
@@ -208,6 +252,7 @@ pub fn characterize_def(
     let opts = RasterOptions {
         colour: false,
         depth_prepass,
+        draw_order: def.draw_order,
         ..RasterOptions::default()
     };
     let (frame, secs) = rasterize_timed(&scene, def.width, def.height, &opts)?;
@@ -245,8 +290,28 @@ pub fn table(rows: &[Characterization]) -> String {
         "-".into(),
     ));
     lines.push((
-        "warps per position".into(),
+        "draw order".into(),
+        col(&|c| c.draw_order.to_string()),
+        "-".into(),
+    ));
+    lines.push((
+        "shaded warps per quad position".into(),
         col(&|c| format!("{:.2}", c.warps_per_position)),
+        "-".into(),
+    ));
+    lines.push((
+        "  per tile p50/p90/p99".into(),
+        col(&|c| {
+            format!(
+                "{:.2}/{:.2}/{:.2}",
+                c.warps_per_position_p50, c.warps_per_position_p90, c.warps_per_position_p99
+            )
+        }),
+        "-".into(),
+    ));
+    lines.push((
+        "early-Z rejected share".into(),
+        col(&|c| format!("{:.3}", c.rejected_early_z_share)),
         "-".into(),
     ));
     lines.push((
@@ -325,7 +390,8 @@ pub fn csv(rows: &[Characterization]) -> String {
     let mut out = String::from(
         "scene,workload,width,height,tiles,warps,warps_per_tile,positions,warps_per_position,\
          rejected_early_z,mem_instr_ratio,reuse,cf,blocks_per_tex_instr,min_estimate1,\
-         min_estimate2",
+         min_estimate2,draw_order,warps_per_position_p50,warps_per_position_p90,\
+         warps_per_position_p99,rejected_early_z_share",
     );
     if let Some(r) = rows.first() {
         for f in &r.footprints {
@@ -339,7 +405,8 @@ pub fn csv(rows: &[Characterization]) -> String {
     for c in rows {
         let _ = write!(
             out,
-            "{},\"{}\",{},{},{},{},{:.3},{},{:.4},{},{:.5},{:.4},{:.4},{:.4},{:.5},{:.5}",
+            "{},\"{}\",{},{},{},{},{:.3},{},{:.4},{},{:.5},{:.4},{:.4},{:.4},{:.5},{:.5},{},{:.4},\
+             {:.4},{:.4},{:.5}",
             c.scene,
             c.workload.replace('"', "'"),
             c.width,
@@ -355,7 +422,12 @@ pub fn csv(rows: &[Characterization]) -> String {
             c.cf,
             c.blocks_per_tex_instr,
             c.min_estimate1,
-            c.min_estimate2
+            c.min_estimate2,
+            c.draw_order,
+            c.warps_per_position_p50,
+            c.warps_per_position_p90,
+            c.warps_per_position_p99,
+            c.rejected_early_z_share
         );
         for f in &c.footprints {
             let _ = write!(out, ",{:.5}", f.footprint_ratio);
@@ -384,6 +456,7 @@ mod tests {
             height: 128,
             description: String::new(),
             shader: None,
+            draw_order: Default::default(),
         };
         let c = characterize_def(&def, false).unwrap();
         assert_eq!(c.footprints.len(), SubsetSpec::all().len());
@@ -405,10 +478,50 @@ mod tests {
         // Sprites over a backdrop: overdraw, one warp per fragment.
         assert!(c.warps > c.positions, "{} {}", c.warps, c.positions);
         assert!((c.warps_per_position - c.warps as f64 / c.positions as f64).abs() < 1e-12);
-        assert!(t.contains("warps per position"), "{t}");
+        assert!(t.contains("shaded warps per quad position"), "{t}");
+        // Per tile, the percentiles bracket the mean's tiles.
+        assert!(c.warps_per_position_p50 >= 1.0);
+        assert!(c.warps_per_position_p50 <= c.warps_per_position_p90);
+        assert!(c.warps_per_position_p90 <= c.warps_per_position_p99);
+        assert_eq!(c.rejected_early_z_share, 0.0, "sprites reject nothing");
+        assert_eq!(c.draw_order, DrawOrder::AsLoaded);
+        assert!(v.lines().next().unwrap().contains(",draw_order,"));
         for f in &c.footprints {
             assert!(f.warp_ratio > 0.0 && f.warp_ratio < 1.0, "{f:?}");
         }
+    }
+
+    #[test]
+    fn the_draw_order_moves_warps_per_position_and_the_early_z_share() {
+        let mut def = crate::def::all()
+            .unwrap()
+            .into_iter()
+            .find(|d| d.name == "procedural-plane")
+            .unwrap();
+        (def.width, def.height) = (392, 154);
+        let by = |o: DrawOrder| {
+            let d = SceneDef {
+                draw_order: o,
+                ..def.clone()
+            };
+            characterize_def(&d, false).unwrap()
+        };
+        let loaded = by(DrawOrder::AsLoaded);
+        // The ground (one object, loaded first, its bounds' centre far
+        // away) is drawn after the blocks standing on it.
+        let objects = by(DrawOrder::FrontToBackObject);
+        assert_eq!(objects.draw_order, DrawOrder::FrontToBackObject);
+        assert_eq!(objects.positions, loaded.positions);
+        assert!(objects.warps < loaded.warps);
+        assert!(objects.warps_per_position < loaded.warps_per_position);
+        assert!(objects.rejected_early_z_share > loaded.rejected_early_z_share);
+        // Shaded or rejected, every covered quad is still there.
+        assert_eq!(
+            objects.warps + objects.rejected_early_z,
+            loaded.warps + loaded.rejected_early_z
+        );
+        let t = table(&[loaded, objects]);
+        assert!(t.contains("front-to-back-object"), "{t}");
     }
 
     #[test]

@@ -9,8 +9,10 @@
 //! width = 1960
 //! height = 768
 //! description = "Lighthouse track, behind the first start position"
+//! draw_order = "as-loaded"      # optional: as-loaded (default) | front-to-back-object | front-to-back-draw
 //! ```
 
+use super::raster::DrawOrder;
 use super::SceneError;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -99,6 +101,10 @@ pub struct SceneDef {
     /// Shader template override (see [`super::shader`]); default per material.
     #[serde(default)]
     pub shader: Option<String>,
+    /// Order of the opaque geometry ([`DrawOrder`]: `as-loaded`, the
+    /// default, `front-to-back-object` or `front-to-back-draw`).
+    #[serde(default)]
+    pub draw_order: DrawOrder,
 }
 
 impl SceneDef {
@@ -242,6 +248,7 @@ pub(crate) fn test_def(game: Game, map: &str, camera: &str, width: u32, height: 
         height,
         description: String::new(),
         shader: None,
+        draw_order: Default::default(),
     }
 }
 
@@ -274,5 +281,43 @@ mod tests {
             e.message.contains("doom") || e.message.contains("variant"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn the_draw_order_is_optional_and_checked() {
+        let ok = "name = \"x\"\ngame = \"supertuxkart\"\nmap = \"m\"\ncamera = \"start:0\"\nwidth = 64\nheight = 32\n";
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        assert_eq!(d.draw_order, DrawOrder::AsLoaded);
+        for o in DrawOrder::ALL {
+            let text = format!("{ok}draw_order = \"{o}\"\n");
+            assert_eq!(
+                SceneDef::parse(&text, Path::new("x.toml"))
+                    .unwrap()
+                    .draw_order,
+                o
+            );
+        }
+        let e = SceneDef::parse(
+            &format!("{ok}draw_order = \"back-to-front\"\n"),
+            Path::new("dir/x.toml"),
+        )
+        .unwrap_err();
+        let m = e.to_string();
+        assert!(m.starts_with("dir/x.toml: "), "{m}");
+        assert!(m.contains("line 7") && m.contains("draw_order"), "{m}");
+        assert!(
+            m.contains("`back-to-front`")
+                && m.contains("`as-loaded`, `front-to-back-object`, `front-to-back-draw`"),
+            "{m}"
+        );
+    }
+
+    #[test]
+    fn shipped_scenes_keep_the_order_loaded() {
+        // No shipped game's renderer sorts opaque draws by depth
+        // (docs/scenes.md), so every shipped scene draws as loaded.
+        for d in all().unwrap() {
+            assert_eq!(d.draw_order, DrawOrder::AsLoaded, "{}", d.name);
+        }
     }
 }

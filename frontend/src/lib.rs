@@ -123,7 +123,7 @@ pub struct Material {
 
 /// A triangle mesh in world space (2D scenes: z is the layer depth, larger
 /// is nearer; positions in pixels of the orthographic camera's view).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     /// Vertex positions.
     pub positions: Vec<Vec3>,
@@ -135,6 +135,31 @@ pub struct Mesh {
     pub indices: Vec<u32>,
     /// Index into [`Scene::materials`].
     pub material: usize,
+    /// The game's draw calls merged into this mesh, in order: they split
+    /// its triangles into consecutive runs (empty: the whole mesh is one
+    /// draw call and one object of its own). Only
+    /// [`raster::DrawOrder`]s other than as-loaded read them.
+    pub draws: Vec<Draw>,
+    /// Sky geometry: kept after the opaque and alpha-tested geometry when
+    /// a draw order sorts it, as engines draw their sky after the opaque
+    /// pass rather than sorting it by depth.
+    pub sky: bool,
+}
+
+/// One draw call of the game's renderer inside a [`Mesh`] (loaders merge
+/// the draw calls of a material into one mesh): a run of the mesh's
+/// triangles, and the object it belongs to. What a draw call and an object
+/// are is each loader's choice, documented in `docs/scenes.md` (for
+/// example SuperTuxKart: a mesh buffer with one material, of a placed
+/// model).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Draw {
+    /// Triangles of the run (the runs of a mesh follow one another from
+    /// its first triangle and cover all of them).
+    pub triangles: u32,
+    /// The object: draws with the same id belong to one object (ids are
+    /// the loader's, unique in the scene).
+    pub object: u32,
 }
 
 /// The camera.

@@ -49,6 +49,7 @@ mod tests {
             height: 64,
             description: String::new(),
             shader: None,
+            draw_order: Default::default(),
         };
         assert_eq!(load_scene(&def).unwrap().name, "procedural:sprites");
     }

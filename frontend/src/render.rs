@@ -20,7 +20,7 @@
 //!   it: red); a colour bar with the minimum, the 99th percentile and the
 //!   maximum is drawn bottom right.
 
-use super::raster::{rasterize_timed, Frame, RasterOptions};
+use super::raster::{rasterize_timed, DrawOrder, Frame, RasterOptions};
 use super::{Scene, SceneError};
 use std::fmt;
 use std::path::Path;
@@ -131,6 +131,8 @@ pub struct RenderRequest {
     /// Front-end worker threads ([`RasterOptions::threads`]; 0: one per
     /// hardware thread).
     pub threads: usize,
+    /// The order of the opaque geometry ([`RasterOptions::draw_order`]).
+    pub draw_order: DrawOrder,
 }
 
 /// A rendered frame.
@@ -177,6 +179,7 @@ pub fn render(
         tile: req.tile,
         depth_prepass: req.depth_prepass,
         threads: req.threads,
+        draw_order: req.draw_order,
         ..RasterOptions::default()
     };
     let (frame, raster_seconds) =
@@ -495,6 +498,7 @@ pub(crate) fn write_preview(scene: &Scene, width: u32, height: u32, out: &Path) 
         tile: 64,
         depth_prepass: false,
         threads: 0,
+        draw_order: DrawOrder::AsLoaded,
     };
     let r = render(scene, width, height, &req, &mut |_, _| Ok(Vec::new())).expect("renders");
     write_png(out, &r.image, width, height).expect("writes the PNG");

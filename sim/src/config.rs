@@ -22,7 +22,7 @@ mod choice;
 mod core_map;
 pub mod file;
 mod sections;
-pub use choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming};
+pub use choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming, IssueOrder};
 pub use core_map::{CoreMap, CoreMapTable};
 pub use sections::{
     limits, CoreConfig, EnergyConfig, GpuConfig, MemoryConfig, RasterConfig, SchedulerConfig,

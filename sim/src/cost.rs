@@ -8,9 +8,13 @@
 //! flip-flops and `stat -tech cmos` transistors, side by side. (c) What it
 //! saves: the register file of the extra warps the baseline needs for the
 //! same performance (the paper: WaSP at 32 warps matches the baseline at
-//! 48), sized from the register-file parameters.
+//! 48), sized from the register-file parameters. (e) The issue orders
+//! (`core.issue`) beside each other ([`issue_order`]).
+
+pub mod issue_order;
 
 use crate::config::MachineConfig;
+pub use issue_order::{issue_order_cost, IssueOrderCost};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -124,6 +128,8 @@ pub struct CostReport {
     pub savings: Savings,
     /// The measured-CF variant's cost beside WaSP's.
     pub measured_cf_variant: VariantCost,
+    /// The issue orders' hardware (`core.issue`).
+    pub issue_order: IssueOrderCost,
 }
 
 /// Register-file parameters for the savings column.
@@ -346,6 +352,7 @@ pub fn report(
             ge_saved_per_core: (rf_bits * saved_warps) as f64 * rf.ge_per_bit,
         },
         measured_cf_variant: variant,
+        issue_order: issue_order_cost(cfg, &rules),
     })
 }
 
@@ -489,7 +496,35 @@ impl CostReport {
                 );
             }
         }
+        self.issue_order_table(&mut s);
         s
+    }
+
+    /// Section (e): the issue orders.
+    fn issue_order_table(&self, s: &mut String) {
+        let o = &self.issue_order;
+        let _ = writeln!(
+            s,
+            "\n(e) the issue order (core.issue, this machine: {}), per core: {} slots, {} picks a cycle",
+            o.configured, o.slots, o.width
+        );
+        for c in o.lrr.iter().chain(&o.gto) {
+            item_line(s, c, "");
+        }
+        let _ = writeln!(
+            s,
+            "lrr: {} flip-flops, {:.0} GE; gto: {} flip-flops, {:.0} GE ({:+.0} GE); gto split as \
+             GPGPU-Sim's cores ({} schedulers of {} slots): {} flip-flops, {:.0} GE",
+            o.register_bits[0],
+            o.ge[0],
+            o.register_bits[1],
+            o.ge[1],
+            o.ge[1] - o.ge[0],
+            o.width,
+            o.slots.div_ceil(o.width),
+            o.gto_split.0,
+            o.gto_split.1
+        );
     }
 }
 
@@ -562,6 +597,9 @@ mod tests {
         assert_eq!(m.removed.len(), 1);
         assert!(m.per_core_ge > r.per_core_ge);
         assert!(t.contains("(d) the measured-CF variant") && t.contains("+ cf_meter"));
+        assert!(t.contains("(e) the issue order (core.issue, this machine: lrr)"));
+        assert!(t.contains("issue_lrr") && t.contains("age matrix"));
+        assert_eq!(r.issue_order.register_bits, [6, 2080]);
         assert!(m.yosys.is_none() && m.yosys_meter.is_none());
     }
 

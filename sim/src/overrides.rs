@@ -186,6 +186,15 @@ mod tests {
     }
 
     #[test]
+    fn issue_order_can_be_set() {
+        let base = MachineConfig::paper();
+        let c = apply(&base, &sets(&["core.issue=gto"])).unwrap();
+        assert_eq!(c.core.issue, crate::config::IssueOrder::Gto);
+        let c = apply(&c, &sets(&["core.issue=\"lrr\""])).unwrap();
+        assert_eq!(c, base);
+    }
+
+    #[test]
     fn blocked_on_can_be_set() {
         let base = MachineConfig::paper();
         let c = apply(&base, &sets(&["scheduler.blocked_on=\"dram\""])).unwrap();
@@ -212,6 +221,8 @@ mod tests {
                 "core.filter_cycles_trilinear",
             ),
             ("core.filter_timing=\"later\"", "core.filter_timing"),
+            ("core.issue=fifo", "expected `lrr` or `gto`"),
+            ("core.issue=2", "core.issue holds a string, not an integer"),
             (
                 "core.filter_cycles_bilinear=\"one\"",
                 "holds an integer, not a string",

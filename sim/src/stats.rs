@@ -437,6 +437,12 @@ pub struct RunStats {
     pub ideal_memory: bool,
     /// Which miss blocks a warp (`scheduler.blocked_on`).
     pub blocked_on: String,
+    /// The issue order (`core.issue`). Left out of the JSON and the table
+    /// under the default, `lrr`, so that their outputs are those of the
+    /// model before the option existed; a run that names no issue order
+    /// ran `lrr`.
+    #[serde(skip_serializing_if = "is_default_issue")]
+    pub issue: String,
     /// GPU cycles until every tile is rendered and memory is idle.
     pub cycles: u64,
     /// Warp instructions per GPU cycle.
@@ -502,6 +508,10 @@ pub struct RunStats {
     pub per_tile: Vec<TileRecord>,
 }
 
+fn is_default_issue(issue: &str) -> bool {
+    issue == crate::config::IssueOrder::default().to_string()
+}
+
 /// A counter summed over the cores.
 fn total(cores: &[CoreStats], f: impl Fn(&CoreStats) -> u64) -> u64 {
     cores.iter().map(f).sum()
@@ -542,6 +552,7 @@ impl RunStats {
             dram_model: cfg.dram.describe(),
             ideal_memory: cfg.memory.ideal,
             blocked_on: sched.blocked_on.to_string(),
+            issue: cfg.core.issue.to_string(),
             cycles,
             ipc: instructions as f64 / cycles.max(1) as f64,
             warps: sum(|c| c.warps_finished),

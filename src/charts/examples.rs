@@ -1,148 +1,69 @@
 //! Example charts to look at: `cargo test --bin wasp charts::examples --
-//! --ignored` writes them to `wasp-chart-examples` in the temp directory.
+//! --ignored` writes one of each kind to `wasp-chart-examples` in the temp
+//! directory.
 
+use super::heatmap::tests::mshrs_by_warps;
+use super::tornado::tests::gains;
+use super::xy::tests::area;
 use super::*;
-
-const SCENES: [&str; 16] = [
-    "sponza-atrium",
-    "bistro-exterior-night",
-    "san-miguel-courtyard",
-    "crytek-sponza-lion",
-    "amazon-lumberyard-bistro",
-    "sun-temple",
-    "emerald-square-city",
-    "zero-day",
-    "suntemple-interior-dusk",
-    "fireplace-room",
-    "living-room-2",
-    "hairball",
-    "powerplant-section-a",
-    "rungholt",
-    "lost-empire-minecraft",
-    "vokselia-spawn",
-];
-
-fn dir() -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join("wasp-chart-examples");
-    std::fs::create_dir_all(&dir).expect("examples dir");
-    dir
-}
-
-fn wave(i: usize, k: usize) -> f64 {
-    let x = (i * 7 + k * 3) % 11;
-    0.006 * x as f64 - 0.02 + 0.01 * k as f64
-}
 
 #[test]
 #[ignore = "writes example pictures to look at"]
 fn examples() {
-    let dir = dir();
-    let mut categories: Vec<String> = SCENES.iter().map(|s| s.to_string()).collect();
-    categories.push("mean 3D".into());
-    categories.push("mean all".into());
-    let series: Vec<Series> = ["WaSP", "Fullpriority"]
-        .iter()
-        .enumerate()
-        .map(|(k, name)| {
-            let values: Vec<f64> = (0..18).map(|i| wave(i, k)).collect();
-            Series::full(*name, &values)
-        })
-        .collect();
+    let dir = std::env::temp_dir().join("wasp-chart-examples");
+    std::fs::create_dir_all(&dir).expect("examples dir");
+    let wave =
+        |i: usize, k: usize| Some(0.006 * ((i * 7 + k * 3) % 11) as f64 - 0.02 + 0.01 * k as f64);
+    let mut categories: Vec<String> = (0..9).map(|i| format!("scene-{i}-of-the-suite")).collect();
+    categories.extend(["mean 3D", "mean 2D", "mean games"].map(String::from));
+    let group = |label: &str, categories| CategoryGroup {
+        label: label.into(),
+        categories,
+    };
+    let series = |k: usize, name: &str, n: usize| Series {
+        name: name.into(),
+        values: (0..n).map(|i| wave(i, k)).collect(),
+    };
+    let mark = |series, category, value, label: &str| PaperMark {
+        series,
+        category,
+        value,
+        label: label.into(),
+    };
     let bars = BarChart {
-        subtitle: "shared-tile machine, 16 scenes".into(),
-        series,
+        title: "Speedup over the baseline scheduler".into(),
+        subtitle: "shared-tile machine, 9 scenes".into(),
+        y_label: "speedup".into(),
+        categories,
+        series: vec![series(0, "fullpriority", 12), series(1, "wasp:0:3", 12)],
         paper: vec![
-            PaperMark::all(Some(0), 0.039, "paper 3.9%"),
-            PaperMark::all(Some(1), 0.012, "paper 1.2%"),
-            PaperMark::at(Some(0), 16, 0.035, "paper 3.5%"),
-            PaperMark::at(None, 17, 0.03, "paper 3.0%"),
+            mark(Some(1), None, 0.039, "paper 3.9%"),
+            mark(None, Some(11), 0.03, "paper 3.0%"),
         ],
         percent: true,
         reference: Some(0.0),
-        separators: vec![16],
-        highlight: vec![16, 17],
-        ..BarChart::new(
-            "Speedup over the baseline scheduler",
-            "speedup",
-            categories.clone(),
-        )
+        separators: vec![5, 9],
+        highlight: vec![9, 10, 11],
+        groups: vec![group("3D", 0..5), group("2D", 5..9), group("means", 9..12)],
     };
-    draw_bars(&bars, &dir.join("bars.png")).expect("bars");
-    draw_bars(&bars, &dir.join("bars.svg")).expect("bars svg");
-
-    // Many series, 25 categories.
-    let mut many = categories;
-    many.extend((0..7).map(|i| format!("extra-scene-{i}")));
-    let series: Vec<Series> = (0..5)
-        .map(|k| {
-            let values: Vec<f64> = (0..25).map(|i| 1.0 + wave(i, k) * 4.0).collect();
-            Series::full(format!("policy {k}"), &values)
-        })
-        .collect();
-    let ratios = BarChart {
-        series,
-        reference: Some(1.0),
-        paper: vec![PaperMark::all(None, 1.1, "paper 1.10")],
-        ..BarChart::new("L1 misses relative to the baseline", "ratio", many)
-    };
-    draw_bars(&ratios, &dir.join("bars-many.png")).expect("many bars");
-
-    let x = vec![28.0, 32.0, 40.0, 48.0, 64.0, 96.0];
     let lines = LineChart {
-        subtitle: "per-core-tile machine, mean of 16 scenes".into(),
-        x_ticks: Some(x.iter().map(|v| format!("{v}")).collect()),
-        series: vec![
-            Series::full("baseline", &[0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
-            Series::new(
-                "WaSP",
-                vec![
-                    Some(0.021),
-                    Some(0.039),
-                    None,
-                    Some(0.031),
-                    Some(0.024),
-                    Some(0.018),
-                ],
-            ),
-            Series::full("Fullpriority", &[-0.02, 0.004, 0.011, 0.009, 0.006, 0.004]),
-        ],
-        paper: vec![
-            PaperMark::at(Some(1), 1, 0.039, "paper 3.9%"),
-            PaperMark::at(Some(2), 1, 0.001, "paper 0.1%"),
-            PaperMark::all(None, 0.03, "paper mean 3.0%"),
-        ],
+        title: "Sensitivity at width 4".into(),
+        x_label: "warp slots per core".into(),
+        y_label: "speedup".into(),
+        x: vec![0.0, 1.0, 2.0, 3.0, 4.0],
+        x_ticks: Some(["32", "48", "64", "96", "128"].map(String::from).to_vec()),
+        series: vec![series(0, "baseline", 5), series(1, "wasp:0:3", 5)],
+        paper: vec![mark(Some(1), Some(1), 0.02, "paper: WaSP@48 +2%")],
         percent: true,
         reference: Some(0.0),
-        ..LineChart::new(
-            "Speedup by MSHR count",
-            "MSHRs per core",
-            "speedup over baseline",
-            x,
-        )
+        ..LineChart::default()
     };
-    draw_lines(&lines, &dir.join("lines.png")).expect("lines");
-    draw_lines(&lines, &dir.join("lines.svg")).expect("lines svg");
-}
-
-#[test]
-#[ignore = "writes example pictures to look at"]
-fn small_examples() {
-    let dir = dir();
-    let mut one = BarChart::new(
-        "A single scene with a rather long title that keeps going",
-        "speedup",
-        vec!["amazon-lumberyard-bistro".into()],
-    );
-    one.series = vec![
-        Series::full("WaSP", &[-0.021]),
-        Series::full("Fullpriority", &[0.004]),
-    ];
-    one.paper = vec![PaperMark::at(Some(0), 0, 0.01, "paper 1.0%")];
-    one.percent = true;
-    one.reference = Some(0.0);
-    draw_bars(&one, &dir.join("bars-one.png")).expect("one bar");
-    let mut point = LineChart::new("One point", "MSHRs", "IPC", vec![32.0]);
-    point.series = vec![Series::full("WaSP", &[0.7])];
-    point.paper = vec![PaperMark::at(None, 0, 0.72, "paper 0.72")];
-    draw_lines(&point, &dir.join("lines-one.png")).expect("one point");
+    for ext in ["png", "svg"] {
+        let path = |name: &str| dir.join(format!("{name}.{ext}"));
+        draw_bars(&bars, &path("bars")).expect("bars");
+        draw_lines(&lines, &path("lines")).expect("lines");
+        draw_xy(&area(), &path("xy")).expect("xy");
+        draw_tornado(&gains(), &path("tornado")).expect("tornado");
+        draw_heatmap(&mshrs_by_warps(), &path("heatmap")).expect("heat map");
+    }
 }

@@ -1,44 +1,30 @@
-//! Line charts ([`draw_lines`]).
-//!
-//! Each series is a line in its colour through its values, with a filled
-//! marker of its own shape (circle, square, triangle, diamond, downward
-//! triangle, repeating) on every point; a missing value breaks the line.
-//! The x axis is numeric (round ticks) or, with `x_ticks`, labelled at the
-//! x positions; labels that would overlap are turned vertical, and when
-//! even vertical ones would, only every second (third, ...) one is shown.
-//! A paper mark of one x position is the series' shape, hollow and larger,
-//! on a short dashed line, labelled beside it where there is room.
+//! Line charts over shared x positions ([`draw_lines`]), and the plot that
+//! draws them and [`super::draw_xy`]'s points: each series a line in its
+//! colour through filled markers of its own shape (a missing value breaks
+//! the line); the x axis numeric (plotters' ticks) or labelled at the x
+//! positions (every second, third, ... label where they would overlap). A
+//! paper mark of one x position is the series' shape, hollow, on a short
+//! dashed line; ringed points are joined by a dotted line with their
+//! caption over them. Labels go where they hide nothing.
 
-use super::axis::{draw_y_axis, y_axis_width, Frame, YAxis};
-use super::canvas::{
-    column, style, text_size, Canvas, Placer, Shape, GRID, LABEL_SIZE, REFERENCE, SMALL_SIZE,
+use super::frame::{
+    around, beside, builder, column, marker, paper_entry, paper_lines, paper_margin, paper_point,
+    plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area, Chart, Drawn,
+    Frame, Placer, Rect, Shape, Swatch, LABEL,
 };
-use super::legend::{
-    draw_legend, draw_paper_lines, draw_title, legend_height, paper_entry, paper_margin,
-    title_height, Entry, Swatch,
-};
-use super::{
-    check_marks, check_series, is_svg, mark_colour, save, series_colour, who, LineChart, Picture,
-};
-use crate::fonts::register_fonts;
-use plotters::coord::Shift;
+use super::{check, finite, who, Highlight, LineChart, PaperMark};
+use crate::palette::{series_colours, shade, INK};
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
+use plotters::coord::types::RangedCoordf64;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, VPos};
+use std::ops::Range;
 use std::path::Path;
 
 /// Width of the picture in pixels.
 const WIDTH: f64 = 1400.0;
-/// Lowest picture in pixels.
-const MIN_HEIGHT: f64 = 700.0;
-/// Lowest plot in pixels.
-const MIN_PLOT_H: f64 = 430.0;
-/// Radius of a data point's marker.
-const POINT_R: f64 = 5.0;
-/// Radius of a paper mark's hollow marker.
-const PAPER_R: f64 = 8.0;
 
-/// Draws `chart` into `path`, a PNG or an SVG by the file's extension
-/// (`.png`, `.svg`, in any case).
+/// Draws `chart` into `path`, a PNG or an SVG by the file's extension.
 ///
 /// Errors (starting with `drawing <title>:` or naming the file): another
 /// extension; no x positions or no series; a non-finite x or one not
@@ -48,76 +34,140 @@ const PAPER_R: f64 = 8.0;
 /// exist or with a non-finite value; a non-finite reference; a file that
 /// cannot be written.
 pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
-    let svg = is_svg(path)?;
-    let who = who(&chart.title);
-    check(chart, &who)?;
-    register_fonts().map_err(|e| format!("{who}: {e}"))?;
-    save(&Layout::new(chart, &who), &who, path, svg)
-}
-
-/// The checks that keep [`Layout`] from drawing nonsense.
-fn check(chart: &LineChart, who: &str) -> Result<(), String> {
-    let n = chart.x.len();
-    if let Some((i, x)) = chart.x.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-        return Err(format!("{who}: x[{i}] is the non-finite value {x}"));
+    let (who, x, n, c) = (who(&chart.title), &chart.x, chart.x.len(), chart);
+    for i in 0..n {
+        finite(&who, format_args!("x[{i}]"), x[i])?;
+        if i > 0 && x[i] <= x[i - 1] {
+            let (a, b) = (x[i - 1], x[i]);
+            return Err(format!(
+                "{who}: x[{i}] = {b} follows {a}: x must be strictly increasing"
+            ));
+        }
     }
-    if let Some(i) = (1..n).find(|&i| chart.x[i] <= chart.x[i - 1]) {
-        return Err(format!(
-            "{who}: the x positions must be strictly increasing, but x[{i}] = {} follows x[{}] = {}",
-            chart.x[i],
-            i - 1,
-            chart.x[i - 1]
-        ));
-    }
-    if let Some(ticks) = chart.x_ticks.as_ref().filter(|t| t.len() != n) {
+    let ticks = c.x_ticks.as_deref();
+    if let Some(t) = ticks.filter(|t| t.len() != n) {
         return Err(format!(
             "{who}: {} x tick labels for {n} x positions",
-            ticks.len()
+            t.len()
         ));
     }
-    let name_of = |i: usize| match &chart.x_ticks {
-        Some(t) => format!("x = {}", t[i]),
-        None => format!("x = {}", chart.x[i]),
+    let name_of = |i: usize| format!("x = {}", ticks.map_or(x[i].to_string(), |t| t[i].clone()));
+    let marks = (&c.series[..], &c.paper[..], c.reference);
+    check(&who, marks, (n, "x positions"), name_of)?;
+    let point = |(&x, v): (&f64, &Option<f64>)| v.map(|y| (x, y, String::new()));
+    let lines = c.series.iter().map(|s| {
+        (
+            s.name.as_str(),
+            x.iter().zip(&s.values).map(point).collect(),
+        )
+    });
+    let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
+    let (lines, paper) = (lines.collect(), &c.paper[..]);
+    let plot = Plot {
+        who: who.clone(),
+        texts,
+        lines,
+        x,
+        ticks,
+        paper,
+        rings: &[],
+        percent: c.percent,
+        reference: c.reference,
     };
-    check_series(who, &chart.series, n, "x positions", name_of)?;
-    check_marks(
-        who,
-        &chart.paper,
-        chart.reference,
-        chart.series.len(),
-        n,
-        "x positions",
-    )
+    write(&who, path, || plot.lay_out())
 }
 
-/// The ticks of the x axis: (position, label).
-fn x_ticks(chart: &LineChart, lo: f64, hi: f64, max: usize) -> Vec<(f64, String)> {
-    if let Some(labels) = &chart.x_ticks {
-        return chart
-            .x
-            .iter()
-            .copied()
-            .zip(labels.iter().cloned())
-            .collect();
-    }
-    // Round ticks as on the y axis.
-    let y = YAxis::new([lo, hi], &[], false, max);
-    let step = {
-        let t = y.ticks();
-        if t.len() > 1 {
-            t[1] - t[0]
+/// A point: x, y and its label (empty: none).
+pub(super) type Point = (f64, f64, String);
+
+/// What line and XY charts draw.
+pub(super) struct Plot<'a> {
+    pub who: String,
+    /// Title, subtitle, x label, y label.
+    pub texts: [&'a str; 4],
+    /// Each series' name and points (None: a gap).
+    pub lines: Vec<(&'a str, Vec<Option<Point>>)>,
+    /// The x positions of the paper's marks and of the tick labels (None:
+    /// plotters' ticks).
+    pub x: &'a [f64],
+    pub ticks: Option<&'a [String]>,
+    pub paper: &'a [PaperMark],
+    pub rings: &'a [Highlight],
+    pub percent: bool,
+    pub reference: Option<f64>,
+}
+
+/// A [`Plot`] laid out: its strip, colours, ranges, x ticks (an empty label
+/// is left out) and the label area left of it and the margin right.
+pub(super) struct Layout<'a> {
+    p: Plot<'a>,
+    frame: Frame<'a>,
+    colours: Vec<RGBColor>,
+    ranges: (Range<f64>, Range<f64>),
+    ticks: Vec<(f64, String)>,
+    pad: (f64, f64),
+}
+
+impl<'a> Plot<'a> {
+    pub fn lay_out(self) -> Layout<'a> {
+        let points = || self.lines.iter().flat_map(|l| l.1.iter().flatten());
+        let ys = points()
+            .map(|p| p.1)
+            .chain(self.paper.iter().map(|m| m.value));
+        // Line charts hold 0 (or the reference); points over x do not.
+        let base = vec![0.0; usize::from(!self.x.is_empty())];
+        let y = range(ys, &self.reference.map_or(base, |r| vec![r]));
+        let xs = points().map(|p| p.0);
+        let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+            (l.min(x), h.max(x))
+        });
+        let pad = if hi > lo {
+            0.04 * (hi - lo)
         } else {
-            1.0
+            lo.abs().max(2.0) * 0.5
+        };
+        let x = lo - pad..hi + pad;
+        let (left, right) = (y_area(&y, self.percent), paper_margin(self.paper));
+        let (plot_w, label) = (WIDTH - left - right, tick_label(&x, 12, false));
+        let numeric = RangedCoordf64::from(x.clone()).key_points(12);
+        let numeric = numeric.into_iter().map(|v| (v, label(&v)));
+        let mut ticks: Vec<(f64, String)> = match self.ticks {
+            Some(labels) => self.x.iter().copied().zip(labels.iter().cloned()).collect(),
+            None => numeric.collect(),
+        };
+        // Where labels would overlap, every k-th.
+        let widest = ticks
+            .iter()
+            .map(|t| text_size(&t.1, LABEL, false).0)
+            .fold(0.0, f64::max);
+        let gaps = ticks
+            .windows(2)
+            .map(|w| (w[1].0 - w[0].0) / (x.end - x.start) * plot_w);
+        let every = ((widest + 10.0) / gaps.fold(f64::INFINITY, f64::min).max(1.0))
+            .ceil()
+            .max(1.0);
+        let crowded = ticks
+            .iter_mut()
+            .enumerate()
+            .filter(|(i, _)| i % every as usize != 0);
+        crowded.for_each(|(_, t)| t.1.clear());
+        let colours = series_colours(&self.lines.iter().map(|l| l.0).collect::<Vec<_>>());
+        let entry = |(k, (l, &c))| (String::from(l), Swatch::Line(c, Shape::of(k)));
+        let names = self.lines.iter().map(|l| l.0).zip(&colours).enumerate();
+        let mut legend: Vec<_> = names.map(entry).collect();
+        let first = self.paper.iter().find(|m| m.category.is_some());
+        let shape = first.map_or(Shape::Diamond, |m| paper_shape(m.series));
+        legend.extend(paper_entry(self.paper, shape));
+        let frame = Frame::new((self.texts[0], self.texts[1]), legend, left, WIDTH);
+        Layout {
+            p: self,
+            frame,
+            colours,
+            ranges: (x, y),
+            ticks,
+            pad: (left, right),
         }
-    };
-    let first = (lo / step - 1e-9).ceil() as i64;
-    let last = (hi / step + 1e-9).floor() as i64;
-    (first..=last)
-        .map(|k| {
-            let v = k as f64 * step;
-            (v, y.label(v))
-        })
-        .collect()
+    }
 }
 
 /// The shape of a paper mark of `series` at one x position: the series'
@@ -126,462 +176,269 @@ fn paper_shape(series: Option<usize>) -> Shape {
     series.map_or(Shape::Diamond, Shape::of)
 }
 
-/// A line chart laid out in pixels.
-struct Layout<'a> {
-    chart: &'a LineChart,
-    who: &'a str,
-    height: f64,
-    frame: Frame,
-    /// The x range of the plot.
-    x_lo: f64,
-    x_hi: f64,
-    /// The x ticks (position, label).
-    ticks: Vec<(f64, String)>,
-    /// Tick labels are vertical.
-    rotate: bool,
-    /// Every how many tick labels one is shown.
-    every: usize,
-    legend: Vec<Entry>,
-}
+/// Values to pixels.
+type At<'a> = dyn Fn(f64, f64) -> (f64, f64) + 'a;
 
-impl<'a> Layout<'a> {
-    fn new(chart: &'a LineChart, who: &'a str) -> Self {
-        let data = chart
-            .series
-            .iter()
-            .flat_map(|s| s.values.iter().flatten().copied())
-            .chain(chart.paper.iter().map(|m| m.value));
-        let include = [chart.reference.unwrap_or(0.0)];
-        let y = YAxis::new(data, &include, chart.percent, 8);
-        let left = y_axis_width(&y);
-        let right = paper_margin(&chart.paper);
-        let plot_w = WIDTH - left - right;
+/// A linear axis with the given ticks (plotters' `WithKeyPoints` has no
+/// label formatter over f64, which the mesh needs).
+#[derive(Clone)]
+struct Ticked(RangedCoordf64, Vec<f64>);
 
-        let (first, last) = (chart.x[0], chart.x[chart.x.len() - 1]);
-        let pad = if last > first {
-            0.04 * (last - first)
-        } else if first != 0.0 {
-            first.abs() * 0.5
-        } else {
-            1.0
-        };
-        let (x_lo, x_hi) = (first - pad, last + pad);
-        let ticks = x_ticks(chart, x_lo, x_hi, (plot_w / 90.0) as usize);
-        let to_px = |x: f64| (x - x_lo) / (x_hi - x_lo) * plot_w;
-        let sizes: Vec<(f64, f64)> = ticks
-            .iter()
-            .map(|(_, l)| text_size(l, LABEL_SIZE, false))
-            .collect();
-        let gaps: Vec<f64> = ticks
-            .windows(2)
-            .map(|w| to_px(w[1].0) - to_px(w[0].0))
-            .collect();
-        let crowded = gaps
-            .iter()
-            .zip(sizes.windows(2))
-            .any(|(gap, s)| *gap < (s[0].0 + s[1].0) / 2.0 + 10.0);
-        let text_h = text_size("Ag", LABEL_SIZE, false).1;
-        let narrowest = gaps.iter().copied().fold(f64::INFINITY, f64::min);
-        let every = if crowded && narrowest < text_h + 4.0 {
-            ((text_h + 4.0) / narrowest.max(1.0)).ceil() as usize
-        } else {
-            1
-        };
-        let widest = sizes.iter().map(|s| s.0).fold(0.0, f64::max);
-        let tick_h = if crowded { widest } else { text_h } + 14.0;
-        let x_label_h = if chart.x_label.is_empty() {
-            0.0
-        } else {
-            text_h + 12.0
-        };
+impl Ranged for Ticked {
+    type FormatOption = DefaultFormatting;
+    type ValueType = f64;
 
-        let mut legend: Vec<Entry> = chart
-            .series
-            .iter()
-            .enumerate()
-            .map(|(k, s)| Entry {
-                label: s.name.clone(),
-                swatch: Swatch::Line(series_colour(k), Shape::of(k)),
-            })
-            .collect();
-        // The hollow mark as the first mark of one x position is drawn.
-        let shape = chart
-            .paper
-            .iter()
-            .find(|m| m.category.is_some())
-            .map_or(Shape::Diamond, |m| paper_shape(m.series));
-        legend.extend(paper_entry(&chart.paper, shape));
-        let top = title_height(&chart.subtitle) + legend_height(&legend, left, plot_w) + 12.0;
-        let bottom_h = tick_h + x_label_h + 12.0;
-        let height = (top + MIN_PLOT_H + bottom_h).max(MIN_HEIGHT).round();
-        Layout {
-            chart,
-            who,
-            height,
-            frame: Frame {
-                left,
-                top,
-                right: WIDTH - right,
-                bottom: height - bottom_h,
-                y,
-            },
-            x_lo,
-            x_hi,
-            ticks,
-            rotate: crowded,
-            every,
-            legend,
-        }
+    fn map(&self, v: &f64, limit: (i32, i32)) -> i32 {
+        self.0.map(v, limit)
     }
 
-    /// The pixel column of `x`.
-    fn px(&self, x: f64) -> f64 {
-        let f = &self.frame;
-        f.left + (x - self.x_lo) / (self.x_hi - self.x_lo) * (f.right - f.left)
+    fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
+        let light = hint.weight().allow_light_points();
+        self.1.iter().copied().filter(|_| !light).collect()
+    }
+
+    fn range(&self) -> Range<f64> {
+        self.0.range()
     }
 }
 
-impl Picture for Layout<'_> {
+impl Chart for Layout<'_> {
+    fn who(&self) -> &str {
+        &self.p.who
+    }
+
     fn size(&self) -> (u32, u32) {
-        (WIDTH as u32, self.height as u32)
+        (
+            WIDTH as u32,
+            (f64::from(self.frame.height()) + 504.0).max(700.0) as u32,
+        )
     }
 
-    fn render<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        let c = Canvas {
-            area: root,
-            who: self.who,
+    fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB> {
+        let (pl, (x, y)) = (&self.p, self.ranges.clone());
+        let (x0, x1, y0) = (x.start, x.end, y.start);
+        let area = self.frame.draw(root)?;
+        let x_axis = Ticked(x.into(), self.ticks.iter().map(|t| t.0).collect());
+        let pad = (self.pad.0, 64.0, 10.0, self.pad.1);
+        let mut chart = builder(&area, pad).build_cartesian_2d(x_axis, y.clone())?;
+        let x_label = |v: &f64| {
+            let near = |t: &&(f64, String)| ((t.0 - v).abs() < 1e-9).then(|| t.1.clone());
+            self.ticks.iter().find_map(|t| near(&t)).unwrap_or_default()
         };
-        let f = &self.frame;
-        let chart = self.chart;
-        root.fill(&WHITE)
-            .map_err(|e| format!("{}: {e}", self.who))?;
+        let y_label = tick_label(&y, 8, pl.percent);
+        let mut mesh = chart.configure_mesh();
+        style_mesh(&mut mesh);
+        mesh.x_label_formatter(&x_label)
+            .y_labels(8)
+            .y_label_formatter(&y_label);
+        mesh.x_desc(pl.texts[2]).y_desc(pl.texts[3]).draw()?;
+        let rule = pl
+            .reference
+            .map(|r| (r, 2))
+            .or((y0 < 0.0).then_some((0.0, 1)));
+        let rule = rule.map(|(v, w)| PathElement::new(vec![(x0, v), (x1, v)], INK.stroke_width(w)));
+        chart.draw_series(rule)?;
 
-        draw_y_axis(&c, f, &chart.y_label)?;
-        for (x, _) in &self.ticks {
-            let x = self.px(*x);
-            c.path(&[(x, f.top), (x, f.bottom)], GRID.stroke_width(1))?;
-        }
-        match chart.reference {
-            Some(r) => {
-                let y = f.py(r);
-                c.path(&[(f.left, y), (f.right, y)], REFERENCE.stroke_width(2))?;
-            }
-            None if f.y.lo < 0.0 => {
-                let y = f.py(0.0);
-                c.path(&[(f.left, y), (f.right, y)], REFERENCE.stroke_width(1))?;
-            }
-            None => {}
-        }
-
-        // The series: lines through each run of present values, then the
-        // points, kept free of labels.
+        // The lines through each run of present points, then the markers,
+        // all kept free of labels.
+        let (p, map) = (plot_rect(&chart), chart.as_coord_spec().clone());
+        let at = |x: f64, y: f64| {
+            let (x, y) = map.translate(&(x, y));
+            (f64::from(x), f64::from(y))
+        };
         let mut placer = Placer::default();
-        draw_paper_lines(&c, f, &chart.paper, &mut placer)?;
-        for (k, s) in chart.series.iter().enumerate() {
-            let colour = series_colour(k);
-            let mut run: Vec<(f64, f64)> = Vec::new();
-            for (x, v) in chart.x.iter().zip(&s.values) {
-                match v {
-                    Some(v) => run.push((self.px(*x), f.py(*v))),
-                    None => {
-                        if run.len() > 1 {
-                            c.path(&run, colour.stroke_width(2))?;
-                        }
-                        run.clear();
-                    }
-                }
-            }
-            if run.len() > 1 {
-                c.path(&run, colour.stroke_width(2))?;
+        let colour = |s| self.mark_colour(s);
+        paper_lines(root, (p, &mut placer), pl.paper, |v| at(x0, v).1, colour)?;
+        let series = || pl.lines.iter().map(|l| &l.1).zip(&self.colours).enumerate();
+        for (_, (pts, &k)) in series() {
+            for run in pts.split(Option::is_none).filter(|r| r.len() > 1) {
+                let run: Vec<(f64, f64)> = run.iter().flatten().map(|p| (p.0, p.1)).collect();
+                placer.take_path(&run.iter().map(|p| at(p.0, p.1)).collect::<Vec<_>>(), 2.0);
+                chart.draw_series(LineSeries::new(run, k.stroke_width(2)))?;
             }
         }
-        for (k, s) in chart.series.iter().enumerate() {
-            for (x, v) in chart.x.iter().zip(&s.values) {
-                let Some(v) = v else { continue };
-                let (x, y) = (self.px(*x), f.py(*v));
-                c.marker(Shape::of(k), (x, y), POINT_R, series_colour(k), false)?;
-                placer.take((x - POINT_R, y - POINT_R, x + POINT_R, y + POINT_R));
+        for (s, (pts, &k)) in series() {
+            for xy in pts.iter().flatten().map(|p| at(p.0, p.1)) {
+                marker(root, (Shape::of(s), xy, 5.0), k, false)?;
+                placer.take(around(xy, (5.0, 5.0)));
             }
         }
 
-        // The paper's values: lines across the plot, then marks at one x.
-        let mut marks = Vec::new();
-        for m in &chart.paper {
-            let Some(i) = m.category else { continue };
-            let (x, y) = (self.px(chart.x[i]), f.py(m.value));
-            let colour = mark_colour(m.series);
-            let ends = [(x - 2.0 * PAPER_R, y), (x + 2.0 * PAPER_R, y)];
-            c.path(&ends, WHITE.stroke_width(5))?;
-            c.dashed(&ends, 4, 2, colour.stroke_width(2))?;
-            let shape = paper_shape(m.series);
-            c.marker(shape, (x, y), PAPER_R, colour, true)?;
-            placer.take((
-                x - PAPER_R - 1.0,
-                y - PAPER_R - 2.0,
-                x + PAPER_R + 1.0,
-                y + PAPER_R + 2.0,
-            ));
-            marks.push((x, y, m));
-        }
-        let bounds = (f.left, f.top, f.right, f.bottom);
-        for (x, y, m) in marks {
-            let (w, h) = text_size(&m.label, SMALL_SIZE, false);
-            let d = 2.0 * PAPER_R + 4.0;
-            let beside = [
-                (x + d, y - h / 2.0, x + d + w, y + h / 2.0),
-                (x - d - w, y - h / 2.0, x - d, y + h / 2.0),
-            ];
-            let candidates = beside
-                .into_iter()
-                .chain(column(x, y - d, w, h, true, f.top))
-                .chain(column(x, y + d, w, h, false, f.bottom));
-            if let Some(r) = placer.place(candidates, bounds) {
-                let s = style(
-                    SMALL_SIZE,
-                    false,
-                    mark_colour(m.series),
-                    HPos::Center,
-                    VPos::Center,
-                );
-                c.text(&m.label, &s, ((r.0 + r.2) / 2.0, (r.1 + r.3) / 2.0))?;
-            }
-        }
+        self.labels(root, placer, (p, &at))
+    }
+}
 
-        // The x axis: ticks, their labels, the axis label.
-        c.path(
-            &[(f.left, f.bottom), (f.right, f.bottom)],
-            BLACK.stroke_width(1),
-        )?;
-        for (k, (x, label)) in self.ticks.iter().enumerate() {
-            let x = self.px(*x);
-            c.path(&[(x, f.bottom), (x, f.bottom + 5.0)], BLACK.stroke_width(1))?;
-            if k % self.every != 0 {
-                continue;
+impl Layout<'_> {
+    /// The paper's marks of one x position, the rings, then the labels:
+    /// the marks', the captions, the points' (which give way). `at` maps
+    /// values to pixels in the plot `p`.
+    fn labels<DB: DrawingBackend>(
+        &self,
+        root: &Area<DB>,
+        mut placer: Placer,
+        (p, at): (Rect, &At<'_>),
+    ) -> Drawn<DB> {
+        let (pl, mut labels, mut ringed) = (&self.p, Vec::new(), Vec::new());
+        for m in pl.paper.iter().filter(|m| m.category.is_some()) {
+            let i = m.category.unwrap_or(0);
+            let (xy, colour) = (at(pl.x[i], m.value), self.mark_colour(m.series));
+            let (mark, shape) = ((xy, 16.0, 8.0), paper_shape(m.series));
+            paper_point((root, &mut placer), mark, shape, colour)?;
+            labels.push((beside(xy, 20.0, &m.label, 400, p), m.label.as_str(), colour));
+        }
+        for h in pl.rings {
+            let point = |&(s, i): &(usize, usize)| pl.lines[s].1[i].as_ref().map(|p| at(p.0, p.1));
+            let pts: Vec<(f64, f64)> = h.points.iter().filter_map(point).collect();
+            let path = pts.iter().map(|&(x, y)| px(x, y));
+            root.draw(&DashedPathElement::new(path, 3, 3, INK.stroke_width(1)))?;
+            placer.take_path(&pts, 2.0);
+            for &xy in &pts {
+                root.draw(&Circle::new(px(xy.0, xy.1), 11, INK.stroke_width(2)))?;
+                placer.take(around(xy, (13.0, 13.0)));
             }
-            if self.rotate {
-                let s = style(LABEL_SIZE, false, BLACK, HPos::Right, VPos::Center)
-                    .transform(FontTransform::Rotate270);
-                c.text(label, &s, (x, f.bottom + 8.0))?;
-            } else {
-                let s = style(LABEL_SIZE, false, BLACK, HPos::Center, VPos::Top);
-                c.text(label, &s, (x, f.bottom + 8.0))?;
+            // The caption over the highest ring, else under the lowest.
+            let mid = pts.iter().map(|p| p.0).sum::<f64>() / pts.len().max(1) as f64;
+            let top = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+            let low = pts.iter().map(|p| p.1).fold(0.0, f64::max);
+            let text = (h.caption.as_str(), false);
+            let over = column(mid, (top - 14.0, true, p.1), text, 400);
+            let under = column(mid, (low + 14.0, false, p.3), text, 400);
+            labels.push(([over, under].concat(), text.0, INK));
+            ringed.extend(pts);
+        }
+        for (pts, &k) in pl.lines.iter().map(|l| &l.1).zip(&self.colours) {
+            for (x, y, l) in pts.iter().flatten().filter(|p| !p.2.is_empty()) {
+                let xy = at(*x, *y);
+                let d = if ringed.contains(&xy) { 15.0 } else { 8.0 };
+                labels.push((beside(xy, d, l, 8, p), l.as_str(), shade(k, 0.62)));
             }
         }
-        let text_h = text_size("Ag", LABEL_SIZE, false).1;
-        let label_y = self.height - 12.0 - text_h;
-        let s = style(LABEL_SIZE + 1, false, BLACK, HPos::Center, VPos::Top);
-        c.text(&chart.x_label, &s, ((f.left + f.right) / 2.0, label_y))?;
+        placer.draw_all(root, labels, p)
+    }
 
-        draw_legend(
-            &c,
-            &self.legend,
-            f.left,
-            title_height(&chart.subtitle),
-            f.right - f.left,
-        )?;
-        draw_title(&c, &chart.title, &chart.subtitle, WIDTH)
+    /// The colour of the paper's marks of `series` (dark grey for none).
+    fn mark_colour(&self, series: Option<usize>) -> RGBColor {
+        series.map_or(INK, |s| shade(self.colours[s], 0.62))
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{colours, scratch, svg_texts};
-    use super::super::{PaperMark, Series};
+    use super::super::tests::{error, out, pixels, same_twice, texts};
+    use super::super::Series;
     use super::*;
+    use crate::palette::named;
 
-    /// IPC over the MSHR count for two policies, one with a gap, with the
+    /// A series of `values`.
+    fn series(name: &str, values: &[Option<f64>]) -> Series {
+        let (name, values) = (name.into(), values.to_vec());
+        Series { name, values }
+    }
+
+    /// IPC over the warp count for two policies, one with a gap, with the
     /// paper's value at one count and its baseline across the plot.
-    fn mshrs() -> LineChart {
+    fn warps() -> LineChart {
         let x = vec![28.0, 32.0, 40.0, 48.0, 64.0];
+        let mark = |series, category, value, label: &str| {
+            let label = label.into();
+            PaperMark {
+                series,
+                category,
+                value,
+                label,
+            }
+        };
+        let wasp = [Some(0.66), Some(0.68), None, Some(0.70), Some(0.705)];
         LineChart {
+            title: "IPC by warp count".into(),
             subtitle: "4 cores, 16 scenes".into(),
+            x_label: "warps per core".into(),
+            y_label: "IPC".into(),
             x_ticks: Some(x.iter().map(|v| format!("{v}")).collect()),
+            x,
             series: vec![
-                Series::full("baseline", &[0.61, 0.64, 0.66, 0.67, 0.675]),
-                Series::new(
-                    "WaSP",
-                    vec![Some(0.66), Some(0.68), None, Some(0.70), Some(0.705)],
-                ),
+                series("baseline", &[0.61, 0.64, 0.66, 0.67, 0.675].map(Some)),
+                series("WaSP", &wasp),
             ],
             paper: vec![
-                PaperMark::at(Some(1), 1, 0.69, "paper 0.69"),
-                PaperMark::all(None, 0.6, "paper baseline 0.60"),
+                mark(Some(1), Some(1), 0.69, "paper 0.69"),
+                mark(None, None, 0.6, "paper 0.60"),
             ],
-            ..LineChart::new("IPC by MSHR count", "MSHRs per core", "IPC", x)
+            percent: false,
+            reference: None,
         }
     }
 
     #[test]
-    fn png_has_lines_in_the_series_colours() {
-        let dir = scratch("lines-png");
-        let path = dir.join("mshrs.png");
-        draw_lines(&mshrs(), &path).expect("draw png");
-        let img = image::open(&path).expect("png decodes");
-        assert_eq!((img.width(), img.height()), (1400, 700));
-        let (distinct, blue) = colours(&path, series_colour(0));
-        assert!(distinct > 20, "{distinct} colours");
-        assert!(blue > 300, "{blue} pixels of series 0's colour");
-        let (_, orange) = colours(&path, series_colour(1));
-        assert!(orange > 200, "{orange} pixels of series 1's colour");
-        std::fs::remove_dir_all(dir).ok();
+    fn lines_have_the_policies_colours_and_texts() {
+        let path = out("lines", "warps.png");
+        draw_lines(&warps(), &path).expect("draw png");
+        assert_eq!(image::image_dimensions(&path).ok(), Some((1400, 700)));
+        let base = pixels(&path, named("baseline").unwrap());
+        let wasp = pixels(&path, named("wasp").unwrap());
+        assert!(base > 300 && wasp > 200, "{base}, {wasp} pixels");
+        let path = out("lines", "warps.svg");
+        draw_lines(&warps(), &path).expect("draw svg");
+        let want = "IPC by warp count|4 cores, 16 scenes|warps per core|IPC|WaSP|paper 0.69|paper 0.60|28|64";
+        texts(&path, want);
+        same_twice("lines-same", &|p| draw_lines(&warps(), p));
     }
 
     #[test]
-    fn svg_has_the_title_legend_and_paper_labels() {
-        let dir = scratch("lines-svg");
-        let path = dir.join("mshrs.svg");
-        draw_lines(&mshrs(), &path).expect("draw svg");
-        let texts = svg_texts(&std::fs::read_to_string(&path).expect("svg"));
-        for text in [
-            "IPC by MSHR count",
-            "4 cores, 16 scenes",
-            "MSHRs per core",
-            "IPC",
-            "baseline",
-            "WaSP",
-            "paper 0.69",
-            "paper baseline 0.60",
-            "28",
-            "64",
-        ] {
-            assert!(texts.iter().any(|t| t == text), "no `{text}` in {texts:?}");
-        }
+    fn numeric_axes_crowded_ticks_and_one_point_draw() {
+        let mut c = warps();
+        (c.x, c.series) = (
+            vec![1.0, 2.0, 4.0, 8.0],
+            vec![series("WaSP", &[-0.02, 0.01, 0.03, 0.02].map(Some))],
+        );
+        (c.percent, c.reference, c.x_ticks, c.paper) = (true, Some(0.0), None, vec![]);
+        let path = out("lines-numeric", "speedup.svg");
+        draw_lines(&c, &path).expect("draw svg");
+        texts(&path, "-2%|0%|3%|2|8");
+        (c.x, c.series) = (vec![5.0], vec![series("WaSP", &[Some(-0.01)])]);
+        let path = out("lines-numeric", "one.png");
+        draw_lines(&c, &path).expect("draw png");
+        assert!(pixels(&path, named("wasp").unwrap()) > 20);
+        c.x = (0..40).map(f64::from).collect();
+        c.series = vec![series(
+            "v",
+            &c.x.iter().map(|&x| Some(x)).collect::<Vec<_>>(),
+        )];
+        c.x_ticks = Some((0..40).map(|i| format!("scene-{i:02}")).collect());
+        let path = out("lines-numeric", "many.svg");
+        draw_lines(&c, &path).expect("draw svg");
+        let texts = texts(&path, "scene-00");
         assert!(
-            texts.iter().any(|t| t.starts_with("paper values")),
-            "no paper legend entry in {texts:?}"
+            !texts.iter().any(|t| t.0 == "scene-01"),
+            "crowded labels are thinned"
         );
-        std::fs::remove_dir_all(dir).ok();
-    }
-
-    #[test]
-    fn numeric_axes_and_negative_percentages_draw() {
-        let dir = scratch("lines-numeric");
-        let mut chart = LineChart::new("Speedup", "window", "speedup", vec![1.0, 2.0, 4.0, 8.0]);
-        chart.series = vec![Series::full("WaSP", &[-0.02, 0.01, 0.03, 0.02])];
-        chart.percent = true;
-        chart.reference = Some(0.0);
-        let path = dir.join("speedup.svg");
-        draw_lines(&chart, &path).expect("draw svg");
-        let texts = svg_texts(&std::fs::read_to_string(&path).expect("svg"));
-        for text in ["-2%", "0%", "3%", "2", "8"] {
-            assert!(texts.iter().any(|t| t == text), "no `{text}` in {texts:?}");
-        }
-        // A single point.
-        chart.x = vec![5.0];
-        chart.series = vec![Series::full("WaSP", &[-0.01])];
-        let path = dir.join("one.png");
-        draw_lines(&chart, &path).expect("draw png");
-        let (distinct, blue) = colours(&path, series_colour(0));
-        assert!(distinct > 5 && blue > 20, "{distinct} colours, {blue} blue");
-        std::fs::remove_dir_all(dir).ok();
-    }
-
-    #[test]
-    fn crowded_tick_labels_turn_vertical() {
-        let x: Vec<f64> = (0..40).map(f64::from).collect();
-        let mut chart = LineChart::new("Many", "scene", "value", x.clone());
-        chart.x_ticks = Some(
-            (0..40)
-                .map(|i| format!("scene-{i:02}-with-a-name"))
-                .collect(),
-        );
-        chart.series = vec![Series::full("v", &x)];
-        let layout = Layout::new(&chart, "drawing Many");
-        assert!(layout.rotate && layout.every == 1);
-        assert!(layout.height > 700.0, "{}", layout.height);
-        let dir = scratch("lines-crowded");
-        draw_lines(&chart, &dir.join("many.png")).expect("draw png");
-        std::fs::remove_dir_all(dir).ok();
-    }
-
-    #[test]
-    fn drawing_is_deterministic() {
-        let dir = scratch("lines-same");
-        for ext in ["png", "svg"] {
-            let (a, b) = (dir.join(format!("a.{ext}")), dir.join(format!("b.{ext}")));
-            draw_lines(&mshrs(), &a).expect("first");
-            draw_lines(&mshrs(), &b).expect("second");
-            assert_eq!(std::fs::read(&a).ok(), std::fs::read(&b).ok(), "{ext}");
-        }
-        std::fs::remove_dir_all(dir).ok();
-    }
-
-    /// The error of drawing `chart` into a fresh PNG; no file is written.
-    fn error(chart: &LineChart, name: &str) -> String {
-        let dir = scratch(name);
-        let path = dir.join("chart.png");
-        let e = draw_lines(chart, &path).expect_err(name);
-        assert!(!path.exists(), "{name}: a file was written");
-        std::fs::remove_dir_all(dir).ok();
-        e
     }
 
     #[test]
     fn bad_charts_are_errors() {
-        let good = mshrs();
-        let mut c = good.clone();
-        c.x.clear();
-        c.x_ticks = None;
-        c.series.clear();
-        let e = error(&c, "lines-empty");
-        assert!(e.starts_with("drawing IPC by MSHR count:"), "{e}");
-        assert!(e.contains("no x positions"), "{e}");
-
-        let mut c = good.clone();
-        c.x[2] = 32.0;
-        let e = error(&c, "lines-order");
-        assert!(
-            e.contains("strictly increasing") && e.contains("x[2] = 32"),
-            "{e}"
+        let bad = |f: fn(&mut LineChart), want: &str| {
+            let mut c = warps();
+            f(&mut c);
+            let e = error("lines-bad", "c.png", &|p| draw_lines(&c, p));
+            assert!(
+                e.starts_with("drawing IPC by warp") && e.contains(want),
+                "{e}"
+            );
+        };
+        bad(
+            |c| (c.x, c.x_ticks) = (vec![], None),
+            "0 x positions and 2 series",
         );
-
-        let mut c = good.clone();
-        c.x[4] = f64::NAN;
-        assert!(error(&c, "lines-nan-x").contains("x[4] is the non-finite value NaN"));
-
-        let mut c = good.clone();
-        c.x_ticks = Some(vec!["28".into()]);
-        assert!(error(&c, "lines-ticks").contains("1 x tick labels for 5 x positions"));
-
-        let mut c = good.clone();
-        c.series[0].values.push(Some(1.0));
-        let e = error(&c, "lines-length");
-        assert!(
-            e.contains("`baseline` has 6 values for 5 x positions"),
-            "{e}"
+        bad(|c| c.x[2] = 32.0, "x[2] = 32 follows 32: x must be");
+        bad(|c| c.x[4] = f64::NAN, "x[4] has the non-finite value NaN");
+        bad(
+            |c| c.x_ticks = Some(vec!["28".into()]),
+            "1 x tick labels for 5",
         );
-
-        let mut c = good.clone();
-        c.series[1].values[4] = Some(f64::NEG_INFINITY);
-        let e = error(&c, "lines-inf");
-        assert!(
-            e.contains("`WaSP`") && e.contains("-inf") && e.contains("x = 64"),
-            "{e}"
+        bad(
+            |c| c.series[1].values[4] = Some(f64::NAN),
+            "`WaSP` at x = 64",
         );
-
-        let mut c = good.clone();
-        c.paper.push(PaperMark::at(Some(0), 5, 0.7, "past"));
-        let e = error(&c, "lines-mark");
-        assert!(
-            e.contains("`past` is at index 5") && e.contains("5 x positions"),
-            "{e}"
-        );
-
-        let mut c = good;
-        c.paper.push(PaperMark::all(Some(7), 0.7, "nobody"));
-        assert!(error(&c, "lines-mark-series").contains("`nobody` belongs to series 7"));
-    }
-
-    #[test]
-    fn bad_files_are_errors() {
-        let dir = scratch("lines-files");
-        let e = draw_lines(&mshrs(), &dir.join("chart.pdf")).expect_err("pdf");
-        assert!(e.contains("chart.pdf") && e.contains(".png or .svg"), "{e}");
-        let e = draw_lines(&mshrs(), &dir.join("none").join("c.png")).expect_err("dir");
-        assert!(e.starts_with("writing ") && e.contains("c.png"), "{e}");
-        std::fs::remove_dir_all(dir).ok();
+        bad(|c| c.paper[0].category = Some(5), "`paper 0.69` is past");
     }
 }

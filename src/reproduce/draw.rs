@@ -5,26 +5,25 @@
 //! spaced than on a linear axis).
 
 use super::figures::{Figure, Kind, PaperValue};
-use crate::charts::{draw_bars, draw_lines, BarChart, LineChart, PaperMark, Series};
+use crate::charts::{draw_bars, draw_lines, BarChart, CategoryGroup, LineChart, PaperMark, Series};
 use std::path::Path;
 
 fn marks(v: &[PaperValue]) -> Vec<PaperMark> {
-    v.iter()
-        .map(|p| {
-            let label = format!("paper: {}", p.label);
-            match p.category {
-                None => PaperMark::all(p.series, p.value, label),
-                Some(c) => PaperMark::at(p.series, c, p.value, label),
-            }
-        })
-        .collect()
+    let mark = |p: &PaperValue| PaperMark {
+        series: p.series,
+        category: p.category,
+        value: p.value,
+        label: format!("paper: {}", p.label),
+    };
+    v.iter().map(mark).collect()
 }
 
 fn series(f: &Figure) -> Vec<Series> {
-    f.series
-        .iter()
-        .map(|s| Series::new(s.name.clone(), s.values.clone()))
-        .collect()
+    let series = f.series.iter().map(|s| Series {
+        name: s.name.clone(),
+        values: s.values.clone(),
+    });
+    series.collect()
 }
 
 /// Draw `f` into `dir` as `ID.png` and `ID.svg`.
@@ -41,7 +40,15 @@ pub fn figure(f: &Figure, dir: &Path) -> Result<(), String> {
                     reference: f.reference,
                     separators: f.separators.clone(),
                     highlight: f.highlight.clone(),
-                    ..BarChart::new(&f.title, &f.y_label, f.categories.clone())
+                    groups: (f.groups.iter())
+                        .map(|(label, categories)| CategoryGroup {
+                            label: label.clone(),
+                            categories: categories.clone(),
+                        })
+                        .collect(),
+                    title: f.title.clone(),
+                    y_label: f.y_label.clone(),
+                    categories: f.categories.clone(),
                 },
                 &path,
             )?,
@@ -53,12 +60,10 @@ pub fn figure(f: &Figure, dir: &Path) -> Result<(), String> {
                     paper: marks(&f.paper),
                     percent: f.percent,
                     reference: f.reference,
-                    ..LineChart::new(
-                        &f.title,
-                        x_label,
-                        &f.y_label,
-                        (0..f.categories.len()).map(|i| i as f64).collect(),
-                    )
+                    title: f.title.clone(),
+                    x_label: x_label.clone(),
+                    y_label: f.y_label.clone(),
+                    x: (0..f.categories.len()).map(|i| i as f64).collect(),
                 },
                 &path,
             )?,

@@ -4,8 +4,8 @@
 //!
 //! A sweep point's record is found by its cache key, computed for every
 //! build (`binary`) the records come from, or else by the point itself
-//! (scene, base configuration, overrides); a record of the running build
-//! is preferred.
+//! (scene, draw order, base configuration, overrides); a record of the
+//! running build is preferred.
 
 use super::cache::PointRecord;
 use super::point::{binary_id, point_key, scene_identity, Point};
@@ -14,6 +14,7 @@ use super::sweep::SweepPoint;
 use super::table::csv;
 use std::collections::{BTreeSet, HashMap, HashSet};
 use std::fmt::Write as _;
+use wasp_frontend::raster::DrawOrder;
 
 /// `records` without repeats: records of the same key and point count once,
 /// and records of the same key must hold the same statistics.
@@ -72,14 +73,15 @@ pub fn match_points<'a>(
     builds.sort_by_key(|b| (*b != me, *b));
     builds.dedup();
     let mut scenes = Scenes::default();
-    let mut ids: HashMap<String, String> = HashMap::new();
+    let mut ids: HashMap<(String, Option<DrawOrder>), String> = HashMap::new();
     let mut out = Vec::with_capacity(points.len());
     for p in points {
-        if !ids.contains_key(&p.scene) {
-            let id = scene_identity(scenes.def(&p.scene)?);
-            ids.insert(p.scene.clone(), id);
+        let at = (p.scene.clone(), p.point.draw_order);
+        if !ids.contains_key(&at) {
+            let id = scene_identity(&p.point.scene_def(scenes.def(&p.scene)?));
+            ids.insert(at.clone(), id);
         }
-        let id = &ids[&p.scene];
+        let id = &ids[&at];
         let mut found = None;
         for b in &builds {
             let key = point_key(b, id, &p.machine);
@@ -123,10 +125,18 @@ pub fn as_stored(r: &PointRecord) -> PointRecord {
 }
 
 /// The columns that label a sweep's point.
-const SWEEP_COLUMNS: [&str; 5] = ["point", "config", "dispatch", "policy", "scene"];
+const SWEEP_COLUMNS: [&str; 6] = [
+    "point",
+    "config",
+    "dispatch",
+    "policy",
+    "scene",
+    "draw_order",
+];
 
 /// The sweep's results as CSV: `point`, `config`, `dispatch`, `policy`,
-/// `scene`, then every flattened statistic (`wasp run --csv`'s names, in
+/// `scene`, `draw_order` (the effective one), then every flattened
+/// statistic (`wasp run --csv`'s names, in
 /// the order they first appear in the rows; a statistic named like a sweep
 /// column, e.g. the simulator's `policy`, is `stats.NAME`).
 pub fn results_csv(rows: &[(&SweepPoint, &PointRecord)]) -> String {
@@ -145,7 +155,7 @@ pub fn results_csv(rows: &[(&SweepPoint, &PointRecord)]) -> String {
             names.push(k);
         }
     }
-    let mut s = String::from("point,config,dispatch,policy,scene");
+    let mut s = SWEEP_COLUMNS.join(",");
     for n in &names {
         let n = if SWEEP_COLUMNS.contains(n) {
             format!("stats.{n}")
@@ -158,12 +168,13 @@ pub fn results_csv(rows: &[(&SweepPoint, &PointRecord)]) -> String {
     for ((p, _), row) in rows.iter().zip(&flat) {
         let _ = write!(
             s,
-            "{},{},{},{},{}",
+            "{},{},{},{},{},{}",
             p.index,
             csv(&p.config),
             csv(&p.dispatch),
             csv(&p.policy),
-            csv(&p.scene)
+            csv(&p.scene),
+            p.draw_order
         );
         let row: HashMap<&str, &str> = row.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
         for n in &names {
@@ -186,6 +197,7 @@ pub fn results_json(rows: &[(&SweepPoint, &PointRecord)]) -> String {
                 "dispatch": p.dispatch,
                 "policy": p.policy,
                 "scene": p.scene,
+                "draw_order": p.draw_order,
                 "base": p.point.config,
                 "sets": p.point.sets,
                 "key": r.key,
@@ -197,28 +209,32 @@ pub fn results_json(rows: &[(&SweepPoint, &PointRecord)]) -> String {
     serde_json::to_string_pretty(&v).expect("results serialize") + "\n"
 }
 
-/// The summary table: point, scene, config, dispatch, policy, cycles and
-/// the speedup against `first_policy` on the same scene, configuration and
-/// dispatch (`-` when that point has no result).
+/// The summary table: point, scene, draw order, config, dispatch, policy,
+/// cycles and the speedup against `first_policy` on the same scene, draw
+/// order, configuration and dispatch (`-` when that point has no result).
 pub fn results_table(rows: &[(&SweepPoint, &PointRecord)], first_policy: &str) -> String {
-    let reference: HashMap<(&str, &str, &str), f64> = rows
+    fn at(p: &SweepPoint) -> (&str, DrawOrder, &str, &str) {
+        (&p.scene, p.draw_order, &p.config, &p.dispatch)
+    }
+    let reference: HashMap<_, f64> = rows
         .iter()
         .filter(|(p, _)| p.policy == first_policy)
-        .map(|(p, r)| ((&*p.scene, &*p.config, &*p.dispatch), r.cycles()))
+        .map(|(p, r)| (at(p), r.cycles()))
         .collect();
     let head = [
-        "point", "scene", "config", "dispatch", "policy", "cycles", "speedup",
+        "point", "scene", "order", "config", "dispatch", "policy", "cycles", "speedup",
     ];
-    let mut cells: Vec<[String; 7]> = vec![head.map(String::from)];
+    let mut cells: Vec<[String; 8]> = vec![head.map(String::from)];
     for (p, r) in rows {
         let c = r.cycles();
-        let speedup = match reference.get(&(&*p.scene, &*p.config, &*p.dispatch)) {
+        let speedup = match reference.get(&at(p)) {
             Some(b) if c > 0.0 && b.is_finite() => format!("{:+.2}%", 100.0 * (b / c - 1.0)),
             _ => "-".to_string(),
         };
         cells.push([
             p.index.to_string(),
             p.scene.clone(),
+            p.draw_order.to_string(),
             p.config.clone(),
             p.dispatch.clone(),
             p.policy.clone(),
@@ -230,7 +246,7 @@ pub fn results_table(rows: &[(&SweepPoint, &PointRecord)], first_policy: &str) -
             speedup,
         ]);
     }
-    let mut width = [0usize; 7];
+    let mut width = [0usize; 8];
     for row in &cells {
         for (w, c) in width.iter_mut().zip(row) {
             *w = (*w).max(c.chars().count());
@@ -241,7 +257,7 @@ pub fn results_table(rows: &[(&SweepPoint, &PointRecord)], first_policy: &str) -
         let mut line = String::new();
         for (i, (c, w)) in row.iter().zip(width).enumerate() {
             let sep = if i == 0 { "" } else { "  " };
-            if i == 0 || i >= 5 {
+            if i == 0 || i >= 6 {
                 let _ = write!(line, "{sep}{c:>w$}");
             } else {
                 let _ = write!(line, "{sep}{c:<w$}");
@@ -252,7 +268,8 @@ pub fn results_table(rows: &[(&SweepPoint, &PointRecord)], first_policy: &str) -
     }
     let _ = writeln!(
         s,
-        "speedup = {first_policy} cycles / cycles - 1 on the same scene, config and dispatch"
+        "speedup = {first_policy} cycles / cycles - 1 on the same scene, draw order, config and \
+         dispatch"
     );
     s
 }
@@ -346,9 +363,9 @@ mod tests {
         assert_eq!(
             lines,
             [
-                "point,config,dispatch,policy,scene,cycles,l0.misses,stats.policy,extra",
-                "1,a,shared-tile,baseline,procedural-plane,200,3,\"x,y\",",
-                "3,a,shared-tile,wasp:0:3,procedural-plane,160,3,\"x,y\",1.5",
+                "point,config,dispatch,policy,scene,draw_order,cycles,l0.misses,stats.policy,extra",
+                "1,a,shared-tile,baseline,procedural-plane,as-loaded,200,3,\"x,y\",",
+                "3,a,shared-tile,wasp:0:3,procedural-plane,as-loaded,160,3,\"x,y\",1.5",
             ]
         );
         let json: serde_json::Value = serde_json::from_str(&results_json(&rows)).unwrap();

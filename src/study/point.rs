@@ -2,14 +2,17 @@
 //! cached under.
 //!
 //! A point names a scene, a base configuration (`paper`, `paper-width2` or
-//! a TOML file) and the `--set` overrides applied to it in order. Every
+//! a TOML file) and the `--set` overrides applied to it in order, and
+//! optionally the draw order the scene is rendered in (default: the scene
+//! definition's own). Every
 //! other knob a study varies (policy, dispatch, subset, ideal memory,
 //! warps, MSHRs) is one of those overrides, so two points that describe the
 //! same machine on the same scene resolve to the same effective
 //! configuration and share one result.
 //!
 //! The cache key hashes (64-bit FNV-1a) the scene's identity (its
-//! definition and the fetched packages' versions), the effective
+//! definition with the point's draw order, and the fetched packages'
+//! versions), the effective
 //! configuration and the identity of the `wasp` binary (a hash of the
 //! executable's bytes): a rebuilt simulator never reuses a result of
 //! another build.
@@ -21,6 +24,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 use wasp_frontend::def::SceneDef;
 use wasp_frontend::fetch;
+use wasp_frontend::raster::DrawOrder;
 use wasp_sim::config::MachineConfig;
 
 /// One scene on one machine.
@@ -33,6 +37,11 @@ pub struct Point {
     pub config: String,
     /// `PATH=VALUE` overrides applied in order (as `--set`).
     pub sets: Vec<String>,
+    /// The draw order the scene is rendered in (`None`: the scene
+    /// definition's `draw_order`). Points of one scene in two orders run
+    /// on two traces and have two keys.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub draw_order: Option<DrawOrder>,
 }
 
 impl Point {
@@ -42,6 +51,24 @@ impl Point {
             scene: scene.to_string(),
             config: config.to_string(),
             sets: sets.iter().map(|s| s.to_string()).collect(),
+            draw_order: None,
+        }
+    }
+
+    /// The same point on the scene rendered in draw order `order`.
+    pub fn drawn(&self, order: DrawOrder) -> Point {
+        Point {
+            draw_order: Some(order),
+            ..self.clone()
+        }
+    }
+
+    /// The scene definition `def` (of [`Point::scene`]) as this point
+    /// renders it: with the point's draw order, if it names one.
+    pub fn scene_def(&self, def: &SceneDef) -> SceneDef {
+        SceneDef {
+            draw_order: self.draw_order.unwrap_or(def.draw_order),
+            ..def.clone()
         }
     }
 
@@ -55,6 +82,9 @@ impl Point {
     /// `scene config set1 set2 ...` for messages.
     pub fn describe(&self) -> String {
         let mut s = format!("{} on {}", self.scene, self.config);
+        if let Some(o) = self.draw_order {
+            s.push_str(&format!(" --draw-order {o}"));
+        }
         for x in &self.sets {
             s.push_str(" --set ");
             s.push_str(x);
@@ -127,8 +157,9 @@ pub fn binary_id() -> &'static str {
     })
 }
 
-/// The identity of a scene: its definition and, for a game, the versions
-/// of the packages its data came from.
+/// The identity of a scene: its definition (the draw order included: see
+/// [`Point::scene_def`]) and, for a game, the versions of the packages its
+/// data came from.
 pub fn scene_identity(def: &SceneDef) -> String {
     let mut s = format!("{def:?}");
     if let Some(v) = fetch::fetched_versions(def.game) {
@@ -183,6 +214,29 @@ mod tests {
         assert_ne!(ka, kc);
         assert_ne!(ka, point_key("other-bin", "scene", &r.config(&a).unwrap()));
         assert_ne!(ka, point_key("bin", "scene2", &r.config(&a).unwrap()));
+    }
+
+    #[test]
+    fn two_draw_orders_of_a_scene_make_two_keys() {
+        let def = wasp_frontend::def::lookup("procedural-plane").unwrap();
+        let mut r = Resolver::default();
+        let p = Point::new("procedural-plane", "paper", &[]);
+        let cfg = r.config(&p).unwrap();
+        let key = |p: &Point| point_key("bin", &scene_identity(&p.scene_def(&def)), &cfg);
+        let ordered = p.drawn(DrawOrder::FrontToBackDraw);
+        assert_ne!(key(&p), key(&ordered));
+        assert_ne!(key(&ordered), key(&p.drawn(DrawOrder::FrontToBackObject)));
+        // Naming the scene's own order is the same scene, the same key.
+        assert_eq!(def.draw_order, DrawOrder::AsLoaded);
+        assert_eq!(key(&p), key(&p.drawn(DrawOrder::AsLoaded)));
+        assert!(ordered
+            .describe()
+            .starts_with("procedural-plane on paper --draw-order front-to-back-draw"));
+        // A point without an order reads and writes as before.
+        let json = serde_json::to_string(&p).unwrap();
+        assert!(!json.contains("draw_order"), "{json}");
+        let back: Point = serde_json::from_str(&serde_json::to_string(&ordered).unwrap()).unwrap();
+        assert_eq!(back, ordered);
     }
 
     #[test]

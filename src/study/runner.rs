@@ -1,5 +1,6 @@
-//! Runs the tasks of a study in parallel: each scene is rendered once and
-//! its trace shared by every task on it (load once, run many), finished
+//! Runs the tasks of a study in parallel: each scene is rendered once per
+//! draw order and tile size, and its trace shared by every task on it
+//! (load once, run many), finished
 //! points are stored as they end and skipped on the next run, progress is
 //! shown, and the run ends with its wall time and points per second.
 //!
@@ -18,7 +19,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 use wasp_frontend::characterize::{characterize, Characterization};
 use wasp_frontend::def::{self, SceneDef};
-use wasp_frontend::raster::{rasterize_timed, Frame, RasterOptions};
+use wasp_frontend::raster::{rasterize_timed, DrawOrder, Frame, RasterOptions};
 use wasp_frontend::{fetch, load};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::run::{simulate, simulate_timeline, RunOptions};
@@ -131,11 +132,13 @@ impl Outcome {
     }
 }
 
-/// A task ready to run: its key and effective configuration.
+/// A task ready to run: its key, effective configuration and the scene
+/// as it renders it (its draw order applied).
 struct Ready {
     task: Task,
     key: String,
     cfg: MachineConfig,
+    def: SceneDef,
 }
 
 /// The scene a group of tasks shares.
@@ -176,15 +179,19 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     let mut out = Outcome::default();
     let mut resolver = Resolver::default();
     let mut scenes = Scenes::with(&opts.scenes);
-    let mut ids: HashMap<String, String> = HashMap::new();
+    let mut ids: HashMap<(String, DrawOrder), String> = HashMap::new();
     let mut todo: Vec<Ready> = Vec::new();
     let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
     // Resolve every task (bad scenes and overrides fail here, before any
     // run), and take the stored results.
     for t in tasks {
         let d = scenes.def(t.scene())?.clone();
+        let d = match t {
+            Task::Run(p) | Task::Timeline { point: p, .. } => p.scene_def(&d),
+            Task::Characterize { .. } => d,
+        };
         let id = ids
-            .entry(d.name.clone())
+            .entry((d.name.clone(), d.draw_order))
             .or_insert_with(|| scene_identity(&d))
             .clone();
         let (key, cfg) = match t {
@@ -255,6 +262,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
                 task: t.clone(),
                 key,
                 cfg,
+                def: d,
             });
         }
     }
@@ -296,20 +304,19 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             )
         })?;
     }
-    // Group by scene and tile size, in scene order.
-    todo.sort_by(|a, b| {
-        (a.task.scene(), a.cfg.gpu.tile_size).cmp(&(b.task.scene(), b.cfg.gpu.tile_size))
-    });
+    // Group by scene, draw order and tile size, in scene order.
+    let group_key = |r: &Ready| (r.def.name.clone(), r.def.draw_order, r.cfg.gpu.tile_size);
+    todo.sort_by_key(group_key);
     let mut groups: Vec<Group> = Vec::new();
     let mut group_of = Vec::with_capacity(todo.len());
     for r in &todo {
         let tile = r.cfg.gpu.tile_size;
-        let same = groups
-            .last()
-            .is_some_and(|g| g.def.name == r.task.scene() && g.tile == tile);
+        let same = groups.last().is_some_and(|g| {
+            g.def.name == r.def.name && g.def.draw_order == r.def.draw_order && g.tile == tile
+        });
         if !same {
             groups.push(Group {
-                def: scenes.def(r.task.scene())?.clone(),
+                def: r.def.clone(),
                 tile,
                 frame: Mutex::new(None),
                 remaining: AtomicUsize::new(0),
@@ -425,14 +432,16 @@ fn frame_of(g: &Group) -> Result<Arc<Frame>, String> {
     slot.as_ref().expect("set").clone()
 }
 
-/// The scene's frame as `wasp render SCENE --trace-out` makes it (the
-/// trace does not depend on the colour pass, which is skipped).
+/// The scene's frame as `wasp render SCENE --trace-out` makes it, in the
+/// definition's draw order (the trace does not depend on the colour pass,
+/// which is skipped).
 pub fn render(d: &SceneDef, tile: u32) -> Result<Frame, String> {
     let scene = load::load_scene(d).map_err(|e| e.to_string())?;
     let opts = RasterOptions {
         tile,
         colour: false,
         threads: 1,
+        draw_order: d.draw_order,
         ..RasterOptions::default()
     };
     rasterize_timed(&scene, d.width, d.height, &opts)
@@ -519,5 +528,58 @@ fn progress(opts: &RunnerOptions, total: usize) -> Progress {
         lines: !opts.quiet && !tty && total > 0,
         label: opts.label.clone(),
         start: Instant::now(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_point_runs_on_the_scene_rendered_in_its_draw_order() {
+        let dir = std::env::temp_dir().join(format!("wasp-runner-order-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let cache = Cache::open(&dir).unwrap();
+        let mut plane = def::lookup("procedural-plane").unwrap();
+        plane.name = "test-small-plane".into();
+        (plane.width, plane.height) = (256, 128);
+        let opts = RunnerOptions {
+            jobs: 2,
+            quiet: true,
+            fetch: false,
+            label: "test".into(),
+            scenes: vec![plane.clone()],
+        };
+        let loaded = Point::new("test-small-plane", "paper", &[]);
+        let sorted = loaded.drawn(DrawOrder::FrontToBackObject);
+        let same = loaded.drawn(DrawOrder::AsLoaded);
+        let tasks = [
+            Task::Run(loaded.clone()),
+            Task::Run(sorted.clone()),
+            Task::Run(same.clone()),
+        ];
+        let out = run(&tasks, &cache, &opts).unwrap();
+        assert!(out.failures.is_empty(), "{:?}", out.failures);
+        assert_eq!((out.ran, out.same), (2, 1));
+        let (a, b, c) = (
+            &out.points[&loaded],
+            &out.points[&sorted],
+            &out.points[&same],
+        );
+        assert_ne!(a.key, b.key);
+        assert_eq!(a.key, c.key, "the scene's own order is the same scene");
+        // The sorted trace shades fewer warps (the ground is drawn after
+        // the blocks on it): the run saw another trace.
+        let warps = |r: &PointRecord| r.get("warps").unwrap();
+        assert!(warps(b) < warps(a), "{} vs {}", warps(b), warps(a));
+        // Its frame is the one `render` makes in that order.
+        let f = render(&sorted.scene_def(&plane), 64).unwrap();
+        assert_eq!(f.stats.draw_order, DrawOrder::FrontToBackObject);
+        assert_eq!(f.trace.quad_count() as f64, warps(b));
+        // Stored under its key: a second run takes both from the folder.
+        let again = run(&tasks, &cache, &opts).unwrap();
+        assert_eq!((again.ran, again.cached), (0, 2));
+        assert_eq!(again.points[&sorted], *b);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -1,28 +1,32 @@
-//! A sweep file: a user's grid of scenes x configurations x dispatch modes
-//! x launch policies (docs/sweep.md), and its expansion into points (see
+//! A sweep file: a user's grid of scenes x draw orders x configurations x
+//! dispatch modes x launch policies (docs/sweep.md), and its expansion
+//! into points (see
 //! [`super::jobs`] for running them one at a time on a cluster).
 //!
 //! ```toml
 //! scenes = ["procedural-plane"]          # or ["all"]
 //! policies = ["baseline", "wasp:0:3"]    # scheduler.policy values
 //! dispatches = ["shared-tile"]           # optional: default the config's own
+//! draw_orders = ["as-loaded", "front-to-back-draw"]  # optional: default the scene's own
 //! [[configs]]
 //! name = "shipped"                       # the label in the results
 //! base = "paper"                         # paper | paper-width2 | a TOML file
 //! set = ["l0.mshrs=8"]                   # --set overrides, in order
 //! ```
 //!
-//! Points are numbered from 1 in the order scene, configuration, dispatch,
-//! policy (the last varies fastest). Everything is checked when the file is
-//! read and expanded, before any simulation: unknown fields, scenes,
-//! policies and dispatch modes, duplicate names, missing base files, and
-//! every point's effective configuration.
+//! Points are numbered from 1 in the order scene, draw order,
+//! configuration, dispatch, policy (the last varies fastest). Everything
+//! is checked when the file is read and expanded, before any simulation:
+//! unknown fields, scenes, draw orders, policies and dispatch modes,
+//! duplicate names, missing base files, and every point's effective
+//! configuration.
 
 use super::point::{Point, Resolver};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use toml::Spanned;
+use wasp_frontend::raster::DrawOrder;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
 
@@ -36,6 +40,7 @@ struct RawSweep {
     scenes: Spanned<Vec<Spanned<String>>>,
     policies: Spanned<Vec<Spanned<String>>>,
     dispatches: Option<Spanned<Vec<Spanned<String>>>>,
+    draw_orders: Option<Spanned<Vec<Spanned<String>>>>,
     configs: Option<Spanned<Vec<Spanned<RawConfig>>>>,
 }
 
@@ -74,6 +79,9 @@ pub struct Sweep {
     /// Dispatch modes, in order; `[None]` when the file names none (each
     /// configuration's own).
     pub dispatches: Vec<Option<String>>,
+    /// Draw orders, in order; `[None]` when the file names none (each
+    /// scene's own).
+    pub draw_orders: Vec<Option<DrawOrder>>,
     /// Launch policies (`scheduler.policy` values), in order.
     pub policies: Vec<String>,
 }
@@ -91,6 +99,8 @@ pub struct SweepPoint {
     pub dispatch: String,
     /// The policy as written in the file.
     pub policy: String,
+    /// The effective draw order (the file's, else the scene's own).
+    pub draw_order: DrawOrder,
     /// The point the runner runs.
     pub point: Point,
     /// Its effective configuration (shared by the point's scenes).
@@ -98,12 +108,17 @@ pub struct SweepPoint {
 }
 
 impl SweepPoint {
-    /// `scene, config NAME, DISPATCH, POLICY` for listings and messages.
+    /// `scene, config NAME, DISPATCH, POLICY` for listings and messages,
+    /// with `, draw order ORDER` when the point names one.
     pub fn describe(&self) -> String {
-        format!(
+        let mut s = format!(
             "{}, config {}, {}, {}",
             self.scene, self.config, self.dispatch, self.policy
-        )
+        );
+        if let Some(o) = self.point.draw_order {
+            s.push_str(&format!(", draw order {o}"));
+        }
+        s
     }
 }
 
@@ -208,6 +223,21 @@ impl Sweep {
                 v
             }
         };
+        let draw_orders = match &raw.draw_orders {
+            None => vec![None],
+            Some(d) => {
+                list("draw_orders", d)?;
+                let mut v = Vec::new();
+                for (i, x) in d.get_ref().iter().enumerate() {
+                    let o = x
+                        .get_ref()
+                        .parse::<DrawOrder>()
+                        .map_err(|e| format!("{}: draw_orders[{i}]: {e}", at(x.span().start)))?;
+                    v.push(Some(o));
+                }
+                v
+            }
+        };
         let raw_configs = match &raw.configs {
             Some(c) if !c.get_ref().is_empty() => c.get_ref(),
             Some(c) => {
@@ -269,6 +299,7 @@ impl Sweep {
         }
         let count = [
             scenes.len(),
+            draw_orders.len(),
             configs.len(),
             dispatches.len(),
             policies.len(),
@@ -279,9 +310,10 @@ impl Sweep {
             Some(n) if n <= MAX_POINTS => {}
             _ => {
                 return Err(format!(
-                    "{shown}: {} scenes x {} configs x {} dispatches x {} policies is more than \
-                     {MAX_POINTS} points: split the sweep into several files",
+                    "{shown}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
+                     policies is more than {MAX_POINTS} points: split the sweep into several files",
                     scenes.len(),
+                    draw_orders.len(),
                     configs.len(),
                     dispatches.len(),
                     policies.len()
@@ -293,13 +325,18 @@ impl Sweep {
             scenes,
             configs,
             dispatches,
+            draw_orders,
             policies,
         })
     }
 
     /// The number of points.
     pub fn len(&self) -> usize {
-        self.scenes.len() * self.configs.len() * self.dispatches.len() * self.policies.len()
+        self.scenes.len()
+            * self.draw_orders.len()
+            * self.configs.len()
+            * self.dispatches.len()
+            * self.policies.len()
     }
 
     /// Every point in sweep order, each machine resolved (base, overrides,
@@ -321,6 +358,7 @@ impl Sweep {
                         scene: String::new(),
                         config: c.base.clone(),
                         sets,
+                        draw_order: None,
                     };
                     let cfg = resolver.config(&p).map_err(|e| {
                         let d = d.as_deref().unwrap_or("its own dispatch");
@@ -335,19 +373,27 @@ impl Sweep {
         }
         let mut out = Vec::with_capacity(self.len());
         for scene in &self.scenes {
-            for (c, pol, p, cfg) in &machines {
-                out.push(SweepPoint {
-                    index: out.len() + 1,
-                    scene: scene.clone(),
-                    config: c.name.clone(),
-                    dispatch: cfg.raster.dispatch.to_string(),
-                    policy: (*pol).clone(),
-                    point: Point {
+            // The scene's own order, for the points that name none.
+            let own = wasp_frontend::def::lookup(scene)
+                .map_err(|e| format!("{}: {e}", self.shown))?
+                .draw_order;
+            for &order in &self.draw_orders {
+                for (c, pol, p, cfg) in &machines {
+                    let point = Point {
                         scene: scene.clone(),
                         ..p.clone()
-                    },
-                    machine: cfg.clone(),
-                });
+                    };
+                    out.push(SweepPoint {
+                        index: out.len() + 1,
+                        scene: scene.clone(),
+                        config: c.name.clone(),
+                        dispatch: cfg.raster.dispatch.to_string(),
+                        policy: (*pol).clone(),
+                        draw_order: order.unwrap_or(own),
+                        point: order.map_or(point.clone(), |o| point.drawn(o)),
+                        machine: cfg.clone(),
+                    });
+                }
             }
         }
         Ok(out)
@@ -512,6 +558,48 @@ set = ["l0.mshrs=8"]
     }
 
     #[test]
+    fn draw_orders_vary_after_the_scene_and_are_checked() {
+        let s = parse(
+            "scenes = [\"procedural-plane\", \"procedural-sprites\"]\ndraw_orders = [\"as-loaded\", \"front-to-back-draw\"]\npolicies = [\"baseline\", \"wasp\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+        )
+        .unwrap();
+        assert_eq!(s.len(), 2 * 2 * 2);
+        let pts = s.points().unwrap();
+        let orders: Vec<DrawOrder> = pts.iter().map(|p| p.draw_order).collect();
+        use DrawOrder::{AsLoaded as A, FrontToBackDraw as D};
+        assert_eq!(orders, [A, A, D, D, A, A, D, D]);
+        assert_eq!(pts[2].point.draw_order, Some(D));
+        assert_eq!(pts[2].point, pts[0].point.drawn(D));
+        assert_eq!(
+            pts[3].describe(),
+            "procedural-plane, config a, shared-tile, wasp, draw order front-to-back-draw"
+        );
+        assert_eq!(pts[4].scene, "procedural-sprites");
+        // Without the list, each scene keeps its own order.
+        let pts = parse(GOOD).unwrap().points().unwrap();
+        assert!(pts.iter().all(|p| p.point.draw_order.is_none()));
+        assert!(pts.iter().all(|p| p.draw_order == A));
+        for (text, want) in [
+            (
+                "scenes = [\"procedural-plane\"]\ndraw_orders = [\"sideways\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+                "sweep.toml:2: draw_orders[0]: unknown draw order `sideways` (expected as-loaded, \
+                 front-to-back-object or front-to-back-draw)",
+            ),
+            (
+                "scenes = [\"procedural-plane\"]\ndraw_orders = [\"as-loaded\", \"as-loaded\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+                "sweep.toml:2: draw_orders[1] `as-loaded` is listed twice (also draw_orders[0])",
+            ),
+            (
+                "scenes = [\"procedural-plane\"]\ndraw_orders = []\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+                "sweep.toml:2: draw_orders is empty",
+            ),
+        ] {
+            let e = parse(text).unwrap_err();
+            assert!(e.starts_with(want), "got: {e}\nwant: {want}");
+        }
+    }
+
+    #[test]
     fn an_override_that_does_not_resolve_names_its_machine() {
         let s = parse(
             "scenes = [\"procedural-plane\"]\npolicies = [\"baseline\", \"wasp\"]\n[[configs]]\nname = \"ok\"\nbase = \"paper\"\n[[configs]]\nname = \"bad\"\nbase = \"paper\"\nset = [\"l0.mshrs=0\"]\n",
@@ -540,7 +628,8 @@ set = ["l0.mshrs=8"]
         let e = parse(&text).unwrap_err();
         assert!(
             e.contains(
-                "1 scenes x 300 configs x 1 dispatches x 400 policies is more than 100000 points"
+                "1 scenes x 1 draw orders x 300 configs x 1 dispatches x 400 policies is more \
+                 than 100000 points"
             ),
             "{e}"
         );

@@ -2,11 +2,11 @@
 //! share the cycle axis, each with its legend strip, and what each panel
 //! draws.
 
-use super::colours::{core_colour, LEVEL_COLOURS, MARK_COLOUR};
+use super::colours::{core_colour, LEVEL_COLOURS};
 use super::downsample::downsample;
 use super::error::drawing;
 use super::legend::{legend, Swatch};
-use super::marks::{draw_marks, label_tiles, mark_look, merge_marks, Look};
+use super::marks::{draw_marks, label_tiles, mark_colour, mark_look, merge_marks, Look};
 use super::panel::{panel, series, steps};
 use crate::fonts::font;
 use plotters::coord::Shift;
@@ -181,20 +181,20 @@ where
         })
         .collect();
     let shared = marks.iter().all(|m| m.core.is_none());
-    let (mark_colour, mark_width, suffix) = if shared {
-        (MARK_COLOUR, 2, "")
-    } else {
-        (RGBColor(90, 90, 90), 1, " (core colour)")
-    };
+    let suffix = if shared { "" } else { " (core colour)" };
     for start in [true, false] {
-        let (style, look) = mark_look(mark_colour, mark_width, start, dense);
-        let name = match look {
-            Look::Line => format!("tile start{suffix}"),
-            Look::Dashed => format!("tile end{suffix}"),
-            Look::TopTick => "tile start (top ticks)".to_string(),
-            Look::BottomTick => "tile end (bottom ticks)".to_string(),
+        let (colour, width) = match shared {
+            true => mark_colour(None, start),
+            false => (RGBColor(90, 90, 90), 1),
         };
-        entries.push((name, Swatch::Mark(style, look)));
+        let (style, look) = mark_look(colour, width, start, dense);
+        let (name, swatch) = match look {
+            Look::Line => (format!("tile start{suffix}"), Swatch::Tile(style, true)),
+            Look::Dashed => (format!("tile end{suffix}"), Swatch::Tile(style, false)),
+            Look::TopTick => ("tile start (top ticks)".into(), Swatch::Mark(style, look)),
+            Look::BottomTick => ("tile end (bottom ticks)".into(), Swatch::Mark(style, look)),
+        };
+        entries.push((name, swatch));
     }
     entries.push((
         format!("{} warp slots", t.max_warps),

@@ -2,7 +2,7 @@
 //! label per series, in as many columns as the strip's height needs.
 
 use super::error::drawing;
-use super::marks::{Look, TICK};
+use super::marks::{pointer, Look, TICK};
 use crate::fonts::font;
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
@@ -13,6 +13,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 pub(super) enum Swatch {
     Line(ShapeStyle),
     Mark(ShapeStyle, Look),
+    /// A tile's start (true) or end line, upright, with its pointer.
+    Tile(ShapeStyle, bool),
     Band(RGBColor),
     Block(RGBColor),
 }
@@ -78,6 +80,25 @@ where
                     area.draw(&PathElement::new(vec![(x, edge), (x, end)], *style))
                         .map_err(drawing)?;
                 }
+            }
+            Swatch::Tile(style, start) => {
+                let x = x0 + swatch_w / 2;
+                let line = vec![(x, mid - 9), (x, mid + 9)];
+                if *start {
+                    area.draw(&PathElement::new(line, *style))
+                } else {
+                    area.draw(&DashedPathElement::new(line, 4, 3, *style))
+                }
+                .map_err(drawing)?;
+                let tip = pointer(*start)
+                    .into_iter()
+                    .map(|(dx, dy)| (x + dx, mid - 9 + dy));
+                let fill = ShapeStyle {
+                    filled: true,
+                    ..*style
+                };
+                area.draw(&Polygon::new(tip.collect::<Vec<_>>(), fill))
+                    .map_err(drawing)?;
             }
             Swatch::Band(c) => {
                 area.draw(&Rectangle::new(

@@ -1,8 +1,8 @@
 //! The tile marks of the timeline: where tiles start and end, merged per
-//! pixel column, how each mark looks (lines, or ticks when dense), and the
-//! tile numbers beside the starts.
+//! pixel column, how each mark looks (lines with a pointer, or ticks when
+//! dense), and the tile numbers beside the starts.
 
-use super::colours::{core_colour, MARK_COLOUR};
+use super::colours::{core_colour, TILE_END, TILE_START};
 use super::error::drawing;
 use super::panel::Chart;
 use crate::fonts::font;
@@ -22,12 +22,12 @@ pub(super) struct Mark {
 }
 
 /// The timeline's tile marks within the cycle axis, at most one per pixel
-/// column, core and kind; a start hides an end of the same core in its
-/// column. Ends are drawn at the end of their cycle.
+/// column, core and kind (a start and an end in one column are both kept).
+/// Ends are drawn at the end of their cycle.
 pub(super) fn merge_marks<DB: DrawingBackend>(t: &Timeline, chart: &Chart<'_, DB>) -> Vec<Mark> {
     let area = chart.plotting_area();
     let range = chart.x_range();
-    let mut seen: BTreeMap<(i32, Option<u32>), Mark> = BTreeMap::new();
+    let mut seen: BTreeMap<(i32, Option<u32>, bool), Mark> = BTreeMap::new();
     for m in &t.marks {
         let x = if m.start {
             m.cycle as f64
@@ -44,16 +44,10 @@ pub(super) fn merge_marks<DB: DrawingBackend>(t: &Timeline, chart: &Chart<'_, DB
             core: m.core,
             start: m.start,
         };
-        seen.entry((px, m.core))
-            .and_modify(|old| {
-                if mark.start && !old.start {
-                    *old = mark;
-                }
-            })
-            .or_insert(mark);
+        seen.entry((px, m.core, m.start)).or_insert(mark);
     }
     let mut marks: Vec<Mark> = seen.into_values().collect();
-    marks.sort_by(|a, b| a.x.total_cmp(&b.x));
+    marks.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.start.cmp(&b.start)));
     marks
 }
 
@@ -73,6 +67,16 @@ pub(super) enum Look {
 /// Length of a tick mark in pixels.
 pub(super) const TICK: u32 = 10;
 
+/// The colour and width of a mark of `core` (None: shared-tile dispatch):
+/// starts dark and ends red, or both thin in the core's colour.
+pub(super) fn mark_colour(core: Option<u32>, start: bool) -> (RGBColor, u32) {
+    match (core, start) {
+        (None, true) => (TILE_START, 2),
+        (None, false) => (TILE_END, 2),
+        (Some(c), _) => (core_colour(c as usize), 1),
+    }
+}
+
 /// How a tile mark in `colour` and `width` is drawn. Starts are solid
 /// lines, ends dashed ones; when the marks are `dense`, full-height lines
 /// would hide the data, so starts are ticks at the top of each panel and
@@ -91,8 +95,16 @@ pub(super) fn mark_look(
     }
 }
 
-/// The tile marks across `chart` (see [`mark_look`]): shared-tile marks
-/// dark, per-core-tile marks thin in the core's colour.
+/// The pointer at the top of a tile line, as pixel offsets from the top of
+/// the line: a start points right (the tile runs on to the right), an end
+/// points left, so a tile ending where the next starts shows both.
+pub(super) fn pointer(start: bool) -> Vec<(i32, i32)> {
+    let d = if start { 1 } else { -1 };
+    vec![(0, 0), (9 * d, 5), (0, 10)]
+}
+
+/// The tile marks across `chart` (see [`mark_look`], [`mark_colour`] and
+/// [`pointer()`]).
 pub(super) fn draw_marks<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     marks: &[Mark],
@@ -108,11 +120,14 @@ where
     let plot_h = f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
     let tick = (y1 - y0) * f64::from(TICK) / plot_h;
     for m in marks {
-        let (colour, width) = match m.core {
-            None => (MARK_COLOUR, 2),
-            Some(c) => (core_colour(c as usize), 1),
-        };
+        let (colour, width) = mark_colour(m.core, m.start);
         let (style, look) = mark_look(colour, width, m.start, dense);
+        if !dense {
+            let tip = Polygon::new(pointer(m.start), colour.filled());
+            chart
+                .draw_series(std::iter::once(EmptyElement::at((m.x, y1)) + tip))
+                .map_err(drawing)?;
+        }
         let line = match look {
             Look::Line | Look::Dashed => vec![(m.x, y0), (m.x, y1)],
             Look::TopTick => vec![(m.x, y1 - tick), (m.x, y1)],
@@ -150,7 +165,7 @@ where
     for m in marks.iter().filter(|m| m.start) {
         let (px, py) = area.map_coordinate(&(m.x, top));
         let (text, colour, row) = match m.core {
-            None => (format!("tile {}", m.tile), MARK_COLOUR, 0),
+            None => (format!("tile {}", m.tile), TILE_START, 0),
             Some(c) => (
                 format!("{}", m.tile),
                 core_colour(c as usize),
@@ -159,7 +174,7 @@ where
         };
         let style = font(16, false).color(&colour);
         let width = root.estimate_text_size(&text, &style).map_err(drawing)?.0 as i32;
-        let x = px + 3;
+        let x = px + 11;
         if next_free.get(&m.core).is_some_and(|&f| x < f) || x + width > right {
             continue;
         }

@@ -12,12 +12,16 @@
 //! 3. the priority warps launched per cycle, stacked by core in the core
 //!    colours of panel 1.
 //!
-//! Tile boundaries are vertical lines in every panel. Shared-tile dispatch:
-//! a solid dark line where a tile starts (labelled `tile N` in panel 1) and
-//! a dashed one at the end of the cycle its last warp retires. Per-core-tile
-//! dispatch: the same two styles, thin and in the colour of the core that
-//! takes or finishes the tile (labelled with the tile number in that
-//! colour, one row of labels per core).
+//! Tile boundaries are vertical lines in every panel, each with a pointer
+//! at the panel's top: a tile start points right (the tile runs on to the
+//! right), a tile end points left. Shared-tile dispatch: a solid dark line
+//! where a tile starts (labelled `tile N` in panel 1) and a dashed red one
+//! at the end of the cycle its last warp retires, so an end in the column
+//! of the next start still shows as its red pointer. Per-core-tile
+//! dispatch: the same two styles and pointers, thin and in the colour of
+//! the core that takes or finishes the tile (labelled with the tile number
+//! in that colour, one row of labels per core). The colours are
+//! [`crate::palette`]'s.
 //!
 //! # Long windows
 //!
@@ -27,14 +31,11 @@
 //! and the minimum to maximum as a light band around it; panel 3 shows the
 //! mean launches per cycle over the column (so its area still counts the
 //! launches). Tile marks falling into the same column are merged: one mark
-//! per column, core and kind, and a start hides an end of the same core in
-//! that column. When more than one column in ten still has a mark, lines
+//! per column, core and kind (a start and an end in one column are both
+//! kept). When more than one column in ten still has a mark, lines
 //! across the panels would hide the data: starts become short ticks down
 //! from each panel's top edge and ends ticks up from its bottom edge (same
-//! colours), without tile labels. A tile end in the same column as the next
-//! tile's start (the usual case under shared-tile dispatch, where the next
-//! tile opens the cycle after the last one ends) is hidden by that start.
-//! The files stay small (an SVG of a 200,000-cycle window with 800 tiles
+//! colours), without tile labels or pointers. The files stay small (an SVG of a 200,000-cycle window with 800 tiles
 //! is under a megabyte) and drawing is fast whatever the window.
 //!
 //! # Fonts
@@ -289,8 +290,9 @@ mod tests {
         let img = image::open(&path).expect("png decodes").to_rgb8();
         assert_eq!((img.width(), img.height()), (WIDTH, HEIGHT));
         // Not a blank page: some pixels carry the core colours.
-        let blue = img.pixels().filter(|p| p.0 == [31, 119, 180]).count();
-        assert!(blue > 100, "{blue} pixels of core 0's colour");
+        let c = crate::palette::other(0);
+        let core0 = img.pixels().filter(|p| p.0 == [c.0, c.1, c.2]).count();
+        assert!(core0 > 100, "{core0} pixels of core 0's colour");
         std::fs::remove_dir_all(dir).ok();
     }
 
@@ -338,6 +340,30 @@ mod tests {
         assert!(texts
             .iter()
             .any(|t| t.starts_with("Priority-warp launches")));
+        std::fs::remove_dir_all(dir).ok();
+    }
+
+    #[test]
+    fn tile_ends_are_drawn_apart_from_the_next_start() {
+        // Under shared-tile dispatch tile 0 ends in the column where tile 1
+        // starts: both marks are drawn, each with its own colour and
+        // pointer, and each has its legend entry.
+        let dir = scratch("ends");
+        let path = dir.join("timeline.png");
+        draw(&synthetic(1000, 600), &path).expect("draw png");
+        let img = image::open(&path).expect("png decodes").to_rgb8();
+        let count = |c: RGBColor| img.pixels().filter(|p| p.0 == [c.0, c.1, c.2]).count();
+        let (ends, starts) = (count(colours::TILE_END), count(colours::TILE_START));
+        // A pointer is about 45 pixels; two ends and two starts in each of
+        // three panels.
+        assert!(
+            ends > 200 && starts > 200,
+            "{ends} end and {starts} start pixels"
+        );
+        let path = dir.join("timeline.svg");
+        draw(&synthetic(1000, 600), &path).expect("draw svg");
+        let texts = svg_texts(&std::fs::read_to_string(&path).expect("svg"));
+        assert!(texts.iter().any(|t| t == "tile start") && texts.iter().any(|t| t == "tile end"));
         std::fs::remove_dir_all(dir).ok();
     }
 

@@ -140,6 +140,7 @@ impl Sprites<'_> {
             uv2: None,
             indices: vec![0, 1, 2, 0, 2, 3],
             material: mi,
+            ..Default::default()
         });
         Ok(())
     }

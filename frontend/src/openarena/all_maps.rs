@@ -24,6 +24,7 @@ fn every_map_loads() {
             height: 768,
             description: String::new(),
             shader: None,
+            draw_order: Default::default(),
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {

@@ -70,6 +70,11 @@ pub struct Bsp {
     pub faces: Vec<BspFace>,
     /// Lightmaps, 128x128 RGB each.
     pub lightmaps: Vec<Vec<u8>>,
+    /// The object of each face ([`crate::Draw::object`]): the first BSP
+    /// leaf (lump 4, in order) whose leaf faces (lump 5) list it, else
+    /// leaves + the brush model (lump 7) holding it (doors, platforms),
+    /// else leaves + models + the face's own index.
+    pub face_objects: Vec<u32>,
 }
 
 /// Parse an IBSP version 46 file (`file` names it in errors).
@@ -241,6 +246,14 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         });
     }
 
+    let face_objects = face_objects(
+        &r,
+        lump(4, 48, "leaves")?,
+        lump(5, 4, "leaf faces")?,
+        lump(7, 40, "models")?,
+        faces.len(),
+    )?;
+
     let lm_bytes = LIGHTMAP_SIDE * LIGHTMAP_SIDE * 3;
     let (loff, ln) = lump(14, lm_bytes, "lightmaps")?;
     let lightmaps = (0..ln)
@@ -254,7 +267,61 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         meshverts,
         faces,
         lightmaps,
+        face_objects,
     })
+}
+
+/// [`Bsp::face_objects`] from the leaves, leaf faces and models lumps
+/// (each as offset and record count), for `n_faces` faces.
+fn face_objects(
+    r: &Bytes,
+    (loff, ln): (usize, usize),
+    (lfoff, lfn): (usize, usize),
+    (moff, mn): (usize, usize),
+    n_faces: usize,
+) -> Result<Vec<u32>, SceneError> {
+    let mut obj: Vec<Option<u32>> = vec![None; n_faces];
+    // A range of `count` records from `first` inside a lump of `len`.
+    let range = |at: usize, first: i32, count: i32, len: usize, what: &str| match (
+        usize::try_from(first),
+        usize::try_from(count),
+    ) {
+        (Ok(f), Ok(c)) if f.checked_add(c).is_some_and(|e| e <= len) => Ok(f..f + c),
+        _ => Err(r.err(at, format!("{what} {first}+{count} out of range ({len})"))),
+    };
+    for leaf in 0..ln {
+        let at = loff + 48 * leaf;
+        let first = r.i32_at(at + 32, "leaf")?;
+        let count = r.i32_at(at + 36, "leaf")?;
+        let what = format!("leaf {leaf}: leaf faces");
+        for k in range(at + 32, first, count, lfn, &what)? {
+            let f = r.i32_at(lfoff + 4 * k, "leaf face")?;
+            let f = usize::try_from(f)
+                .ok()
+                .filter(|&f| f < n_faces)
+                .ok_or_else(|| {
+                    r.err(
+                        lfoff + 4 * k,
+                        format!("leaf face {f} out of range ({n_faces})"),
+                    )
+                })?;
+            obj[f].get_or_insert(leaf as u32);
+        }
+    }
+    for model in 0..mn {
+        let at = moff + 40 * model;
+        let first = r.i32_at(at + 24, "model")?;
+        let count = r.i32_at(at + 28, "model")?;
+        let what = format!("model {model}: faces");
+        for f in range(at + 24, first, count, n_faces, &what)? {
+            obj[f].get_or_insert((ln + model) as u32);
+        }
+    }
+    Ok(obj
+        .into_iter()
+        .enumerate()
+        .map(|(f, o)| o.unwrap_or((ln + mn + f) as u32))
+        .collect())
 }
 
 #[cfg(test)]
@@ -399,6 +466,54 @@ mod tests {
             assert!(n[2] > 0.0);
         }
         assert!(face_triangles(&b, &b.faces[3]).is_none());
+    }
+
+    #[test]
+    fn faces_belong_to_their_first_leaf_else_their_model_else_themselves() {
+        // Leaves (48 bytes: leaf faces at 32, count at 36), then leaf
+        // faces, then models (40 bytes: faces at 24, count at 28).
+        let mut b = Vec::new();
+        for (first, n) in [(0, 1), (1, 2)] {
+            let mut leaf = [0u8; 48];
+            leaf[32..36].copy_from_slice(&i32::to_le_bytes(first));
+            leaf[36..40].copy_from_slice(&i32::to_le_bytes(n));
+            b.extend_from_slice(&leaf);
+        }
+        for f in [2i32, 0, 2] {
+            b.extend_from_slice(&f.to_le_bytes());
+        }
+        for (first, n) in [(0, 3), (3, 1)] {
+            let mut model = [0u8; 40];
+            model[24..28].copy_from_slice(&i32::to_le_bytes(first));
+            model[28..32].copy_from_slice(&i32::to_le_bytes(n));
+            b.extend_from_slice(&model);
+        }
+        let file = Path::new("m.bsp");
+        let objects = |b: &[u8], n_faces| {
+            face_objects(&Bytes::new(b, file), (0, 2), (96, 3), (108, 2), n_faces)
+        };
+        // Face 2 is in leaves 0 and 1 (the first wins), face 0 in leaf 1,
+        // face 1 only in the world model (2 leaves + model 0), face 3 in
+        // model 1, face 4 in nothing (2 + 2 + its own index).
+        assert_eq!(objects(&b, 5).unwrap(), [1, 2, 0, 3, 8]);
+        // A leaf face naming no face, and a model past the faces.
+        let e = objects(&b, 2).unwrap_err();
+        assert!(e.message.contains("leaf face 2 out of range (2)"), "{e}");
+        let mut bad = b.clone();
+        bad[96 + 4..96 + 8].copy_from_slice(&1i32.to_le_bytes());
+        let e = objects(&bad, 3).unwrap_err();
+        assert!(
+            e.message.contains("model 1: faces 3+1 out of range (3)"),
+            "{e}"
+        );
+        // A leaf whose leaf faces run past their lump.
+        bad[36..40].copy_from_slice(&9i32.to_le_bytes());
+        let e = objects(&bad, 5).unwrap_err();
+        assert!(
+            e.message
+                .contains("leaf 0: leaf faces 0+9 out of range (3)"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -185,7 +185,9 @@ impl Builder<'_> {
                         blend: Blend::Opaque,
                         shader: shader::unlit(t, Filter::Trilinear),
                     });
-                    Some(self.new_mesh(false))
+                    let m = self.new_mesh(false);
+                    self.meshes[m].sky = true;
+                    Some(m)
                 }
                 None => None,
             }
@@ -229,6 +231,7 @@ impl Builder<'_> {
             uv2: lightmapped.then(Vec::new),
             indices: Vec::new(),
             material: self.materials.len() - 1,
+            ..Default::default()
         });
         self.meshes.len() - 1
     }

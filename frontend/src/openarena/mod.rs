@@ -67,6 +67,18 @@
 //! there too). Textures wider or taller than [`MAX_TEXTURE_SIDE`] are
 //! downscaled to it.
 //!
+//! # Draw calls and objects
+//!
+//! For the draw orders that sort ([`crate::raster::DrawOrder`]): a draw
+//! call is one BSP face (a surface with one shader), as Quake 3 adds its
+//! draw surfaces; its object is the first BSP leaf that lists it (a
+//! brush model for the faces of doors and platforms), see
+//! [`Bsp::face_objects`]. `surfaceparm sky` surfaces are [`Mesh::sky`].
+//! The game's renderer sorts its draw surfaces by shader, not by depth
+//! (`docs/scenes.md`), so the shipped scenes keep the order loaded: one
+//! mesh per (shader, lightmap) in order of first use by the faces, faces
+//! in lump order, the alpha-blended meshes last.
+//!
 //! # Coordinates and camera
 //!
 //! Quake units, right-handed, Z up (kept; the camera's `up` is +Z).
@@ -90,7 +102,7 @@ mod text;
 mod tga;
 
 use super::{
-    shader, Blend, Camera, Filter, Material, Mesh, Scene, SceneError, Texture, Vec2, Vec3,
+    shader, Blend, Camera, Draw, Filter, Material, Mesh, Scene, SceneError, Texture, Vec2, Vec3,
 };
 pub use bsp::*;
 pub use camera::*;
@@ -206,7 +218,7 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
         map: def.map.clone(),
         missing_names: Vec::new(),
     };
-    for f in &bsp.faces {
+    for (fi, f) in bsp.faces.iter().enumerate() {
         let Some(mi) = b.mesh(&bsp, f.shader, f.lightmap)? else {
             continue;
         };
@@ -221,6 +233,10 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
             uv2.extend(verts.iter().map(|v| v.lm));
         }
         mesh.indices.extend(idx.iter().map(|i| base + i));
+        mesh.draws.push(Draw {
+            triangles: (idx.len() / 3) as u32,
+            object: bsp.face_objects[fi],
+        });
     }
     let mut meshes = std::mem::take(&mut b.meshes);
     meshes.retain(|m| !m.indices.is_empty());

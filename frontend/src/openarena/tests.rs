@@ -52,6 +52,19 @@ fn loads_a_synthetic_map() {
     assert_eq!(s.meshes.len(), 2);
     let tris: usize = s.meshes.iter().map(|m| m.indices.len() / 3).sum();
     assert_eq!(tris, 2 + 2 * PATCH_LEVEL * PATCH_LEVEL);
+    // Each BSP face is a draw call; the tiny map has no leaves or
+    // models, so each face is an object of its own.
+    let draws: Vec<(u32, u32)> = s
+        .meshes
+        .iter()
+        .flat_map(|m| m.draws.iter().map(|d| (d.triangles, d.object)))
+        .collect();
+    assert_eq!(draws.len(), 2);
+    assert_ne!(draws[0].1, draws[1].1);
+    for m in &s.meshes {
+        let drawn: u32 = m.draws.iter().map(|d| d.triangles).sum();
+        assert_eq!(drawn as usize, m.indices.len() / 3);
+    }
     let lit = s.meshes.iter().find(|m| m.uv2.is_some()).unwrap();
     assert_eq!(lit.uv2.as_ref().unwrap()[2], [0.5, 0.5]);
     let mat = &s.materials[lit.material];
@@ -112,6 +125,13 @@ pub(super) fn check_real(s: &Scene, min_tris: usize) {
             assert!(uv2.iter().all(|u| u[0].is_finite() && u[1].is_finite()));
         }
         assert!(m.indices.iter().all(|&i| (i as usize) < m.positions.len()));
+        let drawn: u32 = m.draws.iter().map(|d| d.triangles).sum();
+        assert!(
+            m.draws.is_empty() || drawn as usize == m.indices.len() / 3,
+            "{}: draw calls cover {drawn} of {} triangles",
+            s.name,
+            m.indices.len() / 3
+        );
         for p in &m.positions {
             for k in 0..3 {
                 lo[k] = lo[k].min(p[k]);

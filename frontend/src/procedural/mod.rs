@@ -25,7 +25,9 @@
 
 use super::def::{Game, SceneDef};
 use super::shader;
-use super::{Blend, Camera, Filter, Material, Mesh, Scene, SceneError, ShaderOp, Texture, Vec3};
+use super::{
+    Blend, Camera, Draw, Filter, Material, Mesh, Scene, SceneError, ShaderOp, Texture, Vec3,
+};
 use crate::rng::Rng;
 
 mod plane;
@@ -129,6 +131,7 @@ mod tests {
             height: h,
             description: String::new(),
             shader: None,
+            draw_order: Default::default(),
         }
     }
 

@@ -302,6 +302,7 @@ pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
         uv2: Some(Vec::new()),
         indices: Vec::new(),
         material: 0,
+        ..Default::default()
     };
     for j in 0..=n {
         for i in 0..=n {
@@ -331,14 +332,20 @@ pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
         uv2: Some(Vec::new()),
         indices: Vec::new(),
         material: 1,
+        ..Default::default()
     };
     let mut bricks = Mesh {
         material: 2,
         ..crates.clone()
     };
-    for b in &BLOCKS {
+    for (object, b) in BLOCKS.iter().enumerate() {
         let c = b.corners();
         let m = if b.brick { &mut bricks } else { &mut crates };
+        // Each block is an object and one draw call of its 5 faces.
+        m.draws.push(Draw {
+            triangles: 10,
+            object: object as u32,
+        });
         // Side faces: corners (i, i+1) bottom, (i+1, i) top.
         let mut quads: Vec<([Vec3; 4], f32, f32)> = Vec::new();
         for i in 0..4 {
@@ -400,6 +407,8 @@ pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
         uv2: Some(vec![[0.5, 0.5]; 4]),
         indices: vec![0, 1, 2, 0, 2, 3],
         material: 3,
+        sky: true,
+        ..Default::default()
     });
 
     let white = texture("proc/white.tex", 4, 4, false, |_, _| [1.0; 4]);

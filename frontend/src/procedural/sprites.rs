@@ -180,6 +180,7 @@ fn empty_mesh(material: usize) -> Mesh {
         uv2: None,
         indices: Vec::new(),
         material,
+        ..Default::default()
     }
 }
 

@@ -264,7 +264,9 @@ mod tests {
             materials: vec![MaterialStats::default()],
             ..Default::default()
         };
-        let setups = geometry(&scene, 96, 96, &RasterOptions::default(), &mut stats).unwrap();
+        let runs = runs(&scene, DrawOrder::AsLoaded).0;
+        let setups =
+            geometry(&scene, &runs, 96, 96, &RasterOptions::default(), &mut stats).unwrap();
         assert!(setups.len() > 350);
         let (mut visited, mut full) = (0u64, 0u64);
         for s in &setups {
@@ -342,7 +344,8 @@ mod tests {
             ..Default::default()
         };
         let (w, h) = (150u32, 100u32);
-        let setups = geometry(&scene, w, h, &RasterOptions::default(), &mut stats).unwrap();
+        let runs = runs(&scene, DrawOrder::AsLoaded).0;
+        let setups = geometry(&scene, &runs, w, h, &RasterOptions::default(), &mut stats).unwrap();
         assert!(setups.len() > 300);
         let mut covered = 0;
         for (k, s) in setups.iter().enumerate() {

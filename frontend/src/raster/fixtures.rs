@@ -53,6 +53,7 @@ pub(super) fn quad_mesh(x0: f32, y0: f32, x1: f32, y1: f32, z: f32, material: us
         uv2: None,
         indices: vec![0, 1, 2, 0, 2, 3],
         material,
+        ..Default::default()
     }
 }
 
@@ -118,6 +119,7 @@ pub(super) fn random_scene(seed: u64, n: u32) -> Scene {
                 uv2: None,
                 indices: vec![0, 1, 2],
                 material,
+                ..Default::default()
             }
         };
         meshes.push(mesh);

@@ -22,6 +22,9 @@ pub struct RasterOptions {
     /// Worker threads for the tiles (0: one per available core). The
     /// result does not depend on it.
     pub threads: usize,
+    /// The order of the opaque geometry ([`DrawOrder`]; the default, as
+    /// loaded, is the order every trace had before the option existed).
+    pub draw_order: DrawOrder,
 }
 
 impl Default for RasterOptions {
@@ -32,6 +35,7 @@ impl Default for RasterOptions {
             colour: true,
             depth_prepass: false,
             threads: 0,
+            draw_order: DrawOrder::AsLoaded,
         }
     }
 }
@@ -91,6 +95,9 @@ pub struct RasterStats {
     pub pixels_shaded: u64,
     /// Per material, in scene order.
     pub materials: Vec<MaterialStats>,
+    /// The draw order that took effect ([`DrawOrder::effective`]: a 2D
+    /// scene is always drawn as loaded).
+    pub draw_order: DrawOrder,
 }
 
 /// Where the front end's time went: wall-clock seconds of each phase of

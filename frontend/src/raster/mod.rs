@@ -25,7 +25,9 @@
 //!    a tile that rasterizes no quad is skipped (one whose every quad
 //!    Early-Z rejects is kept: a tile record without warps).
 //! 4. **Raster pipeline, per tile**: draw order is the opaque and
-//!    alpha-tested triangles in submission order, then the alpha-blended
+//!    alpha-tested triangles in submission order (the meshes as loaded,
+//!    or sorted front to back by [`RasterOptions::draw_order`]: see
+//!    [`DrawOrder`]), then the alpha-blended
 //!    ones back to front (perspective: by the mean clip-space w of their
 //!    vertices, farthest first, ties in submission order; orthographic:
 //!    submission order, which loaders give back to front, the painter's
@@ -99,6 +101,7 @@ mod coverage;
 #[cfg(test)]
 mod fixtures;
 mod frame;
+mod order;
 mod pipeline;
 mod records;
 mod setup;
@@ -106,6 +109,8 @@ mod tile;
 
 use coverage::*;
 pub use frame::*;
+pub use order::DrawOrder;
+use order::*;
 use pipeline::*;
 use records::*;
 use setup::*;

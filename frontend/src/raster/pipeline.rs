@@ -36,6 +36,7 @@ pub(super) fn rasterize_with(
                 ..Default::default()
             })
             .collect(),
+        draw_order: opts.draw_order.effective(scene),
         ..Default::default()
     };
     let clock = std::time::Instant::now();
@@ -45,7 +46,8 @@ pub(super) fn rasterize_with(
         n => n,
     }
     .clamp(1, 64);
-    let setups = geometry(scene, width, height, opts, &mut stats)?;
+    let (runs, order_note) = runs(scene, opts.draw_order);
+    let setups = geometry(scene, &runs, width, height, opts, &mut stats)?;
     timings.geometry = clock.elapsed().as_secs_f64();
     // Textures: only those of materials a set-up triangle uses are sampled;
     // an alpha test reads its material's first texture's alpha.
@@ -120,6 +122,7 @@ pub(super) fn rasterize_with(
     header
         .notes
         .push(format!(" scene {} ({})", scene.name, scene.source));
+    header.notes.extend(order_note);
     let mut builder = Trace::builder(header).map_err(|e| fail(format!("trace header: {e}")))?;
     let mut image = vec![0u8; width as usize * height as usize * 4];
     for px in image.chunks_exact_mut(4) {
@@ -395,6 +398,7 @@ mod tests {
                 height: h,
                 description: String::new(),
                 shader: None,
+                draw_order: Default::default(),
             };
             let scene = procedural::load(&def).unwrap();
             for depth_prepass in [false, true] {

@@ -359,6 +359,13 @@ pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
         if let Some(&bad) = m.indices.iter().find(|&&x| x as usize >= n) {
             return err(format!("mesh {i}: index {bad} of {n} vertices"));
         }
+        let drawn: u64 = m.draws.iter().map(|d| u64::from(d.triangles)).sum();
+        if !m.draws.is_empty() && drawn != m.indices.len() as u64 / 3 {
+            return err(format!(
+                "mesh {i}: its draw calls cover {drawn} triangles of {}",
+                m.indices.len() / 3
+            ));
+        }
     }
     Ok(())
 }
@@ -482,9 +489,47 @@ pub(super) fn overlaps(s: &Setup, x0: u32, x1: u32, y0: u32, y1: u32) -> bool {
     true
 }
 
-/// Geometry and tiling: every triangle set up, in draw order.
+/// Each mesh's clip-space positions, kept from its first run to its last
+/// (a sorted draw order visits a mesh many times).
+struct ClipCache {
+    last_run: Vec<usize>,
+    clips: Vec<Vec<[f64; 4]>>,
+}
+
+impl ClipCache {
+    fn new(meshes: usize, runs: &[Run]) -> Self {
+        let mut last_run = vec![0; meshes];
+        for (i, r) in runs.iter().enumerate() {
+            last_run[r.mesh] = i;
+        }
+        Self {
+            last_run,
+            clips: vec![Vec::new(); meshes],
+        }
+    }
+
+    /// Mesh `mesh`'s positions transformed by `m` (on first use).
+    fn positions(&mut self, m: &[[f64; 4]; 4], scene: &Scene, mesh: usize) -> &[[f64; 4]] {
+        let (clip, from) = (&mut self.clips[mesh], &scene.meshes[mesh].positions);
+        if clip.len() != from.len() {
+            clip.extend(from.iter().map(|&p| transform(m, p)));
+        }
+        clip
+    }
+
+    /// Drop mesh `mesh`'s positions if run `i` was its last.
+    fn release(&mut self, i: usize, mesh: usize) {
+        if self.last_run[mesh] == i {
+            self.clips[mesh] = Vec::new();
+        }
+    }
+}
+
+/// Geometry and tiling: every triangle of the `runs` (the draw order,
+/// [`runs`]) set up, in that order, the alpha-blended ones last.
 pub(super) fn geometry(
     scene: &Scene,
+    runs: &[Run],
     width: u32,
     height: u32,
     opts: &RasterOptions,
@@ -494,16 +539,17 @@ pub(super) fn geometry(
     let mut opaque = Vec::new();
     let mut blended = Vec::new();
     let (mut poly, mut tmp) = (Vec::with_capacity(12), Vec::with_capacity(12));
-    let mut clip = Vec::new();
-    for mesh in &scene.meshes {
+    let mut clips = ClipCache::new(scene.meshes.len(), runs);
+    for (i, run) in runs.iter().enumerate() {
+        let mesh = &scene.meshes[run.mesh];
         let material = &scene.materials[mesh.material];
         let blend = material.blend == Blend::AlphaBlend;
-        clip.clear();
-        clip.extend(mesh.positions.iter().map(|&p| transform(&m, p)));
-        let tris = mesh.indices.len() as u64 / 3;
+        let clip = clips.positions(&m, scene, run.mesh);
+        let tris = run.count as u64;
         stats.primitives += tris;
         stats.materials[mesh.material].triangles += tris;
-        for t in mesh.indices.chunks_exact(3) {
+        let indices = &mesh.indices[run.first * 3..(run.first + run.count) * 3];
+        for t in indices.chunks_exact(3) {
             let idx = [t[0] as usize, t[1] as usize, t[2] as usize];
             let p = [clip[idx[0]], clip[idx[1]], clip[idx[2]]];
             // Trivial reject against the real frustum.
@@ -555,6 +601,7 @@ pub(super) fn geometry(
                 }
             }
         }
+        clips.release(i, run.mesh);
     }
     if matches!(scene.camera, Camera::Perspective { .. }) {
         // Back to front; sort_by is stable, so ties keep submission order.
@@ -587,6 +634,7 @@ mod tests {
                 uv2: None,
                 indices: vec![0, 1, 2, 0, 2, 3],
                 material: 0,
+                ..Default::default()
             }],
             materials: vec![mat("ground", Blend::Opaque, 0)],
             textures: vec![checker("c", 64)],
@@ -602,7 +650,8 @@ mod tests {
             materials: vec![MaterialStats::default()],
             ..Default::default()
         };
-        let setups = geometry(&scene, w, h, &RasterOptions::default(), &mut stats).unwrap();
+        let runs = runs(&scene, DrawOrder::AsLoaded).0;
+        let setups = geometry(&scene, &runs, w, h, &RasterOptions::default(), &mut stats).unwrap();
         // Analytic: the ray through pixel centre (px, py) of a 90-degree
         // camera at the origin hits y = -1 at t = 1 / -ndc_y, so
         // x = ndc_x * t, z = -t; the plane's uv = (x, -z).

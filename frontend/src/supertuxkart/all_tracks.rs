@@ -23,6 +23,7 @@ fn every_track_loads() {
             height: 768,
             description: String::new(),
             shader: None,
+            draw_order: Default::default(),
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {

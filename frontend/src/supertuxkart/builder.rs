@@ -37,6 +37,9 @@ pub(super) struct Builder<'a> {
     pub(super) mat_ids: HashMap<(MatKey, u8), usize>,
     pub(super) meshes: Vec<Mesh>,
     pub(super) missing: Vec<String>,
+    /// Objects placed so far: the id of the next one (a placed model or
+    /// billboard is one object, each of its mesh buffers a draw call).
+    pub(super) objects: u32,
 }
 
 impl Builder<'_> {
@@ -51,8 +54,15 @@ impl Builder<'_> {
             uv2: with_uv2.then(Vec::new),
             indices: Vec::new(),
             material,
+            ..Default::default()
         });
         self.meshes.len() - 1
+    }
+
+    /// A new object's id.
+    fn new_object(&mut self) -> u32 {
+        self.objects += 1;
+        self.objects - 1
     }
 
     fn spm(&mut self, path: &Path) -> Result<Rc<Spm>, SceneError> {
@@ -71,6 +81,7 @@ impl Builder<'_> {
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         // A mirroring transform flips the winding; so does the z flip.
         let flip = xf.det() > 0.0;
+        let object = self.new_object();
         for b in &spm.buffers {
             let (mat, uv2) = self.material(&spm.materials[b.material], &dir)?;
             let mi = self.mesh_for(mat, uv2);
@@ -90,6 +101,10 @@ impl Builder<'_> {
                     None => out.extend(std::iter::repeat_n([0.0, 0.0], b.positions.len())),
                 }
             }
+            mesh.draws.push(Draw {
+                triangles: (b.indices.len() / 3) as u32,
+                object,
+            });
             for t in b.indices.chunks_exact(3) {
                 if flip {
                     mesh.indices
@@ -140,8 +155,13 @@ impl Builder<'_> {
         };
         let c = to_rh(xf.t);
         let (r, u) = (scale(self.cam_right, w * 0.5), scale(self.cam_up, h * 0.5));
+        let object = self.new_object();
         let mi = self.mesh_for(mat, false);
         let mesh = &mut self.meshes[mi];
+        mesh.draws.push(Draw {
+            triangles: 2,
+            object,
+        });
         let base = mesh.positions.len() as u32;
         mesh.positions.extend_from_slice(&[
             sub(sub(c, r), u),
@@ -273,6 +293,8 @@ impl Builder<'_> {
                 uv2: None,
                 indices: idx.to_vec(),
                 material: mat,
+                sky: true,
+                ..Default::default()
             });
         }
         Ok(())

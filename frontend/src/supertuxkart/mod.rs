@@ -66,6 +66,17 @@
 //! [`MAX_TEXTURE_SIDE`] are downscaled (triangle filter, aspect kept) to
 //! that maximum side, as a mobile build's texture budget would.
 //!
+//! # Draw calls and objects
+//!
+//! For the draw orders that sort ([`crate::raster::DrawOrder`]): an
+//! object is one placed model (the track, a static object, a library or
+//! LOD instance, an item) or billboard, as the game's scene nodes are; a
+//! draw call is one of its mesh buffers (one material), as the game's
+//! renderer draws them. The sky cube's faces are [`Mesh::sky`]. The game's
+//! own renderer sorts nothing by depth (`docs/scenes.md`), so the shipped
+//! scenes keep the order loaded: one mesh per material in order of first
+//! use, then the sky, then the alpha-blended meshes.
+//!
 //! # SPM format (`.spm`, little-endian)
 //!
 //! ```text
@@ -109,7 +120,8 @@
 use super::bytes::Bytes;
 use super::def::SceneDef;
 use super::{
-    shader, Blend, Camera, Filter, Material, Mesh, Scene, SceneError, ShaderOp, Texture, Vec2, Vec3,
+    shader, Blend, Camera, Draw, Filter, Material, Mesh, Scene, SceneError, ShaderOp, Texture,
+    Vec2, Vec3,
 };
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -241,6 +253,7 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
         mat_ids: HashMap::new(),
         meshes: Vec::new(),
         missing: Vec::new(),
+        objects: 0,
     };
     parse_materials(&track_dir.join("materials.xml"), &mut b.track_mats)?;
     parse_materials(

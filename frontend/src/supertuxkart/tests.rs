@@ -80,6 +80,21 @@ fn loads_a_synthetic_track() {
         s.materials[m1.material].shader,
         shader::lightmapped(1, 2, Filter::Trilinear)
     );
+    // Every placed model is an object, each of its buffers a draw call
+    // (a run of the material's merged mesh).
+    let mut objects: Vec<u32> = s
+        .meshes
+        .iter()
+        .flat_map(|m| m.draws.iter().map(|d| d.object))
+        .collect();
+    objects.sort_unstable();
+    objects.dedup();
+    assert_eq!(objects, [0, 1, 2, 3]);
+    for m in &s.meshes {
+        let drawn: u32 = m.draws.iter().map(|d| d.triangles).sum();
+        assert_eq!(drawn as usize, m.indices.len() / 3);
+        assert!(!m.sky);
+    }
     // The 2048-wide JPEG is downscaled to 1024 wide.
     assert!(s.textures.iter().any(|t| t.width == 1024 && t.height == 8));
     // The rotated, scaled object: local (1, 0.5, -1) -> z-flip of
@@ -131,6 +146,14 @@ pub(super) fn check_real(s: &Scene, min_tris: usize, check_camera: bool) {
         }
         assert!(m.uv.iter().all(|u| u[0].is_finite() && u[1].is_finite()));
         assert!(m.indices.iter().all(|&i| (i as usize) < m.positions.len()));
+        let drawn: u32 = m.draws.iter().map(|d| d.triangles).sum();
+        assert!(
+            m.draws.is_empty() || drawn as usize == m.indices.len() / 3,
+            "{}: draw calls cover {drawn} of {} triangles",
+            s.name,
+            m.indices.len() / 3
+        );
+        assert!(!m.sky || s.materials[m.material].name.starts_with("sky "));
         if s.materials[m.material].name.starts_with("sky") {
             continue;
         }

@@ -107,6 +107,7 @@ impl MeshBuilder {
             uv2: None,
             indices: self.indices,
             material,
+            ..Default::default()
         })
     }
 }

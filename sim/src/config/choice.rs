@@ -1,6 +1,7 @@
 //! The named choices of the machine configuration: how tiles reach the
 //! cores, how the filter and the texture latency add up, what happens to
-//! the colour buffer after a tile, which miss blocks a warp.
+//! the colour buffer after a tile, which miss blocks a warp, in which
+//! order the issue stage visits ready warps.
 
 use serde::{Deserialize, Serialize};
 
@@ -152,5 +153,46 @@ impl std::str::FromStr for BlockedOn {
             .ok_or_else(|| {
                 format!("unknown blocked_on {s:?}: expected first-level, l1-miss or dram")
             })
+    }
+}
+
+/// The order in which the issue stage visits ready warps (`core.issue`).
+/// The paper does not say (wasp's choice: `lrr`, the order of the model
+/// before the option existed). docs/machine.md, "Issue order", defines
+/// both.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum IssueOrder {
+    /// Loose round-robin: every slot from the one after the last pick of
+    /// the last issuing cycle, ascending, wrapping (`gpu/core/issue/lrr.rs`).
+    #[default]
+    Lrr,
+    /// Greedy-then-oldest: the slots that issued in the last issuing cycle
+    /// first, then every other slot, each group oldest first by launch
+    /// cycle (`gpu/core/issue/gto.rs`).
+    Gto,
+}
+
+impl IssueOrder {
+    /// Every order.
+    pub const ALL: [IssueOrder; 2] = [IssueOrder::Lrr, IssueOrder::Gto];
+}
+
+impl std::fmt::Display for IssueOrder {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            IssueOrder::Lrr => "lrr",
+            IssueOrder::Gto => "gto",
+        })
+    }
+}
+
+impl std::str::FromStr for IssueOrder {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        IssueOrder::ALL
+            .into_iter()
+            .find(|o| o.to_string() == s)
+            .ok_or_else(|| format!("unknown issue order {s:?}: expected lrr or gto"))
     }
 }

@@ -2,7 +2,7 @@
 //! its description, its bound and its type (see [`crate::param`]). The
 //! shipped files (`configs/*.toml`) give every value with its source.
 
-use super::choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming};
+use super::choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming, IssueOrder};
 use super::core_map::CoreMap;
 use crate::param::section;
 use limits::*;
@@ -108,6 +108,12 @@ section! {
         /// hardware.
         #[range(1..=MAX_REGISTERS_PER_THREAD)]
         pub registers_per_thread: u32,
+        /// The order in which the issue stage visits ready warps: `lrr`
+        /// (loose round-robin) or `gto` (greedy-then-oldest); see
+        /// [`IssueOrder`]. A file without the key has `lrr`, the order
+        /// before the key existed.
+        #[serde(default)]
+        pub issue: IssueOrder,
     }
 }
 

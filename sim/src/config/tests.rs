@@ -313,6 +313,32 @@ fn blocked_on_is_inherited_and_checked() {
         .contains("first-level"));
 }
 
+#[test]
+fn issue_order_is_checked_and_defaults_to_lrr() {
+    assert_eq!(MachineConfig::paper().core.issue, IssueOrder::Lrr);
+    assert_eq!(MachineConfig::paper_width2().core.issue, IssueOrder::Lrr);
+    let line = "issue = \"lrr\"";
+    assert!(PAPER_TOML.contains(line) && PAPER_WIDTH2_TOML.contains(line));
+    let c = with(|s| s.replacen(line, "issue = \"gto\"", 1)).unwrap();
+    assert_eq!(c.core.issue, IssueOrder::Gto);
+    // A file without the key (one written before it existed) runs lrr.
+    let c = with(|s| s.replacen(line, "", 1)).unwrap();
+    assert_eq!(c, MachineConfig::paper());
+    // Written back, the order is named and reads back.
+    let again = MachineConfig::parse(&c.to_toml(), "again").unwrap();
+    assert_eq!(again.core.issue, IssueOrder::Lrr);
+    assert!(c.to_toml().contains(line));
+    let e = with(|s| s.replacen(line, "issue = \"fifo\"", 1)).unwrap_err();
+    assert!(
+        e.message.starts_with("core.issue:")
+            && e.message.contains("fifo")
+            && e.message.contains("lrr")
+            && e.message.contains("gto"),
+        "{e}"
+    );
+    assert_eq!(e.source, format!("test.toml:{}", line_of(PAPER_TOML, line)));
+}
+
 /// Every numeric field of the machine configuration with its bound: the
 /// dotted path, the largest accepted value, the smallest refused one
 /// above it, the range the error must name, and the other fields that

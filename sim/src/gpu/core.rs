@@ -11,9 +11,9 @@
 //! - launch ([`launch`]): one warp a cycle from the FIFO the policy and
 //!   the launch rule choose, into the lowest free warp slot;
 //! - issue ([`issue`]): the warps' wake-ups, then up to `pipeline_width`
-//!   ready warps issue one instruction each, in loose round-robin order; a
-//!   texture instruction enters the LDST unit (one per cycle, if it has
-//!   room);
+//!   ready warps issue one instruction each, in the order `core.issue`
+//!   names (loose round-robin or greedy-then-oldest); a texture
+//!   instruction enters the LDST unit (one per cycle, if it has room);
 //! - LDST ([`ldst`]): the oldest texture instruction presents its unique
 //!   blocks to the first cache level, in order, until the cache refuses;
 //! - completion ([`complete`], phase 2, after the memory system ticked):

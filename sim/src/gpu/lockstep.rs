@@ -15,12 +15,12 @@
 //! Run on random small machines and traces (proptest), on the generator's
 //! frames, on the shipped traces, and (ignored by default) on every trace
 //! in the folder `WASP_LOCKSTEP_TRACES` names, such as the real scenes'
-//! traces `scripts/machines.sh` renders.
+//! traces `scripts/machines.sh` renders; each under both issue orders
+//! (`core.issue`).
 
 use super::core::plain::PlainCore;
 use super::{CoreModel, Gpu, ShaderCore};
-use crate::config::BlockedOn;
-use crate::config::{Dispatch, FilterTiming, MachineConfig};
+use crate::config::{BlockedOn, Dispatch, FilterTiming, IssueOrder, MachineConfig};
 use crate::trace::{Instr, Trace, TraceHeader};
 use proptest::prelude::*;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
@@ -166,6 +166,7 @@ struct Knobs {
     blocked_on: BlockedOn,
     shared: bool,
     raster: (u32, u32),
+    issue: IssueOrder,
 }
 
 impl Knobs {
@@ -181,6 +182,7 @@ impl Knobs {
         c.core.pipeline_width = self.width;
         c.core.input_queue = self.queue;
         c.core.ldst_queue = self.ldst;
+        c.core.issue = self.issue;
         c.core.alu_latency = self.alu_latency;
         c.core.texture_latency = self.texture_latency;
         c.core.filter_cycles_bilinear = self.filter.0;
@@ -249,12 +251,13 @@ fn arb_knobs() -> impl Strategy<Value = Knobs> {
             prop::sample::select(BlockedOn::ALL.to_vec()),
             any::<bool>(),
             (1u32..=2, 1u32..=3),
+            prop::sample::select(IssueOrder::ALL.to_vec()),
         ),
     )
         .prop_map(
             |(
                 (l0, cores, warps, width, queue, ldst, alu_latency, texture_latency),
-                (filter, mshrs, merged, policy, launch, mesh2, blocked_on, shared, raster),
+                (filter, mshrs, merged, policy, launch, mesh2, blocked_on, shared, raster, issue),
             )| Knobs {
                 l0,
                 cores,
@@ -273,6 +276,7 @@ fn arb_knobs() -> impl Strategy<Value = Knobs> {
                 blocked_on,
                 shared,
                 raster,
+                issue,
             },
         )
 }
@@ -338,8 +342,8 @@ proptest! {
     }
 }
 
-/// The shipped traces under every policy, both dispatch modes and every
-/// blocking rule, on the paper's machine.
+/// The shipped traces under every policy, both dispatch modes, every
+/// blocking rule and both issue orders, on the paper's machine.
 #[test]
 fn fast_and_plain_cores_agree_on_the_shipped_traces() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/traces");
@@ -355,25 +359,29 @@ fn fast_and_plain_cores_agree_on_the_shipped_traces() {
         ] {
             for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
                 for blocked_on in BlockedOn::ALL {
-                    let mut cfg = MachineConfig::paper();
-                    cfg.gpu.tile_size = trace.header().tile;
-                    cfg.scheduler.policy = policy.parse().unwrap();
-                    cfg.raster.dispatch = dispatch;
-                    cfg.scheduler.blocked_on = blocked_on;
-                    cfg.validate().unwrap();
-                    if let Err(e) = lockstep(&cfg, &trace) {
-                        panic!("{name} {policy} {dispatch} {blocked_on}: {e}");
+                    for issue in IssueOrder::ALL {
+                        let mut cfg = MachineConfig::paper();
+                        cfg.gpu.tile_size = trace.header().tile;
+                        cfg.scheduler.policy = policy.parse().unwrap();
+                        cfg.raster.dispatch = dispatch;
+                        cfg.scheduler.blocked_on = blocked_on;
+                        cfg.core.issue = issue;
+                        cfg.validate().unwrap();
+                        if let Err(e) = lockstep(&cfg, &trace) {
+                            panic!("{name} {policy} {dispatch} {blocked_on} {issue}: {e}");
+                        }
+                        runs += 1;
                     }
-                    runs += 1;
                 }
             }
         }
     }
-    assert_eq!(runs, 3 * 5 * 2 * 3);
+    assert_eq!(runs, 3 * 5 * 2 * 3 * 2);
 }
 
 /// Frames of the workload generator (a few thousand warps each) on both
-/// machines of the paper and both dispatch modes.
+/// machines of the paper: loose round-robin under both dispatch modes,
+/// greedy-then-oldest under the paper's (shared-tile).
 #[test]
 fn fast_and_plain_cores_agree_on_generated_frames() {
     for seed in 1..=3 {
@@ -388,13 +396,18 @@ fn fast_and_plain_cores_agree_on_generated_frames() {
             (MachineConfig::paper(), "wasp:0:3"),
             (MachineConfig::paper_width2(), "fullpriority"),
         ] {
-            for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+            for (dispatch, issue) in [
+                (Dispatch::SharedTile, IssueOrder::Lrr),
+                (Dispatch::PerCoreTile, IssueOrder::Lrr),
+                (Dispatch::SharedTile, IssueOrder::Gto),
+            ] {
                 let mut cfg = machine.clone();
                 cfg.scheduler.policy = policy.parse().unwrap();
                 cfg.raster.dispatch = dispatch;
+                cfg.core.issue = issue;
                 cfg.validate().unwrap();
                 let cycles = lockstep(&cfg, &trace)
-                    .unwrap_or_else(|e| panic!("seed {seed} {policy} {dispatch}: {e}"));
+                    .unwrap_or_else(|e| panic!("seed {seed} {policy} {dispatch} {issue}: {e}"));
                 assert!(cycles > 1000, "a frame takes more than {cycles} cycles");
             }
         }
@@ -421,7 +434,8 @@ fn fast_and_plain_cores_draw_the_same_waveform() {
 
 /// Every trace in the folder `WASP_LOCKSTEP_TRACES` (for example the 16
 /// real scenes' traces in `target/machines/traces`), on the paper's
-/// machine under the baseline and WaSP, both dispatch modes.
+/// machine under the baseline and WaSP, both dispatch modes and both issue
+/// orders.
 #[test]
 #[ignore = "long: set WASP_LOCKSTEP_TRACES to a folder of traces"]
 fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
@@ -437,17 +451,21 @@ fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
         let trace = Trace::read(&path).unwrap();
         for policy in ["baseline", "wasp:0:3"] {
             for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
-                let mut cfg = MachineConfig::paper();
-                cfg.gpu.tile_size = trace.header().tile;
-                cfg.scheduler.policy = policy.parse().unwrap();
-                cfg.raster.dispatch = dispatch;
-                cfg.validate().unwrap();
-                let cycles = lockstep(&cfg, &trace)
-                    .unwrap_or_else(|e| panic!("{}: {policy} {dispatch}: {e}", path.display()));
-                eprintln!(
-                    "{}: {policy} {dispatch}: {cycles} cycles agree",
-                    path.display()
-                );
+                for issue in IssueOrder::ALL {
+                    let mut cfg = MachineConfig::paper();
+                    cfg.gpu.tile_size = trace.header().tile;
+                    cfg.scheduler.policy = policy.parse().unwrap();
+                    cfg.raster.dispatch = dispatch;
+                    cfg.core.issue = issue;
+                    cfg.validate().unwrap();
+                    let cycles = lockstep(&cfg, &trace).unwrap_or_else(|e| {
+                        panic!("{}: {policy} {dispatch} {issue}: {e}", path.display())
+                    });
+                    eprintln!(
+                        "{}: {policy} {dispatch} {issue}: {cycles} cycles agree",
+                        path.display()
+                    );
+                }
             }
         }
     }

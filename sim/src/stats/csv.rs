@@ -66,17 +66,27 @@ fn csv_field(s: &str) -> String {
     }
 }
 
-/// Several runs as one CSV table (header from the first run's fields).
+/// Several runs as one CSV table: the header holds the first run's fields,
+/// then those of later runs that it lacks (such as `issue`, which only a
+/// run off the default order has), in order of appearance; a run without
+/// a field leaves it empty.
 pub fn csv_table(runs: &[RunStats]) -> String {
     let mut s = String::new();
-    let Some(first) = runs.first() else {
+    let all: Vec<Vec<(String, String)>> = runs.iter().map(RunStats::to_csv_rows).collect();
+    let mut header: Vec<String> = Vec::new();
+    for rows in &all {
+        for (k, _) in rows {
+            if !header.contains(k) {
+                header.push(k.clone());
+            }
+        }
+    }
+    if all.is_empty() {
         return s;
-    };
-    let header: Vec<String> = first.to_csv_rows().into_iter().map(|(k, _)| k).collect();
+    }
     s.push_str(&header.join(","));
     s.push('\n');
-    for r in runs {
-        let rows = r.to_csv_rows();
+    for rows in &all {
         let vals: Vec<String> = header
             .iter()
             .map(|k| {

@@ -1,6 +1,6 @@
 //! The statistics as a readable table.
 
-use super::{LevelStats, RunStats};
+use super::{is_default_issue, LevelStats, RunStats};
 use std::fmt::Write as _;
 
 impl RunStats {
@@ -18,11 +18,15 @@ impl RunStats {
     /// The machine, the run's totals and the filter unit.
     fn machine_lines(&self, s: &mut String) {
         let _ = writeln!(s, "machine {}  |  workload {}", self.machine, self.workload);
-        let _ = writeln!(
+        let _ = write!(
             s,
             "policy {}  launch rule {}  subset {}  ideal memory {}",
             self.policy, self.launch_rule, self.subset.subset, self.ideal_memory
         );
+        if !is_default_issue(&self.issue) {
+            let _ = write!(s, "  issue {}", self.issue);
+        }
+        s.push('\n');
         let _ = writeln!(
             s,
             "dispatch {}  core map {}  colour flush {}  dram {}",

@@ -3,6 +3,7 @@
 //! after them.
 
 use crate::reproduce::plan::{Group, Plan};
+use std::ops::Range;
 
 /// The scenes in figure order and the mean columns after them.
 pub struct Axis {
@@ -63,19 +64,33 @@ impl Axis {
         out
     }
 
-    /// The mean columns' separator and highlight.
-    pub(super) fn marks(&self) -> (Vec<usize>, Vec<usize>) {
+    /// The separators between the groups and before the means, the mean
+    /// columns (highlighted), and the named runs of columns: each group's
+    /// scenes ("3D games", "2D games", "procedural scenes") and the means.
+    pub(super) fn marks(&self) -> (Vec<usize>, Vec<usize>, Vec<Run>) {
         let n = self.scenes.len();
         let mut sep: Vec<usize> = Vec::new();
-        for i in 1..n {
-            if self.groups[i] != self.groups[i - 1] {
+        let mut runs = Vec::new();
+        for i in 1..=n {
+            if i == n || self.groups[i] != self.groups[i - 1] {
+                let start = sep.last().copied().unwrap_or(0);
+                let name = match self.groups[i - 1] {
+                    Group::Procedural => "procedural scenes".to_string(),
+                    g => format!("{} games", g.label()),
+                };
+                runs.push((name, start..i));
                 sep.push(i);
             }
         }
-        sep.push(n);
-        (sep, (n..n + self.means.len()).collect())
+        if !self.means.is_empty() {
+            runs.push(("means".to_string(), n..n + self.means.len()));
+        }
+        (sep, (n..n + self.means.len()).collect(), runs)
     }
 }
+
+/// A named run of columns: its name and indices.
+pub type Run = (String, Range<usize>);
 
 /// Arithmetic mean (None for no values).
 pub fn mean(v: impl Iterator<Item = f64>) -> Option<f64> {
@@ -103,8 +118,12 @@ mod tests {
             axis.with_means(vec![Some(1.0), None, Some(3.0)]),
             [Some(1.0), None, Some(3.0), Some(1.0), Some(2.0)]
         );
-        let (sep, hi) = axis.marks();
+        let (sep, hi, runs) = axis.marks();
         assert_eq!(sep, [2, 3]);
         assert_eq!(hi, [3, 4]);
+        let names: Vec<&str> = runs.iter().map(|r| r.0.as_str()).collect();
+        assert_eq!(names, ["3D games", "2D games", "means"]);
+        assert_eq!(runs[0].1, 0..2);
+        assert_eq!(runs[2].1, 3..5);
     }
 }

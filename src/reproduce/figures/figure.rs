@@ -65,6 +65,8 @@ pub struct Figure {
     pub separators: Vec<usize>,
     /// Categories drawn emphasised (the means).
     pub highlight: Vec<usize>,
+    /// Runs of categories named over the plot (e.g. "3D games").
+    pub groups: Vec<(String, std::ops::Range<usize>)>,
     /// What the figure shows, for the report.
     pub caption: String,
 }

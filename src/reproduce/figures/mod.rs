@@ -95,7 +95,7 @@ impl<'a> Figures<'a> {
     }
 
     fn bars(&self, id: String, title: &str, subtitle: String, y_label: &str) -> Figure {
-        let (separators, highlight) = self.axis.marks();
+        let (separators, highlight, groups) = self.axis.marks();
         Figure {
             id,
             title: title.to_string(),
@@ -109,6 +109,7 @@ impl<'a> Figures<'a> {
             reference: Some(0.0),
             separators,
             highlight,
+            groups,
             caption: String::new(),
         }
     }

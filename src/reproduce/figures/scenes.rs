@@ -13,7 +13,7 @@ use crate::study::runner::Outcome;
 /// Min_Estimate2 (Figure 4), and the footprint ratios (Figures 11 and 15).
 pub fn scene_figures(plan: &Plan, out: &Outcome) -> Vec<Figure> {
     let axis = Axis::new(plan);
-    let (separators, highlight) = axis.marks();
+    let (separators, highlight, groups) = axis.marks();
     let per = |f: &dyn Fn(&wasp_frontend::characterize::Characterization) -> Option<f64>| {
         let v = axis
             .scenes
@@ -43,6 +43,7 @@ pub fn scene_figures(plan: &Plan, out: &Outcome) -> Vec<Figure> {
         reference: None,
         separators,
         highlight,
+        groups,
         caption: String::new(),
     };
     let mut estimates = Figure {

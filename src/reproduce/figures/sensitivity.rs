@@ -194,6 +194,7 @@ impl Figures<'_> {
             reference: Some(0.0),
             separators: Vec::new(),
             highlight: Vec::new(),
+            groups: Vec::new(),
             caption: format!(
                 "Width {} ({}): every warp count runs the same machine with `core.max_warps` \
                  and `core.input_queue` set to it.",

@@ -114,6 +114,7 @@ impl Figures<'_> {
             reference: Some(0.0),
             separators: Vec::new(),
             highlight: Vec::new(),
+            groups: Vec::new(),
             caption: format!(
                 "How the threshold was chosen: the shipped {chosen} is the best suite geomean of \
                  the calibration sweep (docs/calibration.md), one value for every scene. The \

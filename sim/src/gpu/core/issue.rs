@@ -7,27 +7,37 @@
 //! instruction entry (an ALU run, or a texture instruction for the LDST
 //! unit), or, past its last, it is done ([`wake`](Issue::wake)).
 //!
-//! Which ready warps issue: loose round-robin over the warp slots:
-//! starting at the slot `rr` (the one after the previous cycle's last
-//! pick), the slots are visited in ascending order, wrapping; each
-//! candidate issues until `width` instructions have issued. A candidate is
-//! a warp ready for an ALU instruction, or one waiting on a texture
-//! instruction while the LDST unit has room; one texture instruction
-//! enters the LDST unit per cycle, so after the first texture pick only
-//! ALU-ready warps are taken.
+//! Which ready warps issue, in the order `core.issue` names. Every order
+//! keeps the stage's rules: at most `pipeline_width` instructions a cycle,
+//! one per warp; a candidate is a warp ready for an ALU instruction, or
+//! one waiting on a texture instruction while the LDST unit has room; one
+//! texture instruction enters the LDST unit per cycle, so after the first
+//! texture pick only ALU-ready warps are taken. The candidates are visited
+//! in the order's sequence and each issues until the width is used. The
+//! orders differ only in that sequence:
+//! - [`lrr`]: loose round-robin over the slots from a pointer
+//!   ([`IssueOrder::Lrr`]);
+//! - [`gto`]: greedy-then-oldest ([`IssueOrder::Gto`]).
 //!
-//! [`pick`] is the fast form on slot masks (one rotation, then a bit scan
-//! per pick); [`pick_plain`] visits the slots one by one, as the text
-//! reads. The tests run both on random masks. The stage keeps its ready
-//! warps as slot masks and its wake-ups on a timing wheel ([`WakeWheel`]).
+//! Each order is one file with a fast form on slot masks, which the stage
+//! runs, and a plain form that visits the slots one by one as its text
+//! reads; the tests in each file compare the two on random masks. The
+//! plain twin of the whole core (`core/plain.rs`) visits its slots in the
+//! same terms again. The stage keeps its ready warps as slot masks and
+//! its wake-ups on a timing wheel ([`WakeWheel`]).
+
+pub(crate) mod gto;
+pub(crate) mod lrr;
 
 use super::ldst::{Ldst, LdstEntry};
 use super::mask::SlotMask;
 use super::warp::{Warps, MAX_SLOTS};
 use super::wheel::WakeWheel;
 use super::Notes;
-use crate::config::CoreConfig;
+use crate::config::{CoreConfig, IssueOrder};
 use crate::trace::{OpKind, Tile};
+use gto::Gto;
+use lrr::Lrr;
 
 /// The issue stage.
 #[derive(Clone, Debug)]
@@ -36,8 +46,6 @@ pub(super) struct Issue {
     width: u32,
     /// Cycles from an ALU issue to the warp's next issue.
     alu_latency: u64,
-    /// Warp slots of the core.
-    slots: u32,
     /// Every slot fits in a `u64` mask (the hot loops then use `u64`).
     narrow: bool,
     /// Warps ready to issue an ALU instruction.
@@ -48,8 +56,8 @@ pub(super) struct Issue {
     /// (0: not started), apart from the rest of the warp: the stage counts
     /// a run down without touching the warp.
     alu_left: Box<[u32; MAX_SLOTS]>,
-    /// The slot the round-robin visits first.
-    rr: u32,
+    /// The issue order and its state.
+    issuer: Issuer,
     /// Wake-ups: due ones (the stage looks at the warp's next instruction
     /// entry) and ready ones (warps in the middle of an ALU run join the
     /// ready set as a whole mask, with no per-warp look).
@@ -62,12 +70,11 @@ impl Issue {
         Issue {
             width: core.pipeline_width,
             alu_latency: u64::from(core.alu_latency),
-            slots: core.max_warps,
             narrow: core.max_warps <= 64,
             ready: 0,
             ready_tex: 0,
             alu_left: Box::new([0; MAX_SLOTS]),
-            rr: 0,
+            issuer: Issuer::new(core.issue, core.max_warps as usize),
             wakes: WakeWheel::new(),
         }
     }
@@ -163,7 +170,10 @@ impl Issue {
 
     /// Cycle `now`: issue from the ready warps of `warps`; a texture
     /// instruction picked enters `ldst`. Returns whether any instruction
-    /// issued (the stage's progress).
+    /// issued (the stage's progress). One copy of the stage per order and
+    /// mask width: loose round-robin's copies are inlined into the cycle;
+    /// greedy-then-oldest's stay out of it, so that they do not change how
+    /// the compiler lays out the default's path.
     #[inline(always)]
     pub(super) fn run(
         &mut self,
@@ -173,22 +183,49 @@ impl Issue {
         ldst: &mut Ldst,
         notes: &mut Notes,
     ) -> bool {
-        if self.narrow {
-            self.issue_with::<u64>(now, tile, warps, ldst, notes)
-        } else {
-            self.issue_with::<u128>(now, tile, warps, ldst, notes)
+        match self.issuer.order {
+            IssueOrder::Lrr => self.run_in::<Lrr>(now, tile, warps, ldst, notes),
+            IssueOrder::Gto => self.run_gto(now, tile, warps, ldst, notes),
         }
     }
 
-    /// Issue on masks of width `M` (every slot fits).
-    ///
-    /// The picks are found first ([`pick`], checked against its plain
-    /// reference; each ALU pick counts its run down), then the ALU picks
-    /// are put on the wake-up wheels as whole masks: those with more of
-    /// their run to go on the ready wheel, those that ended it on the wheel
-    /// that looks at them.
+    #[inline(never)]
+    fn run_gto(
+        &mut self,
+        now: u64,
+        tile: &Tile,
+        warps: &mut Warps,
+        ldst: &mut Ldst,
+        notes: &mut Notes,
+    ) -> bool {
+        self.run_in::<Gto>(now, tile, warps, ldst, notes)
+    }
+
     #[inline(always)]
-    fn issue_with<M: SlotMask>(
+    fn run_in<O: Order>(
+        &mut self,
+        now: u64,
+        tile: &Tile,
+        warps: &mut Warps,
+        ldst: &mut Ldst,
+        notes: &mut Notes,
+    ) -> bool {
+        if self.narrow {
+            self.issue_with::<u64, O>(now, tile, warps, ldst, notes)
+        } else {
+            self.issue_with::<u128, O>(now, tile, warps, ldst, notes)
+        }
+    }
+
+    /// Issue on masks of width `M` (every slot fits), in the order `O`.
+    ///
+    /// The picks are found first (by the order, whose fast pick is checked
+    /// against its plain reference; each ALU pick counts its run down),
+    /// then the ALU picks are put on the wake-up wheels as whole masks:
+    /// those with more of their run to go on the ready wheel, those that
+    /// ended it on the wheel that looks at them.
+    #[inline(always)]
+    fn issue_with<M: SlotMask, O: Order>(
         &mut self,
         now: u64,
         tile: &Tile,
@@ -205,23 +242,26 @@ impl Issue {
         // Each ALU pick counts its run down; those that end it wait on the
         // wheel that looks at their next instruction.
         let alu_left = &mut self.alu_left;
+        let on_alu = |s: usize| {
+            let left = &mut alu_left[s % MAX_SLOTS];
+            *left -= 1;
+            *left == 0
+        };
         let Picks {
             alu,
             run_end,
             tex,
             issued,
-            last,
-        } = pick(ready, tex_cand, self.rr, self.width, |s| {
-            let left = &mut alu_left[s % MAX_SLOTS];
-            *left -= 1;
-            *left == 0
-        });
+            ..
+        } = {
+            let age = |s: usize| warps.get(s).launched_at;
+            O::state(&mut self.issuer).pick(ready, tex_cand, self.width, age, on_alu)
+        };
         notes.signals.issued = issued;
         notes.signals.tex_issued = tex.is_some();
         if issued == 0 {
             return false;
         }
-        self.rr = if last + 1 >= self.slots { 0 } else { last + 1 };
         notes.stats.instructions += u64::from(issued);
         self.ready = (ready & !alu).to_wide();
         let at = now + self.alu_latency;
@@ -279,82 +319,105 @@ pub(crate) struct Picks<M> {
     pub last: u32,
 }
 
-/// The picks from `ready` (ALU-ready slots) and `tex` (slots whose texture
-/// instruction may enter the LDST unit; disjoint from `ready`), starting
-/// at slot `rr`, at most `width` of them. `on_alu(slot)` is called for
-/// each ALU pick in pick order and says whether the warp's ALU run ends
-/// with this instruction.
-#[inline(always)]
-pub(crate) fn pick<M: SlotMask>(
-    ready: M,
-    tex: M,
-    rr: u32,
-    width: u32,
-    mut on_alu: impl FnMut(usize) -> bool,
-) -> Picks<M> {
-    let mut rot = (ready | tex).rotate_right(rr);
-    let mut p = Picks {
+impl<M: SlotMask> Picks<M> {
+    /// Nothing picked yet.
+    pub(crate) const NONE: Self = Picks {
         alu: M::ZERO,
         run_end: M::ZERO,
         tex: None,
         issued: 0,
         last: 0,
     };
-    while p.issued < width && rot != M::ZERO {
-        let s = (rot.lowest() + rr as usize) & (M::BITS as usize - 1);
-        rot = rot.without_lowest();
-        let bit = M::bit(s);
-        if ready & bit != M::ZERO {
-            p.alu |= bit;
-            p.run_end |= M::bit_if(s, on_alu(s));
-        } else {
-            p.tex = Some(s);
-            rot &= ready.rotate_right(rr);
+
+    /// Every slot picked, ALU and texture.
+    #[inline(always)]
+    pub(crate) fn slots(&self) -> M {
+        match self.tex {
+            Some(s) => self.alu | M::bit(s),
+            None => self.alu,
         }
-        p.issued += 1;
-        p.last = s as u32;
     }
-    p
 }
 
-/// [`pick`] by visiting slots `rr, rr + 1, ...` (wrapping at 128) one by
-/// one: the plain reference.
-#[cfg(test)]
-pub(crate) fn pick_plain(
-    ready: u128,
-    tex: u128,
-    rr: u32,
-    width: u32,
-    mut on_alu: impl FnMut(usize) -> bool,
-) -> Picks<u128> {
-    let mut p = Picks {
-        alu: 0,
-        run_end: 0,
-        tex: None,
-        issued: 0,
-        last: 0,
-    };
-    for k in 0..128 {
-        if p.issued == width {
-            break;
+/// One issue order: its pick and the state it keeps between cycles.
+pub(crate) trait Order: Sized {
+    /// The order's state in a core's [`Issuer`].
+    fn state(issuer: &mut Issuer) -> &mut Self;
+
+    /// This cycle's picks from `ready` (ALU-ready slots) and `tex` (slots
+    /// whose texture instruction may enter the LDST unit; disjoint from
+    /// `ready`), at most `width`; `age(s)` is the launch cycle of the warp
+    /// in slot `s`. `on_alu(slot)` is called for each ALU pick in visiting
+    /// order and says whether the warp's ALU run ends with this
+    /// instruction. The order updates its state for the next cycle.
+    fn pick<M: SlotMask>(
+        &mut self,
+        ready: M,
+        tex: M,
+        width: u32,
+        age: impl Fn(usize) -> u64,
+        on_alu: impl FnMut(usize) -> bool,
+    ) -> Picks<M>;
+}
+
+/// A core's issue order and the state of every order (a pointer and a
+/// slot set, a few bytes), so that the core runs one copy of its issue
+/// stage per order with the state in place ([`Order::state`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Issuer {
+    /// The order the core runs.
+    pub(crate) order: IssueOrder,
+    lrr: lrr::Lrr,
+    gto: gto::Gto,
+}
+
+impl Issuer {
+    /// `order` in its reset state on a core of `slots` warp slots.
+    pub(crate) fn new(order: IssueOrder, slots: usize) -> Self {
+        Issuer {
+            order,
+            lrr: lrr::Lrr::new(slots),
+            gto: gto::Gto::default(),
         }
-        let s = ((rr as usize) + k) % 128;
-        let alu_ready = ready >> s & 1 == 1;
-        let tex_ready = tex >> s & 1 == 1 && p.tex.is_none();
-        if alu_ready {
-            p.alu |= 1u128 << s;
-            if on_alu(s) {
-                p.run_end |= 1u128 << s;
-            }
-        } else if tex_ready {
-            p.tex = Some(s);
-        } else {
-            continue;
-        }
-        p.issued += 1;
-        p.last = s as u32;
     }
-    p
+}
+
+impl Order for lrr::Lrr {
+    #[inline(always)]
+    fn state(issuer: &mut Issuer) -> &mut Self {
+        &mut issuer.lrr
+    }
+
+    #[inline(always)]
+    fn pick<M: SlotMask>(
+        &mut self,
+        ready: M,
+        tex: M,
+        width: u32,
+        _age: impl Fn(usize) -> u64,
+        on_alu: impl FnMut(usize) -> bool,
+    ) -> Picks<M> {
+        self.pick(ready, tex, width, on_alu)
+    }
+}
+
+impl Order for gto::Gto {
+    #[inline(always)]
+    fn state(issuer: &mut Issuer) -> &mut Self {
+        &mut issuer.gto
+    }
+
+    #[inline(always)]
+    fn pick<M: SlotMask>(
+        &mut self,
+        ready: M,
+        tex: M,
+        width: u32,
+        age: impl Fn(usize) -> u64,
+        on_alu: impl FnMut(usize) -> bool,
+    ) -> Picks<M> {
+        self.pick(ready, tex, width, age, on_alu)
+    }
 }
 
 #[cfg(test)]
@@ -362,65 +425,70 @@ mod tests {
     use super::super::testkit::{cycles, one_core, trace};
     use super::*;
     use crate::trace::Instr;
-    use proptest::prelude::*;
 
     #[test]
-    fn a_texture_pick_closes_the_door_to_others() {
-        // Slots 1 and 3 wait on texture, 2 and 5 are ALU-ready; from slot 1.
-        let p = pick::<u64>(0b100100, 0b1010, 1, 4, |s| s == 5);
-        assert_eq!(p.tex, Some(1));
-        assert_eq!((p.alu, p.run_end), (0b100100, 0b100000));
-        assert_eq!((p.issued, p.last), (3, 5));
-        // Width 1 from slot 4: slot 5 only.
-        let p = pick::<u64>(0b100100, 0b1010, 4, 1, |_| false);
-        assert_eq!((p.alu, p.tex, p.issued, p.last), (0b100000, None, 1, 5));
-        // Wrapping: from slot 6 the next is slot 1 (texture), then 2.
-        let p = pick::<u64>(0b100, 0b10, 6, 2, |_| false);
-        assert_eq!((p.alu, p.tex, p.last), (0b100, Some(1), 2));
-        assert_eq!(pick::<u64>(0, 0, 3, 4, |_| true).issued, 0);
+    fn orders_read_back_from_their_names() {
+        for o in IssueOrder::ALL {
+            assert_eq!(o.to_string().parse::<IssueOrder>(), Ok(o));
+        }
+        let e = "fifo".parse::<IssueOrder>().unwrap_err();
+        assert!(e.contains("expected lrr or gto"), "{e}");
+        assert_eq!(IssueOrder::default(), IssueOrder::Lrr);
     }
 
-    proptest! {
-        #[test]
-        fn the_fast_pick_is_the_plain_one(
-            n in 1usize..=128,
-            ready in any::<u128>(),
-            tex in any::<u128>(),
-            rr in any::<u32>(),
-            width in 1u32..=8,
-        ) {
-            let live = if n == 128 { u128::MAX } else { (1u128 << n) - 1 };
-            let ready = ready & live;
-            let tex = tex & live & !ready;
-            let rr = rr % n as u32;
-            // The callback sees the ALU picks in order; every third slot
-            // ends its run.
-            let mut order_plain = Vec::new();
-            let want = pick_plain(ready, tex, rr, width, |s| {
-                order_plain.push(s);
-                s % 3 == 0
-            });
-            let mut order = Vec::new();
-            let wide = pick::<u128>(ready, tex, rr, width, |s| {
-                order.push(s);
-                s % 3 == 0
-            });
-            prop_assert_eq!(wide, want);
-            prop_assert_eq!(&order, &order_plain);
-            if n <= 64 {
-                let mut order = Vec::new();
-                let narrow = pick::<u64>(ready as u64, tex as u64, rr, width, |s| {
-                    order.push(s);
-                    s % 3 == 0
-                });
-                prop_assert_eq!(
-                    (u128::from(narrow.alu), u128::from(narrow.run_end), narrow.tex),
-                    (want.alu, want.run_end, want.tex)
-                );
-                prop_assert_eq!((narrow.issued, narrow.last), (want.issued, want.last));
-                prop_assert_eq!(&order, &order_plain);
-            }
+    #[test]
+    fn picks_name_their_slots() {
+        let p = Picks::<u64> {
+            alu: 0b101,
+            run_end: 0,
+            tex: Some(4),
+            issued: 3,
+            last: 4,
+        };
+        assert_eq!(p.slots(), 0b10101);
+        assert_eq!(Picks::<u64>::NONE.slots(), 0);
+    }
+
+    /// Cycle in which each of two warps finished, on one core of width 1
+    /// with an ALU latency of 1; both run eight ALU instructions, the first
+    /// launched a cycle before the second.
+    fn finish_cycles(order: IssueOrder) -> [u64; 2] {
+        use crate::config::MachineConfig;
+        use crate::gpu::Gpu;
+        use crate::trace::{Instr, Trace, TraceHeader};
+        let mut b = Trace::builder(TraceHeader::new("issue", 8, 8, 8)).unwrap();
+        b.begin_tile(0, 0).unwrap();
+        for x in 0..2 {
+            b.quad(x, 0, &[Instr::Alu(8)]).unwrap();
         }
+        b.end_tile().unwrap();
+        let t = b.finish().unwrap();
+        let mut c = MachineConfig::paper();
+        c.gpu.tile_size = 8;
+        c.gpu.cores = 1;
+        c.raster.quads_per_cycle = 1;
+        c.core.pipeline_width = 1;
+        c.core.alu_latency = 1;
+        c.core.issue = order;
+        c.validate().unwrap();
+        let mut gpu = Gpu::new(&c, &t).unwrap();
+        gpu.record_warps();
+        while !gpu.done() {
+            gpu.step().unwrap();
+        }
+        let mut r = gpu.take_records();
+        r.sort_by_key(|w| w.quad);
+        [r[0].finished, r[1].finished]
+    }
+
+    /// Greedy-then-oldest runs the older warp's ALU run back to back;
+    /// loose round-robin alternates the two.
+    #[test]
+    fn the_order_decides_who_runs_first() {
+        let [a, b] = finish_cycles(IssueOrder::Gto);
+        assert!(b >= a + 7, "gto: the older warp finishes first ({a}, {b})");
+        let [a, b] = finish_cycles(IssueOrder::Lrr);
+        assert!(a.abs_diff(b) <= 2, "lrr: the two interleave ({a}, {b})");
     }
 
     /// The stage in a one-core machine, cycle by cycle.

@@ -11,9 +11,12 @@
 //!   it is ready again; otherwise it starts its next instruction entry
 //!   (an ALU run, or a texture instruction that waits for the LDST unit)
 //!   or, past its last, finishes;
-//! - issue visits the slots from the round-robin pointer, wrapping, and
-//!   takes ready warps until the pipeline width is used; at most one
-//!   texture instruction a cycle, and only while the LDST queue has room;
+//! - issue visits the slots in the order `core.issue` names and takes
+//!   ready warps until the pipeline width is used; at most one texture
+//!   instruction a cycle, and only while the LDST queue has room. Loose
+//!   round-robin visits the slots from the round-robin pointer, wrapping;
+//!   greedy-then-oldest visits the slots that issued in the last issuing
+//!   cycle, then the others, each oldest first by launch cycle;
 //! - the LDST unit presents the oldest instruction's blocks in order until
 //!   the cache refuses one.
 //!
@@ -33,7 +36,7 @@
 use super::observe::CoreView;
 use super::raster::OwnRaster;
 use super::{CoreParams, CoreSignals, CoreSnapshot, CoreStats, WarpRecord, WarpView};
-use crate::config::BlockedOn;
+use crate::config::{BlockedOn, IssueOrder};
 use crate::config::FilterTiming;
 use crate::gpu::core_model::CoreModel;
 use crate::gpu::SimError;
@@ -142,8 +145,11 @@ pub(crate) struct PlainCore {
     /// Its own rasterizer (per-core-tile dispatch).
     raster: OwnRaster,
     tile_misses: u64,
-    /// The slot issue visits first.
+    /// The slot issue visits first (loose round-robin).
     rr: usize,
+    /// The slots that issued in the last cycle in which any issued
+    /// (greedy-then-oldest).
+    last_issued: Vec<usize>,
     /// The cycle's priority-warp events, for the scheduler's edge.
     prio: PriorityEvents,
     signals: CoreSignals,
@@ -290,16 +296,31 @@ impl PlainCore {
         self.signals.launched = Some((quad, priority));
     }
 
+    /// The slots in the order issue visits them this cycle.
+    fn visiting_order(&self) -> Vec<usize> {
+        let n = self.warps.len();
+        match self.p.core.issue {
+            IssueOrder::Lrr => (0..n).map(|k| (self.rr + k) % n).collect(),
+            IssueOrder::Gto => {
+                let mut order: Vec<usize> = (0..n).filter(|&s| self.warps[s].is_some()).collect();
+                order.sort_by_key(|&s| {
+                    let launched = self.warps[s].map(|w| w.launched_at);
+                    (!self.last_issued.contains(&s), launched)
+                });
+                order
+            }
+        }
+    }
+
     fn issue(&mut self, now: u64) {
         let n = self.warps.len();
         let mut tex_room = self.ldst.len() < self.p.core.ldst_queue as usize;
         let mut issued = 0;
-        let mut last = None;
-        for k in 0..n {
+        let mut picked = Vec::new();
+        for s in self.visiting_order() {
             if issued == self.p.core.pipeline_width {
                 break;
             }
-            let s = (self.rr + k) % n;
             let Some(w) = self.warps[s].as_mut() else {
                 continue;
             };
@@ -326,11 +347,12 @@ impl PlainCore {
                 _ => continue,
             }
             issued += 1;
-            last = Some(s);
+            picked.push(s);
         }
         self.signals.issued = issued;
-        if let Some(s) = last {
+        if let Some(&s) = picked.last() {
             self.rr = (s + 1) % n;
+            self.last_issued = picked;
             self.stats.instructions += u64::from(issued);
         }
     }
@@ -504,6 +526,7 @@ impl CoreModel for PlainCore {
             raster: OwnRaster::new(p.raster_rate, p.rejected_per_slot),
             tile_misses: 0,
             rr: 0,
+            last_issued: Vec::new(),
             prio: PriorityEvents::default(),
             signals: CoreSignals::default(),
             stats: CoreStats {

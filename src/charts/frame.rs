@@ -1,0 +1,559 @@
+//! What every chart kind shares, and what plotters lacks: the strip above
+//! the plot (title, subtitle, legend row), markers, the paper's marks, the
+//! [`Placer`] that puts labels where they hide nothing; and the plot's
+//! `ChartBuilder`, mesh style, range and tick labels.
+
+use crate::fonts::{font, register_fonts};
+use crate::palette::{GRID, INK};
+use crate::picture::{is_svg, save, Picture};
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos as H, Pos, VPos as V};
+use std::ops::Range;
+use std::path::Path;
+
+/// Size of tick labels, category names and the legend.
+pub(super) const LABEL: u32 = 16;
+/// Size of value labels and paper labels in the plot.
+pub(super) const SMALL: u32 = 13;
+/// A rectangle in pixels: left, top, right, bottom.
+pub(super) type Rect = (f64, f64, f64, f64);
+/// The label areas left of and under a plot, its margins over and right.
+pub(super) type Pad = (f64, f64, f64, f64);
+/// A drawing area in pixels.
+pub(super) type Area<DB> = DrawingArea<DB, Shift>;
+/// What drawing returns.
+pub(super) type Drawn<DB, T = ()> =
+    Result<T, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// A chart laid out: its error prefix, size and drawing.
+pub(super) trait Chart {
+    /// `drawing <title>`.
+    fn who(&self) -> &str;
+    /// The picture's size in pixels.
+    fn size(&self) -> (u32, u32);
+    /// Draws the chart on `root`.
+    fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB>;
+}
+
+impl<C: Chart> Picture for C {
+    fn size(&self) -> (u32, u32) {
+        Chart::size(self)
+    }
+
+    fn render<DB: DrawingBackend>(&self, root: &Area<DB>) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        self.draw(root).map_err(|e| format!("{}: {e}", self.who()))
+    }
+}
+
+/// Writes the chart that `layout` gives to `path` (PNG or SVG by the
+/// extension), registering the fonts first: the layout measures text.
+pub(super) fn write<C: Chart>(
+    who: &str,
+    path: &Path,
+    layout: impl FnOnce() -> C,
+) -> Result<(), String> {
+    let svg = is_svg(path, "a chart")?;
+    register_fonts().map_err(|e| format!("{who}: {e}"))?;
+    save(&layout(), who, path, svg)
+}
+
+/// The pixel size of `text` in the chart font of `size`.
+pub(super) fn text_size(text: &str, size: u32, bold: bool) -> (f64, f64) {
+    let guess = (text.chars().count() as u32 * size * 3 / 5, size);
+    let (w, h) = font(size, bold).box_size(text).unwrap_or(guess);
+    (f64::from(w), f64::from(h))
+}
+
+/// A text style of the chart font.
+pub(super) fn style(size: u32, bold: bool, c: RGBColor, h: H, v: V) -> TextStyle<'static> {
+    font(size, bold).color(&c).pos(Pos::new(h, v))
+}
+
+/// A pixel point.
+pub(super) fn px(x: f64, y: f64) -> (i32, i32) {
+    (x.round() as i32, y.round() as i32)
+}
+
+/// The rectangle `r.0` either side of `(x, y)` and `r.1` over and under.
+pub(super) fn around((x, y): (f64, f64), r: (f64, f64)) -> Rect {
+    (x - r.0, y - r.1, x + r.0, y + r.1)
+}
+
+/// The marker shapes of line series (series k has shape k mod 5) and of
+/// the paper's values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Shape {
+    Circle,
+    Square,
+    Triangle,
+    Diamond,
+    TriangleDown,
+}
+
+impl Shape {
+    /// The shape of series `s`.
+    pub fn of(s: usize) -> Shape {
+        use Shape::*;
+        [Circle, Square, Triangle, Diamond, TriangleDown][s % 5]
+    }
+
+    /// The corners around `(x, y)`, `r` from centre to edge.
+    fn outline(self, (x, y): (f64, f64), r: f64) -> Vec<(i32, i32)> {
+        let circle = (0..16).map(|k| f64::from(k) * std::f64::consts::PI / 8.0);
+        let corners: Vec<(f64, f64)> = match self {
+            Shape::Circle => circle.map(|a| (a.cos(), a.sin())).collect(),
+            Shape::Square => vec![(-0.85, -0.85), (0.85, -0.85), (0.85, 0.85), (-0.85, 0.85)],
+            Shape::Triangle => vec![(0.0, -1.1), (1.0, 0.8), (-1.0, 0.8)],
+            Shape::TriangleDown => vec![(0.0, 1.1), (1.0, -0.8), (-1.0, -0.8)],
+            Shape::Diamond => vec![(0.0, -1.2), (1.0, 0.0), (0.0, 1.2), (-1.0, 0.0)],
+        };
+        let corner = |(dx, dy)| px(x + r * dx, y + r * dy);
+        corners.into_iter().map(corner).collect()
+    }
+}
+
+/// Draws a marker of `shape` at pixel `at`, `r` from centre to edge:
+/// filled in `colour`, or hollow (white inside, a 2-pixel outline).
+pub(super) fn marker<DB: DrawingBackend>(
+    area: &Area<DB>,
+    (shape, at, r): (Shape, (f64, f64), f64),
+    colour: RGBColor,
+    hollow: bool,
+) -> Drawn<DB> {
+    let outline = shape.outline(at, r);
+    let fill = if hollow { WHITE } else { colour };
+    area.draw(&Polygon::new(outline.clone(), fill.filled()))?;
+    if hollow {
+        let closed: Vec<_> = outline.iter().chain(outline.first()).copied().collect();
+        area.draw(&PathElement::new(closed, colour.stroke_width(2)))?;
+    }
+    Ok(())
+}
+
+/// How a legend entry shows what it names.
+#[derive(Clone, Debug)]
+pub(super) enum Swatch {
+    /// A filled block (bars).
+    Block(RGBColor),
+    /// A line through a filled marker (a line series).
+    Line(RGBColor, Shape),
+    /// A line (a reference).
+    Rule(RGBColor),
+    /// The paper's values: a dashed line and/or a hollow marker.
+    Paper(bool, Option<Shape>),
+}
+
+/// The entries of a legend: the text and how it looks.
+pub(super) type Legend = Vec<(String, Swatch)>;
+
+/// The strip above the plot: title, subtitle, the legend row from `left`;
+/// `width` is the picture's.
+pub(super) struct Frame<'a> {
+    pub title: (&'a str, &'a str),
+    pub legend: Legend,
+    pub left: f64,
+    pub width: f64,
+}
+
+impl<'a> Frame<'a> {
+    /// The strip of `title` (and subtitle), `legend` from `left`.
+    pub fn new(title: (&'a str, &'a str), legend: Legend, left: f64, width: f64) -> Self {
+        Frame {
+            title,
+            legend,
+            left,
+            width,
+        }
+    }
+
+    /// The legend entries' places: (row, x) each, wrapping at the width.
+    fn places(&self) -> Vec<(f64, f64)> {
+        let (mut row, mut x) = (0.0, self.left);
+        let place = |(label, _): &(String, Swatch)| {
+            let w = 38.0 + text_size(label, LABEL, false).0;
+            if x > self.left && x + w > self.width - 16.0 {
+                (row, x) = (row + 1.0, self.left);
+            }
+            x += w + 26.0;
+            (row, x - w - 26.0)
+        };
+        self.legend.iter().map(place).collect()
+    }
+
+    /// The height of the title strip, and of the whole strip.
+    fn title_h(&self) -> f64 {
+        52.0 + 26.0 * f64::from(u8::from(!self.title.1.is_empty()))
+    }
+
+    /// The height of the strip: title, legend rows, a gap.
+    pub fn height(&self) -> u32 {
+        let rows = self.places().last().map_or(0.0, |p| p.0 + 1.0);
+        (self.title_h() + rows * 26.0 + 10.0) as u32
+    }
+
+    /// Fills `root` white, draws the strip and returns the area under it.
+    pub fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB, Area<DB>> {
+        root.fill(&WHITE)?;
+        let ((title, sub), room) = (self.title, self.width - 32.0);
+        let fit = |t: &str, s: u32, b| (12..s).rev().find(|&s| text_size(t, s, b).0 <= room);
+        let size = fit(title, 28, true).unwrap_or(12);
+        root.draw_text(title, &style(size, true, BLACK, H::Left, V::Top), (16, 12))?;
+        let size = fit(sub, 20, false).unwrap_or(12);
+        root.draw_text(sub, &style(size, false, INK, H::Left, V::Top), (16, 44))?;
+        let text = style(LABEL, false, BLACK, H::Left, V::Center);
+        for ((label, swatch), (row, x0)) in self.legend.iter().zip(self.places()) {
+            let mid = self.title_h() + (row + 0.5) * 26.0;
+            let (x1, c) = (x0 + 30.0, (x0 + 15.0, mid));
+            let line = vec![px(x0, mid), px(x1, mid)];
+            match *swatch {
+                Swatch::Block(k) => {
+                    let block = [px(x0 + 4.0, mid - 8.0), px(x1 - 4.0, mid + 8.0)];
+                    root.draw(&Rectangle::new(block, k.filled()))?;
+                }
+                Swatch::Line(k, shape) => {
+                    root.draw(&PathElement::new(line, k.stroke_width(2)))?;
+                    marker(root, (shape, c, 5.0), k, false)?;
+                }
+                Swatch::Rule(k) => root.draw(&PathElement::new(line, k.stroke_width(2)))?,
+                Swatch::Paper(dashed, shape) => {
+                    if dashed {
+                        root.draw(&DashedPathElement::new(line, 5, 3, INK.stroke_width(2)))?;
+                    }
+                    if let Some(shape) = shape {
+                        marker(root, (shape, c, 6.0), INK, true)?;
+                    }
+                }
+            }
+            root.draw_text(label, &text, px(x1 + 8.0, mid))?;
+        }
+        Ok(root.split_vertically(self.height()).1)
+    }
+}
+
+/// The legend entry of the paper's marks, if any, showing `shape` for
+/// marks of one category.
+pub(super) fn paper_entry(paper: &[super::PaperMark], shape: Shape) -> Option<(String, Swatch)> {
+    let line = paper.iter().any(|m| m.category.is_none());
+    let marker = paper.iter().any(|m| m.category.is_some());
+    let what = match (line, marker) {
+        (false, false) => return None,
+        (true, false) => "paper value: dashed line",
+        (false, true) => "paper value: hollow mark",
+        (true, true) => "paper values: dashed lines, hollow marks",
+    };
+    let coloured = paper.iter().any(|m| m.series.is_some());
+    let label = format!("{what}{}", if coloured { " (series colour)" } else { "" });
+    Some((label, Swatch::Paper(line, marker.then_some(shape))))
+}
+
+/// The width of the margin right of the plot for the labels of the paper's
+/// lines across it.
+pub(super) fn paper_margin(paper: &[super::PaperMark]) -> f64 {
+    let width = |m: &super::PaperMark| text_size(&m.label, SMALL + 1, true).0 + 16.0;
+    let lines = paper.iter().filter(|m| m.category.is_none());
+    lines.map(width).fold(30.0, f64::max)
+}
+
+/// Draws the paper's lines across the plot `p` (marks of no category) at
+/// the pixel rows `row(value)`: a dashed line in the mark's colour over a
+/// white halo, labelled right of the plot at its height (moved as little as
+/// keeps labels apart). The lines, halo and a gap are kept free of labels.
+pub(super) fn paper_lines<DB: DrawingBackend>(
+    root: &Area<DB>,
+    (p, placer): (Rect, &mut Placer),
+    paper: &[super::PaperMark],
+    row: impl Fn(f64) -> f64,
+    colour: impl Fn(Option<usize>) -> RGBColor,
+) -> Drawn<DB> {
+    let mut lines: Vec<_> = paper.iter().filter(|m| m.category.is_none()).collect();
+    for m in &lines {
+        let (y, style) = (row(m.value), colour(m.series).stroke_width(2));
+        let ends = vec![px(p.0, y), px(p.2, y)];
+        let halo = WHITE.mix(0.8).stroke_width(4);
+        root.draw(&PathElement::new(ends.clone(), halo))?;
+        root.draw(&DashedPathElement::new(ends, 9, 5, style))?;
+        placer.take((p.0, y - 5.0, p.2, y + 5.0));
+    }
+    // Labels top to bottom, each a line below the one before; the stack
+    // moved up if it would pass the plot's bottom.
+    lines.sort_by(|a, b| b.value.total_cmp(&a.value));
+    let h = text_size("Ag", SMALL + 1, true).1 + 2.0;
+    let mut ys: Vec<f64> = lines.iter().map(|m| row(m.value)).collect();
+    for i in 1..ys.len() {
+        ys[i] = ys[i].max(ys[i - 1] + h);
+    }
+    let over = ys.last().map_or(0.0, |y| y - p.3 - h / 2.0).max(0.0);
+    for (m, y) in lines.iter().zip(ys) {
+        let s = style(SMALL + 1, true, colour(m.series), H::Left, V::Center);
+        root.draw_text(&m.label, &s, px(p.2 + 8.0, y - over))?;
+    }
+    Ok(())
+}
+
+/// Draws a paper mark of one category at pixel `at`: a dashed line `half`
+/// pixels either side over a white halo, and a hollow `shape` of radius
+/// `r`; what it covers is kept free of labels.
+pub(super) fn paper_point<DB: DrawingBackend>(
+    (root, placer): (&Area<DB>, &mut Placer),
+    (at, half, r): ((f64, f64), f64, f64),
+    shape: Shape,
+    colour: RGBColor,
+) -> Drawn<DB> {
+    let ends = vec![px(at.0 - half, at.1), px(at.0 + half, at.1)];
+    root.draw(&PathElement::new(ends.clone(), WHITE.stroke_width(5)))?;
+    root.draw(&DashedPathElement::new(ends, 4, 2, colour.stroke_width(2)))?;
+    marker(root, (shape, at, r), colour, true)?;
+    placer.take(around(at, (r + 2.0, r + 3.0)));
+    Ok(())
+}
+
+/// The range over `values` and `include`, with 8% of headroom above and,
+/// unless it starts at 0 (the bars' base), below; a single value gets a
+/// range around it.
+pub(super) fn range(values: impl IntoIterator<Item = f64>, include: &[f64]) -> Range<f64> {
+    let all = values.into_iter().chain(include.iter().copied());
+    let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+        (l.min(v), h.max(v))
+    });
+    let (lo, hi) = if lo <= hi { (lo, hi) } else { (0.0, 1.0) };
+    let pad = if hi == 0.0 { 1.0 } else { hi.abs() * 0.5 };
+    let flat = hi - lo < 1e-12 * hi.abs().max(lo.abs()).max(1e-300);
+    let (lo, hi) = match (flat, lo >= 0.0) {
+        (false, _) => (lo, hi),
+        (true, true) => (lo, hi + pad),
+        (true, false) => (lo - pad, hi),
+    };
+    let below = if lo != 0.0 { 0.08 * (hi - lo) } else { 0.0 };
+    lo - below..hi + 0.08 * (hi - lo)
+}
+
+/// The tick labels over `r` with at most `n` of plotters' ticks: as
+/// percentages when `percent`, with the decimals of the tick step.
+pub(super) fn tick_label(r: &Range<f64>, n: usize, percent: bool) -> impl Fn(&f64) -> String {
+    let ticks = RangedCoordf64::from(r.clone()).key_points(n);
+    let step = ticks.windows(2).map(|w| w[1] - w[0]).next().unwrap_or(1.0);
+    let scale = if percent { 100.0 } else { 1.0 };
+    let d = (-(step * scale).log10() - 1e-9).ceil().clamp(0.0, 9.0) as usize;
+    move |v: &f64| {
+        let v = if v.abs() < step * 1e-6 {
+            0.0
+        } else {
+            *v * scale
+        };
+        format!("{v:.d$}{}", if percent { "%" } else { "" })
+    }
+}
+
+/// A value as printed by its bar, point or cell: two or three significant
+/// digits (by the magnitude after rounding: 0.99996 is "1.0").
+pub(super) fn value_label(v: f64, percent: bool) -> String {
+    let shown = if percent { v * 100.0 } else { v };
+    let d = [99.5, 0.995, 0.0995]
+        .iter()
+        .take_while(|&&t| shown.abs() < t)
+        .count();
+    let d = if shown == 0.0 { 0 } else { d };
+    format!("{shown:.d$}{}", if percent { "%" } else { "" })
+}
+
+/// The mesh as every chart has it: the chart font, light grid lines at the
+/// ticks only.
+pub(super) fn style_mesh<X: Ranged, Y: Ranged, DB: DrawingBackend>(
+    m: &mut plotters::chart::MeshStyle<'_, '_, X, Y, DB>,
+) {
+    m.label_style(font(LABEL, false).color(&BLACK));
+    m.axis_desc_style(font(LABEL + 1, false).color(&BLACK));
+    m.bold_line_style(GRID.stroke_width(1));
+    m.light_line_style(TRANSPARENT);
+}
+
+/// Every chart's `ChartBuilder`: label areas `left` wide and `bottom` high,
+/// margins `top` and `right` (for the paper's labels).
+pub(super) fn builder<DB: DrawingBackend>(area: &Area<DB>, pad: Pad) -> ChartBuilder<'_, '_, DB> {
+    let (left, bottom, top, right) = pad;
+    let mut b = ChartBuilder::on(area);
+    b.margin_top(top as u32).margin_left(6).margin_bottom(8);
+    b.margin_right(right as u32).y_label_area_size(left as u32);
+    b.x_label_area_size(bottom as u32);
+    b
+}
+
+/// The width of a y label area over `r`: the axis label and the widest of
+/// plotters' tick labels.
+pub(super) fn y_area(r: &Range<f64>, percent: bool) -> f64 {
+    let label = tick_label(r, 8, percent);
+    let ticks = RangedCoordf64::from(r.clone()).key_points(8);
+    let width = |v: &f64| text_size(&label(v), LABEL, false).0;
+    ticks.iter().map(width).fold(0.0, f64::max) + 44.0
+}
+
+/// The edge before segment `i` of plotters' segments `0..=last`. (A
+/// chart of one category or row uses two segments, the second empty:
+/// plotters maps a one-value discrete range outside the plot.)
+pub(super) fn edge(i: usize, last: usize) -> SegmentValue<usize> {
+    if i <= last {
+        SegmentValue::Exact(i)
+    } else {
+        SegmentValue::Last
+    }
+}
+
+/// The plot's rectangle in pixels.
+pub(super) fn plot_rect<DB: DrawingBackend, X: Ranged, Y: Ranged>(
+    chart: &ChartContext<'_, DB, Cartesian2d<X, Y>>,
+) -> Rect {
+    let ((x, y), f) = (chart.plotting_area().get_pixel_range(), f64::from);
+    (f(x.start), f(y.start), f(x.end), f(y.end))
+}
+
+/// Labels placed where they hide nothing already placed or taken.
+#[derive(Default)]
+pub(super) struct Placer(Vec<Rect>);
+
+impl Placer {
+    /// Keeps labels off `r`.
+    pub fn take(&mut self, r: Rect) {
+        self.0.push(r);
+    }
+
+    /// Keeps labels `pad` pixels off the polyline through `points`.
+    pub fn take_path(&mut self, points: &[(f64, f64)], pad: f64) {
+        for w in points.windows(2) {
+            let ((x0, y0), (x1, y1)) = (w[0], w[1]);
+            let n = ((x1 - x0).hypot(y1 - y0) / 4.0).ceil().max(1.0);
+            for t in (0..=n as u32).map(|k| f64::from(k) / n) {
+                self.take(around((x0 + t * (x1 - x0), y0 + t * (y1 - y0)), (pad, pad)));
+            }
+        }
+    }
+
+    /// The first of `candidates` inside `b` that covers nothing taken, now
+    /// taken itself; None if every one would.
+    pub fn place(&mut self, candidates: impl IntoIterator<Item = Rect>, b: Rect) -> Option<Rect> {
+        let inside = |r: &Rect| r.0 >= b.0 && r.1 >= b.1 && r.2 <= b.2 && r.3 <= b.3;
+        let apart = |r: &Rect, t: &Rect| r.2 <= t.0 || r.0 >= t.2 || r.3 <= t.1 || r.1 >= t.3;
+        let free = |r: &Rect| inside(r) && self.0.iter().all(|t| apart(r, t));
+        let found = candidates.into_iter().find(free)?;
+        self.0.push(found);
+        Some(found)
+    }
+
+    /// Draws each label in `SMALL` at the first of its candidates that is
+    /// free (reading upwards in a rectangle taller than wide that the text
+    /// does not fit across); a label with none free is left out.
+    pub fn draw_all<DB: DrawingBackend>(
+        &mut self,
+        root: &Area<DB>,
+        labels: Vec<(Vec<Rect>, &str, RGBColor)>,
+        bounds: Rect,
+    ) -> Drawn<DB> {
+        for (candidates, text, colour) in labels {
+            let Some(r) = self.place(candidates, bounds) else {
+                continue;
+            };
+            let up = r.3 - r.1 > r.2 - r.0 && text_size(text, SMALL, false).0 > r.2 - r.0 + 1.0;
+            let s = style(SMALL, false, colour, H::Center, V::Center);
+            let s = if up {
+                s.transform(FontTransform::Rotate270)
+            } else {
+                s
+            };
+            root.draw_text(text, &s, px((r.0 + r.2) / 2.0, (r.1 + r.3) / 2.0))?;
+        }
+        Ok(())
+    }
+}
+
+/// Rectangles for `text` (reading upwards if `upright`) centred on `x`,
+/// the first touching row `y0`, then moving up (`up`) or down in steps of
+/// 3 pixels, up to `n` of them, not past row `limit`.
+pub(super) fn column(
+    x: f64,
+    (y0, up, limit): (f64, bool, f64),
+    text: (&str, bool),
+    n: u32,
+) -> Vec<Rect> {
+    let (w, h) = text_size(text.0, SMALL, false);
+    let (w, h) = if text.1 { (h, w) } else { (w, h) };
+    let sign = if up { -1.0 } else { 1.0 };
+    let rect = |k: u32| {
+        around(
+            (x, y0 + sign * (h / 2.0 + 3.0 * f64::from(k))),
+            (w / 2.0, h / 2.0),
+        )
+    };
+    let inside = |r: &Rect| if up { r.1 >= limit } else { r.3 <= limit };
+    (0..n).map(rect).take_while(inside).collect()
+}
+
+/// Rectangles for `text` beside `at` at `d` pixels (right, then left),
+/// then under and over it (`n` places each way), inside `b`.
+pub(super) fn beside(at: (f64, f64), d: f64, text: &str, n: u32, b: Rect) -> Vec<Rect> {
+    let (w, h) = text_size(text, SMALL, false);
+    let side = |s: f64| around((at.0 + s * (d + w / 2.0), at.1), (w / 2.0, h / 2.0));
+    let under = column(at.0, (at.1 + d, false, b.3), (text, false), n);
+    let over = column(at.0, (at.1 - d, true, b.1), (text, false), n);
+    [side(1.0), side(-1.0)]
+        .into_iter()
+        .chain(under)
+        .chain(over)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_avoid_what_is_taken() {
+        let (mut p, bounds) = (Placer::default(), (0.0, 0.0, 100.0, 100.0));
+        p.take((0.0, 50.0, 30.0, 100.0));
+        let up =
+            |p: &mut Placer| p.place(column(15.0, (60.0, true, 0.0), ("x", false), 400), bounds);
+        assert!(up(&mut p).expect("room above").3 <= 50.0);
+        p.take((0.0, 0.0, 30.0, 50.0));
+        assert_eq!(up(&mut p), None);
+    }
+
+    #[test]
+    fn ranges_hold_everything_with_headroom() {
+        let r = range([0.039, 0.02, -0.02], &[0.0]);
+        assert!(r.start < -0.02 && r.end > 0.039, "{r:?}");
+        assert_eq!(range([0.0, 0.0], &[0.0]), 0.0..1.08);
+        let r = range([-3.0], &[]);
+        assert!(r.start < -3.0 && r.end > -3.0, "{r:?}");
+    }
+
+    #[test]
+    fn numbers_have_the_digits_they_need() {
+        let label = tick_label(&(-0.03..0.05), 8, true);
+        assert_eq!(
+            [label(&0.0), label(&-0.02), label(&0.04)],
+            ["0%", "-2%", "4%"]
+        );
+        let label = tick_label(&(0.0..1.3), 8, false);
+        assert_eq!(
+            [label(&0.0), label(&0.2), label(&1.2)],
+            ["0.0", "0.2", "1.2"]
+        );
+        let values = [
+            (0.039, true),
+            (-0.0213, true),
+            (0.00123, true),
+            (0.0999, false),
+        ];
+        let want = ["3.9%", "-2.1%", "0.12%", "0.10"];
+        assert_eq!(values.map(|(v, p)| value_label(v, p)), want);
+        assert_eq!(
+            [value_label(0.0, false), value_label(1234.4, false)],
+            ["0", "1234"]
+        );
+        assert_eq!(value_label(0.009999999999999998, true), "1.0%");
+    }
+}

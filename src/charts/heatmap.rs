@@ -1,0 +1,246 @@
+//! Heat maps ([`draw_heatmap`]): a grid over two parameters on plotters'
+//! segmented coordinates, each cell coloured on a diverging scale centred
+//! on 0 (red below, white at 0, blue above: [`crate::palette::diverging`])
+//! with its value printed in it, and a colour bar, a chart of its own,
+//! right of the grid.
+
+use super::frame::{
+    builder, edge, style, style_mesh, text_size, tick_label, value_label, write, Chart, Drawn,
+    Frame, LABEL, SMALL,
+};
+use super::{finite, who};
+use crate::palette::diverging;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, VPos};
+use std::path::Path;
+
+/// Width of the colour bar's strip.
+const BAR_W: u32 = 190;
+
+/// A heat map: `values[row][column]` over `x` (columns, left to right) and
+/// `y` (rows, bottom to top).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct HeatMap {
+    /// The title.
+    pub title: String,
+    /// The line under the title (none when empty).
+    pub subtitle: String,
+    /// The x axis label (the first parameter).
+    pub x_label: String,
+    /// The y axis label (the second parameter).
+    pub y_label: String,
+    /// The columns' labels (e.g. "8", "16", "31").
+    pub x: Vec<String>,
+    /// The rows' labels, bottom to top.
+    pub y: Vec<String>,
+    /// A row of values per `y`, a value per `x` (None: not measured, grey).
+    pub values: Vec<Vec<Option<f64>>>,
+    /// The values are fractions, labelled as percentages.
+    pub percent: bool,
+    /// What the colours mean, along the colour bar (e.g. "WaSP's speedup").
+    pub scale_label: String,
+}
+
+/// Draws `map` into `path`, a PNG or an SVG by the file's extension.
+///
+/// Errors (starting with `drawing <title>:` or naming the file): another
+/// extension; no columns or no rows; a row count other than the `y` count
+/// or a row whose length is not the `x` count; a non-finite value; a file
+/// that cannot be written.
+pub fn draw_heatmap(map: &HeatMap, path: &Path) -> Result<(), String> {
+    let (who, nx, ny) = (who(&map.title), map.x.len(), map.y.len());
+    if nx == 0 || ny == 0 || map.values.len() != ny {
+        let rows = map.values.len();
+        return Err(format!(
+            "{who}: {rows} rows of values for {nx} columns and {ny} rows"
+        ));
+    }
+    for (row, name) in map.values.iter().zip(&map.y) {
+        if row.len() != nx {
+            return Err(format!(
+                "{who}: row `{name}` has {} values for {nx} columns",
+                row.len()
+            ));
+        }
+        for (v, col) in row.iter().zip(&map.x) {
+            finite(
+                &who,
+                format_args!("the cell ({col}, {name})"),
+                v.unwrap_or(0.0),
+            )?;
+        }
+    }
+    write(&who, path, || Heat::new(map, who.clone()))
+}
+
+/// A heat map laid out.
+struct Heat<'a> {
+    m: &'a HeatMap,
+    who: String,
+    frame: Frame<'a>,
+    /// The largest magnitude: the ends of the scale.
+    scale: f64,
+    left: f64,
+}
+
+impl<'a> Heat<'a> {
+    fn new(m: &'a HeatMap, who: String) -> Self {
+        let scale = m
+            .values
+            .iter()
+            .flatten()
+            .flatten()
+            .fold(0.0f64, |s, v| s.max(v.abs()));
+        let scale = if scale > 0.0 { scale } else { 1.0 };
+        let left =
+            m.y.iter()
+                .map(|y| text_size(y, LABEL, false).0)
+                .fold(0.0, f64::max)
+                + 44.0;
+        let width = (left + 110.0 * m.x.len() as f64 + f64::from(BAR_W) + 20.0)
+            .clamp(800.0, 1600.0)
+            .round();
+        let frame = Frame::new((&m.title, &m.subtitle), Vec::new(), left, width);
+        Heat {
+            m,
+            who,
+            frame,
+            scale,
+            left,
+        }
+    }
+}
+
+impl Chart for Heat<'_> {
+    fn who(&self) -> &str {
+        &self.who
+    }
+
+    fn size(&self) -> (u32, u32) {
+        let height = f64::from(self.frame.height()) + 72.0 * self.m.y.len() as f64 + 90.0;
+        (self.frame.width as u32, height.clamp(560.0, 1200.0) as u32)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
+        let (m, s) = (self.m, self.scale);
+        let area = self.frame.draw(root)?;
+        let (grid, bar) = area.split_horizontally(Chart::size(self).0 - BAR_W);
+        let (lx, ly) = (m.x.len().max(2) - 1, m.y.len().max(2) - 1);
+        let mut chart = builder(&grid, (self.left, 64.0, 10.0, 10.0))
+            .build_cartesian_2d((0..lx).into_segmented(), (0..ly).into_segmented())?;
+        let (x_name, y_name) = (name(&m.x), name(&m.y));
+        let mut mesh = chart.configure_mesh();
+        style_mesh(&mut mesh);
+        mesh.disable_mesh()
+            .x_labels(m.x.len() + 1)
+            .y_labels(m.y.len() + 1);
+        mesh.x_label_formatter(&x_name).y_label_formatter(&y_name);
+        mesh.x_desc(&m.x_label).y_desc(&m.y_label).draw()?;
+        for (j, row) in m.values.iter().enumerate() {
+            for (i, v) in row.iter().enumerate() {
+                let t = v.map_or(0.0, |v| v / s);
+                let fill = if v.is_some() {
+                    diverging(t)
+                } else {
+                    RGBColor(200, 200, 200)
+                };
+                let mut cell = Rectangle::new(
+                    [
+                        (edge(i, lx), edge(j, ly)),
+                        (edge(i + 1, lx), edge(j + 1, ly)),
+                    ],
+                    fill.filled(),
+                );
+                cell.set_margin(1, 1, 1, 1);
+                chart.draw_series(std::iter::once(cell))?;
+                let ink = if t.abs() > 0.6 { WHITE } else { BLACK };
+                let text = v.map_or("-".to_string(), |v| value_label(v, m.percent));
+                let at = (SegmentValue::CenterOf(i), SegmentValue::CenterOf(j));
+                let s = style(SMALL + 1, false, ink, HPos::Center, VPos::Center);
+                chart.draw_series(std::iter::once(Text::new(text, at, s)))?;
+            }
+        }
+
+        // The colour bar: thin bands from -scale to +scale, ticks right.
+        let mut key = ChartBuilder::on(&bar);
+        key.margin_top(20)
+            .margin_bottom(74)
+            .margin_left(20)
+            .margin_right(30)
+            .right_y_label_area_size(90);
+        let mut key = key.build_cartesian_2d(0.0..1.0, -s..s)?;
+        let band = |k: u32| {
+            let (a, b) = (f64::from(k) / 50.0 - 1.0, f64::from(k + 1) / 50.0 - 1.0);
+            Rectangle::new(
+                [(0.0, a * s), (1.0, b * s)],
+                diverging((a + b) / 2.0).filled(),
+            )
+        };
+        key.draw_series((0..100).map(band))?;
+        let ticks = tick_label(&(-s..s), 6, m.percent);
+        let mut mesh = key.configure_mesh();
+        style_mesh(&mut mesh);
+        mesh.disable_mesh()
+            .disable_x_axis()
+            .y_labels(6)
+            .y_label_formatter(&ticks);
+        mesh.y_desc(&m.scale_label).draw()
+    }
+}
+
+/// The label of a segment's centre: its name.
+fn name(names: &[String]) -> impl Fn(&SegmentValue<usize>) -> String + '_ {
+    move |v| match v {
+        SegmentValue::CenterOf(i) => names.get(*i).cloned().unwrap_or_default(),
+        _ => String::new(),
+    }
+}
+
+#[cfg(test)]
+pub(super) mod tests {
+    use super::super::tests::{error, out, pixels, same_twice, texts};
+    use super::*;
+
+    /// WaSP's speedup over L0 MSHRs and warps per core.
+    pub(in super::super) fn mshrs_by_warps() -> HeatMap {
+        let top = vec![Some(-0.05), Some(-0.013), None, Some(-0.004)];
+        let rows = [[-0.01, 0.02, 0.03, 0.035], [-0.032, 0.001, 0.004, 0.005]];
+        HeatMap {
+            title: "WaSP's speedup over L0 MSHRs and warps per core".into(),
+            subtitle: "3D scenes, mean".into(),
+            x_label: "l0.mshrs".into(),
+            y_label: "core.max_warps".into(),
+            x: ["8", "16", "24", "31"].map(String::from).to_vec(),
+            y: ["32", "64", "128"].map(String::from).to_vec(),
+            values: vec![rows[0].map(Some).to_vec(), rows[1].map(Some).to_vec(), top],
+            percent: true,
+            scale_label: "WaSP's speedup over the baseline".into(),
+        }
+    }
+
+    #[test]
+    fn cells_show_values_on_a_diverging_scale() {
+        let path = out("heat", "map.svg");
+        draw_heatmap(&mshrs_by_warps(), &path).expect("draw svg");
+        let axes = "l0.mshrs|core.max_warps|8|31|32|128|WaSP's speedup over the baseline|4%";
+        texts(&path, &format!("-3.2%|3.5%|-5.0%|-|0.10%|{axes}"));
+        let path = out("heat", "map.png");
+        draw_heatmap(&mshrs_by_warps(), &path).expect("draw png");
+        // The most negative cell has the scale's red end.
+        assert!(
+            pixels(&path, diverging(-1.0)) > 2000,
+            "no cell of the red end"
+        );
+        same_twice("heat-same", &|p| draw_heatmap(&mshrs_by_warps(), p));
+        let bad = |f: fn(&mut HeatMap), want: &str| {
+            let mut c = mshrs_by_warps();
+            f(&mut c);
+            assert!(error("heat-bad", "m.svg", &|p| draw_heatmap(&c, p)).contains(want));
+        };
+        bad(|c| c.values[1].truncate(3), "row `64` has 3 values for 4");
+        bad(|c| drop(c.values.pop()), "2 rows of values for 4 columns");
+        bad(|c| c.values[0][0] = Some(f64::NAN), "the cell (8, 32) has");
+        bad(|c| c.x.clear(), "for 0 columns and 3 rows");
+    }
+}

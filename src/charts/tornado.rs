@@ -1,0 +1,326 @@
+//! Tornado charts ([`draw_tornado`]): one row per parameter, a bar per
+//! series (e.g. the 3D and the 2D scenes) from the lowest to the highest
+//! value a quantity takes over the parameter's range, each end labelled
+//! with the parameter value that gave it; a vertical line at each series'
+//! value on the shipped machine; the widest row on top. Rows are segments
+//! of plotters' segmented coordinates.
+
+use super::frame::{
+    around, builder, edge, plot_rect, range, style_mesh, text_size, tick_label, value_label, write,
+    Chart, Drawn, Frame, Placer, Rect, Swatch, LABEL, SMALL,
+};
+use super::{finite, who};
+use crate::palette::{series_colours, shade};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// A series of a tornado chart.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TornadoSeries {
+    /// The name in the legend (e.g. "3D"); it chooses the colour.
+    pub name: String,
+    /// The series' value on the shipped machine: a vertical line.
+    pub reference: Option<f64>,
+}
+
+/// The range of the quantity over one parameter's range, for one series:
+/// the lowest and the highest value, each with the parameter value that
+/// gave it (e.g. "32 warps").
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Span {
+    /// The lowest value and its parameter value.
+    pub low: (f64, String),
+    /// The highest value and its parameter value.
+    pub high: (f64, String),
+}
+
+/// One parameter: a span per series (None: not measured).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TornadoRow {
+    /// The parameter's name, left of the row.
+    pub parameter: String,
+    /// One span per series.
+    pub spans: Vec<Option<Span>>,
+}
+
+/// A tornado chart.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TornadoChart {
+    /// The title.
+    pub title: String,
+    /// The line under the title (none when empty).
+    pub subtitle: String,
+    /// The x axis label (e.g. "WaSP's speedup over the baseline").
+    pub x_label: String,
+    /// The series (the bars of each row, top to bottom).
+    pub series: Vec<TornadoSeries>,
+    /// The rows, in any order: drawn widest (largest span) on top.
+    pub rows: Vec<TornadoRow>,
+    /// What the references are, in the legend (e.g. "shipped machine").
+    pub reference_label: String,
+    /// The values are fractions, labelled as percentages.
+    pub percent: bool,
+}
+
+/// Draws `chart` into `path`, a PNG or an SVG by the file's extension.
+///
+/// Errors (starting with `drawing <title>:` or naming the file): another
+/// extension; no series or no rows; a row whose span count is not the
+/// series count; a non-finite value or reference; a span whose low is
+/// above its high; a file that cannot be written.
+pub fn draw_tornado(chart: &TornadoChart, path: &Path) -> Result<(), String> {
+    let (who, n) = (who(&chart.title), chart.series.len());
+    if n == 0 || chart.rows.is_empty() {
+        return Err(format!("{who}: no series or no rows: nothing to draw"));
+    }
+    for s in &chart.series {
+        finite(
+            &who,
+            format_args!("the reference of `{}`", s.name),
+            s.reference.unwrap_or(0.0),
+        )?;
+    }
+    for r in &chart.rows {
+        let (p, spans) = (&r.parameter, r.spans.len());
+        if spans != n {
+            return Err(format!("{who}: row `{p}` has {spans} spans for {n} series"));
+        }
+        for s in r.spans.iter().flatten() {
+            finite(&who, format_args!("row `{p}`"), s.low.0 + s.high.0)?;
+            if s.low.0 > s.high.0 {
+                return Err(format!(
+                    "{who}: row `{p}` has a low {} above its high {}",
+                    s.low.0, s.high.0
+                ));
+            }
+        }
+    }
+    write(&who, path, || Tornado::new(chart, who.clone()))
+}
+
+/// A tornado chart laid out: the rows widest first, the x range, the
+/// width of the parameter names left of the plot.
+struct Tornado<'a> {
+    c: &'a TornadoChart,
+    who: String,
+    frame: Frame<'a>,
+    colours: Vec<RGBColor>,
+    order: Vec<usize>,
+    x: std::ops::Range<f64>,
+    left: f64,
+}
+
+impl<'a> Tornado<'a> {
+    fn new(c: &'a TornadoChart, who: String) -> Self {
+        let spans = |r: &'a TornadoRow| r.spans.iter().flatten();
+        let width = |r| spans(r).map(|s| s.high.0 - s.low.0).fold(0.0, f64::max);
+        let mut order: Vec<usize> = (0..c.rows.len()).collect();
+        order.sort_by(|&a, &b| width(&c.rows[b]).total_cmp(&width(&c.rows[a])));
+        let ends = c
+            .rows
+            .iter()
+            .flat_map(spans)
+            .flat_map(|s| [s.low.0, s.high.0]);
+        let refs: Vec<f64> = c.series.iter().filter_map(|s| s.reference).collect();
+        let x = range(ends, &refs);
+        // Room for the end labels either side.
+        let pad = 0.14 * (x.end - x.start);
+        let names = c
+            .rows
+            .iter()
+            .map(|r| text_size(&r.parameter, LABEL, false).0);
+        let left = names.fold(0.0, f64::max) + 24.0;
+        let colours = series_colours(&c.series.iter().map(|s| &s.name).collect::<Vec<_>>());
+        let mut legend = Vec::new();
+        for (s, &k) in c.series.iter().zip(&colours) {
+            legend.push((s.name.clone(), Swatch::Block(k)));
+        }
+        for (s, &k) in c.series.iter().zip(&colours) {
+            let Some(v) = s.reference else { continue };
+            let text = format!(
+                "{}, {}: {}",
+                c.reference_label,
+                s.name,
+                value_label(v, c.percent)
+            );
+            legend.push((text, Swatch::Rule(shade(k, 0.62))));
+        }
+        let frame = Frame::new((&c.title, &c.subtitle), legend, left, 1200.0);
+        let x = x.start - pad..x.end + pad;
+        Tornado {
+            c,
+            who,
+            frame,
+            colours,
+            order,
+            x,
+            left,
+        }
+    }
+}
+
+impl Chart for Tornado<'_> {
+    fn who(&self) -> &str {
+        &self.who
+    }
+
+    fn size(&self) -> (u32, u32) {
+        let rows = self.c.rows.len() as f64 * (22.0 * self.c.series.len() as f64 + 18.0);
+        let height = f64::from(self.frame.height()) + rows + 90.0;
+        (1200, height.max(500.0) as u32)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
+        let (c, n, s) = (self.c, self.c.rows.len(), self.c.series.len() as f64);
+        let area = self.frame.draw(root)?;
+        // The k-th widest row is segment n-1-k (0 is at the bottom).
+        let last = n.max(2) - 1;
+        let rows = (0..last).into_segmented();
+        let pad = (self.left, 64.0, 10.0, 40.0);
+        let mut chart = builder(&area, pad).build_cartesian_2d(self.x.clone(), rows)?;
+        let name = |v: &SegmentValue<usize>| match v {
+            SegmentValue::CenterOf(i) if *i < n => c.rows[self.order[n - 1 - i]].parameter.clone(),
+            _ => String::new(),
+        };
+        let ticks = tick_label(&self.x, 10, c.percent);
+        let mut mesh = chart.configure_mesh();
+        style_mesh(&mut mesh);
+        mesh.disable_y_mesh()
+            .y_labels(n + 1)
+            .y_label_formatter(&name);
+        mesh.x_labels(10).x_label_formatter(&ticks);
+        mesh.x_desc(&c.x_label).draw()?;
+        let (p, map) = (plot_rect(&chart), chart.as_coord_spec().clone());
+        let y_of = |i: usize| f64::from(map.translate(&(0.0, edge(i, last))).1);
+        let x_of = |v: f64| f64::from(map.translate(&(v, edge(0, last))).0);
+        let bar = ((y_of(0) - y_of(1)) * 0.7 / s).min(28.0);
+        let (mut placer, mut labels) = (Placer::default(), Vec::new());
+        for (k, &r) in self.order.iter().enumerate() {
+            let i = n - 1 - k;
+            for (j, (span, &colour)) in c.rows[r].spans.iter().zip(&self.colours).enumerate() {
+                let Some(span) = span else { continue };
+                // Segment i spans the pixel rows y_of(i + 1) to y_of(i).
+                let top = (y_of(i + 1) + y_of(i) - bar * s) / 2.0 + j as f64 * bar;
+                let corners = [
+                    (span.low.0, edge(i, last)),
+                    (span.high.0, edge(i + 1, last)),
+                ];
+                let mut rect = Rectangle::new(corners, colour.filled());
+                let (over, under) = (top - y_of(i + 1), y_of(i) - top - bar);
+                rect.set_margin(over.round() as u32, under.max(0.0).round() as u32, 0, 0);
+                chart.draw_series(std::iter::once(rect))?;
+                let (x0, x1, mid) = (x_of(span.low.0), x_of(span.high.0), top + bar / 2.0);
+                placer.take((x0, top, x1.max(x0 + 1.0), top + bar));
+                labels.push((
+                    outward((x0, mid), &span.low.1, -1.0),
+                    span.low.1.as_str(),
+                    BLACK,
+                ));
+                labels.push((
+                    outward((x1, mid), &span.high.1, 1.0),
+                    span.high.1.as_str(),
+                    BLACK,
+                ));
+            }
+        }
+        // The references over the bars.
+        for (s, &colour) in c.series.iter().zip(&self.colours) {
+            let Some(v) = s.reference else { continue };
+            let line = vec![(v, edge(0, last)), (v, edge(last + 1, last))];
+            let style = shade(colour, 0.62).stroke_width(2);
+            chart.draw_series(std::iter::once(PathElement::new(line, style)))?;
+            placer.take((x_of(v) - 3.0, p.1, x_of(v) + 3.0, p.3));
+        }
+        placer.draw_all(root, labels, p)
+    }
+}
+
+/// Places for `text` beside a bar's end at `(x, mid)`, right (`dir` 1) or
+/// left (-1) of it, moving outwards past what it would cover.
+fn outward((x, mid): (f64, f64), text: &str, dir: f64) -> Vec<Rect> {
+    let (w, h) = text_size(text, SMALL, false);
+    let at = |d: u32| (x + dir * (4.0 + 6.0 * f64::from(d) + w / 2.0), mid);
+    (0..12).map(|d| around(at(d), (w / 2.0, h / 2.0))).collect()
+}
+
+#[cfg(test)]
+pub(super) mod tests {
+    use super::super::tests::{error, out, pixels, same_twice, texts};
+    use super::*;
+    use crate::palette::named;
+
+    /// WaSP's speedup range over three parameters, for 3D and 2D scenes.
+    pub(in super::super) fn gains() -> TornadoChart {
+        let span = |lo: f64, l: &str, hi: f64, h: &str| {
+            let (low, high) = ((lo, l.into()), (hi, h.into()));
+            Some(Span { low, high })
+        };
+        let row = |parameter: &str, spans| TornadoRow {
+            parameter: parameter.into(),
+            spans,
+        };
+        let series = |name: &str, r| TornadoSeries {
+            name: name.into(),
+            reference: Some(r),
+        };
+        let mshrs = vec![
+            span(-0.032, "8 MSHRs", 0.005, "31 MSHRs"),
+            span(-0.01, "8 MSHRs", 0.03, "31 MSHRs"),
+        ];
+        let warps = vec![
+            span(-0.013, "128 warps", 0.03, "32 warps"),
+            span(0.0, "128 warps", 0.045, "32 warps"),
+        ];
+        let issue = vec![span(0.0, "lrr", 0.004, "gto"), None];
+        TornadoChart {
+            title: "What decides WaSP's gain".into(),
+            subtitle: "speedup range over each parameter's range".into(),
+            x_label: "WaSP's speedup over the baseline".into(),
+            series: vec![series("3D", 0.001), series("2D", 0.02)],
+            rows: vec![
+                row("l0.mshrs", mshrs),
+                row("core.max_warps", warps),
+                row("core.issue", issue),
+            ],
+            reference_label: "shipped machine".into(),
+            percent: true,
+        }
+    }
+
+    #[test]
+    fn rows_are_sorted_by_width_and_ends_labelled() {
+        let path = out("tornado", "gains.svg");
+        draw_tornado(&gains(), &path).expect("draw svg");
+        let want = "What decides WaSP's gain|3D|2D|32 warps|128 warps|8 MSHRs|31 MSHRs|gto";
+        let placed = texts(&path, &format!("{want}|shipped machine, 2D: 2.0%"));
+        let y = |t: &str| placed.iter().find(|p| p.0 == t).map_or(0.0, |p| p.2);
+        assert!(y("core.max_warps") < y("l0.mshrs") && y("l0.mshrs") < y("core.issue"));
+        let path = out("tornado", "gains.png");
+        draw_tornado(&gains(), &path).expect("draw png");
+        let (d3, d2) = (
+            pixels(&path, named("3D").unwrap()),
+            pixels(&path, named("2D").unwrap()),
+        );
+        assert!(d3 > 1000 && d2 > 1000, "{d3} 3D and {d2} 2D pixels");
+        same_twice("tornado-same", &|p| draw_tornado(&gains(), p));
+        let bad = |f: fn(&mut TornadoChart), want: &str| {
+            let mut c = gains();
+            f(&mut c);
+            assert!(error("tornado-bad", "t.png", &|p| draw_tornado(&c, p)).contains(want));
+        };
+        bad(
+            |c| drop(c.rows[0].spans.pop()),
+            "row `l0.mshrs` has 1 spans for 2",
+        );
+        bad(
+            |c| c.rows[1].spans[0].as_mut().unwrap().low.0 = 0.5,
+            "a low 0.5 above",
+        );
+        bad(
+            |c| c.series[1].reference = Some(f64::NAN),
+            "the reference of `2D`",
+        );
+        bad(|c| c.rows.clear(), "no series or no rows");
+    }
+}
