@@ -92,17 +92,16 @@ impl BlockedRule {
     /// whether its warp blocks now.
     #[inline(always)]
     pub(super) fn at_access(&mut self, result: Access, entry: u32, slot: usize) -> bool {
-        let bit = 1u128 << (slot & 127);
-        match (self.mode, result) {
-            (_, Access::Hit | Access::Stall | Access::PortBusy) => false,
-            (Mode::AtAccess, _) => true,
-            (_, Access::Miss) => {
-                self.waiting[entry as usize] = bit;
+        match result {
+            Access::Hit | Access::Stall | Access::PortBusy => false,
+            _ if self.mode == Mode::AtAccess => true,
+            Access::Miss => {
+                self.waiting[entry as usize] = 1u128 << (slot & 127);
                 self.marked[entry as usize] = false;
                 false
             }
-            (_, Access::SecondaryMiss) => {
-                self.waiting[entry as usize] |= bit;
+            Access::SecondaryMiss => {
+                self.waiting[entry as usize] |= 1u128 << (slot & 127);
                 self.marked[entry as usize]
             }
         }

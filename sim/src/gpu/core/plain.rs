@@ -36,8 +36,8 @@
 use super::observe::CoreView;
 use super::raster::OwnRaster;
 use super::{CoreParams, CoreSignals, CoreSnapshot, CoreStats, WarpRecord, WarpView};
-use crate::config::{BlockedOn, IssueOrder};
 use crate::config::FilterTiming;
+use crate::config::{BlockedOn, IssueOrder};
 use crate::gpu::core_model::CoreModel;
 use crate::gpu::SimError;
 use crate::mem::{Access, MemorySystem, MissEvent};
