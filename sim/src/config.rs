@@ -11,7 +11,7 @@
 //! refuses every value the model or the scheduler's registers cannot hold,
 //! naming the field and the limit.
 
-use crate::mem::{CacheConfig, DramConfig, MemConfig};
+use crate::mem::{CacheConfig, DramConfig, MemConfig, PrefetchConfig};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::Path;
@@ -62,6 +62,9 @@ pub struct MachineConfig {
     pub dram: DramConfig,
     /// Ideal-memory switch.
     pub memory: MemoryConfig,
+    /// The prefetcher into the L1s (`none` when the section is absent).
+    #[serde(default)]
+    pub prefetch: PrefetchConfig,
     /// Energy model.
     pub energy: EnergyConfig,
     /// Simulation controls.
@@ -145,6 +148,7 @@ impl MachineConfig {
                 .scheduler
                 .blocked_on
                 .reads_miss_events(self.l0.is_some()),
+            prefetch: self.prefetch,
         }
     }
 

@@ -14,6 +14,7 @@
 pub mod issue_order;
 
 use crate::config::MachineConfig;
+use crate::mem::prefetch::cost::{self as prefetch_cost, SramItem, SRAM_GE_PER_BIT};
 pub use issue_order::{issue_order_cost, IssueOrderCost};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -130,6 +131,52 @@ pub struct CostReport {
     pub measured_cf_variant: VariantCost,
     /// The issue orders' hardware (`core.issue`).
     pub issue_order: IssueOrderCost,
+    /// The prefetchers (`prefetch.kind`), per core.
+    pub prefetchers: Vec<PrefetcherCost>,
+}
+
+/// One prefetcher's hardware per core ([`crate::mem::prefetch::cost`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct PrefetcherCost {
+    /// The kind (`raster`, `oracle-tile`).
+    pub kind: String,
+    /// Flip-flops and logic.
+    pub items: Vec<CostedItem>,
+    /// SRAM.
+    pub sram: Vec<SramItem>,
+    /// Per-core flip-flops.
+    pub register_bits: u32,
+    /// Per-core SRAM bits.
+    pub sram_bits: u64,
+    /// Per-core GE: logic and flip-flops, plus SRAM at
+    /// [`SRAM_GE_PER_BIT`].
+    pub ge: f64,
+    /// A design, or a bound.
+    pub note: String,
+}
+
+/// Both prefetchers' inventories for `cfg`'s limits.
+fn prefetcher_costs(cfg: &MachineConfig, rules: &GateRules) -> Vec<PrefetcherCost> {
+    let p = &cfg.prefetch;
+    [
+        prefetch_cost::raster_inventory(p.queue, p.queue_filter, cfg.l1.mshrs),
+        prefetch_cost::oracle_inventory(prefetch_cost::ORACLE_LONGEST_LIST, cfg.l1.mshrs),
+    ]
+    .into_iter()
+    .map(|inv| {
+        let items = costed(inv.items, rules);
+        let sram_bits: u64 = inv.sram.iter().map(|s| s.bits).sum();
+        PrefetcherCost {
+            kind: inv.kind.to_string(),
+            register_bits: items.iter().map(|c| c.register_bits).sum(),
+            ge: items.iter().map(|c| c.ge).sum::<f64>() + sram_bits as f64 * SRAM_GE_PER_BIT,
+            items,
+            sram: inv.sram,
+            sram_bits,
+            note: inv.note,
+        }
+    })
+    .collect()
 }
 
 /// Register-file parameters for the savings column.
@@ -353,6 +400,7 @@ pub fn report(
         },
         measured_cf_variant: variant,
         issue_order: issue_order_cost(cfg, &rules),
+        prefetchers: prefetcher_costs(cfg, &rules),
     })
 }
 
@@ -497,6 +545,7 @@ impl CostReport {
             }
         }
         self.issue_order_table(&mut s);
+        self.prefetchers_table(&mut s);
         s
     }
 
@@ -525,6 +574,42 @@ impl CostReport {
             o.gto_split.0,
             o.gto_split.1
         );
+    }
+
+    /// Section (f): the prefetchers beside WaSP.
+    fn prefetchers_table(&self, s: &mut String) {
+        let _ = writeln!(
+            s,
+            "\n(f) the prefetchers (prefetch.kind; beyond the paper), per core"
+        );
+        for p in &self.prefetchers {
+            let _ = writeln!(s, "{}: {}", p.kind, p.note);
+            for c in &p.items {
+                item_line(s, c, "");
+            }
+            for m in &p.sram {
+                let _ = writeln!(
+                    s,
+                    "{:<22}{:<52}{:<22}{:>6}{:>9.1}",
+                    m.block,
+                    m.purpose,
+                    format!("SRAM {}b", m.bits),
+                    0,
+                    m.bits as f64 * SRAM_GE_PER_BIT
+                );
+            }
+            let _ = writeln!(
+                s,
+                "per core: {} flip-flops, {} SRAM bits ({:.1} KiB), {:.0} GE ({:.1}x WaSP's {:.0} GE; SRAM at {} GE/bit)",
+                p.register_bits,
+                p.sram_bits,
+                p.sram_bits as f64 / 8192.0,
+                p.ge,
+                p.ge / self.per_core_ge.max(1.0),
+                self.per_core_ge,
+                SRAM_GE_PER_BIT
+            );
+        }
     }
 }
 
@@ -601,6 +686,18 @@ mod tests {
         assert!(t.contains("issue_lrr") && t.contains("age matrix"));
         assert_eq!(r.issue_order.register_bits, [6, 2080]);
         assert!(m.yosys.is_none() && m.yosys_meter.is_none());
+        // The prefetchers, at the shipped limits: a 32-entry filtered
+        // queue (32 x 25 bits, two 5-bit pointers, a 6-bit count) and the
+        // oracle's list in SRAM.
+        assert_eq!(r.prefetchers.len(), 2);
+        let raster = &r.prefetchers[0];
+        assert_eq!(raster.kind, "raster");
+        assert_eq!(raster.register_bits, 32 * 25 + 5 + 5 + 6);
+        assert!(raster.ge > 10.0 * r.per_core_ge, "{} GE", raster.ge);
+        let oracle = &r.prefetchers[1];
+        assert_eq!(oracle.kind, "oracle-tile");
+        assert!(oracle.sram_bits > 0 && oracle.note.contains("bound"));
+        assert!(t.contains("(f) the prefetchers") && t.contains("duplicate_filter"));
     }
 
     /// Yosys on the twin: the meter alone has the 16 flip-flops of its

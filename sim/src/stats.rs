@@ -13,6 +13,9 @@ use crate::mem::{CacheStats, MemStats};
 use crate::trace::{mean_footprint_ratio, Trace};
 use serde::Serialize;
 
+mod prefetch;
+pub use prefetch::PrefetchReport;
+
 /// One cache level's counters, summed over cores.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LevelStats {
@@ -239,7 +242,8 @@ impl EnergyStats {
         let alu_nj = alu_instr as f64 * e.alu_instruction_pj / 1000.0;
         let texture_nj = tex as f64 * e.texture_instruction_pj / 1000.0;
         let l0_nj = l0_acc as f64 * e.l0_access_pj / 1000.0;
-        let l1_nj = mem.l1.accesses as f64 * e.l1_access_pj / 1000.0;
+        // Prefetch lookups read the L1's tags like any access.
+        let l1_nj = (mem.l1.accesses + mem.prefetch.queue.issued) as f64 * e.l1_access_pj / 1000.0;
         let l2_nj = mem.l2.accesses as f64 * e.l2_access_pj / 1000.0;
         // Writes (the colour-buffer flush) cost like reads: a row hit's
         // transfer, plus activation for those that opened their row.
@@ -504,6 +508,10 @@ pub struct RunStats {
     pub block_reuse: f64,
     /// Energy.
     pub energy: EnergyStats,
+    /// The prefetcher and its requests (absent without one, `prefetch.kind
+    /// = "none"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prefetch: Option<PrefetchReport>,
     /// Every tile: start, end, fill, drain, peak occupancy, primary misses.
     pub per_tile: Vec<TileRecord>,
 }
@@ -585,6 +593,7 @@ impl RunStats {
             min_estimate2: ts.min_estimate2,
             block_reuse: ts.reuse,
             energy: EnergyStats::of(cfg, mem, n, instructions, tex, cycles),
+            prefetch: PrefetchReport::of(cfg, &mem.prefetch),
             per_tile: inst.per_tile,
         }
     }

@@ -137,6 +137,19 @@
 //!
 //! and never panics. Writing a trace and reading it back gives the same trace.
 //!
+//! **Texture coordinates.** A texture instruction's blocks are what its
+//! sample read; the format does not say how its texture coordinates were
+//! made. A prefetcher that requests the blocks before the shader runs (the
+//! model's `prefetch.kind` `raster` and `oracle-tile`) needs coordinates known
+//! at rasterization: interpolated vertex attributes. A *dependent* read,
+//! whose coordinates the shader computes (from another texture's texels, or
+//! by arithmetic on the attributes), could not be requested before the
+//! shader reaches it. No version of the format marks dependent reads. The
+//! front end samples every texture at interpolated UVs (each texture
+//! instruction reads its material's UV set, `frontend/src/shader.rs`), so
+//! every texture instruction of its traces is prefetchable, and the model
+//! takes every texture instruction of every trace as prefetchable.
+//!
 //! # In memory
 //!
 //! [`Trace`] holds a [`TraceHeader`] and the [`Tile`]s in file order. A tile

@@ -4,6 +4,7 @@
 
 use super::*;
 use crate::config::BlockedOn;
+use crate::mem::PrefetchKind;
 use wasp_rtl::policy::LaunchRule;
 
 fn with(edit: impl Fn(&str) -> String) -> Result<MachineConfig, ConfigError> {
@@ -243,6 +244,44 @@ fn filter_fields_are_inherited_and_checked() {
 }
 
 #[test]
+fn prefetch_fields_are_checked() {
+    let p = MachineConfig::paper();
+    assert_eq!(p.prefetch, PrefetchConfig::default());
+    assert_eq!(
+        MachineConfig::paper_width2().prefetch,
+        PrefetchConfig::default()
+    );
+    // A file without the section is the machine without a prefetcher.
+    let start = PAPER_TOML.find("\n[prefetch]").unwrap();
+    let end = start + PAPER_TOML[start + 1..].find("\n[").unwrap() + 1;
+    let c = with(|s| format!("{}{}", &s[..start], &s[end..])).unwrap();
+    assert_eq!(c, p);
+    // Unknown kinds and keys are refused, naming them.
+    let e = with(|s| s.replace("kind = \"none\"", "kind = \"stride\"")).unwrap_err();
+    assert!(e.message.contains("stride"), "{e}");
+    let e = with(|s| {
+        s.replace(
+            "queue_filter = true",
+            "queue_filter = true\nqueue_depth = 3",
+        )
+    })
+    .unwrap_err();
+    assert!(e.message.contains("queue_depth"), "{e}");
+    // On, the reserve must leave a prefetch an L1 MSHR.
+    let e = set(&["prefetch.kind=raster"], "prefetch.l1_reserve", "16").unwrap_err();
+    assert!(
+        e.message
+            .contains("prefetch.l1_reserve = 16: must be in 0..=15"),
+        "{e}"
+    );
+    let c = set(&["prefetch.kind=oracle-tile"], "prefetch.l1_reserve", "15").unwrap();
+    assert_eq!(c.prefetch.kind, PrefetchKind::OracleTile);
+    assert_eq!(c.mem_config().prefetch, c.prefetch);
+    let e = set(&[], "prefetch.kind", "\"raster2\"").unwrap_err();
+    assert!(e.message.contains("raster2"), "{e}");
+}
+
+#[test]
 fn cache_geometry_errors() {
     // 64 KiB / 64 B / 3 ways is not a whole power-of-two set count.
     let e = with(|s| s.replacen("ways = 4", "ways = 3", 1)).unwrap_err();
@@ -433,6 +472,10 @@ const BOUNDS: &[(&str, &str, &str, &str, &[&str])] = &[
         &[],
     ),
     ("dram.scheduler_window", "256", "257", "1..=256", &[]),
+    ("prefetch.queue", "1024", "1025", "1..=1024", &[]),
+    // Off, any reserve below the MSHR bound; on, below l1.mshrs (see
+    // `prefetch_fields_are_checked`).
+    ("prefetch.l1_reserve", "4095", "4096", "0..=4095", &[]),
     (
         "energy.alu_instruction_pj",
         "1000000.0",

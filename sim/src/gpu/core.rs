@@ -202,6 +202,13 @@ impl ShaderCore {
         self.launch.accept(quad, x, y)
     }
 
+    /// Surviving quads of its own tile the core's rasterizer has put in
+    /// the input queue so far (per-core-tile dispatch).
+    #[inline]
+    pub fn quads_entered(&self) -> u32 {
+        self.raster.as_ref().map_or(0, |r| r.delivered())
+    }
+
     /// Nothing of the open tile is queued, resident or in the LDST unit.
     pub fn drained(&self) -> bool {
         self.warps.active() == 0 && self.ldst.is_idle() && self.launch.sched().queue().is_empty()

@@ -51,6 +51,10 @@ pub trait CoreModel: Traceable + Sized {
     /// Offer quad `quad` at in-tile (x, y) to the input queue; `false`
     /// when its FIFO is full.
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool;
+    /// Surviving quads of its own tile its rasterizer has put in the input
+    /// queue so far (per-core-tile dispatch; they are quads `0..n` in
+    /// rasterization order).
+    fn quads_entered(&self) -> u32;
     /// Nothing of the open tile is queued, resident or in the LDST unit.
     fn drained(&self) -> bool;
     /// Close the open tile (shared-tile dispatch; the core is drained).
@@ -112,6 +116,10 @@ impl CoreModel for ShaderCore {
     #[inline]
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool {
         ShaderCore::push_quad(self, quad, x, y)
+    }
+    #[inline]
+    fn quads_entered(&self) -> u32 {
+        ShaderCore::quads_entered(self)
     }
     #[inline]
     fn drained(&self) -> bool {

@@ -21,6 +21,7 @@
 use super::core::plain::PlainCore;
 use super::{CoreModel, Gpu, ShaderCore};
 use crate::config::{BlockedOn, Dispatch, FilterTiming, IssueOrder, MachineConfig};
+use crate::mem::PrefetchKind;
 use crate::trace::{Instr, Trace, TraceHeader};
 use proptest::prelude::*;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
@@ -53,13 +54,16 @@ fn lockstep(cfg: &MachineConfig, trace: &Trace) -> Result<u64, String> {
         }
         compare(&fast, &plain, trace).map_err(|e| format!("cycle {now}: {e}"))?;
         // An idle core changes only by what the GPU gives it: a tile, or a
-        // quad from the shared rasterizer (which it may launch at once).
+        // quad from the shared rasterizer (which it may launch at once);
+        // and its free-MSHR register follows the watched cache, which
+        // prefetches may use meanwhile.
         for (i, c) in fast.cores().iter().enumerate() {
-            let after = c.snapshot();
+            let mut after = c.snapshot();
             let queued = |q: [usize; 2]| q[0] + q[1];
             let launched = usize::from(c.launched_now().is_some());
             let pushed = queued(after.queued) + launched > queued(before[i].queued);
             let given = after.tile != before[i].tile || pushed;
+            after.free_mshrs = before[i].free_mshrs;
             if idle[i] && !given && after != before[i] {
                 return Err(format!("cycle {now}: core {i} was idle but changed"));
             }
@@ -167,6 +171,8 @@ struct Knobs {
     shared: bool,
     raster: (u32, u32),
     issue: IssueOrder,
+    /// Prefetcher, L1 reserve, queue entries.
+    prefetch: (PrefetchKind, u32, u32),
 }
 
 impl Knobs {
@@ -216,6 +222,9 @@ impl Knobs {
         };
         c.raster.quads_per_cycle = self.cores * self.raster.0;
         c.raster.rejected_per_slot = self.raster.1;
+        c.prefetch.kind = self.prefetch.0;
+        c.prefetch.l1_reserve = self.prefetch.1.min(c.l1.mshrs - 1);
+        c.prefetch.queue = self.prefetch.2;
         c.sim.watchdog_cycles = 100_000;
         c
     }
@@ -252,12 +261,29 @@ fn arb_knobs() -> impl Strategy<Value = Knobs> {
             any::<bool>(),
             (1u32..=2, 1u32..=3),
             prop::sample::select(IssueOrder::ALL.to_vec()),
+            (
+                prop::sample::select(PrefetchKind::ALL.to_vec()),
+                0u32..=2,
+                1u32..=4,
+            ),
         ),
     )
         .prop_map(
             |(
                 (l0, cores, warps, width, queue, ldst, alu_latency, texture_latency),
-                (filter, mshrs, merged, policy, launch, mesh2, blocked_on, shared, raster, issue),
+                (
+                    filter,
+                    mshrs,
+                    merged,
+                    policy,
+                    launch,
+                    mesh2,
+                    blocked_on,
+                    shared,
+                    raster,
+                    issue,
+                    prefetch,
+                ),
             )| Knobs {
                 l0,
                 cores,
@@ -277,6 +303,7 @@ fn arb_knobs() -> impl Strategy<Value = Knobs> {
                 shared,
                 raster,
                 issue,
+                prefetch,
             },
         )
 }
@@ -379,6 +406,37 @@ fn fast_and_plain_cores_agree_on_the_shipped_traces() {
     assert_eq!(runs, 3 * 5 * 2 * 3 * 2);
 }
 
+/// The shipped traces with each prefetcher, under the baseline and WaSP,
+/// both dispatch modes, on both machines of the paper (at width 2 the
+/// prefetches share the scheduler-level cache's MSHRs).
+#[test]
+fn fast_and_plain_cores_agree_with_each_prefetcher() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/traces");
+    let mut runs = 0;
+    for name in ["tiny", "overdraw", "synthetic-small"] {
+        let trace = Trace::read(dir.join(format!("{name}.trace"))).unwrap();
+        for kind in [PrefetchKind::OracleTile, PrefetchKind::Raster] {
+            for machine in [MachineConfig::paper(), MachineConfig::paper_width2()] {
+                for policy in ["baseline", "wasp:0:3"] {
+                    for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+                        let mut cfg = machine.clone();
+                        cfg.gpu.tile_size = trace.header().tile;
+                        cfg.scheduler.policy = policy.parse().unwrap();
+                        cfg.raster.dispatch = dispatch;
+                        cfg.prefetch.kind = kind;
+                        cfg.validate().unwrap();
+                        if let Err(e) = lockstep(&cfg, &trace) {
+                            panic!("{name} {kind} {} {policy} {dispatch}: {e}", cfg.name);
+                        }
+                        runs += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(runs, 3 * 2 * 2 * 2 * 2);
+}
+
 /// Frames of the workload generator (a few thousand warps each) on both
 /// machines of the paper: loose round-robin under both dispatch modes,
 /// greedy-then-oldest under the paper's (shared-tile).
@@ -435,7 +493,9 @@ fn fast_and_plain_cores_draw_the_same_waveform() {
 /// Every trace in the folder `WASP_LOCKSTEP_TRACES` (for example the 16
 /// real scenes' traces in `target/machines/traces`), on the paper's
 /// machine under the baseline and WaSP, both dispatch modes and both issue
-/// orders.
+/// orders; with `WASP_LOCKSTEP_PREFETCH` (a comma-separated list of
+/// `prefetch.kind` values, e.g. `raster,oracle-tile`) under each of those
+/// prefetchers instead of none.
 #[test]
 #[ignore = "long: set WASP_LOCKSTEP_TRACES to a folder of traces"]
 fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
@@ -447,24 +507,29 @@ fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
         .collect();
     paths.sort();
     assert!(!paths.is_empty(), "no .trace file in {dir}");
+    let kinds: Vec<PrefetchKind> = match std::env::var("WASP_LOCKSTEP_PREFETCH") {
+        Ok(list) => list.split(',').map(|k| k.trim().parse().unwrap()).collect(),
+        Err(_) => vec![PrefetchKind::None],
+    };
     for path in paths {
         let trace = Trace::read(&path).unwrap();
-        for policy in ["baseline", "wasp:0:3"] {
-            for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
-                for issue in IssueOrder::ALL {
-                    let mut cfg = MachineConfig::paper();
-                    cfg.gpu.tile_size = trace.header().tile;
-                    cfg.scheduler.policy = policy.parse().unwrap();
-                    cfg.raster.dispatch = dispatch;
-                    cfg.core.issue = issue;
-                    cfg.validate().unwrap();
-                    let cycles = lockstep(&cfg, &trace).unwrap_or_else(|e| {
-                        panic!("{}: {policy} {dispatch} {issue}: {e}", path.display())
-                    });
-                    eprintln!(
-                        "{}: {policy} {dispatch} {issue}: {cycles} cycles agree",
-                        path.display()
-                    );
+        for &kind in &kinds {
+            for policy in ["baseline", "wasp:0:3"] {
+                for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
+                    for issue in IssueOrder::ALL {
+                        let mut cfg = MachineConfig::paper();
+                        cfg.gpu.tile_size = trace.header().tile;
+                        cfg.scheduler.policy = policy.parse().unwrap();
+                        cfg.raster.dispatch = dispatch;
+                        cfg.core.issue = issue;
+                        cfg.prefetch.kind = kind;
+                        cfg.validate().unwrap();
+                        let what =
+                            format!("{}: {kind} {policy} {dispatch} {issue}", path.display());
+                        let cycles =
+                            lockstep(&cfg, &trace).unwrap_or_else(|e| panic!("{what}: {e}"));
+                        eprintln!("{what}: {cycles} cycles agree");
+                    }
                 }
             }
         }

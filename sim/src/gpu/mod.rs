@@ -31,6 +31,7 @@ pub use self::raster::{RasterStats, SharedRaster};
 pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
 use crate::config::MachineConfig;
+use crate::mem::prefetch::{self, Prefetcher};
 use crate::mem::MemStats;
 use crate::mem::MemorySystem;
 use crate::timeline::{Timeline, TimelineSample};
@@ -134,6 +135,8 @@ pub struct Gpu<'t, C = ShaderCore> {
     cores: Vec<C>,
     mem: MemorySystem,
     dispatch: Dispatcher,
+    /// The prefetcher into the L1s (`prefetch.kind`), if any.
+    prefetch: Option<Box<dyn Prefetcher>>,
     /// One per renderer: the GPU (shared-tile) or each core (per-core).
     trackers: Vec<TileTracker>,
     timeline: Option<Timeline>,
@@ -142,6 +145,25 @@ pub struct Gpu<'t, C = ShaderCore> {
     /// The last cycle in which a stage of a core or the raster pipeline
     /// made progress, or a tile began or ended (for the watchdog).
     last_progress: u64,
+}
+
+/// Tell the prefetcher what the shared raster pipeline did in the cycle:
+/// the tile it opened, the quads it placed in input FIFOs.
+#[inline(never)]
+fn feed_prefetcher(
+    pf: &mut dyn Prefetcher,
+    r: &SharedRaster,
+    opened: Option<usize>,
+    tiles: &[crate::trace::Tile],
+    mem: &mut MemorySystem,
+) {
+    if let Some(t) = opened {
+        pf.tile_opened(t, None, mem);
+    }
+    if let Some(t) = r.tile() {
+        let core_of = |x, y| r.core_of(x, y);
+        prefetch::quads_entered(pf, &tiles[t], r.placed_now(), core_of, mem);
+    }
 }
 
 impl<'t> Gpu<'t> {
@@ -169,7 +191,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             .policy
             .build(params.watched_mshrs)
             .map_err(SimError::Config)?;
-        let cores = (0..cfg.gpu.cores as usize)
+        let cores: Vec<C> = (0..cfg.gpu.cores as usize)
             .map(|id| {
                 let subset = sched.subset.build(side);
                 C::build(id, &params, wiring.as_ref(), sched.launch_rule, subset)
@@ -191,12 +213,20 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 vec![TileTracker::new(); cfg.gpu.cores as usize],
             )
         };
+        let prefetch = match &dispatch {
+            Dispatcher::Shared(r) => {
+                let core_of = |x: u32, y: u32| r.core_of(x, y);
+                prefetch::build(&cfg.prefetch, trace, cores.len(), Some(&core_of))
+            }
+            Dispatcher::PerCore { .. } => prefetch::build(&cfg.prefetch, trace, cores.len(), None),
+        };
         Ok(Self {
             cfg: cfg.clone(),
             trace,
             cores,
             mem,
             dispatch,
+            prefetch,
             trackers,
             timeline: None,
             tiles_done: 0,
@@ -331,6 +361,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
         };
         let tiles = self.trace.tiles();
         let mut progress = false;
+        let pf_on = self.prefetch.is_some();
         for (i, c) in self.cores.iter_mut().enumerate() {
             if c.idle() && *next_tile < tiles.len() {
                 c.assign_tile(*next_tile, &tiles[*next_tile]);
@@ -338,10 +369,20 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 if let Some(tl) = self.timeline.as_mut() {
                     tl.mark(now, *next_tile as u32, Some(i as u32), true);
                 }
+                if let Some(pf) = self.prefetch.as_deref_mut() {
+                    pf.tile_opened(*next_tile, Some(i), &mut self.mem);
+                }
                 *next_tile += 1;
                 progress = true;
             }
+            let entered = if pf_on { c.quads_entered() } else { 0 };
             progress |= c.evaluate(now, self.trace, &mut self.mem);
+            if pf_on {
+                if let (Some(pf), Some(t)) = (self.prefetch.as_deref_mut(), c.tile()) {
+                    let quads = entered..c.quads_entered();
+                    prefetch::quads_entered(pf, &tiles[t], quads, |_, _| i, &mut self.mem);
+                }
+            }
             if let Some((q, prio)) = c.launched_now() {
                 let quad = tiles[c.tile().expect("launching")].quad(q as usize);
                 let quad = quad.expect("quad in tile");
@@ -364,6 +405,10 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
         };
         let cycle = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
         let mut progress = cycle.progress;
+        if let Some(pf) = self.prefetch.as_deref_mut() {
+            let opened = cycle.opened.map(|t| t as usize);
+            feed_prefetcher(pf, r, opened, self.trace.tiles(), &mut self.mem);
+        }
         if let Some(t) = cycle.opened {
             self.trackers[0].start(t, None, now);
             if let Some(tl) = self.timeline.as_mut() {

@@ -147,6 +147,18 @@ impl SharedRaster {
         &self.stats
     }
 
+    /// The surviving quads of the open tile (indices in rasterization
+    /// order) placed in input FIFOs in the last evaluated cycle.
+    pub fn placed_now(&self) -> std::ops::Range<u32> {
+        self.cursor.next - self.signals.sent..self.cursor.next
+    }
+
+    /// The core the map names for in-tile quad (x, y).
+    #[inline]
+    pub fn core_of(&self, x: u32, y: u32) -> usize {
+        self.map.core(x, y)
+    }
+
     /// Phase 1 of cycle `now`: flush a line, open a tile if none is open,
     /// rasterize.
     pub fn evaluate<C: CoreModel>(

@@ -31,6 +31,8 @@
 
 use super::config::{CacheConfig, MemConfigError};
 use super::mshr::{Merge, MshrFile};
+use super::prefetch::marks::PrefetchMarks;
+use super::prefetch::{MarkCounts, PrefetchLookup};
 use super::stats::CacheStats;
 use wasp_waves::Tracer;
 
@@ -99,6 +101,9 @@ pub struct Cache {
     hits_now: u32,
     stalled: bool,
     stats: CacheStats,
+    /// Prefetched lines and entries (an L1 that takes prefetches; empty
+    /// and never touched otherwise).
+    marks: PrefetchMarks,
 }
 
 impl Cache {
@@ -123,7 +128,14 @@ impl Cache {
             hits_now: 0,
             stalled: false,
             stats: CacheStats::default(),
+            marks: PrefetchMarks::default(),
         })
+    }
+
+    /// Let the cache take prefetches ([`Cache::prefetch`]) and keep the
+    /// marks that tell whether each was useful ([`Cache::prefetch_counts`]).
+    pub fn enable_prefetch_marks(&mut self) {
+        self.marks = PrefetchMarks::new(self.tags.len(), self.cfg.mshrs as usize);
     }
 
     /// The configuration.
@@ -164,6 +176,31 @@ impl Cache {
     /// [`Cache::fill_entry`].
     #[inline(always)]
     pub fn access_entry(&mut self, now: u64, block: u64, target: u32) -> (Lookup, u32) {
+        self.access_with::<true>(now, block, target)
+    }
+
+    /// [`Cache::access_entry`] for a cache that never takes a prefetch
+    /// (the L0, the L2): the same lookup without the prefetch marks' tests,
+    /// which the L0's accesses, the model's hottest path, do not carry.
+    #[inline(always)]
+    pub fn access_entry_unmarked(&mut self, now: u64, block: u64, target: u32) -> (Lookup, u32) {
+        debug_assert!(
+            !self.marks.live(),
+            "a cache with prefetches keeps its marks"
+        );
+        self.access_with::<false>(now, block, target)
+    }
+
+    /// The lookup, keeping the prefetch marks when `MARKS` (a demand hit
+    /// is the first use of a prefetched line, a merge into a prefetch's
+    /// entry makes it late).
+    #[inline(always)]
+    fn access_with<const MARKS: bool>(
+        &mut self,
+        now: u64,
+        block: u64,
+        target: u32,
+    ) -> (Lookup, u32) {
         self.advance(now);
         if self.ports_used >= self.cfg.ports {
             self.stats.port_busy += 1;
@@ -182,6 +219,9 @@ impl Cache {
             let base = set * self.ways;
             if let Some(w) = find_way(&self.tags[base..base + self.ways], block) {
                 self.touch(set, base, w as u32);
+                if MARKS && self.marks.live() {
+                    self.marks.hit(base + w);
+                }
                 self.ports_used += 1;
                 self.hits_now += 1;
                 self.stats.accesses += 1;
@@ -192,6 +232,9 @@ impl Cache {
         debug_assert!(!self.contains(block));
         match self.mshr.merge(block, target, now) {
             Merge::Merged(e) => {
+                if MARKS && self.marks.live() {
+                    self.marks.merged(e);
+                }
                 self.ports_used += 1;
                 self.stats.accesses += 1;
                 self.stats.secondary_misses += 1;
@@ -231,6 +274,23 @@ impl Cache {
     /// no search for the entry.
     #[inline(always)]
     pub fn fill_entry(&mut self, now: u64, e: u32) -> &[u32] {
+        self.fill_with::<true>(now, e)
+    }
+
+    /// [`Cache::fill_entry`] for a cache that never takes a prefetch (see
+    /// [`Cache::access_entry_unmarked`]).
+    #[inline(always)]
+    pub fn fill_entry_unmarked(&mut self, now: u64, e: u32) -> &[u32] {
+        debug_assert!(
+            !self.marks.live(),
+            "a cache with prefetches keeps its marks"
+        );
+        self.fill_with::<false>(now, e)
+    }
+
+    /// The fill, keeping the prefetch marks when `MARKS`.
+    #[inline(always)]
+    fn fill_with<const MARKS: bool>(&mut self, now: u64, e: u32) -> &[u32] {
         self.advance(now);
         let block = self.mshr.complete(e, now);
         self.replied += 1;
@@ -273,10 +333,51 @@ impl Cache {
         if evicted != INVALID {
             self.filter[bucket(evicted)] -= 1;
         }
+        if MARKS && self.marks.live() {
+            self.marks.evicted(base + way);
+            self.marks.filled(e, base + way);
+        }
         self.filter[bucket(block)] += 1;
         self.tags[base + way] = block;
         self.stats.miss_wait_sum += self.mshr.wait_sum(e, now);
         self.mshr.targets(e)
+    }
+
+    /// A prefetch of `block` in cycle `now`, below demand (see
+    /// `mem/prefetch`): not looked up while every port is used or at most
+    /// `reserve` MSHRs are free; else one port: a present line or a
+    /// pending miss drops it (no recency change, no demand counter), a
+    /// miss allocates an MSHR entry with no target. Needs
+    /// [`Cache::enable_prefetch_marks`].
+    pub fn prefetch(&mut self, now: u64, block: u64, reserve: u32) -> PrefetchLookup {
+        self.advance(now);
+        if self.ports_used >= self.cfg.ports {
+            return PrefetchLookup::PortBusy;
+        }
+        if self.mshr.free() <= reserve {
+            return PrefetchLookup::NoRoom;
+        }
+        self.ports_used += 1;
+        if self.filter[bucket(block)] != 0 && self.contains(block) {
+            return PrefetchLookup::Hit;
+        }
+        if self.mshr.is_pending(block) {
+            return PrefetchLookup::Pending;
+        }
+        let e = self.mshr.allocate_untargeted(block, now);
+        self.allocated += 1;
+        self.marks.allocated(e);
+        PrefetchLookup::Miss(e)
+    }
+
+    /// What became of the prefetches this cache took.
+    pub fn prefetch_counts(&self) -> MarkCounts {
+        self.marks.counts()
+    }
+
+    /// Lines filled by a prefetch and not used by a demand access yet.
+    pub fn prefetch_unused(&self) -> u64 {
+        self.marks.unused()
     }
 
     /// Whether the line of `block` is present (no side effect).
@@ -664,6 +765,33 @@ pub(crate) mod tests {
         assert!(evictions > 500);
     }
 
+    /// The lookups and fills without the marks' tests are the same as
+    /// with them, on a cache that takes no prefetch (a random script).
+    #[test]
+    fn unmarked_lookups_and_fills_match_the_marked_ones() {
+        let mut rng = crate::rng::Rng::new(0x51ab_7e01);
+        let mut rnd = |n: u32| rng.below(u64::from(n)) as u32;
+        let mut a = Cache::new(&cfg(512, 2, 4, 2, 2)).unwrap();
+        let mut b = a.clone();
+        let mut pending: Vec<u32> = Vec::new();
+        for now in 1..3000u64 {
+            for _ in 0..rnd(3) {
+                let block = u64::from(rnd(20));
+                let x = a.access_entry(now, block, now as u32);
+                assert_eq!(x, b.access_entry_unmarked(now, block, now as u32));
+                if x.0 == Lookup::Miss {
+                    pending.push(x.1);
+                }
+            }
+            if !pending.is_empty() && rnd(2) == 0 {
+                let e = pending.swap_remove(rnd(pending.len() as u32) as usize);
+                assert_eq!(a.fill_entry(now, e), b.fill_entry_unmarked(now, e));
+            }
+        }
+        assert_eq!(a.stats(), b.stats());
+        assert!(a.stats().hits > 100 && a.stats().secondary_misses > 100);
+    }
+
     #[test]
     fn occupancy_integral() {
         let mut c = Cache::new(&cfg(512, 2, 2, 4, 4)).unwrap();
@@ -684,6 +812,56 @@ pub(crate) mod tests {
         assert_eq!((s.mshr_held_sum, s.mshr_full_cycles), (8, 3));
         assert_eq!(c.stats_until(7, 6).mshr_held_sum, 10);
         assert_eq!(c.stats().mshr_held_sum, 0, "event counters only");
+    }
+
+    #[test]
+    fn prefetched_lines_count_useful_once_late_when_merged_useless_when_evicted() {
+        // 1 set x 2 ways, 4 MSHRs, no reserve.
+        let mut c = Cache::new(&cfg(128, 2, 4, 4, 4)).unwrap();
+        c.enable_prefetch_marks();
+        let PrefetchLookup::Miss(e) = c.prefetch(1, 0, 0) else {
+            panic!("a prefetch miss")
+        };
+        assert_eq!(c.allocated_now(), 1, "the free-MSHR register sees it");
+        assert_eq!(c.prefetch(1, 0, 0), PrefetchLookup::Pending);
+        assert!(matches!(c.prefetch(1, 2, 0), PrefetchLookup::Miss(_)));
+        // A demand miss merges into the prefetch of block 2: late.
+        assert_eq!(c.access(2, 2, 7), Lookup::Secondary);
+        assert_eq!(c.fill_entry(3, e), &[] as &[u32], "completes nothing");
+        assert_eq!(c.fill(3, 2), &[7]);
+        assert_eq!(c.prefetch(4, 0, 0), PrefetchLookup::Hit);
+        assert_eq!(c.prefetch_unused(), 1);
+        assert_eq!(c.access(5, 0, 8), Lookup::Hit);
+        assert_eq!(c.access(6, 0, 9), Lookup::Hit);
+        let n = c.prefetch_counts();
+        assert_eq!((n.useful, n.late, n.useless), (2, 1, 0));
+        // Block 4 prefetched, never used, evicted by two demand fills.
+        assert!(matches!(c.prefetch(7, 4, 0), PrefetchLookup::Miss(_)));
+        c.fill(8, 4);
+        for (t, b) in [(9, 6), (11, 8)] {
+            assert_eq!(c.access(t, b, 0), Lookup::Miss);
+            c.fill(t + 1, b);
+        }
+        assert!(!c.contains(4));
+        assert_eq!(c.prefetch_counts().useless, 1);
+        assert_eq!(c.prefetch_unused(), 0);
+        // Demand counters never saw a prefetch.
+        let s = c.stats();
+        assert_eq!((s.accesses, s.misses, s.secondary_misses), (5, 2, 1));
+    }
+
+    #[test]
+    fn a_prefetch_waits_for_a_free_port_and_room_above_the_reserve() {
+        let mut c = Cache::new(&cfg(512, 2, 3, 4, 1)).unwrap();
+        c.enable_prefetch_marks();
+        assert_eq!(c.access(1, 1, 0), Lookup::Miss);
+        assert_eq!(c.prefetch(1, 5, 0), PrefetchLookup::PortBusy);
+        assert!(matches!(c.prefetch(2, 5, 1), PrefetchLookup::Miss(_)));
+        // Two of three occupied: one free is the reserve of 1.
+        assert_eq!(c.prefetch(3, 6, 1), PrefetchLookup::NoRoom);
+        assert!(matches!(c.prefetch(3, 6, 0), PrefetchLookup::Miss(_)));
+        assert_eq!(c.prefetch(4, 7, 0), PrefetchLookup::NoRoom);
+        assert_eq!(c.stats().port_busy, 0, "demand counters untouched");
     }
 
     /// The paper's worked example (Section III): a single-level cache with

@@ -2,7 +2,7 @@
 //! plus wasp's stated choices) and the structural checks that
 //! [`MemorySystem::new`](super::MemorySystem::new) applies.
 
-use crate::param::section;
+use crate::param::{check_range, section};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -251,6 +251,9 @@ pub struct MemConfig {
     /// ([`MemorySystem::take_miss_events`](super::MemorySystem::take_miss_events)).
     /// Changes no timing.
     pub report_misses: bool,
+    /// The prefetcher into the L1s (`none` by default).
+    #[serde(default)]
+    pub prefetch: PrefetchConfig,
 }
 
 impl MemConfig {
@@ -310,6 +313,7 @@ impl MemConfig {
             dram: DramConfig::default(),
             ideal_memory: false,
             report_misses: true,
+            prefetch: PrefetchConfig::default(),
         }
     }
 
@@ -330,6 +334,7 @@ impl MemConfig {
         self.l1.check("l1")?;
         self.l2.check("l2")?;
         self.dram.check()?;
+        self.prefetch.check(self.l1.mshrs).map_err(MemConfigError)?;
         let bytes = self.host_bytes();
         if bytes > HOST_BYTES_BUDGET {
             return Err(MemConfigError(format!(
@@ -470,6 +475,122 @@ impl DramConfig {
             )));
         }
         Ok(())
+    }
+}
+
+/// Most entries of a raster prefetch queue.
+pub const MAX_QUEUE: u32 = 1024;
+
+/// Which prefetcher the machine has (`prefetch.kind`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PrefetchKind {
+    /// No prefetcher (the shipped machine).
+    #[default]
+    None,
+    /// The bound: a tile's blocks requested when it opens.
+    OracleTile,
+    /// Each quad's blocks requested when it enters an input FIFO.
+    Raster,
+}
+
+impl PrefetchKind {
+    /// Every kind.
+    pub const ALL: [PrefetchKind; 3] = [
+        PrefetchKind::None,
+        PrefetchKind::OracleTile,
+        PrefetchKind::Raster,
+    ];
+}
+
+impl fmt::Display for PrefetchKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            PrefetchKind::None => "none",
+            PrefetchKind::OracleTile => "oracle-tile",
+            PrefetchKind::Raster => "raster",
+        })
+    }
+}
+
+impl std::str::FromStr for PrefetchKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        PrefetchKind::ALL
+            .into_iter()
+            .find(|k| k.to_string() == s)
+            .ok_or_else(|| {
+                format!("unknown prefetch kind {s:?}: expected none, oracle-tile or raster")
+            })
+    }
+}
+
+section! {
+    /// The `[prefetch]` section: the prefetcher and the limits every kind
+    /// obeys (see [`prefetch`](super::prefetch)).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+    pub struct PrefetchConfig {
+        /// `none` (default), `oracle-tile` or `raster`.
+        pub kind: PrefetchKind,
+        /// Entries of each core's raster prefetch queue (block addresses).
+        /// The oracle's queue holds a tile's list whatever this is.
+        #[range(1..=MAX_QUEUE, " entries")]
+        pub queue: u32,
+        /// Skip a request for a block already in the queue (the raster
+        /// kind; the oracle's lists hold each block once anyway).
+        pub queue_filter: bool,
+        /// L1 MSHRs kept free for demand misses: a prefetch is looked up
+        /// only while more than this many are free. Below `l1.mshrs` when a
+        /// prefetcher is on ([`PrefetchConfig::check`]).
+        pub l1_reserve: u32,
+    }
+}
+
+impl Default for PrefetchConfig {
+    /// `none`, with the shipped limits (`configs/paper.toml` says why):
+    /// a 32-entry filtered queue, 4 L1 MSHRs reserved for demand.
+    fn default() -> Self {
+        PrefetchConfig {
+            kind: PrefetchKind::None,
+            queue: 32,
+            queue_filter: true,
+            l1_reserve: 4,
+        }
+    }
+}
+
+impl PrefetchConfig {
+    /// Whether a prefetcher is on.
+    #[inline]
+    pub fn enabled(&self) -> bool {
+        self.kind != PrefetchKind::None
+    }
+
+    /// Bounds, each error naming the field: the declared ones (`queue` in
+    /// 1..=1024); `l1_reserve` below `l1_mshrs` when a prefetcher is on (a
+    /// prefetch needs one MSHR), else below the MSHR bound.
+    pub fn check(&self, l1_mshrs: u32) -> Result<(), String> {
+        self.check_bounds("prefetch")?;
+        if self.enabled() {
+            check_range(
+                "prefetch.l1_reserve",
+                self.l1_reserve.into(),
+                0,
+                u64::from(l1_mshrs) - 1,
+                &format!(
+                    " (below l1.mshrs = {l1_mshrs}: prefetch.kind = {} needs an L1 MSHR the reserve leaves free)",
+                    self.kind
+                ),
+            )
+        } else {
+            check_range(
+                "prefetch.l1_reserve",
+                self.l1_reserve.into(),
+                0,
+                u64::from(MAX_MSHRS) - 1,
+                "",
+            )
+        }
     }
 }
 

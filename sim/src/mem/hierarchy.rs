@@ -5,6 +5,7 @@
 use super::cache::{bits_for, Cache, Lookup};
 use super::config::{MemConfig, MemConfigError};
 use super::dram::Dram;
+use super::prefetch::{PrefetchQueue, PrefetchQueues, PrefetchStats};
 use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
 use wasp_waves::Tracer;
@@ -121,9 +122,10 @@ impl CoreMem {
         self.l0.as_ref().unwrap_or(&self.l1)
     }
 
-    /// No MSHR entry occupied and nothing queued or completing: a tick has
-    /// nothing to do for this core (its caches' per-cycle values are then
-    /// simply not advanced; readers check the cycle they describe).
+    /// No MSHR entry occupied and nothing queued or completing, queued
+    /// prefetches aside (the tick checks those itself): a tick has nothing
+    /// to do for this core (its caches' per-cycle values are then simply
+    /// not advanced; readers check the cycle they describe).
     #[inline]
     fn is_quiet(&self) -> bool {
         self.l1.mshr_occupied() == 0
@@ -133,6 +135,33 @@ impl CoreMem {
             && self.to_l0.is_empty()
             && self.completing.is_empty()
     }
+}
+
+/// Cycle `now`'s prefetch step of core `c` and its queue `pf`, after the
+/// cycle's demand lookups of its L1: the queue's head goes to the L1 on
+/// the ports demand left free, above the MSHR reserve; each miss's request
+/// joins the L1's queue to the L2 like a demand miss's (see
+/// `mem/prefetch`).
+#[inline(never)]
+fn prefetch_step(now: u64, c: &mut CoreMem, pf: &mut PrefetchQueue, report: bool, reserve: u32) {
+    let CoreMem {
+        l1, to_l2, misses, ..
+    } = c;
+    pf.issue(
+        |block| l1.prefetch(now, block, reserve),
+        |block, entry| {
+            to_l2.push_back(Request {
+                ready: now + 1,
+                block,
+                entry,
+            });
+            // A new L1 entry no warp waits on yet: the cores' rule starts
+            // its record afresh.
+            if report {
+                misses.push(MissEvent::Prefetch { l1: entry });
+            }
+        },
+    );
 }
 
 /// The L1's reply for L0 MSHR entry `entry` reaches the L0 in cycle `now`:
@@ -146,7 +175,13 @@ fn fill_l0(
     entry: u32,
 ) {
     let at = now + u64::from(l0.config().hit_latency) - 1;
-    complete_all(completing, ready, now, at, l0.fill_entry(now, entry));
+    complete_all(
+        completing,
+        ready,
+        now,
+        at,
+        l0.fill_entry_unmarked(now, entry),
+    );
 }
 
 /// Record that `tags` complete in cycle `at` (never before `now`), in
@@ -194,6 +229,11 @@ pub enum MissEvent {
         /// The L1 entry.
         l1: u32,
     },
+    /// A prefetch allocated L1 MSHR entry `l1`: no access waits on it yet.
+    Prefetch {
+        /// The L1 entry.
+        l1: u32,
+    },
 }
 
 /// Move the tags of `from` to the end of `out`, leaving `from` empty. The
@@ -237,6 +277,9 @@ pub struct MemorySystem {
     cfg: MemConfig,
     cores: Vec<CoreMem>,
     l2: Cache,
+    /// Each core's prefetch queue, in front of its L1 (`mem/prefetch`;
+    /// never filled without a prefetcher).
+    pf: Vec<PrefetchQueue>,
     /// Record [`MissEvent`]s.
     report_misses: bool,
     /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
@@ -264,6 +307,10 @@ impl MemorySystem {
         let mut cores = Vec::with_capacity(n_cores);
         for _ in 0..n_cores {
             let l0 = cfg.l0.as_ref().map(Cache::new).transpose()?;
+            let mut l1 = Cache::new(&cfg.l1)?;
+            if cfg.prefetch.enabled() {
+                l1.enable_prefetch_marks();
+            }
             let l1_mshrs = cfg.l1.mshrs as usize;
             let l0_mshrs = cfg.l0.map_or(0, |c| c.mshrs as usize);
             // Bound on tags completing at once: every hit still in its latency
@@ -272,7 +319,7 @@ impl MemorySystem {
                 + first.mshrs as usize * (1 + first.max_merged as usize);
             cores.push(CoreMem {
                 l0,
-                l1: Cache::new(&cfg.l1)?,
+                l1,
                 to_l1: Ring::with_capacity(l0_mshrs),
                 to_l2: Ring::with_capacity(l1_mshrs),
                 to_l0: Ring::with_capacity(l0_mshrs),
@@ -288,9 +335,13 @@ impl MemorySystem {
                 active: false,
             });
         }
+        let pf = (0..n_cores)
+            .map(|_| PrefetchQueue::new(cfg.prefetch.queue as usize, cfg.prefetch.queue_filter))
+            .collect();
         Ok(MemorySystem {
             cfg: cfg.clone(),
             cores,
+            pf,
             l2: Cache::new(&cfg.l2)?,
             report_misses: cfg.report_misses,
             to_l1: Ring::with_capacity(n_cores * cfg.l1.mshrs as usize),
@@ -330,11 +381,18 @@ impl MemorySystem {
         debug_assert!(now >= self.now, "access in a past cycle");
         self.now = now;
         let c = &mut self.cores[core];
-        let (first, queue) = match c.l0.as_mut() {
-            Some(l0) => (l0, &mut c.to_l1),
-            None => (&mut c.l1, &mut c.to_l2),
+        // The L0 never takes a prefetch: its lookups skip the marks.
+        let (first, queue, lookup) = match c.l0.as_mut() {
+            Some(l0) => {
+                let lookup = l0.access_entry_unmarked(now, block, tag);
+                (l0, &mut c.to_l1, lookup)
+            }
+            None => {
+                let lookup = c.l1.access_entry(now, block, tag);
+                (&mut c.l1, &mut c.to_l2, lookup)
+            }
         };
-        match first.access_entry(now, block, tag) {
+        match lookup {
             (Lookup::Hit, _) => {
                 let at = now + u64::from(first.config().hit_latency) - 1;
                 complete_all(&mut c.completing, &mut c.ready, now, at, &[tag]);
@@ -357,7 +415,8 @@ impl MemorySystem {
     /// Advance everything by cycle `now`, after that cycle's accesses, in
     /// five steps:
     /// 1. [`requests_to_l1`](Self::requests_to_l1): the L1s take L0
-    ///    requests;
+    ///    requests, then, with a prefetcher, the heads of the prefetch
+    ///    queues on the ports left ([`prefetch_tick`](Self::prefetch_tick));
     /// 2. [`requests_to_l2`](Self::requests_to_l2): the L2 takes L1
     ///    requests, round robin over cores;
     /// 3. [`dram_to_l2`](Self::dram_to_l2): the DRAM accepts requests and
@@ -397,6 +456,11 @@ impl MemorySystem {
         self.ticks += 1;
         self.ticked_until = now + 1;
         let queued = self.requests_to_l1::<SHORTCUTS>(now);
+        // Prefetches on the L1 ports demand left (their requests are ready
+        // for the L2 from the next cycle, so step 2's candidates stand).
+        if self.cfg.prefetch.enabled() {
+            self.prefetch_tick(now);
+        }
         self.requests_to_l2(now);
         self.dram_to_l2(now);
         let filled = self.l2_to_l1(now);
@@ -523,7 +587,7 @@ impl MemorySystem {
                 let Some(&r) = c.to_l2.front() else {
                     unreachable!("an L2 candidate has a request")
                 };
-                match self.l2.access_entry(now, r.block, core) {
+                match self.l2.access_entry_unmarked(now, r.block, core) {
                     (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
                         at: l2_reply,
                         core,
@@ -561,7 +625,7 @@ impl MemorySystem {
         self.dram.accept(now);
         while let Some(entry) = self.dram.pop_reply(now) {
             let block = self.l2.pending_block(entry);
-            for &core in self.l2.fill_entry(now, entry) {
+            for &core in self.l2.fill_entry_unmarked(now, entry) {
                 self.to_l1.push_back(L2Reply {
                     at: l2_reply,
                     core,
@@ -661,13 +725,15 @@ impl MemorySystem {
 
     /// Nothing in flight anywhere: no MSHR entry occupied (awaiting its
     /// reply or in the cycle after it), no request or reply travelling, no
-    /// tag completing or completed and not taken. While this holds, ticks
-    /// change nothing but the tick count. (Miss events not taken do not
-    /// count: they are notices, not work in flight.)
+    /// prefetch queued, no tag completing or completed and not taken.
+    /// While this holds, ticks change nothing but the tick count. (Miss
+    /// events not taken do not count: they are notices, not work in
+    /// flight.)
     pub fn is_idle(&self) -> bool {
         self.cores
             .iter()
             .all(|c| c.is_quiet() && c.ready.is_empty())
+            && self.pf.iter().all(PrefetchQueue::is_empty)
             && self.l2.mshr_occupied() == 0
             && self.to_l1.is_empty()
             && self.dram.is_idle()
@@ -723,7 +789,22 @@ impl MemorySystem {
             l2: with_cycles(&self.l2),
             dram: *self.dram.stats(),
             per_core,
+            prefetch: self.prefetch_stats(),
         }
+    }
+
+    /// The prefetch counters of every core, summed (all zero without a
+    /// prefetcher).
+    pub fn prefetch_stats(&self) -> PrefetchStats {
+        let mut sum = PrefetchStats::default();
+        for (c, pf) in self.cores.iter().zip(&self.pf) {
+            sum.add(&PrefetchStats {
+                queue: *pf.counts(),
+                lines: c.l1.prefetch_counts(),
+                unused_at_end: c.l1.prefetch_unused(),
+            });
+        }
+        sum
     }
 
     /// Signals of `core`'s private levels in the last cycle: scopes `l0` (when
@@ -743,6 +824,9 @@ impl MemorySystem {
         c.l1.trace(self.now, t);
         let w = bits_for(u64::from(c.l1.mshr_capacity()));
         t.signal("miss_queue", w, c.to_l2.len() as u64);
+        if self.cfg.prefetch.enabled() {
+            t.signal("prefetch_queue", 16, self.pf[core].len().min(0xffff) as u64);
+        }
         t.pop_scope();
     }
 
@@ -756,6 +840,27 @@ impl MemorySystem {
         t.push_scope("dram");
         self.dram.trace(self.now, t);
         t.pop_scope();
+    }
+}
+
+impl MemorySystem {
+    /// Step 1's prefetches: every core with a prefetch queued, after the
+    /// cycle's demand lookups (see [`prefetch_step`]).
+    #[inline(never)]
+    fn prefetch_tick(&mut self, now: u64) {
+        let reserve = self.cfg.prefetch.l1_reserve;
+        for (c, pf) in self.cores.iter_mut().zip(&mut self.pf) {
+            if !pf.is_empty() {
+                prefetch_step(now, c, pf, self.report_misses, reserve);
+            }
+        }
+    }
+}
+
+/// The memory system keeps the prefetch queues, one in front of each L1.
+impl PrefetchQueues for MemorySystem {
+    fn prefetch_queue(&mut self, core: usize) -> &mut PrefetchQueue {
+        &mut self.pf[core]
     }
 }
 

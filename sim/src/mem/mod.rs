@@ -113,6 +113,7 @@ pub mod config;
 pub mod dram;
 pub mod hierarchy;
 pub mod mshr;
+pub mod prefetch;
 mod ring;
 pub mod stats;
 
@@ -120,4 +121,5 @@ pub use cache::{Cache, Lookup};
 pub use config::{CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES};
 pub use hierarchy::{Access, MemorySystem, MissEvent, MshrFileView, SchedCacheMshrs};
 pub use mshr::MSHR_HOLD_CYCLES;
+pub use prefetch::{PrefetchConfig, PrefetchKind, PrefetchStats};
 pub use stats::{CacheStats, CoreMemStats, DramStats, MemStats};

@@ -199,6 +199,12 @@ impl MshrFile {
         self.free == 0
     }
 
+    /// Entries that can be allocated now (`capacity - occupied`).
+    #[inline]
+    pub fn free(&self) -> u32 {
+        self.free
+    }
+
     /// Position in `pending` of the entry pending for `block`, if any.
     #[inline(always)]
     fn position(&self, block: u64) -> Option<usize> {
@@ -272,6 +278,18 @@ impl MshrFile {
         self.outstanding = pos + 1;
         self.pending_filter[pending_bucket(block)] += 1;
         self.alloc_sum = self.alloc_sum.wrapping_add(now);
+        e
+    }
+
+    /// Allocate an entry with no target for a prefetch of `block` (see
+    /// `mem/prefetch`): its fill completes nothing, and a later miss to
+    /// `block` merges into it as the first target. The caller has checked
+    /// that the file is not full and no entry is pending for `block`.
+    pub fn allocate_untargeted(&mut self, block: u64, now: u64) -> u32 {
+        let e = self.allocate(block, 0, now);
+        let entry = &mut self.entries[e as usize];
+        entry.count = 0;
+        entry.issued_sum = 0;
         e
     }
 
@@ -471,6 +489,27 @@ mod tests {
             assert_eq!(m.integrals(now + 1), sampled, "cycle {now}");
         }
         assert!(sampled.full > 100 && sampled.outstanding > 1000);
+    }
+
+    #[test]
+    fn an_untargeted_entry_completes_nothing_until_a_miss_merges() {
+        let mut m = MshrFile::new(2, 1);
+        let a = m.allocate_untargeted(7, 3);
+        assert!(m.is_pending(7));
+        assert_eq!((m.free(), m.outstanding()), (1, 1));
+        assert_eq!(m.targets(a), &[] as &[u32]);
+        // The first merge is the entry's first target; `max_merged` = 1
+        // still lets a second one in (1 + max_merged targets).
+        assert_eq!(m.merge(7, 40, 5), Merge::Merged(a));
+        assert_eq!(m.merge(7, 41, 6), Merge::Merged(a));
+        assert_eq!(m.merge(7, 42, 6), Merge::Full);
+        assert_eq!(m.complete(a, 9), 7);
+        assert_eq!(m.targets(a), &[40, 41]);
+        // Only the demand targets waited: (9 - 5) + (9 - 6).
+        assert_eq!(m.wait_sum(a, 9), 7);
+        let b = m.allocate_untargeted(8, 9);
+        assert_eq!(m.complete(b, 12), 8);
+        assert_eq!((m.targets(b).len(), m.wait_sum(b, 12)), (0, 0));
     }
 
     #[test]

@@ -6,6 +6,7 @@
 //! not per cycle; a cycle not ticked is idle and adds nothing). Summing over cores adds every field, so
 //! `cycles` of a summed level is core-cycles and the averages stay per cache.
 
+use super::prefetch::PrefetchStats;
 use serde::{Deserialize, Serialize};
 
 /// Counters of one cache (or of one level summed over cores).
@@ -162,6 +163,9 @@ pub struct MemStats {
     pub dram: DramStats,
     /// Each core's private levels, in core order.
     pub per_core: Vec<CoreMemStats>,
+    /// The prefetchers' counters, summed over the cores (zero without one).
+    #[serde(default)]
+    pub prefetch: PrefetchStats,
 }
 
 fn ratio(num: u64, den: u64) -> f64 {

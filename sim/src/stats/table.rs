@@ -139,6 +139,9 @@ impl RunStats {
             "raster: {} quads ({} rejected by Early-Z), back-pressure {} cycles, barrier wait {} cycles, {} colour lines flushed",
             r.quads_rasterized, r.quads_rejected, r.backpressure_cycles, r.barrier_cycles, r.flush_lines
         );
+        if let Some(p) = &self.prefetch {
+            p.table_lines(s);
+        }
         let t = &self.tile_timing;
         let _ = writeln!(
             s,

@@ -385,7 +385,9 @@ impl PlainCore {
                         false
                     }
                     Access::SecondaryMiss => {
-                        let (slots, held) = waits.get_mut(&entry).expect("a pending entry");
+                        // (An entry a prefetch allocated has no record
+                        // yet.)
+                        let (slots, held) = waits.entry(entry).or_default();
                         slots.push(e.slot);
                         *held
                     }
@@ -417,6 +419,15 @@ impl PlainCore {
                 } else {
                     vec![]
                 }
+            }
+            // A prefetch allocated an L1 entry: no warp waits on it yet.
+            (BlockedOn::Dram, MissEvent::Prefetch { l1 }) if has_l0 => {
+                self.blocking.l1.insert(l1, (vec![], false));
+                vec![]
+            }
+            (BlockedOn::Dram, MissEvent::Prefetch { l1 }) => {
+                self.blocking.first.insert(l1, (vec![], false));
+                vec![]
             }
             (BlockedOn::Dram, MissEvent::L2 { l1 }) if !has_l0 => self.blocking.hold(l1),
             (BlockedOn::Dram, MissEvent::L2 { l1 }) => {
@@ -561,6 +572,10 @@ impl CoreModel for PlainCore {
 
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool {
         self.sched.enqueue(quad, x, y).is_ok()
+    }
+
+    fn quads_entered(&self) -> u32 {
+        self.raster.delivered()
     }
 
     fn drained(&self) -> bool {

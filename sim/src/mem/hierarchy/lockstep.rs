@@ -8,6 +8,7 @@
 
 use super::tests::arb_config;
 use super::*;
+use crate::mem::prefetch::PrefetchQueues;
 use proptest::prelude::*;
 
 /// Two systems, one ticked fast and one plainly, given the same
@@ -30,6 +31,14 @@ fn lockstep(cfg: &MemConfig, ops: &[(u8, u8, u64)]) -> Result<u64, TestCaseError
                 Some(&(0, _, _)) => {}
                 Some(&(_, count, block)) => {
                     for k in 0..n {
+                        // A prefetch too, when the machine has a
+                        // prefetcher: queued on both, served by each tick
+                        // on the ports demand leaves.
+                        if cfg.prefetch.enabled() {
+                            let blk = block + 3 + k as u64 * 5;
+                            fast.prefetch_queue(k).offer(blk);
+                            plain.prefetch_queue(k).offer(blk);
+                        }
                         for j in 0..u64::from(count) {
                             let blk = block + j * 7 + k as u64;
                             let (x, y) = (
@@ -72,6 +81,9 @@ fn lockstep(cfg: &MemConfig, ops: &[(u8, u8, u64)]) -> Result<u64, TestCaseError
         prop_assert!(now < 100_000, "no drain");
     }
     prop_assert_eq!(fast.stats(), plain.stats());
+    if cfg.prefetch.enabled() {
+        prop_assert_eq!(fast.prefetch_stats(), plain.prefetch_stats());
+    }
     Ok(now)
 }
 
@@ -101,10 +113,13 @@ fn the_plain_tick_is_the_fast_one_on_the_papers_machines() {
         })
         .collect();
     for width4 in [false, true] {
-        let cfg = MemConfig {
+        let mut cfg = MemConfig {
             report_misses: true,
             ..MemConfig::paper(width4)
         };
+        let cycles = lockstep(&cfg, &ops).unwrap();
+        assert!(cycles > 3000, "{cycles}");
+        cfg.prefetch.kind = crate::mem::PrefetchKind::Raster;
         let cycles = lockstep(&cfg, &ops).unwrap();
         assert!(cycles > 3000, "{cycles}");
     }

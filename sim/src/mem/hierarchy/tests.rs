@@ -5,6 +5,7 @@
 
 use super::*;
 use crate::mem::config::{CacheConfig, DramConfig};
+use crate::mem::prefetch::{PrefetchConfig, PrefetchKind};
 use proptest::prelude::*;
 
 fn small_cache(size: u32, ways: u32, hit: u32, mshrs: u32, merged: u32, ports: u32) -> CacheConfig {
@@ -113,6 +114,7 @@ fn example_config() -> MemConfig {
         },
         ideal_memory: false,
         report_misses: false,
+        prefetch: PrefetchConfig::default(),
     }
 }
 
@@ -564,25 +566,43 @@ pub(super) fn arb_config() -> impl Strategy<Value = MemConfig> {
         (1u32..4, 1u32..4, 1u32..8, 1u32..12, 1u32..3),
         any::<bool>(),
         any::<bool>(),
+        (any::<bool>(), 0u32..3, 1u32..6, any::<bool>()),
     )
         .prop_map(
-            |(cores, l0, l1, l2, (banks, rows, hit, miss, rpc), ideal_memory, report_misses)| {
-                MemConfig {
-                    cores,
-                    l0,
-                    l1,
-                    l2,
-                    dram: DramConfig {
-                        banks,
-                        row_bytes: 64 * rows,
-                        row_hit_latency: hit,
-                        row_miss_latency: miss,
-                        requests_per_cycle: rpc,
-                        ..DramConfig::default()
+            |(
+                cores,
+                l0,
+                l1,
+                l2,
+                (banks, rows, hit, miss, rpc),
+                ideal_memory,
+                report_misses,
+                (pf, reserve, queue, filter),
+            )| MemConfig {
+                cores,
+                l0,
+                l1,
+                l2,
+                dram: DramConfig {
+                    banks,
+                    row_bytes: 64 * rows,
+                    row_hit_latency: hit,
+                    row_miss_latency: miss,
+                    requests_per_cycle: rpc,
+                    ..DramConfig::default()
+                },
+                ideal_memory,
+                report_misses,
+                prefetch: PrefetchConfig {
+                    kind: if pf {
+                        PrefetchKind::Raster
+                    } else {
+                        PrefetchKind::None
                     },
-                    ideal_memory,
-                    report_misses,
-                }
+                    queue,
+                    queue_filter: filter,
+                    l1_reserve: reserve.min(l1.mshrs - 1),
+                },
             },
         )
 }
