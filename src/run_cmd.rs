@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::subset::SubsetSpec;
+use wasp_sim::config::BlockedOn;
 use wasp_sim::config::{Dispatch, MachineConfig};
-use wasp_sim::mem::BlockedOn;
 use wasp_sim::run::{simulate, simulate_timeline, simulate_traced, RunOptions, SimError};
 use wasp_sim::stats::{csv_table, RunStats};
 use wasp_sim::synth::{generate, GenParams};
@@ -432,20 +432,20 @@ struct Job {
 /// The policies `wasp compare` runs when `--policies` is not given: the
 /// scanline baseline, Fullpriority, Freemshr10, the configuration's policy
 /// and, when that is WaSP, `wasp-m` at the same threshold.
-fn default_policies(cfg: &MachineConfig) -> Result<Vec<PolicySpec>, CliError> {
+fn default_policies(cfg: &MachineConfig) -> Vec<PolicySpec> {
     let mut v = vec![
         PolicySpec::Baseline,
         PolicySpec::FullPriority,
         PolicySpec::FreeMshr(10),
     ];
-    let own = cfg.policy().map_err(CliError::usage)?;
+    let own = cfg.scheduler.policy;
     if !v.contains(&own) {
         v.push(own);
     }
     if let PolicySpec::Wasp { threshold, .. } = own {
         v.push(PolicySpec::WaspMeasured { threshold });
     }
-    Ok(v)
+    v
 }
 
 /// Run the comparison.
@@ -454,7 +454,7 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
     let trace = load_trace(&args.inputs, &cfg)?;
     let policies = match &args.policies {
         Some(p) => p.clone(),
-        None => default_policies(&cfg)?,
+        None => default_policies(&cfg),
     };
     if policies.is_empty() {
         return Err(CliError::usage("--policies: name at least one policy"));

@@ -116,10 +116,7 @@ impl Plan {
     /// the shared-tile machine only).
     pub fn new(defs: &[SceneDef], quick: bool, dispatches: Vec<Dispatch>) -> Plan {
         let paper = MachineConfig::paper();
-        let wasp = paper.policy().unwrap_or(PolicySpec::Wasp {
-            threshold: 0,
-            cf: 3.0,
-        });
+        let wasp = paper.scheduler.policy;
         let threshold = match wasp {
             PolicySpec::Wasp { threshold, .. } => threshold,
             _ => 0,
