@@ -29,7 +29,8 @@ use wasp_sim::config::Dispatch;
 pub struct ReproduceArgs {
     /// A first look in about a minute: the smallest scene of each game, the
     /// heuristics, ideal memory, the meshes, four thresholds, width 4 at
-    /// 32/48/64 warps and one timeline, on the shared-tile machine only.
+    /// 32/48/64 warps, one timeline and the map over warps per core and L0
+    /// MSHRs, on the shared-tile machine only.
     #[arg(long)]
     pub quick: bool,
 

@@ -108,23 +108,28 @@ pub fn write(md: &mut String, x: &Section) -> Result<(), String> {
 
 fn intro(md: &mut String, map: &MapPlan, t: &MapTable) {
     let values: usize = t.knobs.iter().map(|k| k.rows.len().saturating_sub(1)).sum();
+    let varied = t.knobs.iter().filter(|k| k.rows.len() > 1).count();
     let _ = writeln!(
         md,
         "The paper leaves many of its machine's choices unstated. This section varies {} of \
          them one at a time, each over a range a mobile GPU could have (docs/machine.md gives \
-         each range and its source), {} values besides the shipped machine's, on the paper's \
-         shared-tile machine. At every value it runs the scanline baseline, WaSP ({}), \
+         each range and its source): {} values in all besides the shipped machine's, on the \
+         paper's shared-tile machine. At every value it runs the scanline baseline, WaSP ({}), \
          Fullpriority, the baseline with a raster texture prefetcher, the baseline with the \
          oracle tile prefetcher (every block of a tile requested when the tile opens: the \
          bound of any \"launch early to prefetch\" scheme) and the baseline with ideal memory \
          (the other bound).{}\n",
-        t.knobs.len(),
+        varied,
         values,
         map.wasp,
         if map.quick {
-            " **Quick look**: fewer knobs and values, one scene per game."
+            format!(
+                " **Quick look**: {varied} of the {} knobs below, fewer values, one scene per \
+                 game; the full study varies every knob.",
+                t.knobs.len()
+            )
         } else {
-            ""
+            String::new()
         }
     );
     let _ = writeln!(
@@ -312,13 +317,18 @@ pub fn plan_text(map: &MapPlan, scenes: usize) -> String {
         .iter()
         .map(|k| k.values_for(map.quick).len() - 1)
         .sum();
+    let varied = map
+        .knobs
+        .iter()
+        .filter(|k| k.values_for(map.quick).len() > 1)
+        .count();
     let deep = map.deep_queue_warps.len() * map.deep_queue_variants().len();
     let runs = scenes * ((values + 1) * Variant::ALL.len() + deep);
     format!(
         "the map \"What decides WaSP's gain\": {} knobs, {values} values besides the shipped \
          machine, {} warp counts with a {DEEP_QUEUE}-entry input queue, on {scenes} scenes: \
          up to {runs} simulations, then a 2-D grid over the two knobs that move WaSP most",
-        map.knobs.len(),
+        varied,
         map.deep_queue_warps.len()
     )
 }
