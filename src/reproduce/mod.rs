@@ -10,6 +10,7 @@
 
 pub mod draw;
 pub mod figures;
+pub mod map;
 pub mod paper;
 pub mod plan;
 pub mod report;
@@ -28,7 +29,8 @@ use wasp_sim::config::Dispatch;
 pub struct ReproduceArgs {
     /// A first look in about a minute: the smallest scene of each game, the
     /// heuristics, ideal memory, the meshes, four thresholds, width 4 at
-    /// 32/48/64 warps and one timeline, on the shared-tile machine only.
+    /// 32/48/64 warps, one timeline and the map over warps per core and L0
+    /// MSHRs, on the shared-tile machine only.
     #[arg(long)]
     pub quick: bool,
 
@@ -55,6 +57,14 @@ pub struct ReproduceArgs {
     /// No progress output on stderr.
     #[arg(long, short)]
     pub quiet: bool,
+
+    /// Write the map "What decides WaSP's gain" as sweep files into DIR
+    /// (map-policies.toml, map-bounds.toml, map-deep-queue.toml) and run
+    /// nothing: run them with `wasp sweep FILE --out OUT` (or one job per
+    /// point with --jobs-file), then `wasp reproduce --out OUT` finds those
+    /// points done (docs/reproduce.md).
+    #[arg(long, value_name = "DIR")]
+    pub sweep_files: Option<PathBuf>,
 }
 
 /// Which machines a reproduction runs.
@@ -121,6 +131,9 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         return Err(CliError::usage("--scenes: name at least one scene"));
     }
     let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
+    if let (Some(dir), Some(map)) = (&args.sweep_files, &plan.map) {
+        return write_sweep_files(dir, map, &plan, args.quiet);
+    }
     let cache = Cache::open(&args.out).map_err(CliError::failed)?;
     let figures = args.out.join("figures");
     std::fs::create_dir_all(&figures)
@@ -136,6 +149,12 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
             jobs,
             args.out.display()
         );
+        if let Some(map) = &plan.map {
+            eprintln!(
+                "wasp: including {}",
+                map::report::plan_text(map, plan.scenes.len())
+            );
+        }
     }
     let opts = RunnerOptions {
         jobs,
@@ -144,9 +163,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         label: "reproducing".into(),
         scenes: defs.clone(),
     };
-    let outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let cells = map::run_grid(&plan, &mut outcome, &cache, &opts).map_err(CliError::failed)?;
     let subset = args.scenes.is_some();
-    let written = report::write(&plan, &outcome, &args.out, subset).map_err(CliError::failed)?;
+    let written =
+        report::write(&plan, &outcome, &cells, &args.out, subset).map_err(CliError::failed)?;
     eprintln!("wasp: {}", outcome.summary());
     eprintln!("wasp: wrote {}", written.display());
     if !outcome.failures.is_empty() {
@@ -158,6 +179,26 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
             outcome.failures.len(),
             tasks.len()
         )));
+    }
+    Ok(())
+}
+
+/// `--sweep-files DIR`: the map's sweep files.
+fn write_sweep_files(
+    dir: &Path,
+    map: &map::plan::MapPlan,
+    plan: &Plan,
+    quiet: bool,
+) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", dir.display())))?;
+    let scenes: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
+    for (name, text) in map::sweeps::files(map, &scenes) {
+        let path = dir.join(name);
+        crate::study::cache::write_atomic(&path, &text).map_err(CliError::failed)?;
+        if !quiet {
+            eprintln!("wasp: wrote {}", path.display());
+        }
     }
     Ok(())
 }

@@ -26,7 +26,13 @@ use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::Dispatch;
 
 /// Write everything; returns the report's path.
-pub fn write(plan: &Plan, out: &Outcome, dir: &Path, subset: bool) -> Result<PathBuf, String> {
+pub fn write(
+    plan: &Plan,
+    out: &Outcome,
+    cells: &[super::map::plan::Cell],
+    dir: &Path,
+    subset: bool,
+) -> Result<PathBuf, String> {
     let data = dir.join("data");
     let figs = dir.join("figures");
     for d in [&data, &figs] {
@@ -87,6 +93,22 @@ pub fn write(plan: &Plan, out: &Outcome, dir: &Path, subset: bool) -> Result<Pat
             figure(&mut md, f, &data, &figs)?;
         }
         timelines(&mut md, plan, *d);
+    }
+    if let (Some(map), Some(table)) = (&plan.map, super::map::table(plan, out, cells)) {
+        let groups: Vec<Group> = [Group::ThreeD, Group::TwoD, Group::Procedural]
+            .into_iter()
+            .filter(|&g| plan.scenes.iter().any(|s| s.group == g))
+            .collect();
+        let section = super::map::report::Section {
+            plan,
+            map,
+            out,
+            table: &table,
+            groups: &groups,
+            data: &data,
+            figs: &figs,
+        };
+        super::map::report::write(&mut md, &section)?;
     }
     footer(&mut md, plan);
     let path = dir.join("REPORT.md");
