@@ -54,20 +54,20 @@ struct Job {
 /// The policies `wasp compare` runs when `--policies` is not given: the
 /// scanline baseline, Fullpriority, Freemshr10, the configuration's policy
 /// and, when that is WaSP, `wasp-m` at the same threshold.
-fn default_policies(cfg: &MachineConfig) -> Result<Vec<PolicySpec>, CliError> {
+fn default_policies(cfg: &MachineConfig) -> Vec<PolicySpec> {
     let mut v = vec![
         PolicySpec::Baseline,
         PolicySpec::FullPriority,
         PolicySpec::FreeMshr(10),
     ];
-    let own = cfg.policy().map_err(CliError::usage)?;
+    let own = cfg.scheduler.policy;
     if !v.contains(&own) {
         v.push(own);
     }
     if let PolicySpec::Wasp { threshold, .. } = own {
         v.push(PolicySpec::WaspMeasured { threshold });
     }
-    Ok(v)
+    v
 }
 
 /// Run the comparison.
@@ -80,7 +80,7 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
     let trace = load_trace(&args.inputs, &cfg)?;
     let policies = match &args.policies {
         Some(p) => p.clone(),
-        None => default_policies(&cfg)?,
+        None => default_policies(&cfg),
     };
     if policies.is_empty() {
         return Err(CliError::usage("--policies: name at least one policy"));

@@ -209,6 +209,34 @@ fn set_overrides_a_field_and_names_a_bad_one() {
     assert!(stderr(&o).contains("expected one of:"), "{}", stderr(&o));
 }
 
+/// A config file with a few fields is the shipped machine with those
+/// fields changed, the same as `--set`; `extends` picks the base.
+#[test]
+fn a_partial_config_file_patches_the_shipped_machine() {
+    let d = dir("partial");
+    let trace = synth_trace(&d, 3);
+    let patch = d.join("l0.toml");
+    std::fs::write(&patch, "[l0]\nmshrs = 8\n").unwrap();
+    let from_file = run_json(&["--trace", &trace, "--config", patch.to_str().unwrap()]);
+    let from_set = run_json(&["--trace", &trace, "--set", "l0.mshrs=8"]);
+    assert_eq!(from_file, from_set);
+    assert_ne!(from_file, run_json(&["--trace", &trace]));
+    let w2 = d.join("w2.toml");
+    std::fs::write(&w2, "extends = \"paper-width2\"\n[l1]\nmshrs = 8\n").unwrap();
+    let narrow = run_json(&["--trace", &trace, "--config", w2.to_str().unwrap()]);
+    assert!(narrow["l0"].is_null(), "no L0 at width 2");
+    assert_eq!(narrow["machine"], "paper-width2-48warps");
+    // An unknown key still fails, naming the file and line.
+    std::fs::write(&patch, "[l0]\nmshrs = 8\nmshr = 9\n").unwrap();
+    let o = wasp(&["run", "-q", "--config", patch.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("l0.toml:3: l0.mshr: unknown field"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 /// `wasp run` on a terminal draws a progress bar on stderr; `-q` hides it,
 /// and so does a stderr that is not a terminal.
 #[test]

@@ -28,9 +28,9 @@
 
 use crate::cex::{ensure, Cex};
 use std::collections::{BTreeMap, BTreeSet};
+use wasp_sim::config::BlockedOn;
 use wasp_sim::config::MachineConfig;
 use wasp_sim::gpu::{Gpu, WarpRecord};
-use wasp_sim::mem::BlockedOn;
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
 /// Property name used in counterexamples.
@@ -294,9 +294,9 @@ impl SmallMachine {
         c.dram.row_hit_latency = 3;
         c.dram.row_miss_latency = 6;
         c.memory.ideal = self.ideal;
-        c.scheduler.policy = self.policy.into();
-        c.scheduler.launch_rule = self.launch_rule.to_string();
-        c.scheduler.subset = self.subset.into();
+        c.scheduler.policy = self.policy.parse().expect("a policy");
+        c.scheduler.launch_rule = self.launch_rule;
+        c.scheduler.subset = self.subset.parse().expect("a subset");
         c.scheduler.blocked_on = self.blocked_on;
         c.sim.watchdog_cycles = 100_000;
         c

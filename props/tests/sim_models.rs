@@ -15,7 +15,8 @@ use proptest_state_machine::{prop_state_machine, ReferenceStateMachine, StateMac
 use wasp_props::machine::{run_checked, SmallMachine};
 use wasp_props::mshr_file::{cache_step, small_cache, CacheModel, CacheOp, BLOCKS};
 use wasp_rtl::policy::LaunchRule;
-use wasp_sim::mem::{BlockedOn, Cache};
+use wasp_sim::config::BlockedOn;
+use wasp_sim::mem::Cache;
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
 struct CacheRef;

@@ -16,6 +16,9 @@ use wasp_waves::{Traceable, Tracer};
 /// Width of the free-MSHR register (the paper's "5-bit register").
 pub const FREE_MSHR_BITS: u32 = 5;
 
+/// The largest value the register holds: the most MSHRs it can count.
+pub const FREE_MSHR_MAX: u32 = (1 << FREE_MSHR_BITS) - 1;
+
 /// The free-MSHR register value type.
 pub type FreeMshrs = UInt<FREE_MSHR_BITS>;
 

@@ -19,7 +19,7 @@
 //! - `vcd`: every signal written to a VCD (into a byte sink).
 
 use crate::config::{Dispatch, MachineConfig};
-use crate::gpu::{Gpu, RunOptions, SimError};
+use crate::gpu::{Gpu, SimError};
 use crate::synth::{generate, GenParams};
 use crate::trace::Trace;
 use serde::Serialize;
@@ -267,6 +267,34 @@ pub fn workload(cfg: &MachineConfig, tiles_x: u32, tiles_y: u32) -> Result<Trace
     .map_err(|e| SimError::Config(e.to_string()))
 }
 
+/// Both dispatch modes on the same workload, tracing off, sampled in
+/// turns (the configured mode is the "tracing off" point too).
+fn dispatch_points(
+    cfg: &MachineConfig,
+    base: &Trace,
+    repeats: usize,
+    min: Duration,
+) -> Result<Vec<Point>, SimError> {
+    let shared = with_dispatch(cfg, Dispatch::SharedTile)?;
+    let per_core = with_dispatch(cfg, Dispatch::PerCoreTile)?;
+    let jobs = [(&shared, base, Mode::Off), (&per_core, base, Mode::Off)];
+    let cores = cfg.gpu.cores as u64;
+    let b = measure(&jobs, repeats, min)?;
+    Ok(b.iter()
+        .zip([&shared, &per_core])
+        .map(|(b, c)| {
+            let label = format!("dispatch {}", c.raster.dispatch);
+            b.point(
+                &label,
+                Mode::Off,
+                base.tiles().len(),
+                c.core.max_warps,
+                cores,
+            )
+        })
+        .collect())
+}
+
 /// The whole benchmark: tracing modes on one workload, then growth with
 /// tile count and warp count (tracing off). `scale` multiplies the
 /// workload sizes (1 = the default sizes); `min_seconds` is the least time
@@ -280,7 +308,8 @@ pub fn run(
     report: &mut dyn FnMut(&Point),
 ) -> Result<Vec<Point>, SimError> {
     let min = Duration::from_secs_f64(min_seconds.max(0.0));
-    let cfg = RunOptions::default().apply(cfg)?;
+    cfg.validate().map_err(SimError::Config)?;
+    let cfg = cfg.clone();
     let cores = cfg.gpu.cores as u64;
     let mut points = Vec::new();
     let mut push = |p: Point, points: &mut Vec<Point>| {
@@ -308,26 +337,8 @@ pub fn run(
         );
         push(p, &mut points);
     }
-    // Both dispatch modes on the same workload, tracing off, sampled in
-    // turns (the configured mode is the "tracing off" point above too).
-    {
-        let shared = with_dispatch(&cfg, Dispatch::SharedTile)?;
-        let per_core = with_dispatch(&cfg, Dispatch::PerCoreTile)?;
-        let jobs = [(&shared, base, Mode::Off), (&per_core, base, Mode::Off)];
-        for (b, c) in measure(&jobs, repeats, min)?
-            .iter()
-            .zip([&shared, &per_core])
-        {
-            let label = format!("dispatch {}", c.raster.dispatch);
-            let p = b.point(
-                &label,
-                Mode::Off,
-                base.tiles().len(),
-                c.core.max_warps,
-                cores,
-            );
-            push(p, &mut points);
-        }
+    for p in dispatch_points(&cfg, base, repeats, min)? {
+        push(p, &mut points);
     }
     for (tx, ty) in [(2 * s, 2), (4 * s, 4), (8 * s, 8)] {
         let t = workload(&cfg, tx, ty)?;

@@ -383,7 +383,7 @@ pub fn report(
     rf: &RfParams,
     yosys: bool,
 ) -> Result<CostReport, String> {
-    let (threshold, cf) = match cfg.policy()? {
+    let (threshold, cf) = match cfg.scheduler.policy {
         PolicySpec::Wasp { threshold, cf } => (threshold, cf),
         _ => (4, 2.5),
     };
@@ -407,10 +407,9 @@ pub fn report(
         yosys_meter: None,
         yosys: None,
     };
-    let (_, sched) = cfg.scheduler_cache();
     let (ys, note) = if yosys {
         let params = [
-            ("CAPACITY", sched.mshrs.min(31) as i64),
+            ("CAPACITY", cfg.watched_mshrs() as i64),
             ("QUEUE_CAP", cfg.core.input_queue as i64),
             ("CF_Q", dp.cf.quarters() as i64),
             ("THRESHOLD", threshold as i64),

@@ -214,110 +214,131 @@ impl Machine {
     }
 
     /// Phase 1 (combinational, from current state) of cycle `t`, then the
-    /// events of the cycle. Returns the events for the clock edge.
+    /// events of the cycle: the launch stage, the LDST stage, the cache's
+    /// replies. Returns the events for the clock edge.
     fn evaluate(&mut self, t: u64) -> EdgeEvents {
         self.cache.begin_cycle(t);
-        let mut row = CycleRow {
-            cycle: t,
-            block: None,
-            warp: None,
-            outcome: None,
-            blocked: false,
-            replies: Vec::new(),
-            mshrs_held: 0,
-            free_mshrs: self.sched.free_mshrs().free().get(),
-            nonblocked_priority: self.sched.nonblocked().count().get(),
-            real_free_mshrs: None,
-            launched: None,
+        let mut c = Cycle {
+            row: CycleRow {
+                cycle: t,
+                block: None,
+                warp: None,
+                outcome: None,
+                blocked: false,
+                replies: Vec::new(),
+                mshrs_held: 0,
+                free_mshrs: self.sched.free_mshrs().free().get(),
+                nonblocked_priority: self.sched.nonblocked().count().get(),
+                real_free_mshrs: None,
+                launched: None,
+            },
+            sig: CacheSignals::default(),
+            mshr: MshrEvents::default(),
+            prio: PriorityEvents::default(),
         };
-        let mut sig = CacheSignals::default();
-        let mut mshr = MshrEvents::default();
-        let mut prio = PriorityEvents::default();
+        self.launch_stage(&mut c);
+        self.ldst_stage(t, &mut c);
+        self.reply_stage(t, &mut c);
+        c.row.mshrs_held = self.cache.entries.len() as u32;
+        c.sig.mshr_occupancy = c.row.mshrs_held as u64;
+        self.signals = c.sig;
+        self.chrono.timeline.push(c.row);
+        if self.finished == WARPS {
+            self.done_at = Some(t);
+            self.chrono.cycles = t;
+        }
+        EdgeEvents {
+            mshr: c.mshr,
+            prio: c.prio,
+        }
+    }
 
-        // Launch stage: a warp enters the LDST register when it is empty.
+    /// Launch stage: a warp enters the LDST register when it is empty.
+    fn launch_stage(&mut self, c: &mut Cycle) {
         let launch = self.sched.launch(self.ldst.is_none());
         let decision = launch.decision;
-        row.real_free_mshrs = decision.datapath.map(|d| d.real_free.get());
+        c.row.real_free_mshrs = decision.datapath.map(|d| d.real_free.get());
         if decision.held && self.ldst.is_none() {
             self.chrono.held_cycles += 1;
         }
         if let Some((w, class)) = launch.warp {
             self.ldst = Some(w);
             self.chrono.launch_order.push(w);
-            row.launched = Some((
+            c.row.launched = Some((
                 w,
                 match class {
                     QueueClass::Priority => "priority".into(),
                     QueueClass::Regular => "regular".into(),
                 },
             ));
-            sig.launch_warp = w as u64;
+            c.sig.launch_warp = w as u64;
         }
+    }
 
-        // LDST stage: present the pending access.
-        if let Some(w) = self.ldst {
-            let block = block_of(w);
-            match self.cache.access(t, block, w) {
-                None => {
-                    row.blocked = true;
-                    sig.stall = true;
-                    self.chrono.stall_cycles += 1;
-                }
-                Some(o) => {
-                    self.ldst = None;
-                    row.block = Some(BLOCKS[block]);
-                    row.warp = Some(w);
-                    row.outcome = Some(o);
-                    sig.access_valid = true;
-                    sig.access_block = block as u64 + 1;
-                    sig.access_warp = w as u64;
-                    sig.access_outcome = o.code();
-                    let is_prio = self.priority[w as usize];
-                    match o {
-                        Outcome::Hit => {
-                            self.chrono.hits += 1;
-                            self.finished += 1;
-                            prio.finished += is_prio as u8;
-                        }
-                        Outcome::Miss => {
-                            self.chrono.misses += 1;
-                            mshr.allocs += 1;
-                            prio.blocked += is_prio as u8;
-                        }
-                        Outcome::Secondary => {
-                            self.chrono.secondary_misses += 1;
-                            prio.blocked += is_prio as u8;
-                        }
-                    }
-                }
+    /// LDST stage: present the pending access.
+    fn ldst_stage(&mut self, t: u64, c: &mut Cycle) {
+        let Some(w) = self.ldst else {
+            return;
+        };
+        let block = block_of(w);
+        let Some(o) = self.cache.access(t, block, w) else {
+            c.row.blocked = true;
+            c.sig.stall = true;
+            self.chrono.stall_cycles += 1;
+            return;
+        };
+        self.ldst = None;
+        c.row.block = Some(BLOCKS[block]);
+        c.row.warp = Some(w);
+        c.row.outcome = Some(o);
+        c.sig.access_valid = true;
+        c.sig.access_block = block as u64 + 1;
+        c.sig.access_warp = w as u64;
+        c.sig.access_outcome = o.code();
+        let is_prio = self.priority[w as usize];
+        match o {
+            Outcome::Hit => {
+                self.chrono.hits += 1;
+                self.finished += 1;
+                c.prio.finished += is_prio as u8;
+            }
+            Outcome::Miss => {
+                self.chrono.misses += 1;
+                c.mshr.allocs += 1;
+                c.prio.blocked += is_prio as u8;
+            }
+            Outcome::Secondary => {
+                self.chrono.secondary_misses += 1;
+                c.prio.blocked += is_prio as u8;
             }
         }
+    }
 
-        // Replies of this cycle complete their waiting warps.
+    /// Replies of this cycle complete their waiting warps.
+    fn reply_stage(&mut self, t: u64, c: &mut Cycle) {
         for (block, waiters) in self.cache.replies(t) {
-            mshr.replies += 1;
-            row.replies.push(BLOCKS[block]);
-            sig.reply_valid = true;
-            sig.reply_block = block as u64 + 1;
+            c.mshr.replies += 1;
+            c.row.replies.push(BLOCKS[block]);
+            c.sig.reply_valid = true;
+            c.sig.reply_block = block as u64 + 1;
             for w in waiters {
                 self.finished += 1;
                 if self.priority[w as usize] {
-                    prio.unblocked += 1;
-                    prio.finished += 1;
+                    c.prio.unblocked += 1;
+                    c.prio.finished += 1;
                 }
             }
         }
-
-        row.mshrs_held = self.cache.entries.len() as u32;
-        sig.mshr_occupancy = row.mshrs_held as u64;
-        self.signals = sig;
-        self.chrono.timeline.push(row);
-        if self.finished == WARPS {
-            self.done_at = Some(t);
-            self.chrono.cycles = t;
-        }
-        EdgeEvents { mshr, prio }
     }
+}
+
+/// What one cycle of the worked example records and signals, and its
+/// events for the clock edge.
+struct Cycle {
+    row: CycleRow,
+    sig: CacheSignals,
+    mshr: MshrEvents,
+    prio: PriorityEvents,
 }
 
 impl Traceable for Machine {

@@ -8,6 +8,7 @@ pub mod example;
 pub mod gpu;
 pub mod mem;
 pub mod overrides;
+pub mod param;
 /// The deterministic generator (in `wasp-trace`), under its old path.
 pub use wasp_trace::rng;
 pub mod run;

@@ -134,6 +134,7 @@ fn kind(v: &toml::Value) -> &'static str {
 mod tests {
     use super::*;
     use crate::mem::DramModel;
+    use wasp_rtl::policy::PolicySpec;
 
     fn sets(s: &[&str]) -> Vec<String> {
         s.iter().map(|x| x.to_string()).collect()
@@ -155,12 +156,12 @@ mod tests {
         .unwrap();
         assert_eq!(c.l0.as_ref().unwrap().mshrs, 20, "the later override wins");
         assert_eq!(c.dram.model, DramModel::Fixed);
-        assert_eq!(c.scheduler.policy, "wasp:6");
+        assert_eq!(c.scheduler.policy, PolicySpec::wasp(6));
         assert_eq!(c.name, "sweep");
         let mut expect = base.clone();
         expect.l0.as_mut().unwrap().mshrs = 20;
         expect.dram.model = DramModel::Fixed;
-        expect.scheduler.policy = "wasp:6".into();
+        expect.scheduler.policy = PolicySpec::wasp(6);
         expect.name = "sweep".into();
         assert_eq!(c, expect);
         assert_eq!(apply(&base, &[]).unwrap(), base);
@@ -197,7 +198,7 @@ mod tests {
     fn blocked_on_can_be_set() {
         let base = MachineConfig::paper();
         let c = apply(&base, &sets(&["scheduler.blocked_on=\"dram\""])).unwrap();
-        assert_eq!(c.scheduler.blocked_on, crate::mem::BlockedOn::Dram);
+        assert_eq!(c.scheduler.blocked_on, crate::config::BlockedOn::Dram);
     }
 
     #[test]

@@ -1,15 +1,138 @@
 //! One run from configuration and trace to report: the GPU ([`crate::gpu`])
-//! clocked to the end, its counters made into [`RunStats`]
-//! ([`RunStats::collect`]). The GPU itself knows nothing of the report, so
-//! the dependencies point one way: run -> stats -> gpu.
+//! clocked to the end by the one run loop ([`run`]), its counters made
+//! into [`RunStats`] ([`RunStats::collect`]). The GPU itself knows nothing
+//! of the report, so the dependencies point one way: run -> stats -> gpu.
 
-use crate::config::MachineConfig;
-use crate::gpu::Gpu;
-pub use crate::gpu::{RunOptions, SimError, WarpRecord};
+use crate::config::{Dispatch, MachineConfig};
+use crate::gpu::{CoreModel, Gpu, ShaderCore};
+pub use crate::gpu::{SimError, WarpRecord};
 use crate::stats::RunStats;
 use crate::timeline::Timeline;
 use crate::trace::Trace;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
+use wasp_rtl::subset::SubsetSpec;
 use wasp_waves::{CycleSink, NullTracer};
+
+/// Options of one run beyond the machine configuration: typed overrides
+/// of its fields, and what to record.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Override `scheduler.policy`.
+    pub policy: Option<PolicySpec>,
+    /// Override `scheduler.launch_rule`.
+    pub launch_rule: Option<LaunchRule>,
+    /// Override `scheduler.subset`.
+    pub subset: Option<SubsetSpec>,
+    /// Override `memory.ideal`.
+    pub ideal_memory: Option<bool>,
+    /// Sample the waveform only in `from..=to`.
+    pub vcd_window: Option<(u64, u64)>,
+    /// Record every warp (see [`WarpRecord`]).
+    pub record_warps: bool,
+    /// Override `raster.dispatch`.
+    pub dispatch: Option<Dispatch>,
+    /// Record a [`Timeline`] of the cycles `from..=to`.
+    pub timeline: Option<(u64, u64)>,
+}
+
+impl RunOptions {
+    /// The configuration with the overrides applied, validated.
+    pub fn apply(&self, cfg: &MachineConfig) -> Result<MachineConfig, SimError> {
+        let mut c = cfg.clone();
+        if let Some(p) = self.policy {
+            c.scheduler.policy = p;
+        }
+        if let Some(r) = self.launch_rule {
+            c.scheduler.launch_rule = r;
+        }
+        if let Some(s) = &self.subset {
+            c.scheduler.subset = s.clone();
+        }
+        if let Some(i) = self.ideal_memory {
+            c.memory.ideal = i;
+        }
+        if let Some(d) = self.dispatch {
+            c.raster.dispatch = d;
+        }
+        c.validate().map_err(SimError::Config)?;
+        Ok(c)
+    }
+}
+
+/// What one run produced.
+#[derive(Debug)]
+pub struct Run {
+    /// The statistics.
+    pub stats: RunStats,
+    /// The timeline of [`RunOptions::timeline`]'s window, if asked for.
+    pub timeline: Option<Timeline>,
+    /// One record per warp, ordered by tile and quad, if
+    /// [`RunOptions::record_warps`] asked for them.
+    pub warps: Vec<WarpRecord>,
+}
+
+/// The run loop: run `trace` on `cfg` with the overrides and recordings of
+/// `opts` to the end, sampling the waveform into `sink` (in
+/// `opts.vcd_window`, or every cycle). `progress` is called every 4096
+/// cycles and at the end with (tiles done, tiles total).
+pub fn run<S: CycleSink>(
+    cfg: &MachineConfig,
+    trace: &Trace,
+    opts: &RunOptions,
+    sink: Option<&mut S>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Run, SimError> {
+    run_on::<ShaderCore, S>(cfg, trace, opts, sink, progress)
+}
+
+/// [`run`] on a GPU of cores `C` (the lockstep tests run the plain twin).
+pub(crate) fn run_on<C: CoreModel, S: CycleSink>(
+    cfg: &MachineConfig,
+    trace: &Trace,
+    opts: &RunOptions,
+    mut sink: Option<&mut S>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Run, SimError> {
+    let cfg = opts.apply(cfg)?;
+    let mut gpu = Gpu::<C>::build(&cfg, trace)?;
+    if opts.record_warps {
+        gpu.record_warps();
+    }
+    let window_end = opts.timeline.map(|(from, to)| {
+        gpu.record_timeline(from, to);
+        to
+    });
+    let mut timeline = None;
+    let total = trace.tiles().len();
+    while !gpu.done() {
+        let next = gpu.cycle() + 1;
+        let sampled = opts
+            .vcd_window
+            .is_none_or(|(from, to)| (from..=to).contains(&next));
+        match sink.as_deref_mut() {
+            Some(s) if sampled => gpu.step_traced(Some(s))?,
+            _ => gpu.step()?,
+        }
+        if gpu.cycle().is_multiple_of(4096) {
+            progress(gpu.tiles_done(), total);
+        }
+        if timeline.is_none() && window_end.is_some_and(|to| gpu.cycle() > to) {
+            // The window is recorded; the rest of the run needs no samples.
+            timeline = gpu.take_timeline();
+        }
+    }
+    progress(gpu.tiles_done(), total);
+    if timeline.is_none() {
+        timeline = gpu.take_timeline();
+    }
+    let warps = gpu.take_records();
+    let stats = RunStats::collect(&cfg, trace, gpu.finish()?);
+    Ok(Run {
+        stats,
+        timeline,
+        warps,
+    })
+}
 
 /// Run `trace` on `cfg` with `opts`, no waveform.
 pub fn simulate(
@@ -18,9 +141,7 @@ pub fn simulate(
     opts: &RunOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<RunStats, SimError> {
-    let cfg = opts.apply(cfg)?;
-    let c = Gpu::new(&cfg, trace)?.run::<NullTracer>(None, None, progress)?;
-    Ok(RunStats::collect(&cfg, trace, c))
+    Ok(run(cfg, trace, opts, None::<&mut NullTracer>, progress)?.stats)
 }
 
 /// Run `trace` on `cfg` with `opts` and return the statistics with the
@@ -31,30 +152,12 @@ pub fn simulate_timeline(
     opts: &RunOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<(RunStats, Timeline), SimError> {
-    let cfg = opts.apply(cfg)?;
-    let mut gpu = Gpu::new(&cfg, trace)?;
-    let (from, to) = opts.timeline.unwrap_or((0, u64::MAX));
-    gpu.record_timeline(from, to);
-    let total = trace.tiles().len();
-    while !gpu.done() {
-        gpu.step()?;
-        if gpu.cycle() % 4096 == 0 {
-            progress(gpu.tiles_done(), total);
-        }
-        if gpu.cycle() > to {
-            // The window is recorded; the rest of the run needs no samples.
-            break;
-        }
-    }
-    let timeline = gpu.take_timeline().expect("recording");
-    while !gpu.done() {
-        gpu.step()?;
-        if gpu.cycle() % 4096 == 0 {
-            progress(gpu.tiles_done(), total);
-        }
-    }
-    progress(gpu.tiles_done(), total);
-    Ok((RunStats::collect(&cfg, trace, gpu.finish()?), timeline))
+    let opts = RunOptions {
+        timeline: Some(opts.timeline.unwrap_or((0, u64::MAX))),
+        ..opts.clone()
+    };
+    let r = run(cfg, trace, &opts, None::<&mut NullTracer>, progress)?;
+    Ok((r.stats, r.timeline.expect("recorded")))
 }
 
 /// Run `trace` on `cfg` with `opts` and return the statistics with one
@@ -65,23 +168,15 @@ pub fn simulate_recording(
     opts: &RunOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<(RunStats, Vec<WarpRecord>), SimError> {
-    let cfg = opts.apply(cfg)?;
-    let mut gpu = Gpu::new(&cfg, trace)?;
-    gpu.record_warps();
-    let total = trace.tiles().len();
-    while !gpu.done() {
-        gpu.step()?;
-        if gpu.cycle() % 4096 == 0 {
-            progress(gpu.tiles_done(), total);
-        }
-    }
-    progress(gpu.tiles_done(), total);
-    let records = gpu.take_records();
-    Ok((RunStats::collect(&cfg, trace, gpu.finish()?), records))
+    let opts = RunOptions {
+        record_warps: true,
+        ..opts.clone()
+    };
+    let r = run(cfg, trace, &opts, None::<&mut NullTracer>, progress)?;
+    Ok((r.stats, r.warps))
 }
 
 /// Run `trace` on `cfg` with `opts`, sampling the waveform into `sink`.
-/// Returns the statistics and the last cycle.
 pub fn simulate_traced<S: CycleSink>(
     cfg: &MachineConfig,
     trace: &Trace,
@@ -89,9 +184,7 @@ pub fn simulate_traced<S: CycleSink>(
     sink: &mut S,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<RunStats, SimError> {
-    let cfg = opts.apply(cfg)?;
-    let c = Gpu::new(&cfg, trace)?.run(Some(sink), opts.vcd_window, progress)?;
-    Ok(RunStats::collect(&cfg, trace, c))
+    Ok(run(cfg, trace, opts, Some(sink), progress)?.stats)
 }
 
 #[cfg(test)]

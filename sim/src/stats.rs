@@ -9,10 +9,9 @@
 
 use crate::config::MachineConfig;
 use crate::gpu::{CoreStats, LeadStats, RasterStats, RunCounters, TileRecord, TileTimingStats};
-use crate::mem::CacheStats;
+use crate::mem::{CacheStats, MemStats};
 use crate::trace::{mean_footprint_ratio, Trace};
 use serde::Serialize;
-use std::fmt::Write as _;
 
 mod prefetch;
 pub use prefetch::PrefetchReport;
@@ -84,6 +83,32 @@ pub struct DramSummary {
     pub bus_utilization: f64,
 }
 
+impl DramSummary {
+    fn of(cfg: &MachineConfig, mem: &MemStats, cycles: u64) -> Self {
+        let d = &mem.dram;
+        DramSummary {
+            requests: d.requests,
+            row_hits: d.row_hits,
+            row_misses: d.row_misses,
+            avg_latency: d.avg_latency(),
+            avg_queue_wait: if d.requests == 0 {
+                0.0
+            } else {
+                d.queue_wait_sum as f64 / d.requests as f64
+            },
+            max_queue: d.max_queue,
+            writes: d.writes,
+            row_conflicts: d.row_conflicts,
+            activates: d.activates,
+            bus_utilization: if cfg.dram.model == crate::mem::DramModel::Banked {
+                d.bus_busy_cycles as f64 / (cycles.max(1) * u64::from(cfg.dram.channels)) as f64
+            } else {
+                0.0
+            },
+        }
+    }
+}
+
 /// Average memory latency per warp: the mean over warps of each warp's mean
 /// texture-instruction latency (cycles from entering the LDST queue to the
 /// last block's arrival).
@@ -95,6 +120,24 @@ pub struct LatencyStats {
     pub priority: f64,
     /// Regular warps.
     pub regular: f64,
+}
+
+impl LatencyStats {
+    fn of(cores: &[CoreStats]) -> Self {
+        let lat = |i: usize| -> (f64, u64) {
+            (
+                cores.iter().map(|c| c.warp_latency_sum[i]).sum(),
+                cores.iter().map(|c| c.warps_with_tex[i]).sum(),
+            )
+        };
+        let (rs, rn) = lat(0);
+        let (ps, pn) = lat(1);
+        LatencyStats {
+            all: mean(rs + ps, rn + pn),
+            priority: mean(ps, pn),
+            regular: mean(rs, rn),
+        }
+    }
 }
 
 /// Blocked episodes: texture instructions whose warp became blocked (the
@@ -114,6 +157,20 @@ pub struct BlockedStats {
     pub priority_mean_cycles: f64,
 }
 
+impl BlockedStats {
+    fn of(cores: &[CoreStats], tex_instructions: u64) -> Self {
+        let ep = |i: usize| total(cores, |c| c.blocked_episodes[i]);
+        let cy = |i: usize| total(cores, |c| c.blocked_cycles[i]) as f64;
+        BlockedStats {
+            episodes: ep(0) + ep(1),
+            priority_episodes: ep(1),
+            episode_share: mean((ep(0) + ep(1)) as f64, tex_instructions),
+            mean_cycles: mean(cy(0) + cy(1), ep(0) + ep(1)),
+            priority_mean_cycles: mean(cy(1), ep(1)),
+        }
+    }
+}
+
 /// The priority subset and what it covers.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SubsetStats {
@@ -126,6 +183,25 @@ pub struct SubsetStats {
     pub texture_footprint_ratio: f64,
     /// Priority warps launched.
     pub priority_warps: u64,
+}
+
+impl SubsetStats {
+    fn of(cfg: &MachineConfig, trace: &Trace, cores: &[CoreStats]) -> Self {
+        let spec = &cfg.scheduler.subset;
+        let side = cfg.quads_per_side();
+        let subset = spec.build(side);
+        let uses_priority = cfg.scheduler.policy != wasp_rtl::policy::PolicySpec::Baseline;
+        SubsetStats {
+            subset: if uses_priority {
+                spec.to_string()
+            } else {
+                format!("{spec} (unused by the baseline)")
+            },
+            subset_size_ratio: subset.size_ratio(side),
+            texture_footprint_ratio: mean_footprint_ratio(trace, |x, y| subset.is_priority(x, y)),
+            priority_warps: total(cores, |c| c.priority_launches),
+        }
+    }
 }
 
 /// Energy by the event-energy model, in nanojoules.
@@ -147,6 +223,54 @@ pub struct EnergyStats {
     pub static_nj: f64,
     /// Everything.
     pub total_nj: f64,
+}
+
+impl EnergyStats {
+    /// The energy of a run of `cycles` on `cores` cores with
+    /// `instructions` warp instructions, `tex` of them texture ones.
+    fn of(
+        cfg: &MachineConfig,
+        mem: &MemStats,
+        cores: u64,
+        instructions: u64,
+        tex: u64,
+        cycles: u64,
+    ) -> Self {
+        let e = &cfg.energy;
+        let alu_instr = instructions - tex;
+        let l0_acc = mem.l0.map(|s| s.accesses).unwrap_or(0);
+        let alu_nj = alu_instr as f64 * e.alu_instruction_pj / 1000.0;
+        let texture_nj = tex as f64 * e.texture_instruction_pj / 1000.0;
+        let l0_nj = l0_acc as f64 * e.l0_access_pj / 1000.0;
+        // Prefetch lookups read the L1's tags like any access.
+        let l1_nj = (mem.l1.accesses + mem.prefetch.queue.issued) as f64 * e.l1_access_pj / 1000.0;
+        let l2_nj = mem.l2.accesses as f64 * e.l2_access_pj / 1000.0;
+        // Writes (the colour-buffer flush) cost like reads: a row hit's
+        // transfer, plus activation for those that opened their row.
+        let dram_hits = mem.dram.row_hits + (mem.dram.writes - mem.dram.write_row_misses);
+        let dram_misses = mem.dram.row_misses + mem.dram.write_row_misses;
+        let dram_nj = if cfg.memory.ideal {
+            0.0
+        } else {
+            (dram_hits as f64 * e.dram_row_hit_pj + dram_misses as f64 * e.dram_row_miss_pj)
+                / 1000.0
+        };
+        // mW x seconds = mJ; cycles / (MHz x 1e6) seconds; in nJ: x 1e6.
+        let seconds = cycles as f64 / (cfg.gpu.frequency_mhz as f64 * 1e6);
+        let static_nj =
+            (e.core_static_mw * cores as f64 + e.uncore_static_mw) * 1e-3 * seconds * 1e9;
+        let total_nj = alu_nj + texture_nj + l0_nj + l1_nj + l2_nj + dram_nj + static_nj;
+        EnergyStats {
+            alu_nj,
+            texture_nj,
+            l0_nj,
+            l1_nj,
+            l2_nj,
+            dram_nj,
+            static_nj,
+            total_nj,
+        }
+    }
 }
 
 /// Occupancy: warps resident per core per cycle.
@@ -243,6 +367,26 @@ pub struct FilterStats {
     pub wait_cycles: u64,
     /// wait_cycles / texture instructions.
     pub avg_wait: f64,
+}
+
+impl FilterStats {
+    fn of(cfg: &MachineConfig, cores: &[CoreStats], cycles: u64) -> Self {
+        let tex = total(cores, |c| c.tex_instructions);
+        let tri = total(cores, |c| c.tri_tex_instructions);
+        let busy = total(cores, |c| c.filter_busy_cycles);
+        let wait = total(cores, |c| c.filter_wait_cycles);
+        FilterStats {
+            cycles_bilinear: cfg.core.filter_cycles_bilinear,
+            cycles_trilinear: cfg.core.filter_cycles_trilinear,
+            timing: cfg.core.filter_timing.to_string(),
+            trilinear_instructions: tri,
+            trilinear_share: mean(tri as f64, tex),
+            busy_cycles: busy,
+            busy_fraction: mean(busy as f64, cycles * cores.len() as u64),
+            wait_cycles: wait,
+            avg_wait: mean(wait as f64, tex),
+        }
+    }
 }
 
 /// How the launch policy's gate chose between the two FIFOs, over the
@@ -376,6 +520,11 @@ fn is_default_issue(issue: &str) -> bool {
     issue == crate::config::IssueOrder::default().to_string()
 }
 
+/// A counter summed over the cores.
+fn total(cores: &[CoreStats], f: impl Fn(&CoreStats) -> u64) -> u64 {
+    cores.iter().map(f).sum()
+}
+
 fn mean(sum: f64, n: u64) -> f64 {
     if n == 0 {
         0.0
@@ -395,159 +544,55 @@ impl RunStats {
         } = counters;
         let (cores, mem) = (&cores[..], &mem);
         let n = cores.len() as u64;
-        let sum = |f: &dyn Fn(&CoreStats) -> u64| cores.iter().map(f).sum::<u64>();
-        let instructions = sum(&|c| c.instructions);
-        let tex = sum(&|c| c.tex_instructions);
-        let tri = sum(&|c| c.tri_tex_instructions);
-        let filter_busy = sum(&|c| c.filter_busy_cycles);
-        let filter_wait = sum(&|c| c.filter_wait_cycles);
-        let lat = |i: usize| -> (f64, u64) {
-            (
-                cores.iter().map(|c| c.warp_latency_sum[i]).sum(),
-                cores.iter().map(|c| c.warps_with_tex[i]).sum(),
-            )
-        };
-        let (rs, rn) = lat(0);
-        let (ps, pn) = lat(1);
+        let sum = |f: fn(&CoreStats) -> u64| total(cores, f);
+        let instructions = sum(|c| c.instructions);
+        let tex = sum(|c| c.tex_instructions);
         let ts = trace.stats();
-        let subset_spec = cfg.subset().expect("validated");
-        let side = cfg.quads_per_side();
-        let subset = subset_spec.build(side);
-        let uses_priority = cfg
-            .policy()
-            .map(|p| p != wasp_rtl::policy::PolicySpec::Baseline)
-            .unwrap_or(true);
-        let footprint = mean_footprint_ratio(trace, |x, y| subset.is_priority(x, y));
-        let e = &cfg.energy;
-        let alu_instr = instructions - tex;
-        let l0_acc = mem.l0.map(|s| s.accesses).unwrap_or(0);
-        let alu_nj = alu_instr as f64 * e.alu_instruction_pj / 1000.0;
-        let texture_nj = tex as f64 * e.texture_instruction_pj / 1000.0;
-        let l0_nj = l0_acc as f64 * e.l0_access_pj / 1000.0;
-        // Prefetch lookups read the L1's tags like any access.
-        let l1_nj = (mem.l1.accesses + mem.prefetch.queue.issued) as f64 * e.l1_access_pj / 1000.0;
-        let l2_nj = mem.l2.accesses as f64 * e.l2_access_pj / 1000.0;
-        // Writes (the colour-buffer flush) cost like reads: a row hit's
-        // transfer, plus activation for those that opened their row.
-        let dram_hits = mem.dram.row_hits + (mem.dram.writes - mem.dram.write_row_misses);
-        let dram_misses = mem.dram.row_misses + mem.dram.write_row_misses;
-        let dram_nj = if cfg.memory.ideal {
-            0.0
-        } else {
-            (dram_hits as f64 * e.dram_row_hit_pj + dram_misses as f64 * e.dram_row_miss_pj)
-                / 1000.0
-        };
-        // mW x seconds = mJ; cycles / (MHz x 1e6) seconds; in nJ: x 1e6.
-        let seconds = cycles as f64 / (cfg.gpu.frequency_mhz as f64 * 1e6);
-        let static_nj = (e.core_static_mw * n as f64 + e.uncore_static_mw) * 1e-3 * seconds * 1e9;
-        let total_nj = alu_nj + texture_nj + l0_nj + l1_nj + l2_nj + dram_nj + static_nj;
+        let sched = &cfg.scheduler;
         RunStats {
             machine: cfg.name.clone(),
             workload: trace.header().workload.clone(),
-            policy: cfg.scheduler.policy.clone(),
-            launch_rule: cfg.scheduler.launch_rule.clone(),
+            policy: sched.policy.to_string(),
+            launch_rule: sched.launch_rule.to_string(),
             dispatch: cfg.raster.dispatch.to_string(),
-            core_map: cfg.raster.core_map.clone(),
+            core_map: cfg.raster.core_map.to_string(),
             color_flush: cfg.raster.color_flush.to_string(),
             dram_model: cfg.dram.describe(),
             ideal_memory: cfg.memory.ideal,
-            blocked_on: cfg.scheduler.blocked_on.to_string(),
+            blocked_on: sched.blocked_on.to_string(),
             issue: cfg.core.issue.to_string(),
             cycles,
             ipc: instructions as f64 / cycles.max(1) as f64,
-            warps: sum(&|c| c.warps_finished),
+            warps: sum(|c| c.warps_finished),
             instructions,
             tex_instructions: tex,
-            filter: FilterStats {
-                cycles_bilinear: cfg.core.filter_cycles_bilinear,
-                cycles_trilinear: cfg.core.filter_cycles_trilinear,
-                timing: cfg.core.filter_timing.to_string(),
-                trilinear_instructions: tri,
-                trilinear_share: mean(tri as f64, tex),
-                busy_cycles: filter_busy,
-                busy_fraction: mean(filter_busy as f64, cycles * n),
-                wait_cycles: filter_wait,
-                avg_wait: mean(filter_wait as f64, tex),
-            },
+            filter: FilterStats::of(cfg, cores, cycles),
             tiles: inst.tiles,
             l0: mem.l0.as_ref().map(|s| LevelStats::of(s, n, cycles)),
             l1: LevelStats::of(&mem.l1, n, cycles),
             l2: LevelStats::of(&mem.l2, 1, cycles),
-            dram: DramSummary {
-                requests: mem.dram.requests,
-                row_hits: mem.dram.row_hits,
-                row_misses: mem.dram.row_misses,
-                avg_latency: mem.dram.avg_latency(),
-                avg_queue_wait: if mem.dram.requests == 0 {
-                    0.0
-                } else {
-                    mem.dram.queue_wait_sum as f64 / mem.dram.requests as f64
-                },
-                max_queue: mem.dram.max_queue,
-                writes: mem.dram.writes,
-                row_conflicts: mem.dram.row_conflicts,
-                activates: mem.dram.activates,
-                bus_utilization: if cfg.dram.model == crate::mem::DramModel::Banked {
-                    mem.dram.bus_busy_cycles as f64
-                        / (cycles.max(1) * u64::from(cfg.dram.channels)) as f64
-                } else {
-                    0.0
-                },
-            },
-            memory_latency: LatencyStats {
-                all: mean(rs + ps, rn + pn),
-                priority: mean(ps, pn),
-                regular: mean(rs, rn),
-            },
-            avg_warps_per_core: sum(&|c| c.occupancy_sum) as f64
-                / (cycles.max(1) * n.max(1)) as f64,
+            dram: DramSummary::of(cfg, mem, cycles),
+            memory_latency: LatencyStats::of(cores),
+            avg_warps_per_core: sum(|c| c.occupancy_sum) as f64 / (cycles.max(1) * n.max(1)) as f64,
             occupancy: OccupancyStats::of(cores, cfg.core.max_warps),
             raster: inst.raster,
             priority_lead: inst.priority_lead,
             tile_timing: inst.tile_timing,
-            held_cycles: sum(&|c| c.held_cycles),
+            held_cycles: sum(|c| c.held_cycles),
             held_cycles_per_core: cores.iter().map(|c| c.held_cycles).collect(),
-            gate: GateStats::new(sum(&|c| c.both_waiting), sum(&|c| c.regular_first)),
+            gate: GateStats::new(sum(|c| c.both_waiting), sum(|c| c.regular_first)),
             measured_cf_mean: {
-                let n = sum(&|c| c.cf_samples);
-                (n > 0).then(|| sum(&|c| c.cf_quarters_sum) as f64 / 4.0 / n as f64)
+                let samples = sum(|c| c.cf_samples);
+                (samples > 0).then(|| sum(|c| c.cf_quarters_sum) as f64 / 4.0 / samples as f64)
             },
-            blocked: {
-                let ep = |i: usize| sum(&|c| c.blocked_episodes[i]);
-                let cy = |i: usize| sum(&|c| c.blocked_cycles[i]) as f64;
-                BlockedStats {
-                    episodes: ep(0) + ep(1),
-                    priority_episodes: ep(1),
-                    episode_share: mean((ep(0) + ep(1)) as f64, tex),
-                    mean_cycles: mean(cy(0) + cy(1), ep(0) + ep(1)),
-                    priority_mean_cycles: mean(cy(1), ep(1)),
-                }
-            },
-            subset: SubsetStats {
-                subset: if uses_priority {
-                    subset_spec.to_string()
-                } else {
-                    format!("{subset_spec} (unused by the baseline)")
-                },
-                subset_size_ratio: subset.size_ratio(side),
-                texture_footprint_ratio: footprint,
-                priority_warps: sum(&|c| c.priority_launches),
-            },
+            blocked: BlockedStats::of(cores, tex),
+            subset: SubsetStats::of(cfg, trace, cores),
             mem_instr_ratio: ts.mem_instr_ratio,
             min_estimate1: ts.min_estimate1,
             cf: ts.cf,
             min_estimate2: ts.min_estimate2,
             block_reuse: ts.reuse,
-            energy: EnergyStats {
-                alu_nj,
-                texture_nj,
-                l0_nj,
-                l1_nj,
-                l2_nj,
-                dram_nj,
-                static_nj,
-                total_nj,
-            },
+            energy: EnergyStats::of(cfg, mem, n, instructions, tex, cycles),
             prefetch: PrefetchReport::of(cfg, &mem.prefetch),
             per_tile: inst.per_tile,
         }
@@ -557,264 +602,8 @@ impl RunStats {
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("stats serialize") + "\n"
     }
-
-    /// Flat `key,value` CSV rows (nested names joined with `.`; a list of
-    /// numbers, such as a histogram, is one field of values joined by `;`,
-    /// a list of records or lists is numbered:
-    /// `priority_lead.histogram.3.count`, `occupancy.per_core_histogram.2`).
-    /// The per-tile records are left out: they are in the JSON.
-    pub fn to_csv_rows(&self) -> Vec<(String, String)> {
-        let mut v = serde_json::to_value(self).expect("stats serialize");
-        if let Some(m) = v.as_object_mut() {
-            m.remove("per_tile");
-        }
-        let mut rows = Vec::new();
-        flatten("", &v, &mut rows);
-        rows
-    }
-
-    /// CSV with a header line and one line of values (several runs can be
-    /// joined under one header with [`csv_table`]).
-    pub fn to_csv(&self) -> String {
-        csv_table(std::slice::from_ref(self))
-    }
-
-    /// A readable table.
-    pub fn to_table(&self) -> String {
-        let mut s = String::new();
-        let _ = writeln!(s, "machine {}  |  workload {}", self.machine, self.workload);
-        let _ = write!(
-            s,
-            "policy {}  launch rule {}  subset {}  ideal memory {}",
-            self.policy, self.launch_rule, self.subset.subset, self.ideal_memory
-        );
-        if !is_default_issue(&self.issue) {
-            let _ = write!(s, "  issue {}", self.issue);
-        }
-        s.push('\n');
-        let _ = writeln!(
-            s,
-            "dispatch {}  core map {}  colour flush {}  dram {}",
-            self.dispatch, self.core_map, self.color_flush, self.dram_model
-        );
-        let _ = writeln!(
-            s,
-            "cycles {}  ipc {:.3}  warps {}  instructions {} ({} texture)  tiles {}",
-            self.cycles, self.ipc, self.warps, self.instructions, self.tex_instructions, self.tiles
-        );
-        let f = &self.filter;
-        let _ = writeln!(
-            s,
-            "filter {}/{} cycles ({})  trilinear {} ({:.1}%)  busy {:.2}%  wait {:.2} cycles/instr",
-            f.cycles_bilinear,
-            f.cycles_trilinear,
-            f.timing,
-            f.trilinear_instructions,
-            100.0 * f.trilinear_share,
-            100.0 * f.busy_fraction,
-            f.avg_wait
-        );
-        let _ = writeln!(
-            s,
-            "{:<6}{:>12}{:>12}{:>10}{:>12}{:>10}{:>9}{:>13}",
-            "level", "accesses", "hits", "misses", "secondary", "stalls", "stall%", "outstanding"
-        );
-        let mut level = |name: &str, l: &LevelStats| {
-            let _ = writeln!(
-                s,
-                "{:<6}{:>12}{:>12}{:>10}{:>12}{:>10}{:>8.2}%{:>13.2}",
-                name,
-                l.accesses,
-                l.hits,
-                l.misses,
-                l.secondary_misses,
-                l.stall_cycles,
-                100.0 * l.stall_fraction,
-                l.avg_outstanding_misses
-            );
-        };
-        if let Some(l0) = &self.l0 {
-            level("l0", l0);
-        }
-        level("l1", &self.l1);
-        level("l2", &self.l2);
-        let _ = writeln!(
-            s,
-            "dram requests {} (row hits {}, row misses {}), avg latency {:.1} cycles",
-            self.dram.requests, self.dram.row_hits, self.dram.row_misses, self.dram.avg_latency
-        );
-        let _ = writeln!(
-            s,
-            "memory latency per warp: all {:.1}, priority {:.1}, regular {:.1} cycles",
-            self.memory_latency.all, self.memory_latency.priority, self.memory_latency.regular
-        );
-        let _ = writeln!(
-            s,
-            "warps per core {:.1} of {} (below 25%: {:.1}% of core-cycles, below 50%: {:.1}%); priority warps {}",
-            self.avg_warps_per_core,
-            self.occupancy.max_warps,
-            100.0 * self.occupancy.below_quarter,
-            100.0 * self.occupancy.below_half,
-            self.subset.priority_warps,
-        );
-        let per_core: Vec<String> = self
-            .held_cycles_per_core
-            .iter()
-            .map(u64::to_string)
-            .collect();
-        let _ = writeln!(
-            s,
-            "hold idle core-cycles {} (per core {}): a free slot, a priority warp waiting, nothing launched",
-            self.held_cycles,
-            per_core.join(" ")
-        );
-        let _ = writeln!(
-            s,
-            "gate: {} launches with both FIFOs waiting, {} of them regular ({:.1}%: the priority warp waited)",
-            self.gate.both_waiting,
-            self.gate.regular_first,
-            100.0 * self.gate.closed_share
-        );
-        let b = &self.blocked;
-        let _ = writeln!(
-            s,
-            "blocked on {}: {} episodes ({:.1}% of texture instructions; {} of priority warps), mean {:.1} cycles (priority {:.1})",
-            self.blocked_on,
-            b.episodes,
-            100.0 * b.episode_share,
-            b.priority_episodes,
-            b.mean_cycles,
-            b.priority_mean_cycles
-        );
-        let r = &self.raster;
-        let _ = writeln!(
-            s,
-            "raster: {} quads ({} rejected by Early-Z), back-pressure {} cycles, barrier wait {} cycles, {} colour lines flushed",
-            r.quads_rasterized, r.quads_rejected, r.backpressure_cycles, r.barrier_cycles, r.flush_lines
-        );
-        if let Some(p) = &self.prefetch {
-            p.table_lines(&mut s);
-        }
-        let t = &self.tile_timing;
-        let _ = writeln!(
-            s,
-            "tiles: {:.0} cycles each on average, fill {:.0} ({:.1}%), drain {:.0} ({:.1}%), {:.0} primary misses",
-            t.mean_cycles,
-            t.mean_fill,
-            100.0 * t.fill_share,
-            t.mean_drain,
-            100.0 * t.drain_share,
-            t.mean_primary_misses
-        );
-        let l = &self.priority_lead;
-        if l.priority_warps > 0 {
-            let _ = writeln!(
-                s,
-                "priority lead: mean {:+.1} positions, {:.1}% ahead, {:.1}% after a regular warp of their subtile",
-                l.mean,
-                100.0 * l.ahead_share,
-                100.0 * l.after_subtile_regular_share
-            );
-        }
-        let _ = writeln!(
-            s,
-            "subset size ratio {:.4}, texture footprint ratio {:.3}",
-            self.subset.subset_size_ratio, self.subset.texture_footprint_ratio
-        );
-        let _ = writeln!(
-            s,
-            "workload: mem-instr ratio {:.3}, block reuse {:.1}, CF {:.2}, Min_Estimate1 {:.3}, Min_Estimate2 {:.3}",
-            self.mem_instr_ratio, self.block_reuse, self.cf, self.min_estimate1, self.min_estimate2
-        );
-        let e = &self.energy;
-        let _ = writeln!(
-            s,
-            "energy {:.1} uJ (alu {:.1}, texture {:.1}, l0 {:.1}, l1 {:.1}, l2 {:.1}, dram {:.1}, static {:.1})",
-            e.total_nj / 1000.0,
-            e.alu_nj / 1000.0,
-            e.texture_nj / 1000.0,
-            e.l0_nj / 1000.0,
-            e.l1_nj / 1000.0,
-            e.l2_nj / 1000.0,
-            e.dram_nj / 1000.0,
-            e.static_nj / 1000.0
-        );
-        s
-    }
 }
 
-/// Flatten a JSON value into `key,value` CSV fields under `prefix`: nested
-/// names joined with `.`, a list of plain values one field joined by `;`, a
-/// list of records or lists numbered (the rows of [`RunStats::to_csv_rows`]).
-pub fn flatten(prefix: &str, v: &serde_json::Value, out: &mut Vec<(String, String)>) {
-    match v {
-        serde_json::Value::Object(m) => {
-            for (k, x) in m {
-                let key = if prefix.is_empty() {
-                    k.clone()
-                } else {
-                    format!("{prefix}.{k}")
-                };
-                flatten(&key, x, out);
-            }
-        }
-        serde_json::Value::Null => out.push((prefix.to_string(), String::new())),
-        serde_json::Value::String(s) => out.push((prefix.to_string(), csv_field(s))),
-        serde_json::Value::Array(items)
-            if items.iter().all(|x| !x.is_object() && !x.is_array()) =>
-        {
-            let joined: Vec<String> = items.iter().map(|x| x.to_string()).collect();
-            out.push((prefix.to_string(), csv_field(&joined.join(";"))));
-        }
-        serde_json::Value::Array(items) => {
-            for (i, x) in items.iter().enumerate() {
-                flatten(&format!("{prefix}.{i}"), x, out);
-            }
-        }
-        other => out.push((prefix.to_string(), other.to_string())),
-    }
-}
-
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
-}
-
-/// Several runs as one CSV table: the header holds the first run's fields,
-/// then those of later runs that it lacks (such as `issue`, which only a
-/// run off the default order has), in order of appearance; a run without
-/// a field leaves it empty.
-pub fn csv_table(runs: &[RunStats]) -> String {
-    let mut s = String::new();
-    let all: Vec<Vec<(String, String)>> = runs.iter().map(RunStats::to_csv_rows).collect();
-    let mut header: Vec<String> = Vec::new();
-    for rows in &all {
-        for (k, _) in rows {
-            if !header.contains(k) {
-                header.push(k.clone());
-            }
-        }
-    }
-    if all.is_empty() {
-        return s;
-    }
-    s.push_str(&header.join(","));
-    s.push('\n');
-    for rows in &all {
-        let vals: Vec<String> = header
-            .iter()
-            .map(|k| {
-                rows.iter()
-                    .find(|(rk, _)| rk == k)
-                    .map(|(_, v)| v.clone())
-                    .unwrap_or_default()
-            })
-            .collect();
-        s.push_str(&vals.join(","));
-        s.push('\n');
-    }
-    s
-}
+mod csv;
+mod table;
+pub use csv::{csv_table, flatten};

@@ -16,6 +16,7 @@ mod contrary;
 pub mod draw;
 pub mod figures;
 pub mod headline;
+pub mod map;
 pub mod paper;
 pub mod plan;
 pub mod prose;
@@ -34,11 +35,12 @@ use wasp_sim::config::Dispatch;
 /// Options of `wasp reproduce`.
 #[derive(Args, Debug, Clone)]
 pub struct ReproduceArgs {
-    /// A first look in under a minute with the game data cached (on a
+    /// A first look in about a minute with the game data cached (on a
     /// 2-core machine; the first run also downloads the games' data, about
-    /// 835 MB): the fastest scene of each game, the heuristics, ideal
+    /// 835 MB): the smallest scene of each game, the heuristics, ideal
     /// memory, the meshes, four thresholds, width 4 at 32/48/64 warps and
-    /// one timeline, on the first machine of --machines only.
+    /// one timeline on the first machine of --machines only, and the map
+    /// over warps per core and L0 MSHRs (on the shared-tile machine).
     #[arg(long)]
     pub quick: bool,
 
@@ -69,6 +71,14 @@ pub struct ReproduceArgs {
     /// closing summary); warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
+
+    /// Write the map "What decides WaSP's gain" as sweep files into DIR
+    /// (map-policies.toml, map-bounds.toml, map-deep-queue.toml) and run
+    /// nothing: run them with `wasp sweep FILE --out OUT` (or one job per
+    /// point with --jobs-file), then `wasp reproduce --out OUT` finds those
+    /// points done (docs/reproduce.md).
+    #[arg(long, value_name = "DIR")]
+    pub sweep_files: Option<PathBuf>,
 }
 
 /// Which machines a reproduction runs.
@@ -104,6 +114,9 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     };
     let defs = chosen_scenes(args.scenes.as_deref())?;
     let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
+    if let (Some(dir), Some(map)) = (&args.sweep_files, &plan.map) {
+        return write_sweep_files(dir, map, &plan, args.quiet);
+    }
     let cache = Cache::open(&args.out).map_err(CliError::failed)?;
     let figures = args.out.join("figures");
     std::fs::create_dir_all(&figures)
@@ -119,6 +132,12 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
             jobs,
             args.out.display()
         );
+        if let Some(map) = &plan.map {
+            eprintln!(
+                "wasp: including {}",
+                map::report::plan_text(map, plan.scenes.len())
+            );
+        }
     }
     crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
     let opts = RunnerOptions {
@@ -128,9 +147,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         label: "reproducing".into(),
         scenes: defs.clone(),
     };
-    let outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let cells = map::run_grid(&plan, &mut outcome, &cache, &opts).map_err(CliError::failed)?;
     let command = command(args, def::scenes_dir().as_deref());
-    let written = report::write(&plan, &outcome, &args.out, &command).map_err(CliError::failed)?;
+    let written =
+        report::write(&plan, &outcome, &cells, &args.out, &command).map_err(CliError::failed)?;
     if !args.quiet {
         eprintln!("wasp: {}", outcome.summary());
         eprintln!("wasp: wrote {}", written.display());
@@ -209,6 +230,26 @@ pub fn command(args: &ReproduceArgs, scenes_dir: Option<&Path>) -> report::Comma
     }
 }
 
+/// `--sweep-files DIR`: the map's sweep files.
+fn write_sweep_files(
+    dir: &Path,
+    map: &map::plan::MapPlan,
+    plan: &Plan,
+    quiet: bool,
+) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", dir.display())))?;
+    let scenes: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
+    for (name, text) in map::sweeps::files(map, &scenes) {
+        let path = dir.join(name);
+        crate::study::cache::write_atomic(&path, &text).map_err(CliError::failed)?;
+        if !quiet {
+            eprintln!("wasp: wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -223,6 +264,7 @@ mod tests {
             scene_defs: Default::default(),
             jobs: Some(3),
             quiet: true,
+            sweep_files: None,
         };
         let c = command(&args, None);
         assert_eq!(

@@ -517,7 +517,7 @@ set = ["l0.mshrs=8"]
             )
         );
         assert_eq!(pts[11].machine.l0.as_ref().map(|l| l.mshrs), Some(8));
-        assert_eq!(pts[11].machine.scheduler.policy, "wasp:0:3");
+        assert_eq!(pts[11].machine.scheduler.policy.to_string(), "wasp:0:3");
         assert_eq!(
             pts[11].describe(),
             "procedural-plane, config l0-8, per-core-tile, wasp:0:3"
@@ -695,7 +695,7 @@ set = ["l0.mshrs=8"]
         assert!(base.is_absolute() && base.ends_with("m.toml"), "{base:?}");
         assert_eq!(*s.points().unwrap()[0].machine, {
             let mut c = MachineConfig::paper();
-            c.scheduler.policy = "baseline".into();
+            c.scheduler.policy = wasp_rtl::policy::PolicySpec::Baseline;
             c
         });
         let _ = std::fs::remove_dir_all(&d);

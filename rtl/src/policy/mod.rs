@@ -56,8 +56,10 @@ pub struct LaunchView {
 /// is there to launch instead: [`LaunchRule::Hold`]. [`LaunchRule::Launch`]
 /// is the work-conserving alternative (wasp): the core never idles while a
 /// warp waits and it has a free slot.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(try_from = "String", into = "String")]
 pub enum LaunchRule {
     /// Launch nothing (the paper's rule).
     #[default]
@@ -95,6 +97,20 @@ impl FromStr for LaunchRule {
                 "unknown launch rule `{s}` (expected hold or launch)"
             )),
         }
+    }
+}
+
+/// Read from its name in a config file: the error names the allowed forms.
+impl TryFrom<String> for LaunchRule {
+    type Error = String;
+    fn try_from(s: String) -> Result<Self, String> {
+        s.parse()
+    }
+}
+
+impl From<LaunchRule> for String {
+    fn from(r: LaunchRule) -> String {
+        r.to_string()
     }
 }
 
@@ -191,8 +207,10 @@ impl dyn LaunchPolicy + '_ {
     }
 }
 
-/// A policy named on the command line or in a config file.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A policy named on the command line or in a config file (where it is
+/// written as its name, `wasp:0:3`).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "String", into = "String")]
 pub enum PolicySpec {
     /// Scanline order: one FIFO, no priority warps.
     Baseline,
@@ -319,6 +337,20 @@ impl FromStr for PolicySpec {
                 "unknown policy `{s}` (expected baseline, fullpriority, freemshr:N, wasp[:threshold[:cf]], wasp-m[:threshold])"
             )),
         }
+    }
+}
+
+/// Read from its name in a config file: the error names the allowed forms.
+impl TryFrom<String> for PolicySpec {
+    type Error = String;
+    fn try_from(s: String) -> Result<Self, String> {
+        s.parse()
+    }
+}
+
+impl From<PolicySpec> for String {
+    fn from(p: PolicySpec) -> String {
+        p.to_string()
     }
 }
 

@@ -90,8 +90,10 @@ impl SubsetTable {
     }
 }
 
-/// A subset named on the command line or in a config file.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// A subset named on the command line or in a config file (where it is
+/// written as its name, `mesh4`).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "String", into = "String")]
 pub enum SubsetSpec {
     /// Mesh-k, k in {2, 4, 8, 16}.
     Mesh(u32),
@@ -175,6 +177,20 @@ impl FromStr for SubsetSpec {
                 "unknown priority subset `{s}` (expected one of mesh2, mesh4, mesh8, mesh16, hlines, vlines, top16, random[:seed])"
             )),
         }
+    }
+}
+
+/// Read from its name in a config file: the error names the allowed forms.
+impl TryFrom<String> for SubsetSpec {
+    type Error = String;
+    fn try_from(s: String) -> Result<Self, String> {
+        s.parse()
+    }
+}
+
+impl From<SubsetSpec> for String {
+    fn from(s: SubsetSpec) -> String {
+        s.to_string()
     }
 }
 

@@ -3,17 +3,9 @@
 //! and the bounds table (every field at and just above its bound).
 
 use super::*;
+use crate::config::BlockedOn;
 use crate::mem::PrefetchKind;
-
-#[test]
-fn lines_and_columns_count_from_one() {
-    let b = b"ab\ncd\n\nxyz";
-    assert_eq!(line_and_column(b, 0), (1, 1));
-    assert_eq!(line_and_column(b, 1), (1, 2));
-    assert_eq!(line_and_column(b, 3), (2, 1));
-    assert_eq!(line_and_column(b, 6), (3, 1));
-    assert_eq!(line_and_column(b, 9), (4, 3));
-}
+use wasp_rtl::policy::LaunchRule;
 
 fn with(edit: impl Fn(&str) -> String) -> Result<MachineConfig, ConfigError> {
     MachineConfig::parse(&edit(PAPER_TOML), "test.toml")
@@ -43,22 +35,23 @@ fn shipped_configs_are_the_papers_machines() {
     assert_eq!(w2.scheduler_cache().0, "l1");
     // The paper's rule: a closed gate holds the priority warp.
     for c in [&p, &w2] {
-        assert_eq!(c.launch_rule(), Ok(LaunchRule::Hold));
+        assert_eq!(c.scheduler.launch_rule, LaunchRule::Hold);
     }
 }
 
 #[test]
-fn launch_rule_is_required_and_parsed() {
-    let e = with(|s| {
+fn launch_rule_is_parsed_and_inherited() {
+    // A file without it takes the base machine's (the paper's: hold).
+    let c = with(|s| {
         s.lines()
             .filter(|l| !l.starts_with("launch_rule"))
             .collect::<Vec<_>>()
             .join("\n")
     })
-    .unwrap_err();
-    assert!(e.message.contains("launch_rule"), "{e}");
+    .unwrap();
+    assert_eq!(c.scheduler.launch_rule, LaunchRule::Hold);
     let c = with(|s| s.replace("launch_rule = \"hold\"", "launch_rule = \"launch\"")).unwrap();
-    assert_eq!(c.launch_rule(), Ok(LaunchRule::Launch));
+    assert_eq!(c.scheduler.launch_rule, LaunchRule::Launch);
 }
 
 #[test]
@@ -68,12 +61,23 @@ fn round_trips_through_toml() {
     assert_eq!(p, again);
 }
 
+/// The line of the first line of `text` that starts with `start`.
+fn line_of(text: &str, start: &str) -> usize {
+    1 + text
+        .lines()
+        .position(|l| l.starts_with(start))
+        .expect(start)
+}
+
 #[test]
 fn unknown_keys_name_the_key_and_the_line() {
     let e = with(|s| s.replace("max_warps = 64", "max_warps = 64\nmax_wraps = 3")).unwrap_err();
-    assert_eq!(e.source, "test.toml");
-    assert!(e.message.contains("max_wraps"), "{e}");
-    assert!(e.message.contains("line"), "{e}");
+    let line = line_of(PAPER_TOML, "max_warps = 64") + 1;
+    assert_eq!(e.source, format!("test.toml:{line}"));
+    assert!(
+        e.message.starts_with("core.max_wraps: unknown field"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -116,6 +120,16 @@ fn values_out_of_range_name_the_field() {
             "scheduler.launch_rule",
         ),
         (
+            "core_map = \"latin:8\"",
+            "core_map = \"diagonal:8\"",
+            "raster.core_map",
+        ),
+        (
+            "dispatch = \"shared-tile\"",
+            "dispatch = \"per-tile\"",
+            "raster.dispatch",
+        ),
+        (
             "watchdog_cycles = 1000000",
             "watchdog_cycles = 0",
             "sim.watchdog_cycles",
@@ -130,11 +144,25 @@ fn values_out_of_range_name_the_field() {
         assert!(PAPER_TOML.contains(from), "fixture: {from}");
         let e = with(|s| s.replacen(from, to, 1)).unwrap_err();
         assert!(e.message.contains(field), "{to}: {e}");
+        // The line that set it.
+        let key = from.split(' ').next().unwrap();
+        assert_eq!(
+            e.source,
+            format!("test.toml:{}", line_of(PAPER_TOML, key)),
+            "{to}: {e}"
+        );
     }
+    // A text parameter's error names the value and the allowed forms.
+    let e = with(|s| s.replacen("policy = \"wasp:0:3\"", "policy = \"fifo\"", 1)).unwrap_err();
+    assert!(
+        e.message
+            .starts_with("scheduler.policy: unknown policy `fifo` (expected baseline,"),
+        "{e}"
+    );
 }
 
 #[test]
-fn filter_fields_are_required_and_checked() {
+fn filter_fields_are_inherited_and_checked() {
     let p = MachineConfig::paper();
     assert_eq!(
         (
@@ -153,18 +181,14 @@ fn filter_fields_are_required_and_checked() {
         ),
         (1, 2, FilterTiming::Overlap)
     );
+    // A file without them takes the base machine's.
     for key in [
         "filter_cycles_bilinear = 1",
         "filter_cycles_trilinear = 2",
         "filter_timing = \"overlap\"",
     ] {
-        let name = key.split(' ').next().unwrap();
         assert!(PAPER_TOML.contains(key), "fixture: {key}");
-        let e = with(|s| s.replacen(key, "", 1)).unwrap_err();
-        assert!(
-            e.message.contains(&format!("missing field `{name}`")),
-            "{e}"
-        );
+        assert_eq!(with(|s| s.replacen(key, "", 1)).unwrap().core, p.core);
     }
     for (from, to, msg) in [
         (
@@ -295,7 +319,7 @@ fn registers_limit_mshrs_and_warps() {
 }
 
 #[test]
-fn blocked_on_is_required_and_checked() {
+fn blocked_on_is_inherited_and_checked() {
     assert_eq!(
         MachineConfig::paper().scheduler.blocked_on,
         BlockedOn::L1Miss
@@ -309,16 +333,19 @@ fn blocked_on_is_required_and_checked() {
     for rule in BlockedOn::ALL {
         let c = with(|s| s.replacen(line, &format!("blocked_on = \"{rule}\""), 1)).unwrap();
         assert_eq!(c.scheduler.blocked_on, rule);
-        assert_eq!(c.mem_config().blocked_on, rule);
+        assert_eq!(c.mem_config().report_misses, rule != BlockedOn::FirstLevel);
         assert_eq!(rule.to_string().parse::<BlockedOn>(), Ok(rule));
     }
     let e = with(|s| s.replacen(line, "blocked_on = \"l2\"", 1)).unwrap_err();
     assert!(
-        e.message.contains("l2") && e.message.contains("l1-miss") && e.message.contains("line"),
+        e.message.contains("scheduler.blocked_on")
+            && e.message.contains("l2")
+            && e.message.contains("l1-miss"),
         "{e}"
     );
-    let e = with(|s| s.replacen(line, "", 1)).unwrap_err();
-    assert!(e.message.contains("blocked_on"), "{e}");
+    assert_eq!(e.source, format!("test.toml:{}", line_of(PAPER_TOML, line)));
+    let c = with(|s| s.replacen(line, "", 1)).unwrap();
+    assert_eq!(c.scheduler.blocked_on, BlockedOn::L1Miss, "the base's");
     assert!("l2"
         .parse::<BlockedOn>()
         .unwrap_err()
@@ -342,12 +369,13 @@ fn issue_order_is_checked_and_defaults_to_lrr() {
     assert!(c.to_toml().contains(line));
     let e = with(|s| s.replacen(line, "issue = \"fifo\"", 1)).unwrap_err();
     assert!(
-        e.message.contains("fifo")
+        e.message.starts_with("core.issue:")
+            && e.message.contains("fifo")
             && e.message.contains("lrr")
-            && e.message.contains("gto")
-            && e.message.contains("line"),
+            && e.message.contains("gto"),
         "{e}"
     );
+    assert_eq!(e.source, format!("test.toml:{}", line_of(PAPER_TOML, line)));
 }
 
 /// Every numeric field of the machine configuration with its bound: the

@@ -11,10 +11,10 @@
 //!    tile) or [`begin_shared_tile`](CoreModel::begin_shared_tile) and
 //!    [`push_quad`](CoreModel::push_quad) from the shared rasterizer;
 //! 2. [`evaluate`](CoreModel::evaluate): phase 1 (wake-ups, raster, launch,
-//!    issue, LDST);
+//!    issue, LDST), saying whether a stage made progress;
 //! 3. the memory system ticks;
 //! 4. [`complete`](CoreModel::complete): phase 2 (blocking, completions,
-//!    the scheduler's clock edge);
+//!    the scheduler's clock edge), saying whether data returned;
 //! 5. the waveform samples the core ([`Traceable`]), then
 //!    [`end_cycle`](CoreModel::end_cycle) (and, under shared-tile
 //!    dispatch, [`end_shared_tile`](CoreModel::end_shared_tile) once every
@@ -34,7 +34,7 @@ pub trait CoreModel: Traceable + Sized {
     /// A core in its reset state, its scheduler wired for `policy`.
     fn build(
         id: usize,
-        p: CoreParams,
+        p: &CoreParams,
         policy: &dyn LaunchPolicy,
         rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,
@@ -45,9 +45,9 @@ pub trait CoreModel: Traceable + Sized {
     fn idle(&self) -> bool;
     /// Give the core tile `index`, `tile`, to rasterize itself
     /// (per-core-tile dispatch; the core must be idle).
-    fn assign_tile(&mut self, index: usize, tile: &Tile, now: u64);
+    fn assign_tile(&mut self, index: usize, tile: &Tile);
     /// Open tile `tile` for the core (shared-tile dispatch).
-    fn begin_shared_tile(&mut self, tile: usize, now: u64);
+    fn begin_shared_tile(&mut self, tile: usize);
     /// Offer quad `quad` at in-tile (x, y) to the input queue; `false`
     /// when its FIFO is full.
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool;
@@ -65,17 +65,15 @@ pub trait CoreModel: Traceable + Sized {
     fn launched_now(&self) -> Option<(u32, bool)>;
     /// The core's counters.
     fn stats(&self) -> &CoreStats;
-    /// The last cycle the core made progress.
-    fn last_progress(&self) -> u64;
-    /// Phase 1 of cycle `now`.
-    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem);
-    /// Phase 2 of cycle `now`.
-    fn complete(
-        &mut self,
-        now: u64,
-        mem: &mut MemorySystem,
-        scratch: &mut Vec<u32>,
-    ) -> Result<(), SimError>;
+    /// No stage can make progress in cycle `now` (asked before it runs):
+    /// a cycle of an idle core changes nothing but its counters.
+    fn is_idle(&self, now: u64) -> bool;
+    /// Phase 1 of cycle `now`; whether a stage made progress (a warp
+    /// launched, issued or retired, a block presented, a quad
+    /// rasterized).
+    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) -> bool;
+    /// Phase 2 of cycle `now`; whether data returned.
+    fn complete(&mut self, now: u64, mem: &mut MemorySystem) -> Result<bool, SimError>;
     /// End of cycle; whether the core's own tile finished.
     fn end_cycle(&mut self) -> bool;
     /// The core's state in words (for the watchdog).
@@ -94,7 +92,7 @@ pub trait CoreModel: Traceable + Sized {
 impl CoreModel for ShaderCore {
     fn build(
         id: usize,
-        p: CoreParams,
+        p: &CoreParams,
         policy: &dyn LaunchPolicy,
         rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,
@@ -109,11 +107,11 @@ impl CoreModel for ShaderCore {
     fn idle(&self) -> bool {
         ShaderCore::idle(self)
     }
-    fn assign_tile(&mut self, index: usize, tile: &Tile, now: u64) {
-        ShaderCore::assign_tile(self, index, tile, now)
+    fn assign_tile(&mut self, index: usize, tile: &Tile) {
+        ShaderCore::assign_tile(self, index, tile)
     }
-    fn begin_shared_tile(&mut self, tile: usize, now: u64) {
-        ShaderCore::begin_shared_tile(self, tile, now)
+    fn begin_shared_tile(&mut self, tile: usize) {
+        ShaderCore::begin_shared_tile(self, tile)
     }
     #[inline]
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool {
@@ -142,22 +140,16 @@ impl CoreModel for ShaderCore {
     fn stats(&self) -> &CoreStats {
         ShaderCore::stats(self)
     }
-    #[inline]
-    fn last_progress(&self) -> u64 {
-        ShaderCore::last_progress(self)
+    fn is_idle(&self, now: u64) -> bool {
+        ShaderCore::is_idle(self, now)
     }
     #[inline]
-    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) {
+    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) -> bool {
         ShaderCore::evaluate(self, now, trace, mem)
     }
     #[inline]
-    fn complete(
-        &mut self,
-        now: u64,
-        mem: &mut MemorySystem,
-        scratch: &mut Vec<u32>,
-    ) -> Result<(), SimError> {
-        ShaderCore::complete(self, now, mem, scratch)
+    fn complete(&mut self, now: u64, mem: &mut MemorySystem) -> Result<bool, SimError> {
+        ShaderCore::complete(self, now, mem)
     }
     #[inline]
     fn end_cycle(&mut self) -> bool {

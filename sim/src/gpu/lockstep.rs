@@ -3,10 +3,14 @@
 //! [`PlainCore`]s, each with its own memory system, step together; after
 //! every cycle each core's observable state ([`CoreSnapshot`]: the tile,
 //! queue, registers and every warp's slot, state, ALU run, next
-//! instruction and blocks outstanding), counters, launch signal, progress
-//! and description, and the memory system's outstanding requests, must be
-//! equal. At the end the runs' counters, warp records and waveforms must
-//! be equal too.
+//! instruction and blocks outstanding), counters, launch signal and
+//! description, the GPUs' last cycle of progress, and the memory system's
+//! outstanding requests, must be equal. Before every cycle both say alike
+//! which cores are idle, and an idle core's state does not change in the
+//! cycle unless the GPU gives it a tile or a quad. At the end the runs'
+//! counters, warp records and waveforms must be equal too.
+//!
+//! [`CoreSnapshot`]: super::CoreSnapshot
 //!
 //! Run on random small machines and traces (proptest), on the generator's
 //! frames, on the shipped traces, and (ignored by default) on every trace
@@ -16,10 +20,12 @@
 
 use super::core::plain::PlainCore;
 use super::{CoreModel, Gpu, ShaderCore};
-use crate::config::{Dispatch, FilterTiming, IssueOrder, MachineConfig};
-use crate::mem::{BlockedOn, PrefetchKind};
+use crate::config::{BlockedOn, Dispatch, FilterTiming, IssueOrder, MachineConfig};
+use crate::mem::PrefetchKind;
 use crate::trace::{Instr, Trace, TraceHeader};
 use proptest::prelude::*;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
+use wasp_rtl::subset::SubsetSpec;
 use wasp_waves::VcdSink;
 
 /// Step both GPUs to the end, comparing them after every cycle; then
@@ -30,6 +36,15 @@ fn lockstep(cfg: &MachineConfig, trace: &Trace) -> Result<u64, String> {
     fast.record_warps();
     plain.record_warps();
     while !fast.done() {
+        let next = fast.cycle() + 1;
+        let idle: Vec<bool> = fast.cores().iter().map(|c| c.is_idle(next)).collect();
+        let plain_idle: Vec<bool> = plain.cores().iter().map(|c| c.is_idle(next)).collect();
+        if idle != plain_idle {
+            return Err(format!(
+                "cycle {next}: idle cores {idle:?} (fast), {plain_idle:?} (plain)"
+            ));
+        }
+        let before: Vec<_> = fast.cores().iter().map(|c| c.snapshot()).collect();
         let a = fast.step();
         let b = plain.step();
         let now = fast.cycle();
@@ -38,6 +53,21 @@ fn lockstep(cfg: &MachineConfig, trace: &Trace) -> Result<u64, String> {
             (a, b) => return Err(format!("cycle {now}: fast {a:?}, plain {b:?}")),
         }
         compare(&fast, &plain, trace).map_err(|e| format!("cycle {now}: {e}"))?;
+        // An idle core changes only by what the GPU gives it: a tile, or a
+        // quad from the shared rasterizer (which it may launch at once);
+        // and its free-MSHR register follows the watched cache, which
+        // prefetches may use meanwhile.
+        for (i, c) in fast.cores().iter().enumerate() {
+            let mut after = c.snapshot();
+            let queued = |q: [usize; 2]| q[0] + q[1];
+            let launched = usize::from(c.launched_now().is_some());
+            let pushed = queued(after.queued) + launched > queued(before[i].queued);
+            let given = after.tile != before[i].tile || pushed;
+            after.free_mshrs = before[i].free_mshrs;
+            if idle[i] && !given && after != before[i] {
+                return Err(format!("cycle {now}: core {i} was idle but changed"));
+            }
+        }
     }
     if !plain.done() {
         return Err(format!(
@@ -65,6 +95,13 @@ fn compare<C: CoreModel, D: CoreModel>(
     plain: &Gpu<'_, D>,
     trace: &Trace,
 ) -> Result<(), String> {
+    if fast.last_progress() != plain.last_progress() {
+        return Err(format!(
+            "last progress at cycle {} (fast) != {} (plain)",
+            fast.last_progress(),
+            plain.last_progress()
+        ));
+    }
     if fast.mem().outstanding() != plain.mem().outstanding() {
         return Err(format!(
             "outstanding requests {:?} (fast) != {:?} (plain)",
@@ -85,12 +122,12 @@ fn compare<C: CoreModel, D: CoreModel>(
             ));
         }
         let (fa, fb) = (
-            (a.launched_now(), a.last_progress(), a.tile_misses()),
-            (b.launched_now(), b.last_progress(), b.tile_misses()),
+            (a.launched_now(), a.tile_misses()),
+            (b.launched_now(), b.tile_misses()),
         );
         if fa != fb {
             return Err(format!(
-                "core {i} (launch, progress, tile misses): fast {fa:?}, plain {fb:?}"
+                "core {i} (launch, tile misses): fast {fa:?}, plain {fb:?}"
             ));
         }
         if a.describe(trace) != b.describe(trace) {
@@ -107,9 +144,10 @@ fn compare<C: CoreModel, D: CoreModel>(
 /// The whole run's waveform from a GPU of cores `C`.
 fn waveform<C: CoreModel>(cfg: &MachineConfig, trace: &Trace) -> Vec<u8> {
     let mut sink = VcdSink::new(Vec::new(), "gpu");
-    let gpu = Gpu::<C>::build(cfg, trace).expect("valid machine");
-    let counters = gpu.run(Some(&mut sink), None, &mut |_, _| {}).expect("run");
-    sink.finish(counters.cycles).expect("written")
+    let opts = crate::run::RunOptions::default();
+    let run = crate::run::run_on::<C, _>(cfg, trace, &opts, Some(&mut sink), &mut |_, _| {});
+    sink.finish(run.expect("run").stats.cycles)
+        .expect("written")
 }
 
 /// A small machine from the drawn knobs.
@@ -169,9 +207,13 @@ impl Knobs {
         c.l2.hit_latency = 2;
         c.dram.row_hit_latency = 3;
         c.dram.row_miss_latency = 6;
-        c.scheduler.policy = self.policy.into();
-        c.scheduler.launch_rule = if self.launch { "launch" } else { "hold" }.into();
-        c.scheduler.subset = if self.mesh2 { "mesh2" } else { "mesh4" }.into();
+        c.scheduler.policy = self.policy.parse().unwrap();
+        c.scheduler.launch_rule = if self.launch {
+            LaunchRule::Launch
+        } else {
+            LaunchRule::Hold
+        };
+        c.scheduler.subset = SubsetSpec::Mesh(if self.mesh2 { 2 } else { 4 });
         c.scheduler.blocked_on = self.blocked_on;
         c.raster.dispatch = if self.shared {
             Dispatch::SharedTile
@@ -347,7 +389,7 @@ fn fast_and_plain_cores_agree_on_the_shipped_traces() {
                     for issue in IssueOrder::ALL {
                         let mut cfg = MachineConfig::paper();
                         cfg.gpu.tile_size = trace.header().tile;
-                        cfg.scheduler.policy = policy.into();
+                        cfg.scheduler.policy = policy.parse().unwrap();
                         cfg.raster.dispatch = dispatch;
                         cfg.scheduler.blocked_on = blocked_on;
                         cfg.core.issue = issue;
@@ -379,7 +421,7 @@ fn fast_and_plain_cores_agree_with_each_prefetcher() {
                     for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
                         let mut cfg = machine.clone();
                         cfg.gpu.tile_size = trace.header().tile;
-                        cfg.scheduler.policy = policy.into();
+                        cfg.scheduler.policy = policy.parse().unwrap();
                         cfg.raster.dispatch = dispatch;
                         cfg.prefetch.kind = kind;
                         cfg.validate().unwrap();
@@ -418,7 +460,7 @@ fn fast_and_plain_cores_agree_on_generated_frames() {
                 (Dispatch::SharedTile, IssueOrder::Gto),
             ] {
                 let mut cfg = machine.clone();
-                cfg.scheduler.policy = policy.into();
+                cfg.scheduler.policy = policy.parse().unwrap();
                 cfg.raster.dispatch = dispatch;
                 cfg.core.issue = issue;
                 cfg.validate().unwrap();
@@ -438,7 +480,7 @@ fn fast_and_plain_cores_draw_the_same_waveform() {
     for dispatch in [Dispatch::SharedTile, Dispatch::PerCoreTile] {
         let mut cfg = MachineConfig::paper();
         cfg.gpu.tile_size = trace.header().tile;
-        cfg.scheduler.policy = "wasp-m:0".into();
+        cfg.scheduler.policy = PolicySpec::WaspMeasured { threshold: 0 };
         cfg.raster.dispatch = dispatch;
         cfg.validate().unwrap();
         let a = waveform::<ShaderCore>(&cfg, &trace);
@@ -477,7 +519,7 @@ fn fast_and_plain_cores_agree_on_a_folder_of_traces() {
                     for issue in IssueOrder::ALL {
                         let mut cfg = MachineConfig::paper();
                         cfg.gpu.tile_size = trace.header().tile;
-                        cfg.scheduler.policy = policy.into();
+                        cfg.scheduler.policy = policy.parse().unwrap();
                         cfg.raster.dispatch = dispatch;
                         cfg.core.issue = issue;
                         cfg.prefetch.kind = kind;

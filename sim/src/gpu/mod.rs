@@ -6,7 +6,8 @@
 //!
 //! * **shared-tile** (the paper's machine, `gpu/raster.rs`): one tile at a
 //!   time for the whole GPU; one rasterizer places each surviving quad in
-//!   the input queue of the core its position names ([`CoreMap`]); no warp
+//!   the input queue of the core its position names
+//!   ([`CoreMap`](crate::config::CoreMap)); no warp
 //!   of the next tile launches until every warp of this one has retired on
 //!   every core; then the colour buffer is flushed.
 //! * **per-core-tile**: each idle core takes the next tile, lowest core
@@ -17,32 +18,25 @@
 //! rendered, every colour buffer flushed and the memory system is idle.
 
 mod core;
-mod core_map;
 mod core_model;
-mod issue;
 #[cfg(test)]
 mod lockstep;
-mod mask;
 mod raster;
+mod raster_cursor;
 mod tiles;
-mod wheel;
 
 pub use self::core::{CoreParams, CoreSnapshot, CoreStats, ShaderCore, WarpRecord, WarpView};
-pub use self::core_map::{CoreMap, CoreMapTable};
 pub use self::core_model::CoreModel;
-pub use self::issue::IssueOrder;
 pub use self::raster::{RasterStats, SharedRaster};
 pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
-use crate::config::{Dispatch, MachineConfig};
+use crate::config::MachineConfig;
 use crate::mem::prefetch::{self, Prefetcher};
 use crate::mem::MemStats;
 use crate::mem::MemorySystem;
 use crate::timeline::{Timeline, TimelineSample};
 use crate::trace::Trace;
 use std::fmt;
-use wasp_rtl::policy::{LaunchRule, PolicySpec};
-use wasp_rtl::subset::SubsetSpec;
 use wasp_rtl::RegisterFault;
 use wasp_waves::{CycleSink, NullTracer, Tracer};
 
@@ -122,51 +116,6 @@ pub struct RunCounters {
     pub instruments: RunInstruments,
 }
 
-/// Options of one run beyond the machine configuration.
-#[derive(Clone, Debug, Default)]
-pub struct RunOptions {
-    /// Override `scheduler.policy`.
-    pub policy: Option<PolicySpec>,
-    /// Override `scheduler.launch_rule`.
-    pub launch_rule: Option<LaunchRule>,
-    /// Override `scheduler.subset`.
-    pub subset: Option<SubsetSpec>,
-    /// Override `memory.ideal`.
-    pub ideal_memory: Option<bool>,
-    /// Sample the waveform only in `from..=to`.
-    pub vcd_window: Option<(u64, u64)>,
-    /// Record every warp (see [`WarpRecord`]).
-    pub record_warps: bool,
-    /// Override `raster.dispatch`.
-    pub dispatch: Option<Dispatch>,
-    /// Record a [`Timeline`] of the cycles `from..=to`.
-    pub timeline: Option<(u64, u64)>,
-}
-
-impl RunOptions {
-    /// The configuration with the overrides applied, validated.
-    pub fn apply(&self, cfg: &MachineConfig) -> Result<MachineConfig, SimError> {
-        let mut c = cfg.clone();
-        if let Some(p) = self.policy {
-            c.scheduler.policy = p.to_string();
-        }
-        if let Some(r) = self.launch_rule {
-            c.scheduler.launch_rule = r.to_string();
-        }
-        if let Some(s) = &self.subset {
-            c.scheduler.subset = s.to_string();
-        }
-        if let Some(i) = self.ideal_memory {
-            c.memory.ideal = i;
-        }
-        if let Some(d) = self.dispatch {
-            c.raster.dispatch = d;
-        }
-        c.validate().map_err(SimError::Config)?;
-        Ok(c)
-    }
-}
-
 /// Who feeds the cores.
 enum Dispatcher {
     /// Each idle core takes the next tile.
@@ -193,7 +142,9 @@ pub struct Gpu<'t, C = ShaderCore> {
     timeline: Option<Timeline>,
     tiles_done: usize,
     now: u64,
-    scratch: Vec<u32>,
+    /// The last cycle in which a stage of a core or the raster pipeline
+    /// made progress, or a tile began or ended (for the watchdog).
+    last_progress: u64,
 }
 
 /// Tell the prefetcher what the shared raster pipeline did in the cycle:
@@ -233,42 +184,25 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 cfg.gpu.tile_size
             )));
         }
-        let policy = cfg.policy().map_err(SimError::Config)?;
-        let subset = cfg.subset().map_err(SimError::Config)?;
-        let rule = cfg.launch_rule().map_err(SimError::Config)?;
-        let (_, sc) = cfg.scheduler_cache();
-        let shared = cfg.raster.dispatch == Dispatch::SharedTile;
-        let params = CoreParams {
-            width: cfg.core.pipeline_width,
-            max_warps: cfg.core.max_warps,
-            input_queue: cfg.core.input_queue,
-            raster_rate: cfg.raster.quads_per_cycle / cfg.gpu.cores,
-            rejected_per_slot: cfg.raster.rejected_per_slot,
-            external_raster: shared,
-            alu_latency: cfg.core.alu_latency,
-            texture_latency: cfg.core.texture_latency,
-            filter_cycles_bilinear: cfg.core.filter_cycles_bilinear,
-            filter_cycles_trilinear: cfg.core.filter_cycles_trilinear,
-            filter_timing: cfg.core.filter_timing,
-            ldst_queue: cfg.core.ldst_queue,
-            sched_mshrs: sc.mshrs,
-            blocked_on: cfg.scheduler.blocked_on,
-            issue: cfg.core.issue,
-        };
         let side = cfg.quads_per_side();
-        let mut cores = Vec::with_capacity(cfg.gpu.cores as usize);
-        let wiring = policy.build(sc.mshrs.min(31)).map_err(SimError::Config)?;
-        for id in 0..cfg.gpu.cores as usize {
-            let core = C::build(id, params, wiring.as_ref(), rule, subset.build(side));
-            cores.push(core);
-        }
+        let params = CoreParams::new(cfg);
+        let sched = &cfg.scheduler;
+        let wiring = sched
+            .policy
+            .build(params.watched_mshrs)
+            .map_err(SimError::Config)?;
+        let cores: Vec<C> = (0..cfg.gpu.cores as usize)
+            .map(|id| {
+                let subset = sched.subset.build(side);
+                C::build(id, &params, wiring.as_ref(), sched.launch_rule, subset)
+            })
+            .collect();
         let mem =
             MemorySystem::new(&cfg.mem_config()).map_err(|e| SimError::Config(e.to_string()))?;
-        let (dispatch, trackers) = if shared {
-            let map = cfg.core_map().map_err(SimError::Config)?;
+        let (dispatch, trackers) = if params.external_raster {
             let raster = SharedRaster::new(
                 cfg.raster.quads_per_cycle,
-                map.table(side, cfg.gpu.cores),
+                cfg.raster.core_map.table(side, cfg.gpu.cores),
                 cfg.raster.color_flush,
             )
             .with_rejected_per_slot(cfg.raster.rejected_per_slot);
@@ -297,7 +231,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             timeline: None,
             tiles_done: 0,
             now: 0,
-            scratch: Vec::with_capacity(64),
+            last_progress: 0,
         })
     }
 
@@ -374,132 +308,171 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
     ) -> Result<(), SimError> {
         self.now += 1;
         let now = self.now;
-        let tiles = self.trace.tiles();
-        match &mut self.dispatch {
-            Dispatcher::PerCore { next_tile } => {
-                // One pass per phase over the cores. A core's tile
-                // assignment depends only on its own idleness (tiles are
-                // released at the end of a cycle), so taking tiles in core
-                // order within the evaluate pass is the same as taking them
-                // all first.
-                let pf_on = self.prefetch.is_some();
-                for (i, c) in self.cores.iter_mut().enumerate() {
-                    if c.idle() && *next_tile < tiles.len() {
-                        c.assign_tile(*next_tile, &tiles[*next_tile], now);
-                        self.trackers[i].start(*next_tile as u32, Some(i as u32), now);
-                        if let Some(tl) = self.timeline.as_mut() {
-                            tl.mark(now, *next_tile as u32, Some(i as u32), true);
-                        }
-                        if let Some(pf) = self.prefetch.as_deref_mut() {
-                            pf.tile_opened(*next_tile, Some(i), &mut self.mem);
-                        }
-                        *next_tile += 1;
-                    }
-                    let entered = if pf_on { c.quads_entered() } else { 0 };
-                    c.evaluate(now, self.trace, &mut self.mem);
-                    if pf_on {
-                        if let (Some(pf), Some(t)) = (self.prefetch.as_deref_mut(), c.tile()) {
-                            let quads = entered..c.quads_entered();
-                            prefetch::quads_entered(pf, &tiles[t], quads, |_, _| i, &mut self.mem);
-                        }
-                    }
-                    if let Some((q, prio)) = c.launched_now() {
-                        let quad = tiles[c.tile().expect("launching")].quad(q as usize);
-                        let quad = quad.expect("quad in tile");
-                        let t = &mut self.trackers[i];
-                        t.launch(now, q, quad.x(), quad.y(), prio);
-                        // Occupancy rises only at a launch: its peak is
-                        // found there.
-                        t.resident(now, c.active());
-                    }
-                }
-            }
-            Dispatcher::Shared(r) => {
-                let opened = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
-                if let Some(pf) = self.prefetch.as_deref_mut() {
-                    feed_prefetcher(pf, r, opened, tiles, &mut self.mem);
-                }
-                if let Some(t) = opened {
-                    self.trackers[0].start(t as u32, None, now);
-                    if let Some(tl) = self.timeline.as_mut() {
-                        tl.mark(now, t as u32, None, true);
-                    }
-                }
-                let tile = r.tile().map(|t| &tiles[t]);
-                let mut launched = false;
-                for c in self.cores.iter_mut() {
-                    c.evaluate(now, self.trace, &mut self.mem);
-                    if let (Some((q, prio)), Some(tile)) = (c.launched_now(), tile) {
-                        let quad = tile.quad(q as usize).expect("quad in tile");
-                        self.trackers[0].launch(now, q, quad.x(), quad.y(), prio);
-                        launched = true;
-                    }
-                }
-                if launched {
-                    // Occupancy rises only at a launch: its peak is found
-                    // there.
-                    let resident = self.cores.iter().map(|c| c.active()).sum();
-                    self.trackers[0].resident(now, resident);
-                }
-            }
-        }
+        let mut progress = match self.dispatch {
+            Dispatcher::PerCore { .. } => self.evaluate_per_core(now),
+            Dispatcher::Shared(_) => self.evaluate_shared(now),
+        };
         self.mem.tick(now);
         match sink {
             Some(s) if HOOKS => {
                 for c in self.cores.iter_mut() {
-                    c.complete(now, &mut self.mem, &mut self.scratch)?;
+                    progress |= c.complete(now, &mut self.mem)?;
                 }
                 s.begin_cycle(now);
                 self.trace_signals(s);
                 s.end_cycle().map_err(SimError::Io)?;
                 for i in 0..self.cores.len() {
-                    self.core_end_cycle(i, now);
+                    progress |= self.core_end_cycle(i, now);
                 }
             }
             _ => {
                 // A core's end of cycle touches only itself: it can follow
                 // its completions directly.
                 for i in 0..self.cores.len() {
-                    self.cores[i].complete(now, &mut self.mem, &mut self.scratch)?;
-                    self.core_end_cycle(i, now);
+                    progress |= self.cores[i].complete(now, &mut self.mem)?;
+                    progress |= self.core_end_cycle(i, now);
                 }
             }
         }
-        if let Dispatcher::Shared(r) = &mut self.dispatch {
-            if let Some(t) = r.end_cycle(self.trace, &mut self.cores, now) {
-                let misses = self.cores.iter().map(|c| c.tile_misses()).sum();
-                self.trackers[0].finish(now, misses);
-                self.tiles_done += 1;
-                if let Some(tl) = self.timeline.as_mut() {
-                    tl.mark(now, t as u32, None, false);
-                }
-            }
+        progress |= self.close_shared_tile(now);
+        if progress {
+            self.last_progress = now;
         }
         if self.timeline.as_ref().is_some_and(|tl| tl.covers(now)) {
             self.sample_timeline(now);
         }
-        self.watchdog()
+        // Checked every 256 cycles: the limit is a coarse bound anyway.
+        if now.is_multiple_of(256) {
+            self.watchdog()?;
+        }
+        Ok(())
+    }
+
+    /// Phase 1 under per-core-tile dispatch: each idle core takes the next
+    /// tile, then every core evaluates. One pass over the cores: a core's
+    /// tile assignment depends only on its own idleness (tiles are released
+    /// at the end of a cycle), so taking tiles in core order within the
+    /// pass is the same as taking them all first. Whether anything made
+    /// progress.
+    #[inline(always)]
+    fn evaluate_per_core(&mut self, now: u64) -> bool {
+        let Dispatcher::PerCore { next_tile } = &mut self.dispatch else {
+            unreachable!("per-core-tile dispatch")
+        };
+        let tiles = self.trace.tiles();
+        let mut progress = false;
+        let pf_on = self.prefetch.is_some();
+        for (i, c) in self.cores.iter_mut().enumerate() {
+            if c.idle() && *next_tile < tiles.len() {
+                c.assign_tile(*next_tile, &tiles[*next_tile]);
+                self.trackers[i].start(*next_tile as u32, Some(i as u32), now);
+                if let Some(tl) = self.timeline.as_mut() {
+                    tl.mark(now, *next_tile as u32, Some(i as u32), true);
+                }
+                if let Some(pf) = self.prefetch.as_deref_mut() {
+                    pf.tile_opened(*next_tile, Some(i), &mut self.mem);
+                }
+                *next_tile += 1;
+                progress = true;
+            }
+            let entered = if pf_on { c.quads_entered() } else { 0 };
+            progress |= c.evaluate(now, self.trace, &mut self.mem);
+            if pf_on {
+                if let (Some(pf), Some(t)) = (self.prefetch.as_deref_mut(), c.tile()) {
+                    let quads = entered..c.quads_entered();
+                    prefetch::quads_entered(pf, &tiles[t], quads, |_, _| i, &mut self.mem);
+                }
+            }
+            if let Some((q, prio)) = c.launched_now() {
+                let quad = tiles[c.tile().expect("launching")].quad(q as usize);
+                let quad = quad.expect("quad in tile");
+                let t = &mut self.trackers[i];
+                t.launch(now, q, quad.x(), quad.y(), prio);
+                // Occupancy rises only at a launch: its peak is found
+                // there.
+                t.resident(now, c.active());
+            }
+        }
+        progress
+    }
+
+    /// Phase 1 under shared-tile dispatch: the raster pipeline, then every
+    /// core. Whether anything made progress.
+    #[inline(always)]
+    fn evaluate_shared(&mut self, now: u64) -> bool {
+        let Dispatcher::Shared(r) = &mut self.dispatch else {
+            unreachable!("shared-tile dispatch")
+        };
+        let cycle = r.evaluate(now, self.trace, &mut self.cores, &mut self.mem);
+        let mut progress = cycle.progress;
+        if let Some(pf) = self.prefetch.as_deref_mut() {
+            let opened = cycle.opened.map(|t| t as usize);
+            feed_prefetcher(pf, r, opened, self.trace.tiles(), &mut self.mem);
+        }
+        if let Some(t) = cycle.opened {
+            self.trackers[0].start(t, None, now);
+            if let Some(tl) = self.timeline.as_mut() {
+                tl.mark(now, t, None, true);
+            }
+        }
+        let tile = r.tile().map(|t| &self.trace.tiles()[t]);
+        let mut launched = false;
+        for c in self.cores.iter_mut() {
+            progress |= c.evaluate(now, self.trace, &mut self.mem);
+            if let (Some((q, prio)), Some(tile)) = (c.launched_now(), tile) {
+                let quad = tile.quad(q as usize).expect("quad in tile");
+                self.trackers[0].launch(now, q, quad.x(), quad.y(), prio);
+                launched = true;
+            }
+        }
+        if launched {
+            // Occupancy rises only at a launch: its peak is found there.
+            let resident = self.cores.iter().map(|c| c.active()).sum();
+            self.trackers[0].resident(now, resident);
+        }
+        progress
+    }
+
+    /// Under shared-tile dispatch, the tile barrier at the end of the
+    /// cycle: whether the open tile closed.
+    #[inline(always)]
+    fn close_shared_tile(&mut self, now: u64) -> bool {
+        let Dispatcher::Shared(r) = &mut self.dispatch else {
+            return false;
+        };
+        let Some(t) = r.end_cycle(self.trace, &mut self.cores) else {
+            return false;
+        };
+        let misses = self.cores.iter().map(|c| c.tile_misses()).sum();
+        self.trackers[0].finish(now, misses);
+        self.tiles_done += 1;
+        if let Some(tl) = self.timeline.as_mut() {
+            tl.mark(now, t as u32, None, false);
+        }
+        true
     }
 
     /// A core's end of cycle; under per-core-tile dispatch, its tile's
-    /// end.
+    /// end. Whether its tile ended.
     #[inline(always)]
-    fn core_end_cycle(&mut self, i: usize, now: u64) {
+    fn core_end_cycle(&mut self, i: usize, now: u64) -> bool {
         let c = &mut self.cores[i];
         let tile = c.tile();
-        if c.end_cycle() {
-            self.tiles_done += 1;
-            let misses = c.tile_misses();
-            self.trackers[i].finish(now, misses);
-            if let Some(tl) = self.timeline.as_mut() {
-                tl.mark(
-                    now,
-                    tile.expect("a finished tile") as u32,
-                    Some(i as u32),
-                    false,
-                );
-            }
+        if !c.end_cycle() {
+            return false;
         }
+        self.tiles_done += 1;
+        let misses = c.tile_misses();
+        self.trackers[i].finish(now, misses);
+        if let Some(tl) = self.timeline.as_mut() {
+            tl.mark(
+                now,
+                tile.expect("a finished tile") as u32,
+                Some(i as u32),
+                false,
+            );
+        }
+        true
     }
 
     fn sample_timeline(&mut self, now: u64) {
@@ -518,32 +491,28 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
         });
     }
 
+    /// The last cycle in which a stage of a core or the raster pipeline
+    /// made progress, or a tile began or ended.
+    pub fn last_progress(&self) -> u64 {
+        self.last_progress
+    }
+
+    /// Stop a run in which nothing made progress for
+    /// `sim.watchdog_cycles` while a core has a tile or the raster
+    /// pipeline has work.
+    #[inline(never)]
     fn watchdog(&self) -> Result<(), SimError> {
-        // Checked every 256 cycles: the limit is a coarse bound anyway.
-        if !self.now.is_multiple_of(256) {
-            return Ok(());
-        }
-        let limit = self.cfg.sim.watchdog_cycles;
-        let raster = match &self.dispatch {
-            Dispatcher::Shared(r) if !r.done(self.trace.tiles().len()) => Some(r.last_progress()),
-            _ => None,
+        let rastering = match &self.dispatch {
+            Dispatcher::Shared(r) => !r.done(self.trace.tiles().len()),
+            Dispatcher::PerCore { .. } => false,
         };
-        let last = self
-            .cores
-            .iter()
-            .filter(|c| !c.idle())
-            .map(|c| c.last_progress())
-            .chain(raster)
-            .max();
-        if let Some(last) = last {
-            if self.now.saturating_sub(last) > limit {
-                let state: Vec<String> =
-                    self.cores.iter().map(|c| c.describe(self.trace)).collect();
-                return Err(SimError::Watchdog {
-                    cycle: self.now,
-                    state: state.join("\n"),
-                });
-            }
+        let busy = rastering || self.cores.iter().any(|c| !c.idle());
+        if busy && self.now - self.last_progress > self.cfg.sim.watchdog_cycles {
+            let state: Vec<String> = self.cores.iter().map(|c| c.describe(self.trace)).collect();
+            return Err(SimError::Watchdog {
+                cycle: self.now,
+                state: state.join("\n"),
+            });
         }
         Ok(())
     }
@@ -565,34 +534,6 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             t.pop_scope();
         }
         self.mem.trace_shared(t);
-    }
-
-    /// Run to the end and return the counters. `progress` is called every
-    /// few thousand cycles with (tiles done, tiles total).
-    pub fn run<S: CycleSink>(
-        mut self,
-        mut sink: Option<&mut S>,
-        window: Option<(u64, u64)>,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Result<RunCounters, SimError> {
-        let total = self.trace.tiles().len();
-        while !self.done() {
-            let next = self.now + 1;
-            let sample = match window {
-                Some((from, to)) => next >= from && next <= to,
-                None => true,
-            };
-            if sample && sink.is_some() {
-                self.step_traced(sink.as_deref_mut())?;
-            } else {
-                self.step()?;
-            }
-            if self.now.is_multiple_of(4096) {
-                progress(self.tiles_done, total);
-            }
-        }
-        progress(self.tiles_done, total);
-        self.finish()
     }
 
     /// Record every warp from now on.

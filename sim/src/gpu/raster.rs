@@ -31,9 +31,9 @@
 //! tile's first quads are rasterized in the cycle after the barrier and can
 //! launch in that cycle, so only the queues' head start is lost.)
 
-use super::core_map::CoreMapTable;
 use super::core_model::CoreModel;
-use crate::config::ColorFlush;
+use super::raster_cursor::RasterCursor;
+use crate::config::{ColorFlush, CoreMapTable};
 use crate::mem::MemorySystem;
 use crate::trace::{Tile, Trace};
 use serde::Serialize;
@@ -64,6 +64,16 @@ pub struct RasterStats {
     pub flush_lines: u64,
 }
 
+/// What the raster pipeline did in a cycle.
+#[derive(Clone, Copy, Debug)]
+pub struct RasterCycle {
+    /// The tile it opened, if any.
+    pub opened: Option<u32>,
+    /// It made progress: a line written, a tile opened, a quad
+    /// rasterized.
+    pub progress: bool,
+}
+
 /// The shared raster pipeline.
 #[derive(Debug)]
 pub struct SharedRaster {
@@ -81,7 +91,6 @@ pub struct SharedRaster {
     /// flush may still run when the next tile closes).
     flush: VecDeque<u64>,
     stats: RasterStats,
-    last_progress: u64,
     /// What the pipeline did in the last cycle (for the waveform).
     signals: RasterSignals,
 }
@@ -119,7 +128,6 @@ impl SharedRaster {
             cursor: RasterCursor::default(),
             flush: VecDeque::new(),
             stats: RasterStats::default(),
-            last_progress: 0,
             signals: RasterSignals::default(),
         }
     }
@@ -151,58 +159,63 @@ impl SharedRaster {
         self.map.core(x, y)
     }
 
-    /// The last cycle the pipeline rasterized a quad or wrote a line.
-    pub fn last_progress(&self) -> u64 {
-        self.last_progress
-    }
-
     /// Phase 1 of cycle `now`: flush a line, open a tile if none is open,
-    /// rasterize. Returns the tile opened in this cycle, if any.
+    /// rasterize.
     pub fn evaluate<C: CoreModel>(
         &mut self,
         now: u64,
         trace: &Trace,
         cores: &mut [C],
         mem: &mut MemorySystem,
-    ) -> Option<usize> {
+    ) -> RasterCycle {
         self.signals = RasterSignals::default();
+        let mut progress = false;
         if let Some(block) = self.flush.pop_front() {
             self.signals.flushed = true;
             mem.write_back(now, block);
             self.stats.flush_lines += 1;
-            self.last_progress = now;
+            progress = true;
         }
         let tiles = trace.tiles();
         let mut opened = None;
         if self.tile.is_none() {
             let may_open = self.flush_mode != ColorFlush::Blocking || self.flush.is_empty();
             if self.next_tile >= tiles.len() {
-                return None;
+                return RasterCycle {
+                    opened: None,
+                    progress,
+                };
             }
             if !may_open {
                 self.stats.between_tiles_cycles += 1;
-                return None;
+                return RasterCycle {
+                    opened: None,
+                    progress,
+                };
             }
             let t = self.next_tile;
             self.next_tile += 1;
             self.tile = Some(t);
             self.cursor = RasterCursor::start(&tiles[t]);
             for c in cores.iter_mut() {
-                c.begin_shared_tile(t, now);
+                c.begin_shared_tile(t);
             }
-            opened = Some(t);
+            opened = Some(t as u32);
+            progress = true;
         }
         let t = self.tile.expect("a tile is open");
-        self.rasterize(&tiles[t], cores, now);
-        opened
+        progress |= self.rasterize(&tiles[t], cores);
+        RasterCycle { opened, progress }
     }
 
-    fn rasterize<C: CoreModel>(&mut self, tile: &Tile, cores: &mut [C], now: u64) {
+    /// Rasterize up to the rate; whether a quad was rasterized.
+    fn rasterize<C: CoreModel>(&mut self, tile: &Tile, cores: &mut [C]) -> bool {
         let mut budget = self.rate;
         if self.cursor.done() {
             self.stats.barrier_cycles += 1;
-            return;
+            return false;
         }
+        let before = self.stats.quads_rasterized;
         while budget > 0 {
             let k = self
                 .cursor
@@ -212,7 +225,6 @@ impl SharedRaster {
                 self.stats.quads_rasterized += u64::from(k);
                 self.stats.quads_rejected += u64::from(k);
                 self.signals.rejected += k;
-                self.last_progress = now;
                 continue;
             }
             let Some(i) = self.cursor.peek() else {
@@ -229,19 +241,14 @@ impl SharedRaster {
             self.cursor.advance(tile);
             budget -= 1;
             self.stats.quads_rasterized += 1;
-            self.last_progress = now;
         }
+        self.stats.quads_rasterized != before
     }
 
-    /// After the cores' end of cycle `now`: close the open tile if every
-    /// quad is rasterized and every core has drained it (the barrier), and
-    /// queue its colour-buffer flush. Returns the closed tile.
-    pub fn end_cycle<C: CoreModel>(
-        &mut self,
-        trace: &Trace,
-        cores: &mut [C],
-        now: u64,
-    ) -> Option<usize> {
+    /// After the cores' end of cycle: close the open tile if every quad is
+    /// rasterized and every core has drained it (the barrier), and queue
+    /// its colour-buffer flush. Returns the closed tile.
+    pub fn end_cycle<C: CoreModel>(&mut self, trace: &Trace, cores: &mut [C]) -> Option<usize> {
         let t = self.tile?;
         if !self.cursor.done() || !cores.iter().all(|c| c.drained()) {
             return None;
@@ -250,7 +257,6 @@ impl SharedRaster {
             c.end_shared_tile();
         }
         self.tile = None;
-        self.last_progress = now;
         if self.flush_mode != ColorFlush::None {
             flush_lines(trace, t, &mut self.flush);
         }
@@ -276,107 +282,6 @@ impl Traceable for SharedRaster {
         t.bit("backpressure", self.signals.backpressure);
         t.signal("flush_left", 16, self.flush.len().min(0xffff) as u64);
         t.bit("flushed", self.signals.flushed);
-    }
-}
-
-/// A rasterizer's place in a tile's rasterization order: the next
-/// surviving quad, and the Early-Z-rejected quads still to rasterize before
-/// it (or, past the last quad, at the tile's end). Both the shared
-/// rasterizer and a core's own (per-core-tile dispatch) walk a tile with
-/// it.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct RasterCursor {
-    /// Next surviving quad.
-    pub(crate) next: u32,
-    /// Surviving quads of the tile.
-    quads: u32,
-    /// Rejected quads before `next`.
-    gap: u32,
-}
-
-impl RasterCursor {
-    /// At the start of `tile`.
-    pub(crate) fn start(tile: &Tile) -> Self {
-        let quads = tile.quad_count() as u32;
-        RasterCursor {
-            next: 0,
-            quads,
-            gap: if quads > 0 {
-                tile.rejected_before(0)
-            } else {
-                tile.rejected_after_last()
-            },
-        }
-    }
-
-    /// Rasterize up to `budget` rejected quads; returns how many.
-    #[inline]
-    pub(crate) fn reject(&mut self, budget: u32) -> u32 {
-        let k = self.gap.min(budget);
-        self.gap -= k;
-        k
-    }
-
-    /// The next surviving quad, if no rejected quad comes first.
-    #[inline]
-    pub(crate) fn peek(&self) -> Option<u32> {
-        (self.gap == 0 && self.next < self.quads).then_some(self.next)
-    }
-
-    /// The quad [`peek`](Self::peek) gave has been delivered.
-    #[inline]
-    pub(crate) fn advance(&mut self, tile: &Tile) {
-        self.next += 1;
-        self.gap = if self.next < self.quads {
-            tile.rejected_before(self.next as usize)
-        } else {
-            tile.rejected_after_last()
-        };
-    }
-
-    /// One cycle of a core's own rasterizer (per-core-tile dispatch): up
-    /// to `slots` raster slots, each disposing of `rejected_per_slot`
-    /// Early-Z-rejected quads (no warp) or delivering one surviving quad
-    /// (index, in-tile x, y) through `push`, which returns `false` when the
-    /// input queue refuses it (the rasterizer then waits). Adds the quads
-    /// rasterized to `rasterized` and, of them, the rejected ones to
-    /// `rejected`.
-    #[inline(always)]
-    pub(crate) fn own_cycle(
-        &mut self,
-        tile: &Tile,
-        slots: u32,
-        rejected_per_slot: u32,
-        rasterized: &mut u64,
-        rejected: &mut u64,
-        mut push: impl FnMut(u32, u32, u32) -> bool,
-    ) {
-        let mut budget = slots;
-        while budget > 0 {
-            let k = self.reject(budget.saturating_mul(rejected_per_slot));
-            if k > 0 {
-                budget -= k.div_ceil(rejected_per_slot);
-                *rasterized += u64::from(k);
-                *rejected += u64::from(k);
-                continue;
-            }
-            let Some(i) = self.peek() else {
-                break;
-            };
-            let q = tile.quad(i as usize).expect("quad in tile");
-            if !push(i, q.x(), q.y()) {
-                break;
-            }
-            self.advance(tile);
-            budget -= 1;
-            *rasterized += 1;
-        }
-    }
-
-    /// Every quad of the tile rasterized.
-    #[inline]
-    pub(crate) fn done(&self) -> bool {
-        self.next >= self.quads && self.gap == 0
     }
 }
 

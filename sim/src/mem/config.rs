@@ -2,19 +2,13 @@
 //! plus wasp's stated choices) and the structural checks that
 //! [`MemorySystem::new`](super::MemorySystem::new) applies.
 
-use super::prefetch::PrefetchConfig;
+use crate::param::{check_range, section};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// Bytes in one memory block. Every address in the memory system is a block
 /// number (byte address / 64), and every cache line is one block.
 pub const BLOCK_BYTES: u32 = 64;
-
-/// Largest MSHR count the WaSP scheduler's 5-bit free-MSHR register can
-/// represent. The scheduler-level cache (L0 when present, else L1) should not
-/// have more MSHRs than this; the memory system itself does not enforce it
-/// (see [`MemConfig::scheduler_level`]).
-pub const FREE_MSHR_REGISTER_MAX: u32 = 31;
 
 /// Upper bound on `mshrs * (1 + max_merged)` for one cache, so that an absurd
 /// configuration is refused instead of allocating gigabytes.
@@ -72,93 +66,44 @@ pub mod bounds {
 }
 use bounds::*;
 
-/// `field = v: must be in lo..=hi` (with `why` appended) when `v` is out of
-/// range: the style of every bound check of the machine configuration.
-pub fn check_range(field: &str, v: u64, lo: u64, hi: u64, why: &str) -> Result<(), String> {
-    if (lo..=hi).contains(&v) {
-        Ok(())
-    } else {
-        Err(format!("{field} = {v}: must be in {lo}..={hi}{why}"))
+section! {
+    /// One cache level.
+    ///
+    /// All caches are read-only (texture data), allocate on fill, LRU per set.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+    pub struct CacheConfig {
+        /// Capacity in bytes; must be a multiple of `line_bytes * ways`. Its
+        /// bound depends on the level ([`bounds::max_size_bytes`]), so
+        /// [`CacheConfig::check`] checks it.
+        pub size_bytes: u32,
+        /// Associativity. `ways == size_bytes / line_bytes` is fully
+        /// associative. The number of sets must be a power of two.
+        #[range(1..=MAX_WAYS)]
+        pub ways: u32,
+        /// Line size in bytes; must be [`BLOCK_BYTES`] (64).
+        pub line_bytes: u32,
+        /// Latency in cycles, at least 1. A hit accepted in cycle `t`
+        /// completes in cycle `t + hit_latency - 1` (a 1-cycle cache answers
+        /// in the cycle of the access). On a miss the same latency is paid on
+        /// the way back, between the fill arriving from below and the data
+        /// leaving upwards.
+        #[range(1..=MAX_LATENCY, " cycles")]
+        pub hit_latency: u32,
+        /// Miss Status Holding Registers: outstanding primary misses. When all
+        /// are occupied the cache accepts no access at all (cache stall).
+        #[range(1..=MAX_MSHRS)]
+        pub mshrs: u32,
+        /// Secondary misses that can merge into one MSHR entry (the entry
+        /// holds `1 + max_merged` targets: the primary miss and up to
+        /// `max_merged` secondary ones). A further secondary miss is refused
+        /// (a merge stall).
+        #[range(0..=MAX_MERGED)]
+        pub max_merged: u32,
+        /// Accesses accepted per cycle from the level above (or from the
+        /// core).
+        #[range(1..=MAX_PORTS)]
+        pub ports: u32,
     }
-}
-
-/// Which miss marks a warp *blocked*, the paper's long-latency state
-/// ("warps are marked as blocked when they encounter a long-latency miss",
-/// Section IV-C). The paper does not say at which level (wasp's choice,
-/// `scheduler.blocked_on`). The memory system reports the waiting tags of
-/// misses at the chosen level through
-/// [`MemorySystem::take_long_latency`](super::MemorySystem::take_long_latency).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum BlockedOn {
-    /// Any miss (primary or secondary) in the scheduler-level cache (L0 when
-    /// present, else L1), known at the access: even an L0 miss that the
-    /// 1-cycle L1 answers.
-    FirstLevel,
-    /// A request that misses in the core's L1 (primary or merged into an L1
-    /// MSHR entry): it leaves the core for the L2 and takes at least the L2's
-    /// latency. The same as `FirstLevel` without an L0.
-    #[default]
-    L1Miss,
-    /// A request that misses in the L2 (primary or merged into an L2 MSHR
-    /// entry): it goes to main memory.
-    Dram,
-}
-
-impl BlockedOn {
-    /// Every rule, in order of the level.
-    pub const ALL: [BlockedOn; 3] = [BlockedOn::FirstLevel, BlockedOn::L1Miss, BlockedOn::Dram];
-}
-
-impl fmt::Display for BlockedOn {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            BlockedOn::FirstLevel => "first-level",
-            BlockedOn::L1Miss => "l1-miss",
-            BlockedOn::Dram => "dram",
-        })
-    }
-}
-
-impl std::str::FromStr for BlockedOn {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        BlockedOn::ALL
-            .into_iter()
-            .find(|b| b.to_string() == s)
-            .ok_or_else(|| {
-                format!("unknown blocked_on {s:?}: expected first-level, l1-miss or dram")
-            })
-    }
-}
-
-/// One cache level.
-///
-/// All caches are read-only (texture data), allocate on fill, LRU per set.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CacheConfig {
-    /// Capacity in bytes; must be a multiple of `line_bytes * ways`.
-    pub size_bytes: u32,
-    /// Associativity. `ways == size_bytes / line_bytes` is fully associative.
-    /// The number of sets must be a power of two.
-    pub ways: u32,
-    /// Line size in bytes; must be [`BLOCK_BYTES`] (64).
-    pub line_bytes: u32,
-    /// Latency in cycles, at least 1. A hit accepted in cycle `t` completes in
-    /// cycle `t + hit_latency - 1` (a 1-cycle cache answers in the cycle of the
-    /// access). On a miss the same latency is paid on the way back, between the
-    /// fill arriving from below and the data leaving upwards.
-    pub hit_latency: u32,
-    /// Miss Status Holding Registers: outstanding primary misses. When all are
-    /// occupied the cache accepts no access at all (cache stall).
-    pub mshrs: u32,
-    /// Secondary misses that can merge into one MSHR entry (the entry holds
-    /// `1 + max_merged` targets: the primary miss and up to `max_merged`
-    /// secondary ones). A further secondary miss is refused (a merge stall).
-    pub max_merged: u32,
-    /// Accesses accepted per cycle from the level above (or from the core).
-    pub ports: u32,
 }
 
 /// Which main-memory model [`Dram`](super::dram::Dram) runs.
@@ -177,66 +122,83 @@ pub enum DramModel {
     Banked,
 }
 
-/// Main memory: an open-row DRAM, with a fixed-latency or a banked timing
-/// model (`model`).
-///
-/// In the fixed model a block maps to bank `block % banks` (interleaving on
-/// the low block address bits) and, inside that bank, to row
-/// `(block / banks) / (row_bytes / 64)`. The banked model first takes the
-/// channel `block % channels`, then does the same with `block / channels`
-/// inside the channel. A request whose row is the bank's open row is a row
-/// hit; any other request (including the first one to a bank) is a row miss
-/// and opens its row.
-///
-/// Every field is checked whatever the model; `row_hit_latency`,
-/// `row_miss_latency` and `requests_per_cycle` are used only by the fixed
-/// model, the `channels`, `t_*`, `controller_latency` and `scheduler_window`
-/// fields only by the banked one. The banked timings are in GPU cycles (the memory
-/// configuration does not see `gpu.frequency_mhz`; the shipped configs give
-/// the conversion from nanoseconds).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct DramConfig {
-    /// Timing model: `"fixed"` or `"banked"`.
-    pub model: DramModel,
-    /// Banked model: independent channels, each with `banks` banks, its own
-    /// command bus and its own data bus; blocks interleave over channels on
-    /// the lowest block-address bits. At least 1.
-    pub channels: u32,
-    /// Number of banks (per channel in the banked model), at least 1.
-    pub banks: u32,
-    /// Bytes in one row of one bank; a non-zero multiple of 64.
-    pub row_bytes: u32,
-    /// Fixed model: latency of a row hit in cycles, at least 1 (see the
-    /// module docs for how it adds to the end-to-end latency).
-    pub row_hit_latency: u32,
-    /// Fixed model: latency of a row miss in cycles, at least 1.
-    pub row_miss_latency: u32,
-    /// Fixed model: requests accepted per cycle; the others wait in the DRAM
-    /// FIFO.
-    pub requests_per_cycle: u32,
-    /// Banked model: ACTIVATE to READ/WRITE of the opened row (tRCD), in GPU
-    /// cycles.
-    pub t_rcd: u32,
-    /// Banked model: PRECHARGE to the next ACTIVATE of the bank (tRP), in GPU
-    /// cycles.
-    pub t_rp: u32,
-    /// Banked model: ACTIVATE to PRECHARGE of the same bank (tRAS, the least
-    /// time a row stays open), in GPU cycles.
-    pub t_ras: u32,
-    /// Banked model: READ (or WRITE) command to the first data on the bus
-    /// (CAS / read latency), in GPU cycles.
-    pub t_cl: u32,
-    /// Banked model: cycles one 64-byte line occupies the shared data bus;
-    /// also the bank's column-command spacing (tCCD) and read-to-precharge
-    /// time. Sets the bandwidth: one line per `t_burst` cycles.
-    pub t_burst: u32,
-    /// Banked model: fixed controller and interface latency added to every
-    /// read reply after its last data beat, in GPU cycles (may be 0).
-    pub controller_latency: u32,
-    /// Banked model: requests at the head of the FIFO the controller's
-    /// scheduler may pick from (its transaction queue), at least 1.
-    pub scheduler_window: u32,
+section! {
+    /// Main memory: an open-row DRAM, with a fixed-latency or a banked timing
+    /// model (`model`).
+    ///
+    /// In the fixed model a block maps to bank `block % banks` (interleaving
+    /// on the low block address bits) and, inside that bank, to row
+    /// `(block / banks) / (row_bytes / 64)`. The banked model first takes the
+    /// channel `block % channels`, then does the same with `block / channels`
+    /// inside the channel. A request whose row is the bank's open row is a
+    /// row hit; any other request (including the first one to a bank) is a
+    /// row miss and opens its row.
+    ///
+    /// Every field is checked whatever the model; `row_hit_latency`,
+    /// `row_miss_latency` and `requests_per_cycle` are used only by the fixed
+    /// model, the `channels`, `t_*`, `controller_latency` and
+    /// `scheduler_window` fields only by the banked one. The banked timings
+    /// are in GPU cycles (the memory configuration does not see
+    /// `gpu.frequency_mhz`; the shipped configs give the conversion from
+    /// nanoseconds).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+    pub struct DramConfig {
+        /// Timing model: `"fixed"` or `"banked"`.
+        pub model: DramModel,
+        /// Banked model: independent channels, each with `banks` banks, its
+        /// own command bus and its own data bus; blocks interleave over
+        /// channels on the lowest block-address bits.
+        #[range(1..=MAX_CHANNELS)]
+        pub channels: u32,
+        /// Number of banks (per channel in the banked model).
+        #[range(1..=MAX_BANKS)]
+        pub banks: u32,
+        /// Bytes in one row of one bank; a multiple of 64.
+        #[range(BLOCK_BYTES..=MAX_ROW_BYTES)]
+        pub row_bytes: u32,
+        /// Fixed model: latency of a row hit in cycles (see the module docs
+        /// for how it adds to the end-to-end latency).
+        #[range(1..=MAX_LATENCY)]
+        pub row_hit_latency: u32,
+        /// Fixed model: latency of a row miss in cycles.
+        #[range(1..=MAX_LATENCY)]
+        pub row_miss_latency: u32,
+        /// Fixed model: requests accepted per cycle; the others wait in the
+        /// DRAM FIFO.
+        #[range(1..=MAX_REQUESTS_PER_CYCLE)]
+        pub requests_per_cycle: u32,
+        /// Banked model: ACTIVATE to READ/WRITE of the opened row (tRCD), in
+        /// GPU cycles.
+        #[range(1..=MAX_DRAM_TIMING)]
+        pub t_rcd: u32,
+        /// Banked model: PRECHARGE to the next ACTIVATE of the bank (tRP), in
+        /// GPU cycles.
+        #[range(1..=MAX_DRAM_TIMING)]
+        pub t_rp: u32,
+        /// Banked model: ACTIVATE to PRECHARGE of the same bank (tRAS, the
+        /// least time a row stays open), in GPU cycles.
+        #[range(0..=MAX_DRAM_TIMING)]
+        pub t_ras: u32,
+        /// Banked model: READ (or WRITE) command to the first data on the bus
+        /// (CAS / read latency), in GPU cycles.
+        #[range(1..=MAX_DRAM_TIMING)]
+        pub t_cl: u32,
+        /// Banked model: cycles one 64-byte line occupies the shared data
+        /// bus; also the bank's column-command spacing (tCCD) and
+        /// read-to-precharge time. Sets the bandwidth: one line per
+        /// `t_burst` cycles.
+        #[range(1..=MAX_DRAM_TIMING)]
+        pub t_burst: u32,
+        /// Banked model: fixed controller and interface latency added to
+        /// every read reply after its last data beat, in GPU cycles (may be
+        /// 0).
+        #[range(0..=MAX_CONTROLLER_LATENCY)]
+        pub controller_latency: u32,
+        /// Banked model: requests at the head of the FIFO the controller's
+        /// scheduler may pick from (its transaction queue).
+        #[range(1..=MAX_SCHEDULER_WINDOW)]
+        pub scheduler_window: u32,
+    }
 }
 
 impl Default for DramConfig {
@@ -284,10 +246,11 @@ pub struct MemConfig {
     /// without bandwidth limit. The `dram` parameters are still validated but
     /// otherwise unused. Used for the paper's motivation figure.
     pub ideal_memory: bool,
-    /// Which miss blocks a warp: the level whose misses
-    /// [`MemorySystem::take_long_latency`](super::MemorySystem::take_long_latency)
-    /// reports. Changes no timing.
-    pub blocked_on: BlockedOn,
+    /// Record the [`MissEvent`](super::MissEvent)s that the cores' rule of
+    /// which miss blocks a warp reads
+    /// ([`MemorySystem::take_miss_events`](super::MemorySystem::take_miss_events)).
+    /// Changes no timing.
+    pub report_misses: bool,
     /// The prefetcher into the L1s (`none` by default).
     #[serde(default)]
     pub prefetch: PrefetchConfig,
@@ -304,7 +267,7 @@ impl MemConfig {
     /// - L0: fully associative (8 ways = 8 lines), 1-cycle latency.
     /// - MSHRs: L0 16, L1 16, L2 64. The scheduler-level cache (L0 at width 4,
     ///   L1 at width 2) must fit the 5-bit free-MSHR register, so at most
-    ///   [`FREE_MSHR_REGISTER_MAX`] (31); 16 leaves room for the paper's
+    ///   [`FREE_MSHR_MAX`](wasp_rtl::free_mshr::FREE_MSHR_MAX) (31); 16 leaves room for the paper's
     ///   FreeMSHR-10 heuristic and WaSP thresholds to be meaningful.
     /// - Merging: 16 secondary misses per L0/L1 entry, 8 per L2 entry (an L2
     ///   entry's targets are L1s, at most one pending request per L1 and block,
@@ -349,7 +312,7 @@ impl MemConfig {
             },
             dram: DramConfig::default(),
             ideal_memory: false,
-            blocked_on: BlockedOn::L1Miss,
+            report_misses: true,
             prefetch: PrefetchConfig::default(),
         }
     }
@@ -416,20 +379,11 @@ impl CacheConfig {
         self.size_bytes / self.line_bytes / self.ways
     }
 
-    /// Structural checks and bounds; `name` (`l0`, `l1`, `l2`) prefixes the
-    /// field in the error message (`l1.ways = 0: must be in 1..=64`).
+    /// The declared bounds and the structural checks; `name` (`l0`, `l1`,
+    /// `l2`) prefixes the field in the error message (`l1.ways = 0: must be
+    /// in 1..=64`).
     pub fn check(&self, name: &str) -> Result<(), MemConfigError> {
         let err = |msg: String| Err(MemConfigError(format!("{name}: {msg}")));
-        let bound = |field: &str, v: u32, lo: u32, hi: u32, why: &str| {
-            check_range(
-                &format!("{name}.{field}"),
-                v.into(),
-                lo.into(),
-                hi.into(),
-                why,
-            )
-            .map_err(MemConfigError)
-        };
         if self.line_bytes != BLOCK_BYTES {
             return err(format!(
                 "line_bytes is {} but the memory system uses {BLOCK_BYTES}-byte blocks",
@@ -437,18 +391,15 @@ impl CacheConfig {
             ));
         }
         let max_size = max_size_bytes(name);
-        bound(
-            "size_bytes",
-            self.size_bytes,
-            BLOCK_BYTES,
-            max_size,
+        crate::param::check_range(
+            &format!("{name}.size_bytes"),
+            self.size_bytes.into(),
+            BLOCK_BYTES.into(),
+            max_size.into(),
             &format!(" ({} MiB at most)", max_size as f64 / (1u32 << 20) as f64),
-        )?;
-        bound("ways", self.ways, 1, MAX_WAYS, "")?;
-        bound("hit_latency", self.hit_latency, 1, MAX_LATENCY, " cycles")?;
-        bound("mshrs", self.mshrs, 1, MAX_MSHRS, "")?;
-        bound("max_merged", self.max_merged, 0, MAX_MERGED, "")?;
-        bound("ports", self.ports, 1, MAX_PORTS, "")?;
+        )
+        .map_err(MemConfigError)?;
+        self.check_bounds(name).map_err(MemConfigError)?;
         if !self.size_bytes.is_multiple_of(self.line_bytes) {
             return err(format!(
                 "size_bytes {} is not a multiple of line_bytes {}",
@@ -506,8 +457,8 @@ impl DramConfig {
         }
     }
 
-    /// Structural checks and bounds, each error naming the field
-    /// (`dram.banks = 0: must be in 1..=64`).
+    /// The declared bounds and the structural checks, each error naming
+    /// the field (`dram.banks = 0: must be in 1..=64`).
     pub fn check(&self) -> Result<(), MemConfigError> {
         if self.row_hit_latency == 0 || self.row_miss_latency == 0 {
             return Err(MemConfigError(
@@ -516,40 +467,7 @@ impl DramConfig {
                     .into(),
             ));
         }
-        let bounded = [
-            ("channels", self.channels, 1, MAX_CHANNELS),
-            ("banks", self.banks, 1, MAX_BANKS),
-            ("row_bytes", self.row_bytes, BLOCK_BYTES, MAX_ROW_BYTES),
-            ("row_hit_latency", self.row_hit_latency, 1, MAX_LATENCY),
-            ("row_miss_latency", self.row_miss_latency, 1, MAX_LATENCY),
-            (
-                "requests_per_cycle",
-                self.requests_per_cycle,
-                1,
-                MAX_REQUESTS_PER_CYCLE,
-            ),
-            ("t_rcd", self.t_rcd, 1, MAX_DRAM_TIMING),
-            ("t_rp", self.t_rp, 1, MAX_DRAM_TIMING),
-            ("t_ras", self.t_ras, 0, MAX_DRAM_TIMING),
-            ("t_cl", self.t_cl, 1, MAX_DRAM_TIMING),
-            ("t_burst", self.t_burst, 1, MAX_DRAM_TIMING),
-            (
-                "controller_latency",
-                self.controller_latency,
-                0,
-                MAX_CONTROLLER_LATENCY,
-            ),
-            (
-                "scheduler_window",
-                self.scheduler_window,
-                1,
-                MAX_SCHEDULER_WINDOW,
-            ),
-        ];
-        for (field, v, lo, hi) in bounded {
-            check_range(&format!("dram.{field}"), v.into(), lo.into(), hi.into(), "")
-                .map_err(MemConfigError)?;
-        }
+        self.check_bounds("dram").map_err(MemConfigError)?;
         if !self.row_bytes.is_multiple_of(BLOCK_BYTES) {
             return Err(MemConfigError(format!(
                 "dram.row_bytes = {}: must be a multiple of {BLOCK_BYTES}",
@@ -557,6 +475,122 @@ impl DramConfig {
             )));
         }
         Ok(())
+    }
+}
+
+/// Most entries of a raster prefetch queue.
+pub const MAX_QUEUE: u32 = 1024;
+
+/// Which prefetcher the machine has (`prefetch.kind`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PrefetchKind {
+    /// No prefetcher (the shipped machine).
+    #[default]
+    None,
+    /// The bound: a tile's blocks requested when it opens.
+    OracleTile,
+    /// Each quad's blocks requested when it enters an input FIFO.
+    Raster,
+}
+
+impl PrefetchKind {
+    /// Every kind.
+    pub const ALL: [PrefetchKind; 3] = [
+        PrefetchKind::None,
+        PrefetchKind::OracleTile,
+        PrefetchKind::Raster,
+    ];
+}
+
+impl fmt::Display for PrefetchKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            PrefetchKind::None => "none",
+            PrefetchKind::OracleTile => "oracle-tile",
+            PrefetchKind::Raster => "raster",
+        })
+    }
+}
+
+impl std::str::FromStr for PrefetchKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        PrefetchKind::ALL
+            .into_iter()
+            .find(|k| k.to_string() == s)
+            .ok_or_else(|| {
+                format!("unknown prefetch kind {s:?}: expected none, oracle-tile or raster")
+            })
+    }
+}
+
+section! {
+    /// The `[prefetch]` section: the prefetcher and the limits every kind
+    /// obeys (see [`prefetch`](super::prefetch)).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+    pub struct PrefetchConfig {
+        /// `none` (default), `oracle-tile` or `raster`.
+        pub kind: PrefetchKind,
+        /// Entries of each core's raster prefetch queue (block addresses).
+        /// The oracle's queue holds a tile's list whatever this is.
+        #[range(1..=MAX_QUEUE, " entries")]
+        pub queue: u32,
+        /// Skip a request for a block already in the queue (the raster
+        /// kind; the oracle's lists hold each block once anyway).
+        pub queue_filter: bool,
+        /// L1 MSHRs kept free for demand misses: a prefetch is looked up
+        /// only while more than this many are free. Below `l1.mshrs` when a
+        /// prefetcher is on ([`PrefetchConfig::check`]).
+        pub l1_reserve: u32,
+    }
+}
+
+impl Default for PrefetchConfig {
+    /// `none`, with the shipped limits (`configs/paper.toml` says why):
+    /// a 32-entry filtered queue, 4 L1 MSHRs reserved for demand.
+    fn default() -> Self {
+        PrefetchConfig {
+            kind: PrefetchKind::None,
+            queue: 32,
+            queue_filter: true,
+            l1_reserve: 4,
+        }
+    }
+}
+
+impl PrefetchConfig {
+    /// Whether a prefetcher is on.
+    #[inline]
+    pub fn enabled(&self) -> bool {
+        self.kind != PrefetchKind::None
+    }
+
+    /// Bounds, each error naming the field: the declared ones (`queue` in
+    /// 1..=1024); `l1_reserve` below `l1_mshrs` when a prefetcher is on (a
+    /// prefetch needs one MSHR), else below the MSHR bound.
+    pub fn check(&self, l1_mshrs: u32) -> Result<(), String> {
+        self.check_bounds("prefetch")?;
+        if self.enabled() {
+            check_range(
+                "prefetch.l1_reserve",
+                self.l1_reserve.into(),
+                0,
+                u64::from(l1_mshrs) - 1,
+                &format!(
+                    " (below l1.mshrs = {l1_mshrs}: prefetch.kind = {} needs an L1 MSHR the reserve leaves free)",
+                    self.kind
+                ),
+            )
+        } else {
+            check_range(
+                "prefetch.l1_reserve",
+                self.l1_reserve.into(),
+                0,
+                u64::from(MAX_MSHRS) - 1,
+                "",
+            )
+        }
     }
 }
 
@@ -600,7 +634,7 @@ mod tests {
                 (1 << 20, 8, 18)
             );
             assert!(c.dram.row_hit_latency >= 50 && c.dram.row_miss_latency <= 100);
-            assert!(c.scheduler_level().mshrs <= FREE_MSHR_REGISTER_MAX);
+            assert!(c.scheduler_level().mshrs <= wasp_rtl::free_mshr::FREE_MSHR_MAX);
         }
         let l0 = MemConfig::paper(true).l0.unwrap();
         assert_eq!((l0.size_bytes, l0.ports), (512, 2));

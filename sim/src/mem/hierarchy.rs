@@ -3,16 +3,16 @@
 //! See the [module docs](super) for the timing model.
 
 use super::cache::{bits_for, Cache, Lookup};
-use super::config::{BlockedOn, MemConfig, MemConfigError};
+use super::config::{MemConfig, MemConfigError};
 use super::dram::Dram;
 use super::prefetch::{PrefetchQueue, PrefetchQueues, PrefetchStats};
 use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
 use wasp_waves::Tracer;
 
-mod observe;
 #[cfg(test)]
-mod plain;
+mod lockstep;
+mod observe;
 pub use observe::MshrFileView;
 
 /// What happened to one access presented by a core.
@@ -110,14 +110,8 @@ struct CoreMem {
     completing: Ring<(u64, u32)>,
     /// Tags completed and not yet taken.
     ready: Vec<u32>,
-    /// Per L0 MSHR entry (long-latency reporting with an L0): its targets
-    /// have been reported, and so is every target merged into it later.
-    /// Meaningful while the entry is pending (cleared at allocation).
-    l0_long: Box<[bool]>,
-    /// The same per L1 MSHR entry (reporting L2 misses).
-    l1_long: Box<[bool]>,
-    /// Tags reported waiting on a long-latency miss and not yet taken.
-    long: Vec<u32>,
+    /// Miss events of the core's requests not yet taken.
+    misses: Vec<MissEvent>,
     /// Not quiet at the start of the current tick (tick scratch).
     active: bool,
 }
@@ -149,9 +143,9 @@ impl CoreMem {
 /// joins the L1's queue to the L2 like a demand miss's (see
 /// `mem/prefetch`).
 #[inline(never)]
-fn prefetch_step(now: u64, c: &mut CoreMem, pf: &mut PrefetchQueue, track: Track, reserve: u32) {
+fn prefetch_step(now: u64, c: &mut CoreMem, pf: &mut PrefetchQueue, report: bool, reserve: u32) {
     let CoreMem {
-        l1, to_l2, l1_long, ..
+        l1, to_l2, misses, ..
     } = c;
     pf.issue(
         |block| l1.prefetch(now, block, reserve),
@@ -161,10 +155,10 @@ fn prefetch_step(now: u64, c: &mut CoreMem, pf: &mut PrefetchQueue, track: Track
                 block,
                 entry,
             });
-            // A new L1 entry starts unmarked for the L2-miss reports (it
-            // has no target to report yet; later merges are reported).
-            if track == Track::L2 {
-                l1_long[entry as usize] = false;
+            // A new L1 entry no warp waits on yet: the cores' rule starts
+            // its record afresh.
+            if report {
+                misses.push(MissEvent::Prefetch { l1: entry });
             }
         },
     );
@@ -211,71 +205,35 @@ fn complete_all(
     }
 }
 
-/// Which misses [`MemorySystem::take_long_latency`] reports.
+/// What became of the request of one of a core's MSHR entries at the next
+/// level, when it missed there: the events a core needs to know which of
+/// its warps wait on a miss at which level (its rule of which miss blocks
+/// a warp, `scheduler.blocked_on`). Reported only when
+/// [`MemConfig::report_misses`] asks, in the order they happen, by
+/// [`MemorySystem::take_miss_events`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Track {
-    /// None ([`BlockedOn::FirstLevel`]: the access's result tells).
-    Nothing,
-    /// Misses in the L1.
-    L1,
-    /// Misses in the L2.
-    L2,
-}
-
-/// Report every target of L0 MSHR entry `e` (pending) as waiting on a
-/// long-latency miss, once: the entry is marked, and targets merged into it
-/// later are reported at merge.
-#[inline]
-fn mark_l0(l0: &Cache, l0_long: &mut [bool], long: &mut Vec<u32>, e: u32) {
-    let m = &mut l0_long[e as usize];
-    if !*m {
-        *m = true;
-        long.extend_from_slice(l0.pending_targets(e));
-    }
-}
-
-/// The same for L1 MSHR entry `e` (pending) of core `c`: its targets are
-/// tags, or L0 MSHR entries whose targets are reported in turn.
-#[inline]
-fn mark_l1(c: &mut CoreMem, e: u32) {
-    let m = &mut c.l1_long[e as usize];
-    if *m {
-        return;
-    }
-    *m = true;
-    match c.l0.as_ref() {
-        Some(l0) => {
-            for &e0 in c.l1.pending_targets(e) {
-                mark_l0(l0, &mut c.l0_long, &mut c.long, e0);
-            }
-        }
-        None => c.long.extend_from_slice(c.l1.pending_targets(e)),
-    }
-}
-
-/// Long-latency bookkeeping of an access of tag `tag` that missed in the
-/// first level of core `c`, allocating (`merged` false) or merging into
-/// its MSHR entry `entry`: without an L0 under [`Track::L1`] the access
-/// itself is reported; otherwise a new entry starts unmarked and a merge
-/// into a marked entry is reported. Out of line: the accesses' hot path
-/// only tests `track`.
-#[inline(never)]
-fn first_level_miss(c: &mut CoreMem, track: Track, tag: u32, entry: u32, merged: bool) {
-    let marks = if c.l0.is_some() {
-        &mut c.l0_long
-    } else if track == Track::L1 {
-        // The access itself misses in the L1.
-        c.long.push(tag);
-        return;
-    } else {
-        &mut c.l1_long
-    };
-    let m = &mut marks[entry as usize];
-    if !merged {
-        *m = false;
-    } else if *m {
-        c.long.push(tag);
-    }
+pub enum MissEvent {
+    /// The request of L0 MSHR entry `l0` missed in the L1: it allocated L1
+    /// MSHR entry `l1` (`merged` false) or merged into it.
+    L1 {
+        /// The L0 entry.
+        l0: u32,
+        /// The L1 entry it allocated or merged into.
+        l1: u32,
+        /// It merged into a pending entry.
+        merged: bool,
+    },
+    /// The request of L1 MSHR entry `l1` missed in the L2 (allocating an
+    /// L2 entry or merging into one).
+    L2 {
+        /// The L1 entry.
+        l1: u32,
+    },
+    /// A prefetch allocated L1 MSHR entry `l1`: no access waits on it yet.
+    Prefetch {
+        /// The L1 entry.
+        l1: u32,
+    },
 }
 
 /// Move the tags of `from` to the end of `out`, leaving `from` empty. The
@@ -303,8 +261,8 @@ struct L2Reply {
 /// Per cycle `now` the owner calls, in this order: [`access`](Self::access)
 /// for that cycle's accesses (any cores, any order; the order within a core
 /// is the order of its ports), [`tick`](Self::tick) once, then any of
-/// [`take_long_latency`](Self::take_long_latency) (before the
-/// completions), [`take_completions`](Self::take_completions),
+/// [`take_miss_events`](Self::take_miss_events),
+/// [`take_completions`](Self::take_completions),
 /// [`mshr_events`](Self::mshr_events), [`trace`](Self::trace). Cycles must
 /// not go backwards and `tick` should be called for every cycle; cycles in
 /// which [`is_idle`](Self::is_idle) holds and no access is made may be
@@ -322,8 +280,8 @@ pub struct MemorySystem {
     /// Each core's prefetch queue, in front of its L1 (`mem/prefetch`;
     /// never filled without a prefetcher).
     pf: Vec<PrefetchQueue>,
-    /// Which misses are reported to the cores as long-latency.
-    track: Track,
+    /// Record [`MissEvent`]s.
+    report_misses: bool,
     /// L2 hits and L2 fill deliveries travelling to the L1s, in cycle order.
     to_l1: Ring<L2Reply>,
     /// Cores taking part in the L2 arbitration of the current tick, in
@@ -367,13 +325,12 @@ impl MemorySystem {
                 to_l0: Ring::with_capacity(l0_mshrs),
                 completing: Ring::with_capacity(completing),
                 ready: Vec::with_capacity(completing),
-                l0_long: vec![false; l0_mshrs].into(),
-                l1_long: vec![false; l1_mshrs].into(),
-                // Each waiting tag is reported at most once.
-                long: Vec::with_capacity(if cfg.blocked_on == BlockedOn::FirstLevel {
-                    0
+                // At most one event per MSHR entry of the L0 and the L1 in
+                // a tick.
+                misses: Vec::with_capacity(if cfg.report_misses {
+                    l0_mshrs + l1_mshrs
                 } else {
-                    completing
+                    0
                 }),
                 active: false,
             });
@@ -386,11 +343,7 @@ impl MemorySystem {
             cores,
             pf,
             l2: Cache::new(&cfg.l2)?,
-            track: match cfg.blocked_on {
-                BlockedOn::FirstLevel => Track::Nothing,
-                BlockedOn::L1Miss => Track::L1,
-                BlockedOn::Dram => Track::L2,
-            },
+            report_misses: cfg.report_misses,
             to_l1: Ring::with_capacity(n_cores * cfg.l1.mshrs as usize),
             l2_order: Vec::with_capacity(n_cores),
             dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
@@ -417,9 +370,16 @@ impl MemorySystem {
     /// counters and must be presented again. Panics if `core` is out of range.
     #[inline(always)]
     pub fn access(&mut self, now: u64, core: usize, block: u64, tag: u32) -> Access {
+        self.access_entry(now, core, block, tag).0
+    }
+
+    /// [`access`](Self::access), with the first level's MSHR entry that a
+    /// miss allocated or a secondary miss merged into (0 for other
+    /// results): the entry the [`MissEvent`]s of its request name.
+    #[inline(always)]
+    pub fn access_entry(&mut self, now: u64, core: usize, block: u64, tag: u32) -> (Access, u32) {
         debug_assert!(now >= self.now, "access in a past cycle");
         self.now = now;
-        let track = self.track;
         let c = &mut self.cores[core];
         // The L0 never takes a prefetch: its lookups skip the marks.
         let (first, queue, lookup) = match c.l0.as_mut() {
@@ -436,7 +396,7 @@ impl MemorySystem {
             (Lookup::Hit, _) => {
                 let at = now + u64::from(first.config().hit_latency) - 1;
                 complete_all(&mut c.completing, &mut c.ready, now, at, &[tag]);
-                Access::Hit
+                (Access::Hit, 0)
             }
             (Lookup::Miss, entry) => {
                 queue.push_back(Request {
@@ -444,130 +404,180 @@ impl MemorySystem {
                     block,
                     entry,
                 });
-                if track != Track::Nothing {
-                    first_level_miss(c, track, tag, entry, false);
-                }
-                Access::Miss
+                (Access::Miss, entry)
             }
-            (Lookup::Secondary, entry) => {
-                if track != Track::Nothing {
-                    first_level_miss(c, track, tag, entry, true);
-                }
-                Access::SecondaryMiss
-            }
-            (Lookup::Stall | Lookup::MergeFull, _) => Access::Stall,
-            (Lookup::PortBusy, _) => Access::PortBusy,
+            (Lookup::Secondary, entry) => (Access::SecondaryMiss, entry),
+            (Lookup::Stall | Lookup::MergeFull, _) => (Access::Stall, 0),
+            (Lookup::PortBusy, _) => (Access::PortBusy, 0),
         }
     }
 
-    /// Advance everything by cycle `now`, after that cycle's accesses: the L1s
-    /// take L0 requests, the L2 takes L1 requests (round robin over cores),
-    /// the DRAM accepts requests, then replies due at `now` fill the L2, the
-    /// L1s and the L0s in that order, and tags completing at `now` become
-    /// available to [`take_completions`](Self::take_completions). (An L1
-    /// hit whose reply is due at `now` with no earlier reply queued for its
-    /// L0 fills the L0 as soon as it is found: no L0 access happens within a
-    /// tick and the L0's fills keep their order, so nothing can tell.)
+    /// Advance everything by cycle `now`, after that cycle's accesses, in
+    /// five steps:
+    /// 1. [`requests_to_l1`](Self::requests_to_l1): the L1s take L0
+    ///    requests, then, with a prefetcher, the heads of the prefetch
+    ///    queues on the ports left ([`prefetch_tick`](Self::prefetch_tick));
+    /// 2. [`requests_to_l2`](Self::requests_to_l2): the L2 takes L1
+    ///    requests, round robin over cores;
+    /// 3. [`dram_to_l2`](Self::dram_to_l2): the DRAM accepts requests and
+    ///    its replies due at `now` fill the L2;
+    /// 4. [`l2_to_l1`](Self::l2_to_l1): L2 replies due at `now` fill the
+    ///    L1s;
+    /// 5. [`l1_to_l0`](Self::l1_to_l0): L1 replies due at `now` fill the
+    ///    L0s, and tags completing at `now` become available to
+    ///    [`take_completions`](Self::take_completions).
     pub fn tick(&mut self, now: u64) {
+        self.tick_steps::<true>(now);
+    }
+
+    /// [`tick`](Self::tick) without its shortcuts: the plain reference the
+    /// lockstep tests (`hierarchy/lockstep.rs`) compare it with.
+    #[cfg(test)]
+    pub(crate) fn tick_plain(&mut self, now: u64) {
+        self.tick_steps::<false>(now);
+    }
+
+    /// The five steps of a tick. With `SHORTCUTS` (the fast form) a step
+    /// skips what cannot change anything, which the plain form
+    /// (`SHORTCUTS` false) does not:
+    /// - a quiet core (no MSHR occupied, nothing queued or completing) is
+    ///   left out of steps 1 and 5 (it stays quiet through the tick: an L2
+    ///   reply only goes to a core with an L1 MSHR entry pending);
+    /// - the L2's candidates are found while step 1 visits the cores,
+    ///   instead of by a scan from core `now % cores`;
+    /// - an L1 hit due at `now` with no earlier reply queued for its L0
+    ///   fills the L0 at once (no L0 access happens within a tick and the
+    ///   L0's fills keep their order, so nothing can tell);
+    /// - step 5 is skipped when no core has a reply or a tag queued.
+    #[inline(always)]
+    fn tick_steps<const SHORTCUTS: bool>(&mut self, now: u64) {
         debug_assert!(now >= self.now, "tick in a past cycle");
         self.now = now;
         self.ticks += 1;
         self.ticked_until = now + 1;
-        let has_l0 = self.cfg.l0.is_some();
-        let n = self.cores.len();
-        let track = self.track;
+        let queued = self.requests_to_l1::<SHORTCUTS>(now);
+        // Prefetches on the L1 ports demand left (their requests are ready
+        // for the L2 from the next cycle, so step 2's candidates stand).
+        if self.cfg.prefetch.enabled() {
+            self.prefetch_tick(now);
+        }
+        self.requests_to_l2(now);
+        self.dram_to_l2(now);
+        let filled = self.l2_to_l1(now);
+        if !SHORTCUTS || queued || filled {
+            self.l1_to_l0::<SHORTCUTS>(now);
+        }
+    }
 
-        // L0 -> L1 requests, over the cores (their private levels are
-        // independent). A quiet core (no MSHR occupied,
-        // nothing queued or completing) has nothing to do this cycle and is
-        // skipped; it stays quiet through the tick (an L2 reply only goes to
-        // a core with an L1 MSHR entry pending), so `active` serves the
-        // whole tick. Cores whose L2 request is ready are the arbitration's
-        // candidates, kept in `l2_order` in round-robin order from core
-        // `now % cores`.
+    /// Step 1: every core's MSHR occupancy made current, and its L0
+    /// misses presented to its L1 in order until the L1 refuses one (the
+    /// cores' private levels are independent). Cores whose L2 request is
+    /// ready become the candidates of step 2, in `l2_order`, round robin
+    /// from core `now % cores`. Returns whether some core has an L1 reply
+    /// or a tag completing queued.
+    ///
+    /// (Some 85 lines: one pass over the cores does all of it, the L2's
+    /// candidates included, because it runs every cycle. Moving the L0's
+    /// loop into a function of its own, inlined, costs 3.6 host
+    /// instructions per core-cycle, `scripts/icount.sh`.)
+    #[inline(always)]
+    fn requests_to_l1<const SHORTCUTS: bool>(&mut self, now: u64) -> bool {
+        let n = self.cores.len();
+        let report = self.report_misses;
         let first = (now % n as u64) as usize;
         self.l2_order.clear();
         // Candidates before core `first` in index order, moved behind the
         // others at the end.
         let mut wrapped = 0;
-        // Some core has an L1 reply or a tag completing still queued.
-        let mut late = false;
+        let mut queued = false;
         // An L1 hit of this tick is due at `l1_reply`, now when `l1_direct`.
         let l1_reply = now + u64::from(self.cfg.l1.hit_latency) - 1;
-        let l1_direct = l1_reply <= now;
+        let l1_direct = SHORTCUTS && l1_reply <= now;
         for (k, c) in self.cores.iter_mut().enumerate() {
-            c.active = !c.is_quiet();
-            if c.active {
-                // Only the MSHR occupancy must be current for the readers;
-                // the per-cycle values move to `now` with the first access
-                // or fill of the cycle (readers check the cycle they
-                // describe, and read zero before it).
-                c.l1.release(now);
-                if let Some(l0) = c.l0.as_mut() {
-                    l0.release(now);
-                    while let Some(&r) = c.to_l1.front() {
-                        if r.ready > now {
-                            break;
-                        }
-                        // The L1's target is the L0 entry to fill.
-                        match c.l1.access_entry(now, r.block, r.entry) {
-                            // Due now with nothing ahead of it in `to_l0`:
-                            // fill the L0 at once, in the same order as
-                            // through the queue.
-                            (Lookup::Hit, _) if l1_direct && c.to_l0.is_empty() => {
-                                fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
-                            }
-                            (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
-                                at: l1_reply,
-                                entry: r.entry,
-                            }),
-                            (Lookup::Miss, entry) => {
-                                c.to_l2.push_back(Request {
-                                    ready: now + 1,
-                                    block: r.block,
-                                    entry,
-                                });
-                                match track {
-                                    Track::Nothing => {}
-                                    Track::L1 => mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry),
-                                    Track::L2 => c.l1_long[entry as usize] = false,
-                                }
-                            }
-                            (Lookup::Secondary, entry) => {
-                                if track == Track::L1
-                                    || (track == Track::L2 && c.l1_long[entry as usize])
-                                {
-                                    mark_l0(l0, &mut c.l0_long, &mut c.long, r.entry);
-                                }
-                            }
-                            (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
-                        }
-                        c.to_l1.drop_front();
-                    }
-                }
-                if c.to_l2.front().is_some_and(|r| r.ready <= now) {
-                    self.l2_order.push(k as u32);
-                    if k < first {
-                        wrapped += 1;
-                    }
-                }
-                late |= !c.to_l0.is_empty() | !c.completing.is_empty();
+            c.active = !SHORTCUTS || !c.is_quiet();
+            if !c.active {
+                continue;
             }
+            // Only the MSHR occupancy must be current for the readers; the
+            // per-cycle values move to `now` with the first access or fill
+            // of the cycle (readers check the cycle they describe, and read
+            // zero before it).
+            c.l1.release(now);
+            if let Some(l0) = c.l0.as_mut() {
+                l0.release(now);
+                while let Some(&r) = c.to_l1.front() {
+                    if r.ready > now {
+                        break;
+                    }
+                    // The L1's target is the L0 entry to fill.
+                    match c.l1.access_entry(now, r.block, r.entry) {
+                        // Due now with nothing ahead of it in `to_l0`: fill
+                        // the L0 at once, in the same order as through the
+                        // queue.
+                        (Lookup::Hit, _) if l1_direct && c.to_l0.is_empty() => {
+                            fill_l0(l0, &mut c.completing, &mut c.ready, now, r.entry);
+                        }
+                        (Lookup::Hit, _) => c.to_l0.push_back(Delivery {
+                            at: l1_reply,
+                            entry: r.entry,
+                        }),
+                        (Lookup::Miss, entry) => {
+                            c.to_l2.push_back(Request {
+                                ready: now + 1,
+                                block: r.block,
+                                entry,
+                            });
+                            if report {
+                                c.misses.push(MissEvent::L1 {
+                                    l0: r.entry,
+                                    l1: entry,
+                                    merged: false,
+                                });
+                            }
+                        }
+                        (Lookup::Secondary, entry) => {
+                            if report {
+                                c.misses.push(MissEvent::L1 {
+                                    l0: r.entry,
+                                    l1: entry,
+                                    merged: true,
+                                });
+                            }
+                        }
+                        (Lookup::Stall | Lookup::MergeFull | Lookup::PortBusy, _) => break,
+                    }
+                    c.to_l1.drop_front();
+                }
+            }
+            if SHORTCUTS && c.to_l2.front().is_some_and(|r| r.ready <= now) {
+                self.l2_order.push(k as u32);
+                if k < first {
+                    wrapped += 1;
+                }
+            }
+            queued |= !c.to_l0.is_empty() | !c.completing.is_empty();
         }
-        if wrapped > 0 {
+        if !SHORTCUTS {
+            let ready = |c: &CoreMem| c.to_l2.front().is_some_and(|r| r.ready <= now);
+            let cores = &self.cores;
+            let order = (first..n).chain(0..first);
+            self.l2_order
+                .extend(order.filter(|&k| ready(&cores[k])).map(|k| k as u32));
+        } else if wrapped > 0 {
             self.l2_order.rotate_left(wrapped);
         }
-        // Prefetches on the L1 ports demand left (their requests are ready
-        // for the L2 from the next cycle, so the candidates above stand).
-        if self.cfg.prefetch.enabled() {
-            self.prefetch_tick(now);
-        }
+        queued
+    }
 
-        // L1 -> L2 requests, round robin over cores (core `now % cores` first,
-        // so the order does not depend on which cycles were ticked), one head
-        // per core per round, until the L2's ports are used or no head can go.
-        // A core leaves the rounds when the L2 refuses its head (MSHRs full
-        // or merge full) or its next head is not ready.
+    /// Step 2: L1 misses to the L2, in rounds over the candidates (core
+    /// `now % cores` first, so the order does not depend on which cycles
+    /// were ticked), one ready head per core per round, until the L2's
+    /// ports are used or no head can go. A core leaves the rounds when the
+    /// L2 refuses its head (MSHRs full or merge full) or its next head is
+    /// not ready.
+    #[inline(always)]
+    fn requests_to_l2(&mut self, now: u64) {
+        let report = self.report_misses;
         let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
         'arbitrate: while !self.l2_order.is_empty() {
             let mut kept = 0;
@@ -585,13 +595,13 @@ impl MemorySystem {
                     }),
                     (Lookup::Miss, entry) => {
                         self.dram.request(now, r.block, entry);
-                        if track == Track::L2 {
-                            mark_l1(c, r.entry);
+                        if report {
+                            c.misses.push(MissEvent::L2 { l1: r.entry });
                         }
                     }
                     (Lookup::Secondary, _) => {
-                        if track == Track::L2 {
-                            mark_l1(c, r.entry);
+                        if report {
+                            c.misses.push(MissEvent::L2 { l1: r.entry });
                         }
                     }
                     (Lookup::PortBusy, _) => break 'arbitrate,
@@ -605,8 +615,13 @@ impl MemorySystem {
             }
             self.l2_order.truncate(kept);
         }
+    }
 
-        // Main memory: accept, then fill the L2 with the replies due now.
+    /// Step 3: main memory accepts requests, and its replies due at `now`
+    /// fill the L2; their targets travel on to the L1s.
+    #[inline(always)]
+    fn dram_to_l2(&mut self, now: u64) {
+        let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
         self.dram.accept(now);
         while let Some(entry) = self.dram.pop_reply(now) {
             let block = self.l2.pending_block(entry);
@@ -620,15 +635,21 @@ impl MemorySystem {
         }
         // Keep the L2's MSHR occupancy current for its readers.
         self.l2.release(now);
+    }
 
-        // L2 replies fill the L1s.
+    /// Step 4: L2 replies due at `now` fill the L1s; their targets go on to
+    /// the L0 (each the MSHR entry of one L0 miss) or, without L0,
+    /// complete. Returns whether any reply arrived.
+    #[inline(always)]
+    fn l2_to_l1(&mut self, now: u64) -> bool {
+        let has_l0 = self.cfg.l0.is_some();
+        let mut filled = false;
         while let Some(r) = self.to_l1.pop_front_if(|r| r.at <= now) {
             let c = &mut self.cores[r.core as usize];
             let at = now + u64::from(c.l1.config().hit_latency) - 1;
             let targets = c.l1.fill(now, r.block);
-            late = true;
+            filled = true;
             if has_l0 {
-                // Each target is the MSHR entry of one L0 miss.
                 for &entry in targets {
                     c.to_l0.push_back(Delivery { at, entry });
                 }
@@ -636,13 +657,15 @@ impl MemorySystem {
                 complete_all(&mut c.completing, &mut c.ready, now, at, targets);
             }
         }
+        filled
+    }
 
-        // L1 replies fill the L0s; tags due now complete.
-        if !late {
-            return;
-        }
+    /// Step 5: L1 replies due at `now` fill the L0s; tags due at `now`
+    /// complete. (A core quiet at the start of the tick has neither.)
+    #[inline(always)]
+    fn l1_to_l0<const SHORTCUTS: bool>(&mut self, now: u64) {
         for c in &mut self.cores {
-            if !c.active {
+            if SHORTCUTS && !c.active {
                 continue;
             }
             if let Some(l0) = c.l0.as_mut() {
@@ -665,20 +688,25 @@ impl MemorySystem {
         hand_over(&mut self.cores[core].ready, out);
     }
 
-    /// Append to `out` the tags of `core` that began to wait on a
-    /// long-latency miss ([`MemConfig::blocked_on`]) in the last cycle (and
-    /// any not taken before), each reported at most once per access and
-    /// always before its completion is taken when the owner takes these
-    /// first: under [`BlockedOn::L1Miss`] the tags whose request missed in
-    /// the L1 (with an L0: every target of an L0 MSHR entry whose request
-    /// the L1 missed or merged into an L1 MSHR entry, and every later target
-    /// merged into that entry), under [`BlockedOn::Dram`] the same one level
-    /// down (a request the L2 missed or merged into an L2 MSHR entry). Under
-    /// [`BlockedOn::FirstLevel`] nothing: the access's own result
-    /// ([`Access::Miss`], [`Access::SecondaryMiss`]) tells.
+    /// Whether `core` has [`MissEvent`]s not taken.
     #[inline]
-    pub fn take_long_latency(&mut self, core: usize, out: &mut Vec<u32>) {
-        hand_over(&mut self.cores[core].long, out);
+    pub fn has_miss_events(&self, core: usize) -> bool {
+        !self.cores[core].misses.is_empty()
+    }
+
+    /// Append to `out` the [`MissEvent`]s of `core`'s requests since they
+    /// were last taken, in the order they happened (none unless
+    /// [`MemConfig::report_misses`]). A core that takes them before its
+    /// completions of the cycle sees every miss of a request before the
+    /// request's data.
+    #[inline]
+    pub fn take_miss_events(&mut self, core: usize, out: &mut Vec<MissEvent>) {
+        let from = &mut self.cores[core].misses;
+        if out.is_empty() {
+            std::mem::swap(out, from);
+        } else {
+            out.append(from);
+        }
     }
 
     /// The scheduler-level cache's MSHR events of `core` in the last cycle.
@@ -698,9 +726,9 @@ impl MemorySystem {
     /// Nothing in flight anywhere: no MSHR entry occupied (awaiting its
     /// reply or in the cycle after it), no request or reply travelling, no
     /// prefetch queued, no tag completing or completed and not taken.
-    /// While this holds, ticks
-    /// change nothing but the tick count. (Long-latency reports not taken
-    /// do not count: they are notices, not work in flight.)
+    /// While this holds, ticks change nothing but the tick count. (Miss
+    /// events not taken do not count: they are notices, not work in
+    /// flight.)
     pub fn is_idle(&self) -> bool {
         self.cores
             .iter()
@@ -816,14 +844,14 @@ impl MemorySystem {
 }
 
 impl MemorySystem {
-    /// The prefetch step of every core with a prefetch queued, after the
+    /// Step 1's prefetches: every core with a prefetch queued, after the
     /// cycle's demand lookups (see [`prefetch_step`]).
     #[inline(never)]
     fn prefetch_tick(&mut self, now: u64) {
         let reserve = self.cfg.prefetch.l1_reserve;
         for (c, pf) in self.cores.iter_mut().zip(&mut self.pf) {
             if !pf.is_empty() {
-                prefetch_step(now, c, pf, self.track, reserve);
+                prefetch_step(now, c, pf, self.report_misses, reserve);
             }
         }
     }

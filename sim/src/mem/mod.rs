@@ -25,7 +25,7 @@
 //! # Cycle protocol
 //!
 //! In each cycle `now`: the cores call [`MemorySystem::access`], then the
-//! owner calls [`MemorySystem::tick`] once, then reads long-latency reports
+//! owner calls [`MemorySystem::tick`] once, then reads miss events
 //! (before completions), completions, MSHR events and traces. Within `tick` the order is fixed: L1s take L0 requests,
 //! the L2 takes L1 requests (round robin over cores), the DRAM accepts
 //! requests, then replies due in `now` fill the L2, the L1s and the L0s, and
@@ -82,17 +82,17 @@
 //! The WaSP scheduler's 5-bit free-MSHR register counts an entry free from
 //! its reply; [`MemorySystem::mshr_events`] gives it what it needs.
 //!
-//! # Long-latency reports
+//! # Miss events
 //!
-//! A core blocks a warp on a long-latency miss at the level
-//! [`MemConfig::blocked_on`] names ([`BlockedOn`]). For `l1-miss` and `dram`
-//! the memory system reports the waiting tags:
-//! [`MemorySystem::take_long_latency`] hands over, per core, the tags whose
-//! request missed in the L1 (or the L2) in the last tick, or merged at the
-//! first level into an MSHR entry already reported. An L0 (L1) MSHR entry is
-//! marked when the level below misses on its block; its targets are
-//! reported then and later ones at their merge. The reports change no
-//! timing; under `first-level` nothing is tracked.
+//! Which miss blocks a warp is the core's rule (`scheduler.blocked_on`).
+//! For it the memory system reports, when [`MemConfig::report_misses`]
+//! asks, what became of a core's requests at the next level
+//! ([`MissEvent`], [`MemorySystem::take_miss_events`]): an L0 MSHR entry's
+//! request that missed in the L1 (allocating an L1 entry or merging into
+//! one), an L1 entry's request that missed in the L2. With the first-level
+//! MSHR entry [`MemorySystem::access_entry`] gives for each access, that is
+//! all a core needs to know which of its warps wait on a miss at which
+//! level. The events change no timing.
 //!
 //! # Choices of wasp, not of the paper
 //!
@@ -118,11 +118,8 @@ mod ring;
 pub mod stats;
 
 pub use cache::{Cache, Lookup};
-pub use config::{
-    BlockedOn, CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
-    FREE_MSHR_REGISTER_MAX,
-};
-pub use hierarchy::{Access, MemorySystem, MshrFileView, SchedCacheMshrs};
+pub use config::{CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES};
+pub use hierarchy::{Access, MemorySystem, MissEvent, MshrFileView, SchedCacheMshrs};
 pub use mshr::MSHR_HOLD_CYCLES;
 pub use prefetch::{PrefetchConfig, PrefetchKind, PrefetchStats};
 pub use stats::{CacheStats, CoreMemStats, DramStats, MemStats};

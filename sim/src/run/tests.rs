@@ -5,12 +5,12 @@
 //! flushes, timelines, tile-size checks and the watchdog.
 
 use super::*;
+use crate::config::BlockedOn;
 use crate::config::ColorFlush;
 use crate::config::Dispatch;
-use crate::mem::BlockedOn;
 use crate::synth::{generate, GenParams};
 use crate::trace::{Instr, TraceHeader};
-use wasp_rtl::policy::LaunchRule;
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 
 fn tiny() -> Trace {
     let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/traces/tiny.trace");
@@ -213,14 +213,14 @@ fn scarce_mshrs_stall_and_plentiful_do_not() {
     let t = small_synth(7);
     let mut scarce = MachineConfig::paper();
     scarce.l0.as_mut().unwrap().mshrs = 2;
-    scarce.scheduler.policy = "fullpriority".into();
+    scarce.scheduler.policy = PolicySpec::FullPriority;
     scarce.validate().unwrap();
     let s = run(&scarce, &t, "fullpriority");
     assert!(s.l0.as_ref().unwrap().stall_cycles > 0);
     // Fullpriority does not read the 5-bit free-MSHR register, so the
     // L0 may have more MSHRs than it counts.
     let mut plenty = MachineConfig::paper();
-    plenty.scheduler.policy = "fullpriority".into();
+    plenty.scheduler.policy = PolicySpec::FullPriority;
     plenty.l0.as_mut().unwrap().mshrs = 256;
     plenty.l1.mshrs = 256;
     plenty.l2.mshrs = 1024;
@@ -416,7 +416,7 @@ mod random_machines {
                         Dispatch::PerCoreTile
                     };
                     c.raster.quads_per_cycle = rate * cores;
-                    c.raster.core_map = ["latin:2", "rowmajor:1", "latin:8"][map].into();
+                    c.raster.core_map = ["latin:2", "rowmajor:1", "latin:8"][map].parse().unwrap();
                     c.raster.color_flush =
                         [ColorFlush::Overlap, ColorFlush::Blocking, ColorFlush::None][flush];
                     c.core.max_warps = warps;
@@ -427,9 +427,13 @@ mod random_machines {
                         l0.mshrs = mshrs;
                     }
                     let t = mshrs - 1;
-                    c.scheduler.policy = ["baseline", "fullpriority", "freemshr:1", "wasp"][policy]
-                        .replace("wasp", &format!("wasp:{t}"));
-                    c.scheduler.blocked_on = crate::mem::BlockedOn::ALL[rule];
+                    c.scheduler.policy = [
+                        PolicySpec::Baseline,
+                        PolicySpec::FullPriority,
+                        PolicySpec::FreeMshr(1),
+                        PolicySpec::wasp(t),
+                    ][policy];
+                    c.scheduler.blocked_on = crate::config::BlockedOn::ALL[rule];
                     c.sim.watchdog_cycles = 20_000;
                     c.validate().unwrap();
                     c
@@ -484,7 +488,7 @@ mod random_machines {
                 }
             }
             if cfg.raster.dispatch == Dispatch::SharedTile {
-                let map = cfg.core_map().unwrap().table(cfg.quads_per_side(), cfg.gpu.cores);
+                let map = cfg.raster.core_map.table(cfg.quads_per_side(), cfg.gpu.cores);
                 let mut span = std::collections::BTreeMap::<u32, (u64, u64)>::new();
                 for r in &records {
                     let e = span.entry(r.tile).or_insert((u64::MAX, 0));

@@ -1,274 +1,177 @@
-//! Phase 2 of a shader core's cycle, after the memory system ticked: the
-//! warps a long-latency miss blocks, the memory completions through the
-//! filter unit, and the scheduler's clock edge.
+//! The completion stage, phase 2 of a core's cycle, after the memory
+//! system ticked: the warps a long-latency miss blocks (the memory
+//! system's miss events through the core's rule, [`BlockedRule`]), then
+//! the data that returned: a warp whose last block of its texture
+//! instruction arrived is unblocked, passes the filter unit ([`Filter`])
+//! and comes back to the issue stage when its data is filtered.
 
-use super::{block_warp, ShaderCore, MAX_SLOTS};
+use super::blocked::BlockedRule;
+use super::filter::Filter;
+use super::issue::Issue;
+use super::warp::{Warps, MAX_SLOTS};
+use super::Notes;
 use crate::gpu::SimError;
-use crate::mem::{BlockedOn, MemorySystem};
-use wasp_rtl::free_mshr::MshrEvents;
-use wasp_rtl::scheduler::EdgeEvents;
+use crate::mem::MemorySystem;
 
-impl ShaderCore {
-    /// Phase 2 of cycle `now`: take the memory completions, then clock the
-    /// scheduler's registers.
-    pub fn complete(
+/// The completion stage of core `core`.
+#[derive(Clone, Debug)]
+pub(super) struct Complete {
+    core: usize,
+    /// The tags that completed in the cycle (scratch).
+    arrived: Vec<u32>,
+}
+
+/// The stages the completion stage hands warps to, and the rule it
+/// applies.
+pub(super) struct Downstream<'a> {
+    pub(super) blocked: &'a mut BlockedRule,
+    pub(super) filter: &'a mut Filter,
+    pub(super) issue: &'a mut Issue,
+}
+
+impl Complete {
+    /// The stage of core `core`.
+    pub(super) fn new(core: usize) -> Self {
+        Complete {
+            core,
+            arrived: Vec::new(),
+        }
+    }
+
+    /// No data can return: no warp waits for a block.
+    pub(super) fn is_idle(warps: &Warps) -> bool {
+        (0..warps.slots()).all(|s| !warps.holds(s) || warps.get(s).pending == 0)
+    }
+
+    /// Phase 2 of cycle `now`: block the warps this cycle's misses block,
+    /// then take the completions of `mem`. Returns whether data returned
+    /// (the stage's progress).
+    #[inline(always)]
+    pub(super) fn run(
         &mut self,
         now: u64,
         mem: &mut MemorySystem,
-        scratch: &mut Vec<u32>,
-    ) -> Result<(), SimError> {
-        if self.blocked_on != BlockedOn::FirstLevel {
-            self.block_long_latency(now, mem)?;
+        warps: &mut Warps,
+        to: Downstream<'_>,
+        notes: &mut Notes,
+    ) -> Result<bool, SimError> {
+        let core = self.core;
+        // Before the completions: a miss always precedes its data.
+        let mut slots = to.blocked.take_events(mem, core);
+        while slots != 0 {
+            let s = slots.trailing_zeros() as usize;
+            slots &= slots - 1;
+            waiting(core, warps, s, "long-latency report", now)?;
+            warps.block(s, now, notes);
         }
-        scratch.clear();
-        mem.take_completions(self.id, scratch);
-        for &tag in scratch.iter() {
+        self.arrived.clear();
+        mem.take_completions(core, &mut self.arrived);
+        for &tag in &self.arrived {
             let s = tag as usize;
-            let w = &mut self.slots[s % MAX_SLOTS];
-            // An empty slot, or a warp with every block already back.
-            if w.pending == 0 || s >= MAX_SLOTS {
-                return Err(SimError::Internal(format!(
-                    "core {}: completion for slot {s}, which waits for no block, at cycle {now}",
-                    self.id
-                )));
-            }
+            waiting(core, warps, s, "completion", now)?;
+            let w = warps.get_mut(s);
             w.pending -= 1;
             if w.pending == 0 {
-                let lat = now - w.tex_start;
-                w.lat_sum += lat;
+                w.lat_sum += now - w.tex_start;
                 w.tex_done += 1;
-                if w.blocked {
-                    w.blocked = false;
-                    self.stats.blocked_cycles[w.priority as usize & 1] +=
-                        now - self.blocked_at[s % MAX_SLOTS];
-                    if w.priority {
-                        self.prio.unblocked += 1;
-                    }
-                }
+                let tri = w.tex_tri;
+                warps.unblock(s, now, notes);
                 // The filter unit serves the instructions in order of data
                 // arrival (completion order within a cycle).
-                let f = self.filter_cycles[w.tex_tri as usize];
-                let start = now.max(self.filter_free);
-                self.filter_free = start + f;
-                self.stats.filter_busy_cycles += f;
-                self.stats.filter_wait_cycles += start - now;
-                let lat = self.texture_latency.max(1);
-                let at = if self.filter_overlap {
-                    (start + f).max(now + lat)
-                } else {
-                    start + f + lat
-                };
-                self.schedule(now, at, s);
+                let at = to.filter.accept(now, tri, &mut notes.stats);
+                to.issue.accept(now, at, s);
             }
         }
-        if !scratch.is_empty() {
-            self.last_progress = now;
-        }
-        let ev = mem.mshr_events(self.id);
-        self.tile_misses += u64::from(ev.allocated);
-        let mshr = if self.track_mshrs {
-            MshrEvents {
-                allocs: ev.allocated as u8,
-                replies: ev.replied as u8,
-            }
-        } else {
-            MshrEvents::default()
-        };
-        self.sched
-            .clock(EdgeEvents {
-                mshr,
-                prio: self.prio,
-            })
-            .map_err(|e| SimError::Register {
-                core: self.id,
-                cycle: now,
-                fault: e,
-            })?;
-        if let Some(m) = self.sched.cf_meter() {
-            self.stats.cf_quarters_sum += u64::from(m.cf().quarters());
-            self.stats.cf_samples += 1;
-        }
-        // Self-check: the register counts an entry free from its reply.
-        let free = self.sched.free_mshrs().free().get();
-        if self.track_mshrs && free != ev.free_from_reply() {
-            return Err(SimError::Internal(format!(
-                "core {}: free-MSHR register {free} != capacity - outstanding {} at cycle {now}",
-                self.id,
-                ev.free_from_reply()
-            )));
-        }
-        Ok(())
+        Ok(!self.arrived.is_empty())
     }
+}
 
-    /// Mark blocked the warps whose requests the memory system reports
-    /// waiting on a long-latency miss in this cycle (before the cycle's
-    /// completions: a report always precedes its tag's completion).
-    fn block_long_latency(&mut self, now: u64, mem: &mut MemorySystem) -> Result<(), SimError> {
-        self.long.clear();
-        mem.take_long_latency(self.id, &mut self.long);
-        for &tag in &self.long {
-            let s = tag as usize;
-            let w = &mut self.slots[s % MAX_SLOTS];
-            if w.pending == 0 || s >= MAX_SLOTS {
-                return Err(SimError::Internal(format!(
-                    "core {}: long-latency report for slot {s}, which waits for no block, at cycle {now}",
-                    self.id
-                )));
-            }
-            block_warp(
-                w,
-                &mut self.blocked_at[s % MAX_SLOTS],
-                &mut self.stats.blocked_episodes,
-                &mut self.prio,
-                now,
-            );
-        }
-        Ok(())
+/// The warp in slot `s` of core `core` waits for a block (an empty slot
+/// waits for none), or the model is wrong.
+#[inline(always)]
+fn waiting(core: usize, warps: &Warps, s: usize, what: &str, now: u64) -> Result<(), SimError> {
+    if s < MAX_SLOTS && warps.get(s).pending > 0 {
+        return Ok(());
     }
+    Err(SimError::Internal(format!(
+        "core {core}: {what} for slot {s}, which waits for no block, at cycle {now}"
+    )))
 }
 
 #[cfg(test)]
 mod tests {
-    //! The texture filter unit: its rate, its order and how it adds to
-    //! the texture latency.
-    use crate::config::MachineConfig;
-    use crate::gpu::core::testkit::{cfg, trace, OVERLAP, SERIAL};
-    use crate::gpu::{Gpu, RunOptions};
-    use crate::run::simulate;
-    use crate::stats::RunStats;
-    use crate::trace::{Instr, Trace};
+    //! The stage alone on the memory system.
+    use super::super::testkit::{one_core, trace};
+    use super::super::warp::Warp;
+    use super::super::Notes;
+    use super::*;
+    use crate::config::BlockedOn;
+    use crate::mem::{Access, MemConfig};
+    use crate::trace::Instr;
 
-    /// (launch, finish) of each warp, by quad index, and the statistics.
-    fn run(c: &MachineConfig, t: &Trace) -> (Vec<(u64, u64)>, RunStats) {
-        let mut gpu = Gpu::new(c, t).unwrap();
-        gpu.record_warps();
-        while !gpu.done() {
-            gpu.step().unwrap();
-        }
-        let mut r = gpu.take_records();
-        r.sort_by_key(|w| w.quad);
-        let times = r.iter().map(|w| (w.launched, w.finished)).collect();
-        let s = simulate(c, t, &RunOptions::default(), &mut |_, _| {}).unwrap();
-        (times, s)
-    }
-
-    /// A lone warp: under `overlap` a pass no longer than the texture
-    /// latency (4) costs nothing, a longer one its excess; under `serial`
-    /// every filter cycle adds.
+    /// A warp's two blocks return; at the last its data passes the filter
+    /// and the warp comes back to the issue stage. A completion for a slot
+    /// that waits for nothing is a model error.
     #[test]
-    fn a_lone_warp_pays_the_filter_pass_beyond_the_latency() {
-        let bil = trace(&[(0, 0)], &[Instr::Alu(1), Instr::Tex(&[9]), Instr::Alu(1)]);
-        let tri = trace(
-            &[(0, 0)],
-            &[Instr::Alu(1), Instr::TriTex(&[9]), Instr::Alu(1)],
+    fn the_last_block_sends_the_warp_through_the_filter_to_issue() {
+        let cfg = one_core(1, 4, 1);
+        let mut mem = MemorySystem::new(&MemConfig::paper(false)).unwrap();
+        let mut warps = Warps::new(4);
+        warps.occupy(
+            2,
+            Warp {
+                pending: 2,
+                tex_tri: true,
+                ..Warp::default()
+            },
         );
-        let span = |c: &MachineConfig, t: &Trace| {
-            let (w, _) = run(c, t);
-            w[0].1 - w[0].0
-        };
-        let base = span(&cfg(0, 0, OVERLAP), &bil);
-        assert_eq!(span(&cfg(0, 0, OVERLAP), &tri), base);
-        assert_eq!(span(&cfg(0, 0, SERIAL), &tri), base);
-        assert_eq!(span(&cfg(1, 2, OVERLAP), &bil), base);
-        assert_eq!(span(&cfg(1, 2, OVERLAP), &tri), base);
-        assert_eq!(span(&cfg(1, 4, OVERLAP), &tri), base, "f = latency");
-        assert_eq!(span(&cfg(1, 7, OVERLAP), &tri), base + 3);
-        assert_eq!(span(&cfg(7, 1, OVERLAP), &bil), base + 3);
-        assert_eq!(span(&cfg(7, 1, OVERLAP), &tri), base);
-        assert_eq!(span(&cfg(1, 2, SERIAL), &bil), base + 1);
-        assert_eq!(span(&cfg(1, 2, SERIAL), &tri), base + 2);
-        let (_, s) = run(&cfg(1, 7, OVERLAP), &tri);
-        assert_eq!(s.filter.busy_cycles, 7);
-        assert_eq!(s.filter.wait_cycles, 0);
-        assert_eq!(s.filter.trilinear_instructions, 1);
-        assert_eq!(
-            (s.filter.cycles_bilinear, s.filter.cycles_trilinear),
-            (1, 7)
-        );
-        assert_eq!(s.filter.timing, "overlap");
-    }
-
-    /// Quads of one core whose one block arrives in the same cycle (the
-    /// first misses, the others merge into its MSHR) queue at the filter:
-    /// the k-th waits k filter passes, and finishes a pass after the one
-    /// before it once the queue outgrows the latency.
-    #[test]
-    fn data_arriving_together_queues_at_the_one_filter() {
-        // Shared-tile dispatch sends an 8x8-quad block to one core: the 16
-        // quads of the 8x8-pixel tile all run on it.
-        let quads: Vec<(u32, u32)> = (0..4).flat_map(|y| (0..4).map(move |x| (x, y))).collect();
-        let tri = trace(&quads, &[Instr::TriTex(&[9]), Instr::Alu(1)]);
-        let (free, s0) = run(&cfg(0, 0, OVERLAP), &tri);
-        assert_eq!(s0.filter.wait_cycles, 0);
-        assert_eq!(s0.filter.busy_cycles, 0);
-        let (w, s) = run(&cfg(1, 8, SERIAL), &tri);
-        assert_eq!(s.tex_instructions, 16);
-        assert_eq!(s.filter.trilinear_instructions, 16);
-        assert!((s.filter.trilinear_share - 1.0).abs() < 1e-12);
-        assert_eq!(s.filter.busy_cycles, 16 * 8);
-        // Each warp's data arrives when it would have without a filter:
-        // it waits for the passes of those before it.
-        let mut ends: Vec<u64> = w.iter().map(|x| x.1).collect();
-        ends.sort_unstable();
-        for pair in ends.windows(2) {
-            assert!(pair[1] - pair[0] >= 8, "{ends:?}");
+        let mut rule = BlockedRule::new(BlockedOn::FirstLevel, false, 16, 16);
+        let mut filter = Filter::new(&cfg.core);
+        let mut issue = Issue::new(&cfg.core);
+        let mut notes = Notes::new(4);
+        let mut stage = Complete::new(0);
+        assert!(!Complete::is_idle(&warps));
+        // Block 7 misses; the second access merges into its entry: both
+        // come back with its fill.
+        let mut arrived_at = None;
+        for now in 0..400 {
+            match now {
+                0 => assert_eq!(mem.access(0, 0, 7, 2), Access::Miss),
+                1 => assert_eq!(mem.access(1, 0, 7, 2), Access::SecondaryMiss),
+                _ => {}
+            }
+            mem.tick(now);
+            let to = Downstream {
+                blocked: &mut rule,
+                filter: &mut filter,
+                issue: &mut issue,
+            };
+            if stage
+                .run(now, &mut mem, &mut warps, to, &mut notes)
+                .unwrap()
+            {
+                arrived_at.get_or_insert(now);
+            }
         }
-        assert!(
-            s.filter.wait_cycles >= 8 * (15 * 16 / 2) / 2,
-            "{:?}",
-            s.filter
-        );
-        assert!(
-            s.cycles > s0.cycles + 15 * 8,
-            "{} vs {}",
-            s.cycles,
-            s0.cycles
-        );
-        assert!(s.filter.avg_wait > 0.0 && s.filter.busy_fraction > 0.0);
-        // No filter cycles: every warp as without a filter.
-        let (w0, _) = run(&cfg(0, 0, SERIAL), &tri);
-        assert_eq!(w0, free);
-    }
-
-    /// With both filter cycles 0 a trilinear trace runs exactly as the
-    /// same trace bilinear, either timing: the marker changes nothing but
-    /// the count.
-    #[test]
-    fn no_filter_cycles_make_trilinear_cost_nothing() {
-        let quads: Vec<(u32, u32)> = (0..4).flat_map(|y| (0..4).map(move |x| (x, y))).collect();
-        let prog_b = [
-            Instr::Alu(2),
-            Instr::Tex(&[1, 2]),
-            Instr::Alu(1),
-            Instr::Tex(&[3]),
-        ];
-        let prog_t = [
-            Instr::Alu(2),
-            Instr::TriTex(&[1, 2]),
-            Instr::Alu(1),
-            Instr::Tex(&[3]),
-        ];
-        let (b, t) = (trace(&quads, &prog_b), trace(&quads, &prog_t));
-        for timing in [OVERLAP, SERIAL] {
-            let c = cfg(0, 0, timing);
-            let (wb, mut sb) = run(&c, &b);
-            let (wt, mut st) = run(&c, &t);
-            assert_eq!(wb, wt);
-            assert_eq!(
-                (
-                    sb.filter.trilinear_instructions,
-                    st.filter.trilinear_instructions
-                ),
-                (0, 16)
-            );
-            sb.filter.trilinear_instructions = 0;
-            st.filter.trilinear_instructions = 0;
-            sb.filter.trilinear_share = 0.0;
-            st.filter.trilinear_share = 0.0;
-            assert_eq!(sb.to_json(), st.to_json());
-        }
-        // With a rate, trilinear costs more than bilinear.
-        let c = cfg(1, 8, SERIAL);
-        assert!(run(&c, &t).1.cycles > run(&c, &b).1.cycles);
+        let a = arrived_at.expect("the data returned");
+        assert!(Complete::is_idle(&warps));
+        assert_eq!((warps.get(2).tex_done, warps.get(2).lat_sum), (1, a));
+        // Trilinear: 2 filter cycles from `a`, overlapping the latency 4.
+        let t = trace(&[(0, 0)], &[Instr::Alu(1)]);
+        let wake = (a + 1..a + 10).find(|&c| issue.wake(c, &t.tiles()[0], &mut warps) != 0);
+        assert_eq!(wake, Some(a + 4), "past its last instruction at a + 4");
+        // Nothing waits now: a completion for slot 2 is an error.
+        assert_eq!(mem.access(500, 0, 8, 2), Access::Miss);
+        let err = (500..900).find_map(|now| {
+            mem.tick(now);
+            let to = Downstream {
+                blocked: &mut rule,
+                filter: &mut filter,
+                issue: &mut issue,
+            };
+            stage.run(now, &mut mem, &mut warps, to, &mut notes).err()
+        });
+        let err = err.expect("an error").to_string();
+        assert!(err.contains("completion for slot 2"), "{err}");
     }
 }

@@ -63,40 +63,47 @@ pub struct CoreSnapshot {
 impl ShaderCore {
     /// Read the core's observable state (see [`CoreSnapshot`]).
     pub fn snapshot(&self) -> CoreSnapshot {
-        let warps = (0..self.n_slots)
-            .filter(|&s| self.free_slots & (1 << s) == 0)
+        let warps = (0..self.warps.slots())
+            .filter(|&s| self.warps.holds(s))
             .map(|s| {
-                let w = &self.slots[s];
+                let w = self.warps.get(s);
+                let (ready_alu, ready_tex, alu_left) = self.issue.view(s);
                 WarpView {
                     slot: s,
                     quad: w.quad,
                     priority: w.priority,
                     blocked: w.blocked,
                     launched: w.launched_at,
-                    ready_alu: self.ready >> s & 1 == 1,
-                    ready_tex: self.ready_tex >> s & 1 == 1,
-                    alu_left: self.alu_left[s],
+                    ready_alu,
+                    ready_tex,
+                    alu_left,
                     next_op: w.op,
                     pending: w.pending,
                 }
             })
             .collect();
-        let q = self.sched.queue();
+        let sched = self.launch.sched();
+        let q = sched.queue();
         CoreSnapshot {
             tile: self.tile,
-            rasterized: self.cursor.next,
+            rasterized: self.rasterized(),
             queued: [
                 q.occupancy(QueueClass::Priority),
                 q.occupancy(QueueClass::Regular),
             ],
-            free_mshrs: self.sched.free_mshrs().free().get(),
-            tracks_free_mshrs: self.track_mshrs,
-            nonblocked: self.sched.nonblocked().count().get(),
-            active: self.active,
-            slots: self.n_slots,
+            free_mshrs: sched.free_mshrs().free().get(),
+            tracks_free_mshrs: self.launch.tracks_mshrs(),
+            nonblocked: sched.nonblocked().count().get(),
+            active: self.warps.active(),
+            slots: self.warps.slots(),
             warps,
-            ldst: self.ldst_len,
+            ldst: self.ldst.len(),
         }
+    }
+
+    /// Surviving quads of the tile its own rasterizer delivered.
+    fn rasterized(&self) -> u32 {
+        self.raster.as_ref().map_or(0, |r| r.delivered())
     }
 
     /// The view the waveform and the watchdog read (cheap: the waveform
@@ -104,25 +111,22 @@ impl ShaderCore {
     fn view(&self) -> CoreView<'_> {
         CoreView {
             id: self.id,
-            sched: &self.sched,
-            slots: self.n_slots,
-            active: self.active,
-            ready: (self.ready | self.ready_tex).count_ones(),
-            ldst_cap: self.ldst_cap,
-            ldst_len: self.ldst_len,
-            signals: &self.signals,
+            sched: self.launch.sched(),
+            slots: self.warps.slots(),
+            active: self.warps.active(),
+            ready: self.issue.ready_count(),
+            ldst_cap: self.ldst.cap(),
+            ldst_len: self.ldst.len(),
+            signals: &self.notes.signals,
             tile: self.tile,
-            external_raster: self.external_raster,
-            rasterized: self.cursor.next,
+            external_raster: self.raster.is_none(),
+            rasterized: self.rasterized(),
         }
     }
 
     /// A description of the core's state (for the watchdog).
     pub fn describe(&self, trace: &Trace) -> String {
-        let blocked = (0..self.n_slots)
-            .filter(|&s| self.free_slots & (1u128 << s) == 0 && self.slots[s].blocked)
-            .count();
-        self.view().describe(trace, blocked)
+        self.view().describe(trace, self.warps.blocked())
     }
 }
 

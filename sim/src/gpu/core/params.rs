@@ -1,41 +1,63 @@
-//! What a shader core takes from the machine configuration.
+//! What a shader core is built from: its section of the machine
+//! configuration as declared there, and what the rest of the machine
+//! decides for it.
 
-use crate::config::FilterTiming;
-use crate::gpu::IssueOrder;
-use crate::mem::BlockedOn;
+use crate::config::{BlockedOn, CoreConfig, Dispatch, MachineConfig};
 
-/// What a core needs from the configuration.
+/// What a core is built from.
 #[derive(Clone, Copy, Debug)]
 pub struct CoreParams {
-    /// Instructions issued per cycle.
-    pub width: u32,
-    /// Warp slots (at most 128).
-    pub max_warps: u32,
-    /// Input queue entries.
-    pub input_queue: u32,
-    /// Quads its own rasterizer produces per cycle (per-core-tile
-    /// dispatch; unused when `external_raster`).
-    pub raster_rate: u32,
-    /// Early-Z-rejected quads one of its raster slots disposes of (>= 1).
-    pub rejected_per_slot: u32,
-    /// The GPU's one rasterizer fills the input queue (shared-tile).
+    /// The `[core]` section.
+    pub core: CoreConfig,
+    /// The GPU's one rasterizer fills the input queue (shared-tile
+    /// dispatch); otherwise the core rasterizes its own tiles.
     pub external_raster: bool,
-    /// ALU latency.
-    pub alu_latency: u32,
-    /// Texture unit latency after the data.
-    pub texture_latency: u32,
-    /// Filter cycles per bilinear quad-sample.
-    pub filter_cycles_bilinear: u32,
-    /// Filter cycles per trilinear quad-sample.
-    pub filter_cycles_trilinear: u32,
-    /// How the filter pass and the texture latency add up.
-    pub filter_timing: FilterTiming,
-    /// LDST queue entries.
-    pub ldst_queue: u32,
-    /// MSHRs of the scheduler-level cache.
-    pub sched_mshrs: u32,
-    /// Which miss blocks a warp (the memory system must report the same).
+    /// Quads its own rasterizer produces per cycle: its share of
+    /// `raster.quads_per_cycle` (per-core-tile dispatch).
+    pub raster_rate: u32,
+    /// Early-Z-rejected quads one of its raster slots disposes of
+    /// (`raster.rejected_per_slot`).
+    pub rejected_per_slot: u32,
+    /// MSHRs the free-MSHR register counts
+    /// ([`MachineConfig::watched_mshrs`]).
+    pub watched_mshrs: u32,
+    /// Which miss blocks a warp (`scheduler.blocked_on`).
     pub blocked_on: BlockedOn,
-    /// The order in which the issue stage visits ready warps.
-    pub issue: IssueOrder,
+    /// MSHRs of its L0, if it has one.
+    pub l0_mshrs: Option<u32>,
+    /// MSHRs of its L1.
+    pub l1_mshrs: u32,
+}
+
+impl CoreParams {
+    /// The parameters of every core of the (validated) machine `cfg`.
+    pub fn new(cfg: &MachineConfig) -> Self {
+        CoreParams {
+            core: cfg.core,
+            external_raster: cfg.raster.dispatch == Dispatch::SharedTile,
+            raster_rate: cfg.raster.quads_per_cycle / cfg.gpu.cores,
+            rejected_per_slot: cfg.raster.rejected_per_slot,
+            watched_mshrs: cfg.watched_mshrs(),
+            blocked_on: cfg.scheduler.blocked_on,
+            l0_mshrs: cfg.l0.map(|l0| l0.mshrs),
+            l1_mshrs: cfg.l1.mshrs,
+        }
+    }
+
+    /// The core's rule of which miss blocks a warp.
+    pub(super) fn blocked_rule(&self) -> super::blocked::BlockedRule {
+        let first = self.l0_mshrs.unwrap_or(self.l1_mshrs);
+        super::blocked::BlockedRule::new(
+            self.blocked_on,
+            self.l0_mshrs.is_some(),
+            first,
+            self.l1_mshrs,
+        )
+    }
+
+    /// Warp slots.
+    #[inline]
+    pub fn slots(&self) -> usize {
+        self.core.max_warps as usize
+    }
 }

@@ -20,25 +20,31 @@
 //! - the LDST unit presents the oldest instruction's blocks in order until
 //!   the cache refuses one.
 //!
+//! Progress is whatever moved work on (a count of launches, instructions,
+//! retired warps, presented or returned blocks and rasterized quads went
+//! up), and the core is idle when no warp is ready, wakes, waits for data
+//! or waits in a queue with a free slot to go to, and the filter is free.
+//!
 //! The lockstep tests (`gpu/lockstep.rs`) run a GPU of these beside a GPU
 //! of fast cores and compare every core's observable state every cycle.
 //! Only the input queue and registers ([`LaunchScheduler`]) and a core's
-//! own rasterizer ([`RasterCursor::own_cycle`]) are shared with the fast
-//! core: they have their own references and tests.
+//! own rasterizer ([`OwnRaster`]) are shared with the fast core: they have
+//! their own references and tests.
 //!
 //! [`ShaderCore`]: super::ShaderCore
 
 use super::observe::CoreView;
+use super::raster::OwnRaster;
 use super::{CoreParams, CoreSignals, CoreSnapshot, CoreStats, WarpRecord, WarpView};
 use crate::config::FilterTiming;
+use crate::config::{BlockedOn, IssueOrder};
 use crate::gpu::core_model::CoreModel;
-use crate::gpu::raster::RasterCursor;
-use crate::gpu::IssueOrder;
 use crate::gpu::SimError;
-use crate::mem::{Access, BlockedOn, MemorySystem};
+use crate::mem::{Access, MemorySystem, MissEvent};
 use crate::trace::{OpKind, Tile, Trace};
+use std::collections::BTreeMap;
 use std::collections::VecDeque;
-use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents, FREE_MSHR_BITS};
+use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
 use wasp_rtl::queue::QueueClass;
@@ -97,6 +103,32 @@ struct LdstInstr {
     end: u32,
 }
 
+/// The rule of which miss blocks a warp, written plainly: the first-level
+/// MSHR entry each waiting access went to, and whether a miss at the
+/// rule's level holds the entry.
+#[derive(Debug, Default)]
+struct PlainBlocking {
+    /// First-level entry -> (slots whose accesses allocated or merged into
+    /// it, whether a miss at the rule's level holds it).
+    first: BTreeMap<u32, (Vec<usize>, bool)>,
+    /// L1 entry -> (L0 entries whose requests allocated or merged into it,
+    /// whether its request missed in the L2), with an L0 under `dram`.
+    l1: BTreeMap<u32, (Vec<u32>, bool)>,
+}
+
+impl PlainBlocking {
+    /// The slots blocked by first-level entry `e` being held now (none if
+    /// it was already).
+    fn hold(&mut self, e: u32) -> Vec<usize> {
+        let (slots, held) = self.first.get_mut(&e).expect("a pending entry");
+        if *held {
+            return vec![];
+        }
+        *held = true;
+        slots.clone()
+    }
+}
+
 /// The plain shader core.
 #[derive(Debug)]
 pub(crate) struct PlainCore {
@@ -110,7 +142,8 @@ pub(crate) struct PlainCore {
     /// First cycle the filter unit is free.
     filter_free: u64,
     tile: Option<usize>,
-    cursor: RasterCursor,
+    /// Its own rasterizer (per-core-tile dispatch).
+    raster: OwnRaster,
     tile_misses: u64,
     /// The slot issue visits first (loose round-robin).
     rr: usize,
@@ -120,14 +153,30 @@ pub(crate) struct PlainCore {
     /// The cycle's priority-warp events, for the scheduler's edge.
     prio: PriorityEvents,
     signals: CoreSignals,
-    last_progress: u64,
     stats: CoreStats,
+    /// Blocks presented to the cache, and blocks returned, so far.
+    presented: u64,
+    returned: u64,
     records: Option<Vec<WarpRecord>>,
+    blocking: PlainBlocking,
 }
 
 impl PlainCore {
     fn active_count(&self) -> u32 {
         self.warps.iter().flatten().count() as u32
+    }
+
+    /// Every count of work moved on, for progress.
+    fn work(&self) -> [u64; 6] {
+        let s = &self.stats;
+        [
+            s.warps_launched,
+            s.instructions,
+            s.warps_finished,
+            s.quads_rasterized,
+            self.presented,
+            self.returned,
+        ]
     }
 
     fn warp(&mut self, slot: usize) -> &mut PlainWarp {
@@ -177,29 +226,29 @@ impl PlainCore {
         }
     }
 
+    /// The warp in `slot` leaves the core at `now`: its record, and the
+    /// counts of its class.
     fn finish(&mut self, slot: usize, now: u64) {
         let w = self.warps[slot].take().expect("a warp in the slot");
-        self.stats.warps_finished += 1;
+        let class = usize::from(w.priority);
+        let mean = (w.tex_done > 0).then(|| w.lat_sum as f64 / f64::from(w.tex_done));
+        let record = WarpRecord {
+            tile: self.tile.expect("a tile") as u32,
+            quad: w.quad,
+            core: self.id as u32,
+            priority: w.priority,
+            mem_latency: mean,
+            launched: w.launched_at,
+            finished: now,
+        };
+        let st = &mut self.stats;
+        st.warps_finished += 1;
+        st.warps_with_tex[class] += u64::from(mean.is_some());
+        st.warp_latency_sum[class] += mean.unwrap_or(0.0);
         self.signals.finished += 1;
-        self.last_progress = now;
-        if w.priority && !w.blocked {
-            self.prio.finished += 1;
-        }
-        if let (Some(r), Some(tile)) = (self.records.as_mut(), self.tile) {
-            r.push(WarpRecord {
-                tile: tile as u32,
-                quad: w.quad,
-                core: self.id as u32,
-                priority: w.priority,
-                mem_latency: (w.tex_done > 0).then(|| w.lat_sum as f64 / w.tex_done as f64),
-                launched: w.launched_at,
-                finished: now,
-            });
-        }
-        if w.tex_done > 0 {
-            let c = usize::from(w.priority);
-            self.stats.warp_latency_sum[c] += w.lat_sum as f64 / w.tex_done as f64;
-            self.stats.warps_with_tex[c] += 1;
+        self.prio.finished += u8::from(w.priority && !w.blocked);
+        if let Some(r) = self.records.as_mut() {
+            r.push(record);
         }
     }
 
@@ -245,13 +294,12 @@ impl PlainCore {
         self.stats.warps_launched += 1;
         self.stats.priority_launches += u64::from(priority);
         self.signals.launched = Some((quad, priority));
-        self.last_progress = now;
     }
 
     /// The slots in the order issue visits them this cycle.
     fn visiting_order(&self) -> Vec<usize> {
         let n = self.warps.len();
-        match self.p.issue {
+        match self.p.core.issue {
             IssueOrder::Lrr => (0..n).map(|k| (self.rr + k) % n).collect(),
             IssueOrder::Gto => {
                 let mut order: Vec<usize> = (0..n).filter(|&s| self.warps[s].is_some()).collect();
@@ -266,11 +314,11 @@ impl PlainCore {
 
     fn issue(&mut self, now: u64) {
         let n = self.warps.len();
-        let mut tex_room = self.ldst.len() < self.p.ldst_queue as usize;
+        let mut tex_room = self.ldst.len() < self.p.core.ldst_queue as usize;
         let mut issued = 0;
         let mut picked = Vec::new();
         for s in self.visiting_order() {
-            if issued == self.p.width {
+            if issued == self.p.core.pipeline_width {
                 break;
             }
             let Some(w) = self.warps[s].as_mut() else {
@@ -279,7 +327,7 @@ impl PlainCore {
             match w.state {
                 State::ReadyAlu => {
                     w.alu_left -= 1;
-                    w.state = State::Asleep(now + u64::from(self.p.alu_latency));
+                    w.state = State::Asleep(now + u64::from(self.p.core.alu_latency));
                 }
                 State::ReadyTex if tex_room => {
                     tex_room = false;
@@ -306,33 +354,94 @@ impl PlainCore {
             self.rr = (s + 1) % n;
             self.last_issued = picked;
             self.stats.instructions += u64::from(issued);
-            self.last_progress = now;
         }
     }
 
     fn present(&mut self, now: u64, tile: &Tile, mem: &mut MemorySystem) {
         let blocks = tile.block_accesses();
-        // Under first-level the LDST unit blocks warps at their misses.
-        let at_access = self.p.blocked_on == BlockedOn::FirstLevel;
+        // The first level's own misses block under first-level, and under
+        // l1-miss without an L0 (the first level is the L1).
+        let at_access = self.p.blocked_on == BlockedOn::FirstLevel
+            || (self.p.blocked_on == BlockedOn::L1Miss && self.p.l0_mshrs.is_none());
         while let Some(mut e) = self.ldst.front().copied() {
             while e.next < e.end {
-                let r = mem.access(now, self.id, blocks[e.next as usize], e.slot as u32);
+                let (r, entry) =
+                    mem.access_entry(now, self.id, blocks[e.next as usize], e.slot as u32);
                 if !r.accepted() {
                     self.ldst[0] = e;
                     self.signals.ldst_refused = true;
                     return;
                 }
                 e.next += 1;
+                self.presented += 1;
                 self.signals.ldst_presented += 1;
-                self.last_progress = now;
                 if self.measures_cf && r == Access::Miss && self.warp(e.slot).priority {
                     self.prio.misses = self.prio.misses.saturating_add(1);
                 }
-                if at_access && matches!(r, Access::Miss | Access::SecondaryMiss) {
+                let waits = &mut self.blocking.first;
+                let held = match r {
+                    Access::Miss => {
+                        waits.insert(entry, (vec![e.slot], false));
+                        false
+                    }
+                    Access::SecondaryMiss => {
+                        // (An entry a prefetch allocated has no record
+                        // yet.)
+                        let (slots, held) = waits.entry(entry).or_default();
+                        slots.push(e.slot);
+                        *held
+                    }
+                    _ => false,
+                };
+                let missed = matches!(r, Access::Miss | Access::SecondaryMiss);
+                if held || (at_access && missed) {
                     self.block(e.slot, now);
                 }
             }
             self.ldst.pop_front();
+        }
+    }
+
+    /// The slots that miss event `ev` blocks under the core's rule.
+    fn miss_blocks(&mut self, ev: MissEvent) -> Vec<usize> {
+        let has_l0 = self.p.l0_mshrs.is_some();
+        match (self.p.blocked_on, ev) {
+            (BlockedOn::L1Miss, MissEvent::L1 { l0, .. }) => self.blocking.hold(l0),
+            (BlockedOn::Dram, MissEvent::L1 { l0, l1, merged }) => {
+                let (l0s, held) = self.blocking.l1.entry(l1).or_default();
+                if !merged {
+                    l0s.clear();
+                    *held = false;
+                }
+                l0s.push(l0);
+                if *held {
+                    self.blocking.hold(l0)
+                } else {
+                    vec![]
+                }
+            }
+            // A prefetch allocated an L1 entry: no warp waits on it yet.
+            (BlockedOn::Dram, MissEvent::Prefetch { l1 }) if has_l0 => {
+                self.blocking.l1.insert(l1, (vec![], false));
+                vec![]
+            }
+            (BlockedOn::Dram, MissEvent::Prefetch { l1 }) => {
+                self.blocking.first.insert(l1, (vec![], false));
+                vec![]
+            }
+            (BlockedOn::Dram, MissEvent::L2 { l1 }) if !has_l0 => self.blocking.hold(l1),
+            (BlockedOn::Dram, MissEvent::L2 { l1 }) => {
+                let (l0s, held) = self.blocking.l1.get_mut(&l1).expect("a pending entry");
+                if *held {
+                    return vec![];
+                }
+                *held = true;
+                let l0s = l0s.clone();
+                l0s.into_iter()
+                    .flat_map(|e| self.blocking.hold(e))
+                    .collect()
+            }
+            _ => vec![],
         }
     }
 
@@ -352,13 +461,13 @@ impl PlainCore {
     /// unit, in order of arrival, then the texture latency.
     fn data_arrived(&mut self, slot: usize, now: u64) {
         let (overlap, latency) = (
-            self.p.filter_timing == FilterTiming::Overlap,
-            u64::from(self.p.texture_latency.max(1)),
+            self.p.core.filter_timing == FilterTiming::Overlap,
+            u64::from(self.p.core.texture_latency.max(1)),
         );
         let f = u64::from(if self.warp(slot).tex_tri {
-            self.p.filter_cycles_trilinear
+            self.p.core.filter_cycles_trilinear
         } else {
-            self.p.filter_cycles_bilinear
+            self.p.core.filter_cycles_bilinear
         });
         let start = now.max(self.filter_free);
         self.filter_free = start + f;
@@ -394,12 +503,12 @@ impl PlainCore {
                 .flatten()
                 .filter(|w| matches!(w.state, State::ReadyAlu | State::ReadyTex))
                 .count() as u32,
-            ldst_cap: self.p.ldst_queue as usize,
+            ldst_cap: self.p.core.ldst_queue as usize,
             ldst_len: self.ldst.len(),
             signals: &self.signals,
             tile: self.tile,
             external_raster: self.p.external_raster,
-            rasterized: self.cursor.next,
+            rasterized: self.raster.delivered(),
         }
     }
 }
@@ -407,36 +516,38 @@ impl PlainCore {
 impl CoreModel for PlainCore {
     fn build(
         id: usize,
-        p: CoreParams,
+        p: &CoreParams,
         policy: &dyn LaunchPolicy,
         rule: LaunchRule,
         subset: Box<dyn PrioritySubset>,
     ) -> Self {
-        let largest = (1 << FREE_MSHR_BITS) - 1;
-        let free = FreeMshrReg::with_capacity(p.sched_mshrs.min(largest)).expect("clamped");
-        let slots = p.max_warps.min(128) as usize;
+        let free = FreeMshrReg::with_capacity(p.watched_mshrs).expect("fits the register");
+        let slots = p.core.max_warps as usize;
+        let queue = p.core.input_queue as usize;
         Self {
             id,
-            p,
-            sched: LaunchScheduler::new(p.input_queue as usize, subset, free, policy, rule),
+            p: *p,
+            sched: LaunchScheduler::new(queue, subset, free, policy, rule),
             track_mshrs: policy.reads_free_mshrs(),
             measures_cf: policy.measures_cf(),
             warps: vec![None; slots],
             ldst: VecDeque::new(),
             filter_free: 0,
             tile: None,
-            cursor: RasterCursor::default(),
+            raster: OwnRaster::new(p.raster_rate, p.rejected_per_slot),
             tile_misses: 0,
             rr: 0,
             last_issued: Vec::new(),
             prio: PriorityEvents::default(),
             signals: CoreSignals::default(),
-            last_progress: 0,
             stats: CoreStats {
                 occupancy_hist: vec![0; slots + 1],
                 ..CoreStats::default()
             },
+            presented: 0,
+            returned: 0,
             records: None,
+            blocking: PlainBlocking::default(),
         }
     }
 
@@ -448,18 +559,15 @@ impl CoreModel for PlainCore {
         self.tile.is_none()
     }
 
-    fn assign_tile(&mut self, index: usize, tile: &Tile, now: u64) {
+    fn assign_tile(&mut self, index: usize, tile: &Tile) {
         self.tile = Some(index);
-        self.cursor = RasterCursor::start(tile);
+        self.raster.start(tile);
         self.tile_misses = 0;
-        self.last_progress = now;
     }
 
-    fn begin_shared_tile(&mut self, tile: usize, now: u64) {
+    fn begin_shared_tile(&mut self, tile: usize) {
         self.tile = Some(tile);
-        self.cursor = RasterCursor::default();
         self.tile_misses = 0;
-        self.last_progress = now;
     }
 
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool {
@@ -467,7 +575,7 @@ impl CoreModel for PlainCore {
     }
 
     fn quads_entered(&self) -> u32 {
-        self.cursor.next
+        self.raster.delivered()
     }
 
     fn drained(&self) -> bool {
@@ -490,30 +598,38 @@ impl CoreModel for PlainCore {
         &self.stats
     }
 
-    fn last_progress(&self) -> u64 {
-        self.last_progress
+    fn is_idle(&self, now: u64) -> bool {
+        let Some(_) = self.tile else {
+            return true;
+        };
+        let ldst_room = self.ldst.len() < self.p.core.ldst_queue as usize;
+        let busy_warp = self.warps.iter().flatten().any(|w| {
+            w.pending > 0
+                || w.state == State::ReadyAlu
+                || (w.state == State::ReadyTex && ldst_room)
+                || w.state == State::Asleep(now)
+        });
+        let can_launch = !self.sched.queue().is_empty() && self.warps.iter().any(Option::is_none);
+        let rasterizing = !self.p.external_raster && !self.raster.is_idle();
+        !busy_warp && !can_launch && !rasterizing && self.ldst.is_empty() && self.filter_free <= now
     }
 
-    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) {
+    fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) -> bool {
         self.signals = CoreSignals::default();
         self.prio = PriorityEvents::default();
         let Some(t) = self.tile else {
             self.stats.idle_cycles += 1;
             self.stats.occupancy_hist[0] += 1;
-            return;
+            return false;
         };
+        let before = self.work();
         let tile = &trace.tiles()[t];
         self.wake(now, tile);
         if !self.p.external_raster {
             let sched = &mut self.sched;
-            self.cursor.own_cycle(
-                tile,
-                self.p.raster_rate,
-                self.p.rejected_per_slot.max(1),
-                &mut self.stats.quads_rasterized,
-                &mut self.stats.quads_rejected,
-                |i, x, y| sched.enqueue(i, x, y).is_ok(),
-            );
+            self.raster.run(tile, &mut self.stats, |i, x, y| {
+                sched.enqueue(i, x, y).is_ok()
+            });
         }
         self.launch(now, tile);
         self.issue(now);
@@ -521,65 +637,60 @@ impl CoreModel for PlainCore {
         let active = self.active_count();
         self.stats.occupancy_sum += u64::from(active);
         self.stats.occupancy_hist[active as usize] += 1;
+        self.work() != before
     }
 
-    fn complete(
-        &mut self,
-        now: u64,
-        mem: &mut MemorySystem,
-        scratch: &mut Vec<u32>,
-    ) -> Result<(), SimError> {
-        if self.p.blocked_on != BlockedOn::FirstLevel {
-            let mut long = Vec::new();
-            mem.take_long_latency(self.id, &mut long);
-            for tag in long {
-                let s = self.waiting_warp(tag, "long-latency report", now)?;
+    fn complete(&mut self, now: u64, mem: &mut MemorySystem) -> Result<bool, SimError> {
+        let mut events = Vec::new();
+        mem.take_miss_events(self.id, &mut events);
+        for ev in events {
+            for s in self.miss_blocks(ev) {
+                let s = self.waiting_warp(s as u32, "long-latency report", now)?;
                 self.block(s, now);
             }
         }
-        scratch.clear();
-        mem.take_completions(self.id, scratch);
-        for &tag in scratch.iter() {
+        let before = self.returned;
+        let mut arrived = Vec::new();
+        mem.take_completions(self.id, &mut arrived);
+        for tag in arrived {
             let s = self.waiting_warp(tag, "completion", now)?;
+            self.returned += 1;
             let w = self.warp(s);
             w.pending -= 1;
             if w.pending == 0 {
                 self.data_arrived(s, now);
             }
         }
-        if !scratch.is_empty() {
-            self.last_progress = now;
-        }
+        // The edge: the watched cache's allocations and replies (for a
+        // policy that reads them) and the cycle's priority-warp events.
         let ev = mem.mshr_events(self.id);
         self.tile_misses += u64::from(ev.allocated);
-        let mshr = if self.track_mshrs {
-            MshrEvents {
-                allocs: ev.allocated as u8,
-                replies: ev.replied as u8,
-            }
-        } else {
-            MshrEvents::default()
+        let seen = u8::from(self.track_mshrs);
+        let edge = EdgeEvents {
+            mshr: MshrEvents {
+                allocs: ev.allocated as u8 * seen,
+                replies: ev.replied as u8 * seen,
+            },
+            prio: self.prio,
         };
-        let prio = self.prio;
-        self.sched
-            .clock(EdgeEvents { mshr, prio })
-            .map_err(|fault| SimError::Register {
-                core: self.id,
-                cycle: now,
-                fault,
-            })?;
-        if let Some(m) = self.sched.cf_meter() {
-            self.stats.cf_quarters_sum += u64::from(m.cf().quarters());
-            self.stats.cf_samples += 1;
-        }
-        Ok(())
+        let id = self.id;
+        let fault = |fault| SimError::Register {
+            core: id,
+            cycle: now,
+            fault,
+        };
+        self.sched.clock(edge).map_err(fault)?;
+        let cf = self.sched.cf_meter().map(|m| u64::from(m.cf().quarters()));
+        self.stats.cf_quarters_sum += cf.unwrap_or(0);
+        self.stats.cf_samples += u64::from(cf.is_some());
+        Ok(self.returned != before)
     }
 
     fn end_cycle(&mut self) -> bool {
         if self.tile.is_none() || self.p.external_raster {
             return false;
         }
-        let done = self.cursor.done() && self.sched.queue().is_empty() && self.drained();
+        let done = self.raster.is_idle() && self.sched.queue().is_empty() && self.drained();
         if done {
             self.tile = None;
             self.stats.tiles += 1;
@@ -608,7 +719,7 @@ impl CoreModel for PlainCore {
         let q = self.sched.queue();
         CoreSnapshot {
             tile: self.tile,
-            rasterized: self.cursor.next,
+            rasterized: self.raster.delivered(),
             queued: [
                 q.occupancy(QueueClass::Priority),
                 q.occupancy(QueueClass::Regular),

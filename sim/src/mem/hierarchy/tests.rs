@@ -113,7 +113,7 @@ fn example_config() -> MemConfig {
             ..DramConfig::default()
         },
         ideal_memory: false,
-        blocked_on: BlockedOn::L1Miss,
+        report_misses: false,
         prefetch: PrefetchConfig::default(),
     }
 }
@@ -342,128 +342,67 @@ fn streams(cores: usize, len: usize) -> Vec<Vec<u64>> {
         .collect()
 }
 
-/// The paper's machine (with or without L0) reporting misses by `rule`.
-fn paper_blocked(width4: bool, rule: BlockedOn) -> MemorySystem {
-    let mut cfg = MemConfig::paper(width4);
-    cfg.blocked_on = rule;
-    MemorySystem::new(&cfg).unwrap()
-}
-
-/// (cycle, tag) pairs.
-type Events = Vec<(u64, u32)>;
-
-/// Tick cycles `from..to`, returning `core`'s long-latency reports as
-/// (cycle, tag) and its completions the same way (reports taken first).
-fn drive_reports(mem: &mut MemorySystem, core: usize, from: u64, to: u64) -> (Events, Events) {
-    let (mut long, mut done, mut buf) = (Vec::new(), Vec::new(), Vec::new());
-    for now in from..to {
-        mem.tick(now);
-        buf.clear();
-        mem.take_long_latency(core, &mut buf);
-        long.extend(buf.iter().map(|&t| (now, t)));
-        buf.clear();
-        mem.take_completions(core, &mut buf);
-        done.extend(buf.iter().map(|&t| (now, t)));
-    }
-    (long, done)
-}
-
 #[test]
-fn first_level_rule_reports_nothing() {
-    for width4 in [false, true] {
-        let mut mem = paper_blocked(width4, BlockedOn::FirstLevel);
-        assert_eq!(mem.access(0, 0, 77, 1), Access::Miss);
-        let (long, done) = drive_reports(&mut mem, 0, 0, 200);
-        assert_eq!((long, done.len()), (vec![], 1));
-    }
-}
-
-#[test]
-fn l0_miss_reported_when_the_l1_misses_not_when_it_hits() {
-    let mut mem = paper_blocked(true, BlockedOn::L1Miss);
-    // Cycle 0: tags 1 and 2 (second port) miss and merge in the L0; the
-    // L1 looks the block up in cycle 1, misses, and both are reported.
-    assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
-    assert_eq!(mem.access(0, 0, 5, 2), Access::SecondaryMiss);
-    let (long, _) = drive_reports(&mut mem, 0, 0, 3);
-    assert_eq!(long, vec![(1, 1), (1, 2)]);
-    // Cycle 3: a merge into the reported entry is reported at once.
-    assert_eq!(mem.access(3, 0, 5, 3), Access::SecondaryMiss);
-    let (long, done) = drive_reports(&mut mem, 0, 3, 300);
-    assert_eq!(long, vec![(3, 3)]);
-    assert_eq!(done.iter().map(|d| d.1).collect::<Vec<_>>(), [1, 2, 3]);
-    // Evict block 5 from the 8-line L0; then it misses in the L0 and
-    // hits in the L1: not reported.
-    let mut t = 300;
-    for b in 100..108 {
-        assert!(mem.access(t, 0, b, 10).accepted());
-        let (_, done) = drive_reports(&mut mem, 0, t, t + 300);
-        assert_eq!(done.len(), 1);
-        t += 300;
-    }
-    assert_eq!(mem.access(t, 0, 5, 4), Access::Miss);
-    let (long, done) = drive_reports(&mut mem, 0, t, t + 5);
-    assert_eq!((long, done), (vec![], vec![(t + 1, 4)]));
-}
-
-#[test]
-fn l1_miss_without_l0_is_reported_at_the_access() {
-    let mut mem = paper_blocked(false, BlockedOn::L1Miss);
-    assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
-    let (long, _) = drive_reports(&mut mem, 0, 0, 2);
-    assert_eq!(long, vec![(0, 1)]);
-    assert_eq!(mem.access(2, 0, 5, 2), Access::SecondaryMiss);
-    let (long, done) = drive_reports(&mut mem, 0, 2, 300);
-    assert_eq!((long, done.len()), (vec![(2, 2)], 2));
-    assert_eq!(mem.access(300, 0, 5, 3), Access::Hit);
-    let (long, done) = drive_reports(&mut mem, 0, 300, 301);
-    assert_eq!((long, done), (vec![], vec![(300, 3)]));
-}
-
-#[test]
-fn dram_rule_reports_l2_misses_not_l2_hits() {
-    for width4 in [false, true] {
-        let extra = u64::from(width4);
-        let mut mem = paper_blocked(width4, BlockedOn::Dram);
-        // The L2 looks the L1's request up one cycle after the L1 miss.
-        assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
-        let (long, _) = drive_reports(&mut mem, 0, 0, 3 + extra);
-        assert_eq!(long, vec![(1 + extra, 1)]);
-        // A later merge into the reported entry (L0's, or L1's without
-        // L0) is reported at the merge.
-        assert_eq!(mem.access(5, 0, 5, 2), Access::SecondaryMiss);
-        let (long, done) = drive_reports(&mut mem, 0, 5, 300);
-        assert_eq!((long, done.len()), (vec![(5, 2)], 2));
-        // Core 1 misses in its L1 and hits in the L2: not reported
-        // under dram, reported under l1-miss.
-        assert_eq!(mem.access(300, 1, 5, 7), Access::Miss);
-        let (long, done) = drive_reports(&mut mem, 1, 300, 400);
-        assert_eq!((long, done), (vec![], vec![(318 + extra, 7)]));
-    }
-    let mut mem = paper_blocked(true, BlockedOn::L1Miss);
-    assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
-    drive_reports(&mut mem, 0, 0, 300);
-    assert_eq!(mem.access(300, 1, 5, 7), Access::Miss);
-    let (long, done) = drive_reports(&mut mem, 1, 300, 400);
-    assert_eq!((long, done), (vec![(301, 7)], vec![(319, 7)]));
-}
-
-#[test]
-fn dram_rule_reports_targets_merged_before_the_l2_miss_once() {
-    // With an L0, tag 2 merges into the L0 entry in cycle 2, before the
-    // L2 misses in that cycle's tick: both are reported then, once.
-    // (An L0 request never merges into a pending L1 entry: the L0 holds
-    // one entry per block, and the L1's entry for it stops pending when
-    // the L1 fills, before the L0 can miss on the block again.)
+fn miss_events_name_the_entries_whose_requests_missed_below() {
     let mut cfg = MemConfig::paper(true);
-    cfg.blocked_on = BlockedOn::Dram;
+    cfg.report_misses = true;
     let mut mem = MemorySystem::new(&cfg).unwrap();
-    assert_eq!(mem.access(0, 0, 9, 1), Access::Miss);
-    let (long, _) = drive_reports(&mut mem, 0, 0, 2);
-    assert_eq!(long, vec![]);
-    assert_eq!(mem.access(2, 0, 9, 2), Access::SecondaryMiss);
-    let (long, _) = drive_reports(&mut mem, 0, 2, 3);
-    assert_eq!(long, vec![(2, 1), (2, 2)]);
+    // Tag 1 allocates L0 entry 0; its request misses in the L1 in cycle 1
+    // (allocating L1 entry 0), and the L1's in the L2 in cycle 2.
+    assert_eq!(mem.access_entry(0, 0, 5, 1), (Access::Miss, 0));
+    assert_eq!(mem.access_entry(0, 0, 5, 2), (Access::SecondaryMiss, 0));
+    assert_eq!(mem.access_entry(0, 0, 6, 3), (Access::PortBusy, 0));
+    let mut ev = Vec::new();
+    let mut log = Vec::new();
+    for now in 0..4 {
+        mem.tick(now);
+        mem.take_miss_events(0, &mut ev);
+        log.extend(ev.drain(..).map(|e| (now, e)));
+    }
+    assert_eq!(
+        log,
+        vec![
+            (
+                1,
+                MissEvent::L1 {
+                    l0: 0,
+                    l1: 0,
+                    merged: false
+                }
+            ),
+            (2, MissEvent::L2 { l1: 0 })
+        ]
+    );
+    // Core 1 misses in its L1 on the same block: the L2 merges it.
+    assert_eq!(mem.access_entry(4, 1, 5, 9), (Access::Miss, 0));
+    for now in 4..7 {
+        mem.tick(now);
+        mem.take_miss_events(1, &mut ev);
+        log.extend(ev.drain(..).map(|e| (now, e)));
+    }
+    assert_eq!(
+        log[2..],
+        [
+            (
+                5,
+                MissEvent::L1 {
+                    l0: 0,
+                    l1: 0,
+                    merged: false
+                }
+            ),
+            (6, MissEvent::L2 { l1: 0 })
+        ]
+    );
+    // Not asked: nothing.
+    cfg.report_misses = false;
+    let mut mem = MemorySystem::new(&cfg).unwrap();
+    assert_eq!(mem.access(0, 0, 5, 1), Access::Miss);
+    for now in 0..200 {
+        mem.tick(now);
+        mem.take_miss_events(0, &mut ev);
+        assert!(ev.is_empty());
+    }
 }
 
 #[test]
@@ -626,7 +565,7 @@ pub(super) fn arb_config() -> impl Strategy<Value = MemConfig> {
         arb_cache(6),
         (1u32..4, 1u32..4, 1u32..8, 1u32..12, 1u32..3),
         any::<bool>(),
-        0usize..3,
+        any::<bool>(),
         (any::<bool>(), 0u32..3, 1u32..6, any::<bool>()),
     )
         .prop_map(
@@ -637,7 +576,7 @@ pub(super) fn arb_config() -> impl Strategy<Value = MemConfig> {
                 l2,
                 (banks, rows, hit, miss, rpc),
                 ideal_memory,
-                rule,
+                report_misses,
                 (pf, reserve, queue, filter),
             )| MemConfig {
                 cores,
@@ -653,7 +592,7 @@ pub(super) fn arb_config() -> impl Strategy<Value = MemConfig> {
                     ..DramConfig::default()
                 },
                 ideal_memory,
-                blocked_on: BlockedOn::ALL[rule],
+                report_misses,
                 prefetch: PrefetchConfig {
                     kind: if pf {
                         PrefetchKind::Raster
@@ -673,10 +612,8 @@ proptest! {
 
     /// Every accepted access completes exactly once, never before it was
     /// made, refused ones never; MSHR occupancy stays within capacity; the
-    /// system drains. Long-latency reports, taken before completions,
-    /// name only accepted tags of the core still waiting, each at most
-    /// once, none under `first-level`, and some exactly when the level
-    /// of the rule missed.
+    /// system drains. Miss events come only when asked for, one per
+    /// request that missed below the first level.
     #[test]
     fn accepted_accesses_complete_exactly_once(
         cfg in arb_config(),
@@ -689,9 +626,9 @@ proptest! {
         let mut accepted: Vec<Option<u64>> = Vec::new();
         let mut completed: Vec<Option<u64>> = Vec::new();
         let mut owner: Vec<usize> = Vec::new();
-        let mut reported: Vec<bool> = Vec::new();
-        let mut reports = 0u64;
+        let mut events = 0u64;
         let mut buf = Vec::new();
+        let mut ev = Vec::new();
         let mut now = 0u64;
         let mut ops = ops.into_iter();
         let mut draining = false;
@@ -707,7 +644,6 @@ proptest! {
                                 let r = mem.access(now, k, block + j * 7 + k as u64, tag);
                                 accepted.push(r.accepted().then_some(now));
                                 completed.push(None);
-                                reported.push(false);
                                 owner.push(k);
                             }
                         }
@@ -720,17 +656,9 @@ proptest! {
                 let e = mem.mshr_events(k);
                 prop_assert!(e.occupied <= e.capacity && e.outstanding <= e.occupied);
                 prop_assert_eq!(e.capacity, first.mshrs);
-                buf.clear();
-                mem.take_long_latency(k, &mut buf);
-                for &t in &buf {
-                    let t = t as usize;
-                    prop_assert_eq!(owner[t], k);
-                    prop_assert!(accepted[t].is_some(), "refused tag {} reported", t);
-                    prop_assert!(completed[t].is_none(), "tag {} reported after completion", t);
-                    prop_assert!(!reported[t], "tag {} reported twice", t);
-                    reported[t] = true;
-                    reports += 1;
-                }
+                ev.clear();
+                mem.take_miss_events(k, &mut ev);
+                events += ev.len() as u64;
                 buf.clear();
                 mem.take_completions(k, &mut buf);
                 for &t in &buf {
@@ -759,11 +687,10 @@ proptest! {
         prop_assert_eq!(s.l2.misses, s.dram.requests);
         prop_assert_eq!(s.l2.fills, s.l2.misses);
         prop_assert_eq!(s.l1.fills, s.l1.misses);
-        let missed = match cfg.blocked_on {
-            BlockedOn::FirstLevel => false,
-            BlockedOn::L1Miss => s.l1.misses + s.l1.secondary_misses > 0,
-            BlockedOn::Dram => s.l2.misses + s.l2.secondary_misses > 0,
-        };
-        prop_assert_eq!(reports > 0, missed, "{} reports", reports);
+        // An L1 event per L0 request the L1 missed, an L2 event per L1
+        // request the L2 missed.
+        let below = s.l2.misses + s.l2.secondary_misses
+            + cfg.l0.map_or(0, |_| s.l1.misses + s.l1.secondary_misses);
+        prop_assert_eq!(events, if cfg.report_misses { below } else { 0 });
     }
 }

@@ -31,8 +31,10 @@
 use std::fmt;
 use std::str::FromStr;
 
-/// A quad-to-core map (see the module documentation).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// A quad-to-core map (see the module documentation), written as its name
+/// in a config file (`latin:8`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "String", into = "String")]
 pub enum CoreMap {
     /// `latin:B`: block column plus bit-reversed block row, modulo cores.
     Latin {
@@ -73,6 +75,20 @@ impl FromStr for CoreMap {
             "rowmajor" => Ok(CoreMap::RowMajor { block }),
             _ => Err(format!("`{s}`: unknown map `{kind}` ({expected})")),
         }
+    }
+}
+
+/// Read from its name in a config file: the error names the allowed forms.
+impl TryFrom<String> for CoreMap {
+    type Error = String;
+    fn try_from(s: String) -> Result<Self, String> {
+        s.parse()
+    }
+}
+
+impl From<CoreMap> for String {
+    fn from(m: CoreMap) -> String {
+        m.to_string()
     }
 }
 

@@ -8,8 +8,8 @@
 //! per pick); [`pick_plain`] visits the slots one by one, as the text
 //! reads. The tests run both on random masks.
 
+use super::super::mask::SlotMask;
 use super::Picks;
-use crate::gpu::mask::SlotMask;
 
 /// Loose round-robin's state in a core: the pointer.
 #[derive(Clone, Copy, Debug)]

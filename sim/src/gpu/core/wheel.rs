@@ -67,6 +67,15 @@ impl WakeWheel {
         self.due[i][1] |= (due >> 64) as u64;
     }
 
+    /// Whether cycle `now` has a wake-up ([`take`](Self::take) would
+    /// return one), without taking it.
+    pub(crate) fn has_any(&self, now: u64) -> bool {
+        let i = (now as usize) & (WHEEL - 1);
+        self.ready[i] != [0; 2]
+            || self.due[i] != [0; 2]
+            || self.far.peek().is_some_and(|&Reverse((t, _))| t == now)
+    }
+
     /// The wake-ups of cycle `now`, as (ready, due) slot masks, taken off
     /// the wheel. Called once for every cycle, in order.
     #[inline(always)]
@@ -123,7 +132,10 @@ mod tests {
         let (mut fast, mut plain) = (WakeWheel::new(), PlainWakeups::default());
         let last = plans.len() as u64 + 400;
         for now in 0..last {
-            prop_assert_eq!(fast.take(now), plain.take(now), "cycle {}", now);
+            let any = fast.has_any(now);
+            let got = fast.take(now);
+            prop_assert_eq!(any, got != (0, 0), "cycle {}", now);
+            prop_assert_eq!(got, plain.take(now), "cycle {}", now);
             for &(delay, slot, masked) in plans.get(now as usize).into_iter().flatten() {
                 let at = now + delay;
                 if masked && WakeWheel::reaches(now, at) {

@@ -46,9 +46,9 @@
 //! keeps the W oldest); [`pick_plain`] sorts every slot by the definition's
 //! key and visits them one by one. The tests compare them on random masks.
 
+use super::super::mask::SlotMask;
 use super::Picks;
 use crate::config::limits::MAX_WIDTH;
-use crate::gpu::mask::SlotMask;
 
 /// Greedy-then-oldest's state in a core: the greedy set.
 #[derive(Clone, Copy, Debug, Default)]

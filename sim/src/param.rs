@@ -1,0 +1,188 @@
+//! How a parameter of the machine is declared: once, typed, with its
+//! description and its bound beside it. (gem5's `Param` declarations are
+//! the model: `cores = Param.Unsigned(4, "shader cores")` names the type,
+//! the description and, with a checked type, the bound; the model receives
+//! a typed struct.)
+//!
+//! A section of the configuration file is one struct declared with
+//! [`section!`](crate::param::section): each field's doc comment is its
+//! description, `#[range(lo..=hi)]` its bound, and its type is what the
+//! model receives. A value written as text in the file (a policy such as
+//! `wasp:0:3`, a subset, a core map) has a type that deserializes from that
+//! text and names the allowed forms when it cannot (`TryFrom<String>`), so
+//! no part of the model parses a string. Checks that involve several
+//! fields (a power-of-two tile, the scheduler's registers) stay in
+//! [`MachineConfig::validate`](crate::config::MachineConfig::validate).
+
+use std::fmt::Display;
+
+/// `field = v: must be in lo..=hi` (with `why` appended) when `v` is out of
+/// range: the style of every bound check of the machine configuration.
+pub fn check_range(field: &str, v: u64, lo: u64, hi: u64, why: &str) -> Result<(), String> {
+    if (lo..=hi).contains(&v) {
+        Ok(())
+    } else {
+        Err(format!("{field} = {v}: must be in {lo}..={hi}{why}"))
+    }
+}
+
+/// A numeric parameter whose declared range can be checked.
+pub trait Bounded: Copy + Display {
+    /// `Err` naming `section.key`, the value and the range (and `why`)
+    /// unless `lo <= self <= hi` (and, for a float, finite).
+    fn check_in(
+        self,
+        section: &str,
+        key: &str,
+        lo: Self,
+        hi: Self,
+        why: &str,
+    ) -> Result<(), String>;
+}
+
+impl Bounded for u32 {
+    fn check_in(self, section: &str, key: &str, lo: u32, hi: u32, why: &str) -> Result<(), String> {
+        check_range(
+            &format!("{section}.{key}"),
+            self.into(),
+            lo.into(),
+            hi.into(),
+            why,
+        )
+    }
+}
+
+impl Bounded for u64 {
+    fn check_in(self, section: &str, key: &str, lo: u64, hi: u64, why: &str) -> Result<(), String> {
+        check_range(&format!("{section}.{key}"), self, lo, hi, why)
+    }
+}
+
+impl Bounded for f64 {
+    fn check_in(self, section: &str, key: &str, lo: f64, hi: f64, why: &str) -> Result<(), String> {
+        if self.is_finite() && (lo..=hi).contains(&self) {
+            Ok(())
+        } else {
+            Err(format!(
+                "{section}.{key} = {self}: must be a finite number in {lo}..={hi}{why}"
+            ))
+        }
+    }
+}
+
+/// Declare a section of the configuration: a struct whose fields are the
+/// section's keys, each with its description (the doc comment), its bound
+/// (`#[range(lo..=hi)]` or `#[range(lo..=hi, " why")]`, for numbers) and
+/// its type; `serde` attributes pass through. Unknown keys are errors. The
+/// struct gets `check_bounds(section)`, which checks every declared range
+/// and names the field (`core.max_warps = 0: must be in 1..=128`).
+///
+/// ```ignore
+/// section! {
+///     /// Global GPU parameters.
+///     #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+///     pub struct GpuConfig {
+///         /// Shader cores.
+///         #[range(1..=MAX_CORES)]
+///         pub cores: u32,
+///     }
+/// }
+/// ```
+macro_rules! section {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $(
+                $(#[doc = $doc:expr])*
+                $(#[range($lo:tt ..= $hi:expr $(, $why:literal)?)])?
+                $(#[serde($($serde:tt)*)])*
+                pub $field:ident : $ty:ty,
+            )*
+        }
+    ) => {
+        $(#[$meta])*
+        #[serde(deny_unknown_fields)]
+        pub struct $name {
+            $(
+                $(#[doc = $doc])*
+                $(#[serde($($serde)*)])*
+                pub $field: $ty,
+            )*
+        }
+
+        impl $name {
+            /// Check the declared range of every numeric field; `section`
+            /// names the section in the error.
+            pub fn check_bounds(&self, section: &str) -> Result<(), String> {
+                $($(
+                    $crate::param::Bounded::check_in(
+                        self.$field,
+                        section,
+                        stringify!($field),
+                        $lo,
+                        $hi,
+                        concat!("" $(, $why)?),
+                    )?;
+                )?)*
+                let _ = section;
+                Ok(())
+            }
+        }
+    };
+}
+pub(crate) use section;
+
+#[cfg(test)]
+mod tests {
+    use serde::{Deserialize, Serialize};
+
+    section! {
+        /// A test section.
+        #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+        pub struct Demo {
+            /// Bounded, no note.
+            #[range(1..=8)]
+            pub a: u32,
+            /// Bounded with a note.
+            #[range(0..=100, " cycles")]
+            pub b: u64,
+            /// A float.
+            #[range(0.0..=2.5)]
+            pub c: f64,
+            /// Not bounded, with a default.
+            #[serde(default)]
+            pub d: bool,
+        }
+    }
+
+    #[test]
+    fn declared_ranges_are_checked_and_named() {
+        let ok = Demo {
+            a: 8,
+            b: 0,
+            c: 2.5,
+            d: false,
+        };
+        assert_eq!(ok.check_bounds("demo"), Ok(()));
+        let e = Demo { a: 9, ..ok.clone() }.check_bounds("demo");
+        assert_eq!(e.unwrap_err(), "demo.a = 9: must be in 1..=8");
+        let e = Demo {
+            b: 101,
+            ..ok.clone()
+        }
+        .check_bounds("x");
+        assert_eq!(e.unwrap_err(), "x.b = 101: must be in 0..=100 cycles");
+        for c in [f64::NAN, -0.5, 3.0] {
+            let e = Demo { c, ..ok.clone() }.check_bounds("demo").unwrap_err();
+            assert!(e.contains("must be a finite number in 0..=2.5"), "{e}");
+        }
+    }
+
+    #[test]
+    fn sections_refuse_unknown_keys_and_keep_serde_attributes() {
+        let d: Demo = toml::from_str("a = 1\nb = 2\nc = 0.5\n").unwrap();
+        assert!(!d.d, "the default");
+        let e = toml::from_str::<Demo>("a = 1\nb = 2\nc = 0.5\nz = 1\n").unwrap_err();
+        assert!(e.to_string().contains("unknown field `z`"), "{e}");
+    }
+}
