@@ -82,12 +82,24 @@ pub fn run_grid(
             tasks.len()
         );
     }
+    // The first phase's machines, run or found stored: a grid point on one
+    // of them is the same as an earlier task of this run, not one done
+    // before it (a fresh run should not say "already done").
+    let known: std::collections::HashSet<String> =
+        out.points.values().map(|r| r.key.clone()).collect();
     let more = runner::run(&tasks, cache, opts)?;
+    let again: std::collections::HashSet<&String> = more
+        .points
+        .values()
+        .map(|r| &r.key)
+        .filter(|k| known.contains(*k))
+        .collect();
+    let again = again.len().min(more.cached);
     out.points.extend(more.points);
     out.failures.extend(more.failures);
     out.ran += more.ran;
-    out.cached += more.cached;
-    out.same += more.same;
+    out.cached += more.cached - again;
+    out.same += more.same + again;
     out.seconds += more.seconds;
     Ok(cells)
 }
