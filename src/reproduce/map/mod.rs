@@ -13,7 +13,7 @@
 //! - [`knobs`]: the knobs, their values and the variants run at each;
 //! - [`plan`]: the points;
 //! - [`data`]: one machine's numbers over a group of scenes;
-//! - [`table`]: every machine's numbers, the ranges, the grid's choice;
+//! - [`table`](mod@table): every machine's numbers, the ranges, the grid's choice;
 //! - [`report`]: the REPORT.md section and `data/map.*`;
 //! - [`figures`]: the tornado, warps, grid and area figures;
 //! - [`conclusion`]: the sentences on warp slots and the paper's claims;
