@@ -3,6 +3,9 @@
 //! with the paper's, and how numbers print (changes with their sign,
 //! shares without).
 //!
+//! It depends on no other module of the report: the figures, the tables
+//! and the map's sections print their numbers with it.
+//!
 //! Every sentence of the report that compares two numbers takes its verb
 //! from here, so that it says what the data shows, and where the data
 //! disagrees with the paper it says so, whichever way a run comes out.
@@ -38,12 +41,18 @@ pub fn relation(a: f64, b: f64, tol: f64) -> Relation {
 /// A change or speedup as text, with its sign (`+3.9%`; `-` for none),
 /// as the figures print them.
 pub fn pct(v: Option<f64>) -> String {
-    super::figures::pct_opt(v)
+    v.map_or("-".into(), |x| format!("{:+.1}%", 100.0 * x))
 }
 
 /// A share (of time, of launches) as text, without a sign (`6.3%`).
 pub fn share(v: Option<f64>) -> String {
     v.map_or("-".into(), |x| format!("{:.1}%", 100.0 * x))
+}
+
+/// A share as a whole percent without a sign (`6%`), as the map's tables
+/// print them.
+pub fn whole_share(v: Option<f64>) -> String {
+    v.map_or("-".into(), |x| format!("{:.0}%", 100.0 * x))
 }
 
 /// A plain number with one decimal (`-` for none).

@@ -26,7 +26,6 @@ mod warps;
 
 pub use axis::{mean, Axis};
 pub use figure::{Figure, Kind, PaperValue};
-pub use numbers::pct_opt;
 pub use scenes::scene_figures;
 
 use super::paper::Claim;

@@ -4,10 +4,9 @@
 //! show, whichever way it goes.
 
 use super::data::Metrics;
-use super::report::{pct, share};
 use super::table::{MapTable, Row};
 use crate::reproduce::plan::Group;
-use crate::reproduce::prose::faster_or_slower;
+use crate::reproduce::prose::{faster_or_slower, pct, whole_share as share};
 use std::fmt::Write as _;
 
 /// The paper's WaSP speedup over its best baseline (Section V-B).
