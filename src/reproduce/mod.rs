@@ -35,8 +35,8 @@ use wasp_sim::config::Dispatch;
 /// Options of `wasp reproduce`.
 #[derive(Args, Debug, Clone)]
 pub struct ReproduceArgs {
-    /// A first look in about a minute with the game data cached (on a
-    /// 2-core machine; the first run also downloads the games' data, about
+    /// A first look: 86 s of CPU time with the game data cached, which two
+    /// workers share (the first run also downloads the games' data, about
     /// 835 MB): the smallest scene of each game, the heuristics, ideal
     /// memory, the meshes, four thresholds, width 4 at 32/48/64 warps and
     /// one timeline on the first machine of --machines only, and the map
