@@ -10,7 +10,6 @@ use super::figures;
 use super::knobs::Variant;
 use super::plan::{MapPlan, DEEP_QUEUE};
 use super::table::{movement, MapTable, Row};
-use crate::reproduce::figures::pct_opt;
 use crate::reproduce::plan::{Group, Plan};
 use crate::study::cache::write_atomic;
 use crate::study::runner::Outcome;
@@ -20,12 +19,12 @@ use std::path::Path;
 
 /// Percent with one decimal, or `-`.
 pub(super) fn pct(v: Option<f64>) -> String {
-    pct_opt(v)
+    crate::reproduce::prose::pct(v)
 }
 
 /// A share as a whole percent without sign, or `-`.
 pub(super) fn share(v: Option<f64>) -> String {
-    v.map_or("-".into(), |x| format!("{:.0}%", 100.0 * x))
+    crate::reproduce::prose::whole_share(v)
 }
 
 fn num(v: Option<f64>) -> String {
