@@ -114,14 +114,18 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     };
     let defs = chosen_scenes(args.scenes.as_deref())?;
     let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
-    if let (Some(dir), Some(map)) = (&args.sweep_files, &plan.map) {
-        return write_sweep_files(dir, map, &plan, args.quiet);
+    // The map "What decides WaSP's gain" runs on the shared-tile machine
+    // beside the paper's experiments.
+    let map = map::plan::MapPlan::new(plan.wasp, plan.quick);
+    if let Some(dir) = &args.sweep_files {
+        return write_sweep_files(dir, &map, &plan, args.quiet);
     }
     let cache = Cache::open(&args.out).map_err(CliError::failed)?;
     let figures = args.out.join("figures");
     std::fs::create_dir_all(&figures)
         .map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
-    let tasks = plan.tasks(&figures);
+    let mut tasks = plan.tasks(&figures);
+    tasks.extend(map::tasks(&plan, &map));
     if !args.quiet {
         eprintln!(
             "wasp: reproducing the paper{}: {} scenes, {} machine(s), {} tasks, {} at once, into {}",
@@ -132,12 +136,10 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
             jobs,
             args.out.display()
         );
-        if let Some(map) = &plan.map {
-            eprintln!(
-                "wasp: including {}",
-                map::report::plan_text(map, plan.scenes.len())
-            );
-        }
+        eprintln!(
+            "wasp: including {}",
+            map::report::plan_text(&map, plan.scenes.len())
+        );
     }
     crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
     let opts = RunnerOptions {
@@ -148,10 +150,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         scenes: defs.clone(),
     };
     let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
-    let cells = map::run_grid(&plan, &mut outcome, &cache, &opts).map_err(CliError::failed)?;
+    let cells =
+        map::run_grid(&plan, &map, &mut outcome, &cache, &opts).map_err(CliError::failed)?;
     let command = command(args, def::scenes_dir().as_deref());
-    let written =
-        report::write(&plan, &outcome, &cells, &args.out, &command).map_err(CliError::failed)?;
+    let written = report::write(&plan, Some(&map), &outcome, &cells, &args.out, &command)
+        .map_err(CliError::failed)?;
     if !args.quiet {
         eprintln!("wasp: {}", outcome.summary());
         eprintln!("wasp: wrote {}", written.display());

@@ -107,8 +107,6 @@ pub struct Plan {
     pub timeline_window: (u64, u64),
     /// The quick subset.
     pub quick: bool,
-    /// The map "What decides WaSP's gain" (shared-tile machine).
-    pub map: Option<super::map::plan::MapPlan>,
 }
 
 /// One scene per game, in `Game::ALL` order: for the timelines the first
@@ -214,7 +212,6 @@ impl Plan {
             },
             timeline_window: (1, 20_000),
             quick,
-            map: Some(super::map::plan::MapPlan::new(wasp, quick)),
         }
     }
 
@@ -331,10 +328,6 @@ impl Plan {
                 }
             }
         }
-        if let Some(map) = &self.map {
-            let names: Vec<String> = self.scenes.iter().map(|s| s.name.clone()).collect();
-            t.extend(map.tasks(&names));
-        }
         t
     }
 }
@@ -364,9 +357,7 @@ mod tests {
             + p.meshes.len()
             + 3 * p.early_z.len()
             + 2 * 5 * 2;
-        let names: Vec<String> = p.scenes.iter().map(|s| s.name.clone()).collect();
-        let map = p.map.as_ref().unwrap().tasks(&names).len();
-        assert_eq!(runs, 2 * d.len() * per_scene + map);
+        assert_eq!(runs, 2 * d.len() * per_scene);
         // The shipped WaSP at mesh4 is the heuristics' WaSP point described
         // another way: the same machine.
         let mut r = crate::study::point::Resolver::default();

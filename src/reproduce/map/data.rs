@@ -53,6 +53,9 @@ pub struct Metrics {
     pub l0_misses_per_warp: Option<f64>,
     /// The baseline's share of DRAM requests that met another row open.
     pub row_conflicts: Option<f64>,
+    /// The baseline's L1 and L2 misses per warp (the L1 below the L0 at
+    /// width 4).
+    pub lower_misses_per_warp: (Option<f64>, Option<f64>),
     /// The oracle's share of prefetch misses a demand access merged into
     /// while in flight (late prefetches).
     pub oracle_late: Option<f64>,
@@ -142,6 +145,16 @@ pub fn metrics(
             let r = rec(s, Variant::Baseline)?;
             Some(r.get("dram.row_conflicts")? / r.get("dram.requests")?)
         }),
+        lower_misses_per_warp: (
+            per_scene(&|s: &str| {
+                let r = rec(s, Variant::Baseline)?;
+                Some(r.get("l1.misses")? / r.get("warps")?)
+            }),
+            per_scene(&|s: &str| {
+                let r = rec(s, Variant::Baseline)?;
+                Some(r.get("l2.misses")? / r.get("warps")?)
+            }),
+        ),
         oracle_late: stat(Variant::Oracle, "prefetch.late_share"),
         oracle_useless: per_scene(&|s: &str| {
             let r = rec(s, Variant::Oracle)?;

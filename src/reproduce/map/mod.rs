@@ -32,7 +32,7 @@ use super::plan::Plan;
 use crate::study::cache::Cache;
 use crate::study::runner::{self, Outcome, RunnerOptions};
 use data::MapScenes;
-use plan::Cell;
+use plan::{Cell, MapPlan};
 use table::MapTable;
 
 /// The scenes of `plan` with their groups.
@@ -47,10 +47,16 @@ pub fn scenes(plan: &Plan) -> MapScenes<'_> {
 }
 
 /// The map's table from a run's results, with the grid's cells when given.
-pub fn table(plan: &Plan, out: &Outcome, cells: &[Cell]) -> Option<MapTable> {
-    let map = plan.map.as_ref()?;
+pub fn table(plan: &Plan, map: &MapPlan, out: &Outcome, cells: &[Cell]) -> MapTable {
     let sc = scenes(plan);
-    Some(MapTable::new(map, out, &sc).with_grid(map, out, &sc, cells))
+    MapTable::new(map, out, &sc).with_grid(map, out, &sc, cells)
+}
+
+/// The map's one-at-a-time tasks on the scenes of `plan` (the grid's come
+/// after them, from [`run_grid`]).
+pub fn tasks(plan: &Plan, map: &MapPlan) -> Vec<crate::study::runner::Task> {
+    let names: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
+    map.tasks(&names)
 }
 
 /// The second phase: choose the two knobs that move WaSP most from the
@@ -58,13 +64,11 @@ pub fn table(plan: &Plan, out: &Outcome, cells: &[Cell]) -> Option<MapTable> {
 /// `out`. Returns the grid's cells (none without a map or two knobs).
 pub fn run_grid(
     plan: &Plan,
+    map: &MapPlan,
     out: &mut Outcome,
     cache: &Cache,
     opts: &RunnerOptions,
 ) -> Result<Vec<Cell>, String> {
-    let Some(map) = plan.map.as_ref() else {
-        return Ok(Vec::new());
-    };
     let sc = scenes(plan);
     let t = MapTable::new(map, out, &sc);
     let Some((a, b)) = table::top_two(&t.knobs) else {
