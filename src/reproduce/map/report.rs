@@ -117,7 +117,7 @@ fn intro(md: &mut String, map: &MapPlan, t: &MapTable) {
          Fullpriority, the baseline with a raster texture prefetcher, the baseline with the \
          oracle tile prefetcher (every block of a tile requested when the tile opens: the \
          bound of any \"launch early to prefetch\" scheme) and the baseline with ideal memory \
-         (the other bound).{}\n",
+         (zero-latency main memory; the L1 and L2 keep their latencies).{}\n",
         varied,
         values,
         map.wasp,
