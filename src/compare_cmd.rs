@@ -191,11 +191,20 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
     let Some(base) = runs.first() else {
         return s;
     };
-    let _ = writeln!(
+    let _ = write!(
         s,
         "machine {}  |  dispatch {}  |  workload {}  |  subset {}  |  launch rule {}",
         base.machine, base.dispatch, base.workload, base.subset.subset, base.launch_rule
     );
+    // Options off by default are named only when set, so the shipped
+    // machine's header stays as it is.
+    if base.issue != "lrr" {
+        let _ = write!(s, "  |  issue {}", base.issue);
+    }
+    if let Some(p) = &base.prefetch {
+        let _ = write!(s, "  |  prefetch {}", p.kind);
+    }
+    s.push('\n');
     let _ = writeln!(
         s,
         "{:<26}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}{:>7}{:>8}{:>10}",

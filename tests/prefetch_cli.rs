@@ -204,6 +204,18 @@ fn compare_and_sweep_take_the_prefetcher_through_set() {
     for run in v.as_array().unwrap() {
         assert_eq!(run["prefetch"]["kind"], "oracle-tile");
     }
+    // The table's header names the prefetcher and a non-default issue
+    // order, and names neither on the shipped machine.
+    let table = |extra: &[&str]| {
+        let mut args = vec!["compare", "-q", "--trace", &path, "--set", &tile];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--policies", "baseline"]);
+        ok(&wasp(&args)).lines().next().unwrap().to_string()
+    };
+    let set = table(&["--set", "prefetch.kind=raster", "--set", "core.issue=gto"]);
+    assert!(set.ends_with("|  issue gto  |  prefetch raster"), "{set}");
+    let shipped = table(&[]);
+    assert!(!shipped.contains("prefetch") && !shipped.contains("issue"), "{shipped}");
     let d = common::scratch("prefetch", "sweep");
     let file = d.join("sweep.toml");
     let sweep = |kind: &str| {
