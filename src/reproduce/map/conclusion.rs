@@ -101,26 +101,7 @@ pub fn warp_slots(md: &mut String, t: &MapTable, groups: &[Group]) {
         if more.is_none() {
             continue;
         }
-        let reading = match (more, deep_more) {
-            (Some(a), Some(b)) if a > 0.005 && b < 0.5 * a => format!(
-                "most of what the extra slots buy is room for quads behind the in-order \
-                 rasterizer: with the deep queue they add {} instead of {}",
-                pct(Some(b)),
-                pct(Some(a))
-            ),
-            (Some(a), Some(b)) if a > 0.005 => format!(
-                "the extra slots mostly hide latency: they still add {} with the deep queue \
-                 ({} without it)",
-                pct(Some(b)),
-                pct(Some(a))
-            ),
-            (Some(a), _) if a <= 0.005 => format!(
-                "the extra slots do not pay ({} from 64 to {} warps)",
-                pct(Some(a)),
-                most.value
-            ),
-            _ => "the deep-queue runs are missing".to_string(),
-        };
+        let reading = slot_reading(more, deep_more, &most.value);
         let l0 = (
             get(s, |m| m.l0_misses_per_warp),
             get(x, |m| m.l0_misses_per_warp),
@@ -155,6 +136,31 @@ pub fn warp_slots(md: &mut String, t: &MapTable, groups: &[Group]) {
         );
     }
     lower_levels(md, ship, most, groups);
+}
+
+/// What the extra warp slots buy, from the baseline's speedup from 64
+/// warps to the most (`more`) and the same with the deep queue
+/// (`deep_more`).
+fn slot_reading(more: Option<f64>, deep_more: Option<f64>, most: &str) -> String {
+    match (more, deep_more) {
+        (Some(a), Some(b)) if a > 0.005 && b < 0.5 * a => format!(
+            "most of what the extra slots buy is room for quads behind the in-order \
+             rasterizer: with the deep queue they add {} instead of {}",
+            pct(Some(b)),
+            pct(Some(a))
+        ),
+        (Some(a), Some(b)) if a > 0.005 => format!(
+            "the extra slots mostly hide latency: they still add {} with the deep queue \
+             ({} without it)",
+            pct(Some(b)),
+            pct(Some(a))
+        ),
+        (Some(a), _) if a <= 0.005 => format!(
+            "the extra slots do not pay ({} from 64 to {most} warps)",
+            pct(Some(a))
+        ),
+        _ => "the deep-queue runs are missing".to_string(),
+    }
 }
 
 /// How the L1's and L2's misses per warp move from 64 warps to the most,
@@ -384,23 +390,7 @@ fn bound_claim(md: &mut String, t: &MapTable, machines: &[&Row], g: Group) {
             )
         })
         .unwrap_or_default();
-    let above_ideal: Vec<&str> = machines
-        .iter()
-        .filter(|r| matches!((r.of(g).oracle, r.of(g).ideal), (Some(o), Some(i)) if o > i))
-        .map(|r| r.label.as_str())
-        .collect();
-    let ideal_note = if above_ideal.is_empty() {
-        String::new()
-    } else {
-        format!(
-            " The oracle is faster than ideal memory at {} of {} machines ({}): ideal memory \
-             removes the main memory's latency only, while the oracle's blocks wait in the L1, \
-             which also hides the L2's.",
-            above_ideal.len(),
-            machines.len(),
-            some(&above_ideal)
-        )
-    };
+    let ideal_note = oracle_above_ideal(machines, g);
     let _ = writeln!(
         md,
         "- **WaSP against the bounds, {} scenes**: on the shipped machine WaSP's speedup is {}, \
@@ -420,6 +410,26 @@ fn bound_claim(md: &mut String, t: &MapTable, machines: &[&Row], g: Group) {
             format!(": {}", some(&below))
         }
     );
+}
+
+/// Where the oracle beats ideal memory, and why it can.
+fn oracle_above_ideal(machines: &[&Row], g: Group) -> String {
+    let above: Vec<&str> = machines
+        .iter()
+        .filter(|r| matches!((r.of(g).oracle, r.of(g).ideal), (Some(o), Some(i)) if o > i))
+        .map(|r| r.label.as_str())
+        .collect();
+    if above.is_empty() {
+        return String::new();
+    }
+    format!(
+        " The oracle is faster than ideal memory at {} of {} machines ({}): ideal memory \
+         removes the main memory's latency only, while the oracle's blocks wait in the L1, \
+         which also hides the L2's.",
+        above.len(),
+        machines.len(),
+        some(&above)
+    )
 }
 
 #[cfg(test)]

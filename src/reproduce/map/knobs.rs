@@ -133,6 +133,10 @@ fn plain(v: &str) -> String {
 }
 
 /// Every knob of the map, in the order of docs/machine.md.
+///
+/// Long by design: a declaration table with one entry per knob (its field,
+/// label, values and how it is set), read beside docs/machine.md's table;
+/// split, the knobs would be scattered over functions that say nothing more.
 pub fn all() -> Vec<Knob> {
     vec![
         Knob {

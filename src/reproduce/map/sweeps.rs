@@ -86,31 +86,33 @@ fn bound(v: Variant) -> (&'static str, Vec<String>) {
     (name, sets)
 }
 
-/// The map's sweep files on `scenes`: (file name, text).
-pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
-    let knobs = knob_entries(map);
-    let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
-    let with_bounds = |configs: &[Entry]| {
-        let mut v = Vec::new();
-        for (name, set) in configs {
-            for b in [Variant::Raster, Variant::Oracle, Variant::Ideal] {
-                let (suffix, extra) = bound(b);
-                let mut s = set.clone();
-                s.extend(extra);
-                v.push((format!("{name}+{suffix}"), s));
-            }
+/// Each entry once under each bound: the raster prefetcher, the oracle and
+/// ideal memory.
+fn with_bounds(configs: &[Entry]) -> Vec<Entry> {
+    let mut v = Vec::new();
+    for (name, set) in configs {
+        for b in [Variant::Raster, Variant::Oracle, Variant::Ideal] {
+            let (suffix, extra) = bound(b);
+            let mut s = set.clone();
+            s.extend(extra);
+            v.push((format!("{name}+{suffix}"), s));
         }
-        v
-    };
-    let bounds = with_bounds(&knobs);
-    let shipped: Vec<Entry> = vec![("shipped".into(), Vec::new())];
-    let orders: Vec<&str> = map
-        .knobs
+    }
+    v
+}
+
+/// The draw orders the map runs besides the shipped one.
+fn other_orders(map: &MapPlan) -> Vec<&'static str> {
+    map.knobs
         .iter()
         .filter(|k| k.draw_order)
         .flat_map(|k| k.values_for(map.quick).iter().filter(|v| **v != k.shipped))
         .copied()
-        .collect();
+        .collect()
+}
+
+/// The deep-queue warp series, each count alone and with the oracle.
+fn deep_entries(map: &MapPlan) -> Vec<Entry> {
     let mut deep = Vec::new();
     for &w in &map.deep_queue_warps {
         let set = vec![
@@ -122,6 +124,17 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
         deep.push((format!("warps={w}+queue={DEEP_QUEUE}"), set));
         deep.push((format!("warps={w}+queue={DEEP_QUEUE}+oracle"), oracle));
     }
+    deep
+}
+
+/// The map's sweep files on `scenes`: (file name, text).
+pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
+    let knobs = knob_entries(map);
+    let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
+    let bounds = with_bounds(&knobs);
+    let shipped: Vec<Entry> = vec![("shipped".into(), Vec::new())];
+    let orders = other_orders(map);
+    let deep = deep_entries(map);
     let head = "The map \"What decides WaSP's gain\" of `wasp reproduce`, written by \
                 `wasp reproduce --sweep-files`.\nRun it into the reproduction's folder, \
                 then `wasp reproduce --out` that folder for the grid and the report.";
