@@ -364,7 +364,7 @@ fn unpack_tiles(
                 break;
             }
         }
-        if tiles.len() != n || raw.len() % 4 != 0 {
+        if tiles.len() != n || !raw.len().is_multiple_of(4) {
             return Err(SceneError::at(
                 path,
                 field_at(item, 14),
