@@ -177,13 +177,49 @@ impl Scenes {
 pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcome, String> {
     let start = Instant::now();
     let mut out = Outcome::default();
-    let mut resolver = Resolver::default();
     let mut scenes = Scenes::with(&opts.scenes);
+    let mut todo = resolve(tasks, cache, &mut scenes, &mut out)?;
+    fetch_games(&todo, &mut scenes, opts)?;
+    // Group by scene, draw order and tile size, in scene order.
+    todo.sort_by_key(|r| (r.def.name.clone(), r.def.draw_order, r.cfg.gpu.tile_size));
+    let (groups, group_of) = group(&todo);
+    let results = run_ready(&todo, &groups, &group_of, cache, opts);
+    for (i, r) in results {
+        match r {
+            Ok(Done::Point(rec)) => {
+                if let Task::Run(p) = &todo[i].task {
+                    out.points.insert(p.clone(), rec);
+                }
+            }
+            Ok(Done::Scene(c)) => {
+                out.scenes.insert(c.scene.clone(), *c);
+            }
+            Ok(Done::Drawn) => {}
+            Err(e) => out
+                .failures
+                .push(format!("{}: {e}", describe(&todo[i].task))),
+        }
+        out.ran += 1;
+    }
+    share_results(&mut out);
+    out.seconds = start.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// Resolve every task (bad scenes and overrides fail here, before any
+/// run): its key and configuration. A task on the same machine as an
+/// earlier one is counted in `out.same`, a stored result is taken into
+/// `out`; the rest are returned, to run.
+fn resolve(
+    tasks: &[Task],
+    cache: &Cache,
+    scenes: &mut Scenes,
+    out: &mut Outcome,
+) -> Result<Vec<Ready>, String> {
+    let mut resolver = Resolver::default();
     let mut ids: HashMap<(String, DrawOrder), String> = HashMap::new();
     let mut todo: Vec<Ready> = Vec::new();
     let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
-    // Resolve every task (bad scenes and overrides fail here, before any
-    // run), and take the stored results.
     for t in tasks {
         let d = scenes.def(t.scene())?.clone();
         let d = match t {
@@ -194,27 +230,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             .entry((d.name.clone(), d.draw_order))
             .or_insert_with(|| scene_identity(&d))
             .clone();
-        let (key, cfg) = match t {
-            Task::Run(p) | Task::Timeline { point: p, .. } => {
-                let cfg = resolver
-                    .config(p)
-                    .map_err(|e| format!("{}: {e}", p.describe()))?;
-                (point_key(binary_id(), &id, &cfg), cfg)
-            }
-            Task::Characterize { config, .. } => {
-                let cfg = resolver
-                    .config(&Point::new(&d.name, config, &[]))
-                    .map_err(|e| format!("{config}: {e}"))?;
-                let tile = cfg.gpu.tile_size.to_string();
-                let key = hash_parts(&[
-                    b"wasp-scene-1",
-                    binary_id().as_bytes(),
-                    id.as_bytes(),
-                    tile.as_bytes(),
-                ]);
-                (key, cfg)
-            }
-        };
+        let (key, cfg) = key_and_config(t, &d, &id, &mut resolver)?;
         // A task on the same machine as an earlier one (the same key and
         // kind) shares its result.
         let id = match t {
@@ -235,27 +251,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             }
             continue;
         }
-        let done = match t {
-            Task::Run(p) => match cache.load_point(&p.scene, &key) {
-                Some(r) => {
-                    out.points.insert(p.clone(), r);
-                    true
-                }
-                None => false,
-            },
-            Task::Characterize { scene, .. } => match cache.load_scene(scene, &key) {
-                Some(c) => {
-                    out.scenes.insert(scene.clone(), c);
-                    true
-                }
-                None => false,
-            },
-            Task::Timeline { out: path, .. } => {
-                path.is_file()
-                    && std::fs::read_to_string(key_file(path)).is_ok_and(|k| k.trim() == key)
-            }
-        };
-        if done {
+        if take_stored(t, &key, cache, out) {
             out.cached += 1;
         } else {
             todo.push(Ready {
@@ -266,7 +262,68 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             });
         }
     }
-    // Fetch the games the remaining tasks need.
+    Ok(todo)
+}
+
+/// Task `t`'s key (of this binary, the scene `d` of identity `id` and the
+/// machine) and its effective configuration.
+fn key_and_config(
+    t: &Task,
+    d: &SceneDef,
+    id: &str,
+    resolver: &mut Resolver,
+) -> Result<(String, MachineConfig), String> {
+    match t {
+        Task::Run(p) | Task::Timeline { point: p, .. } => {
+            let cfg = resolver
+                .config(p)
+                .map_err(|e| format!("{}: {e}", p.describe()))?;
+            Ok((point_key(binary_id(), id, &cfg), cfg))
+        }
+        Task::Characterize { config, .. } => {
+            let cfg = resolver
+                .config(&Point::new(&d.name, config, &[]))
+                .map_err(|e| format!("{config}: {e}"))?;
+            let tile = cfg.gpu.tile_size.to_string();
+            let key = hash_parts(&[
+                b"wasp-scene-1",
+                binary_id().as_bytes(),
+                id.as_bytes(),
+                tile.as_bytes(),
+            ]);
+            Ok((key, cfg))
+        }
+    }
+}
+
+/// Whether task `t`'s result is stored under `key` already (a point or a
+/// characterisation is then taken into `out`; a timeline picture exists
+/// with its key beside it).
+fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
+    match t {
+        Task::Run(p) => match cache.load_point(&p.scene, key) {
+            Some(r) => {
+                out.points.insert(p.clone(), r);
+                true
+            }
+            None => false,
+        },
+        Task::Characterize { scene, .. } => match cache.load_scene(scene, key) {
+            Some(c) => {
+                out.scenes.insert(scene.clone(), c);
+                true
+            }
+            None => false,
+        },
+        Task::Timeline { out: path, .. } => {
+            path.is_file() && std::fs::read_to_string(key_file(path)).is_ok_and(|k| k.trim() == key)
+        }
+    }
+}
+
+/// Fetch the games the tasks `todo` need (or, without `opts.fetch`, say
+/// which to fetch).
+fn fetch_games(todo: &[Ready], scenes: &mut Scenes, opts: &RunnerOptions) -> Result<(), String> {
     let mut games: Vec<_> = todo
         .iter()
         .map(|r| scenes.def(r.task.scene()).map(|d| d.game))
@@ -304,12 +361,15 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             )
         })?;
     }
-    // Group by scene, draw order and tile size, in scene order.
-    let group_key = |r: &Ready| (r.def.name.clone(), r.def.draw_order, r.cfg.gpu.tile_size);
-    todo.sort_by_key(group_key);
+    Ok(())
+}
+
+/// The groups of the sorted tasks `todo` (one per scene, draw order and
+/// tile size, each counting its tasks) and each task's group.
+fn group(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
     let mut groups: Vec<Group> = Vec::new();
     let mut group_of = Vec::with_capacity(todo.len());
-    for r in &todo {
+    for r in todo {
         let tile = r.cfg.gpu.tile_size;
         let same = groups.last().is_some_and(|g| {
             g.def.name == r.def.name && g.def.draw_order == r.def.draw_order && g.tile == tile
@@ -326,6 +386,19 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
         groups[g].remaining.fetch_add(1, Ordering::Relaxed);
         group_of.push(g);
     }
+    (groups, group_of)
+}
+
+/// Run the tasks `todo` on `opts.jobs` workers, in order: each renders its
+/// group's frame if no one has yet, and the last task of a group drops
+/// it. Returns every task's result by index, in task order.
+fn run_ready(
+    todo: &[Ready],
+    groups: &[Group],
+    group_of: &[usize],
+    cache: &Cache,
+    opts: &RunnerOptions,
+) -> Vec<(usize, Result<Done, String>)> {
     let pb = progress(opts, todo.len());
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<(usize, Result<Done, String>)>> = Mutex::new(Vec::new());
@@ -354,24 +427,13 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     pb.finish();
     let mut results = results.into_inner().expect("lock");
     results.sort_by_key(|(i, _)| *i);
-    for (i, r) in results {
-        match r {
-            Ok(Done::Point(rec)) => {
-                if let Task::Run(p) = &todo[i].task {
-                    out.points.insert(p.clone(), rec);
-                }
-            }
-            Ok(Done::Scene(c)) => {
-                out.scenes.insert(c.scene.clone(), *c);
-            }
-            Ok(Done::Drawn) => {}
-            Err(e) => out
-                .failures
-                .push(format!("{}: {e}", describe(&todo[i].task))),
-        }
-        out.ran += 1;
-    }
-    // Points that named a machine another point ran under another name.
+    results
+}
+
+/// Points that named a machine another point ran under another name take
+/// its result (under their own name); those whose machine never ran are
+/// dropped.
+fn share_results(out: &mut Outcome) {
     let by_key: HashMap<String, PointRecord> = out
         .points
         .values()
@@ -394,8 +456,6 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             true
         }
     });
-    out.seconds = start.elapsed().as_secs_f64();
-    Ok(out)
 }
 
 fn describe(t: &Task) -> String {

@@ -127,6 +127,187 @@ fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
+/// A sweep file's text, for messages that name a line of it.
+struct Source<'a> {
+    text: &'a str,
+    /// The file as named on the command line.
+    shown: &'a str,
+}
+
+/// A list of the file with the span of each entry.
+type SpannedList = Spanned<Vec<Spanned<String>>>;
+
+impl Source<'_> {
+    /// `FILE:LINE` of byte `offset`.
+    fn at(&self, offset: usize) -> String {
+        format!("{}:{}", self.shown, line_of(self.text, offset))
+    }
+
+    /// The file as written; a TOML error names its line (and the line's
+    /// text, unless it is a missing field, reported at its table).
+    fn raw(&self) -> Result<RawSweep, String> {
+        let (text, shown) = (self.text, self.shown);
+        toml::from_str(text).map_err(|e| {
+            let message = e.message().trim_end().replace('\n', ": ");
+            match e.span().map(|s| line_of(text, s.start)) {
+                // A missing field is reported at its table: the line says
+                // nothing more.
+                Some(l) if !message.starts_with("missing field") => {
+                    let src = text.lines().nth(l - 1).unwrap_or("").trim();
+                    format!("{shown}:{l}: {message} (in `{src}`)")
+                }
+                Some(l) => format!("{shown}:{l}: {message}"),
+                None => format!("{shown}: {message}"),
+            }
+        })
+    }
+
+    /// A list field holds at least one entry and no entry twice.
+    fn list(&self, field: &str, v: &SpannedList) -> Result<(), String> {
+        if v.get_ref().is_empty() {
+            return Err(format!(
+                "{}: {field} is empty: name at least one",
+                self.at(v.span().start)
+            ));
+        }
+        for (i, x) in v.get_ref().iter().enumerate() {
+            let first = v.get_ref()[..i]
+                .iter()
+                .position(|y| y.get_ref() == x.get_ref());
+            if let Some(j) = first {
+                return Err(format!(
+                    "{}: {field}[{i}] `{}` is listed twice (also {field}[{j}])",
+                    self.at(x.span().start),
+                    x.get_ref()
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The list `field` checked ([`Source::list`]) and each entry parsed
+    /// as a `T`: (entry as written, value).
+    fn parsed<T: std::str::FromStr>(
+        &self,
+        field: &str,
+        v: &SpannedList,
+    ) -> Result<Vec<(String, T)>, String>
+    where
+        T::Err: std::fmt::Display,
+    {
+        self.list(field, v)?;
+        let mut out = Vec::new();
+        for (i, x) in v.get_ref().iter().enumerate() {
+            let value = x
+                .get_ref()
+                .parse::<T>()
+                .map_err(|e| format!("{}: {field}[{i}]: {e}", self.at(x.span().start)))?;
+            out.push((x.get_ref().clone(), value));
+        }
+        Ok(out)
+    }
+
+    /// The scenes, each one of `known`, or `all` alone for every one.
+    fn scenes(&self, raw: &SpannedList, known: &[String]) -> Result<Vec<String>, String> {
+        let mut scenes = Vec::new();
+        for (i, s) in raw.get_ref().iter().enumerate() {
+            let name = s.get_ref();
+            if name == "all" {
+                if raw.get_ref().len() > 1 {
+                    return Err(format!(
+                        "{}: scenes: `all` stands for every scene and cannot be listed with others",
+                        self.at(s.span().start)
+                    ));
+                }
+                scenes = known.to_vec();
+            } else if known.contains(name) {
+                scenes.push(name.clone());
+            } else {
+                return Err(format!(
+                    "{}: scenes[{i}]: no scene named `{name}` (see `wasp scenes list`)",
+                    self.at(s.span().start)
+                ));
+            }
+        }
+        Ok(scenes)
+    }
+
+    /// The `[[configs]]` entries: at least one, each named once.
+    fn configs(
+        &self,
+        raw: Option<&Spanned<Vec<Spanned<RawConfig>>>>,
+        dir: &Path,
+    ) -> Result<Vec<ConfigEntry>, String> {
+        let raw_configs = match raw {
+            Some(c) if !c.get_ref().is_empty() => c.get_ref(),
+            Some(c) => {
+                return Err(format!(
+                    "{}: configs is empty: add at least one [[configs]] entry",
+                    self.at(c.span().start)
+                ))
+            }
+            None => {
+                return Err(format!(
+                    "{}: no [[configs]] entry: add at least one (name, base, set)",
+                    self.shown
+                ))
+            }
+        };
+        let mut configs: Vec<ConfigEntry> = Vec::new();
+        for (i, c) in raw_configs.iter().enumerate() {
+            let c = c.get_ref();
+            let name = c.name.get_ref();
+            let here = self.at(c.name.span().start);
+            if name.trim().is_empty() {
+                return Err(format!("{here}: configs[{i}].name is empty"));
+            }
+            if let Some(j) = configs.iter().position(|x| &x.name == name) {
+                return Err(format!(
+                    "{here}: configs[{i}].name `{name}` is used twice (also configs[{j}], line {})",
+                    configs[j].line
+                ));
+            }
+            configs.push(self.config(i, c, dir)?);
+        }
+        Ok(configs)
+    }
+
+    /// `[[configs]]` entry `i`: its base (a shipped machine or a TOML file
+    /// relative to `dir`) and its `PATH=VALUE` overrides.
+    fn config(&self, i: usize, c: &RawConfig, dir: &Path) -> Result<ConfigEntry, String> {
+        let base = match c.base.get_ref().as_str() {
+            b @ ("paper" | "paper-width2") => b.to_string(),
+            b => {
+                let p = dir.join(b);
+                if !p.is_file() {
+                    return Err(format!(
+                        "{}: configs[{i}].base `{b}`: no such file ({}); a base is paper, \
+                         paper-width2 or a TOML file",
+                        self.at(c.base.span().start),
+                        p.display()
+                    ));
+                }
+                p.canonicalize().unwrap_or(p).display().to_string()
+            }
+        };
+        for (k, s) in c.set.iter().enumerate() {
+            if !s.get_ref().contains('=') {
+                return Err(format!(
+                    "{}: configs[{i}].set[{k}] `{}`: expected PATH=VALUE, e.g. l0.mshrs=24",
+                    self.at(s.span().start),
+                    s.get_ref()
+                ));
+            }
+        }
+        Ok(ConfigEntry {
+            name: c.name.get_ref().clone(),
+            base,
+            set: c.set.iter().map(|s| s.get_ref().clone()).collect(),
+            line: line_of(self.text, c.name.span().start),
+        })
+    }
+}
+
 impl Sweep {
     /// Read and check the sweep file `path` against the scenes of
     /// `wasp scenes list`.
@@ -145,189 +326,71 @@ impl Sweep {
     /// whose relative base paths are relative to `dir`, with the scene names
     /// `known`.
     pub fn parse(text: &str, shown: &str, dir: &Path, known: &[String]) -> Result<Sweep, String> {
-        let raw: RawSweep = toml::from_str(text).map_err(|e| {
-            let message = e.message().trim_end().replace('\n', ": ");
-            match e.span().map(|s| line_of(text, s.start)) {
-                // A missing field is reported at its table: the line says
-                // nothing more.
-                Some(l) if !message.starts_with("missing field") => {
-                    let src = text.lines().nth(l - 1).unwrap_or("").trim();
-                    format!("{shown}:{l}: {message} (in `{src}`)")
-                }
-                Some(l) => format!("{shown}:{l}: {message}"),
-                None => format!("{shown}: {message}"),
-            }
-        })?;
-        let at = |offset: usize| format!("{shown}:{}", line_of(text, offset));
-        let list = |field: &str, v: &Spanned<Vec<Spanned<String>>>| -> Result<(), String> {
-            if v.get_ref().is_empty() {
-                return Err(format!(
-                    "{}: {field} is empty: name at least one",
-                    at(v.span().start)
-                ));
-            }
-            for (i, x) in v.get_ref().iter().enumerate() {
-                let first = v.get_ref()[..i]
-                    .iter()
-                    .position(|y| y.get_ref() == x.get_ref());
-                if let Some(j) = first {
-                    return Err(format!(
-                        "{}: {field}[{i}] `{}` is listed twice (also {field}[{j}])",
-                        at(x.span().start),
-                        x.get_ref()
-                    ));
-                }
-            }
-            Ok(())
-        };
-        list("scenes", &raw.scenes)?;
-        list("policies", &raw.policies)?;
-        let mut scenes = Vec::new();
-        for (i, s) in raw.scenes.get_ref().iter().enumerate() {
-            let name = s.get_ref();
-            if name == "all" {
-                if raw.scenes.get_ref().len() > 1 {
-                    return Err(format!(
-                        "{}: scenes: `all` stands for every scene and cannot be listed with others",
-                        at(s.span().start)
-                    ));
-                }
-                scenes = known.to_vec();
-            } else if known.contains(name) {
-                scenes.push(name.clone());
-            } else {
-                return Err(format!(
-                    "{}: scenes[{i}]: no scene named `{name}` (see `wasp scenes list`)",
-                    at(s.span().start)
-                ));
-            }
-        }
+        let src = Source { text, shown };
+        let raw = src.raw()?;
+        src.list("scenes", &raw.scenes)?;
+        src.list("policies", &raw.policies)?;
+        let scenes = src.scenes(&raw.scenes, known)?;
         let mut policies = Vec::new();
         for (i, p) in raw.policies.get_ref().iter().enumerate() {
             p.get_ref()
                 .parse::<PolicySpec>()
-                .map_err(|e| format!("{}: policies[{i}]: {e}", at(p.span().start)))?;
+                .map_err(|e| format!("{}: policies[{i}]: {e}", src.at(p.span().start)))?;
             policies.push(p.get_ref().clone());
         }
         let dispatches = match &raw.dispatches {
             None => vec![None],
-            Some(d) => {
-                list("dispatches", d)?;
-                let mut v = Vec::new();
-                for (i, x) in d.get_ref().iter().enumerate() {
-                    x.get_ref()
-                        .parse::<Dispatch>()
-                        .map_err(|e| format!("{}: dispatches[{i}]: {e}", at(x.span().start)))?;
-                    v.push(Some(x.get_ref().clone()));
-                }
-                v
-            }
+            Some(d) => src
+                .parsed::<Dispatch>("dispatches", d)?
+                .into_iter()
+                .map(|(x, _)| Some(x))
+                .collect(),
         };
         let draw_orders = match &raw.draw_orders {
             None => vec![None],
-            Some(d) => {
-                list("draw_orders", d)?;
-                let mut v = Vec::new();
-                for (i, x) in d.get_ref().iter().enumerate() {
-                    let o = x
-                        .get_ref()
-                        .parse::<DrawOrder>()
-                        .map_err(|e| format!("{}: draw_orders[{i}]: {e}", at(x.span().start)))?;
-                    v.push(Some(o));
-                }
-                v
-            }
+            Some(d) => src
+                .parsed::<DrawOrder>("draw_orders", d)?
+                .into_iter()
+                .map(|(_, o)| Some(o))
+                .collect(),
         };
-        let raw_configs = match &raw.configs {
-            Some(c) if !c.get_ref().is_empty() => c.get_ref(),
-            Some(c) => {
-                return Err(format!(
-                    "{}: configs is empty: add at least one [[configs]] entry",
-                    at(c.span().start)
-                ))
-            }
-            None => {
-                return Err(format!(
-                    "{shown}: no [[configs]] entry: add at least one (name, base, set)"
-                ))
-            }
-        };
-        let mut configs: Vec<ConfigEntry> = Vec::new();
-        for (i, c) in raw_configs.iter().enumerate() {
-            let c = c.get_ref();
-            let name = c.name.get_ref();
-            let here = at(c.name.span().start);
-            if name.trim().is_empty() {
-                return Err(format!("{here}: configs[{i}].name is empty"));
-            }
-            if let Some(j) = configs.iter().position(|x| &x.name == name) {
-                return Err(format!(
-                    "{here}: configs[{i}].name `{name}` is used twice (also configs[{j}], line {})",
-                    configs[j].line
-                ));
-            }
-            let base = match c.base.get_ref().as_str() {
-                b @ ("paper" | "paper-width2") => b.to_string(),
-                b => {
-                    let p = dir.join(b);
-                    if !p.is_file() {
-                        return Err(format!(
-                            "{}: configs[{i}].base `{b}`: no such file ({}); a base is paper, \
-                             paper-width2 or a TOML file",
-                            at(c.base.span().start),
-                            p.display()
-                        ));
-                    }
-                    p.canonicalize().unwrap_or(p).display().to_string()
-                }
-            };
-            for (k, s) in c.set.iter().enumerate() {
-                if !s.get_ref().contains('=') {
-                    return Err(format!(
-                        "{}: configs[{i}].set[{k}] `{}`: expected PATH=VALUE, e.g. l0.mshrs=24",
-                        at(s.span().start),
-                        s.get_ref()
-                    ));
-                }
-            }
-            configs.push(ConfigEntry {
-                name: name.clone(),
-                base,
-                set: c.set.iter().map(|s| s.get_ref().clone()).collect(),
-                line: line_of(text, c.name.span().start),
-            });
-        }
-        let count = [
-            scenes.len(),
-            draw_orders.len(),
-            configs.len(),
-            dispatches.len(),
-            policies.len(),
-        ]
-        .iter()
-        .try_fold(1usize, |a, &b| a.checked_mul(b));
-        match count {
-            Some(n) if n <= MAX_POINTS => {}
-            _ => {
-                return Err(format!(
-                    "{shown}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
-                     policies is more than {MAX_POINTS} points: split the sweep into several files",
-                    scenes.len(),
-                    draw_orders.len(),
-                    configs.len(),
-                    dispatches.len(),
-                    policies.len()
-                ))
-            }
-        }
-        Ok(Sweep {
+        let configs = src.configs(raw.configs.as_ref(), dir)?;
+        let sweep = Sweep {
             shown: shown.to_string(),
             scenes,
             configs,
             dispatches,
             draw_orders,
             policies,
-        })
+        };
+        sweep.check_size()?;
+        Ok(sweep)
+    }
+
+    /// At most [`MAX_POINTS`] points.
+    fn check_size(&self) -> Result<(), String> {
+        let count = [
+            self.scenes.len(),
+            self.draw_orders.len(),
+            self.configs.len(),
+            self.dispatches.len(),
+            self.policies.len(),
+        ]
+        .iter()
+        .try_fold(1usize, |a, &b| a.checked_mul(b));
+        match count {
+            Some(n) if n <= MAX_POINTS => Ok(()),
+            _ => Err(format!(
+                "{}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
+                 policies is more than {MAX_POINTS} points: split the sweep into several files",
+                self.shown,
+                self.scenes.len(),
+                self.draw_orders.len(),
+                self.configs.len(),
+                self.dispatches.len(),
+                self.policies.len()
+            )),
+        }
     }
 
     /// The number of points.
