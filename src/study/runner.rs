@@ -176,14 +176,16 @@ impl Scenes {
 /// Run `tasks` with the results stored in `cache`.
 pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcome, String> {
     let start = Instant::now();
-    let mut out = Outcome::default();
     let mut scenes = Scenes::with(&opts.scenes);
-    let mut todo = resolve(tasks, cache, &mut scenes, &mut out)?;
-    fetch_games(&todo, &mut scenes, opts)?;
+    // The games' data first: a scene's identity (and so every key) holds
+    // the versions of the packages its data came from, known once fetched.
+    fetch_games(tasks, &mut scenes, opts)?;
+    let (mut out, mut todo) = resolve(tasks, cache, &mut scenes)?;
     // Group by scene, draw order and tile size, in scene order.
-    todo.sort_by_key(|r| (r.def.name.clone(), r.def.draw_order, r.cfg.gpu.tile_size));
-    let (groups, group_of) = group(&todo);
-    let results = run_ready(&todo, &groups, &group_of, cache, opts);
+    let group_key = |r: &Ready| (r.def.name.clone(), r.def.draw_order, r.cfg.gpu.tile_size);
+    todo.sort_by_key(group_key);
+    let (groups, group_of) = group_by_scene(&todo);
+    let results = execute(&todo, &groups, &group_of, cache, opts);
     for (i, r) in results {
         match r {
             Ok(Done::Point(rec)) => {
@@ -206,16 +208,36 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     Ok(out)
 }
 
-/// Resolve every task (bad scenes and overrides fail here, before any
-/// run): its key and configuration. A task on the same machine as an
-/// earlier one is counted in `out.same`, a stored result is taken into
-/// `out`; the rest are returned, to run.
+/// Fetch the data of every game the tasks' scenes need and the cache
+/// lacks (or, without `opts.fetch`, name the command that fetches it).
+fn fetch_games(tasks: &[Task], scenes: &mut Scenes, opts: &RunnerOptions) -> Result<(), String> {
+    let mut games: Vec<_> = tasks
+        .iter()
+        .map(|t| scenes.def(t.scene()).map(|d| d.game))
+        .collect::<Result<_, _>>()?;
+    games.sort_by_key(|g| g.name());
+    games.dedup();
+    games.retain(|g| !fetch::is_fetched(*g));
+    if let Some(g) = games.first().filter(|_| !opts.fetch) {
+        return Err(format!(
+            "the {} data is not fetched: run `wasp scenes fetch {}`",
+            g.name(),
+            g.name()
+        ));
+    }
+    crate::game_data::fetch_missing(&games, opts.quiet)
+        .map_err(|e| format!("{e} (its scenes need it; name the other scenes to leave them out)"))
+}
+
+/// Resolve every task to its key, effective configuration and scene as it
+/// renders it (bad scenes and overrides fail here, before any run) and
+/// take the stored results: the outcome so far and the tasks left to run.
 fn resolve(
     tasks: &[Task],
     cache: &Cache,
     scenes: &mut Scenes,
-    out: &mut Outcome,
-) -> Result<Vec<Ready>, String> {
+) -> Result<(Outcome, Vec<Ready>), String> {
+    let mut out = Outcome::default();
     let mut resolver = Resolver::default();
     let mut ids: HashMap<(String, DrawOrder), String> = HashMap::new();
     let mut todo: Vec<Ready> = Vec::new();
@@ -230,7 +252,7 @@ fn resolve(
             .entry((d.name.clone(), d.draw_order))
             .or_insert_with(|| scene_identity(&d))
             .clone();
-        let (key, cfg) = key_and_config(t, &d, &id, &mut resolver)?;
+        let (key, cfg) = task_key(t, &d, &id, &mut resolver)?;
         // A task on the same machine as an earlier one (the same key and
         // kind) shares its result.
         let id = match t {
@@ -251,7 +273,7 @@ fn resolve(
             }
             continue;
         }
-        if take_stored(t, &key, cache, out) {
+        if take_stored(t, &key, cache, &mut out) {
             out.cached += 1;
         } else {
             todo.push(Ready {
@@ -262,12 +284,12 @@ fn resolve(
             });
         }
     }
-    Ok(todo)
+    Ok((out, todo))
 }
 
-/// Task `t`'s key (of this binary, the scene `d` of identity `id` and the
-/// machine) and its effective configuration.
-fn key_and_config(
+/// The cache key and effective configuration of a task on the scene `d`
+/// of identity `id`.
+fn task_key(
     t: &Task,
     d: &SceneDef,
     id: &str,
@@ -296,9 +318,8 @@ fn key_and_config(
     }
 }
 
-/// Whether task `t`'s result is stored under `key` already (a point or a
-/// characterisation is then taken into `out`; a timeline picture exists
-/// with its key beside it).
+/// Put the stored result of `t` (key `key`) into `out`; whether there was
+/// one.
 fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
     match t {
         Task::Run(p) => match cache.load_point(&p.scene, key) {
@@ -321,52 +342,9 @@ fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
     }
 }
 
-/// Fetch the games the tasks `todo` need (or, without `opts.fetch`, say
-/// which to fetch).
-fn fetch_games(todo: &[Ready], scenes: &mut Scenes, opts: &RunnerOptions) -> Result<(), String> {
-    let mut games: Vec<_> = todo
-        .iter()
-        .map(|r| scenes.def(r.task.scene()).map(|d| d.game))
-        .collect::<Result<_, _>>()?;
-    games.sort_by_key(|g| g.name());
-    games.dedup();
-    for g in games {
-        if fetch::is_fetched(g) {
-            continue;
-        }
-        if !opts.fetch {
-            return Err(format!(
-                "the {} data is not fetched: run `wasp scenes fetch {}`",
-                g.name(),
-                g.name()
-            ));
-        }
-        if !opts.quiet {
-            eprintln!(
-                "wasp: fetching the {} data (once, into the scene cache)",
-                g.name()
-            );
-        }
-        let quiet = opts.quiet;
-        fetch::fetch(g, &mut |m| {
-            if !quiet {
-                eprintln!("wasp:   {m}");
-            }
-        })
-        .map_err(|e| {
-            format!(
-                "fetching the {} data: {e} (its scenes need it; name the other scenes to leave \
-                 them out)",
-                g.name()
-            )
-        })?;
-    }
-    Ok(())
-}
-
-/// The groups of the sorted tasks `todo` (one per scene, draw order and
-/// tile size, each counting its tasks) and each task's group.
-fn group(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
+/// The tasks (sorted by scene, draw order and tile size) grouped by them:
+/// the groups and each task's group.
+fn group_by_scene(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
     let mut groups: Vec<Group> = Vec::new();
     let mut group_of = Vec::with_capacity(todo.len());
     for r in todo {
@@ -389,10 +367,9 @@ fn group(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
     (groups, group_of)
 }
 
-/// Run the tasks `todo` on `opts.jobs` workers, in order: each renders its
-/// group's frame if no one has yet, and the last task of a group drops
-/// it. Returns every task's result by index, in task order.
-fn run_ready(
+/// Run the tasks on `opts.jobs` workers, each scene rendered once for its
+/// group; every task's result by index, in task order.
+fn execute(
     todo: &[Ready],
     groups: &[Group],
     group_of: &[usize],
@@ -430,9 +407,8 @@ fn run_ready(
     results
 }
 
-/// Points that named a machine another point ran under another name take
-/// its result (under their own name); those whose machine never ran are
-/// dropped.
+/// Fill in the points that named a machine another point ran under
+/// another name (and drop those whose twin failed).
 fn share_results(out: &mut Outcome) {
     let by_key: HashMap<String, PointRecord> = out
         .points
@@ -555,7 +531,7 @@ impl Progress {
     fn tick_line(&self, done: usize, total: usize) {
         if self.lines && (done * 10 / total) != ((done - 1) * 10 / total) {
             eprintln!(
-                "wasp: {}: {done}/{total} tasks, {:.0} s",
+                "wasp: {}: {done}/{total} tasks to run, {:.0} s",
                 self.label,
                 self.start.elapsed().as_secs_f64()
             );
@@ -574,7 +550,7 @@ fn progress(opts: &RunnerOptions, total: usize) -> Progress {
         let pb = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
         pb.set_style(
             ProgressStyle::with_template(
-                "{prefix:>12} [{bar:40}] {pos}/{len} tasks {elapsed_precise} eta {eta} {msg}",
+                "{prefix:>12} [{bar:40}] {pos}/{len} tasks to run {elapsed_precise} eta {eta} {msg}",
             )
             .expect("valid template")
             .progress_chars("=> "),

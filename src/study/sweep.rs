@@ -127,43 +127,21 @@ fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
-/// A sweep file's text, for messages that name a line of it.
-struct Source<'a> {
+/// A sweep file's text, for messages that name its lines.
+struct SweepFile<'a> {
     text: &'a str,
-    /// The file as named on the command line.
     shown: &'a str,
+    dir: &'a Path,
 }
 
-/// A list of the file with the span of each entry.
-type SpannedList = Spanned<Vec<Spanned<String>>>;
-
-impl Source<'_> {
+impl SweepFile<'_> {
     /// `FILE:LINE` of byte `offset`.
     fn at(&self, offset: usize) -> String {
         format!("{}:{}", self.shown, line_of(self.text, offset))
     }
 
-    /// The file as written; a TOML error names its line (and the line's
-    /// text, unless it is a missing field, reported at its table).
-    fn raw(&self) -> Result<RawSweep, String> {
-        let (text, shown) = (self.text, self.shown);
-        toml::from_str(text).map_err(|e| {
-            let message = e.message().trim_end().replace('\n', ": ");
-            match e.span().map(|s| line_of(text, s.start)) {
-                // A missing field is reported at its table: the line says
-                // nothing more.
-                Some(l) if !message.starts_with("missing field") => {
-                    let src = text.lines().nth(l - 1).unwrap_or("").trim();
-                    format!("{shown}:{l}: {message} (in `{src}`)")
-                }
-                Some(l) => format!("{shown}:{l}: {message}"),
-                None => format!("{shown}: {message}"),
-            }
-        })
-    }
-
-    /// A list field holds at least one entry and no entry twice.
-    fn list(&self, field: &str, v: &SpannedList) -> Result<(), String> {
+    /// A list field is not empty and names nothing twice.
+    fn list(&self, field: &str, v: &Spanned<Vec<Spanned<String>>>) -> Result<(), String> {
         if v.get_ref().is_empty() {
             return Err(format!(
                 "{}: {field} is empty: name at least one",
@@ -185,30 +163,40 @@ impl Source<'_> {
         Ok(())
     }
 
-    /// The list `field` checked ([`Source::list`]) and each entry parsed
-    /// as a `T`: (entry as written, value).
-    fn parsed<T: std::str::FromStr>(
+    /// An optional list field whose values parse as `T`: each value as
+    /// written and parsed, or `[None]` when the field is absent (the
+    /// configuration keeps its own).
+    fn optional<T: std::str::FromStr>(
         &self,
         field: &str,
-        v: &SpannedList,
-    ) -> Result<Vec<(String, T)>, String>
+        v: Option<&Spanned<Vec<Spanned<String>>>>,
+    ) -> Result<Vec<Option<(String, T)>>, String>
     where
         T::Err: std::fmt::Display,
     {
+        let Some(v) = v else {
+            return Ok(vec![None]);
+        };
         self.list(field, v)?;
-        let mut out = Vec::new();
-        for (i, x) in v.get_ref().iter().enumerate() {
-            let value = x
-                .get_ref()
-                .parse::<T>()
-                .map_err(|e| format!("{}: {field}[{i}]: {e}", self.at(x.span().start)))?;
-            out.push((x.get_ref().clone(), value));
-        }
-        Ok(out)
+        v.get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, x)| {
+                let parsed = x
+                    .get_ref()
+                    .parse::<T>()
+                    .map_err(|e| format!("{}: {field}[{i}]: {e}", self.at(x.span().start)))?;
+                Ok(Some((x.get_ref().clone(), parsed)))
+            })
+            .collect()
     }
 
-    /// The scenes, each one of `known`, or `all` alone for every one.
-    fn scenes(&self, raw: &SpannedList, known: &[String]) -> Result<Vec<String>, String> {
+    /// The scenes named (`all`: every one of `known`).
+    fn scenes(
+        &self,
+        raw: &Spanned<Vec<Spanned<String>>>,
+        known: &[String],
+    ) -> Result<Vec<String>, String> {
         let mut scenes = Vec::new();
         for (i, s) in raw.get_ref().iter().enumerate() {
             let name = s.get_ref();
@@ -232,11 +220,11 @@ impl Source<'_> {
         Ok(scenes)
     }
 
-    /// The `[[configs]]` entries: at least one, each named once.
+    /// The `[[configs]]` entries, checked: at least one, names unique, base
+    /// files present, overrides of the form PATH=VALUE.
     fn configs(
         &self,
         raw: Option<&Spanned<Vec<Spanned<RawConfig>>>>,
-        dir: &Path,
     ) -> Result<Vec<ConfigEntry>, String> {
         let raw_configs = match raw {
             Some(c) if !c.get_ref().is_empty() => c.get_ref(),
@@ -267,44 +255,44 @@ impl Source<'_> {
                     configs[j].line
                 ));
             }
-            configs.push(self.config(i, c, dir)?);
+            let base = self.base(i, &c.base)?;
+            for (k, s) in c.set.iter().enumerate() {
+                if !s.get_ref().contains('=') {
+                    return Err(format!(
+                        "{}: configs[{i}].set[{k}] `{}`: expected PATH=VALUE, e.g. l0.mshrs=24",
+                        self.at(s.span().start),
+                        s.get_ref()
+                    ));
+                }
+            }
+            configs.push(ConfigEntry {
+                name: name.clone(),
+                base,
+                set: c.set.iter().map(|s| s.get_ref().clone()).collect(),
+                line: line_of(self.text, c.name.span().start),
+            });
         }
         Ok(configs)
     }
 
-    /// `[[configs]]` entry `i`: its base (a shipped machine or a TOML file
-    /// relative to `dir`) and its `PATH=VALUE` overrides.
-    fn config(&self, i: usize, c: &RawConfig, dir: &Path) -> Result<ConfigEntry, String> {
-        let base = match c.base.get_ref().as_str() {
-            b @ ("paper" | "paper-width2") => b.to_string(),
+    /// The base of entry `i`: `paper`, `paper-width2` or an existing file
+    /// (relative to the sweep file's folder), as an absolute path.
+    fn base(&self, i: usize, base: &Spanned<String>) -> Result<String, String> {
+        match base.get_ref().as_str() {
+            b @ ("paper" | "paper-width2") => Ok(b.to_string()),
             b => {
-                let p = dir.join(b);
+                let p = self.dir.join(b);
                 if !p.is_file() {
                     return Err(format!(
                         "{}: configs[{i}].base `{b}`: no such file ({}); a base is paper, \
                          paper-width2 or a TOML file",
-                        self.at(c.base.span().start),
+                        self.at(base.span().start),
                         p.display()
                     ));
                 }
-                p.canonicalize().unwrap_or(p).display().to_string()
-            }
-        };
-        for (k, s) in c.set.iter().enumerate() {
-            if !s.get_ref().contains('=') {
-                return Err(format!(
-                    "{}: configs[{i}].set[{k}] `{}`: expected PATH=VALUE, e.g. l0.mshrs=24",
-                    self.at(s.span().start),
-                    s.get_ref()
-                ));
+                Ok(p.canonicalize().unwrap_or(p).display().to_string())
             }
         }
-        Ok(ConfigEntry {
-            name: c.name.get_ref().clone(),
-            base,
-            set: c.set.iter().map(|s| s.get_ref().clone()).collect(),
-            line: line_of(self.text, c.name.span().start),
-        })
     }
 }
 
@@ -326,71 +314,64 @@ impl Sweep {
     /// whose relative base paths are relative to `dir`, with the scene names
     /// `known`.
     pub fn parse(text: &str, shown: &str, dir: &Path, known: &[String]) -> Result<Sweep, String> {
-        let src = Source { text, shown };
-        let raw = src.raw()?;
-        src.list("scenes", &raw.scenes)?;
-        src.list("policies", &raw.policies)?;
-        let scenes = src.scenes(&raw.scenes, known)?;
+        let raw: RawSweep = toml::from_str(text).map_err(|e| {
+            let message = e.message().trim_end().replace('\n', ": ");
+            match e.span().map(|s| line_of(text, s.start)) {
+                // A missing field is reported at its table: the line says
+                // nothing more.
+                Some(l) if !message.starts_with("missing field") => {
+                    let src = text.lines().nth(l - 1).unwrap_or("").trim();
+                    format!("{shown}:{l}: {message} (in `{src}`)")
+                }
+                Some(l) => format!("{shown}:{l}: {message}"),
+                None => format!("{shown}: {message}"),
+            }
+        })?;
+        let f = SweepFile { text, shown, dir };
+        f.list("scenes", &raw.scenes)?;
+        f.list("policies", &raw.policies)?;
+        let scenes = f.scenes(&raw.scenes, known)?;
         let mut policies = Vec::new();
         for (i, p) in raw.policies.get_ref().iter().enumerate() {
             p.get_ref()
                 .parse::<PolicySpec>()
-                .map_err(|e| format!("{}: policies[{i}]: {e}", src.at(p.span().start)))?;
+                .map_err(|e| format!("{}: policies[{i}]: {e}", f.at(p.span().start)))?;
             policies.push(p.get_ref().clone());
         }
-        let dispatches = match &raw.dispatches {
-            None => vec![None],
-            Some(d) => src
-                .parsed::<Dispatch>("dispatches", d)?
-                .into_iter()
-                .map(|(x, _)| Some(x))
-                .collect(),
-        };
-        let draw_orders = match &raw.draw_orders {
-            None => vec![None],
-            Some(d) => src
-                .parsed::<DrawOrder>("draw_orders", d)?
-                .into_iter()
-                .map(|(_, o)| Some(o))
-                .collect(),
-        };
-        let configs = src.configs(raw.configs.as_ref(), dir)?;
-        let sweep = Sweep {
+        let dispatches: Vec<Option<String>> = f
+            .optional::<Dispatch>("dispatches", raw.dispatches.as_ref())?
+            .into_iter()
+            .map(|d| d.map(|(text, _)| text))
+            .collect();
+        let draw_orders: Vec<Option<DrawOrder>> = f
+            .optional::<DrawOrder>("draw_orders", raw.draw_orders.as_ref())?
+            .into_iter()
+            .map(|d| d.map(|(_, o)| o))
+            .collect();
+        let configs = f.configs(raw.configs.as_ref())?;
+        let sizes = [
+            scenes.len(),
+            draw_orders.len(),
+            configs.len(),
+            dispatches.len(),
+            policies.len(),
+        ];
+        let count = sizes.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
+        if count.is_none_or(|n| n > MAX_POINTS) {
+            return Err(format!(
+                "{shown}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
+                 policies is more than {MAX_POINTS} points: split the sweep into several files",
+                sizes[0], sizes[1], sizes[2], sizes[3], sizes[4]
+            ));
+        }
+        Ok(Sweep {
             shown: shown.to_string(),
             scenes,
             configs,
             dispatches,
             draw_orders,
             policies,
-        };
-        sweep.check_size()?;
-        Ok(sweep)
-    }
-
-    /// At most [`MAX_POINTS`] points.
-    fn check_size(&self) -> Result<(), String> {
-        let count = [
-            self.scenes.len(),
-            self.draw_orders.len(),
-            self.configs.len(),
-            self.dispatches.len(),
-            self.policies.len(),
-        ]
-        .iter()
-        .try_fold(1usize, |a, &b| a.checked_mul(b));
-        match count {
-            Some(n) if n <= MAX_POINTS => Ok(()),
-            _ => Err(format!(
-                "{}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
-                 policies is more than {MAX_POINTS} points: split the sweep into several files",
-                self.shown,
-                self.scenes.len(),
-                self.draw_orders.len(),
-                self.configs.len(),
-                self.dispatches.len(),
-                self.policies.len()
-            )),
-        }
+        })
     }
 
     /// The number of points.
