@@ -259,91 +259,88 @@ pub fn characterize_def(
     Ok(characterize(&def.name, &frame, secs))
 }
 
-/// The table: one row per figure, one column per scene, then the paper's.
-pub fn table(rows: &[Characterization]) -> String {
-    let mut lines: Vec<(String, Vec<String>, String)> = Vec::new();
-    let col = |f: &dyn Fn(&Characterization) -> String| rows.iter().map(f).collect::<Vec<_>>();
-    lines.push((
-        "workload".into(),
-        col(&|c| c.workload.clone()),
-        "10 Android games".into(),
-    ));
-    lines.push((
-        "frame".into(),
-        col(&|c| format!("{}x{}", c.width, c.height)),
-        "1960x768".into(),
-    ));
-    lines.push(("tiles".into(), col(&|c| c.tiles.to_string()), "-".into()));
-    lines.push((
-        "warps (fragments)".into(),
-        col(&|c| c.warps.to_string()),
-        "-".into(),
-    ));
-    lines.push((
-        "warps per tile".into(),
-        col(&|c| format!("{:.1}", c.warps_per_tile)),
-        "-".into(),
-    ));
-    lines.push((
-        "quad positions".into(),
-        col(&|c| c.positions.to_string()),
-        "-".into(),
-    ));
-    lines.push((
-        "draw order".into(),
-        col(&|c| c.draw_order.to_string()),
-        "-".into(),
-    ));
-    lines.push((
-        "shaded warps per quad position".into(),
-        col(&|c| format!("{:.2}", c.warps_per_position)),
-        "-".into(),
-    ));
-    lines.push((
-        "  per tile p50/p90/p99".into(),
-        col(&|c| {
+/// A row of the table: the figure's name, its value for a scene, and the
+/// paper's value.
+type Figure = (&'static str, fn(&Characterization) -> String, &'static str);
+
+/// The rows of every scene's figures, in the table's order (the footprint
+/// ratio of each subset follows them).
+const FIGURES: &[Figure] = &[
+    ("workload", |c| c.workload.clone(), "10 Android games"),
+    ("frame", |c| format!("{}x{}", c.width, c.height), "1960x768"),
+    ("tiles", |c| c.tiles.to_string(), "-"),
+    ("warps (fragments)", |c| c.warps.to_string(), "-"),
+    (
+        "warps per tile",
+        |c| format!("{:.1}", c.warps_per_tile),
+        "-",
+    ),
+    ("quad positions", |c| c.positions.to_string(), "-"),
+    ("draw order", |c| c.draw_order.to_string(), "-"),
+    (
+        "shaded warps per quad position",
+        |c| format!("{:.2}", c.warps_per_position),
+        "-",
+    ),
+    (
+        "  per tile p50/p90/p99",
+        |c| {
             format!(
                 "{:.2}/{:.2}/{:.2}",
                 c.warps_per_position_p50, c.warps_per_position_p90, c.warps_per_position_p99
             )
-        }),
-        "-".into(),
-    ));
-    lines.push((
-        "early-Z rejected share".into(),
-        col(&|c| format!("{:.3}", c.rejected_early_z_share)),
-        "-".into(),
-    ));
-    lines.push((
-        "memory-instr ratio".into(),
-        col(&|c| format!("{:.3}", c.mem_instr_ratio)),
-        "0.07-0.26 (Table I)".into(),
-    ));
-    lines.push((
-        "block reuse in tile".into(),
-        col(&|c| format!("{:.1}", c.reuse)),
-        "3.3-22.9 (Table I)".into(),
-    ));
-    lines.push((
-        "CF (blocks/warp)".into(),
-        col(&|c| format!("{:.2}", c.cf)),
-        "2.5 mean (III-B)".into(),
-    ));
-    lines.push((
-        "blocks/tex instr".into(),
-        col(&|c| format!("{:.2}", c.blocks_per_tex_instr)),
-        "-".into(),
-    ));
-    lines.push((
-        "Min_Estimate1".into(),
-        col(&|c| format!("{:.3}", c.min_estimate1)),
-        "0.12 mean (III-B)".into(),
-    ));
-    lines.push((
-        "Min_Estimate2".into(),
-        col(&|c| format!("{:.3}", c.min_estimate2)),
-        "~1/16 (III-B)".into(),
-    ));
+        },
+        "-",
+    ),
+    (
+        "early-Z rejected share",
+        |c| format!("{:.3}", c.rejected_early_z_share),
+        "-",
+    ),
+    (
+        "memory-instr ratio",
+        |c| format!("{:.3}", c.mem_instr_ratio),
+        "0.07-0.26 (Table I)",
+    ),
+    (
+        "block reuse in tile",
+        |c| format!("{:.1}", c.reuse),
+        "3.3-22.9 (Table I)",
+    ),
+    (
+        "CF (blocks/warp)",
+        |c| format!("{:.2}", c.cf),
+        "2.5 mean (III-B)",
+    ),
+    (
+        "blocks/tex instr",
+        |c| format!("{:.2}", c.blocks_per_tex_instr),
+        "-",
+    ),
+    (
+        "Min_Estimate1",
+        |c| format!("{:.3}", c.min_estimate1),
+        "0.12 mean (III-B)",
+    ),
+    (
+        "Min_Estimate2",
+        |c| format!("{:.3}", c.min_estimate2),
+        "~1/16 (III-B)",
+    ),
+];
+
+/// The table: one row per figure, one column per scene, then the paper's.
+pub fn table(rows: &[Characterization]) -> String {
+    let mut lines: Vec<(String, Vec<String>, String)> = FIGURES
+        .iter()
+        .map(|(name, value, paper)| {
+            (
+                name.to_string(),
+                rows.iter().map(value).collect(),
+                paper.to_string(),
+            )
+        })
+        .collect();
     let subsets = rows.first().map(|r| r.footprints.len()).unwrap_or(0);
     for i in 0..subsets {
         let f0 = &rows[0].footprints[i];
@@ -354,10 +351,18 @@ pub fn table(rows: &[Characterization]) -> String {
         };
         lines.push((
             format!("footprint {} ({:.3})", f0.subset, f0.size_ratio),
-            col(&|c| format!("{:.3}", c.footprints[i].footprint_ratio)),
+            rows.iter()
+                .map(|c| format!("{:.3}", c.footprints[i].footprint_ratio))
+                .collect(),
             paper,
         ));
     }
+    layout(rows, &lines)
+}
+
+/// The table's text: a header of the scenes, then each (figure, values,
+/// paper) line, every column as wide as its widest entry.
+fn layout(rows: &[Characterization], lines: &[(String, Vec<String>, String)]) -> String {
     let w0 = lines.iter().map(|l| l.0.len()).max().unwrap_or(0).max(6);
     let widths: Vec<usize> = (0..rows.len())
         .map(|i| {
@@ -375,7 +380,7 @@ pub fn table(rows: &[Characterization]) -> String {
         let _ = write!(out, "  {:>w$}", r.scene);
     }
     let _ = writeln!(out, "  paper");
-    for (name, vals, paper) in &lines {
+    for (name, vals, paper) in lines {
         let _ = write!(out, "{name:<w0$}");
         for (v, w) in vals.iter().zip(&widths) {
             let _ = write!(out, "  {v:>w$}");

@@ -168,19 +168,13 @@ fn run(cmd: &mut Command, what: &str, dir: &Path) -> Result<std::process::Output
     Ok(out)
 }
 
-/// Download and unpack the game's packages into [`package_root`], replacing
-/// an earlier copy, and write the marker. `progress` hears each step.
-/// Returns the data root.
-pub fn fetch(game: Game, progress: &mut dyn FnMut(&str)) -> Result<PathBuf, SceneError> {
-    if game == Game::Procedural {
-        progress("procedural scenes need no download");
-        return Ok(PathBuf::new());
-    }
-    let cache = cache_dir();
+/// The tools `fetch` runs are installed (else an error saying how to do
+/// without them).
+fn check_tools(game: Game, cache: &Path) -> Result<(), SceneError> {
     for tool in ["apt-get", "dpkg-deb", "tar"] {
         if tool_missing(tool) {
             return Err(SceneError::in_file(
-                &cache,
+                cache,
                 format!(
                     "`{tool}` not found: `wasp scenes fetch` uses Debian's apt-get and dpkg-deb \
                      (install apt and dpkg, or unpack the packages {} by hand into {} and \
@@ -191,6 +185,143 @@ pub fn fetch(game: Game, progress: &mut dyn FnMut(&str)) -> Result<PathBuf, Scen
             ));
         }
     }
+    Ok(())
+}
+
+/// Download package `pkg` into `download` (`apt-get download`): the
+/// `.deb` file.
+fn download_deb(pkg: &str, download: &Path) -> Result<PathBuf, SceneError> {
+    run(
+        Command::new("apt-get")
+            .arg("download")
+            .arg(pkg)
+            .current_dir(download),
+        &format!("apt-get download {pkg}"),
+        download,
+    )
+    .map_err(|mut e| {
+        e.message.push_str(
+            " (if the package is unknown or the lists are stale, run `apt-get update` \
+             as root first)",
+        );
+        e
+    })?;
+    std::fs::read_dir(download)
+        .map_err(|e| SceneError::in_file(download, e.to_string()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .find(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with(&format!("{pkg}_")) && n.ends_with(".deb"))
+        })
+        .ok_or_else(|| {
+            SceneError::in_file(
+                download,
+                format!("apt-get download {pkg} left no {pkg}_*.deb"),
+            )
+        })
+}
+
+/// Unpack the game data and the documentation of package `pkg` (`deb`)
+/// into `staging`: `dpkg-deb --fsys-tarfile DEB | tar -x -C STAGING
+/// GAME-DATA DOC`.
+fn unpack(game: Game, pkg: &str, deb: &Path, staging: &Path) -> Result<(), SceneError> {
+    let mut dpkg = Command::new("dpkg-deb")
+        .arg("--fsys-tarfile")
+        .arg(deb)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| SceneError::in_file(deb, format!("dpkg-deb: cannot run: {e}")))?;
+    let tar_in = dpkg.stdout.take().expect("piped");
+    let tar = run(
+        Command::new("tar")
+            .arg("-x")
+            .arg("-C")
+            .arg(staging)
+            .arg(games_subtree(game))
+            .arg(format!("./usr/share/doc/{pkg}"))
+            .stdin(tar_in),
+        "tar -x",
+        deb,
+    );
+    let dpkg_out = dpkg
+        .wait_with_output()
+        .map_err(|e| SceneError::in_file(deb, format!("dpkg-deb: {e}")))?;
+    // A tar failure is the cause when both fail (dpkg-deb then dies
+    // of a broken pipe).
+    tar?;
+    if !dpkg_out.status.success() {
+        return Err(SceneError::in_file(
+            deb,
+            format!(
+                "dpkg-deb --fsys-tarfile failed ({}): {}",
+                dpkg_out.status,
+                String::from_utf8_lossy(&dpkg_out.stderr).trim()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Download and unpack every package of `game` into `staging`, then move
+/// it in place as the game's [`package_root`] with its marker (the
+/// packages' versions). Returns the data root.
+fn fetch_into(
+    game: Game,
+    download: &Path,
+    staging: &Path,
+    progress: &mut dyn FnMut(&str),
+) -> Result<PathBuf, SceneError> {
+    std::fs::create_dir_all(download)
+        .and_then(|_| std::fs::create_dir_all(staging))
+        .map_err(|e| SceneError::in_file(download, format!("cannot create: {e}")))?;
+    let mut marker = format!("# fetched by wasp scenes fetch {}\n", game.name());
+    for pkg in game.packages() {
+        progress(&format!("downloading {pkg} (apt-get download)"));
+        let deb = download_deb(pkg, download)?;
+        let version = run(
+            Command::new("dpkg-deb")
+                .args(["-f"])
+                .arg(&deb)
+                .arg("Version"),
+            "dpkg-deb -f",
+            &deb,
+        )?;
+        let version = String::from_utf8_lossy(&version.stdout).trim().to_string();
+        progress(&format!("unpacking {pkg} {version}"));
+        unpack(game, pkg, &deb, staging)?;
+        std::fs::remove_file(&deb).map_err(|e| SceneError::in_file(&deb, e.to_string()))?;
+        marker.push_str(&format!("{pkg} {version}\n"));
+    }
+    let data = staging.join(data_subdir(game));
+    if !data.is_dir() {
+        return Err(SceneError::in_file(
+            &data,
+            "the unpacked packages have no data directory here (the package layout \
+             changed?)",
+        ));
+    }
+    std::fs::write(staging.join(MARKER), marker)
+        .map_err(|e| SceneError::in_file(staging, format!("writing the marker: {e}")))?;
+    let root = package_root(game);
+    let _ = std::fs::remove_dir_all(&root);
+    std::fs::rename(staging, &root).map_err(|e| {
+        SceneError::in_file(&root, format!("moving the unpacked data in place: {e}"))
+    })?;
+    Ok(data_root(game))
+}
+
+/// Download and unpack the game's packages into [`package_root`], replacing
+/// an earlier copy, and write the marker. `progress` hears each step.
+/// Returns the data root.
+pub fn fetch(game: Game, progress: &mut dyn FnMut(&str)) -> Result<PathBuf, SceneError> {
+    if game == Game::Procedural {
+        progress("procedural scenes need no download");
+        return Ok(PathBuf::new());
+    }
+    let cache = cache_dir();
+    check_tools(game, &cache)?;
     std::fs::create_dir_all(&cache)
         .map_err(|e| SceneError::in_file(&cache, format!("cannot create the scene cache: {e}")))?;
     let pid = std::process::id();
@@ -201,108 +332,7 @@ pub fn fetch(game: Game, progress: &mut dyn FnMut(&str)) -> Result<PathBuf, Scen
     };
     cleanup(&download);
     cleanup(&staging);
-    let result = (|| {
-        std::fs::create_dir_all(&download)
-            .and_then(|_| std::fs::create_dir_all(&staging))
-            .map_err(|e| SceneError::in_file(&download, format!("cannot create: {e}")))?;
-        let mut marker = format!("# fetched by wasp scenes fetch {}\n", game.name());
-        for pkg in game.packages() {
-            progress(&format!("downloading {pkg} (apt-get download)"));
-            run(
-                Command::new("apt-get")
-                    .arg("download")
-                    .arg(pkg)
-                    .current_dir(&download),
-                &format!("apt-get download {pkg}"),
-                &download,
-            )
-            .map_err(|mut e| {
-                e.message.push_str(
-                    " (if the package is unknown or the lists are stale, run `apt-get update` \
-                     as root first)",
-                );
-                e
-            })?;
-            let deb = std::fs::read_dir(&download)
-                .map_err(|e| SceneError::in_file(&download, e.to_string()))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .find(|p| {
-                    p.file_name()
-                        .and_then(|n| n.to_str())
-                        .is_some_and(|n| n.starts_with(&format!("{pkg}_")) && n.ends_with(".deb"))
-                })
-                .ok_or_else(|| {
-                    SceneError::in_file(
-                        &download,
-                        format!("apt-get download {pkg} left no {pkg}_*.deb"),
-                    )
-                })?;
-            let version = run(
-                Command::new("dpkg-deb")
-                    .args(["-f"])
-                    .arg(&deb)
-                    .arg("Version"),
-                "dpkg-deb -f",
-                &deb,
-            )?;
-            let version = String::from_utf8_lossy(&version.stdout).trim().to_string();
-            progress(&format!("unpacking {pkg} {version}"));
-            // dpkg-deb --fsys-tarfile DEB | tar -x -C STAGING GAME-DATA DOC
-            let mut dpkg = Command::new("dpkg-deb")
-                .arg("--fsys-tarfile")
-                .arg(&deb)
-                .stdout(Stdio::piped())
-                .stderr(Stdio::piped())
-                .spawn()
-                .map_err(|e| SceneError::in_file(&deb, format!("dpkg-deb: cannot run: {e}")))?;
-            let tar_in = dpkg.stdout.take().expect("piped");
-            let tar = run(
-                Command::new("tar")
-                    .arg("-x")
-                    .arg("-C")
-                    .arg(&staging)
-                    .arg(games_subtree(game))
-                    .arg(format!("./usr/share/doc/{pkg}"))
-                    .stdin(tar_in),
-                "tar -x",
-                &deb,
-            );
-            let dpkg_out = dpkg
-                .wait_with_output()
-                .map_err(|e| SceneError::in_file(&deb, format!("dpkg-deb: {e}")))?;
-            // A tar failure is the cause when both fail (dpkg-deb then dies
-            // of a broken pipe).
-            tar?;
-            if !dpkg_out.status.success() {
-                return Err(SceneError::in_file(
-                    &deb,
-                    format!(
-                        "dpkg-deb --fsys-tarfile failed ({}): {}",
-                        dpkg_out.status,
-                        String::from_utf8_lossy(&dpkg_out.stderr).trim()
-                    ),
-                ));
-            }
-            std::fs::remove_file(&deb).map_err(|e| SceneError::in_file(&deb, e.to_string()))?;
-            marker.push_str(&format!("{pkg} {version}\n"));
-        }
-        let data = staging.join(data_subdir(game));
-        if !data.is_dir() {
-            return Err(SceneError::in_file(
-                &data,
-                "the unpacked packages have no data directory here (the package layout \
-                 changed?)",
-            ));
-        }
-        std::fs::write(staging.join(MARKER), marker)
-            .map_err(|e| SceneError::in_file(&staging, format!("writing the marker: {e}")))?;
-        let root = package_root(game);
-        cleanup(&root);
-        std::fs::rename(&staging, &root).map_err(|e| {
-            SceneError::in_file(&root, format!("moving the unpacked data in place: {e}"))
-        })?;
-        Ok(data_root(game))
-    })();
+    let result = fetch_into(game, &download, &staging, progress);
     cleanup(&download);
     cleanup(&staging);
     result

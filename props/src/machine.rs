@@ -30,7 +30,8 @@ use crate::cex::{ensure, Cex};
 use std::collections::{BTreeMap, BTreeSet};
 use wasp_sim::config::BlockedOn;
 use wasp_sim::config::MachineConfig;
-use wasp_sim::gpu::{Gpu, WarpRecord};
+use wasp_sim::gpu::{CoreSnapshot, Gpu, WarpRecord};
+use wasp_sim::mem::MshrFileView;
 use wasp_sim::trace::{Instr, Trace, TraceHeader};
 
 /// Property name used in counterexamples.
@@ -85,19 +86,7 @@ pub fn machine_cycle(gpu: &Gpu<'_>, model: &mut MachineModel) -> Result<(), Cex>
         at("(k) the run did not end within its bound").with("bound", model.run_bound as i64)
     })?;
     for f in &files {
-        let cex = |what| {
-            at(what)
-                .with("core", f.core.map_or(-1, |c| c as i64))
-                .with("capacity", i64::from(f.capacity))
-                .with("occupied", i64::from(f.occupied))
-                .with("outstanding", i64::from(f.outstanding))
-        };
-        ensure(f.occupied <= f.capacity, || {
-            cex("(g) MSHR occupancy exceeds the capacity")
-        })?;
-        ensure(f.outstanding <= f.occupied, || {
-            cex("(g) more entries await a reply than are occupied")
-        })?;
+        check_mshr_file(f, now)?;
     }
     let mut any_full = false;
     for (i, core) in gpu.cores().iter().enumerate() {
@@ -108,72 +97,117 @@ pub fn machine_cycle(gpu: &Gpu<'_>, model: &mut MachineModel) -> Result<(), Cex>
             .or_else(|| files.iter().find(|f| f.core == Some(i) && f.level == "l1"))
             .ok_or_else(|| at("(h) no scheduler-level cache").with("core", i as i64))?;
         any_full |= first.occupied == first.capacity;
-        let cex = |what| at(what).with("core", i as i64);
-        if s.tracks_free_mshrs {
-            let want = i64::from(first.capacity) - i64::from(first.outstanding);
-            ensure(i64::from(s.free_mshrs) == want, || {
-                cex("(h) free-MSHR register != capacity - outstanding")
-                    .with("register", i64::from(s.free_mshrs))
-                    .with("expected", want)
-            })?;
-        }
-        let nonblocked = s.warps.iter().filter(|w| w.priority && !w.blocked).count();
-        ensure(s.nonblocked as usize == nonblocked, || {
-            cex("(i) non-blocked counter != unblocked priority warps in the slots")
-                .with("counter", i64::from(s.nonblocked))
-                .with("expected", nonblocked as i64)
-        })?;
-        ensure(
-            s.warps.len() == s.active as usize && s.warps.len() <= s.slots,
-            || {
-                cex("(i) the slots do not hold the active warps")
-                    .with("occupied_slots", s.warps.len() as i64)
-                    .with("active", i64::from(s.active))
-            },
-        )?;
+        check_counters(&s, first, now, i)?;
         model.max_active = model.max_active.max(s.active);
-        if s.tile.is_none() {
-            ensure(
-                s.warps.is_empty() && s.queued == [0, 0] && s.ldst == 0,
-                || cex("(j) a core without a tile holds work"),
-            )?;
-        }
-        let seen = &mut model.warps[i];
-        let mut present = BTreeSet::new();
-        for w in &s.warps {
-            let key = (w.slot, w.launched);
-            present.insert(key);
-            match seen.get(&key) {
-                None => {
-                    ensure(w.launched == now, || {
-                        cex("(j) a warp appeared that did not launch this cycle")
-                            .with("slot", w.slot as i64)
-                            .with("launched", w.launched as i64)
-                    })?;
-                    let tile = s
-                        .tile
-                        .ok_or_else(|| cex("(j) a warp launched without a tile"))?;
-                    seen.insert(key, tile);
-                    model.launches += 1;
-                    model.priority_launches += u64::from(w.priority);
-                }
-                Some(&tile) => {
-                    ensure(s.tile == Some(tile), || {
-                        cex("(j) a warp of an earlier tile is still in the core")
-                            .with("warp_tile", tile as i64)
-                            .with("core_tile", s.tile.map_or(-1, |t| t as i64))
-                    })?;
-                }
-            }
-            ensure(now - w.launched <= model.warp_bound, || {
-                cex("(k) a warp did not finish within its bound")
-                    .with("launched", w.launched as i64)
-                    .with("bound", model.warp_bound as i64)
-            })?;
-        }
-        seen.retain(|k, _| present.contains(k));
+        track_warps(&s, now, i, model)?;
     }
     model.full_cycles += u64::from(any_full);
+    Ok(())
+}
+
+/// (g): an MSHR file holds at most its capacity, and no more entries await
+/// a reply than are occupied.
+fn check_mshr_file(f: &MshrFileView, now: u64) -> Result<(), Cex> {
+    let cex = |what| {
+        Cex::new(PROP, what)
+            .with("cycle", now as i64)
+            .with("core", f.core.map_or(-1, |c| c as i64))
+            .with("capacity", i64::from(f.capacity))
+            .with("occupied", i64::from(f.occupied))
+            .with("outstanding", i64::from(f.outstanding))
+    };
+    ensure(f.occupied <= f.capacity, || {
+        cex("(g) MSHR occupancy exceeds the capacity")
+    })?;
+    ensure(f.outstanding <= f.occupied, || {
+        cex("(g) more entries await a reply than are occupied")
+    })
+}
+
+/// (h) and (i) for core `i` (snapshot `s`, scheduler-level cache
+/// `first`): its free-MSHR register, its non-blocked counter, its slots.
+fn check_counters(s: &CoreSnapshot, first: &MshrFileView, now: u64, i: usize) -> Result<(), Cex> {
+    let cex = |what| {
+        Cex::new(PROP, what)
+            .with("cycle", now as i64)
+            .with("core", i as i64)
+    };
+    if s.tracks_free_mshrs {
+        let want = i64::from(first.capacity) - i64::from(first.outstanding);
+        ensure(i64::from(s.free_mshrs) == want, || {
+            cex("(h) free-MSHR register != capacity - outstanding")
+                .with("register", i64::from(s.free_mshrs))
+                .with("expected", want)
+        })?;
+    }
+    let nonblocked = s.warps.iter().filter(|w| w.priority && !w.blocked).count();
+    ensure(s.nonblocked as usize == nonblocked, || {
+        cex("(i) non-blocked counter != unblocked priority warps in the slots")
+            .with("counter", i64::from(s.nonblocked))
+            .with("expected", nonblocked as i64)
+    })?;
+    ensure(
+        s.warps.len() == s.active as usize && s.warps.len() <= s.slots,
+        || {
+            cex("(i) the slots do not hold the active warps")
+                .with("occupied_slots", s.warps.len() as i64)
+                .with("active", i64::from(s.active))
+        },
+    )?;
+    Ok(())
+}
+
+/// (j) and (k) for core `i`'s warps: a core without a tile holds no work;
+/// a warp new to the model launched this cycle, under the core's tile
+/// (remembered); a known warp is still under the tile it launched under;
+/// every warp is within its bound. Warps gone from the slots are
+/// forgotten.
+fn track_warps(s: &CoreSnapshot, now: u64, i: usize, model: &mut MachineModel) -> Result<(), Cex> {
+    let cex = |what| {
+        Cex::new(PROP, what)
+            .with("cycle", now as i64)
+            .with("core", i as i64)
+    };
+    if s.tile.is_none() {
+        ensure(
+            s.warps.is_empty() && s.queued == [0, 0] && s.ldst == 0,
+            || cex("(j) a core without a tile holds work"),
+        )?;
+    }
+    let seen = &mut model.warps[i];
+    let mut present = BTreeSet::new();
+    for w in &s.warps {
+        let key = (w.slot, w.launched);
+        present.insert(key);
+        match seen.get(&key) {
+            None => {
+                ensure(w.launched == now, || {
+                    cex("(j) a warp appeared that did not launch this cycle")
+                        .with("slot", w.slot as i64)
+                        .with("launched", w.launched as i64)
+                })?;
+                let tile = s
+                    .tile
+                    .ok_or_else(|| cex("(j) a warp launched without a tile"))?;
+                seen.insert(key, tile);
+                model.launches += 1;
+                model.priority_launches += u64::from(w.priority);
+            }
+            Some(&tile) => {
+                ensure(s.tile == Some(tile), || {
+                    cex("(j) a warp of an earlier tile is still in the core")
+                        .with("warp_tile", tile as i64)
+                        .with("core_tile", s.tile.map_or(-1, |t| t as i64))
+                })?;
+            }
+        }
+        ensure(now - w.launched <= model.warp_bound, || {
+            cex("(k) a warp did not finish within its bound")
+                .with("launched", w.launched as i64)
+                .with("bound", model.warp_bound as i64)
+        })?;
+    }
+    seen.retain(|k, _| present.contains(k));
     Ok(())
 }
 

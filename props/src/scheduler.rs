@@ -40,7 +40,7 @@ use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::queue::QueueClass;
-use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
+use wasp_rtl::scheduler::{EdgeEvents, LaunchDecision, LaunchScheduler};
 use wasp_rtl::subset::SubsetSpec;
 use wasp_rtl::RegisterFault;
 
@@ -144,6 +144,17 @@ pub struct SchedulerCheck {
     regular_launched: bool,
 }
 
+/// The inputs of a cycle's decision as the model sees them: the register
+/// values (free MSHRs, non-blocked priority warps) and which FIFOs hold a
+/// warp.
+#[derive(Clone, Copy, Debug)]
+struct DecisionInputs {
+    free: i64,
+    nb: i64,
+    pw: bool,
+    rw: bool,
+}
+
 /// Reduce a raw choice to `0..=max`.
 #[inline]
 fn fit(raw: u8, max: i64) -> i64 {
@@ -244,65 +255,78 @@ impl SchedulerCheck {
         self.regular_launched = false;
         // 1. Enqueue.
         if let Some((qx, qy)) = enqueue {
-            let want = self.model.classify(qx, qy);
-            let got = self.sched.classify(qx, qy);
-            ensure(got == want, || {
-                self.cex("classification differs from the reference subset")
-                    .with("qx", qx as i64)
-                    .with("qy", qy as i64)
-            })?;
-            let ticket = self.model.next_ticket;
-            self.model.next_ticket += 1;
-            let accept = self.model.waiting() < self.model.queue_capacity;
-            match self.sched.enqueue(ticket, qx, qy) {
-                Ok(c) => {
-                    ensure(accept && c == want, || {
-                        self.cex("warp accepted into a full queue or the wrong FIFO")
-                    })?;
-                    self.model.fifo_mut(c).push_back(ticket);
-                    self.model.accepted += 1;
-                }
-                Err(t) => {
-                    ensure(!accept && t == ticket, || {
-                        self.cex("warp refused below capacity, or another ticket returned")
-                    })?;
-                    self.coverage.queue_full_refusals += 1;
-                }
-            }
+            self.enqueue(qx, qy)?;
         }
         // 2. Decide on the current register values.
         self.registers_match()?;
-        let (free, nb) = (self.model.free(), self.model.nonblocked);
-        let pw = !self.model.priority.is_empty();
-        let rw = !self.model.regular.is_empty();
+        let inputs = DecisionInputs {
+            free: self.model.free(),
+            nb: self.model.nonblocked,
+            pw: !self.model.priority.is_empty(),
+            rw: !self.model.regular.is_empty(),
+        };
         let room = self.model.in_core() < self.model.max_warps;
         let enable = enable && room;
         let launch = self.sched.launch(enable);
-        let d = launch.decision;
+        let want = self.check_decision(&launch.decision, inputs)?;
+        // 3. Launch.
+        let got = launch.warp;
+        self.check_launch(got, want, enable, inputs)?;
+        self.count_launch(got, inputs);
+        Ok(Launched { warp: got })
+    }
+
+    /// Step 1: the rasterizer offers a warp at (`qx`, `qy`): its class is
+    /// the reference's, and it is accepted iff the queue has room.
+    fn enqueue(&mut self, qx: u32, qy: u32) -> Result<(), Cex> {
+        let want = self.model.classify(qx, qy);
+        let got = self.sched.classify(qx, qy);
+        ensure(got == want, || {
+            self.cex("classification differs from the reference subset")
+                .with("qx", qx as i64)
+                .with("qy", qy as i64)
+        })?;
+        let ticket = self.model.next_ticket;
+        self.model.next_ticket += 1;
+        let accept = self.model.waiting() < self.model.queue_capacity;
+        match self.sched.enqueue(ticket, qx, qy) {
+            Ok(c) => {
+                ensure(accept && c == want, || {
+                    self.cex("warp accepted into a full queue or the wrong FIFO")
+                })?;
+                self.model.fifo_mut(c).push_back(ticket);
+                self.model.accepted += 1;
+            }
+            Err(t) => {
+                ensure(!accept && t == ticket, || {
+                    self.cex("warp refused below capacity, or another ticket returned")
+                })?;
+                self.coverage.queue_full_refusals += 1;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether the launch rule lets a priority warp below the threshold
+    /// launch: never under `hold`; under `launch` only with no regular warp
+    /// waiting.
+    fn below_ok(&self, inputs: DecisionInputs) -> bool {
+        self.model.rule == LaunchRule::Launch && !inputs.rw
+    }
+
+    /// Step 2: the decision `d` against the reference policy (returned):
+    /// WaSP's datapath outputs, (a) for a priority selection, the
+    /// selection itself, the launch rule and `held`.
+    fn check_decision(
+        &self,
+        d: &LaunchDecision,
+        inputs: DecisionInputs,
+    ) -> Result<Option<QueueClass>, Cex> {
+        let DecisionInputs { free, nb, pw, rw } = inputs;
         let rule = self.model.rule;
         let want = self.model.policy.select(rule, pw, rw, free, nb);
-        match (self.model.policy, d.datapath) {
-            (RefPolicy::Wasp { q, t }, Some(out)) => {
-                let product = exact_product(nb, q);
-                ensure(
-                    out.product.get() as i64 == product
-                        && out.real_free.get() as i64 == free - product
-                        && out.priority_over_regular == exact_priority(free, nb, q, t),
-                    || {
-                        self.cex("datapath outputs differ from the exact arithmetic")
-                            .with("real_free", out.real_free.get() as i64)
-                    },
-                )?;
-            }
-            (RefPolicy::Wasp { .. }, None) => {
-                return Err(self.cex("WaSP decided without its datapath"));
-            }
-            (_, Some(_)) => return Err(self.cex("a non-WaSP policy has a datapath")),
-            (_, None) => {}
-        }
-        // A priority warp below the threshold: never under `hold`; under
-        // `launch` only with no regular warp waiting.
-        let below_ok = rule == LaunchRule::Launch && !rw;
+        self.check_datapath(d, free, nb)?;
+        let below_ok = self.below_ok(inputs);
         if let RefPolicy::Wasp { q, t } = self.model.policy {
             ensure(
                 d.select != Some(QueueClass::Priority)
@@ -328,8 +352,41 @@ impl SchedulerCheck {
         ensure(d.held == held, || {
             self.cex("`held` differs from: hold, a lone priority warp, gate closed")
         })?;
-        // 3. Launch.
-        let got = launch.warp;
+        Ok(want)
+    }
+
+    /// WaSP's datapath outputs equal the exact product, difference and
+    /// comparison; other policies have no datapath.
+    fn check_datapath(&self, d: &LaunchDecision, free: i64, nb: i64) -> Result<(), Cex> {
+        match (self.model.policy, d.datapath) {
+            (RefPolicy::Wasp { q, t }, Some(out)) => {
+                let product = exact_product(nb, q);
+                ensure(
+                    out.product.get() as i64 == product
+                        && out.real_free.get() as i64 == free - product
+                        && out.priority_over_regular == exact_priority(free, nb, q, t),
+                    || {
+                        self.cex("datapath outputs differ from the exact arithmetic")
+                            .with("real_free", out.real_free.get() as i64)
+                    },
+                )
+            }
+            (RefPolicy::Wasp { .. }, None) => Err(self.cex("WaSP decided without its datapath")),
+            (_, Some(_)) => Err(self.cex("a non-WaSP policy has a datapath")),
+            (_, None) => Ok(()),
+        }
+    }
+
+    /// Step 3: the warp launched (`got`) is the head of the reference FIFO
+    /// `want` when launching is enabled (popped from the model), and a
+    /// priority launch keeps (a) on this cycle's register values.
+    fn check_launch(
+        &mut self,
+        got: Option<(u32, QueueClass)>,
+        want: Option<QueueClass>,
+        enable: bool,
+        inputs: DecisionInputs,
+    ) -> Result<(), Cex> {
         let expect = match want {
             Some(c) if enable => self.model.fifo_mut(c).pop_front().map(|t| (t, c)),
             _ => None,
@@ -343,10 +400,18 @@ impl SchedulerCheck {
             (got, self.model.policy)
         {
             // (a) at the scheduler level, on this cycle's register values.
-            ensure(exact_priority(free, nb, q, t) || below_ok, || {
-                self.cex("(a) priority warp launched with Real_freeMSHRs <= Threshold")
-            })?;
+            let (free, nb) = (inputs.free, inputs.nb);
+            ensure(
+                exact_priority(free, nb, q, t) || self.below_ok(inputs),
+                || self.cex("(a) priority warp launched with Real_freeMSHRs <= Threshold"),
+            )?;
         }
+        Ok(())
+    }
+
+    /// Count the launch `got` in the coverage and the model.
+    fn count_launch(&mut self, got: Option<(u32, QueueClass)>, inputs: DecisionInputs) {
+        let DecisionInputs { free, nb, pw, .. } = inputs;
         let cov = &mut self.coverage;
         match got {
             Some((_, QueueClass::Priority)) => {
@@ -363,7 +428,6 @@ impl SchedulerCheck {
         cov.no_free_mshr += (free == 0) as u64;
         cov.max_nonblocked = cov.max_nonblocked.max(nb);
         self.model.launched += got.is_some() as u64;
-        Ok(Launched { warp: got })
     }
 
     /// Legal events for this cycle from raw choices (after [`Self::front`]).

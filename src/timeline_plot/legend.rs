@@ -50,72 +50,7 @@ where
         let y = y_start + (i % per_col) as i32 * row_h;
         let mid = y + row_h / 2 - 2;
         let (x0, x1) = (x, x + swatch_w);
-        match swatch {
-            Swatch::Line(style) => area
-                .draw(&PathElement::new(vec![(x0, mid), (x1, mid)], *style))
-                .map_err(drawing)?,
-            Swatch::Mark(style, Look::Line) => area
-                .draw(&PathElement::new(vec![(x0, mid), (x1, mid)], *style))
-                .map_err(drawing)?,
-            Swatch::Mark(style, Look::Dashed) => area
-                .draw(&DashedPathElement::new(
-                    vec![(x0, mid), (x1, mid)],
-                    5,
-                    3,
-                    *style,
-                ))
-                .map_err(drawing)?,
-            Swatch::Mark(style, look) => {
-                // A stretch of panel edge with three ticks on it.
-                let tick = TICK as i32 - 2;
-                let (edge, end) = if *look == Look::TopTick {
-                    (mid - tick / 2, mid + tick / 2)
-                } else {
-                    (mid + tick / 2, mid - tick / 2)
-                };
-                area.draw(&PathElement::new(vec![(x0, edge), (x1, edge)], BLACK))
-                    .map_err(drawing)?;
-                for k in 0..3 {
-                    let x = x0 + 4 + k * (swatch_w - 8) / 2;
-                    area.draw(&PathElement::new(vec![(x, edge), (x, end)], *style))
-                        .map_err(drawing)?;
-                }
-            }
-            Swatch::Tile(style, start) => {
-                let x = x0 + swatch_w / 2;
-                let line = vec![(x, mid - 9), (x, mid + 9)];
-                if *start {
-                    area.draw(&PathElement::new(line, *style))
-                } else {
-                    area.draw(&DashedPathElement::new(line, 4, 3, *style))
-                }
-                .map_err(drawing)?;
-                let tip = pointer(*start)
-                    .into_iter()
-                    .map(|(dx, dy)| (x + dx, mid - 9 + dy));
-                let fill = ShapeStyle {
-                    filled: true,
-                    ..*style
-                };
-                area.draw(&Polygon::new(tip.collect::<Vec<_>>(), fill))
-                    .map_err(drawing)?;
-            }
-            Swatch::Band(c) => {
-                area.draw(&Rectangle::new(
-                    [(x0, mid - 6), (x1, mid + 6)],
-                    c.mix(0.18).filled(),
-                ))
-                .map_err(drawing)?;
-                area.draw(&PathElement::new(
-                    vec![(x0, mid), (x1, mid)],
-                    c.stroke_width(2),
-                ))
-                .map_err(drawing)?;
-            }
-            Swatch::Block(c) => area
-                .draw(&Rectangle::new([(x0, mid - 6), (x1, mid + 6)], c.filled()))
-                .map_err(drawing)?,
-        }
+        draw_swatch(area, swatch, (x0, x1), mid)?;
         area.draw_text(
             label,
             &font(font_size, false)
@@ -126,4 +61,105 @@ where
         .map_err(drawing)?;
     }
     Ok(())
+}
+
+/// Draw `swatch` from `x0` to `x1`, centred on row `mid`.
+fn draw_swatch<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    swatch: &Swatch,
+    (x0, x1): (i32, i32),
+    mid: i32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    match swatch {
+        Swatch::Line(style) | Swatch::Mark(style, Look::Line) => area
+            .draw(&PathElement::new(vec![(x0, mid), (x1, mid)], *style))
+            .map_err(drawing),
+        Swatch::Mark(style, Look::Dashed) => area
+            .draw(&DashedPathElement::new(
+                vec![(x0, mid), (x1, mid)],
+                5,
+                3,
+                *style,
+            ))
+            .map_err(drawing),
+        Swatch::Mark(style, look) => draw_ticks(area, *style, *look, (x0, x1), mid),
+        Swatch::Tile(style, start) => draw_tile_line(area, *style, *start, x0 + (x1 - x0) / 2, mid),
+        Swatch::Band(c) => {
+            area.draw(&Rectangle::new(
+                [(x0, mid - 6), (x1, mid + 6)],
+                c.mix(0.18).filled(),
+            ))
+            .map_err(drawing)?;
+            area.draw(&PathElement::new(
+                vec![(x0, mid), (x1, mid)],
+                c.stroke_width(2),
+            ))
+            .map_err(drawing)
+        }
+        Swatch::Block(c) => area
+            .draw(&Rectangle::new([(x0, mid - 6), (x1, mid + 6)], c.filled()))
+            .map_err(drawing),
+    }
+}
+
+/// A stretch of panel edge with three ticks on it (top or bottom ticks, as
+/// `look` says).
+fn draw_ticks<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    style: ShapeStyle,
+    look: Look,
+    (x0, x1): (i32, i32),
+    mid: i32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let swatch_w = x1 - x0;
+    let tick = TICK as i32 - 2;
+    let (edge, end) = if look == Look::TopTick {
+        (mid - tick / 2, mid + tick / 2)
+    } else {
+        (mid + tick / 2, mid - tick / 2)
+    };
+    area.draw(&PathElement::new(vec![(x0, edge), (x1, edge)], BLACK))
+        .map_err(drawing)?;
+    for k in 0..3 {
+        let x = x0 + 4 + k * (swatch_w - 8) / 2;
+        area.draw(&PathElement::new(vec![(x, edge), (x, end)], style))
+            .map_err(drawing)?;
+    }
+    Ok(())
+}
+
+/// A tile's start (solid) or end (dashed) line, upright at `x`, with its
+/// pointer on top.
+fn draw_tile_line<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    style: ShapeStyle,
+    start: bool,
+    x: i32,
+    mid: i32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let line = vec![(x, mid - 9), (x, mid + 9)];
+    if start {
+        area.draw(&PathElement::new(line, style))
+    } else {
+        area.draw(&DashedPathElement::new(line, 4, 3, style))
+    }
+    .map_err(drawing)?;
+    let tip = pointer(start)
+        .into_iter()
+        .map(|(dx, dy)| (x + dx, mid - 9 + dy));
+    let fill = ShapeStyle {
+        filled: true,
+        ..style
+    };
+    area.draw(&Polygon::new(tip.collect::<Vec<_>>(), fill))
+        .map_err(drawing)
 }

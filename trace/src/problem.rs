@@ -231,6 +231,10 @@ pub enum Problem {
 }
 
 impl fmt::Display for Problem {
+    // Long on purpose: one arm per variant, each arm that variant's whole
+    // message, so the match is the table of messages, read by variant.
+    // Split into groups it would name every variant twice (once to route
+    // it, once to word it) and need an unreachable arm per group.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         use Problem::*;
         match self {

@@ -56,13 +56,22 @@ pub(crate) fn body1(s: &str) -> String {
 /// bilinear, 1 for trilinear, blocks).
 type SpecInstr = (u32, Vec<u64>);
 
-/// A strategy for arbitrary valid traces, built through the builder:
-/// version-4 traces (positions in any order, repeats, rejected quads
-/// between and after the quads, tiles of rejected quads only, trilinear
-/// texture instructions) or, with `scanline`, traces that are also valid
-/// version 1 (no rejected quad, every texture instruction bilinear).
-pub(crate) fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
-    let header = (
+/// A generated tile: its position (any `u32`s, reduced into the frame),
+/// its quads (position, instructions), the rejected quads before each of
+/// the first 8 quads and after the last, and whether every quad of it is
+/// hidden.
+type SpecTile = (
+    u32,
+    u32,
+    Vec<(u32, u32, Vec<SpecInstr>)>,
+    Vec<(u32, bool)>,
+    bool,
+);
+
+/// Headers: any frame up to 300x200, an even tile size, a name without
+/// blank edges and up to 2 notes.
+fn arb_header() -> impl Strategy<Value = TraceHeader> {
+    (
         1u32..300,
         1u32..200,
         1u32..=32,
@@ -77,7 +86,12 @@ pub(crate) fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
             let mut hd = TraceHeader::new(name, w, h, 2 * half);
             hd.notes = notes;
             Some(hd)
-        });
+        })
+}
+
+/// A quad's 1 to 5 instructions: ALU runs, and texture instructions of
+/// any blocks or of few low blocks (descending), bilinear or trilinear.
+fn arb_quad() -> impl Strategy<Value = Vec<SpecInstr>> + Clone {
     let instr = prop_oneof![
         (1u32..=MAX_ALU_RUN).prop_map(|n| (n, vec![])),
         (
@@ -91,7 +105,16 @@ pub(crate) fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
         )
             .prop_map(|(s, tri)| (u32::from(tri), s.into_iter().rev().collect::<Vec<u64>>())),
     ];
-    let quad = proptest::collection::vec(instr, 1..6);
+    proptest::collection::vec(instr, 1..6)
+}
+
+/// A strategy for arbitrary valid traces, built through the builder:
+/// version-4 traces (positions in any order, repeats, rejected quads
+/// between and after the quads, tiles of rejected quads only, trilinear
+/// texture instructions) or, with `scanline`, traces that are also valid
+/// version 1 (no rejected quad, every texture instruction bilinear).
+pub(crate) fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
+    let quad = arb_quad();
     // Rejected quads before each quad and after the last (mostly none; a
     // count may come in two calls, which the builder adds up).
     let rejected = prop_oneof![
@@ -100,7 +123,7 @@ pub(crate) fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
         1 => 1u32..=MAX_REJECTED_RUN,
     ];
     let rejections = proptest::collection::vec((rejected, any::<bool>()), 9);
-    header
+    arb_header()
         .prop_flat_map(move |hd| {
             let tiles = proptest::collection::vec(
                 (
@@ -114,66 +137,83 @@ pub(crate) fn arb_trace_v(scanline: bool) -> impl Strategy<Value = Trace> {
             );
             (Just(hd), tiles)
         })
-        .prop_map(move |(hd, tiles)| {
-            let (nx, ny, side) = (hd.tiles_x(), hd.tiles_y(), hd.quads_per_side());
-            let mut b = Trace::builder(hd).unwrap();
-            let reject = |b: &mut TraceBuilder, (n, split): (u32, bool)| {
-                if n == 0 || scanline {
-                    return;
-                }
-                if split && n > 1 {
-                    b.rejected(n / 2).unwrap();
-                    b.rejected(n - n / 2).unwrap();
-                } else {
-                    b.rejected(n).unwrap();
-                }
-            };
-            for (tx, ty, quads, rej, hidden) in tiles {
-                let (tx, ty) = (tx % nx, ty % ny);
-                if b.begin_tile(tx, ty).is_err() {
-                    continue; // duplicate tile
-                }
-                let mut placed: Vec<(u32, u32, Vec<SpecInstr>)> = quads
-                    .into_iter()
-                    .map(|(x, y, q)| (x % side, y % side, q))
-                    .filter(|&(x, y, _)| b.header().quad_in_frame(tx, ty, x, y))
-                    .collect();
-                if scanline {
-                    placed.sort_by_key(|&(x, y, _)| (y, x));
-                    placed.dedup_by_key(|&mut (x, y, _)| (x, y));
-                } else if placed.len() > 2 {
-                    // Overdraw: repeat a position (a later fragment there).
-                    let (x, y, _) = placed[0];
-                    let q = placed[1].2.clone();
-                    placed.push((x, y, q));
-                }
-                if placed.is_empty() {
-                    placed.push((0, 0, vec![(1, vec![])]));
-                }
-                if hidden && !scanline {
-                    // A tile whose every quad Early-Z rejected.
-                    placed.clear();
-                    reject(&mut b, (rej[8].0.max(1), rej[8].1));
-                }
-                for (i, (x, y, instrs)) in placed.into_iter().enumerate() {
-                    reject(&mut b, rej[i]);
-                    b.begin_quad(x, y).unwrap();
-                    for (n, blocks) in instrs {
-                        if blocks.is_empty() {
-                            // Merging may overflow the run limit: then skip it.
-                            let _ = b.alu(n);
-                        } else {
-                            b.tex_filtered(&blocks, n == 1 && !scanline).unwrap();
-                        }
-                    }
-                }
-                if !hidden {
-                    reject(&mut b, rej[8]);
-                }
-                b.end_tile().unwrap();
+        .prop_map(move |(hd, tiles)| build_trace(hd, tiles, scanline))
+}
+
+/// Add `n` rejected quads (in two calls when `split`); none in a
+/// `scanline` trace.
+fn reject(b: &mut TraceBuilder, (n, split): (u32, bool), scanline: bool) {
+    if n == 0 || scanline {
+        return;
+    }
+    if split && n > 1 {
+        b.rejected(n / 2).unwrap();
+        b.rejected(n - n / 2).unwrap();
+    } else {
+        b.rejected(n).unwrap();
+    }
+}
+
+/// The trace of the generated `tiles` (see [`arb_trace_v`]).
+fn build_trace(hd: TraceHeader, tiles: Vec<SpecTile>, scanline: bool) -> Trace {
+    let mut b = Trace::builder(hd).unwrap();
+    for tile in tiles {
+        build_tile(&mut b, tile, scanline);
+    }
+    b.finish().unwrap()
+}
+
+/// One generated tile: its quads placed in the frame (in scanline order
+/// without repeats for a `scanline` trace, else with a repeated position),
+/// the rejected quads between them; a duplicate tile is skipped.
+fn build_tile(b: &mut TraceBuilder, tile: SpecTile, scanline: bool) {
+    let (nx, ny, side) = {
+        let hd = b.header();
+        (hd.tiles_x(), hd.tiles_y(), hd.quads_per_side())
+    };
+    let (tx, ty, quads, rej, hidden) = tile;
+    let (tx, ty) = (tx % nx, ty % ny);
+    if b.begin_tile(tx, ty).is_err() {
+        return; // duplicate tile
+    }
+    let mut placed: Vec<(u32, u32, Vec<SpecInstr>)> = quads
+        .into_iter()
+        .map(|(x, y, q)| (x % side, y % side, q))
+        .filter(|&(x, y, _)| b.header().quad_in_frame(tx, ty, x, y))
+        .collect();
+    if scanline {
+        placed.sort_by_key(|&(x, y, _)| (y, x));
+        placed.dedup_by_key(|&mut (x, y, _)| (x, y));
+    } else if placed.len() > 2 {
+        // Overdraw: repeat a position (a later fragment there).
+        let (x, y, _) = placed[0];
+        let q = placed[1].2.clone();
+        placed.push((x, y, q));
+    }
+    if placed.is_empty() {
+        placed.push((0, 0, vec![(1, vec![])]));
+    }
+    if hidden && !scanline {
+        // A tile whose every quad Early-Z rejected.
+        placed.clear();
+        reject(b, (rej[8].0.max(1), rej[8].1), scanline);
+    }
+    for (i, (x, y, instrs)) in placed.into_iter().enumerate() {
+        reject(b, rej[i], scanline);
+        b.begin_quad(x, y).unwrap();
+        for (n, blocks) in instrs {
+            if blocks.is_empty() {
+                // Merging may overflow the run limit: then skip it.
+                let _ = b.alu(n);
+            } else {
+                b.tex_filtered(&blocks, n == 1 && !scanline).unwrap();
             }
-            b.finish().unwrap()
-        })
+        }
+    }
+    if !hidden {
+        reject(b, rej[8], scanline);
+    }
+    b.end_tile().unwrap();
 }
 
 /// Arbitrary valid traces of either kind of [`arb_trace_v`].

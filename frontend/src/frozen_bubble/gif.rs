@@ -18,41 +18,147 @@ fn sub_blocks(r: &mut Bytes, what: &str) -> Result<Vec<u8>, SceneError> {
     }
 }
 
+/// The codes of GIF image data: `size`-bit codes packed least significant
+/// bit first.
+struct Codes<'a> {
+    data: &'a [u8],
+    /// Bits read but not yet consumed, the oldest lowest.
+    acc: u32,
+    bits: u32,
+    /// Next byte of `data` to read.
+    byte: usize,
+}
+
+impl Codes<'_> {
+    /// The next `size`-bit code; `None` when the data ends first.
+    fn next(&mut self, size: u32) -> Option<u16> {
+        while self.bits < size {
+            let &b = self.data.get(self.byte)?;
+            self.acc |= (b as u32) << self.bits;
+            self.bits += 8;
+            self.byte += 1;
+        }
+        let code = (self.acc & ((1 << size) - 1)) as u16;
+        self.acc >>= size;
+        self.bits -= size;
+        Some(code)
+    }
+}
+
+/// The LZW string table: each code above the literals is a known code's
+/// string (`prefix`) plus one byte (`suffix`); `first` is the string's
+/// first byte.
+struct StringTable {
+    prefix: Vec<u16>,
+    suffix: Vec<u8>,
+    first: Vec<u8>,
+    min_size: u8,
+    /// The clear code (the literals are below it; the end code follows it).
+    clear: u16,
+    /// Current code size (bits).
+    size: u32,
+    /// The next code to define.
+    next: u16,
+}
+
+impl StringTable {
+    fn new(min_size: u8) -> Self {
+        let clear = 1u16 << min_size;
+        let prefix = vec![0u16; 4096];
+        let mut suffix = vec![0u8; 4096];
+        let mut first = vec![0u8; 4096];
+        for c in 0..clear {
+            suffix[c as usize] = c as u8;
+            first[c as usize] = c as u8;
+        }
+        Self {
+            prefix,
+            suffix,
+            first,
+            min_size,
+            clear,
+            size: min_size as u32 + 1,
+            next: clear + 2,
+        }
+    }
+
+    /// Forget every defined code (a clear code).
+    fn reset(&mut self) {
+        self.size = self.min_size as u32 + 1;
+        self.next = self.clear + 2;
+    }
+
+    /// Append the string of `code` to `out`, `p` being the previous code:
+    /// a defined code's string, or for the code being defined, `p`'s string
+    /// plus its first byte. Returns the first byte appended.
+    fn expand(
+        &self,
+        code: u16,
+        p: u16,
+        stack: &mut Vec<u8>,
+        out: &mut Vec<u8>,
+    ) -> Result<u8, String> {
+        let next = self.next;
+        let (walk, extra) = if code < next {
+            (code, None)
+        } else if code == next && next < 4096 {
+            (p, Some(self.first[p as usize]))
+        } else {
+            return Err(format!("LZW code {code} is not defined yet (next {next})"));
+        };
+        stack.clear();
+        let mut c = walk;
+        while c >= self.clear {
+            stack.push(self.suffix[c as usize]);
+            c = self.prefix[c as usize];
+        }
+        stack.push(c as u8);
+        out.extend(stack.iter().rev());
+        if let Some(x) = extra {
+            out.push(x);
+        }
+        Ok(c as u8)
+    }
+
+    /// Define the next code as `p`'s string plus `head`, widening the codes
+    /// when they fill their size (up to 12 bits; a full table stays full).
+    fn define(&mut self, p: u16, head: u8) {
+        let next = self.next;
+        if next < 4096 {
+            self.prefix[next as usize] = p;
+            self.suffix[next as usize] = head;
+            self.first[next as usize] = self.first[p as usize];
+            self.next += 1;
+            if self.next == (1 << self.size) && self.size < 12 {
+                self.size += 1;
+            }
+        }
+    }
+}
+
 /// LZW-decode GIF image data to at most `limit` colour indices.
 fn lzw_decode(data: &[u8], min_size: u8, limit: usize) -> Result<Vec<u8>, String> {
-    let clear = 1u16 << min_size;
+    let mut table = StringTable::new(min_size);
+    let clear = table.clear;
     let end = clear + 1;
-    let mut prefix = vec![0u16; 4096];
-    let mut suffix = vec![0u8; 4096];
-    let mut first = vec![0u8; 4096];
-    for c in 0..clear {
-        suffix[c as usize] = c as u8;
-        first[c as usize] = c as u8;
-    }
-    let mut size = min_size as u32 + 1;
-    let mut next = clear + 2;
+    let mut codes = Codes {
+        data,
+        acc: 0,
+        bits: 0,
+        byte: 0,
+    };
     let mut prev: Option<u16> = None;
     let mut out = Vec::with_capacity(limit.min(1 << 20));
     let mut stack = Vec::with_capacity(4096);
-    let (mut acc, mut bits, mut byte) = (0u32, 0u32, 0usize);
     loop {
-        while bits < size {
-            let Some(&b) = data.get(byte) else {
-                return Err(format!(
-                    "image data ends (no end code) after {} of {limit} pixels",
-                    out.len()
-                ));
-            };
-            acc |= (b as u32) << bits;
-            bits += 8;
-            byte += 1;
-        }
-        let code = (acc & ((1 << size) - 1)) as u16;
-        acc >>= size;
-        bits -= size;
+        let Some(code) = codes.next(table.size) else {
+            return Err(format!(
+                "image data ends (no end code) after {} of {limit} pixels",
+                out.len()
+            ));
+        };
         if code == clear {
-            size = min_size as u32 + 1;
-            next = clear + 2;
+            table.reset();
             prev = None;
             continue;
         }
@@ -72,36 +178,8 @@ fn lzw_decode(data: &[u8], min_size: u8, limit: usize) -> Result<Vec<u8>, String
             }
             continue;
         };
-        // The string for `code` (or, for the code being defined, prev's
-        // string plus its first byte).
-        let (walk, extra) = if code < next {
-            (code, None)
-        } else if code == next && next < 4096 {
-            (p, Some(first[p as usize]))
-        } else {
-            return Err(format!("LZW code {code} is not defined yet (next {next})"));
-        };
-        stack.clear();
-        let mut c = walk;
-        while c >= clear {
-            stack.push(suffix[c as usize]);
-            c = prefix[c as usize];
-        }
-        stack.push(c as u8);
-        let head = c as u8;
-        out.extend(stack.iter().rev());
-        if let Some(x) = extra {
-            out.push(x);
-        }
-        if next < 4096 {
-            prefix[next as usize] = p;
-            suffix[next as usize] = head;
-            first[next as usize] = first[p as usize];
-            next += 1;
-            if next == (1 << size) && size < 12 {
-                size += 1;
-            }
-        }
+        let head = table.expand(code, p, &mut stack, &mut out)?;
+        table.define(p, head);
         prev = Some(code);
         if out.len() >= limit {
             out.truncate(limit);
@@ -110,12 +188,16 @@ fn lzw_decode(data: &[u8], min_size: u8, limit: usize) -> Result<Vec<u8>, String
     }
 }
 
-/// Decode the first image of a GIF (87a/89a) into an RGBA texture of the
-/// logical screen size; the transparent colour (graphic control extension)
-/// and pixels outside the frame are transparent black. Errors name the
-/// file and the byte offset.
-pub fn decode_gif(path: &Path, bytes: &[u8]) -> Result<(u32, u32, Vec<u8>), SceneError> {
-    let mut r = Bytes::new(bytes, path);
+/// The logical screen of a GIF: its size and global colour table.
+struct Screen {
+    width: usize,
+    height: usize,
+    global: Option<Vec<u8>>,
+}
+
+/// Read the signature and the logical screen descriptor (with the global
+/// colour table, if any).
+fn read_screen(r: &mut Bytes) -> Result<Screen, SceneError> {
     let sig = r.take(6, "GIF signature")?.to_vec();
     if sig != b"GIF87a" && sig != b"GIF89a" {
         return Err(r.err(0, format!("not a GIF: signature {sig:?}")));
@@ -136,6 +218,20 @@ pub fn decode_gif(path: &Path, bytes: &[u8]) -> Result<(u32, u32, Vec<u8>), Scen
     } else {
         None
     };
+    Ok(Screen {
+        width: sw,
+        height: sh,
+        global,
+    })
+}
+
+/// Decode the first image of a GIF (87a/89a) into an RGBA texture of the
+/// logical screen size; the transparent colour (graphic control extension)
+/// and pixels outside the frame are transparent black. Errors name the
+/// file and the byte offset.
+pub fn decode_gif(path: &Path, bytes: &[u8]) -> Result<(u32, u32, Vec<u8>), SceneError> {
+    let mut r = Bytes::new(bytes, path);
+    let screen = read_screen(&mut r)?;
     let mut transparent: Option<u8> = None;
     loop {
         let at = r.pos();
@@ -151,69 +247,8 @@ pub fn decode_gif(path: &Path, bytes: &[u8]) -> Result<(u32, u32, Vec<u8>), Scen
                 }
             }
             0x2c => {
-                let left = r.u16("image left")? as usize;
-                let top = r.u16("image top")? as usize;
-                let w = r.u16("image width")? as usize;
-                let h = r.u16("image height")? as usize;
-                let iflags = r.u8("image flags")?;
-                let local = if iflags & 0x80 != 0 {
-                    let n = 2usize << (iflags & 7);
-                    Some(r.take(3 * n, "local colour table")?.to_vec())
-                } else {
-                    None
-                };
-                let table = local
-                    .or(global)
-                    .ok_or_else(|| r.err(at, "image without a local or a global colour table"))?;
-                let min_at = r.pos();
-                let min_size = r.u8("LZW minimum code size")?;
-                if !(1..=11).contains(&min_size) {
-                    return Err(r.err(min_at, format!("LZW minimum code size {min_size}")));
-                }
-                let data_at = r.pos();
-                let data = sub_blocks(&mut r, "image data")?;
-                if w * h > MAX_GIF_PIXELS {
-                    return Err(r.err(at, format!("GIF image {w}x{h} too large")));
-                }
-                let idx = lzw_decode(&data, min_size, w * h).map_err(|m| r.err(data_at, m))?;
-                if idx.len() < w * h {
-                    return Err(r.err(
-                        data_at,
-                        format!("image data holds {} of {}x{} pixels", idx.len(), w, h),
-                    ));
-                }
-                // Interlaced rows come in 4 passes.
-                let rows: Vec<usize> = if iflags & 0x40 != 0 {
-                    (0..h)
-                        .step_by(8)
-                        .chain((4..h).step_by(8))
-                        .chain((2..h).step_by(4))
-                        .chain((1..h).step_by(2))
-                        .collect()
-                } else {
-                    (0..h).collect()
-                };
-                let colours = table.len() / 3;
-                let mut rgba = vec![0u8; sw * sh * 4];
-                for (k, &y) in rows.iter().enumerate() {
-                    for x in 0..w {
-                        let i = idx[k * w + x];
-                        let (sx, sy) = (left + x, top + y);
-                        if Some(i) == transparent || sx >= sw || sy >= sh {
-                            continue;
-                        }
-                        if i as usize >= colours {
-                            return Err(r.err(
-                                data_at,
-                                format!("colour index {i} outside the {colours}-colour table"),
-                            ));
-                        }
-                        let c = &table[3 * i as usize..3 * i as usize + 3];
-                        let o = 4 * (sy * sw + sx);
-                        rgba[o..o + 4].copy_from_slice(&[c[0], c[1], c[2], 255]);
-                    }
-                }
-                return Ok((sw as u32, sh as u32, rgba));
+                let rgba = decode_image(&mut r, at, &screen, transparent)?;
+                return Ok((screen.width as u32, screen.height as u32, rgba));
             }
             0x3b => return Err(r.err(at, "GIF ends (trailer) before any image")),
             b => {
@@ -224,6 +259,81 @@ pub fn decode_gif(path: &Path, bytes: &[u8]) -> Result<(u32, u32, Vec<u8>), Scen
             }
         }
     }
+}
+
+/// Decode the image whose descriptor starts at `at` (after its
+/// introducer) onto the transparent RGBA `screen`.
+fn decode_image(
+    r: &mut Bytes,
+    at: usize,
+    screen: &Screen,
+    transparent: Option<u8>,
+) -> Result<Vec<u8>, SceneError> {
+    let (sw, sh) = (screen.width, screen.height);
+    let left = r.u16("image left")? as usize;
+    let top = r.u16("image top")? as usize;
+    let w = r.u16("image width")? as usize;
+    let h = r.u16("image height")? as usize;
+    let iflags = r.u8("image flags")?;
+    let local = if iflags & 0x80 != 0 {
+        let n = 2usize << (iflags & 7);
+        Some(r.take(3 * n, "local colour table")?.to_vec())
+    } else {
+        None
+    };
+    let table: &[u8] = match (&local, &screen.global) {
+        (Some(t), _) | (None, Some(t)) => t,
+        (None, None) => return Err(r.err(at, "image without a local or a global colour table")),
+    };
+    let min_at = r.pos();
+    let min_size = r.u8("LZW minimum code size")?;
+    if !(1..=11).contains(&min_size) {
+        return Err(r.err(min_at, format!("LZW minimum code size {min_size}")));
+    }
+    let data_at = r.pos();
+    let data = sub_blocks(r, "image data")?;
+    if w * h > MAX_GIF_PIXELS {
+        return Err(r.err(at, format!("GIF image {w}x{h} too large")));
+    }
+    let idx = lzw_decode(&data, min_size, w * h).map_err(|m| r.err(data_at, m))?;
+    if idx.len() < w * h {
+        return Err(r.err(
+            data_at,
+            format!("image data holds {} of {}x{} pixels", idx.len(), w, h),
+        ));
+    }
+    // Interlaced rows come in 4 passes.
+    let rows: Vec<usize> = if iflags & 0x40 != 0 {
+        (0..h)
+            .step_by(8)
+            .chain((4..h).step_by(8))
+            .chain((2..h).step_by(4))
+            .chain((1..h).step_by(2))
+            .collect()
+    } else {
+        (0..h).collect()
+    };
+    let colours = table.len() / 3;
+    let mut rgba = vec![0u8; sw * sh * 4];
+    for (k, &y) in rows.iter().enumerate() {
+        for x in 0..w {
+            let i = idx[k * w + x];
+            let (sx, sy) = (left + x, top + y);
+            if Some(i) == transparent || sx >= sw || sy >= sh {
+                continue;
+            }
+            if i as usize >= colours {
+                return Err(r.err(
+                    data_at,
+                    format!("colour index {i} outside the {colours}-colour table"),
+                ));
+            }
+            let c = &table[3 * i as usize..3 * i as usize + 3];
+            let o = 4 * (sy * sw + sx);
+            rgba[o..o + 4].copy_from_slice(&[c[0], c[1], c[2], 255]);
+        }
+    }
+    Ok(rgba)
 }
 
 #[cfg(test)]

@@ -57,61 +57,74 @@ pub fn parse_levels(path: &Path, text: &[u8]) -> Result<Vec<Level>, SceneError> 
                 ),
             ));
         }
-        let mut col = 0usize;
-        let mut i = 0usize;
-        while i < body.len() {
-            if body[i].is_ascii_whitespace() {
-                i += 1;
-                continue;
-            }
-            let tok_start = i;
-            while i < body.len() && !body[i].is_ascii_whitespace() {
-                i += 1;
-            }
-            let tok = &body[tok_start..i];
-            let at = (start + tok_start) as u64;
-            let cols = 8 - row % 2;
-            if !tok.contains(&b'-') {
-                let colour = match tok {
-                    [d @ b'0'..=b'7'] => d - b'0',
-                    _ => {
-                        return Err(SceneError::at(
-                            path,
-                            at,
-                            format!(
-                                "level {}: cell {:?}: expected `-` or a colour 0..7",
-                                levels.len() + 1,
-                                String::from_utf8_lossy(tok)
-                            ),
-                        ))
-                    }
-                };
-                if col >= cols {
-                    return Err(SceneError::at(
-                        path,
-                        at,
-                        format!(
-                            "level {}: bubble in column {} of row {} (that row has {cols} columns)",
-                            levels.len() + 1,
-                            col + 1,
-                            row + 1
-                        ),
-                    ));
-                }
-                level.bubbles.push(Bubble {
-                    col: col as u8,
-                    row: row as u8,
-                    colour,
-                });
-            }
-            col += 1;
-        }
+        parse_row(path, body, start, row, levels.len() + 1, &mut level.bubbles)?;
         row += 1;
     }
     if let Some(l) = current.take() {
         levels.push(l);
     }
     Ok(levels)
+}
+
+/// Parse one row of a level (`body`, the line at byte offset `start`
+/// without its end of line): a cell per token, `-` empty or a colour
+/// 0..7; the bubbles go to `bubbles`. `number` is the level's (from 1).
+fn parse_row(
+    path: &Path,
+    body: &[u8],
+    start: usize,
+    row: usize,
+    number: usize,
+    bubbles: &mut Vec<Bubble>,
+) -> Result<(), SceneError> {
+    let mut col = 0usize;
+    let mut i = 0usize;
+    while i < body.len() {
+        if body[i].is_ascii_whitespace() {
+            i += 1;
+            continue;
+        }
+        let tok_start = i;
+        while i < body.len() && !body[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        let tok = &body[tok_start..i];
+        let at = (start + tok_start) as u64;
+        let cols = 8 - row % 2;
+        if !tok.contains(&b'-') {
+            let colour = match tok {
+                [d @ b'0'..=b'7'] => d - b'0',
+                _ => {
+                    return Err(SceneError::at(
+                        path,
+                        at,
+                        format!(
+                            "level {number}: cell {:?}: expected `-` or a colour 0..7",
+                            String::from_utf8_lossy(tok)
+                        ),
+                    ))
+                }
+            };
+            if col >= cols {
+                return Err(SceneError::at(
+                    path,
+                    at,
+                    format!(
+                        "level {number}: bubble in column {} of row {} (that row has {cols} columns)",
+                        col + 1,
+                        row + 1
+                    ),
+                ));
+            }
+            bubbles.push(Bubble {
+                col: col as u8,
+                row: row as u8,
+                colour,
+            });
+        }
+        col += 1;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -146,6 +146,99 @@ impl Sprites<'_> {
     }
 }
 
+impl Sprites<'_> {
+    /// The playfield: the background, the compressor (centred on
+    /// `COMPRESSOR_X`, its bottom at the playfield top) and the level's
+    /// bubbles.
+    fn playfield(&mut self, level: &Level) -> Result<(), SceneError> {
+        let ab = Blend::AlphaBlend;
+        self.draw("back_one_player.png", 0.0, 0.0, Blend::Opaque, false)?;
+        let (cw, ch) = self.size("compressor_main.png", ab)?;
+        self.draw(
+            "compressor_main.png",
+            COMPRESSOR_X - (cw / 2.0).floor(),
+            TOP_LIMIT - ch,
+            ab,
+            false,
+        )?;
+        for b in &level.bubbles {
+            let (x, y) = bubble_position(b.col, b.row);
+            self.draw(
+                &format!("balls/bubble-{}.gif", b.colour + 1),
+                x,
+                y,
+                ab,
+                false,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// The progress dots (shots until a new row: `TIME_APPEARS_NEW_ROOT`
+    /// + 1 of them): one red, then green ones, one pixel apart.
+    fn progress_dots(&mut self) -> Result<(), SceneError> {
+        let ab = Blend::AlphaBlend;
+        for i in 0..=TIME_APPEARS_NEW_ROOT {
+            let dot = if i == 0 {
+                "dot_red.png"
+            } else {
+                "dot_green.png"
+            };
+            // Dots one pixel apart.
+            let (_, dh) = self.size(dot, ab)?;
+            self.draw(
+                dot,
+                PROGRESS.0,
+                PROGRESS.1 + (dh + 1.0) * i as f32,
+                ab,
+                false,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// The launcher: the next bubble under its cover, the bubble to launch
+    /// (the level's most frequent colour; the next one is the second),
+    /// the shooter (cropped) and the penguin.
+    fn launcher(&mut self, level: &Level) -> Result<(), SceneError> {
+        let ab = Blend::AlphaBlend;
+        let colours = colours_by_frequency(level);
+        let launch = colours.first().copied().unwrap_or(0);
+        let next = colours.get(1).copied().unwrap_or(launch);
+        self.draw(
+            &format!("balls/bubble-{}.gif", next + 1),
+            NEXT_BUBBLE.0,
+            NEXT_BUBBLE.1,
+            ab,
+            false,
+        )?;
+        self.draw(
+            "on_top_next.png",
+            NEXT_BUBBLE.0 + ON_TOP_NEXT_REL.0,
+            NEXT_BUBBLE.1 + ON_TOP_NEXT_REL.1,
+            ab,
+            false,
+        )?;
+        self.draw(
+            &format!("balls/bubble-{}.gif", launch + 1),
+            (LEFT_LIMIT + RIGHT_LIMIT) / 2.0 - BUBBLE_SIZE / 2.0,
+            INITIAL_BUBBLE_Y,
+            ab,
+            false,
+        )?;
+        self.draw("shooter.png", CANON.0, CANON.1, ab, true)?;
+        self.draw(
+            "pinguins/anime-shooter_p1_0020.png",
+            PENGUIN.0,
+            PENGUIN.1,
+            ab,
+            false,
+        )
+    }
+}
+
+/// The scene of level `n` (`level`, read from `lpath`): the one-player
+/// screen's sprites in the game's blit order.
 pub(super) fn build(
     data_root: &Path,
     lpath: &Path,
@@ -162,75 +255,9 @@ pub(super) fn build(
         meshes: Vec::new(),
         loaded: Vec::new(),
     };
-    let ab = Blend::AlphaBlend;
-    s.draw("back_one_player.png", 0.0, 0.0, Blend::Opaque, false)?;
-    // The compressor: centred on COMPRESSOR_X, its bottom at the playfield top.
-    let (cw, ch) = s.size("compressor_main.png", ab)?;
-    s.draw(
-        "compressor_main.png",
-        COMPRESSOR_X - (cw / 2.0).floor(),
-        TOP_LIMIT - ch,
-        ab,
-        false,
-    )?;
-    for b in &level.bubbles {
-        let (x, y) = bubble_position(b.col, b.row);
-        s.draw(
-            &format!("balls/bubble-{}.gif", b.colour + 1),
-            x,
-            y,
-            ab,
-            false,
-        )?;
-    }
-    for i in 0..=TIME_APPEARS_NEW_ROOT {
-        let dot = if i == 0 {
-            "dot_red.png"
-        } else {
-            "dot_green.png"
-        };
-        // Dots one pixel apart.
-        let (_, dh) = s.size(dot, ab)?;
-        s.draw(
-            dot,
-            PROGRESS.0,
-            PROGRESS.1 + (dh + 1.0) * i as f32,
-            ab,
-            false,
-        )?;
-    }
-    let colours = colours_by_frequency(level);
-    let launch = colours.first().copied().unwrap_or(0);
-    let next = colours.get(1).copied().unwrap_or(launch);
-    s.draw(
-        &format!("balls/bubble-{}.gif", next + 1),
-        NEXT_BUBBLE.0,
-        NEXT_BUBBLE.1,
-        ab,
-        false,
-    )?;
-    s.draw(
-        "on_top_next.png",
-        NEXT_BUBBLE.0 + ON_TOP_NEXT_REL.0,
-        NEXT_BUBBLE.1 + ON_TOP_NEXT_REL.1,
-        ab,
-        false,
-    )?;
-    s.draw(
-        &format!("balls/bubble-{}.gif", launch + 1),
-        (LEFT_LIMIT + RIGHT_LIMIT) / 2.0 - BUBBLE_SIZE / 2.0,
-        INITIAL_BUBBLE_Y,
-        ab,
-        false,
-    )?;
-    s.draw("shooter.png", CANON.0, CANON.1, ab, true)?;
-    s.draw(
-        "pinguins/anime-shooter_p1_0020.png",
-        PENGUIN.0,
-        PENGUIN.1,
-        ab,
-        false,
-    )?;
+    s.playfield(level)?;
+    s.progress_dots()?;
+    s.launcher(level)?;
     let (left, top, width, height) = screen_view(def.width as f32 / def.height as f32);
     Ok(Scene {
         name: format!("frozen-bubble:{}:level:{n}", def.map),

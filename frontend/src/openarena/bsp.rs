@@ -77,43 +77,36 @@ pub struct Bsp {
     pub face_objects: Vec<u32>,
 }
 
-/// Parse an IBSP version 46 file (`file` names it in errors).
-pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
-    let r = Bytes::new(bytes, file);
-    if r.slice(0, 4, "magic")? != b"IBSP" {
-        return Err(r.err(0, "not a Quake 3 BSP: magic is not \"IBSP\""));
+/// Lump `i` of the directory, of `rec`-byte records: (offset, record
+/// count), inside the `file_len`-byte file and whole records.
+fn read_lump(
+    r: &Bytes,
+    file_len: usize,
+    i: usize,
+    rec: usize,
+    what: &str,
+) -> Result<(usize, usize), SceneError> {
+    let at = 8 + 8 * i;
+    let off = r.i32_at(at, "lump directory")?;
+    let len = r.i32_at(at + 4, "lump directory")?;
+    if off < 0 || len < 0 || off as usize + len as usize > file_len {
+        return Err(r.err(
+            at,
+            format!("{what} lump ({off}, {len} bytes) outside the file ({file_len} bytes)"),
+        ));
     }
-    let version = r.i32_at(4, "version")?;
-    if version != 46 {
-        return Err(r.err(4, format!("BSP version {version} (expected 46)")));
+    if !(len as usize).is_multiple_of(rec) {
+        return Err(r.err(
+            at + 4,
+            format!("{what} lump length {len} is not a multiple of {rec}"),
+        ));
     }
-    let lump = |i: usize, rec: usize, what: &str| -> Result<(usize, usize), SceneError> {
-        let at = 8 + 8 * i;
-        let off = r.i32_at(at, "lump directory")?;
-        let len = r.i32_at(at + 4, "lump directory")?;
-        if off < 0 || len < 0 || off as usize + len as usize > bytes.len() {
-            return Err(r.err(
-                at,
-                format!(
-                    "{what} lump ({off}, {len} bytes) outside the file ({} bytes)",
-                    bytes.len()
-                ),
-            ));
-        }
-        if !(len as usize).is_multiple_of(rec) {
-            return Err(r.err(
-                at + 4,
-                format!("{what} lump length {len} is not a multiple of {rec}"),
-            ));
-        }
-        Ok((off as usize, len as usize / rec))
-    };
-    let (eoff, elen) = lump(0, 1, "entities")?;
-    let entities = String::from_utf8_lossy(&bytes[eoff..eoff + elen])
-        .trim_end_matches('\0')
-        .to_string();
+    Ok((off as usize, len as usize / rec))
+}
 
-    let (soff, sn) = lump(1, 72, "shaders")?;
+/// The shaders lump: 72-byte records, a NUL-padded 64-byte name, surface
+/// and content flags.
+fn read_shaders(r: &Bytes, (soff, sn): (usize, usize)) -> Result<Vec<BspShader>, SceneError> {
     let mut shaders = Vec::with_capacity(sn);
     for i in 0..sn {
         let at = soff + 72 * i;
@@ -125,8 +118,12 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
             contents: r.i32_at(at + 68, "shader contents")?,
         });
     }
+    Ok(shaders)
+}
 
-    let (voff, vn) = lump(10, 44, "vertices")?;
+/// The vertices lump: 44-byte records, position, texture and lightmap
+/// coordinates, normal (and a colour, unused).
+fn read_vertices(r: &Bytes, (voff, vn): (usize, usize)) -> Result<Vec<BspVertex>, SceneError> {
     let mut vertices = Vec::with_capacity(vn);
     for i in 0..vn {
         let at = voff + 44 * i;
@@ -146,106 +143,40 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
             normal: [g(7)?, g(8)?, g(9)?],
         });
     }
+    Ok(vertices)
+}
 
+/// Parse an IBSP version 46 file (`file` names it in errors).
+pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
+    let r = Bytes::new(bytes, file);
+    if r.slice(0, 4, "magic")? != b"IBSP" {
+        return Err(r.err(0, "not a Quake 3 BSP: magic is not \"IBSP\""));
+    }
+    let version = r.i32_at(4, "version")?;
+    if version != 46 {
+        return Err(r.err(4, format!("BSP version {version} (expected 46)")));
+    }
+    let lump = |i: usize, rec: usize, what: &str| read_lump(&r, bytes.len(), i, rec, what);
+    let (eoff, elen) = lump(0, 1, "entities")?;
+    let entities = String::from_utf8_lossy(&bytes[eoff..eoff + elen])
+        .trim_end_matches('\0')
+        .to_string();
+    let shaders = read_shaders(&r, lump(1, 72, "shaders")?)?;
+    let vertices = read_vertices(&r, lump(10, 44, "vertices")?)?;
     let (moff, mn) = lump(11, 4, "mesh vertices")?;
     let meshverts = (0..mn)
         .map(|i| r.i32_at(moff + 4 * i, "mesh vertex"))
         .collect::<Result<Vec<_>, _>>()?;
-
     let (foff, fcount) = lump(13, 104, "faces")?;
-    let mut faces = Vec::with_capacity(fcount);
-    for i in 0..fcount {
-        let at = foff + 104 * i;
-        let g = |k: usize| r.i32_at(at + 4 * k, "face");
-        let idx = |v: i32, what: &str| -> Result<usize, SceneError> {
-            usize::try_from(v).map_err(|_| r.err(at, format!("face {i}: negative {what} {v}")))
-        };
-        let shader = idx(g(0)?, "shader")?;
-        let kind = g(2)?;
-        let first_vertex = idx(g(3)?, "first vertex")?;
-        let n_vertices = idx(g(4)?, "vertex count")?;
-        let first_meshvert = idx(g(5)?, "first mesh vertex")?;
-        let n_meshverts = idx(g(6)?, "mesh vertex count")?;
-        let lightmap = g(7)?;
-        let normal = [
-            r.f32_at(at + 84, "face normal")?,
-            r.f32_at(at + 88, "face normal")?,
-            r.f32_at(at + 92, "face normal")?,
-        ];
-        let size = [idx(g(24)?, "patch width")?, idx(g(25)?, "patch height")?];
-        if shader >= shaders.len() {
-            return Err(r.err(
-                at,
-                format!("face {i}: shader {shader} out of range ({})", shaders.len()),
-            ));
-        }
-        if first_vertex
-            .checked_add(n_vertices)
-            .is_none_or(|e| e > vertices.len())
-        {
-            return Err(r.err(
-                at + 12,
-                format!(
-                    "face {i}: vertices {first_vertex}+{n_vertices} out of range ({})",
-                    vertices.len()
-                ),
-            ));
-        }
-        if matches!(kind, 1 | 3) {
-            if first_meshvert
-                .checked_add(n_meshverts)
-                .is_none_or(|e| e > meshverts.len())
-            {
-                return Err(r.err(
-                    at + 20,
-                    format!(
-                        "face {i}: mesh vertices {first_meshvert}+{n_meshverts} out of range ({})",
-                        meshverts.len()
-                    ),
-                ));
-            }
-            if n_meshverts % 3 != 0 {
-                return Err(r.err(
-                    at + 24,
-                    format!("face {i}: {n_meshverts} mesh vertices, not whole triangles"),
-                ));
-            }
-            let span = &meshverts[first_meshvert..first_meshvert + n_meshverts];
-            for (j, &m) in span.iter().enumerate() {
-                let k = first_meshvert + j;
-                if m < 0 || m as usize >= n_vertices {
-                    return Err(r.err(
-                        moff + 4 * k,
-                        format!("face {i}: mesh vertex {m} outside its {n_vertices} vertices"),
-                    ));
-                }
-            }
-        }
-        if kind == 2 {
-            let [w, h] = size;
-            if w < 3 || h < 3 || w % 2 == 0 || h % 2 == 0 || w.checked_mul(h) != Some(n_vertices) {
-                return Err(r.err(
-                    at + 96,
-                    format!(
-                        "face {i}: patch grid {w}x{h} (odd, >= 3, = {n_vertices} vertices expected)"
-                    ),
-                ));
-            }
-        }
-        faces.push(BspFace {
-            shader,
-            kind,
-            first_vertex,
-            n_vertices,
-            first_meshvert,
-            n_meshverts,
-            lightmap,
-            normal,
-            size,
-            offset: at,
-        });
-    }
-
+    let lumps = FaceLumps {
+        n_shaders: shaders.len(),
+        n_vertices: vertices.len(),
+        meshverts: &meshverts,
+        meshverts_at: moff,
+    };
+    let faces = (0..fcount)
+        .map(|i| read_face(&r, &lumps, i, foff + 104 * i))
+        .collect::<Result<Vec<_>, _>>()?;
     let face_objects = face_objects(
         &r,
         lump(4, 48, "leaves")?,
@@ -253,7 +184,6 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         lump(7, 40, "models")?,
         faces.len(),
     )?;
-
     let lm_bytes = LIGHTMAP_SIDE * LIGHTMAP_SIDE * 3;
     let (loff, ln) = lump(14, lm_bytes, "lightmaps")?;
     let lightmaps = (0..ln)
@@ -269,6 +199,124 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         lightmaps,
         face_objects,
     })
+}
+
+/// What a face's references are checked against.
+struct FaceLumps<'a> {
+    n_shaders: usize,
+    n_vertices: usize,
+    meshverts: &'a [i32],
+    /// File offset of the mesh vertices lump.
+    meshverts_at: usize,
+}
+
+/// Face `i`, the 104-byte record at `at`: its shader, vertex range and
+/// (polygons and meshes) mesh vertex range or (patches) control grid, all
+/// checked.
+fn read_face(r: &Bytes, lumps: &FaceLumps, i: usize, at: usize) -> Result<BspFace, SceneError> {
+    let g = |k: usize| r.i32_at(at + 4 * k, "face");
+    let idx = |v: i32, what: &str| -> Result<usize, SceneError> {
+        usize::try_from(v).map_err(|_| r.err(at, format!("face {i}: negative {what} {v}")))
+    };
+    let face = BspFace {
+        shader: idx(g(0)?, "shader")?,
+        kind: g(2)?,
+        first_vertex: idx(g(3)?, "first vertex")?,
+        n_vertices: idx(g(4)?, "vertex count")?,
+        first_meshvert: idx(g(5)?, "first mesh vertex")?,
+        n_meshverts: idx(g(6)?, "mesh vertex count")?,
+        lightmap: g(7)?,
+        normal: [
+            r.f32_at(at + 84, "face normal")?,
+            r.f32_at(at + 88, "face normal")?,
+            r.f32_at(at + 92, "face normal")?,
+        ],
+        size: [idx(g(24)?, "patch width")?, idx(g(25)?, "patch height")?],
+        offset: at,
+    };
+    let (shader, first_vertex, n_vertices) = (face.shader, face.first_vertex, face.n_vertices);
+    if shader >= lumps.n_shaders {
+        return Err(r.err(
+            at,
+            format!(
+                "face {i}: shader {shader} out of range ({})",
+                lumps.n_shaders
+            ),
+        ));
+    }
+    if first_vertex
+        .checked_add(n_vertices)
+        .is_none_or(|e| e > lumps.n_vertices)
+    {
+        return Err(r.err(
+            at + 12,
+            format!(
+                "face {i}: vertices {first_vertex}+{n_vertices} out of range ({})",
+                lumps.n_vertices
+            ),
+        ));
+    }
+    if matches!(face.kind, 1 | 3) {
+        check_mesh_vertices(r, lumps, i, &face)?;
+    }
+    if face.kind == 2 {
+        let [w, h] = face.size;
+        if w < 3 || h < 3 || w % 2 == 0 || h % 2 == 0 || w.checked_mul(h) != Some(n_vertices) {
+            return Err(r.err(
+                at + 96,
+                format!(
+                    "face {i}: patch grid {w}x{h} (odd, >= 3, = {n_vertices} vertices expected)"
+                ),
+            ));
+        }
+    }
+    Ok(face)
+}
+
+/// A polygon or mesh face's mesh vertices: inside the lump, whole
+/// triangles, each an offset inside the face's own vertices.
+fn check_mesh_vertices(
+    r: &Bytes,
+    lumps: &FaceLumps,
+    i: usize,
+    face: &BspFace,
+) -> Result<(), SceneError> {
+    let (at, first_meshvert, n_meshverts, n_vertices) = (
+        face.offset,
+        face.first_meshvert,
+        face.n_meshverts,
+        face.n_vertices,
+    );
+    let meshverts = lumps.meshverts;
+    if first_meshvert
+        .checked_add(n_meshverts)
+        .is_none_or(|e| e > meshverts.len())
+    {
+        return Err(r.err(
+            at + 20,
+            format!(
+                "face {i}: mesh vertices {first_meshvert}+{n_meshverts} out of range ({})",
+                meshverts.len()
+            ),
+        ));
+    }
+    if n_meshverts % 3 != 0 {
+        return Err(r.err(
+            at + 24,
+            format!("face {i}: {n_meshverts} mesh vertices, not whole triangles"),
+        ));
+    }
+    let span = &meshverts[first_meshvert..first_meshvert + n_meshverts];
+    for (j, &m) in span.iter().enumerate() {
+        let k = first_meshvert + j;
+        if m < 0 || m as usize >= n_vertices {
+            return Err(r.err(
+                lumps.meshverts_at + 4 * k,
+                format!("face {i}: mesh vertex {m} outside its {n_vertices} vertices"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// [`Bsp::face_objects`] from the leaves, leaf faces and models lumps

@@ -160,6 +160,65 @@ pub fn find_data_root(cache: &Path) -> Option<PathBuf> {
         .find(|r| r.join("baseoa").is_dir())
 }
 
+/// Every shader script of the pk3s (`scripts/*.shader`), by lower-case
+/// name; the first definition of a name wins.
+fn shader_scripts(paks: &mut Paks) -> Result<HashMap<String, ShaderDef>, SceneError> {
+    let mut shaders = HashMap::new();
+    for script in paks.names(|n| {
+        let l = n.to_ascii_lowercase();
+        l.starts_with("scripts/") && l.ends_with(".shader")
+    }) {
+        let bytes = paks.read(&script)?;
+        let text = String::from_utf8_lossy(&bytes);
+        for s in parse_shaders(&text, &paks.path_of(&script))? {
+            shaders.entry(s.name.to_ascii_lowercase()).or_insert(s);
+        }
+    }
+    Ok(shaders)
+}
+
+/// Add every drawn face of `bsp` to the mesh of its (shader, lightmap),
+/// one draw call each, of the face's object.
+fn add_faces(b: &mut Builder, bsp: &Bsp) -> Result<(), SceneError> {
+    for (fi, f) in bsp.faces.iter().enumerate() {
+        let Some(mi) = b.mesh(bsp, f.shader, f.lightmap)? else {
+            continue;
+        };
+        let Some((verts, idx)) = face_triangles(bsp, f) else {
+            continue;
+        };
+        let mesh = &mut b.meshes[mi];
+        let base = mesh.positions.len() as u32;
+        mesh.positions.extend(verts.iter().map(|v| v.pos));
+        mesh.uv.extend(verts.iter().map(|v| v.uv));
+        if let Some(uv2) = mesh.uv2.as_mut() {
+            uv2.extend(verts.iter().map(|v| v.lm));
+        }
+        mesh.indices.extend(idx.iter().map(|i| base + i));
+        mesh.draws.push(Draw {
+            triangles: (idx.len() / 3) as u32,
+            object: bsp.face_objects[fi],
+        });
+    }
+    Ok(())
+}
+
+/// The spawn point the camera stands at: the map's spawn `spawn_n`
+/// (origin, yaw in degrees).
+fn spawn_point(bsp: &Bsp, bsp_path: &Path, spawn_n: usize) -> Result<(Vec3, f32), SceneError> {
+    let entities = parse_entities(&bsp.entities, bsp_path, bsp.entities_offset)?;
+    let spawns = spawn_points(&entities);
+    spawns.get(spawn_n).copied().ok_or_else(|| {
+        SceneError::in_file(
+            bsp_path,
+            format!(
+                "camera spawn:{spawn_n}: the map has {} spawn points",
+                spawns.len()
+            ),
+        )
+    })
+}
+
 /// Load map `def.map` from `data_root` (see the module documentation).
 pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
     let mut paks = Paks::open(data_root)?;
@@ -180,31 +239,8 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
     let bytes = paks.read(&entry)?;
     let bsp = parse_bsp(&bytes, &bsp_path)?;
     drop(bytes);
-    let entities = parse_entities(&bsp.entities, &bsp_path, bsp.entities_offset)?;
-    let spawns = spawn_points(&entities);
-    let &(origin, yaw) = spawns.get(spawn_n).ok_or_else(|| {
-        SceneError::in_file(
-            &bsp_path,
-            format!(
-                "camera spawn:{spawn_n}: the map has {} spawn points",
-                spawns.len()
-            ),
-        )
-    })?;
-
-    // Shader scripts: first definition of a name wins.
-    let mut shaders = HashMap::new();
-    for script in paks.names(|n| {
-        let l = n.to_ascii_lowercase();
-        l.starts_with("scripts/") && l.ends_with(".shader")
-    }) {
-        let bytes = paks.read(&script)?;
-        let text = String::from_utf8_lossy(&bytes);
-        for s in parse_shaders(&text, &paks.path_of(&script))? {
-            shaders.entry(s.name.to_ascii_lowercase()).or_insert(s);
-        }
-    }
-
+    let (origin, yaw) = spawn_point(&bsp, &bsp_path, spawn_n)?;
+    let shaders = shader_scripts(&mut paks)?;
     let mut b = Builder {
         paks: &mut paks,
         shaders,
@@ -218,26 +254,8 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
         map: def.map.clone(),
         missing_names: Vec::new(),
     };
-    for (fi, f) in bsp.faces.iter().enumerate() {
-        let Some(mi) = b.mesh(&bsp, f.shader, f.lightmap)? else {
-            continue;
-        };
-        let Some((verts, idx)) = face_triangles(&bsp, f) else {
-            continue;
-        };
-        let mesh = &mut b.meshes[mi];
-        let base = mesh.positions.len() as u32;
-        mesh.positions.extend(verts.iter().map(|v| v.pos));
-        mesh.uv.extend(verts.iter().map(|v| v.uv));
-        if let Some(uv2) = mesh.uv2.as_mut() {
-            uv2.extend(verts.iter().map(|v| v.lm));
-        }
-        mesh.indices.extend(idx.iter().map(|i| base + i));
-        mesh.draws.push(Draw {
-            triangles: (idx.len() / 3) as u32,
-            object: bsp.face_objects[fi],
-        });
-    }
+    add_faces(&mut b, &bsp)?;
+    // Order: opaque and alpha-tested, then alpha-blended.
     let mut meshes = std::mem::take(&mut b.meshes);
     meshes.retain(|m| !m.indices.is_empty());
     let (blended, mut all): (Vec<Mesh>, Vec<Mesh>) = meshes

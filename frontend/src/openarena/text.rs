@@ -207,49 +207,65 @@ pub fn parse_shaders(text: &str, file: &Path) -> Result<Vec<ShaderDef>, SceneErr
                         break;
                     }
                 },
-                ("surfaceparm", _) if stage.is_none() => {
-                    def.surfaceparms.push(arg(1).to_ascii_lowercase());
-                }
-                ("skyparms", _) if stage.is_none() => {
-                    let fb = arg(1);
-                    if fb != "-" && !fb.is_empty() {
-                        def.farbox = Some(fb);
-                    }
-                }
-                ("map" | "clampmap", _) => {
-                    if let Some(s) = stage.as_mut() {
-                        if s.map.is_none() {
-                            s.map = Some(arg(1));
-                            s.clamp = lower == "clampmap";
-                        }
-                    }
-                }
-                ("animmap", _) => {
-                    if let Some(s) = stage.as_mut() {
-                        if s.map.is_none() {
-                            s.map = Some(arg(2));
-                        }
-                    }
-                }
-                ("blendfunc", _) => {
-                    if let Some(s) = stage.as_mut() {
-                        let a = arg(1).to_ascii_lowercase();
-                        let b = arg(2).to_ascii_lowercase();
-                        s.blend = !(a == "gl_one" && b == "gl_zero");
-                    }
-                }
-                ("alphafunc", _) => {
-                    if let Some(s) = stage.as_mut() {
-                        s.alpha_test = true;
-                    }
-                }
-                _ => {}
+                (keyword, _) => apply_keyword(&mut def, &mut stage, keyword, arg),
             }
             i += 1;
         }
         out.push(def);
     }
     Ok(out)
+}
+
+/// Apply one keyword of a shader (`keyword`, lower case; `arg(k)` its
+/// k-th argument) to the shader `def` or, inside a stage, to `stage`:
+/// `surfaceparm` and `skyParms` outside stages; a stage's first `map`,
+/// `clampMap` or `animMap` image, `blendFunc` and `alphaFunc`. Other
+/// keywords are ignored.
+fn apply_keyword(
+    def: &mut ShaderDef,
+    stage: &mut Option<Stage>,
+    keyword: &str,
+    arg: impl Fn(usize) -> String,
+) {
+    match keyword {
+        "surfaceparm" if stage.is_none() => {
+            def.surfaceparms.push(arg(1).to_ascii_lowercase());
+        }
+        "skyparms" if stage.is_none() => {
+            let fb = arg(1);
+            if fb != "-" && !fb.is_empty() {
+                def.farbox = Some(fb);
+            }
+        }
+        "map" | "clampmap" => {
+            if let Some(s) = stage.as_mut() {
+                if s.map.is_none() {
+                    s.map = Some(arg(1));
+                    s.clamp = keyword == "clampmap";
+                }
+            }
+        }
+        "animmap" => {
+            if let Some(s) = stage.as_mut() {
+                if s.map.is_none() {
+                    s.map = Some(arg(2));
+                }
+            }
+        }
+        "blendfunc" => {
+            if let Some(s) = stage.as_mut() {
+                let a = arg(1).to_ascii_lowercase();
+                let b = arg(2).to_ascii_lowercase();
+                s.blend = !(a == "gl_one" && b == "gl_zero");
+            }
+        }
+        "alphafunc" => {
+            if let Some(s) = stage.as_mut() {
+                s.alpha_test = true;
+            }
+        }
+        _ => {}
+    }
 }
 
 #[cfg(test)]

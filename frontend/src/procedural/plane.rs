@@ -272,28 +272,9 @@ fn block_lightmap(faces: &[([f32; 3], f32)]) -> Texture {
     })
 }
 
-/// The plane scene with camera `ground` (default) or `high`, every
-/// material on shader template `template` (`standard` by default).
-pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
-    let (eye, target) = match camera {
-        "ground" | "default" | "" => ([0.0, 1.7, 6.0], [0.0, 1.0, -20.0]),
-        "high" => ([0.0, 25.0, 30.0], [0.0, 0.0, -30.0]),
-        other => {
-            return Err(SceneError::in_file(
-                "scenes/procedural-plane.toml",
-                format!("camera `{other}` of procedural:plane (expected ground or high)"),
-            ))
-        }
-    };
-    let name = match camera {
-        "ground" | "default" | "" => "procedural:plane".to_string(),
-        c => format!("procedural:plane:{c}"),
-    };
-    // Textures: 0 stone, 1 crate, 2 brick, 3 sky, 4 ground lightmap,
-    // 5 block lightmap, 6 white (the sky's lightmap).
-    let mut meshes = Vec::new();
-
-    // Ground: a 24x24 grid of patches.
+/// The ground: a 24x24 grid of patches, uv2 on the ground lightmap
+/// (material 0).
+fn ground_mesh() -> Mesh {
     let (gx0, gx1, gz0, gz1) = (-1500.0f32, 1500.0f32, -850.0f32, 20.0f32);
     let n = 24u32;
     let mut ground = Mesh {
@@ -322,9 +303,73 @@ pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
             ground.indices.extend_from_slice(&[a, d, c, a, c, b]);
         }
     }
-    meshes.push(ground);
+    ground
+}
 
-    // Blocks: five faces each (no bottom).
+/// A block's five faces (no bottom) as (corners top-left, top-right,
+/// bottom-right, bottom-left as seen from outside; width; height): the
+/// four sides, then the top.
+fn block_faces(b: &Block) -> Vec<([Vec3; 4], f32, f32)> {
+    let c = b.corners();
+    // Side faces: corners (i, i+1) bottom, (i+1, i) top.
+    let mut quads: Vec<([Vec3; 4], f32, f32)> = Vec::new();
+    for i in 0..4 {
+        let j = (i + 1) % 4;
+        let width = {
+            let (dx, dz) = (c[j][0] - c[i][0], c[j][2] - c[i][2]);
+            (dx * dx + dz * dz).sqrt()
+        };
+        // top-left, top-right, bottom-right, bottom-left as seen from
+        // outside.
+        quads.push(([c[i + 4], c[j + 4], c[j], c[i]], width, b.size[1]));
+    }
+    quads.push(([c[4], c[7], c[6], c[5]], b.size[0], b.size[2]));
+    quads
+}
+
+/// Add face `q` (`w` x `h` world units) of block `b` to mesh `m`: its
+/// normal and the block's height go to `faces`, whose index is the face's
+/// cell of the block lightmap atlas; bricks repeat every 2 units, a crate
+/// face shows its texture once.
+fn push_face(
+    m: &mut Mesh,
+    faces: &mut Vec<([f32; 3], f32)>,
+    b: &Block,
+    (q, w, h): ([Vec3; 4], f32, f32),
+) {
+    let e1 = [q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]];
+    let e2 = [q[3][0] - q[0][0], q[3][1] - q[0][1], q[3][2] - q[0][2]];
+    let nrm = [
+        e2[1] * e1[2] - e2[2] * e1[1],
+        e2[2] * e1[0] - e2[0] * e1[2],
+        e2[0] * e1[1] - e2[1] * e1[0],
+    ];
+    let len = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
+    let nrm = [nrm[0] / len, nrm[1] / len, nrm[2] / len];
+    let cell = faces.len() as u32;
+    faces.push((nrm, b.size[1]));
+    let (cu, cv) = ((cell % 8) as f32 * 16.0, (cell / 8) as f32 * 16.0);
+    let lm = |s: f32, t: f32| [(cu + 1.0 + 14.0 * s) / 128.0, (cv + 1.0 + 14.0 * t) / 128.0];
+    let (su, sv) = if b.brick {
+        (w / 2.0, h / 2.0)
+    } else {
+        (1.0, 1.0)
+    };
+    let base = m.positions.len() as u32;
+    let uvs = [[0.0, 0.0], [su, 0.0], [su, sv], [0.0, sv]];
+    let lms = [lm(0.0, 0.0), lm(1.0, 0.0), lm(1.0, 1.0), lm(0.0, 1.0)];
+    for k in 0..4 {
+        m.positions.push(q[k]);
+        m.uv.push(uvs[k]);
+        m.uv2.as_mut().expect("set").push(lms[k]);
+    }
+    m.indices
+        .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+}
+
+/// The blocks: the crates' mesh (material 1), the bricks' mesh (material
+/// 2) and every face's (normal, block height) for the block lightmap.
+fn block_meshes() -> (Mesh, Mesh, Vec<([f32; 3], f32)>) {
     let mut faces: Vec<([f32; 3], f32)> = Vec::new();
     let mut crates = Mesh {
         positions: Vec::new(),
@@ -339,64 +384,23 @@ pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
         ..crates.clone()
     };
     for (object, b) in BLOCKS.iter().enumerate() {
-        let c = b.corners();
         let m = if b.brick { &mut bricks } else { &mut crates };
         // Each block is an object and one draw call of its 5 faces.
         m.draws.push(Draw {
             triangles: 10,
             object: object as u32,
         });
-        // Side faces: corners (i, i+1) bottom, (i+1, i) top.
-        let mut quads: Vec<([Vec3; 4], f32, f32)> = Vec::new();
-        for i in 0..4 {
-            let j = (i + 1) % 4;
-            let width = {
-                let (dx, dz) = (c[j][0] - c[i][0], c[j][2] - c[i][2]);
-                (dx * dx + dz * dz).sqrt()
-            };
-            // top-left, top-right, bottom-right, bottom-left as seen from
-            // outside.
-            quads.push(([c[i + 4], c[j + 4], c[j], c[i]], width, b.size[1]));
-        }
-        quads.push(([c[4], c[7], c[6], c[5]], b.size[0], b.size[2]));
-        for (q, w, h) in quads {
-            let e1 = [q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]];
-            let e2 = [q[3][0] - q[0][0], q[3][1] - q[0][1], q[3][2] - q[0][2]];
-            let nrm = [
-                e2[1] * e1[2] - e2[2] * e1[1],
-                e2[2] * e1[0] - e2[0] * e1[2],
-                e2[0] * e1[1] - e2[1] * e1[0],
-            ];
-            let len = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
-            let nrm = [nrm[0] / len, nrm[1] / len, nrm[2] / len];
-            let cell = faces.len() as u32;
-            faces.push((nrm, b.size[1]));
-            let (cu, cv) = ((cell % 8) as f32 * 16.0, (cell / 8) as f32 * 16.0);
-            let lm =
-                |s: f32, t: f32| [(cu + 1.0 + 14.0 * s) / 128.0, (cv + 1.0 + 14.0 * t) / 128.0];
-            let (su, sv) = if b.brick {
-                (w / 2.0, h / 2.0)
-            } else {
-                (1.0, 1.0)
-            };
-            let base = m.positions.len() as u32;
-            let uvs = [[0.0, 0.0], [su, 0.0], [su, sv], [0.0, sv]];
-            let lms = [lm(0.0, 0.0), lm(1.0, 0.0), lm(1.0, 1.0), lm(0.0, 1.0)];
-            for k in 0..4 {
-                m.positions.push(q[k]);
-                m.uv.push(uvs[k]);
-                m.uv2.as_mut().expect("set").push(lms[k]);
-            }
-            m.indices
-                .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+        for face in block_faces(b) {
+            push_face(m, &mut faces, b, face);
         }
     }
-    meshes.push(crates);
-    meshes.push(bricks);
+    (crates, bricks, faces)
+}
 
-    // Sky: a vertical quad far away.
+/// The sky: a vertical quad far away (material 3).
+fn sky_mesh() -> Mesh {
     let (sx0, sx1, sy0, sy1, sz) = (-3000.0f32, 3000.0f32, -60.0f32, 700.0f32, -900.0f32);
-    meshes.push(Mesh {
+    Mesh {
         positions: vec![
             [sx0, sy1, sz],
             [sx1, sy1, sz],
@@ -409,8 +413,30 @@ pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
         material: 3,
         sky: true,
         ..Default::default()
-    });
+    }
+}
 
+/// The plane scene with camera `ground` (default) or `high`, every
+/// material on shader template `template` (`standard` by default).
+pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
+    let (eye, target) = match camera {
+        "ground" | "default" | "" => ([0.0, 1.7, 6.0], [0.0, 1.0, -20.0]),
+        "high" => ([0.0, 25.0, 30.0], [0.0, 0.0, -30.0]),
+        other => {
+            return Err(SceneError::in_file(
+                "scenes/procedural-plane.toml",
+                format!("camera `{other}` of procedural:plane (expected ground or high)"),
+            ))
+        }
+    };
+    let name = match camera {
+        "ground" | "default" | "" => "procedural:plane".to_string(),
+        c => format!("procedural:plane:{c}"),
+    };
+    let (crates, bricks, faces) = block_meshes();
+    let meshes = vec![ground_mesh(), crates, bricks, sky_mesh()];
+    // Textures: 0 stone, 1 crate, 2 brick, 3 sky, 4 ground lightmap,
+    // 5 block lightmap, 6 white (the sky's lightmap).
     let white = texture("proc/white.tex", 4, 4, false, |_, _| [1.0; 4]);
     let textures = vec![
         stone_texture(),

@@ -184,46 +184,62 @@ fn empty_mesh(material: usize) -> Mesh {
     }
 }
 
-/// The match-3 screen for a `width` x `height` frame (camera `full`).
-pub fn sprites(camera: &str, width: u32, height: u32) -> Result<Scene, SceneError> {
-    if !matches!(camera, "full" | "default" | "") {
-        return Err(SceneError::in_file(
-            "scenes/procedural-sprites.toml",
-            format!("camera `{camera}` of procedural:sprites (expected full)"),
-        ));
+/// Where the screen's parts go in a `w` x `h` frame: a margin, a board of
+/// `cols` x `rows` square cells at (`bx`, `by`), the side panel to its
+/// right.
+struct Layout {
+    w: f32,
+    h: f32,
+    margin: f32,
+    cell: f32,
+    cols: u32,
+    rows: u32,
+    bx: f32,
+    by: f32,
+}
+
+impl Layout {
+    fn new(w: f32, h: f32) -> Self {
+        let margin = (h / 24.0).round().max(4.0);
+        let cell = ((h - 2.0 * margin) / 8.0).floor().max(8.0);
+        Self {
+            w,
+            h,
+            margin,
+            cell,
+            cols: 10,
+            rows: 8,
+            bx: 2.0 * margin,
+            by: margin,
+        }
     }
-    let (w, h) = (width as f32, height as f32);
-    let mut rng = Rng::new(0x5eed_0003);
-    // Materials: 0 backdrop, 1 cells, 2 panel, 3 gems, 4 portrait,
-    // 5 digits, 6 sparkles.
-    let mut backdrop = empty_mesh(0);
-    push_quad(
-        &mut backdrop,
-        [0.0, 0.0, w, h],
-        [0.0, 0.0, w / 256.0, h / 256.0],
-        0.0,
-    );
-    let margin = (h / 24.0).round().max(4.0);
-    let cell = ((h - 2.0 * margin) / 8.0).floor().max(8.0);
-    let (cols, rows) = (10u32, 8u32);
-    let (bx, by) = (2.0 * margin, margin);
+}
+
+/// The board's cells, light and dark in a checkerboard (material 1).
+fn board(l: &Layout) -> Mesh {
     let mut cells = empty_mesh(1);
-    let mut gems = empty_mesh(3);
-    for r in 0..rows {
-        for c in 0..cols {
-            let x = bx + c as f32 * cell;
-            let y = by + r as f32 * cell;
+    for r in 0..l.rows {
+        for c in 0..l.cols {
+            let x = l.bx + c as f32 * l.cell;
+            let y = l.by + r as f32 * l.cell;
             let u0 = if (r + c) % 2 == 0 { 0.0 } else { 0.5 };
             push_quad(
                 &mut cells,
-                [x, y, x + cell, y + cell],
+                [x, y, x + l.cell, y + l.cell],
                 [u0, 0.0, u0 + 0.5, 1.0],
                 1.0,
             );
         }
     }
-    for r in 0..rows {
-        for c in 0..cols {
+    cells
+}
+
+/// The gems (material 3): a random kind in most cells, a few falling.
+fn gems(l: &Layout, rng: &mut Rng) -> Mesh {
+    let cell = l.cell;
+    let mut gems = empty_mesh(3);
+    for r in 0..l.rows {
+        for c in 0..l.cols {
             if rng.chance(0.08) {
                 continue;
             }
@@ -231,8 +247,8 @@ pub fn sprites(camera: &str, width: u32, height: u32) -> Result<Scene, SceneErro
             // A few gems fall, half a cell down.
             let fall = if rng.chance(0.05) { 0.5 * cell } else { 0.0 };
             let g = cell * 0.86;
-            let x = bx + c as f32 * cell + (cell - g) / 2.0;
-            let y = by + r as f32 * cell + (cell - g) / 2.0 + fall;
+            let x = l.bx + c as f32 * cell + (cell - g) / 2.0;
+            let y = l.by + r as f32 * cell + (cell - g) / 2.0 + fall;
             let (au, av) = ((kind % 4) as f32 * 0.25, (kind / 4) as f32 * 0.25);
             push_quad(
                 &mut gems,
@@ -242,8 +258,15 @@ pub fn sprites(camera: &str, width: u32, height: u32) -> Result<Scene, SceneErro
             );
         }
     }
-    let px0 = bx + cols as f32 * cell + 2.0 * margin;
-    let px1 = (w - 2.0 * margin).max(px0 + 16.0);
+    gems
+}
+
+/// The side panel right of the board: the panel (material 2), the
+/// portrait on it (4) and the score below the portrait (5).
+fn side_panel(l: &Layout) -> (Mesh, Mesh, Mesh) {
+    let (h, margin) = (l.h, l.margin);
+    let px0 = l.bx + l.cols as f32 * l.cell + 2.0 * margin;
+    let px1 = (l.w - 2.0 * margin).max(px0 + 16.0);
     let mut panel = empty_mesh(2);
     push_quad(
         &mut panel,
@@ -285,11 +308,16 @@ pub fn sprites(camera: &str, width: u32, height: u32) -> Result<Scene, SceneErro
             3.0,
         );
     }
+    (panel, portrait, digits)
+}
+
+/// Sparkles over the board at random places and sizes (material 6).
+fn sparkles(l: &Layout, rng: &mut Rng) -> Mesh {
     let mut sparkles = empty_mesh(6);
     for _ in 0..14 {
         let s = rng.range_f64(24.0, 96.0) as f32;
-        let x = bx + rng.range_f64(0.0, f64::from(cols as f32 * cell)) as f32 - s / 2.0;
-        let y = by + rng.range_f64(0.0, f64::from(rows as f32 * cell)) as f32 - s / 2.0;
+        let x = l.bx + rng.range_f64(0.0, f64::from(l.cols as f32 * l.cell)) as f32 - s / 2.0;
+        let y = l.by + rng.range_f64(0.0, f64::from(l.rows as f32 * l.cell)) as f32 - s / 2.0;
         push_quad(
             &mut sparkles,
             [x, y, x + s, y + s],
@@ -297,6 +325,34 @@ pub fn sprites(camera: &str, width: u32, height: u32) -> Result<Scene, SceneErro
             4.0,
         );
     }
+    sparkles
+}
+
+/// The match-3 screen for a `width` x `height` frame (camera `full`).
+pub fn sprites(camera: &str, width: u32, height: u32) -> Result<Scene, SceneError> {
+    if !matches!(camera, "full" | "default" | "") {
+        return Err(SceneError::in_file(
+            "scenes/procedural-sprites.toml",
+            format!("camera `{camera}` of procedural:sprites (expected full)"),
+        ));
+    }
+    let (w, h) = (width as f32, height as f32);
+    let mut rng = Rng::new(0x5eed_0003);
+    // Materials: 0 backdrop, 1 cells, 2 panel, 3 gems, 4 portrait,
+    // 5 digits, 6 sparkles.
+    let mut backdrop = empty_mesh(0);
+    push_quad(
+        &mut backdrop,
+        [0.0, 0.0, w, h],
+        [0.0, 0.0, w / 256.0, h / 256.0],
+        0.0,
+    );
+    let layout = Layout::new(w, h);
+    let cells = board(&layout);
+    // The gems draw from the generator before the sparkles.
+    let gems = gems(&layout, &mut rng);
+    let (panel, portrait, digits) = side_panel(&layout);
+    let sparkles = sparkles(&layout, &mut rng);
     let sprite = |name: &str, blend: Blend, tex: usize, filter: Filter| Material {
         name: name.into(),
         blend,

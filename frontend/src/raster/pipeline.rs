@@ -3,6 +3,7 @@
 //! worker threads and joined in Z-order into the trace and the picture.
 
 use super::*;
+use crate::trace::TraceBuilder;
 
 /// [`rasterize`], with or without the hierarchical depth test (`hiz`; the
 /// results are the same, [`RasterStats::quads_rejected_hiz`] aside).
@@ -13,6 +14,81 @@ pub(super) fn rasterize_with(
     opts: &RasterOptions,
     hiz: bool,
 ) -> Result<Frame, SceneError> {
+    let fail = |m: String| SceneError::in_file(&scene.name, m);
+    check_frame(scene, width, height, opts)?;
+    let mut stats = initial_stats(scene, opts);
+    let clock = std::time::Instant::now();
+    let mut timings = RasterTimings::default();
+    let threads = match opts.threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n,
+    }
+    .clamp(1, 64);
+    let (runs, order_note) = runs(scene, opts.draw_order);
+    let setups = geometry(scene, &runs, width, height, opts, &mut stats)?;
+    timings.geometry = clock.elapsed().as_secs_f64();
+    let tex_clock = std::time::Instant::now();
+    let uses = texture_uses(scene, &setups);
+    let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
+    timings.textures = tex_clock.elapsed().as_secs_f64();
+    let mats = material_infos(scene);
+    let lists = bin(&setups, opts.tile, width, height, &mut stats);
+    // Geometry includes the binning.
+    timings.geometry = clock.elapsed().as_secs_f64() - timings.textures;
+
+    // Raster pipeline, tile by tile in Z-order.
+    let mut join = Join {
+        scene_name: &scene.name,
+        stats,
+        builder: trace_builder(scene, width, height, opts.tile, order_note)?,
+        image: clear_image(width, height),
+        width,
+        height,
+        tile: opts.tile,
+        colour: opts.colour,
+    };
+    let ctx = TileCtx {
+        setups: &setups,
+        mats: &mats,
+        textures: &textures,
+        tile: opts.tile,
+        width,
+        height,
+        colour: opts.colour,
+        prepass: opts.depth_prepass,
+        hiz,
+    };
+    raster_tiles(&ctx, &lists, threads, &mut join)?;
+    let Join {
+        stats,
+        mut builder,
+        image,
+        ..
+    } = join;
+    builder
+        .note(summary_note(&stats, &textures))
+        .map_err(|e| fail(format!("trace note: {e}")))?;
+    let trace = builder
+        .finish()
+        .map_err(|e| fail(format!("building the trace: {e}")))?;
+    timings.tiles = clock.elapsed().as_secs_f64() - timings.textures - timings.geometry;
+    Ok(Frame {
+        trace,
+        width,
+        height,
+        image,
+        stats,
+        timings,
+    })
+}
+
+/// Check the frame size, the tile size and the scene.
+fn check_frame(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    opts: &RasterOptions,
+) -> Result<(), SceneError> {
     let fail = |m: String| SceneError::in_file(&scene.name, m);
     if width == 0 || height == 0 || width > 16384 || height > 16384 {
         return Err(fail(format!(
@@ -25,8 +101,13 @@ pub(super) fn rasterize_with(
             opts.tile
         )));
     }
-    validate(scene)?;
-    let mut stats = RasterStats {
+    validate(scene)
+}
+
+/// Statistics before anything is counted: one entry per material, and the
+/// draw order in effect.
+fn initial_stats(scene: &Scene, opts: &RasterOptions) -> RasterStats {
+    RasterStats {
         materials: scene
             .materials
             .iter()
@@ -38,20 +119,13 @@ pub(super) fn rasterize_with(
             .collect(),
         draw_order: opts.draw_order.effective(scene),
         ..Default::default()
-    };
-    let clock = std::time::Instant::now();
-    let mut timings = RasterTimings::default();
-    let threads = match opts.threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
     }
-    .clamp(1, 64);
-    let (runs, order_note) = runs(scene, opts.draw_order);
-    let setups = geometry(scene, &runs, width, height, opts, &mut stats)?;
-    timings.geometry = clock.elapsed().as_secs_f64();
-    // Textures: only those of materials a set-up triangle uses are sampled;
-    // an alpha test reads its material's first texture's alpha.
-    let tex_clock = std::time::Instant::now();
+}
+
+/// How each texture is used: only those of materials a set-up triangle
+/// uses are sampled; an alpha test reads its material's first texture's
+/// alpha.
+fn texture_uses(scene: &Scene, setups: &[Setup]) -> Vec<TextureUse> {
     let mut uses = vec![
         TextureUse {
             sampled: false,
@@ -60,7 +134,7 @@ pub(super) fn rasterize_with(
         scene.textures.len()
     ];
     let mut used_mat = vec![false; scene.materials.len()];
-    for s in &setups {
+    for s in setups {
         used_mat[s.material as usize] = true;
     }
     for (m, _) in scene.materials.iter().zip(&used_mat).filter(|(_, &u)| u) {
@@ -73,9 +147,12 @@ pub(super) fn rasterize_with(
             }
         }
     }
-    let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
-    timings.textures = tex_clock.elapsed().as_secs_f64();
-    let mats: Vec<MatInfo> = scene
+    uses
+}
+
+/// What the inner loop needs of each material.
+fn material_infos(scene: &Scene) -> Vec<MatInfo> {
+    scene
         .materials
         .iter()
         .map(|m| {
@@ -93,10 +170,18 @@ pub(super) fn rasterize_with(
                 shader: m.shader.clone(),
             }
         })
-        .collect();
+        .collect()
+}
 
-    // Tiling engine: polygon lists.
-    let t = opts.tile;
+/// The tiling engine: each tile's polygon list (the set-up triangles whose
+/// edges overlap it, in draw order), tiles in row order.
+fn bin(
+    setups: &[Setup],
+    t: u32,
+    width: u32,
+    height: u32,
+    stats: &mut RasterStats,
+) -> Vec<Vec<u32>> {
     let (tiles_x, tiles_y) = (width.div_ceil(t), height.div_ceil(t));
     let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (tiles_x * tiles_y) as usize];
     for (i, s) in setups.iter().enumerate() {
@@ -112,44 +197,111 @@ pub(super) fn rasterize_with(
             }
         }
     }
+    lists
+}
 
-    // Geometry includes the binning.
-    timings.geometry = clock.elapsed().as_secs_f64() - timings.textures;
-
-    // Raster pipeline, tile by tile in Z-order; tiles are independent, so
-    // batches of them run on worker threads and are emitted in order.
+/// The trace builder, its header naming the scene and the draw order.
+fn trace_builder(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    t: u32,
+    order_note: Option<String>,
+) -> Result<TraceBuilder, SceneError> {
     let mut header = TraceHeader::new(scene.name.clone(), width, height, t);
     header
         .notes
         .push(format!(" scene {} ({})", scene.name, scene.source));
     header.notes.extend(order_note);
-    let mut builder = Trace::builder(header).map_err(|e| fail(format!("trace header: {e}")))?;
+    Trace::builder(header)
+        .map_err(|e| SceneError::in_file(&scene.name, format!("trace header: {e}")))
+}
+
+/// A picture of the clear colour.
+fn clear_image(width: u32, height: u32) -> Vec<u8> {
     let mut image = vec![0u8; width as usize * height as usize * 4];
     for px in image.chunks_exact_mut(4) {
         px.copy_from_slice(&to_u8(CLEAR));
     }
-    let ctx = TileCtx {
-        setups: &setups,
-        mats: &mats,
-        textures: &textures,
-        tile: t,
-        width,
-        height,
-        colour: opts.colour,
-        prepass: opts.depth_prepass,
-        hiz,
-    };
+    image
+}
+
+/// Where the tiles' results are joined, in Z-order: the statistics, the
+/// trace and the picture.
+struct Join<'a> {
+    scene_name: &'a str,
+    stats: RasterStats,
+    builder: TraceBuilder,
+    image: Vec<u8>,
+    width: u32,
+    height: u32,
+    tile: u32,
+    /// Whether the picture is drawn.
+    colour: bool,
+}
+
+impl Join<'_> {
+    /// Join tile (`tx`, `ty`)'s results: its counts, its pixels and its
+    /// trace records (a tile that rasterized no quad has none).
+    fn tile(&mut self, tx: u32, ty: u32, b: &mut TileBuf) -> Result<(), SceneError> {
+        let stats = &mut self.stats;
+        stats.quads_covered += b.covered;
+        stats.quads_rejected_early_z += b.rejected;
+        stats.quads_rejected_hiz += b.rejected_hiz;
+        stats.warps += b.frags.len() as u64;
+        stats.positions += b.positions;
+        stats.pixels_shaded += b.pixels;
+        for (m, c) in stats.materials.iter_mut().zip(&b.per_material) {
+            m.warps += c[0];
+            m.quads_rejected_early_z += c[1];
+            m.pixels += c[2];
+        }
+        let (t, width) = (self.tile, self.width);
+        let (ox, oy) = (tx * t, ty * t);
+        let (tw, th) = (t.min(width - ox), t.min(self.height - oy));
+        if self.colour {
+            for ly in 0..th {
+                let row = ((oy + ly) * width + ox) as usize * 4;
+                for lx in 0..tw {
+                    let c = to_u8(b.colour[(ly * t + lx) as usize]);
+                    let at = row + lx as usize * 4;
+                    self.image[at..at + 4].copy_from_slice(&c);
+                }
+            }
+        }
+        let fail = |e: crate::trace::Problem| {
+            SceneError::in_file(self.scene_name, format!("building the trace: {e}"))
+        };
+        let part = std::mem::replace(&mut b.part, Ok(None)).map_err(fail)?;
+        if let Some(part) = part {
+            self.stats.tiles += 1;
+            self.builder.append(part).map_err(fail)?;
+        }
+        Ok(())
+    }
+}
+
+/// Rasterize every tile with triangles, in Z-order. Tiles are independent,
+/// so batches of them run on `threads` worker threads, each taking one tile
+/// at a time (costs vary a lot) and building its trace records too; the
+/// results are joined in order.
+fn raster_tiles(
+    ctx: &TileCtx,
+    lists: &[Vec<u32>],
+    threads: usize,
+    join: &mut Join,
+) -> Result<(), SceneError> {
+    let t = ctx.tile;
+    let (tiles_x, tiles_y) = (ctx.width.div_ceil(t), ctx.height.div_ceil(t));
     let order: Vec<(u32, u32)> = crate::trace::z_order(tiles_x, tiles_y)
         .into_iter()
         .filter(|&(tx, ty)| !lists[(ty * tiles_x + tx) as usize].is_empty())
         .collect();
-    // Tiles are handed out one at a time (costs vary a lot), each worker
-    // building its tile's trace records too; results are used in order.
     let batch = threads * 16;
     let bufs: Vec<std::sync::Mutex<TileBuf>> = (0..batch.min(order.len().max(1)))
-        .map(|_| std::sync::Mutex::new(TileBuf::new(t, scene.materials.len())))
+        .map(|_| std::sync::Mutex::new(TileBuf::new(t, ctx.mats.len())))
         .collect();
-    let part_header = builder.header().clone();
+    let part_header = join.builder.header().clone();
     for chunk in order.chunks(batch) {
         let next = std::sync::atomic::AtomicUsize::new(0);
         let work = || loop {
@@ -158,8 +310,8 @@ pub(super) fn rasterize_with(
                 break;
             };
             let mut b = bufs[i].lock().unwrap_or_else(|e| e.into_inner());
-            raster_tile(&ctx, tx, ty, &lists[(ty * tiles_x + tx) as usize], &mut b);
-            b.part = build_tile(&ctx, &part_header, tx, ty, &mut b);
+            raster_tile(ctx, tx, ty, &lists[(ty * tiles_x + tx) as usize], &mut b);
+            b.part = build_tile(ctx, &part_header, tx, ty, &mut b);
         };
         if threads > 1 && chunk.len() > 1 {
             std::thread::scope(|sc| {
@@ -173,40 +325,16 @@ pub(super) fn rasterize_with(
         }
         for (&(tx, ty), b) in chunk.iter().zip(&bufs) {
             let mut b = b.lock().unwrap_or_else(|e| e.into_inner());
-            stats.quads_covered += b.covered;
-            stats.quads_rejected_early_z += b.rejected;
-            stats.quads_rejected_hiz += b.rejected_hiz;
-            stats.warps += b.frags.len() as u64;
-            stats.positions += b.positions;
-            stats.pixels_shaded += b.pixels;
-            for (m, c) in stats.materials.iter_mut().zip(&b.per_material) {
-                m.warps += c[0];
-                m.quads_rejected_early_z += c[1];
-                m.pixels += c[2];
-            }
-            let (ox, oy) = (tx * t, ty * t);
-            let (tw, th) = (t.min(width - ox), t.min(height - oy));
-            if opts.colour {
-                for ly in 0..th {
-                    let row = ((oy + ly) * width + ox) as usize * 4;
-                    for lx in 0..tw {
-                        let c = to_u8(b.colour[(ly * t + lx) as usize]);
-                        let at = row + lx as usize * 4;
-                        image[at..at + 4].copy_from_slice(&c);
-                    }
-                }
-            }
-            let part = std::mem::replace(&mut b.part, Ok(None))
-                .map_err(|e| fail(format!("building the trace: {e}")))?;
-            if let Some(part) = part {
-                stats.tiles += 1;
-                builder
-                    .append(part)
-                    .map_err(|e| fail(format!("building the trace: {e}")))?;
-            }
+            join.tile(tx, ty, &mut b)?;
         }
     }
-    let note = format!(
+    Ok(())
+}
+
+/// The trace's closing note: what was rasterized and how much overdraw,
+/// and where the texture heap is.
+fn summary_note(stats: &RasterStats, textures: &TextureSet) -> String {
+    format!(
         " rasterized by wasp scene::raster: {} triangles ({} clipped, {} culled), {} quads \
          covered, {} rejected by early-Z, {} fragments shaded, one warp each in \
          rasterization order, at {} quad positions ({:.2} warps per position); texture heap \
@@ -225,22 +353,7 @@ pub(super) fn rasterize_with(
         },
         textures.heap_bytes() / 1024,
         crate::texture::HEAP_BASE
-    );
-    builder
-        .note(note)
-        .map_err(|e| fail(format!("trace note: {e}")))?;
-    let trace = builder
-        .finish()
-        .map_err(|e| fail(format!("building the trace: {e}")))?;
-    timings.tiles = clock.elapsed().as_secs_f64() - timings.textures - timings.geometry;
-    Ok(Frame {
-        trace,
-        width,
-        height,
-        image,
-        stats,
-        timings,
-    })
+    )
 }
 
 pub(super) fn to_u8(c: [f32; 4]) -> [u8; 4] {

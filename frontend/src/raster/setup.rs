@@ -3,6 +3,7 @@
 //! screen coordinates, and binning into tiles.
 
 use super::*;
+use crate::{Material, Mesh};
 
 /// A vertex in clip space with its attributes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -197,189 +198,222 @@ pub(super) fn view_projection(scene: &Scene, aspect: f64) -> Result<[[f64; 4]; 4
             fov_y_deg,
             near,
             far,
-        } => {
-            let (n, f) = (f64::from(near), f64::from(far));
-            if !(n > 0.0 && f > n && f.is_finite()) {
-                return Err(bad(&format!(
-                    "near {near} and far {far}: expected 0 < near < far"
-                )));
-            }
-            let fov = f64::from(fov_y_deg);
-            if !(fov > 0.0 && fov < 180.0) {
-                return Err(bad(&format!(
-                    "fov_y_deg {fov_y_deg}: expected 0 to 180 degrees"
-                )));
-            }
-            let e = v64(eye);
-            let fw =
-                normalize(sub(v64(target), e)).ok_or_else(|| bad("eye and target coincide"))?;
-            let s = normalize(cross(fw, v64(up)))
-                .ok_or_else(|| bad("up is parallel to the view direction"))?;
-            let u = cross(s, fw);
-            let t = 1.0 / (fov.to_radians() / 2.0).tan();
-            let view = [
-                [s[0], s[1], s[2], -dot(s, e)],
-                [u[0], u[1], u[2], -dot(u, e)],
-                [-fw[0], -fw[1], -fw[2], dot(fw, e)],
-                [0.0, 0.0, 0.0, 1.0],
-            ];
-            let proj = [
-                [t / aspect, 0.0, 0.0, 0.0],
-                [0.0, t, 0.0, 0.0],
-                [0.0, 0.0, (f + n) / (n - f), 2.0 * f * n / (n - f)],
-                [0.0, 0.0, -1.0, 0.0],
-            ];
-            let mut m = [[0.0; 4]; 4];
-            for r in 0..4 {
-                for c in 0..4 {
-                    m[r][c] = (0..4).map(|k| proj[r][k] * view[k][c]).sum();
-                }
-            }
-            Ok(m)
-        }
+        } => perspective(eye, target, up, fov_y_deg, (near, far), aspect).map_err(|m| bad(&m)),
         Camera::Ortho {
             left,
             top,
             width,
             height,
-        } => {
-            let (l, t, w, h) = (
-                f64::from(left),
-                f64::from(top),
-                f64::from(width),
-                f64::from(height),
-            );
-            if !(w > 0.0 && h > 0.0 && w.is_finite() && h.is_finite()) {
-                return Err(bad(&format!(
-                    "ortho width {width} and height {height}: expected > 0"
-                )));
-            }
-            // z range of the scene: larger z is nearer (smaller depth).
-            let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
-            for m in &scene.meshes {
-                for p in &m.positions {
-                    zmin = zmin.min(f64::from(p[2]));
-                    zmax = zmax.max(f64::from(p[2]));
-                }
-            }
-            // zmax (nearest) -> ndc -0.9, zmin -> +0.9 (a margin, so
-            // rounding never puts a layer outside the near or far plane).
-            let span = if zmax > zmin { zmax - zmin } else { 1.0 };
-            let zref = if zmax > zmin { zmax } else { zmax + 0.5 };
-            Ok([
-                [2.0 / w, 0.0, 0.0, -2.0 * l / w - 1.0],
-                [0.0, -2.0 / h, 0.0, 2.0 * t / h + 1.0],
-                [0.0, 0.0, -1.8 / span, 1.8 * zref / span - 0.9],
-                [0.0, 0.0, 0.0, 1.0],
-            ])
+        } => ortho(scene, left, top, width, height).map_err(|m| bad(&m)),
+    }
+}
+
+/// An OpenGL-style look-at view and perspective projection.
+fn perspective(
+    eye: Vec3,
+    target: Vec3,
+    up: Vec3,
+    fov_y_deg: f32,
+    (near, far): (f32, f32),
+    aspect: f64,
+) -> Result<[[f64; 4]; 4], String> {
+    let (n, f) = (f64::from(near), f64::from(far));
+    if !(n > 0.0 && f > n && f.is_finite()) {
+        return Err(format!(
+            "near {near} and far {far}: expected 0 < near < far"
+        ));
+    }
+    let fov = f64::from(fov_y_deg);
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(format!("fov_y_deg {fov_y_deg}: expected 0 to 180 degrees"));
+    }
+    let e = v64(eye);
+    let fw = normalize(sub(v64(target), e)).ok_or("eye and target coincide")?;
+    let s = normalize(cross(fw, v64(up))).ok_or("up is parallel to the view direction")?;
+    let u = cross(s, fw);
+    let t = 1.0 / (fov.to_radians() / 2.0).tan();
+    let view = [
+        [s[0], s[1], s[2], -dot(s, e)],
+        [u[0], u[1], u[2], -dot(u, e)],
+        [-fw[0], -fw[1], -fw[2], dot(fw, e)],
+        [0.0, 0.0, 0.0, 1.0],
+    ];
+    let proj = [
+        [t / aspect, 0.0, 0.0, 0.0],
+        [0.0, t, 0.0, 0.0],
+        [0.0, 0.0, (f + n) / (n - f), 2.0 * f * n / (n - f)],
+        [0.0, 0.0, -1.0, 0.0],
+    ];
+    let mut m = [[0.0; 4]; 4];
+    for r in 0..4 {
+        for c in 0..4 {
+            m[r][c] = (0..4).map(|k| proj[r][k] * view[k][c]).sum();
         }
     }
+    Ok(m)
+}
+
+/// The orthographic camera's rectangle onto the frame, depth from the
+/// scene's z range (larger z nearer).
+fn ortho(
+    scene: &Scene,
+    left: f32,
+    top: f32,
+    width: f32,
+    height: f32,
+) -> Result<[[f64; 4]; 4], String> {
+    let (l, t, w, h) = (
+        f64::from(left),
+        f64::from(top),
+        f64::from(width),
+        f64::from(height),
+    );
+    if !(w > 0.0 && h > 0.0 && w.is_finite() && h.is_finite()) {
+        return Err(format!(
+            "ortho width {width} and height {height}: expected > 0"
+        ));
+    }
+    // z range of the scene: larger z is nearer (smaller depth).
+    let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for m in &scene.meshes {
+        for p in &m.positions {
+            zmin = zmin.min(f64::from(p[2]));
+            zmax = zmax.max(f64::from(p[2]));
+        }
+    }
+    // zmax (nearest) -> ndc -0.9, zmin -> +0.9 (a margin, so
+    // rounding never puts a layer outside the near or far plane).
+    let span = if zmax > zmin { zmax - zmin } else { 1.0 };
+    let zref = if zmax > zmin { zmax } else { zmax + 0.5 };
+    Ok([
+        [2.0 / w, 0.0, 0.0, -2.0 * l / w - 1.0],
+        [0.0, -2.0 / h, 0.0, 2.0 * t / h + 1.0],
+        [0.0, 0.0, -1.8 / span, 1.8 * zref / span - 0.9],
+        [0.0, 0.0, 0.0, 1.0],
+    ])
 }
 
 /// Checks the scene's references so the pipeline cannot index out of range.
 pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
-    let err = |m: String| Err(SceneError::in_file(&scene.name, m));
+    let err = |m: String| SceneError::in_file(&scene.name, m);
     for (i, t) in scene.textures.iter().enumerate() {
         if t.width == 0 || t.height == 0 || t.rgba.len() != t.width as usize * t.height as usize * 4
         {
-            return err(format!(
+            return Err(err(format!(
                 "texture {i} ({}): {}x{} with {} bytes (expected width x height x 4 > 0)",
                 t.name,
                 t.width,
                 t.height,
                 t.rgba.len()
-            ));
+            )));
         }
     }
     for (i, m) in scene.materials.iter().enumerate() {
-        if m.shader.is_empty() || m.shader.iter().all(|op| matches!(op, ShaderOp::Alu(0))) {
-            return err(format!(
-                "material {i} ({}) has an empty shader program",
-                m.name
-            ));
-        }
-        for op in &m.shader {
-            if let ShaderOp::Tex(s) = op {
-                if s.texture >= scene.textures.len() {
-                    return err(format!(
-                        "material {i} ({}) samples texture {} of {}",
-                        m.name,
-                        s.texture,
-                        scene.textures.len()
-                    ));
-                }
-                if s.uv_set > 1 {
-                    return err(format!(
-                        "material {i} ({}) uses UV set {} (expected 0 or 1)",
-                        m.name, s.uv_set
-                    ));
-                }
-            }
-        }
+        validate_material(scene, i, m).map_err(err)?;
     }
     for (i, m) in scene.meshes.iter().enumerate() {
-        let n = m.positions.len();
-        if m.material >= scene.materials.len() {
-            return err(format!(
-                "mesh {i} uses material {} of {}",
-                m.material,
-                scene.materials.len()
-            ));
-        }
-        if m.uv.len() != n {
-            return err(format!("mesh {i}: {} UVs for {n} positions", m.uv.len()));
-        }
-        match &m.uv2 {
-            Some(uv2) if uv2.len() != n => {
-                return err(format!(
-                    "mesh {i}: {} second UVs for {n} positions",
-                    uv2.len()
-                ))
+        validate_mesh(scene, i, m).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Material `i`: a program that does something, sampling textures that
+/// exist through UV set 0 or 1.
+fn validate_material(scene: &Scene, i: usize, m: &Material) -> Result<(), String> {
+    if m.shader.is_empty() || m.shader.iter().all(|op| matches!(op, ShaderOp::Alu(0))) {
+        return Err(format!(
+            "material {i} ({}) has an empty shader program",
+            m.name
+        ));
+    }
+    for op in &m.shader {
+        if let ShaderOp::Tex(s) = op {
+            if s.texture >= scene.textures.len() {
+                return Err(format!(
+                    "material {i} ({}) samples texture {} of {}",
+                    m.name,
+                    s.texture,
+                    scene.textures.len()
+                ));
             }
-            None => {
-                let needs = scene.materials[m.material]
-                    .shader
-                    .iter()
-                    .any(|op| matches!(op, ShaderOp::Tex(s) if s.uv_set == 1));
-                if needs {
-                    return err(format!(
-                        "mesh {i}: material {} samples UV set 1 but the mesh has no second UVs",
-                        scene.materials[m.material].name
-                    ));
-                }
+            if s.uv_set > 1 {
+                return Err(format!(
+                    "material {i} ({}) uses UV set {} (expected 0 or 1)",
+                    m.name, s.uv_set
+                ));
             }
-            _ => {}
-        }
-        if m.indices.len() % 3 != 0 {
-            return err(format!(
-                "mesh {i}: {} indices (expected a multiple of 3)",
-                m.indices.len()
-            ));
-        }
-        if let Some(&bad) = m.indices.iter().find(|&&x| x as usize >= n) {
-            return err(format!("mesh {i}: index {bad} of {n} vertices"));
-        }
-        let drawn: u64 = m.draws.iter().map(|d| u64::from(d.triangles)).sum();
-        if !m.draws.is_empty() && drawn != m.indices.len() as u64 / 3 {
-            return err(format!(
-                "mesh {i}: its draw calls cover {drawn} triangles of {}",
-                m.indices.len() / 3
-            ));
         }
     }
     Ok(())
 }
 
-/// Builds the setup of one screen triangle; `None` if degenerate or culled.
-pub(super) fn setup(
-    v: &[ClipVert; 3],
-    width: u32,
-    height: u32,
-    material: u32,
-    sort_w: f64,
-    cull_back: bool,
-    stats: &mut RasterStats,
-) -> Option<Setup> {
+/// Mesh `i`: a material that exists, UVs for every position (second UVs
+/// where the material samples them), whole triangles of vertices that
+/// exist, draw calls covering every triangle.
+fn validate_mesh(scene: &Scene, i: usize, m: &Mesh) -> Result<(), String> {
+    let n = m.positions.len();
+    if m.material >= scene.materials.len() {
+        return Err(format!(
+            "mesh {i} uses material {} of {}",
+            m.material,
+            scene.materials.len()
+        ));
+    }
+    if m.uv.len() != n {
+        return Err(format!("mesh {i}: {} UVs for {n} positions", m.uv.len()));
+    }
+    match &m.uv2 {
+        Some(uv2) if uv2.len() != n => {
+            return Err(format!(
+                "mesh {i}: {} second UVs for {n} positions",
+                uv2.len()
+            ))
+        }
+        None => {
+            let needs = scene.materials[m.material]
+                .shader
+                .iter()
+                .any(|op| matches!(op, ShaderOp::Tex(s) if s.uv_set == 1));
+            if needs {
+                return Err(format!(
+                    "mesh {i}: material {} samples UV set 1 but the mesh has no second UVs",
+                    scene.materials[m.material].name
+                ));
+            }
+        }
+        _ => {}
+    }
+    if !m.indices.len().is_multiple_of(3) {
+        return Err(format!(
+            "mesh {i}: {} indices (expected a multiple of 3)",
+            m.indices.len()
+        ));
+    }
+    if let Some(&bad) = m.indices.iter().find(|&&x| x as usize >= n) {
+        return Err(format!("mesh {i}: index {bad} of {n} vertices"));
+    }
+    let drawn: u64 = m.draws.iter().map(|d| u64::from(d.triangles)).sum();
+    if !m.draws.is_empty() && drawn != m.indices.len() as u64 / 3 {
+        return Err(format!(
+            "mesh {i}: its draw calls cover {drawn} triangles of {}",
+            m.indices.len() / 3
+        ));
+    }
+    Ok(())
+}
+
+/// A triangle's vertices in screen space: positions snapped to 1/256
+/// pixel (x, y) and the attributes (depth, 1/w, u/w, v/w, u2/w, v2/w).
+struct Snapped {
+    sx: [i64; 3],
+    sy: [i64; 3],
+    attrs: [[f64; 6]; 3],
+}
+
+/// Project and snap a clip-space triangle; `None` when a vertex does not
+/// land on a finite screen position.
+#[inline]
+fn snap(v: &[ClipVert; 3], width: u32, height: u32) -> Option<Snapped> {
     let (wf, hf) = (f64::from(width), f64::from(height));
     let mut sx = [0i64; 3];
     let mut sy = [0i64; 3];
@@ -391,7 +425,6 @@ pub(super) fn setup(
         let x = (nx * 0.5 + 0.5) * wf;
         let y = (0.5 - ny * 0.5) * hf;
         if !(x.is_finite() && y.is_finite() && inv_w.is_finite()) {
-            stats.degenerate += 1;
             return None;
         }
         sx[i] = (x * SUB as f64).round() as i64;
@@ -405,19 +438,13 @@ pub(super) fn setup(
             v[i].uv2[1] * inv_w,
         ];
     }
-    let area2 = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sx[2] - sx[0]) * (sy[1] - sy[0]);
-    if area2 == 0 {
-        stats.degenerate += 1;
-        return None;
-    }
-    // Screen y grows down: counter-clockwise in NDC is negative here.
-    if cull_back && area2 > 0 {
-        stats.culled_back_faces += 1;
-        return None;
-    }
-    let order: [usize; 3] = if area2 > 0 { [0, 1, 2] } else { [0, 2, 1] };
-    let px = order.map(|i| sx[i]);
-    let py = order.map(|i| sy[i]);
+    Some(Snapped { sx, sy, attrs })
+}
+
+/// The edge functions of a triangle wound clockwise on screen (`px`,
+/// `py`), with the top-left fill rule folded into their constants.
+#[inline]
+fn edge_functions(px: [i64; 3], py: [i64; 3]) -> [[i64; 3]; 3] {
     let mut edges = [[0i64; 3]; 3];
     for (a, edge) in edges.iter_mut().enumerate() {
         let b = (a + 1) % 3;
@@ -430,20 +457,14 @@ pub(super) fn setup(
         let top_left = ea > 0 || (ea == 0 && eb > 0);
         *edge = [ea, eb, ec - i64::from(!top_left)];
     }
-    let xmin = *px.iter().min().expect("3");
-    let xmax = *px.iter().max().expect("3");
-    let ymin = *py.iter().min().expect("3");
-    let ymax = *py.iter().max().expect("3");
-    // Pixel i has its centre at (i + 0.5): covered range of centres.
-    let lo = |v: i64| ((v - SUB / 2 + SUB - 1).div_euclid(SUB)).max(0);
-    let hi = |v: i64, lim: u32| ((v - SUB / 2).div_euclid(SUB) + 1).min(i64::from(lim));
-    let bbox = [lo(xmin), hi(xmax, width), lo(ymin), hi(ymax, height)];
-    if bbox[0] >= bbox[1] || bbox[2] >= bbox[3] {
-        // Covers no pixel centre of the frame.
-        stats.culled_outside += 1;
-        return None;
-    }
-    // Attribute planes over the snapped positions, in pixels.
+    edges
+}
+
+/// The attribute planes over the snapped positions, in pixels: per
+/// attribute (value at the origin, d/dx, d/dy), and the origin (vertex 0).
+#[inline]
+fn attribute_planes(t: &Snapped) -> ([[f64; 3]; 6], [f64; 2]) {
+    let (sx, sy, attrs) = (&t.sx, &t.sy, &t.attrs);
     let fx = |i: usize| sx[i] as f64 / SUB as f64;
     let fy = |i: usize| sy[i] as f64 / SUB as f64;
     let (x0, y0) = (fx(0), fy(0));
@@ -458,7 +479,53 @@ pub(super) fn setup(
         );
         *plane = [a0, (a1 * y2 - a2 * y1) / det, (a2 * x1 - a1 * x2) / det];
     }
-    let min_inv_w = attrs.iter().map(|a| a[1]).fold(f64::INFINITY, f64::min);
+    (planes, [x0, y0])
+}
+
+/// Builds the setup of one screen triangle; `None` if degenerate or culled.
+pub(super) fn setup(
+    v: &[ClipVert; 3],
+    width: u32,
+    height: u32,
+    material: u32,
+    sort_w: f64,
+    cull_back: bool,
+    stats: &mut RasterStats,
+) -> Option<Setup> {
+    let Some(t) = snap(v, width, height) else {
+        stats.degenerate += 1;
+        return None;
+    };
+    let (sx, sy) = (t.sx, t.sy);
+    let area2 = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sx[2] - sx[0]) * (sy[1] - sy[0]);
+    if area2 == 0 {
+        stats.degenerate += 1;
+        return None;
+    }
+    // Screen y grows down: counter-clockwise in NDC is negative here.
+    if cull_back && area2 > 0 {
+        stats.culled_back_faces += 1;
+        return None;
+    }
+    let order: [usize; 3] = if area2 > 0 { [0, 1, 2] } else { [0, 2, 1] };
+    let px = order.map(|i| sx[i]);
+    let py = order.map(|i| sy[i]);
+    let edges = edge_functions(px, py);
+    let xmin = *px.iter().min().expect("3");
+    let xmax = *px.iter().max().expect("3");
+    let ymin = *py.iter().min().expect("3");
+    let ymax = *py.iter().max().expect("3");
+    // Pixel i has its centre at (i + 0.5): covered range of centres.
+    let lo = |v: i64| ((v - SUB / 2 + SUB - 1).div_euclid(SUB)).max(0);
+    let hi = |v: i64, lim: u32| ((v - SUB / 2).div_euclid(SUB) + 1).min(i64::from(lim));
+    let bbox = [lo(xmin), hi(xmax, width), lo(ymin), hi(ymax, height)];
+    if bbox[0] >= bbox[1] || bbox[2] >= bbox[3] {
+        // Covers no pixel centre of the frame.
+        stats.culled_outside += 1;
+        return None;
+    }
+    let (planes, origin) = attribute_planes(&t);
+    let min_inv_w = t.attrs.iter().map(|a| a[1]).fold(f64::INFINITY, f64::min);
     Some(Setup {
         edges,
         bbox: [
@@ -468,7 +535,7 @@ pub(super) fn setup(
             bbox[3] as u32,
         ],
         planes,
-        origin: [x0, y0],
+        origin,
         min_inv_w,
         material,
         sort_w,
@@ -525,6 +592,68 @@ impl ClipCache {
     }
 }
 
+/// Whether a clip-space triangle lies entirely outside one plane of the
+/// real frustum (or has a coordinate that is not finite).
+#[inline]
+fn outside_frustum(p: &[[f64; 4]; 3]) -> bool {
+    let outside = |k: usize, sgn: f64| p.iter().all(|q| sgn * q[k] > q[3]);
+    outside(0, 1.0)
+        || outside(0, -1.0)
+        || outside(1, 1.0)
+        || outside(1, -1.0)
+        || outside(2, 1.0)
+        || outside(2, -1.0)
+        || p.iter().any(|q| q.iter().any(|c| !c.is_finite()))
+}
+
+/// The set-up triangles so far, opaque and alpha-tested ones apart from
+/// the alpha-blended ones, and the clipper's buffers.
+struct SetupLists<'a> {
+    width: u32,
+    height: u32,
+    cull_back: bool,
+    stats: &'a mut RasterStats,
+    opaque: Vec<Setup>,
+    blended: Vec<Setup>,
+    poly: Vec<ClipVert>,
+    tmp: Vec<ClipVert>,
+}
+
+impl SetupLists<'_> {
+    /// Clip triangle `tri` of `mesh` (clip-space positions `p`), then set
+    /// up the triangles of its fan.
+    #[inline]
+    fn triangle(&mut self, mesh: &Mesh, blend: bool, tri: [ClipVert; 3], p: &[[f64; 4]; 3]) {
+        let sort_w = (p[0][3] + p[1][3] + p[2][3]) / 3.0;
+        let cut = clip_triangle(tri, &mut self.poly, &mut self.tmp);
+        if cut {
+            self.stats.clipped += 1;
+        }
+        if self.poly.len() < 3 {
+            self.stats.culled_outside += 1;
+            return;
+        }
+        for k in 1..self.poly.len() - 1 {
+            let tri = [self.poly[0], self.poly[k], self.poly[k + 1]];
+            if let Some(s) = setup(
+                &tri,
+                self.width,
+                self.height,
+                mesh.material as u32,
+                sort_w,
+                self.cull_back,
+                self.stats,
+            ) {
+                if blend {
+                    self.blended.push(s);
+                } else {
+                    self.opaque.push(s);
+                }
+            }
+        }
+    }
+}
+
 /// Geometry and tiling: every triangle of the `runs` (the draw order,
 /// [`runs`]) set up, in that order, the alpha-blended ones last.
 pub(super) fn geometry(
@@ -536,9 +665,16 @@ pub(super) fn geometry(
     stats: &mut RasterStats,
 ) -> Result<Vec<Setup>, SceneError> {
     let m = view_projection(scene, f64::from(width) / f64::from(height))?;
-    let mut opaque = Vec::new();
-    let mut blended = Vec::new();
-    let (mut poly, mut tmp) = (Vec::with_capacity(12), Vec::with_capacity(12));
+    let mut out = SetupLists {
+        width,
+        height,
+        cull_back: opts.cull_back_faces,
+        stats,
+        opaque: Vec::new(),
+        blended: Vec::new(),
+        poly: Vec::with_capacity(12),
+        tmp: Vec::with_capacity(12),
+    };
     let mut clips = ClipCache::new(scene.meshes.len(), runs);
     for (i, run) in runs.iter().enumerate() {
         let mesh = &scene.meshes[run.mesh];
@@ -546,23 +682,15 @@ pub(super) fn geometry(
         let blend = material.blend == Blend::AlphaBlend;
         let clip = clips.positions(&m, scene, run.mesh);
         let tris = run.count as u64;
-        stats.primitives += tris;
-        stats.materials[mesh.material].triangles += tris;
+        out.stats.primitives += tris;
+        out.stats.materials[mesh.material].triangles += tris;
         let indices = &mesh.indices[run.first * 3..(run.first + run.count) * 3];
         for t in indices.chunks_exact(3) {
             let idx = [t[0] as usize, t[1] as usize, t[2] as usize];
             let p = [clip[idx[0]], clip[idx[1]], clip[idx[2]]];
             // Trivial reject against the real frustum.
-            let outside = |k: usize, sgn: f64| p.iter().all(|q| sgn * q[k] > q[3]);
-            if outside(0, 1.0)
-                || outside(0, -1.0)
-                || outside(1, 1.0)
-                || outside(1, -1.0)
-                || outside(2, 1.0)
-                || outside(2, -1.0)
-                || p.iter().any(|q| q.iter().any(|c| !c.is_finite()))
-            {
-                stats.culled_outside += 1;
+            if outside_frustum(&p) {
+                out.stats.culled_outside += 1;
                 continue;
             }
             let vert = |k: usize| ClipVert {
@@ -572,37 +700,16 @@ pub(super) fn geometry(
                     [f64::from(u[idx[k]][0]), f64::from(u[idx[k]][1])]
                 }),
             };
-            let tri = [vert(0), vert(1), vert(2)];
-            let sort_w = (p[0][3] + p[1][3] + p[2][3]) / 3.0;
-            let cut = clip_triangle(tri, &mut poly, &mut tmp);
-            if cut {
-                stats.clipped += 1;
-            }
-            if poly.len() < 3 {
-                stats.culled_outside += 1;
-                continue;
-            }
-            for k in 1..poly.len() - 1 {
-                let tri = [poly[0], poly[k], poly[k + 1]];
-                if let Some(s) = setup(
-                    &tri,
-                    width,
-                    height,
-                    mesh.material as u32,
-                    sort_w,
-                    opts.cull_back_faces,
-                    stats,
-                ) {
-                    if blend {
-                        blended.push(s);
-                    } else {
-                        opaque.push(s);
-                    }
-                }
-            }
+            out.triangle(mesh, blend, [vert(0), vert(1), vert(2)], &p);
         }
         clips.release(i, run.mesh);
     }
+    let SetupLists {
+        mut opaque,
+        mut blended,
+        stats,
+        ..
+    } = out;
     if matches!(scene.camera, Camera::Perspective { .. }) {
         // Back to front; sort_by is stable, so ties keep submission order.
         blended.sort_by(|a, b| b.sort_w.total_cmp(&a.sort_w));

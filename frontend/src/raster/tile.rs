@@ -110,6 +110,32 @@ impl TileBuf {
         }
     }
 
+    /// Clear the buffers and counts for the next tile.
+    fn reset(&mut self) {
+        self.depth.fill(1.0);
+        self.colour.fill(CLEAR);
+        self.pending.fill(0);
+        self.lambdas.clear();
+        self.frags.clear();
+        self.ranges.clear();
+        self.pool.clear();
+        self.covered = 0;
+        self.rejected = 0;
+        self.rejected_hiz = 0;
+        self.rej_since = 0;
+        self.coarse.clear();
+        self.pixels = 0;
+        self.per_material.iter_mut().for_each(|c| *c = [0; 3]);
+    }
+
+    /// Count a quad Early-Z rejected (of material `mc`).
+    #[inline]
+    fn reject(&mut self, mc: usize, n: u64) {
+        self.rejected += n;
+        self.rej_since = self.rej_since.saturating_add(n as u32);
+        self.per_material[mc][1] += n;
+    }
+
     /// Shades the deferred pixel `at`, if any, into `colour`.
     #[inline]
     pub(super) fn resolve(&mut self, ctx: &TileCtx, at: usize) {
@@ -125,224 +151,331 @@ impl TileBuf {
     }
 }
 
+/// The pixels of one tile inside the frame: from (`ox`, `oy`) to
+/// (`xend`, `yend`) exclusive, `tw` x `th` of the `t` x `t` tile.
+#[derive(Clone, Copy, Debug)]
+struct TileArea {
+    t: u32,
+    ox: u32,
+    oy: u32,
+    xend: u32,
+    yend: u32,
+    tw: u32,
+    th: u32,
+}
+
+impl TileArea {
+    fn new(ctx: &TileCtx, tx: u32, ty: u32) -> Self {
+        let t = ctx.tile;
+        let (ox, oy) = (tx * t, ty * t);
+        let (tw, th) = (t.min(ctx.width - ox), t.min(ctx.height - oy));
+        TileArea {
+            t,
+            ox,
+            oy,
+            xend: ox + tw,
+            yend: oy + th,
+            tw,
+            th,
+        }
+    }
+
+    /// The quads of a triangle inside the tile: (x0, x1, y0, y1), x0 and
+    /// y0 aligned to quads.
+    #[inline]
+    fn span(&self, s: &Setup) -> (u32, u32, u32, u32) {
+        (
+            s.bbox[0].max(self.ox) & !1,
+            s.bbox[1].min(self.xend),
+            s.bbox[2].max(self.oy) & !1,
+            s.bbox[3].min(self.yend),
+        )
+    }
+
+    /// Index of frame pixel (`px`, `py`) in the tile's buffers.
+    #[inline]
+    fn at(&self, px: u32, py: u32) -> usize {
+        ((py - self.oy) * self.t + px - self.ox) as usize
+    }
+}
+
 /// Rasterize, early-Z test, texture and shade the triangles `list` of tile
 /// (tx, ty) into `b`.
 pub(super) fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
-    let t = ctx.tile;
-    let (ox, oy) = (tx * t, ty * t);
-    let (tw, th) = (t.min(ctx.width - ox), t.min(ctx.height - oy));
-    let (xend, yend) = (ox + tw, oy + th);
-    let side = t / 2;
-    b.depth.fill(1.0);
-    b.colour.fill(CLEAR);
-    b.pending.fill(0);
-    b.lambdas.clear();
-    b.frags.clear();
-    b.ranges.clear();
-    b.pool.clear();
-    b.covered = 0;
-    b.rejected = 0;
-    b.rejected_hiz = 0;
-    b.rej_since = 0;
-    b.coarse.clear();
-    b.pixels = 0;
-    b.per_material.iter_mut().for_each(|c| *c = [0; 3]);
-    // The quads of a triangle inside the tile: (x0, x1, y0, y1), x0 and
-    // y0 aligned to quads.
-    let span = |s: &Setup| {
-        (
-            s.bbox[0].max(ox) & !1,
-            s.bbox[1].min(xend),
-            s.bbox[2].max(oy) & !1,
-            s.bbox[3].min(yend),
-        )
-    };
+    let area = TileArea::new(ctx, tx, ty);
+    b.reset();
     if ctx.prepass {
-        // Depth pre-pass (hidden-surface removal): the nearest opaque depth
-        // of every pixel first, so only visible fragments survive early-Z.
-        for &si in list {
-            let s = &ctx.setups[si as usize];
-            if ctx.mats[s.material as usize].blend != Blend::Opaque {
-                continue;
-            }
-            let (x0, x1, y0, y1) = span(s);
-            for qy in (y0..y1).step_by(2) {
-                let (rx0, rx1) = row_span(s, qy, x0, x1);
-                for qx in (rx0..rx1).step_by(2) {
-                    let mask = coverage(s, qx, qy, xend, yend);
-                    for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
-                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
-                        let z = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
-                        let at = ((py - oy) * t + px - ox) as usize;
-                        b.depth[at] = b.depth[at].min(z);
-                    }
-                }
-            }
-        }
-    }
-    if ctx.prepass {
+        depth_prepass(ctx, &area, list, b);
         b.coarse.invalidate();
     }
     for &si in list {
+        raster_triangle(ctx, &area, &ctx.setups[si as usize], b);
+    }
+    if ctx.colour {
+        for ly in 0..area.th {
+            for lx in 0..area.tw {
+                b.resolve(ctx, (ly * area.t + lx) as usize);
+            }
+        }
+    }
+}
+
+/// Depth pre-pass (hidden-surface removal): the nearest opaque depth of
+/// every pixel first, so only visible fragments survive early-Z.
+fn depth_prepass(ctx: &TileCtx, a: &TileArea, list: &[u32], b: &mut TileBuf) {
+    for &si in list {
         let s = &ctx.setups[si as usize];
-        let mat = &ctx.mats[s.material as usize];
-        let mc = s.material as usize;
-        let (x0, x1, y0, y1) = span(s);
+        if ctx.mats[s.material as usize].blend != Blend::Opaque {
+            continue;
+        }
+        let (x0, x1, y0, y1) = a.span(s);
         for qy in (y0..y1).step_by(2) {
-            let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
-            let (rx0, rx1) = span_of(&cover, x0, x1);
-            // The row in segments of one coarse-depth block each.
-            let mut xa = rx0;
-            while xa < rx1 {
-                let xb =
-                    (ox + ((xa - ox) / CoarseDepth::BLOCK_W + 1) * CoarseDepth::BLOCK_W).min(rx1);
-                let seg = (xa, xb);
-                xa = xb;
-                if ctx.hiz {
-                    // Hierarchical Z: the segment's pixels span columns
-                    // seg.0..xb (the last quad's second pixel at xb when
-                    // xb is odd) and rows qy, qy + 1, within the tile.
-                    let lb =
-                        depth_lower_bound(s, seg.0, xb.min(xend - 1), qy, (qy + 1).min(yend - 1));
-                    if b.coarse.hidden(&b.depth, seg.0 - ox, qy - oy, lb) {
-                        let n = covered_quads(&cover, qy, seg.0, xb, xend, yend);
-                        b.covered += n;
-                        b.rejected += n;
-                        b.rejected_hiz += n;
-                        b.rej_since = b.rej_since.saturating_add(n as u32);
-                        b.per_material[mc][1] += n;
-                        continue;
-                    }
-                }
-                for qx in (seg.0..seg.1).step_by(2) {
-                    let mask = coverage(s, qx, qy, xend, yend);
-                    if mask == 0 {
-                        continue;
-                    }
-                    b.covered += 1;
-                    // Early-Z on the covered pixels.
-                    let mut z = [0.0f32; 4];
-                    let mut live = 0u8;
-                    for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
-                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
-                        z[i as usize] = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
-                        if z[i as usize] <= b.depth[((py - oy) * t + px - ox) as usize] {
-                            live |= 1 << i;
-                        }
-                    }
-                    if live == 0 {
-                        b.rejected += 1;
-                        b.rej_since = b.rej_since.saturating_add(1);
-                        b.per_material[mc][1] += 1;
-                        continue;
-                    }
-                    let npix = u64::from(live.count_ones());
-                    b.pixels += npix;
-                    b.per_material[mc][0] += 1;
-                    b.per_material[mc][2] += npix;
-                    // UVs at all 4 pixel centres (helper pixels included).
-                    let mut uv = [[0.0f32; 2]; 4];
-                    let mut uv2 = [[0.0f32; 2]; 4];
-                    // (uv2 only when a sample reads it.)
-                    let with_uv2 = mat.tex.iter().any(|smp| smp.uv_set == 1);
-                    for i in 0..4u32 {
-                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
-                        let (x, y) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
-                        if with_uv2 {
-                            (uv[i as usize], uv2[i as usize]) = s.uvs_at(x, y);
-                        } else {
-                            uv[i as usize] = s.uv_at(x, y);
-                        }
-                    }
-                    // Texture instructions: the quad's blocks.
-                    let first = b.ranges.len() as u32;
-                    let mut lambdas = [0.0f32; 8];
-                    // An alpha test reads the first sample's alpha at the
-                    // texels its blocks were found from.
-                    let alpha_tested = mat.blend == Blend::AlphaTest;
-                    let mut texels = None;
-                    for (k, smp) in mat.tex.iter().enumerate() {
-                        let set = if smp.uv_set == 1 { &uv2 } else { &uv };
-                        let lambda = if k == 0 && alpha_tested {
-                            let q = texels.insert(QuadTexels::default());
-                            ctx.textures
-                                .quad_blocks_texels(smp, *set, &mut b.scratch, q)
-                        } else {
-                            ctx.textures.quad_blocks_lambda(smp, *set, &mut b.scratch)
-                        };
-                        if k < lambdas.len() {
-                            lambdas[k] = lambda;
-                        }
-                        // Trilinear in the trace: the sample filtered two mip
-                        // levels (a trilinear sample that magnifies or sits
-                        // at the last level reads one level: one bilinear
-                        // pass).
-                        let tri = ctx.textures.reads_two_levels(smp, lambda);
-                        b.ranges
-                            .push((b.pool.len() as u32, b.scratch.len() as u32, tri));
-                        b.pool.extend_from_slice(&b.scratch);
-                    }
-                    let frag = b.frags.len() as u32;
-                    b.frags.push(Frag {
-                        pos: ((qy - oy) / 2) * side + (qx - ox) / 2,
-                        material: s.material,
-                        range: first,
-                        rej: std::mem::take(&mut b.rej_since),
-                    });
-                    if ctx.colour {
-                        b.lambdas.push(lambdas);
-                    }
-                    // Depth writes and colour. An opaque or alpha-tested pixel's
-                    // colour is deferred: only the last one written to a pixel
-                    // shows, so it is shaded once, when a blended fragment needs
-                    // it as the destination or at the end of the tile (same
-                    // inputs, same colour as shading every fragment).
-                    for i in (0..4u32).filter(|i| live & (1 << i) != 0) {
-                        let (px, py) = (qx + (i & 1), qy + (i >> 1));
-                        let at = ((py - oy) * t + px - ox) as usize;
-                        let k = i as usize;
-                        let write = match mat.blend {
-                            Blend::Opaque => true,
-                            Blend::AlphaTest => {
-                                // Without texture, alpha 1 (as `shade`).
-                                texels
-                                    .as_ref()
-                                    .map_or(1.0, |q| ctx.textures.quad_alpha(q, k))
-                                    >= 0.5
-                            }
-                            Blend::AlphaBlend => {
-                                if ctx.colour {
-                                    b.resolve(ctx, at);
-                                    let c = shade(ctx.textures, mat, &uv[k], &uv2[k], &lambdas);
-                                    let d = b.colour[at];
-                                    let a = c[3];
-                                    b.colour[at] = [
-                                        c[0] * a + d[0] * (1.0 - a),
-                                        c[1] * a + d[1] * (1.0 - a),
-                                        c[2] * a + d[2] * (1.0 - a),
-                                        1.0,
-                                    ];
-                                }
-                                false
-                            }
-                        };
-                        if write {
-                            b.depth[at] = z[k];
-                            b.coarse.wrote(px - ox, py - oy);
-                            if ctx.colour {
-                                b.pending[at] = frag + 1;
-                                b.pending_uv[at] = [uv[k], uv2[k]];
-                            }
-                        }
-                    }
+            let (rx0, rx1) = row_span(s, qy, x0, x1);
+            for qx in (rx0..rx1).step_by(2) {
+                let mask = coverage(s, qx, qy, a.xend, a.yend);
+                for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
+                    let (px, py) = (qx + (i & 1), qy + (i >> 1));
+                    let z = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
+                    let at = a.at(px, py);
+                    b.depth[at] = b.depth[at].min(z);
                 }
             }
         }
     }
+}
+
+/// Rasterize one triangle into the tile: its quad rows, each in segments
+/// of one coarse-depth block, a segment the coarse depth hides rejected
+/// whole, every other covered quad tested and shaded by [`raster_quad`].
+#[inline]
+fn raster_triangle(ctx: &TileCtx, a: &TileArea, s: &Setup, b: &mut TileBuf) {
+    let mat = &ctx.mats[s.material as usize];
+    let (x0, x1, y0, y1) = a.span(s);
+    for qy in (y0..y1).step_by(2) {
+        let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
+        let (rx0, rx1) = span_of(&cover, x0, x1);
+        // The row in segments of one coarse-depth block each.
+        let mut xa = rx0;
+        while xa < rx1 {
+            let xb =
+                (a.ox + ((xa - a.ox) / CoarseDepth::BLOCK_W + 1) * CoarseDepth::BLOCK_W).min(rx1);
+            let seg = (xa, xb);
+            xa = xb;
+            if ctx.hiz && coarse_reject(a, s, &cover, qy, seg, b) {
+                continue;
+            }
+            for qx in (seg.0..seg.1).step_by(2) {
+                let mask = coverage(s, qx, qy, a.xend, a.yend);
+                if mask != 0 {
+                    raster_quad(ctx, a, s, mat, (qx, qy), mask, b);
+                }
+            }
+        }
+    }
+}
+
+/// Hierarchical Z: whether the coarse depth hides the quads of segment
+/// `seg` of quad row `qy` (of coverage `cover`); if so they are counted,
+/// covered and rejected.
+#[inline]
+fn coarse_reject(
+    a: &TileArea,
+    s: &Setup,
+    cover: &[(i64, i64); 2],
+    qy: u32,
+    seg: (u32, u32),
+    b: &mut TileBuf,
+) -> bool {
+    let (xa, xb) = seg;
+    // The segment's pixels span columns xa..xb (the last quad's second
+    // pixel at xb when xb is odd) and rows qy, qy + 1, within the tile.
+    let lb = depth_lower_bound(s, xa, xb.min(a.xend - 1), qy, (qy + 1).min(a.yend - 1));
+    if !b.coarse.hidden(&b.depth, xa - a.ox, qy - a.oy, lb) {
+        return false;
+    }
+    let n = covered_quads(cover, qy, xa, xb, a.xend, a.yend);
+    b.covered += n;
+    b.rejected_hiz += n;
+    b.reject(s.material as usize, n);
+    true
+}
+
+/// A fragment that survived early-Z: its quad, the pixels that passed
+/// (`live`, with their depths), the UVs at the 4 pixel centres, each
+/// texture instruction's level of detail and, for an alpha test, the
+/// texels of the first one.
+/// (References, so nothing large is copied per quad.)
+struct Fragment<'f> {
+    qx: u32,
+    qy: u32,
+    live: u8,
+    z: &'f [f32; 4],
+    uv: &'f [[f32; 2]; 4],
+    uv2: &'f [[f32; 2]; 4],
+    lambdas: &'f [f32; 8],
+    texels: Option<&'f QuadTexels>,
+    /// Its index in the tile's fragments.
+    index: u32,
+}
+
+/// The quad at (`qx`, `qy`) of triangle `s`, whose pixels `mask` covers:
+/// early-Z, then (if a pixel survives) its texture blocks, its fragment
+/// and its pixels' depth and colour.
+#[inline]
+fn raster_quad(
+    ctx: &TileCtx,
+    a: &TileArea,
+    s: &Setup,
+    mat: &MatInfo,
+    (qx, qy): (u32, u32),
+    mask: u8,
+    b: &mut TileBuf,
+) {
+    let mc = s.material as usize;
+    b.covered += 1;
+    // Early-Z on the covered pixels.
+    let mut z = [0.0f32; 4];
+    let mut live = 0u8;
+    for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
+        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+        z[i as usize] = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
+        if z[i as usize] <= b.depth[a.at(px, py)] {
+            live |= 1 << i;
+        }
+    }
+    if live == 0 {
+        b.reject(mc, 1);
+        return;
+    }
+    let npix = u64::from(live.count_ones());
+    b.pixels += npix;
+    b.per_material[mc][0] += 1;
+    b.per_material[mc][2] += npix;
+    let (uv, uv2) = quad_uvs(s, mat, qx, qy);
+    let first = b.ranges.len() as u32;
+    let mut texels = None;
+    let lambdas = texture_blocks(ctx, mat, &uv, &uv2, &mut texels, b);
+    let index = b.frags.len() as u32;
+    b.frags.push(Frag {
+        pos: ((qy - a.oy) / 2) * (a.t / 2) + (qx - a.ox) / 2,
+        material: s.material,
+        range: first,
+        rej: std::mem::take(&mut b.rej_since),
+    });
     if ctx.colour {
-        for ly in 0..th {
-            for lx in 0..tw {
-                b.resolve(ctx, (ly * t + lx) as usize);
+        b.lambdas.push(lambdas);
+    }
+    let f = Fragment {
+        qx,
+        qy,
+        live,
+        z: &z,
+        uv: &uv,
+        uv2: &uv2,
+        lambdas: &lambdas,
+        texels: texels.as_ref(),
+        index,
+    };
+    write_pixels(ctx, a, mat, &f, b);
+}
+
+/// UVs at all 4 pixel centres of quad (`qx`, `qy`), helper pixels
+/// included (the second set only when a sample reads it).
+#[inline]
+fn quad_uvs(s: &Setup, mat: &MatInfo, qx: u32, qy: u32) -> ([[f32; 2]; 4], [[f32; 2]; 4]) {
+    let mut uv = [[0.0f32; 2]; 4];
+    let mut uv2 = [[0.0f32; 2]; 4];
+    let with_uv2 = mat.tex.iter().any(|smp| smp.uv_set == 1);
+    for i in 0..4u32 {
+        let (px, py) = (qx + (i & 1), qy + (i >> 1));
+        let (x, y) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+        if with_uv2 {
+            (uv[i as usize], uv2[i as usize]) = s.uvs_at(x, y);
+        } else {
+            uv[i as usize] = s.uv_at(x, y);
+        }
+    }
+    (uv, uv2)
+}
+
+/// The quad's texture instructions: each one's blocks appended to the
+/// tile's pool (with whether it read two mip levels), and its level of
+/// detail; an alpha test also keeps in `texels` the texels its first
+/// sample's blocks were found from (their alpha decides the test).
+#[inline]
+fn texture_blocks(
+    ctx: &TileCtx,
+    mat: &MatInfo,
+    uv: &[[f32; 2]; 4],
+    uv2: &[[f32; 2]; 4],
+    texels: &mut Option<QuadTexels>,
+    b: &mut TileBuf,
+) -> [f32; 8] {
+    let mut lambdas = [0.0f32; 8];
+    let alpha_tested = mat.blend == Blend::AlphaTest;
+    for (k, smp) in mat.tex.iter().enumerate() {
+        let set = if smp.uv_set == 1 { uv2 } else { uv };
+        let lambda = if k == 0 && alpha_tested {
+            let q = texels.insert(QuadTexels::default());
+            ctx.textures
+                .quad_blocks_texels(smp, *set, &mut b.scratch, q)
+        } else {
+            ctx.textures.quad_blocks_lambda(smp, *set, &mut b.scratch)
+        };
+        if k < lambdas.len() {
+            lambdas[k] = lambda;
+        }
+        // Trilinear in the trace: the sample filtered two mip levels (a
+        // trilinear sample that magnifies or sits at the last level reads
+        // one level: one bilinear pass).
+        let tri = ctx.textures.reads_two_levels(smp, lambda);
+        b.ranges
+            .push((b.pool.len() as u32, b.scratch.len() as u32, tri));
+        b.pool.extend_from_slice(&b.scratch);
+    }
+    lambdas
+}
+
+/// Depth writes and colour of a fragment's live pixels. An opaque or
+/// alpha-tested pixel's colour is deferred: only the last one written to a
+/// pixel shows, so it is shaded once, when a blended fragment needs it as
+/// the destination or at the end of the tile (same inputs, same colour as
+/// shading every fragment). A blended pixel is shaded over what is there
+/// and writes no depth.
+#[inline]
+fn write_pixels(ctx: &TileCtx, a: &TileArea, mat: &MatInfo, f: &Fragment, b: &mut TileBuf) {
+    for i in (0..4u32).filter(|i| f.live & (1 << i) != 0) {
+        let (px, py) = (f.qx + (i & 1), f.qy + (i >> 1));
+        let at = a.at(px, py);
+        let k = i as usize;
+        let write = match mat.blend {
+            Blend::Opaque => true,
+            Blend::AlphaTest => {
+                // Without texture, alpha 1 (as `shade`).
+                f.texels.map_or(1.0, |q| ctx.textures.quad_alpha(q, k)) >= 0.5
+            }
+            Blend::AlphaBlend => {
+                if ctx.colour {
+                    b.resolve(ctx, at);
+                    let c = shade(ctx.textures, mat, &f.uv[k], &f.uv2[k], f.lambdas);
+                    let d = b.colour[at];
+                    let a = c[3];
+                    b.colour[at] = [
+                        c[0] * a + d[0] * (1.0 - a),
+                        c[1] * a + d[1] * (1.0 - a),
+                        c[2] * a + d[2] * (1.0 - a),
+                        1.0,
+                    ];
+                }
+                false
+            }
+        };
+        if write {
+            b.depth[at] = f.z[k];
+            b.coarse.wrote(px - a.ox, py - a.oy);
+            if ctx.colour {
+                b.pending[at] = f.index + 1;
+                b.pending_uv[at] = [f.uv[k], f.uv2[k]];
             }
         }
     }

@@ -42,7 +42,52 @@ pub(super) struct Builder<'a> {
     pub(super) objects: u32,
 }
 
-impl Builder<'_> {
+impl<'a> Builder<'a> {
+    /// An empty track in `track_dir` seen from `eye` (right-handed), the
+    /// track's and the shared `materials.xml` read and the shared textures
+    /// indexed.
+    pub(super) fn new(root: &'a Path, track_dir: &Path, eye: Vec3) -> Result<Self, SceneError> {
+        let mut b = Builder {
+            root,
+            track_dir: track_dir.to_path_buf(),
+            track_mats: HashMap::new(),
+            lib_mats: HashMap::new(),
+            global_mats: HashMap::new(),
+            tex_index: HashMap::new(),
+            spm_cache: HashMap::new(),
+            lib_cache: HashMap::new(),
+            eye,
+            cam_right: [1.0, 0.0, 0.0],
+            cam_up: [0.0, 1.0, 0.0],
+            textures: Vec::new(),
+            tex_paths: Vec::new(),
+            tex_ids: HashMap::new(),
+            materials: Vec::new(),
+            mat_ids: HashMap::new(),
+            meshes: Vec::new(),
+            missing: Vec::new(),
+            objects: 0,
+        };
+        parse_materials(&track_dir.join("materials.xml"), &mut b.track_mats)?;
+        parse_materials(
+            &root.join("textures").join("materials.xml"),
+            &mut b.global_mats,
+        )?;
+        index_textures(&root.join("textures"), &mut b.tex_index, 0);
+        Ok(b)
+    }
+
+    /// Decode every texture's image (in parallel), downscaled to
+    /// [`MAX_TEXTURE_SIDE`].
+    pub(super) fn decode_textures(&mut self) -> Result<(), SceneError> {
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let images = decode_images(&self.tex_paths, MAX_TEXTURE_SIDE, threads)?;
+        for (t, (width, height, rgba)) in self.textures.iter_mut().zip(images) {
+            (t.width, t.height, t.rgba) = (width, height, rgba);
+        }
+        Ok(())
+    }
+
     /// The output mesh of a material (created on first use).
     pub(super) fn mesh_for(&mut self, material: usize, with_uv2: bool) -> usize {
         if let Some(i) = self.meshes.iter().position(|m| m.material == material) {

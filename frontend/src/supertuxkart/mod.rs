@@ -194,6 +194,81 @@ pub fn tracks(data_root: &Path) -> Result<Vec<String>, SceneError> {
     Ok(out)
 }
 
+/// The eye and the point looked at (game coordinates) for camera `sel`
+/// from the kart or driveline position `base` facing `dir`. A cutscene
+/// camera looks at itself here: its target is the scene's centre
+/// ([`look_at_bounds`]), known once the scene is placed.
+fn eye_and_target(sel: CameraSel, base: Vec3, dir: Vec3, cutscene: bool) -> (Vec3, Vec3) {
+    match sel {
+        _ if cutscene => (base, base),
+        CameraSel::Start(_) => (
+            add(add(base, scale(dir, -CAM_BACK)), [0.0, CAM_UP, 0.0]),
+            add(add(base, scale(dir, CAM_AHEAD)), [0.0, CAM_UP * 0.5, 0.0]),
+        ),
+        CameraSel::Driveline(_) => (
+            add(base, [0.0, CAM_UP, 0.0]),
+            add(add(base, scale(dir, CAM_AHEAD)), [0.0, CAM_UP * 0.75, 0.0]),
+        ),
+    }
+}
+
+/// The centre of the bounds of `meshes`, for a camera at `eye` (a point
+/// ahead of the eye when there is nothing, or the centre is the eye).
+fn look_at_bounds(meshes: &[Mesh], eye: Vec3) -> Vec3 {
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for m in meshes {
+        for p in &m.positions {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+    }
+    let target = if lo[0] <= hi[0] {
+        scale(add(lo, hi), 0.5)
+    } else {
+        add(eye, [0.0, 0.0, -1.0])
+    };
+    if len(sub(target, eye)) < 1e-3 {
+        add(eye, [0.0, 0.0, -1.0])
+    } else {
+        target
+    }
+}
+
+/// The track's meshes in drawing order: opaque and alpha-tested (empty
+/// ones dropped), the sky, alpha-blended.
+fn draw_order(b: &mut Builder, sky: Option<&[String]>) -> Result<Vec<Mesh>, SceneError> {
+    let mut meshes = std::mem::take(&mut b.meshes);
+    meshes.retain(|m| !m.indices.is_empty());
+    if let Some(sky) = sky {
+        b.add_sky(sky)?;
+    }
+    let sky = std::mem::take(&mut b.meshes);
+    let (blended, solid): (Vec<Mesh>, Vec<Mesh>) = meshes
+        .into_iter()
+        .partition(|m| b.materials[m.material].blend == Blend::AlphaBlend);
+    let mut all = solid;
+    all.extend(sky);
+    all.extend(blended);
+    Ok(all)
+}
+
+/// The scene's source note: the track, its triangle and texture counts
+/// and the images it names that the data lacks.
+fn source_note(map: &str, tris: usize, textures: usize, missing: &mut Vec<String>) -> String {
+    missing.sort();
+    missing.dedup();
+    format!(
+        "SuperTuxKart track `{}` (Debian supertuxkart-data, GPL / CC-BY-SA; {} triangles, {} textures, {} missing images{})",
+        map,
+        tris,
+        textures,
+        missing.len(),
+        if missing.is_empty() { String::new() } else { format!(": {}", missing.join(", ")) }
+    )
+}
+
 /// Load track `def.map` from `data_root` (see the module documentation).
 pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
     let track_dir = data_root.join("tracks").join(&def.map);
@@ -220,47 +295,11 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
 
     // Camera (game coordinates), then converted.
     let (base, dir, cutscene) = camera_base(sel, &track_dir, &scene_digest, &scene_file)?;
-    let (eye, target) = match sel {
-        _ if cutscene => (base, base), // target fixed below from the bounds
-        CameraSel::Start(_) => (
-            add(add(base, scale(dir, -CAM_BACK)), [0.0, CAM_UP, 0.0]),
-            add(add(base, scale(dir, CAM_AHEAD)), [0.0, CAM_UP * 0.5, 0.0]),
-        ),
-        CameraSel::Driveline(_) => (
-            add(base, [0.0, CAM_UP, 0.0]),
-            add(add(base, scale(dir, CAM_AHEAD)), [0.0, CAM_UP * 0.75, 0.0]),
-        ),
-    };
+    let (eye, target) = eye_and_target(sel, base, dir, cutscene);
     let eye = to_rh(eye);
     let mut target = to_rh(target);
 
-    let mut b = Builder {
-        root: data_root,
-        track_dir: track_dir.clone(),
-        track_mats: HashMap::new(),
-        lib_mats: HashMap::new(),
-        global_mats: HashMap::new(),
-        tex_index: HashMap::new(),
-        spm_cache: HashMap::new(),
-        lib_cache: HashMap::new(),
-        eye,
-        cam_right: [1.0, 0.0, 0.0],
-        cam_up: [0.0, 1.0, 0.0],
-        textures: Vec::new(),
-        tex_paths: Vec::new(),
-        tex_ids: HashMap::new(),
-        materials: Vec::new(),
-        mat_ids: HashMap::new(),
-        meshes: Vec::new(),
-        missing: Vec::new(),
-        objects: 0,
-    };
-    parse_materials(&track_dir.join("materials.xml"), &mut b.track_mats)?;
-    parse_materials(
-        &data_root.join("textures").join("materials.xml"),
-        &mut b.global_mats,
-    )?;
-    index_textures(&data_root.join("textures"), &mut b.tex_index, 0);
+    let mut b = Builder::new(data_root, &track_dir, eye)?;
     let fwd = normalize(sub(target, eye));
     if !cutscene {
         b.cam_right = normalize(cross(fwd, [0.0, 1.0, 0.0]));
@@ -268,57 +307,15 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
     }
     b.place(&scene_digest.items, &Xf::IDENTITY, 0)?;
     if cutscene {
-        // Look at the centre of the scene's bounds.
-        let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-        for m in &b.meshes {
-            for p in &m.positions {
-                for k in 0..3 {
-                    lo[k] = lo[k].min(p[k]);
-                    hi[k] = hi[k].max(p[k]);
-                }
-            }
-        }
-        target = if lo[0] <= hi[0] {
-            scale(add(lo, hi), 0.5)
-        } else {
-            add(eye, [0.0, 0.0, -1.0])
-        };
-        if len(sub(target, eye)) < 1e-3 {
-            target = add(eye, [0.0, 0.0, -1.0]);
-        }
+        target = look_at_bounds(&b.meshes, eye);
     }
-    // Order: opaque and alpha-tested, sky, alpha-blended.
-    let mut meshes = std::mem::take(&mut b.meshes);
-    meshes.retain(|m| !m.indices.is_empty());
-    if let Some(sky) = &scene_digest.sky {
-        b.add_sky(sky)?;
-    }
-    let sky = std::mem::take(&mut b.meshes);
-    let (blended, solid): (Vec<Mesh>, Vec<Mesh>) = meshes
-        .into_iter()
-        .partition(|m| b.materials[m.material].blend == Blend::AlphaBlend);
-    let mut all = solid;
-    all.extend(sky);
-    all.extend(blended);
+    let all = draw_order(&mut b, scene_digest.sky.as_deref())?;
     let tris: usize = all.iter().map(|m| m.indices.len() / 3).sum();
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let images = decode_images(&b.tex_paths, MAX_TEXTURE_SIDE, threads)?;
-    for (t, (width, height, rgba)) in b.textures.iter_mut().zip(images) {
-        (t.width, t.height, t.rgba) = (width, height, rgba);
-    }
-    let mut missing = std::mem::take(&mut b.missing);
-    missing.sort();
-    missing.dedup();
+    b.decode_textures()?;
+    let source = source_note(&def.map, tris, b.textures.len(), &mut b.missing);
     Ok(Scene {
         name: format!("supertuxkart:{}:{}", def.map, def.camera.replace(':', "")),
-        source: format!(
-            "SuperTuxKart track `{}` (Debian supertuxkart-data, GPL / CC-BY-SA; {} triangles, {} textures, {} missing images{})",
-            def.map,
-            tris,
-            b.textures.len(),
-            missing.len(),
-            if missing.is_empty() { String::new() } else { format!(": {}", missing.join(", ")) }
-        ),
+        source,
         meshes: all,
         materials: b.materials,
         textures: b.textures,

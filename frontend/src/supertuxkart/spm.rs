@@ -75,9 +75,41 @@ pub fn half_to_f32(h: u16) -> f32 {
     }
 }
 
-/// Parse an SPM file (`file` names it in errors).
-pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
-    let mut r = Bytes::new(bytes, file);
+/// What every vertex of a file carries besides its position (the
+/// header's kind and flags); UVs depend on the buffer's material.
+#[derive(Clone, Copy, Debug)]
+struct VertexFormat {
+    skinned: bool,
+    normal: bool,
+    color: bool,
+    tangent: bool,
+}
+
+/// One vertex layout: the file's format and whether the buffer's material
+/// has a texture (`uv`) and a second one (`uv2`).
+#[derive(Clone, Copy, Debug)]
+struct BufferFormat {
+    file: VertexFormat,
+    uv: bool,
+    uv2: bool,
+}
+
+impl BufferFormat {
+    /// The fewest bytes a vertex takes (a colour may add 3).
+    fn min_vertex(&self) -> usize {
+        let f = self.file;
+        12 + 4 * f.normal as usize
+            + f.color as usize
+            + 4 * self.uv as usize
+            + 4 * self.uv2 as usize
+            + 4 * (self.uv && f.tangent) as usize
+            + 16 * f.skinned as usize
+    }
+}
+
+/// Read the magic, the version byte (version 1; kind skinned or static)
+/// and the flags.
+fn read_header(r: &mut Bytes) -> Result<VertexFormat, SceneError> {
     if r.take(2, "magic")? != b"SP" {
         return Err(r.err(0, "not an SPM file: magic is not \"SP\""));
     }
@@ -89,9 +121,19 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
     if kind == 0 {
         return Err(r.err(2, "space-partitioned SPM (SPMS) is not supported"));
     }
-    let skinned = kind == 1;
     let flags = r.u8("flags")?;
-    let (has_normal, has_color, has_tangent) = (flags & 1 != 0, flags & 2 != 0, flags & 4 != 0);
+    Ok(VertexFormat {
+        skinned: kind == 1,
+        normal: flags & 1 != 0,
+        color: flags & 2 != 0,
+        tangent: flags & 4 != 0,
+    })
+}
+
+/// Parse an SPM file (`file` names it in errors).
+pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
+    let mut r = Bytes::new(bytes, file);
+    let format = read_header(&mut r)?;
     let mut bbox = [0f32; 6];
     for v in &mut bbox {
         *v = r.f32("bounding box")?;
@@ -108,108 +150,132 @@ pub fn parse_spm(bytes: &[u8], file: &Path) -> Result<Spm, SceneError> {
     for _ in 0..nsec {
         let nbuf = r.u16("buffer count")?;
         for _ in 0..nbuf {
-            let at = r.pos();
-            let nv = r.u32("vertex count")? as usize;
-            if nv > 65535 {
-                return Err(r.err(at, format!("{nv} vertices in a buffer (at most 65535)")));
-            }
-            let ni = r.u32("index count")? as usize;
-            if !ni.is_multiple_of(3) {
-                return Err(r.err(at + 4, format!("index count {ni} is not a multiple of 3")));
-            }
-            let mat_at = r.pos();
-            let material = r.u16("material id")? as usize;
-            if material >= materials.len() {
-                return Err(r.err(
-                    mat_at,
-                    format!(
-                        "material {material} out of range ({} materials)",
-                        materials.len()
-                    ),
-                ));
-            }
-            let has_uv = materials[material].texture.is_some();
-            let has_uv2 = has_uv && materials[material].texture2.is_some();
-            let min_vertex = 12
-                + 4 * has_normal as usize
-                + has_color as usize
-                + 4 * has_uv as usize
-                + 4 * has_uv2 as usize
-                + 4 * (has_uv && has_tangent) as usize
-                + 16 * skinned as usize;
-            if nv * min_vertex > r.remaining() {
-                return Err(r.err(
-                    r.pos(),
-                    format!(
-                        "truncated: {nv} vertices need at least {} bytes, {} left",
-                        nv * min_vertex,
-                        r.remaining()
-                    ),
-                ));
-            }
-            let mut positions = Vec::with_capacity(nv);
-            let mut uv = has_uv.then(|| Vec::with_capacity(nv));
-            let mut uv2 = has_uv2.then(|| Vec::with_capacity(nv));
-            for _ in 0..nv {
-                let p = [
-                    r.finite_f32("position")?,
-                    r.finite_f32("position")?,
-                    r.finite_f32("position")?,
-                ];
-                positions.push(p);
-                if has_normal {
-                    r.take(4, "normal")?;
-                }
-                if has_color && r.u8("colour tag")? != 128 {
-                    r.take(3, "colour")?;
-                }
-                if let Some(uv) = uv.as_mut() {
-                    uv.push([half(&mut r, "uv")?, half(&mut r, "uv")?]);
-                    if let Some(uv2) = uv2.as_mut() {
-                        uv2.push([half(&mut r, "second uv")?, half(&mut r, "second uv")?]);
-                    }
-                    if has_tangent {
-                        r.take(4, "tangent")?;
-                    }
-                }
-                if skinned {
-                    r.take(16, "joints and weights")?;
-                }
-            }
-            let wide = nv > 255;
-            let isize = if wide { 2 } else { 1 };
-            let raw = r.take(ni * isize, "indices")?;
-            let base = r.pos() - raw.len();
-            let mut indices = Vec::with_capacity(ni);
-            for k in 0..ni {
-                let i = if wide {
-                    u16::from_le_bytes([raw[2 * k], raw[2 * k + 1]]) as usize
-                } else {
-                    raw[k] as usize
-                };
-                if i >= nv {
-                    return Err(r.err(
-                        base + k * isize,
-                        format!("index {i} out of range ({nv} vertices)"),
-                    ));
-                }
-                indices.push(i as u32);
-            }
-            buffers.push(SpmBuffer {
-                material,
-                positions,
-                uv,
-                uv2,
-                indices,
-            });
+            buffers.push(read_buffer(&mut r, format, &materials)?);
         }
     }
     Ok(Spm {
-        skinned,
+        skinned: format.skinned,
         bbox,
         materials,
         buffers,
     })
+}
+
+/// One mesh buffer: its counts and material, vertices and indices.
+fn read_buffer(
+    r: &mut Bytes,
+    format: VertexFormat,
+    materials: &[SpmMaterial],
+) -> Result<SpmBuffer, SceneError> {
+    let at = r.pos();
+    let nv = r.u32("vertex count")? as usize;
+    if nv > 65535 {
+        return Err(r.err(at, format!("{nv} vertices in a buffer (at most 65535)")));
+    }
+    let ni = r.u32("index count")? as usize;
+    if !ni.is_multiple_of(3) {
+        return Err(r.err(at + 4, format!("index count {ni} is not a multiple of 3")));
+    }
+    let mat_at = r.pos();
+    let material = r.u16("material id")? as usize;
+    if material >= materials.len() {
+        return Err(r.err(
+            mat_at,
+            format!(
+                "material {material} out of range ({} materials)",
+                materials.len()
+            ),
+        ));
+    }
+    let has_uv = materials[material].texture.is_some();
+    let layout = BufferFormat {
+        file: format,
+        uv: has_uv,
+        uv2: has_uv && materials[material].texture2.is_some(),
+    };
+    let min_vertex = layout.min_vertex();
+    if nv * min_vertex > r.remaining() {
+        return Err(r.err(
+            r.pos(),
+            format!(
+                "truncated: {nv} vertices need at least {} bytes, {} left",
+                nv * min_vertex,
+                r.remaining()
+            ),
+        ));
+    }
+    let (positions, uv, uv2) = read_vertices(r, layout, nv)?;
+    let indices = read_indices(r, nv, ni)?;
+    Ok(SpmBuffer {
+        material,
+        positions,
+        uv,
+        uv2,
+        indices,
+    })
+}
+
+/// A buffer's positions and its UV sets (if its material has them).
+type Vertices = (Vec<Vec3>, Option<Vec<Vec2>>, Option<Vec<Vec2>>);
+
+/// `nv` vertices of `layout`: the positions and UV sets kept, normals,
+/// colours, tangents and skinning skipped.
+fn read_vertices(r: &mut Bytes, layout: BufferFormat, nv: usize) -> Result<Vertices, SceneError> {
+    let f = layout.file;
+    let mut positions = Vec::with_capacity(nv);
+    let mut uv = layout.uv.then(|| Vec::with_capacity(nv));
+    let mut uv2 = layout.uv2.then(|| Vec::with_capacity(nv));
+    for _ in 0..nv {
+        let p = [
+            r.finite_f32("position")?,
+            r.finite_f32("position")?,
+            r.finite_f32("position")?,
+        ];
+        positions.push(p);
+        if f.normal {
+            r.take(4, "normal")?;
+        }
+        if f.color && r.u8("colour tag")? != 128 {
+            r.take(3, "colour")?;
+        }
+        if let Some(uv) = uv.as_mut() {
+            uv.push([half(r, "uv")?, half(r, "uv")?]);
+            if let Some(uv2) = uv2.as_mut() {
+                uv2.push([half(r, "second uv")?, half(r, "second uv")?]);
+            }
+            if f.tangent {
+                r.take(4, "tangent")?;
+            }
+        }
+        if f.skinned {
+            r.take(16, "joints and weights")?;
+        }
+    }
+    Ok((positions, uv, uv2))
+}
+
+/// `ni` indices below `nv`: bytes for up to 255 vertices, else `u16`s.
+fn read_indices(r: &mut Bytes, nv: usize, ni: usize) -> Result<Vec<u32>, SceneError> {
+    let wide = nv > 255;
+    let isize = if wide { 2 } else { 1 };
+    let raw = r.take(ni * isize, "indices")?;
+    let base = r.pos() - raw.len();
+    let mut indices = Vec::with_capacity(ni);
+    for k in 0..ni {
+        let i = if wide {
+            u16::from_le_bytes([raw[2 * k], raw[2 * k + 1]]) as usize
+        } else {
+            raw[k] as usize
+        };
+        if i >= nv {
+            return Err(r.err(
+                base + k * isize,
+                format!("index {i} out of range ({nv} vertices)"),
+            ));
+        }
+        indices.push(i as u32);
+    }
+    Ok(indices)
 }
 
 #[cfg(test)]

@@ -246,11 +246,13 @@ pub(super) struct Digest {
     pub(super) cutscene_cameras: Vec<Vec3>,
 }
 
-pub(super) fn digest(file: &Path, dir: &Path, data_root: &Path) -> Result<Digest, SceneError> {
-    let text = read_text(file)?;
-    let doc = parse_xml(&text, file)?;
-    let mut d = Digest::default();
-    // LOD groups of this file: name -> levels.
+/// The LOD groups of a file (`<group name>` elements): name -> levels
+/// (`lod_distance`, model), ascending by distance.
+fn lod_groups(
+    doc: &roxmltree::Document,
+    file: &Path,
+    dir: &Path,
+) -> Result<HashMap<String, Vec<(f32, PathBuf)>>, SceneError> {
     let mut groups: HashMap<String, Vec<(f32, PathBuf)>> = HashMap::new();
     for g in doc.descendants().filter(|n| n.has_tag_name("group")) {
         let Some(name) = g.attribute("name") else {
@@ -268,113 +270,62 @@ pub(super) fn digest(file: &Path, dir: &Path, data_root: &Path) -> Result<Digest
         levels.sort_by(|a, b| a.0.total_cmp(&b.0));
         groups.insert(name.to_string(), levels);
     }
-    let root = doc.root_element();
-    let mut stack: Vec<roxmltree::Node> = root.children().filter(|n| n.is_element()).collect();
-    stack.reverse();
-    while let Some(n) = stack.pop() {
-        if !condition_holds(n.attribute("if")) {
-            continue;
-        }
+    Ok(groups)
+}
+
+/// A file being digested: where it is, its LOD groups and the digest so
+/// far.
+struct Digester<'a> {
+    file: &'a Path,
+    /// The file's directory (models are relative to it).
+    dir: &'a Path,
+    data_root: &'a Path,
+    groups: HashMap<String, Vec<(f32, PathBuf)>>,
+    d: Digest,
+}
+
+impl Digester<'_> {
+    /// Digest element `n` (its `if` condition holding); a `<track>`'s
+    /// children go on `stack` to be digested next, in order.
+    fn element<'d, 'i>(
+        &mut self,
+        n: roxmltree::Node<'d, 'i>,
+        stack: &mut Vec<roxmltree::Node<'d, 'i>>,
+    ) -> Result<(), SceneError> {
+        let file = self.file;
         match tag(n) {
             "track" => {
-                if let Some(m) = n.attribute("model").filter(|m| !m.is_empty()) {
-                    d.items.push(Item::Model {
-                        path: dir.join(m),
-                        xf: transform(n, file)?,
-                    });
-                }
+                self.model(n)?;
                 let mut kids: Vec<_> = n.children().filter(|c| c.is_element()).collect();
                 kids.reverse();
                 stack.extend(kids);
             }
-            "static-object" | "object" => {
-                let ty = n.attribute("type").unwrap_or("");
-                let inter = n.attribute("interaction").unwrap_or("");
-                if ty == "cutscene_camera" {
-                    d.cutscene_cameras.push(position(n, file)?);
-                    continue;
-                }
-                if matches!(
-                    ty,
-                    "sfx-emitter" | "action-trigger" | "static_follow_kart" | "particle-emitter"
-                ) || matches!(inter, "physics-only" | "physicsonly")
-                {
-                    continue;
-                }
-                let xf = transform(n, file)?;
-                if ty == "billboard" {
-                    if let Some(t) = n.attribute("texture") {
-                        d.items.push(Item::Billboard {
-                            dir: dir.to_path_buf(),
-                            texture: t.to_string(),
-                            width: f32_attr(n, "width", file)?.unwrap_or(1.0),
-                            height: f32_attr(n, "height", file)?.unwrap_or(1.0),
-                            xf,
-                        });
-                    }
-                    continue;
-                }
-                if yes(n, "lod_instance") {
-                    if let Some(levels) = n.attribute("lod_group").and_then(|g| groups.get(g)) {
-                        d.items.push(Item::Lod {
-                            levels: levels.clone(),
-                            xf,
-                        });
-                        continue;
-                    }
-                }
-                if let Some(m) = n.attribute("model").filter(|m| !m.is_empty()) {
-                    d.items.push(Item::Model {
-                        path: dir.join(m),
-                        xf,
-                    });
-                }
-            }
-            "water" => {
-                if let Some(m) = n.attribute("model").filter(|m| !m.is_empty()) {
-                    d.items.push(Item::Model {
-                        path: dir.join(m),
-                        xf: transform(n, file)?,
-                    });
-                }
-            }
+            "static-object" | "object" => self.object(n)?,
+            "water" => self.model(n)?,
             "library" => {
                 if let Some(name) = n.attribute("name") {
-                    d.items.push(Item::Library {
+                    self.d.items.push(Item::Library {
                         name: name.to_string(),
                         xf: transform(n, file)?,
                     });
                 }
             }
-            "item" | "banana" | "small-nitro" | "big-nitro" => {
-                if yes(n, "ctf") {
-                    continue;
-                }
-                let model = match tag(n) {
-                    "item" => "gift-box.spm",
-                    "banana" => "banana.spm",
-                    "small-nitro" => "nitrotank-small.spm",
-                    _ => "nitrotank-big.spm",
-                };
-                d.items.push(Item::Model {
-                    path: data_root.join("models").join(model),
-                    xf: transform(n, file)?,
-                });
-            }
+            "item" | "banana" | "small-nitro" | "big-nitro" => self.race_item(n)?,
             "sky-box" | "sky-dome" => {
                 if let Some(t) = n.attribute("texture") {
                     let names: Vec<String> = t.split_whitespace().map(str::to_string).collect();
                     if !names.is_empty() {
-                        d.sky = Some(names);
+                        self.d.sky = Some(names);
                     }
                 }
             }
             "start" => {
-                d.starts
+                self.d
+                    .starts
                     .push((position(n, file)?, f32_attr(n, "h", file)?.unwrap_or(0.0)));
             }
             "default-start" => {
-                d.default_start = Some((
+                self.d.default_start = Some((
                     f32_attr(n, "karts-per-row", file)?
                         .unwrap_or(2.0)
                         .clamp(1.0, 16.0) as usize,
@@ -385,8 +336,112 @@ pub(super) fn digest(file: &Path, dir: &Path, data_root: &Path) -> Result<Digest
             }
             _ => {}
         }
+        Ok(())
     }
-    Ok(d)
+
+    /// The `model` of a `<track>` or `<water>` element, placed by its
+    /// transform (nothing without a model).
+    fn model(&mut self, n: roxmltree::Node) -> Result<(), SceneError> {
+        if let Some(m) = n.attribute("model").filter(|m| !m.is_empty()) {
+            self.d.items.push(Item::Model {
+                path: self.dir.join(m),
+                xf: transform(n, self.file)?,
+            });
+        }
+        Ok(())
+    }
+
+    /// A `<static-object>` or `<object>`: a cutscene camera, a billboard,
+    /// a LOD instance or a model; emitters, triggers and physics-only
+    /// objects are skipped.
+    fn object(&mut self, n: roxmltree::Node) -> Result<(), SceneError> {
+        let file = self.file;
+        let ty = n.attribute("type").unwrap_or("");
+        let inter = n.attribute("interaction").unwrap_or("");
+        if ty == "cutscene_camera" {
+            self.d.cutscene_cameras.push(position(n, file)?);
+            return Ok(());
+        }
+        if matches!(
+            ty,
+            "sfx-emitter" | "action-trigger" | "static_follow_kart" | "particle-emitter"
+        ) || matches!(inter, "physics-only" | "physicsonly")
+        {
+            return Ok(());
+        }
+        let xf = transform(n, file)?;
+        if ty == "billboard" {
+            if let Some(t) = n.attribute("texture") {
+                self.d.items.push(Item::Billboard {
+                    dir: self.dir.to_path_buf(),
+                    texture: t.to_string(),
+                    width: f32_attr(n, "width", file)?.unwrap_or(1.0),
+                    height: f32_attr(n, "height", file)?.unwrap_or(1.0),
+                    xf,
+                });
+            }
+            return Ok(());
+        }
+        if yes(n, "lod_instance") {
+            if let Some(levels) = n.attribute("lod_group").and_then(|g| self.groups.get(g)) {
+                self.d.items.push(Item::Lod {
+                    levels: levels.clone(),
+                    xf,
+                });
+                return Ok(());
+            }
+        }
+        if let Some(m) = n.attribute("model").filter(|m| !m.is_empty()) {
+            self.d.items.push(Item::Model {
+                path: self.dir.join(m),
+                xf,
+            });
+        }
+        Ok(())
+    }
+
+    /// A race item (gift box, banana, nitro can) with its model from
+    /// `data/models`; CTF-only items are skipped.
+    fn race_item(&mut self, n: roxmltree::Node) -> Result<(), SceneError> {
+        if yes(n, "ctf") {
+            return Ok(());
+        }
+        let model = match tag(n) {
+            "item" => "gift-box.spm",
+            "banana" => "banana.spm",
+            "small-nitro" => "nitrotank-small.spm",
+            _ => "nitrotank-big.spm",
+        };
+        self.d.items.push(Item::Model {
+            path: self.data_root.join("models").join(model),
+            xf: transform(n, self.file)?,
+        });
+        Ok(())
+    }
+}
+
+/// Digest a `scene.xml` or a library's `node.xml` (`file`, in `dir`): its
+/// elements in document order, a `<track>`'s children where it stands,
+/// those whose `if` condition fails for a normal race skipped.
+pub(super) fn digest(file: &Path, dir: &Path, data_root: &Path) -> Result<Digest, SceneError> {
+    let text = read_text(file)?;
+    let doc = parse_xml(&text, file)?;
+    let mut g = Digester {
+        file,
+        dir,
+        data_root,
+        groups: lod_groups(&doc, file, dir)?,
+        d: Digest::default(),
+    };
+    let root = doc.root_element();
+    let mut stack: Vec<roxmltree::Node> = root.children().filter(|n| n.is_element()).collect();
+    stack.reverse();
+    while let Some(n) = stack.pop() {
+        if condition_holds(n.attribute("if")) {
+            g.element(n, &mut stack)?;
+        }
+    }
+    Ok(g.d)
 }
 
 #[cfg(test)]

@@ -70,56 +70,80 @@ pub(super) fn non_negative(
     usize::try_from(v).map_err(|_| SceneError::at(path, off as u64, format!("{what} is {v} (< 0)")))
 }
 
-impl<'a> Datafile<'a> {
-    /// Parse the header, the item types, the items and the data block table.
-    pub fn parse(path: &'a Path, bytes: &'a [u8]) -> Result<Self, SceneError> {
-        if bytes.len() < 36 {
+/// The header's counts and the areas they place: the tables start at byte
+/// 36, the item area follows them and the data area follows the items.
+#[derive(Clone, Copy, Debug)]
+struct Header {
+    version: i32,
+    num_types: usize,
+    num_items: usize,
+    num_data: usize,
+    item_size: usize,
+    data_size: usize,
+    /// File offset of the item area.
+    items_start: usize,
+    /// File offset of the data area.
+    data_start: usize,
+}
+
+/// Check the fixed part of the header: its length, the magic, the version
+/// (returned) and the declared file size.
+fn read_version(path: &Path, bytes: &[u8]) -> Result<i32, SceneError> {
+    if bytes.len() < 36 {
+        return Err(SceneError::at(
+            path,
+            bytes.len() as u64,
+            format!(
+                "truncated: a datafile header is 36 bytes, the file has {}",
+                bytes.len()
+            ),
+        ));
+    }
+    match &bytes[0..4] {
+        b"DATA" => {}
+        b"ATAD" => {
             return Err(SceneError::at(
                 path,
-                bytes.len() as u64,
-                format!(
-                    "truncated: a datafile header is 36 bytes, the file has {}",
-                    bytes.len()
-                ),
-            ));
+                0,
+                "big-endian datafile (magic ATAD) is not supported",
+            ))
         }
-        match &bytes[0..4] {
-            b"DATA" => {}
-            b"ATAD" => {
-                return Err(SceneError::at(
-                    path,
-                    0,
-                    "big-endian datafile (magic ATAD) is not supported",
-                ))
-            }
-            m => {
-                return Err(SceneError::at(
-                    path,
-                    0,
-                    format!("not a Teeworlds datafile: magic {m:?}, expected \"DATA\""),
-                ))
-            }
-        }
-        let version = read_i32(path, bytes, 4, "version")?;
-        if version != 3 && version != 4 {
+        m => {
             return Err(SceneError::at(
                 path,
-                4,
-                format!("datafile version {version}: only 3 and 4 are supported"),
-            ));
+                0,
+                format!("not a Teeworlds datafile: magic {m:?}, expected \"DATA\""),
+            ))
         }
-        let size = non_negative(path, read_i32(path, bytes, 8, "size")?, 8, "size")?;
-        if size as u64 + 16 > bytes.len() as u64 {
-            return Err(SceneError::at(
-                path,
-                bytes.len() as u64,
-                format!(
-                    "truncated: the header says the file has {} bytes, it has {}",
-                    size as u64 + 16,
-                    bytes.len()
-                ),
-            ));
-        }
+    }
+    let version = read_i32(path, bytes, 4, "version")?;
+    if version != 3 && version != 4 {
+        return Err(SceneError::at(
+            path,
+            4,
+            format!("datafile version {version}: only 3 and 4 are supported"),
+        ));
+    }
+    let size = non_negative(path, read_i32(path, bytes, 8, "size")?, 8, "size")?;
+    if size as u64 + 16 > bytes.len() as u64 {
+        return Err(SceneError::at(
+            path,
+            bytes.len() as u64,
+            format!(
+                "truncated: the header says the file has {} bytes, it has {}",
+                size as u64 + 16,
+                bytes.len()
+            ),
+        ));
+    }
+    Ok(version)
+}
+
+impl Header {
+    /// Read the header: [`read_version`], then the five counts; reject
+    /// counts the file cannot hold before anything is allocated.
+    fn parse(path: &Path, bytes: &[u8]) -> Result<Self, SceneError> {
+        let version = read_version(path, bytes)?;
         let mut counts = [0usize; 5];
         let names = [
             "num_item_types",
@@ -161,137 +185,212 @@ impl<'a> Datafile<'a> {
                 format!("item_size {item_size} is not a multiple of 4"),
             ));
         }
-        let mut off = 36;
-        for _ in 0..num_types {
-            let t = read_i32(path, bytes, off, "item type")?;
-            let start = read_i32(path, bytes, off + 4, "item type start")?;
-            let num = read_i32(path, bytes, off + 8, "item type count")?;
-            if !(0..=0xffff).contains(&t)
-                || start < 0
-                || num < 0
-                || start as usize + num as usize > num_items
-            {
-                return Err(SceneError::at(
-                    path,
-                    off as u64,
-                    format!(
-                        "item type entry {{type {t}, start {start}, count {num}}} is out of \
-                         range ({num_items} items)"
-                    ),
-                ));
-            }
-            off += 12;
-        }
-        let mut items = Vec::with_capacity(num_items);
-        for i in 0..num_items {
-            let field = off + 4 * i;
-            let rel = non_negative(
+        Ok(Self {
+            version,
+            num_types,
+            num_items,
+            num_data,
+            item_size,
+            data_size,
+            items_start,
+            data_start,
+        })
+    }
+
+    /// File offset of the item offset table (after the item types).
+    fn item_offsets_at(&self) -> usize {
+        36 + 12 * self.num_types
+    }
+
+    /// File offset of the data offset table (after the item offsets).
+    fn data_offsets_at(&self) -> usize {
+        self.item_offsets_at() + 4 * self.num_items
+    }
+
+    /// File offset of the (version 4) uncompressed size table.
+    fn data_sizes_at(&self) -> usize {
+        self.data_offsets_at() + 4 * self.num_data
+    }
+}
+
+/// Check the item type table: every entry names a type id that fits 16 bits
+/// and a range of items inside the item count. (The items carry their own
+/// type, so the table is only checked.)
+fn check_item_types(path: &Path, bytes: &[u8], h: &Header) -> Result<(), SceneError> {
+    let mut off = 36;
+    for _ in 0..h.num_types {
+        let t = read_i32(path, bytes, off, "item type")?;
+        let start = read_i32(path, bytes, off + 4, "item type start")?;
+        let num = read_i32(path, bytes, off + 8, "item type count")?;
+        if !(0..=0xffff).contains(&t)
+            || start < 0
+            || num < 0
+            || start as usize + num as usize > h.num_items
+        {
+            return Err(SceneError::at(
                 path,
-                read_i32(path, bytes, field, "item offset")?,
-                field,
-                "item offset",
-            )?;
-            if rel.saturating_add(8) > item_size {
-                return Err(SceneError::at(
-                    path,
-                    field as u64,
-                    format!("item {i} at {rel}: its 8-byte header is outside the {item_size}-byte item area"),
-                ));
-            }
-            let at = items_start + rel;
-            let key = read_i32(path, bytes, at, "item type and id")?;
-            let len = non_negative(
-                path,
-                read_i32(path, bytes, at + 4, "item size")?,
-                at + 4,
-                "item size",
-            )?;
-            if len % 4 != 0 || rel + 8 + len > item_size {
-                return Err(SceneError::at(
-                    path,
-                    (at + 4) as u64,
-                    format!(
-                        "item {i}: size {len} is not a multiple of 4 or runs past the \
-                         {item_size}-byte item area"
-                    ),
-                ));
-            }
-            let ints = bytes[at + 8..at + 8 + len]
-                .chunks_exact(4)
-                .map(|b| i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-                .collect();
-            items.push(Item {
-                type_id: ((key as u32) >> 16) as u16,
-                id: (key as u32 & 0xffff) as u16,
-                offset: (at + 8) as u64,
-                ints,
-            });
+                off as u64,
+                format!(
+                    "item type entry {{type {t}, start {start}, count {num}}} is out of \
+                     range ({} items)",
+                    h.num_items
+                ),
+            ));
         }
-        off += 4 * num_items;
-        let offsets_at = off;
-        let sizes_at = off + 4 * num_data;
-        let mut starts = Vec::with_capacity(num_data);
-        for i in 0..num_data {
-            let field = offsets_at + 4 * i;
-            let rel = non_negative(
+        off += 12;
+    }
+    Ok(())
+}
+
+/// Read item `i`, whose offset (relative to the item area) is the `i32` at
+/// `field`: its type and id, size and payload, all inside the item area.
+fn read_item(
+    path: &Path,
+    bytes: &[u8],
+    h: &Header,
+    i: usize,
+    field: usize,
+) -> Result<Item, SceneError> {
+    let item_size = h.item_size;
+    let rel = non_negative(
+        path,
+        read_i32(path, bytes, field, "item offset")?,
+        field,
+        "item offset",
+    )?;
+    if rel.saturating_add(8) > item_size {
+        return Err(SceneError::at(
+            path,
+            field as u64,
+            format!(
+                "item {i} at {rel}: its 8-byte header is outside the {item_size}-byte item area"
+            ),
+        ));
+    }
+    let at = h.items_start + rel;
+    let key = read_i32(path, bytes, at, "item type and id")?;
+    let len = non_negative(
+        path,
+        read_i32(path, bytes, at + 4, "item size")?,
+        at + 4,
+        "item size",
+    )?;
+    if len % 4 != 0 || rel + 8 + len > item_size {
+        return Err(SceneError::at(
+            path,
+            (at + 4) as u64,
+            format!(
+                "item {i}: size {len} is not a multiple of 4 or runs past the \
+                 {item_size}-byte item area"
+            ),
+        ));
+    }
+    let ints = bytes[at + 8..at + 8 + len]
+        .chunks_exact(4)
+        .map(|b| i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    Ok(Item {
+        type_id: ((key as u32) >> 16) as u16,
+        id: (key as u32 & 0xffff) as u16,
+        offset: (at + 8) as u64,
+        ints,
+    })
+}
+
+/// Read the data offset table: each block's start, relative to the data
+/// area and inside it.
+fn read_block_starts(path: &Path, bytes: &[u8], h: &Header) -> Result<Vec<usize>, SceneError> {
+    let mut starts = Vec::with_capacity(h.num_data);
+    for i in 0..h.num_data {
+        let field = h.data_offsets_at() + 4 * i;
+        let rel = non_negative(
+            path,
+            read_i32(path, bytes, field, "data offset")?,
+            field,
+            "data offset",
+        )?;
+        if rel > h.data_size {
+            return Err(SceneError::at(
                 path,
-                read_i32(path, bytes, field, "data offset")?,
-                field,
-                "data offset",
-            )?;
-            if rel > data_size {
-                return Err(SceneError::at(
-                    path,
-                    field as u64,
-                    format!("data block {i} starts at {rel}, past the {data_size}-byte data area"),
-                ));
-            }
-            starts.push(rel);
+                field as u64,
+                format!(
+                    "data block {i} starts at {rel}, past the {}-byte data area",
+                    h.data_size
+                ),
+            ));
         }
-        let mut blocks = Vec::with_capacity(num_data);
-        for i in 0..num_data {
-            let field = offsets_at + 4 * i;
-            let next = starts.get(i + 1).copied().unwrap_or(data_size);
-            if next < starts[i] {
+        starts.push(rel);
+    }
+    Ok(starts)
+}
+
+/// Build the block table from the starts: block `i` spans its start to the
+/// next block's (the last one to the end of the data area); version 4 adds
+/// each block's uncompressed size, bounded by [`MAX_BLOCK`].
+fn read_blocks(
+    path: &Path,
+    bytes: &[u8],
+    h: &Header,
+    starts: &[usize],
+) -> Result<Vec<Block>, SceneError> {
+    let mut blocks = Vec::with_capacity(h.num_data);
+    for i in 0..h.num_data {
+        let field = h.data_offsets_at() + 4 * i;
+        let next = starts.get(i + 1).copied().unwrap_or(h.data_size);
+        if next < starts[i] {
+            return Err(SceneError::at(
+                path,
+                (field + 4) as u64,
+                format!(
+                    "data block {} starts at {next}, before block {i} (at {})",
+                    i + 1,
+                    starts[i]
+                ),
+            ));
+        }
+        let size_field = h.data_sizes_at() + 4 * i;
+        let size = if h.version == 4 {
+            let f = size_field;
+            let s = non_negative(path, read_i32(path, bytes, f, "data size")?, f, "data size")?;
+            if s > MAX_BLOCK {
                 return Err(SceneError::at(
                     path,
-                    (field + 4) as u64,
-                    format!(
-                        "data block {} starts at {next}, before block {i} (at {})",
-                        i + 1,
-                        starts[i]
-                    ),
+                    f as u64,
+                    format!("data block {i} declares {s} bytes (limit {MAX_BLOCK})"),
                 ));
             }
-            let size = if version == 4 {
-                let f = sizes_at + 4 * i;
-                let s = non_negative(path, read_i32(path, bytes, f, "data size")?, f, "data size")?;
-                if s > MAX_BLOCK {
-                    return Err(SceneError::at(
-                        path,
-                        f as u64,
-                        format!("data block {i} declares {s} bytes (limit {MAX_BLOCK})"),
-                    ));
-                }
-                Some(s)
+            Some(s)
+        } else {
+            None
+        };
+        blocks.push(Block {
+            offset: h.data_start + starts[i],
+            len: next - starts[i],
+            size,
+            field: if h.version == 4 {
+                size_field as u64
             } else {
-                None
-            };
-            blocks.push(Block {
-                offset: data_start + starts[i],
-                len: next - starts[i],
-                size,
-                field: if version == 4 {
-                    (sizes_at + 4 * i) as u64
-                } else {
-                    field as u64
-                },
-            });
-        }
+                field as u64
+            },
+        });
+    }
+    Ok(blocks)
+}
+
+impl<'a> Datafile<'a> {
+    /// Parse the header, the item types, the items and the data block table.
+    pub fn parse(path: &'a Path, bytes: &'a [u8]) -> Result<Self, SceneError> {
+        let h = Header::parse(path, bytes)?;
+        check_item_types(path, bytes, &h)?;
+        let items = (0..h.num_items)
+            .map(|i| read_item(path, bytes, &h, i, h.item_offsets_at() + 4 * i))
+            .collect::<Result<Vec<_>, _>>()?;
+        let starts = read_block_starts(path, bytes, &h)?;
+        let blocks = read_blocks(path, bytes, &h, &starts)?;
         Ok(Self {
             path,
             bytes,
-            version,
+            version: h.version,
             items,
             blocks,
         })

@@ -67,178 +67,25 @@ impl Map {
     /// Parse a map from the bytes of a `.map` file.
     pub fn parse(path: &Path, bytes: &[u8]) -> Result<Self, SceneError> {
         let df = Datafile::parse(path, bytes)?;
-        let mut images = Vec::new();
-        for item in df.items.iter().filter(|i| i.type_id == ITEM_IMAGE) {
-            let version = field(path, item, 0, "image version")?;
-            let w = field(path, item, 1, "image width")?;
-            let h = field(path, item, 2, "image height")?;
-            let external = field(path, item, 3, "image external")? != 0;
-            let name_idx = field(path, item, 4, "image name")?;
-            let data = field(path, item, 5, "image data")?;
-            let name_bytes = df.data(name_idx, field_at(item, 4), "image name")?;
-            let end = name_bytes
-                .iter()
-                .position(|&b| b == 0)
-                .unwrap_or(name_bytes.len());
-            let name = String::from_utf8_lossy(&name_bytes[..end]).into_owned();
-            if external
-                && (name.is_empty()
-                    || name.contains(['/', '\\'])
-                    || name.starts_with('.')
-                    || name.len() > 128)
-            {
-                return Err(SceneError::at(
-                    path,
-                    field_at(item, 4),
-                    format!("external image name {name:?} is not a plain file name"),
-                ));
-            }
-            let channels = if version >= 2 && item.ints.len() > 6 {
-                match item.ints[6] {
-                    0 => 3,
-                    1 => 4,
-                    f => {
-                        return Err(SceneError::at(
-                            path,
-                            field_at(item, 6),
-                            format!("image format {f}: expected 0 (RGB) or 1 (RGBA)"),
-                        ))
-                    }
-                }
-            } else {
-                4
-            };
-            if !external && (w <= 0 || h <= 0 || w > 16384 || h > 16384) {
-                return Err(SceneError::at(
-                    path,
-                    field_at(item, 1),
-                    format!("embedded image {name:?} is {w}x{h}: expected 1..=16384 each"),
-                ));
-            }
-            images.push(MapImage {
-                name,
-                width: w.max(0) as u32,
-                height: h.max(0) as u32,
-                external,
-                data,
-                channels,
-                offset: item.offset,
-            });
-        }
-
-        let layer_items: Vec<&Item> = df
+        let images = df
+            .items
+            .iter()
+            .filter(|i| i.type_id == ITEM_IMAGE)
+            .map(|item| parse_image(&df, path, item))
+            .collect::<Result<Vec<_>, _>>()?;
+        let layers = df
             .items
             .iter()
             .filter(|i| i.type_id == ITEM_LAYER)
-            .collect();
-        let mut layers = Vec::with_capacity(layer_items.len());
-        for item in &layer_items {
-            layers.push(parse_layer(&df, path, item, images.len())?);
-        }
-
-        let env_items: Vec<&Item> = df
+            .map(|item| parse_layer(&df, path, item, images.len()))
+            .collect::<Result<Vec<_>, _>>()?;
+        let envelopes = parse_envelopes(&df, path)?;
+        let groups = df
             .items
             .iter()
-            .filter(|i| i.type_id == ITEM_ENVELOPE)
-            .collect();
-        let point_ints: Vec<i32> = df
-            .items
-            .iter()
-            .filter(|i| i.type_id == ITEM_ENVPOINTS)
-            .flat_map(|i| i.ints.iter().copied())
-            .collect();
-        // Version 3 envelopes store bezier tangents with each point.
-        let stride = if env_items
-            .iter()
-            .any(|e| e.ints.first().is_some_and(|&v| v >= 3))
-        {
-            22
-        } else {
-            6
-        };
-        let num_points = point_ints.len() / stride;
-        let mut envelopes = Vec::with_capacity(env_items.len());
-        for item in &env_items {
-            let channels = field(path, item, 1, "envelope channels")?;
-            let start = field(path, item, 2, "envelope start point")?;
-            let num = field(path, item, 3, "envelope point count")?;
-            let range = match (usize::try_from(start), usize::try_from(num)) {
-                (Ok(s), Ok(n)) if s.saturating_add(n) <= num_points => s..s + n,
-                _ => {
-                    return Err(SceneError::at(
-                        path,
-                        field_at(item, 2),
-                        format!("envelope points {start}+{num}: the map has {num_points} points"),
-                    ))
-                }
-            };
-            let points = range
-                .map(|k| {
-                    let p = &point_ints[k * stride..k * stride + 6];
-                    EnvPoint {
-                        time: p[0],
-                        curve: p[1],
-                        values: [p[2], p[3], p[4], p[5]],
-                    }
-                })
-                .collect();
-            envelopes.push(Envelope { channels, points });
-        }
-
-        let mut groups = Vec::new();
-        for item in df.items.iter().filter(|i| i.type_id == ITEM_GROUP) {
-            let version = field(path, item, 0, "group version")?;
-            let mut g = [0i32; 6];
-            for (k, name) in [
-                "offset x",
-                "offset y",
-                "parallax x",
-                "parallax y",
-                "start layer",
-                "layer count",
-            ]
-            .iter()
-            .enumerate()
-            {
-                g[k] = field(path, item, k + 1, name)?;
-            }
-            let start = usize::try_from(g[4]).ok();
-            let num = usize::try_from(g[5]).ok();
-            let (start_layer, num_layers) = match (start, num) {
-                (Some(s), Some(n)) if s.saturating_add(n) <= layers.len() => (s, n),
-                _ => {
-                    return Err(SceneError::at(
-                        path,
-                        field_at(item, 5),
-                        format!(
-                            "group layers {}..{}+{}: the map has {} layers",
-                            g[4],
-                            g[4],
-                            g[5],
-                            layers.len()
-                        ),
-                    ))
-                }
-            };
-            let clip = if version >= 2 && item.ints.len() >= 12 && item.ints[7] != 0 {
-                Some([item.ints[8], item.ints[9], item.ints[10], item.ints[11]])
-            } else {
-                None
-            };
-            let name = if version >= 3 && item.ints.len() >= 15 {
-                ints_to_str(&item.ints[12..15])
-            } else {
-                String::new()
-            };
-            groups.push(Group {
-                offset: [g[0], g[1]],
-                parallax: [g[2], g[3]],
-                start_layer,
-                num_layers,
-                clip,
-                name,
-            });
-        }
+            .filter(|i| i.type_id == ITEM_GROUP)
+            .map(|item| parse_group(path, item, layers.len()))
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Map {
             images,
             envelopes,
@@ -248,6 +95,175 @@ impl Map {
     }
 }
 
+/// An image item: its size, name (a plain file name when external) and
+/// pixel format; the pixels stay in their data block.
+fn parse_image(df: &Datafile, path: &Path, item: &Item) -> Result<MapImage, SceneError> {
+    let version = field(path, item, 0, "image version")?;
+    let w = field(path, item, 1, "image width")?;
+    let h = field(path, item, 2, "image height")?;
+    let external = field(path, item, 3, "image external")? != 0;
+    let name_idx = field(path, item, 4, "image name")?;
+    let data = field(path, item, 5, "image data")?;
+    let name_bytes = df.data(name_idx, field_at(item, 4), "image name")?;
+    let end = name_bytes
+        .iter()
+        .position(|&b| b == 0)
+        .unwrap_or(name_bytes.len());
+    let name = String::from_utf8_lossy(&name_bytes[..end]).into_owned();
+    if external
+        && (name.is_empty()
+            || name.contains(['/', '\\'])
+            || name.starts_with('.')
+            || name.len() > 128)
+    {
+        return Err(SceneError::at(
+            path,
+            field_at(item, 4),
+            format!("external image name {name:?} is not a plain file name"),
+        ));
+    }
+    let channels = if version >= 2 && item.ints.len() > 6 {
+        match item.ints[6] {
+            0 => 3,
+            1 => 4,
+            f => {
+                return Err(SceneError::at(
+                    path,
+                    field_at(item, 6),
+                    format!("image format {f}: expected 0 (RGB) or 1 (RGBA)"),
+                ))
+            }
+        }
+    } else {
+        4
+    };
+    if !external && (w <= 0 || h <= 0 || w > 16384 || h > 16384) {
+        return Err(SceneError::at(
+            path,
+            field_at(item, 1),
+            format!("embedded image {name:?} is {w}x{h}: expected 1..=16384 each"),
+        ));
+    }
+    Ok(MapImage {
+        name,
+        width: w.max(0) as u32,
+        height: h.max(0) as u32,
+        external,
+        data,
+        channels,
+        offset: item.offset,
+    })
+}
+
+/// The envelope items with their points, which every envelope-points item
+/// stores concatenated (each envelope names a range of them).
+fn parse_envelopes(df: &Datafile, path: &Path) -> Result<Vec<Envelope>, SceneError> {
+    let env_items: Vec<&Item> = df
+        .items
+        .iter()
+        .filter(|i| i.type_id == ITEM_ENVELOPE)
+        .collect();
+    let point_ints: Vec<i32> = df
+        .items
+        .iter()
+        .filter(|i| i.type_id == ITEM_ENVPOINTS)
+        .flat_map(|i| i.ints.iter().copied())
+        .collect();
+    // Version 3 envelopes store bezier tangents with each point.
+    let stride = if env_items
+        .iter()
+        .any(|e| e.ints.first().is_some_and(|&v| v >= 3))
+    {
+        22
+    } else {
+        6
+    };
+    let num_points = point_ints.len() / stride;
+    let mut envelopes = Vec::with_capacity(env_items.len());
+    for item in &env_items {
+        let channels = field(path, item, 1, "envelope channels")?;
+        let start = field(path, item, 2, "envelope start point")?;
+        let num = field(path, item, 3, "envelope point count")?;
+        let range = match (usize::try_from(start), usize::try_from(num)) {
+            (Ok(s), Ok(n)) if s.saturating_add(n) <= num_points => s..s + n,
+            _ => {
+                return Err(SceneError::at(
+                    path,
+                    field_at(item, 2),
+                    format!("envelope points {start}+{num}: the map has {num_points} points"),
+                ))
+            }
+        };
+        let points = range
+            .map(|k| {
+                let p = &point_ints[k * stride..k * stride + 6];
+                EnvPoint {
+                    time: p[0],
+                    curve: p[1],
+                    values: [p[2], p[3], p[4], p[5]],
+                }
+            })
+            .collect();
+        envelopes.push(Envelope { channels, points });
+    }
+    Ok(envelopes)
+}
+
+/// A group item: offset, parallax, its range of the `num_layers` layers,
+/// and (by version) its clip rectangle and name.
+fn parse_group(path: &Path, item: &Item, num_layers: usize) -> Result<Group, SceneError> {
+    let version = field(path, item, 0, "group version")?;
+    let mut g = [0i32; 6];
+    for (k, name) in [
+        "offset x",
+        "offset y",
+        "parallax x",
+        "parallax y",
+        "start layer",
+        "layer count",
+    ]
+    .iter()
+    .enumerate()
+    {
+        g[k] = field(path, item, k + 1, name)?;
+    }
+    let start = usize::try_from(g[4]).ok();
+    let num = usize::try_from(g[5]).ok();
+    let (start_layer, group_layers) = match (start, num) {
+        (Some(s), Some(n)) if s.saturating_add(n) <= num_layers => (s, n),
+        _ => {
+            return Err(SceneError::at(
+                path,
+                field_at(item, 5),
+                format!(
+                    "group layers {}..{}+{}: the map has {} layers",
+                    g[4], g[4], g[5], num_layers
+                ),
+            ))
+        }
+    };
+    let clip = if version >= 2 && item.ints.len() >= 12 && item.ints[7] != 0 {
+        Some([item.ints[8], item.ints[9], item.ints[10], item.ints[11]])
+    } else {
+        None
+    };
+    let name = if version >= 3 && item.ints.len() >= 15 {
+        ints_to_str(&item.ints[12..15])
+    } else {
+        String::new()
+    };
+    Ok(Group {
+        offset: [g[0], g[1]],
+        parallax: [g[2], g[3]],
+        start_layer,
+        num_layers: group_layers,
+        clip,
+        name,
+    })
+}
+
+/// A layer item: its type and flags, then the tile or quad layer it holds
+/// (any other type is kept as [`LayerKind::Other`]).
 pub(super) fn parse_layer(
     df: &Datafile,
     path: &Path,
@@ -257,177 +273,210 @@ pub(super) fn parse_layer(
     let ltype = field(path, item, 1, "layer type")?;
     let flags = field(path, item, 2, "layer flags")?;
     match ltype {
-        LAYER_TILES => {
-            let version = field(path, item, 3, "tile layer version")?;
-            let w = field(path, item, 4, "tile layer width")?;
-            let h = field(path, item, 5, "tile layer height")?;
-            let tflags = field(path, item, 6, "tile layer flags")?;
-            let mut color = [0i32; 4];
-            for (k, c) in color.iter_mut().enumerate() {
-                *c = field(path, item, 7 + k, "tile layer colour")?;
-            }
-            let image = image_index(
-                path,
-                field(path, item, 13, "tile layer image")?,
-                field_at(item, 13),
-                num_images,
-            )?;
-            let data = field(path, item, 14, "tile layer data")?;
-            let (width, height) = match (usize::try_from(w), usize::try_from(h)) {
-                (Ok(a), Ok(b)) if a > 0 && b > 0 && a.saturating_mul(b) <= MAX_TILES => (a, b),
-                _ => {
-                    return Err(SceneError::at(
-                        path,
-                        field_at(item, 4),
-                        format!(
-                            "tile layer is {w}x{h}: expected positive, at most {MAX_TILES} tiles"
-                        ),
-                    ))
-                }
-            };
-            let raw = df.data(data, field_at(item, 14), "tile layer data")?;
-            let n = width * height;
-            let tiles = if version >= 4 {
-                let mut tiles = Vec::with_capacity(n);
-                for t in raw.chunks_exact(4) {
-                    let run = t[2] as usize + 1;
-                    let tile = Tile {
-                        index: t[0],
-                        flags: t[1],
-                    };
-                    let take = run.min(n - tiles.len());
-                    tiles.extend(std::iter::repeat_n(tile, take));
-                    if tiles.len() == n {
-                        break;
-                    }
-                }
-                if tiles.len() != n || raw.len() % 4 != 0 {
-                    return Err(SceneError::at(
-                        path,
-                        field_at(item, 14),
-                        format!(
-                            "tile layer data ({} bytes, run-length packed) expands to {} tiles, \
-                             the layer is {width}x{height} = {n}",
-                            raw.len(),
-                            tiles.len()
-                        ),
-                    ));
-                }
-                tiles
-            } else {
-                if raw.len() != n * 4 {
-                    return Err(SceneError::at(
-                        path,
-                        field_at(item, 14),
-                        format!(
-                            "tile layer data is {} bytes, the layer is {width}x{height} = {} bytes",
-                            raw.len(),
-                            n * 4
-                        ),
-                    ));
-                }
-                raw.chunks_exact(4)
-                    .map(|t| Tile {
-                        index: t[0],
-                        flags: t[1],
-                    })
-                    .collect()
-            };
-            let name = if version >= 3 && item.ints.len() >= 18 {
-                ints_to_str(&item.ints[15..18])
-            } else {
-                String::new()
-            };
-            Ok(Layer {
-                flags,
-                name,
-                kind: LayerKind::Tiles(TileLayer {
-                    width,
-                    height,
-                    game: tflags & 1 != 0,
-                    color,
-                    image,
-                    tiles,
-                }),
-            })
-        }
-        LAYER_QUADS => {
-            let version = field(path, item, 3, "quad layer version")?;
-            let num = field(path, item, 4, "quad count")?;
-            let data = field(path, item, 5, "quad data")?;
-            let image = image_index(
-                path,
-                field(path, item, 6, "quad layer image")?,
-                field_at(item, 6),
-                num_images,
-            )?;
-            let num = usize::try_from(num).map_err(|_| {
-                SceneError::at(path, field_at(item, 4), format!("quad count {num} (< 0)"))
-            })?;
-            let raw = if num == 0 {
-                Vec::new()
-            } else {
-                df.data(data, field_at(item, 5), "quad data")?
-            };
-            if raw.len() < num.saturating_mul(QUAD_BYTES) {
-                return Err(SceneError::at(
-                    path,
-                    field_at(item, 4),
-                    format!(
-                        "{num} quads need {} bytes, the data block has {}",
-                        num.saturating_mul(QUAD_BYTES),
-                        raw.len()
-                    ),
-                ));
-            }
-            let quads = raw
-                .chunks_exact(QUAD_BYTES)
-                .take(num)
-                .map(|q| {
-                    let int = |i: usize| {
-                        i32::from_le_bytes([q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]])
-                    };
-                    let fx = |i: usize| int(i) as f32 / 1024.0;
-                    let mut points = [[0.0; 2]; 5];
-                    for (k, p) in points.iter_mut().enumerate() {
-                        *p = [fx(2 * k), fx(2 * k + 1)];
-                    }
-                    let mut colors = [[0; 4]; 4];
-                    for (k, c) in colors.iter_mut().enumerate() {
-                        for (j, v) in c.iter_mut().enumerate() {
-                            *v = int(10 + 4 * k + j);
-                        }
-                    }
-                    let mut uv = [[0.0; 2]; 4];
-                    for (k, t) in uv.iter_mut().enumerate() {
-                        *t = [fx(26 + 2 * k), fx(27 + 2 * k)];
-                    }
-                    Quad {
-                        points,
-                        uv,
-                        colors,
-                        pos_env: int(34),
-                        pos_env_offset: int(35),
-                        color_env: int(36),
-                    }
-                })
-                .collect();
-            let name = if version >= 2 && item.ints.len() >= 10 {
-                ints_to_str(&item.ints[7..10])
-            } else {
-                String::new()
-            };
-            Ok(Layer {
-                flags,
-                name,
-                kind: LayerKind::Quads(QuadLayer { image, quads }),
-            })
-        }
+        LAYER_TILES => parse_tile_layer(df, path, item, flags, num_images),
+        LAYER_QUADS => parse_quad_layer(df, path, item, flags, num_images),
         other => Ok(Layer {
             flags,
             name: String::new(),
             kind: LayerKind::Other(other),
         }),
+    }
+}
+
+/// A tile layer: size, colour, image and its tiles (unpacked by
+/// [`unpack_tiles`]).
+fn parse_tile_layer(
+    df: &Datafile,
+    path: &Path,
+    item: &Item,
+    flags: i32,
+    num_images: usize,
+) -> Result<Layer, SceneError> {
+    let version = field(path, item, 3, "tile layer version")?;
+    let w = field(path, item, 4, "tile layer width")?;
+    let h = field(path, item, 5, "tile layer height")?;
+    let tflags = field(path, item, 6, "tile layer flags")?;
+    let mut color = [0i32; 4];
+    for (k, c) in color.iter_mut().enumerate() {
+        *c = field(path, item, 7 + k, "tile layer colour")?;
+    }
+    let image = image_index(
+        path,
+        field(path, item, 13, "tile layer image")?,
+        field_at(item, 13),
+        num_images,
+    )?;
+    let data = field(path, item, 14, "tile layer data")?;
+    let (width, height) = match (usize::try_from(w), usize::try_from(h)) {
+        (Ok(a), Ok(b)) if a > 0 && b > 0 && a.saturating_mul(b) <= MAX_TILES => (a, b),
+        _ => {
+            return Err(SceneError::at(
+                path,
+                field_at(item, 4),
+                format!("tile layer is {w}x{h}: expected positive, at most {MAX_TILES} tiles"),
+            ))
+        }
+    };
+    let raw = df.data(data, field_at(item, 14), "tile layer data")?;
+    let tiles = unpack_tiles(path, item, version, &raw, width, height)?;
+    let name = if version >= 3 && item.ints.len() >= 18 {
+        ints_to_str(&item.ints[15..18])
+    } else {
+        String::new()
+    };
+    Ok(Layer {
+        flags,
+        name,
+        kind: LayerKind::Tiles(TileLayer {
+            width,
+            height,
+            game: tflags & 1 != 0,
+            color,
+            image,
+            tiles,
+        }),
+    })
+}
+
+/// The `width` x `height` tiles of a tile layer's data block: 4 bytes a
+/// tile, run-length packed from layer version 4 on (each stored tile
+/// stands for `skip + 1` tiles).
+fn unpack_tiles(
+    path: &Path,
+    item: &Item,
+    version: i32,
+    raw: &[u8],
+    width: usize,
+    height: usize,
+) -> Result<Vec<Tile>, SceneError> {
+    let n = width * height;
+    if version >= 4 {
+        let mut tiles = Vec::with_capacity(n);
+        for t in raw.chunks_exact(4) {
+            let run = t[2] as usize + 1;
+            let tile = Tile {
+                index: t[0],
+                flags: t[1],
+            };
+            let take = run.min(n - tiles.len());
+            tiles.extend(std::iter::repeat_n(tile, take));
+            if tiles.len() == n {
+                break;
+            }
+        }
+        if tiles.len() != n || !raw.len().is_multiple_of(4) {
+            return Err(SceneError::at(
+                path,
+                field_at(item, 14),
+                format!(
+                    "tile layer data ({} bytes, run-length packed) expands to {} tiles, \
+                     the layer is {width}x{height} = {n}",
+                    raw.len(),
+                    tiles.len()
+                ),
+            ));
+        }
+        Ok(tiles)
+    } else {
+        if raw.len() != n * 4 {
+            return Err(SceneError::at(
+                path,
+                field_at(item, 14),
+                format!(
+                    "tile layer data is {} bytes, the layer is {width}x{height} = {} bytes",
+                    raw.len(),
+                    n * 4
+                ),
+            ));
+        }
+        Ok(raw
+            .chunks_exact(4)
+            .map(|t| Tile {
+                index: t[0],
+                flags: t[1],
+            })
+            .collect())
+    }
+}
+
+/// A quad layer: its image and `num` quads of [`QUAD_BYTES`] each.
+fn parse_quad_layer(
+    df: &Datafile,
+    path: &Path,
+    item: &Item,
+    flags: i32,
+    num_images: usize,
+) -> Result<Layer, SceneError> {
+    let version = field(path, item, 3, "quad layer version")?;
+    let num = field(path, item, 4, "quad count")?;
+    let data = field(path, item, 5, "quad data")?;
+    let image = image_index(
+        path,
+        field(path, item, 6, "quad layer image")?,
+        field_at(item, 6),
+        num_images,
+    )?;
+    let num = usize::try_from(num)
+        .map_err(|_| SceneError::at(path, field_at(item, 4), format!("quad count {num} (< 0)")))?;
+    let raw = if num == 0 {
+        Vec::new()
+    } else {
+        df.data(data, field_at(item, 5), "quad data")?
+    };
+    if raw.len() < num.saturating_mul(QUAD_BYTES) {
+        return Err(SceneError::at(
+            path,
+            field_at(item, 4),
+            format!(
+                "{num} quads need {} bytes, the data block has {}",
+                num.saturating_mul(QUAD_BYTES),
+                raw.len()
+            ),
+        ));
+    }
+    let quads = raw
+        .chunks_exact(QUAD_BYTES)
+        .take(num)
+        .map(decode_quad)
+        .collect();
+    let name = if version >= 2 && item.ints.len() >= 10 {
+        ints_to_str(&item.ints[7..10])
+    } else {
+        String::new()
+    };
+    Ok(Layer {
+        flags,
+        name,
+        kind: LayerKind::Quads(QuadLayer { image, quads }),
+    })
+}
+
+/// One quad's [`QUAD_BYTES`]: 5 points, 4 colours and 4 texture coordinates
+/// (points and coordinates 22.10 fixed point), then its envelopes.
+fn decode_quad(q: &[u8]) -> Quad {
+    let int = |i: usize| i32::from_le_bytes([q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]]);
+    let fx = |i: usize| int(i) as f32 / 1024.0;
+    let mut points = [[0.0; 2]; 5];
+    for (k, p) in points.iter_mut().enumerate() {
+        *p = [fx(2 * k), fx(2 * k + 1)];
+    }
+    let mut colors = [[0; 4]; 4];
+    for (k, c) in colors.iter_mut().enumerate() {
+        for (j, v) in c.iter_mut().enumerate() {
+            *v = int(10 + 4 * k + j);
+        }
+    }
+    let mut uv = [[0.0; 2]; 4];
+    for (k, t) in uv.iter_mut().enumerate() {
+        *t = [fx(26 + 2 * k), fx(27 + 2 * k)];
+    }
+    Quad {
+        points,
+        uv,
+        colors,
+        pos_env: int(34),
+        pos_env_offset: int(35),
+        color_env: int(36),
     }
 }
 

@@ -118,76 +118,14 @@ impl<'a> TextureSet<'a> {
         uses: &[TextureUse],
     ) -> TextureSet<'a> {
         let use_of = |i: usize| uses.get(i).copied().unwrap_or_default();
-        // Largest textures first, dealt round-robin, so threads get similar
-        // work; each chain lands in its texture's slot.
-        let mut order: Vec<usize> = (0..textures.len()).collect();
-        order.sort_by_key(|&i| std::cmp::Reverse(textures[i].rgba.len()));
-        let threads = threads.clamp(1, textures.len().max(1));
-        let mut chains: Vec<Chain<'a>> = vec![Vec::new(); textures.len()];
-        if threads == 1 {
-            for (i, t) in textures.iter().enumerate() {
-                chains[i] = mip_chain(t, use_of(i).sampled);
-            }
-        } else {
-            let built: Vec<Vec<(usize, Chain<'a>)>> = std::thread::scope(|sc| {
-                let handles: Vec<_> = (0..threads)
-                    .map(|k| {
-                        let mine: Vec<usize> =
-                            order.iter().copied().skip(k).step_by(threads).collect();
-                        sc.spawn(move || {
-                            mine.into_iter()
-                                .map(|i| (i, mip_chain(&textures[i], use_of(i).sampled)))
-                                .collect::<Vec<_>>()
-                        })
-                    })
-                    .collect();
-                handles
-                    .into_iter()
-                    .map(|h| h.join().expect("mip chain thread"))
-                    .collect()
-            });
-            for (i, chain) in built.into_iter().flatten() {
-                chains[i] = chain;
-            }
-        }
+        let chains = mip_chains(textures, threads, &use_of);
         let mut out = Vec::with_capacity(textures.len());
         let mut addr = HEAP_BASE;
         for (i, (t, chain)) in textures.iter().zip(chains).enumerate() {
             let with_alpha = use_of(i).alpha_tested && use_of(i).sampled;
-            let base = addr;
-            let mut levels = Vec::with_capacity(chain.len());
-            let mut block = base / BLOCK_BYTES;
-            for (w, h, rgba) in chain {
-                let bw = w.div_ceil(BLOCK_TEXELS).next_power_of_two();
-                let bh = h.div_ceil(BLOCK_TEXELS).next_power_of_two();
-                let (pw_log2, ph_log2) = (bw.trailing_zeros(), bh.trailing_zeros());
-                let block_count = u64::from(bw) * u64::from(bh);
-                let alpha = if with_alpha {
-                    rgba.chunks_exact(4).map(|p| p[3]).collect()
-                } else {
-                    Vec::new()
-                };
-                levels.push(MipLevel {
-                    width: w,
-                    height: h,
-                    rgba,
-                    first_block: block,
-                    block_count,
-                    pw_log2,
-                    k: pw_log2.min(ph_log2),
-                    alpha,
-                });
-                block += block_count;
-            }
-            let bytes = block * BLOCK_BYTES - base;
-            addr = (block * BLOCK_BYTES).div_ceil(TEXTURE_ALIGN) * TEXTURE_ALIGN;
-            out.push(HeapTexture {
-                name: t.name.clone(),
-                repeat: t.repeat,
-                base,
-                bytes,
-                levels,
-            });
+            let placed = place(t, chain, addr, with_alpha);
+            addr = (placed.base + placed.bytes).div_ceil(TEXTURE_ALIGN) * TEXTURE_ALIGN;
+            out.push(placed);
         }
         TextureSet {
             textures: out,
@@ -203,6 +141,86 @@ impl<'a> TextureSet<'a> {
     /// Bytes of the heap in use (textures and their alignment padding).
     pub fn heap_bytes(&self) -> u64 {
         self.end - HEAP_BASE
+    }
+}
+
+/// Every texture's mip chain (texels beyond level 0 only for sampled
+/// ones), on up to `threads` threads: largest textures first, dealt
+/// round-robin, so threads get similar work; each chain lands in its
+/// texture's slot.
+fn mip_chains<'a>(
+    textures: &'a [Texture],
+    threads: usize,
+    use_of: &(impl Fn(usize) -> TextureUse + Sync),
+) -> Vec<Chain<'a>> {
+    let mut order: Vec<usize> = (0..textures.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse(textures[i].rgba.len()));
+    let threads = threads.clamp(1, textures.len().max(1));
+    let mut chains: Vec<Chain<'a>> = vec![Vec::new(); textures.len()];
+    if threads == 1 {
+        for (i, t) in textures.iter().enumerate() {
+            chains[i] = mip_chain(t, use_of(i).sampled);
+        }
+        return chains;
+    }
+    let built: Vec<Vec<(usize, Chain<'a>)>> = std::thread::scope(|sc| {
+        let handles: Vec<_> = (0..threads)
+            .map(|k| {
+                let mine: Vec<usize> = order.iter().copied().skip(k).step_by(threads).collect();
+                sc.spawn(move || {
+                    mine.into_iter()
+                        .map(|i| (i, mip_chain(&textures[i], use_of(i).sampled)))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("mip chain thread"))
+            .collect()
+    });
+    for (i, chain) in built.into_iter().flatten() {
+        chains[i] = chain;
+    }
+    chains
+}
+
+/// Place texture `t`'s levels (`chain`) in the heap from `addr`: each
+/// level's 4x4-texel blocks in Morton order over a power-of-two grid of
+/// blocks, the levels one after the other; `with_alpha` adds each level's
+/// alpha-only copy.
+fn place<'a>(t: &Texture, chain: Chain<'a>, addr: u64, with_alpha: bool) -> HeapTexture<'a> {
+    let base = addr;
+    let mut levels = Vec::with_capacity(chain.len());
+    let mut block = base / BLOCK_BYTES;
+    for (w, h, rgba) in chain {
+        let bw = w.div_ceil(BLOCK_TEXELS).next_power_of_two();
+        let bh = h.div_ceil(BLOCK_TEXELS).next_power_of_two();
+        let (pw_log2, ph_log2) = (bw.trailing_zeros(), bh.trailing_zeros());
+        let block_count = u64::from(bw) * u64::from(bh);
+        let alpha = if with_alpha {
+            rgba.chunks_exact(4).map(|p| p[3]).collect()
+        } else {
+            Vec::new()
+        };
+        levels.push(MipLevel {
+            width: w,
+            height: h,
+            rgba,
+            first_block: block,
+            block_count,
+            pw_log2,
+            k: pw_log2.min(ph_log2),
+            alpha,
+        });
+        block += block_count;
+    }
+    HeapTexture {
+        name: t.name.clone(),
+        repeat: t.repeat,
+        base,
+        bytes: block * BLOCK_BYTES - base,
+        levels,
     }
 }
 
