@@ -215,7 +215,10 @@ fn compare_and_sweep_take_the_prefetcher_through_set() {
     let set = table(&["--set", "prefetch.kind=raster", "--set", "core.issue=gto"]);
     assert!(set.ends_with("|  issue gto  |  prefetch raster"), "{set}");
     let shipped = table(&[]);
-    assert!(!shipped.contains("prefetch") && !shipped.contains("issue"), "{shipped}");
+    assert!(
+        !shipped.contains("prefetch") && !shipped.contains("issue"),
+        "{shipped}"
+    );
     let d = common::scratch("prefetch", "sweep");
     let file = d.join("sweep.toml");
     let sweep = |kind: &str| {
