@@ -382,6 +382,40 @@ impl Issuer {
     }
 }
 
+/// The plain references' visit: slots in `order`, one by one; an
+/// ALU-ready slot issues, else the first texture-ready one takes the
+/// texture port, until `width` have issued.
+#[cfg(test)]
+pub(crate) fn visit_plain(
+    order: impl IntoIterator<Item = usize>,
+    ready: u128,
+    tex: u128,
+    width: u32,
+    mut on_alu: impl FnMut(usize) -> bool,
+) -> Picks<u128> {
+    let mut p = Picks::NONE;
+    for s in order {
+        if p.issued == width {
+            break;
+        }
+        let alu_ready = ready >> s & 1 == 1;
+        let tex_ready = tex >> s & 1 == 1 && p.tex.is_none();
+        if alu_ready {
+            p.alu |= 1u128 << s;
+            if on_alu(s) {
+                p.run_end |= 1u128 << s;
+            }
+        } else if tex_ready {
+            p.tex = Some(s);
+        } else {
+            continue;
+        }
+        p.issued += 1;
+        p.last = s as u32;
+    }
+    p
+}
+
 impl Order for lrr::Lrr {
     #[inline(always)]
     fn state(issuer: &mut Issuer) -> &mut Self {

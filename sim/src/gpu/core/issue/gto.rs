@@ -181,31 +181,11 @@ pub(crate) fn pick_plain(
     greedy: u128,
     width: u32,
     age: impl Fn(usize) -> u64,
-    mut on_alu: impl FnMut(usize) -> bool,
+    on_alu: impl FnMut(usize) -> bool,
 ) -> Picks<u128> {
     let mut order: Vec<usize> = (0..128).collect();
     order.sort_by_key(|&s| (greedy >> s & 1 == 0, age(s), s));
-    let mut p = Picks::NONE;
-    for s in order {
-        if p.issued == width {
-            break;
-        }
-        let alu_ready = ready >> s & 1 == 1;
-        let tex_ready = tex >> s & 1 == 1 && p.tex.is_none();
-        if alu_ready {
-            p.alu |= 1u128 << s;
-            if on_alu(s) {
-                p.run_end |= 1u128 << s;
-            }
-        } else if tex_ready {
-            p.tex = Some(s);
-        } else {
-            continue;
-        }
-        p.issued += 1;
-        p.last = s as u32;
-    }
-    p
+    super::visit_plain(order, ready, tex, width, on_alu)
 }
 
 #[cfg(test)]

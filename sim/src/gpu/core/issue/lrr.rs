@@ -91,36 +91,10 @@ pub(crate) fn pick_plain(
     tex: u128,
     rr: u32,
     width: u32,
-    mut on_alu: impl FnMut(usize) -> bool,
+    on_alu: impl FnMut(usize) -> bool,
 ) -> Picks<u128> {
-    let mut p = Picks {
-        alu: 0,
-        run_end: 0,
-        tex: None,
-        issued: 0,
-        last: 0,
-    };
-    for k in 0..128 {
-        if p.issued == width {
-            break;
-        }
-        let s = ((rr as usize) + k) % 128;
-        let alu_ready = ready >> s & 1 == 1;
-        let tex_ready = tex >> s & 1 == 1 && p.tex.is_none();
-        if alu_ready {
-            p.alu |= 1u128 << s;
-            if on_alu(s) {
-                p.run_end |= 1u128 << s;
-            }
-        } else if tex_ready {
-            p.tex = Some(s);
-        } else {
-            continue;
-        }
-        p.issued += 1;
-        p.last = s as u32;
-    }
-    p
+    let order = (0..128).map(|k| ((rr as usize) + k) % 128);
+    super::visit_plain(order, ready, tex, width, on_alu)
 }
 
 #[cfg(test)]
