@@ -334,6 +334,15 @@ impl ShaderCore {
         now: u64,
         mem: &mut MemorySystem,
     ) -> Result<bool, crate::gpu::SimError> {
+        // Most cycles nothing reaches the core: no block returns, no miss
+        // is reported, and neither the watched cache's MSHRs nor the
+        // priority warps give the scheduler's registers an event.
+        if self.notes.prio == PriorityEvents::default()
+            && mem.nothing_for(self.id)
+            && self.launch.clock_quiet(&mut self.notes)
+        {
+            return Ok(false);
+        }
         let progress = self.complete.run(
             now,
             mem,
