@@ -343,6 +343,17 @@ impl ShaderCore {
         {
             return Ok(false);
         }
+        self.complete_events(now, mem)
+    }
+
+    /// [`complete`](Self::complete) of a cycle with events (kept out of
+    /// line: the quiet cycles' test then costs its caller no call).
+    #[inline(never)]
+    fn complete_events(
+        &mut self,
+        now: u64,
+        mem: &mut MemorySystem,
+    ) -> Result<bool, crate::gpu::SimError> {
         let progress = self.complete.run(
             now,
             mem,

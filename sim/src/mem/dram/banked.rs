@@ -58,102 +58,11 @@
 //! issued a PRECHARGE. Its queue wait is the cycles from `m + 1` to its first
 //! command.
 
+use super::channel::{Channel, QueuedRequest, NEVER, WRITE};
 use crate::mem::cache::bits_for;
 use crate::mem::config::{DramConfig, BLOCK_BYTES};
-use crate::mem::ring::Ring;
 use crate::mem::stats::DramStats;
 use wasp_waves::Tracer;
-
-/// The open row of a precharged bank.
-const CLOSED: u64 = u64::MAX;
-/// The `entry` of a queued write: it gets no reply.
-const WRITE: u32 = u32::MAX;
-/// `first_command` of a request that has issued none.
-const NOT_YET: u64 = u64::MAX;
-/// A cycle that never comes: no wake-up, no reply, no column command.
-const NEVER: u64 = u64::MAX;
-
-/// A request in a channel's queue, waiting for the scheduler.
-#[derive(Debug, Clone, Copy, Default)]
-struct QueuedRequest {
-    /// First cycle the scheduler sees it.
-    ready: u64,
-    /// Cycle of the L2 miss (or of the write).
-    missed: u64,
-    bank: usize,
-    row: u64,
-    /// The L2's MSHR entry, or [`WRITE`].
-    entry: u32,
-    /// Cycle of its first command ([`NOT_YET`] before).
-    first_command: u64,
-    /// It issued an ACTIVATE or a PRECHARGE.
-    opened: bool,
-    /// It issued a PRECHARGE.
-    closed: bool,
-}
-
-#[derive(Debug, Clone, Copy)]
-struct Bank {
-    /// Open row, or [`CLOSED`].
-    open_row: u64,
-    /// First cycle the bank takes its next command.
-    ready: u64,
-    /// Cycle of the last ACTIVATE (for tRAS).
-    activated: u64,
-}
-
-/// The set bits of a bank mask, lowest first.
-struct Bits(u64);
-
-impl Iterator for Bits {
-    type Item = usize;
-    #[inline(always)]
-    fn next(&mut self) -> Option<usize> {
-        if self.0 == 0 {
-            return None;
-        }
-        let k = self.0.trailing_zeros() as usize;
-        self.0 &= self.0 - 1;
-        Some(k)
-    }
-}
-
-#[derive(Debug, Clone, Copy, Default)]
-struct Reply {
-    /// Cycle the reply reaches the L2.
-    at: u64,
-    entry: u32,
-}
-
-/// One channel: its banks, its request queue, its command bus (one command
-/// a cycle) and its data bus.
-///
-/// The queue is kept in two parts, in arrival order: `oldest`, the first
-/// `scheduler_window` requests (all of them when there are fewer), of
-/// which the visible ones are the scheduler's window; and `backlog`, the
-/// requests behind them, which move up as requests leave.
-#[derive(Debug, Clone)]
-struct Channel {
-    /// The banks; the first `banks` are used (at most 64, so that a bank
-    /// mask fits a `u64` and an index masked to 63 needs no check).
-    banks: Box<[Bank; 64]>,
-    /// The oldest `scheduler_window` requests, a contiguous slice (a
-    /// column command removes one of them).
-    oldest: Vec<QueuedRequest>,
-    /// The requests behind `oldest` (empty unless `oldest` is full).
-    backlog: Ring<QueuedRequest>,
-    /// Reads issued, in issue (= reply) order.
-    replies: Ring<Reply>,
-    /// First cycle the data bus is free.
-    bus_free: u64,
-    /// Cycle of the last column command ([`NEVER`] before the first).
-    column_at: u64,
-    /// First cycle in which the scheduler could issue a command: a lower
-    /// bound computed after every step ([`Channel::next_chance`]), lowered
-    /// by a request entering `oldest`. Cycles before it are skipped (the
-    /// fast path).
-    wake: u64,
-}
 
 /// Main memory, banked timing model (see the module docs).
 #[derive(Debug, Clone)]
@@ -183,23 +92,7 @@ impl BankedDram {
     /// A memory with every bank closed. `cfg` must have passed
     /// [`DramConfig::check`].
     pub fn new(cfg: &DramConfig, max_outstanding: u32) -> Self {
-        let n = max_outstanding as usize;
-        let window = cfg.scheduler_window as usize;
-        let channel = Channel {
-            banks: Box::new(
-                [Bank {
-                    open_row: CLOSED,
-                    ready: 0,
-                    activated: 0,
-                }; 64],
-            ),
-            oldest: Vec::with_capacity(window),
-            backlog: Ring::with_capacity(n + 64),
-            replies: Ring::with_capacity(n),
-            bus_free: 0,
-            column_at: NEVER,
-            wake: NEVER,
-        };
+        let channel = Channel::new(cfg, max_outstanding as usize);
         BankedDram {
             cfg: *cfg,
             blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
@@ -259,29 +152,9 @@ impl BankedDram {
 
     fn enqueue(&mut self, now: u64, block: u64, entry: u32) {
         let (ch, bank, row) = self.place(block);
-        let window = self.cfg.scheduler_window as usize;
         let c = &mut self.channels[ch];
-        let r = QueuedRequest {
-            ready: now + 1,
-            missed: now,
-            bank,
-            row,
-            entry,
-            first_command: NOT_YET,
-            opened: false,
-            closed: false,
-        };
-        if c.oldest.len() < window {
-            // It enters the window when it becomes visible: the scheduler
-            // looks again then.
-            c.oldest.push(r);
-            c.wake = c.wake.min(now + 1);
-            self.wake = self.wake.min(now + 1);
-        } else {
-            // Behind the window: it moves up when a request leaves, in a
-            // cycle in which the channel steps anyway.
-            c.backlog.push_back(r);
-        }
+        c.enqueue(&self.cfg, QueuedRequest::new(now, bank, row, entry));
+        self.wake = self.wake.min(c.wake);
         self.queued += 1;
         self.stats.max_queue = self.stats.max_queue.max(self.queued as u64);
     }
@@ -303,7 +176,7 @@ impl BankedDram {
         let mut wake = NEVER;
         let mut replied = false;
         for ch in &mut self.channels {
-            if !ch.oldest.is_empty() && (!self.skip_idle || now >= ch.wake) {
+            if !ch.is_empty() && (!self.skip_idle || now >= ch.wake) {
                 let replies = ch.replies.len();
                 if ch.step(cfg, stats, now) {
                     self.queued -= 1;
@@ -380,198 +253,6 @@ impl BankedDram {
         let issued = self.channels.iter().filter(|c| c.column_at == now).count();
         let cw = bits_for(u64::from(self.cfg.channels));
         t.signal("accepted", cw, issued as u64);
-    }
-}
-
-impl Channel {
-    /// Issue at most one command in cycle `now`; whether a request left the
-    /// queue (its column command issued). Then set `wake`.
-    ///
-    /// One pass over the window finds the oldest row hit that can issue
-    /// its column command and the banks whose open row a request of the
-    /// window would hit (the open-row protection of rule 3).
-    fn step(&mut self, cfg: &DramConfig, stats: &mut DramStats, now: u64) -> bool {
-        let bus_ok = self.bus_free <= now + u64::from(cfg.t_cl);
-        // Requests enter in cycle order, so the visible ones are a prefix.
-        let mut window = 0;
-        let mut hit_banks = 0u64;
-        let mut column = None;
-        for r in &self.oldest {
-            if r.ready > now {
-                break;
-            }
-            let b = self.bank(r.bank);
-            if b.open_row == r.row {
-                hit_banks |= 1 << (r.bank & 63);
-                if column.is_none() && bus_ok && b.ready <= now {
-                    column = Some(window);
-                }
-            }
-            window += 1;
-        }
-        let left = if window == 0 {
-            false
-        } else if column == Some(0) {
-            // 1. The head, if it can issue anything.
-            self.issue_column(cfg, stats, 0, now);
-            true
-        } else if self.try_row_command(cfg, stats, 0, now, hit_banks, true) {
-            false
-        } else if let Some(i) = column {
-            // 2. The oldest row hit that can issue its column command.
-            self.issue_column(cfg, stats, i, now);
-            true
-        } else {
-            // 3. The oldest request that can issue a row command.
-            for i in 1..window {
-                if self.try_row_command(cfg, stats, i, now, hit_banks, false) {
-                    break;
-                }
-            }
-            false
-        };
-        self.wake = self.next_chance(cfg, now);
-        left
-    }
-
-    /// After cycle `now`'s step: the first cycle in which something might
-    /// issue. Until a command issues or a request enters the window
-    /// (which wakes the channel), banks, bus and queue change only with
-    /// time, and each condition of the rules, once true, stays true
-    /// (the window only grows, which can only add to the open-row
-    /// protection); so the earliest cycle any of them can turn true bounds
-    /// the next command from below. Each depends on the request's bank
-    /// only:
-    /// - a row hit: its bank free and its data slot free,
-    ///   `max(bank ready, bus free - t_cl)`;
-    /// - an ACTIVATE: its bank's `ready`;
-    /// - a PRECHARGE: its bank's `ready` and `activated + t_ras`; never,
-    ///   without a command or an arrival first, while the open-row
-    ///   protection holds it (not the head's);
-    /// - the window growing: the first invisible request's `ready`.
-    fn next_chance(&self, cfg: &DramConfig, now: u64) -> u64 {
-        let mut wake = NEVER;
-        // Banks with a row hit, with a request for a closed bank, with a
-        // request for another row than the open one.
-        let (mut hit, mut act, mut pre) = (0u64, 0u64, 0u64);
-        for r in &self.oldest {
-            if r.ready > now {
-                wake = r.ready;
-                break;
-            }
-            let open = self.bank(r.bank).open_row;
-            let bit = 1u64 << (r.bank & 63);
-            if open == r.row {
-                hit |= bit;
-            } else if open == CLOSED {
-                act |= bit;
-            } else {
-                pre |= bit;
-            }
-        }
-        // The head is not held by the protection.
-        if let Some(r) = self.oldest.first() {
-            let b = self.bank(r.bank);
-            if r.ready <= now && b.open_row != r.row && b.open_row != CLOSED {
-                wake = wake.min(self.precharge_from(cfg, b));
-            }
-        }
-        let data = self.bus_free.saturating_sub(u64::from(cfg.t_cl));
-        for k in Bits(hit) {
-            wake = wake.min(self.bank(k).ready.max(data));
-        }
-        for k in Bits(act) {
-            wake = wake.min(self.bank(k).ready);
-        }
-        for k in Bits(pre & !hit) {
-            wake = wake.min(self.precharge_from(cfg, self.bank(k)));
-        }
-        wake.max(now + 1)
-    }
-
-    /// The first cycle bank `b`, open, may be precharged.
-    #[inline(always)]
-    fn precharge_from(&self, cfg: &DramConfig, b: &Bank) -> u64 {
-        b.ready.max(b.activated + u64::from(cfg.t_ras))
-    }
-
-    /// Bank `k` (below 64).
-    #[inline(always)]
-    fn bank(&self, k: usize) -> &Bank {
-        &self.banks[k & 63]
-    }
-
-    /// Issue request `i`'s READ / WRITE in cycle `now`: it leaves the
-    /// queue, and the first request of the backlog moves up.
-    fn issue_column(&mut self, c: &DramConfig, stats: &mut DramStats, i: usize, now: u64) {
-        let r = self.oldest.remove(i);
-        if let Some(next) = self.backlog.pop_front() {
-            self.oldest.push(next);
-        }
-        let burst = u64::from(c.t_burst);
-        self.banks[r.bank & 63].ready = now + burst;
-        let data = now + u64::from(c.t_cl);
-        self.bus_free = data + burst;
-        stats.bus_busy_cycles += burst;
-        self.column_at = now;
-        if r.entry == WRITE {
-            stats.write_row_misses += u64::from(r.opened);
-            stats.write_row_conflicts += u64::from(r.closed);
-            return;
-        }
-        let at = data + burst - 1 + u64::from(c.controller_latency);
-        self.replies.push_back(Reply { at, entry: r.entry });
-        if r.opened {
-            stats.row_misses += 1;
-            stats.row_conflicts += u64::from(r.closed);
-        } else {
-            stats.row_hits += 1;
-        }
-        let first = r.first_command.min(now);
-        stats.queue_wait_sum += first - r.ready;
-        stats.latency_sum += at - r.missed;
-    }
-
-    /// Issue request `i`'s ACTIVATE or PRECHARGE in cycle `now` if the rules
-    /// allow; `head` lifts the open-row protection (a PRECHARGE of a bank
-    /// in `hit_banks`, whose open row a request of the window would hit).
-    fn try_row_command(
-        &mut self,
-        cfg: &DramConfig,
-        stats: &mut DramStats,
-        i: usize,
-        now: u64,
-        hit_banks: u64,
-        head: bool,
-    ) -> bool {
-        let r = &self.oldest[i];
-        let k = r.bank & 63;
-        let b = self.banks[k];
-        if b.ready > now || b.open_row == r.row {
-            return false;
-        }
-        if b.open_row == CLOSED {
-            self.banks[k] = Bank {
-                open_row: r.row,
-                ready: now + u64::from(cfg.t_rcd),
-                activated: now,
-            };
-            stats.activates += 1;
-        } else {
-            let protected = !head && hit_banks >> k & 1 == 1;
-            if now < b.activated + u64::from(cfg.t_ras) || protected {
-                return false;
-            }
-            let bank = &mut self.banks[k];
-            bank.open_row = CLOSED;
-            bank.ready = now + u64::from(cfg.t_rp);
-            stats.precharges += 1;
-            self.oldest[i].closed = true;
-        }
-        let q = &mut self.oldest[i];
-        q.opened = true;
-        q.first_command = q.first_command.min(now);
-        true
     }
 }
 
