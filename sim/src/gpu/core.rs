@@ -262,6 +262,17 @@ impl ShaderCore {
             notes.stats.occupancy_hist[0] += 1;
             return false;
         };
+        if self.warps.active() == 0
+            && self.launch.sched().queue().is_empty()
+            && self.raster.as_ref().is_none_or(OwnRaster::is_idle)
+        {
+            // No warp, none waiting to launch, none to rasterize: no stage
+            // can do anything in the cycle (no wake-up is due without a
+            // warp), which only counts.
+            self.notes.stats.occupancy_hist[0] += 1;
+            debug_assert!(self.is_idle(now));
+            return false;
+        }
         let tile = &trace.tiles()[ti];
         let done = self.issue.wake(now, tile, &mut self.warps);
         let mut progress = done != 0 && self.retire(done, now);

@@ -143,7 +143,7 @@ impl CoreModel for ShaderCore {
     fn is_idle(&self, now: u64) -> bool {
         ShaderCore::is_idle(self, now)
     }
-    #[inline]
+    #[inline(always)]
     fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) -> bool {
         ShaderCore::evaluate(self, now, trace, mem)
     }

@@ -42,13 +42,14 @@ pub(super) struct QueuedRequest {
     ready: u64,
     /// Cycle of the L2 miss (or of the write).
     missed: u64,
-    /// Its bank (below [`MAX_BANKS`]).
-    bank: usize,
     row: u64,
-    /// The L2's MSHR entry, or [`WRITE`].
-    entry: u32,
     /// Cycle of its first command ([`NOT_YET`] before).
     first_command: u64,
+    /// The L2's MSHR entry, or [`WRITE`].
+    entry: u32,
+    /// Its bank (below [`MAX_BANKS`]; a byte keeps the request at 40
+    /// bytes, which a column command moves).
+    bank: u8,
     /// It issued an ACTIVATE or a PRECHARGE.
     opened: bool,
     /// It issued a PRECHARGE.
@@ -63,7 +64,7 @@ impl QueuedRequest {
         QueuedRequest {
             ready: now + 1,
             missed: now,
-            bank,
+            bank: bank as u8,
             row,
             entry,
             first_command: NOT_YET,
@@ -248,7 +249,7 @@ impl Channel {
     /// Whether request `r` hits its bank's open row.
     #[inline(always)]
     fn hits(&self, r: &QueuedRequest) -> bool {
-        self.bank(r.bank).open_row == r.row
+        self.bank(usize::from(r.bank)).open_row == r.row
     }
 
     /// Count the requests that have become visible by cycle `now` into
@@ -260,7 +261,7 @@ impl Channel {
                 break;
             }
             let hit = self.hits(r);
-            self.counts.add(r.bank % MAX_BANKS, hit);
+            self.counts.add(usize::from(r.bank) % MAX_BANKS, hit);
             self.visible += 1;
         }
     }
@@ -286,7 +287,7 @@ impl Channel {
         };
         let bus_ok = self.bus_free <= now + u64::from(cfg.t_cl);
         // 1. The head, if it can issue anything.
-        let b = self.bank(head.bank);
+        let b = self.bank(usize::from(head.bank));
         if b.open_row == head.row {
             if b.ready <= now && bus_ok {
                 self.issue_column(cfg, stats, 0, now);
@@ -305,7 +306,9 @@ impl Channel {
             if free != 0 {
                 let i = self.oldest[..self.visible]
                     .iter()
-                    .position(|r| free >> (r.bank % MAX_BANKS) & 1 == 1 && self.hits(r))
+                    .position(|r| {
+                        free >> (usize::from(r.bank) % MAX_BANKS) & 1 == 1 && self.hits(r)
+                    })
                     .expect("a free bank with a hit has a request hitting it");
                 self.issue_column(cfg, stats, i, now);
                 return true;
@@ -325,7 +328,7 @@ impl Channel {
         if free != 0 {
             let found = self.oldest[1..self.visible]
                 .iter()
-                .position(|r| free >> (r.bank % MAX_BANKS) & 1 == 1 && !self.hits(r));
+                .position(|r| free >> (usize::from(r.bank) % MAX_BANKS) & 1 == 1 && !self.hits(r));
             if let Some(i) = found {
                 let issued = self.try_row_command(cfg, stats, i + 1, now, false);
                 debug_assert!(issued, "a request of a free bank takes its row command");
@@ -371,7 +374,7 @@ impl Channel {
         }
         // The head is not held by the protection.
         if let Some(r) = self.oldest[..self.visible].first() {
-            let b = self.bank(r.bank);
+            let b = self.bank(usize::from(r.bank));
             if b.open_row != r.row && b.open_row != CLOSED {
                 wake = wake.min(b.ready.max(b.activated + t_ras));
             }
@@ -384,7 +387,7 @@ impl Channel {
     fn issue_column(&mut self, c: &DramConfig, stats: &mut DramStats, i: usize, now: u64) {
         let r = self.oldest.remove(i);
         self.visible -= 1;
-        let k = r.bank % MAX_BANKS;
+        let k = usize::from(r.bank) % MAX_BANKS;
         self.counts.remove_hit(k);
         if let Some(next) = self.backlog.pop_front() {
             self.oldest.push(next);
@@ -425,7 +428,7 @@ impl Channel {
         head: bool,
     ) -> bool {
         let r = &self.oldest[i];
-        let k = r.bank % MAX_BANKS;
+        let k = usize::from(r.bank) % MAX_BANKS;
         let b = self.banks[k];
         if b.ready > now || b.open_row == r.row {
             return false;
@@ -440,7 +443,7 @@ impl Channel {
             let row = r.row;
             let hits = self.oldest[..self.visible]
                 .iter()
-                .filter(|o| o.bank % MAX_BANKS == k && o.row == row)
+                .filter(|o| usize::from(o.bank) % MAX_BANKS == k && o.row == row)
                 .count();
             self.counts.set_bank(k, hits as u16);
         } else {
@@ -466,7 +469,7 @@ impl Channel {
     fn check_counts(&self) {
         let mut fresh = BankCounts::EMPTY;
         for r in &self.oldest[..self.visible] {
-            fresh.add(r.bank % MAX_BANKS, self.hits(r));
+            fresh.add(usize::from(r.bank) % MAX_BANKS, self.hits(r));
         }
         assert_eq!(fresh.hits, self.counts.hits, "row hits per bank");
         assert_eq!(fresh.others, self.counts.others, "other requests per bank");
