@@ -38,7 +38,7 @@ camera = "ground"
 width = 1
 height = 1
 TOML
-"$W" --scenes-dir "$work/defs" scenes list > list.txt
+"$W" scenes list --scenes-dir "$work/defs" > list.txt
 grep -q "^moved-plane " list.txt || fail "--scenes-dir did not add its scene"
 WASP_SCENES_DIR="$work/defs" "$W" render moved-plane --trace-out moved.trace -q 2> /dev/null
 if command -v yosys > /dev/null; then

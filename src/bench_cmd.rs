@@ -15,7 +15,7 @@
 //! between points smaller than their spread is noise, and a warning says
 //! so when a spread passes 10%.
 
-use crate::run_cmd::emit;
+use crate::output::{self, emit, Output};
 use crate::CliError;
 use clap::builder::RangedU64ValueParser;
 use clap::Args;
@@ -57,7 +57,7 @@ pub struct BenchArgs {
     /// it has passed.
     #[arg(long, value_name = "SECONDS", default_value_t = bench::MIN_SAMPLE_SECONDS)]
     pub min_seconds: f64,
-    /// Write the points as JSON to FILE (`-`: stdout).
+    /// Write the points as JSON to FILE (`-` for standard output).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
     /// No progress output on stderr (progress bars, notes of what is being
@@ -79,6 +79,7 @@ const NOISY: f64 = 0.10;
 
 /// Run the benchmark.
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+    output::check(&[Output::new("--json", args.json.as_deref())])?;
     let cfg = match &args.config {
         Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
@@ -92,23 +93,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         ));
     }
     let trace = match &args.trace {
-        Some(p) => {
-            // Reading the trace and its workload statistics are outside the
-            // cycle loop but part of every `wasp run` on it: time them once.
-            let start = std::time::Instant::now();
-            let t = wasp_sim::trace::Trace::read(p).map_err(|e| CliError::usage(e.to_string()))?;
-            let read = start.elapsed().as_secs_f64();
-            let start = std::time::Instant::now();
-            std::hint::black_box(t.stats());
-            let stats = start.elapsed().as_secs_f64();
-            let mb = std::fs::metadata(p).map(|m| m.len()).unwrap_or(0) as f64 / 1e6;
-            eprintln!(
-                "trace {}: read in {read:.3} s ({:.0} MB/s), workload statistics in {stats:.3} s (one run each)",
-                p.display(),
-                mb / read.max(1e-9)
-            );
-            Some(t)
-        }
+        Some(p) => Some(read_timed(p)?),
         None => None,
     };
     eprintln!(
@@ -132,28 +117,61 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         args.repeats,
         args.min_seconds,
         trace.as_ref(),
-        &mut |p| {
-            let cpu = p
-                .core_cycles_per_cpu_second
-                .map_or("-".to_string(), |r| format!("{r:.0}"));
-            eprintln!(
-                "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10.4}{:>16.0}{:>6}{:>14}{:>14.0}{:>7.1}%",
-                p.label,
-                format!("{:?}", p.mode).to_lowercase(),
-                p.tiles,
-                p.max_warps,
-                p.cycles,
-                p.core_cycles,
-                p.seconds,
-                p.core_cycles_per_second,
-                p.runs_per_sample,
-                cpu,
-                p.median_core_cycles_per_second,
-                100.0 * p.spread
-            );
-        },
+        &mut print_row,
     )
     .map_err(|e| CliError::failed(e.to_string()))?;
+    print_overheads(&points);
+    if let Some(p) = &args.json {
+        let text = serde_json::to_string_pretty(&points)
+            .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?
+            + "\n";
+        emit(p, &text)?;
+    }
+    Ok(())
+}
+
+/// Read the trace `p`, timing the read and its workload statistics (outside
+/// the cycle loop but part of every `wasp run` on it: timed once).
+fn read_timed(p: &std::path::Path) -> Result<wasp_sim::trace::Trace, CliError> {
+    let start = std::time::Instant::now();
+    let t = wasp_sim::trace::Trace::read(p).map_err(|e| CliError::usage(e.to_string()))?;
+    let read = start.elapsed().as_secs_f64();
+    let start = std::time::Instant::now();
+    std::hint::black_box(t.stats());
+    let stats = start.elapsed().as_secs_f64();
+    let mb = std::fs::metadata(p).map(|m| m.len()).unwrap_or(0) as f64 / 1e6;
+    eprintln!(
+        "trace {}: read in {read:.3} s ({:.0} MB/s), workload statistics in {stats:.3} s (one run each)",
+        p.display(),
+        mb / read.max(1e-9)
+    );
+    Ok(t)
+}
+
+/// One row of the table, as its point ends.
+fn print_row(p: &bench::Point) {
+    let cpu = p
+        .core_cycles_per_cpu_second
+        .map_or("-".to_string(), |r| format!("{r:.0}"));
+    eprintln!(
+        "{:<8}{:>8}{:>8}{:>7}{:>12}{:>14}{:>10.4}{:>16.0}{:>6}{:>14}{:>14.0}{:>7.1}%",
+        p.label,
+        format!("{:?}", p.mode).to_lowercase(),
+        p.tiles,
+        p.max_warps,
+        p.cycles,
+        p.core_cycles,
+        p.seconds,
+        p.core_cycles_per_second,
+        p.runs_per_sample,
+        cpu,
+        p.median_core_cycles_per_second,
+        100.0 * p.spread
+    );
+}
+
+/// The tracing hook's overhead and, when samples spread widely, a warning.
+fn print_overheads(points: &[bench::Point]) {
     let point = |m: bench::Mode| points.iter().find(|p| p.label == "tracing" && p.mode == m);
     if let (Some(off), Some(hooks)) = (point(bench::Mode::Off), point(bench::Mode::Hooks)) {
         let cpu = match (off.cpu_seconds, hooks.cpu_seconds) {
@@ -176,11 +194,4 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
             );
         }
     }
-    if let Some(p) = &args.json {
-        let text = serde_json::to_string_pretty(&points)
-            .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?
-            + "\n";
-        emit(p, &text)?;
-    }
-    Ok(())
 }

@@ -1,6 +1,6 @@
 //! `wasp cost`: the hardware-overhead report.
 
-use crate::run_cmd::emit;
+use crate::output::{self, emit, Output};
 use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -31,13 +31,19 @@ pub struct CostArgs {
     /// paper's 32 at width 2, 48 at width 4).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..MAX_WARPS as i64))]
     pub wasp_warps: Option<u32>,
-    /// Write the report as JSON to FILE (`-`: stdout).
+    /// Write the report as JSON to FILE (`-` for standard output, in place
+    /// of the table).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// No progress output on stderr; results, warnings and errors still
+    /// print. (Cost shows none.)
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// Run the command.
 pub fn run(args: &CostArgs) -> Result<(), CliError> {
+    output::check(&[Output::new("--json", args.json.as_deref())])?;
     let cfg = match &args.config {
         Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
@@ -62,9 +68,13 @@ pub fn run(args: &CostArgs) -> Result<(), CliError> {
             "given: WaSP with {} warps matches the baseline with {}",
             rf.wasp_warps, rf.baseline_warps
         );
+        rf.caveat = "These warp counts are given on the command line: an assumption, not a \
+                     measurement. `wasp reproduce`'s sensitivity rows (REPORT.md) measure \
+                     WaSP with fewer warps against the baseline on the shipped scenes."
+            .into();
     }
     let r = report(&cfg, GateRules::default(), &rf, !args.no_yosys).map_err(CliError::usage)?;
-    let json_stdout = args.json.as_ref().is_some_and(|p| p.as_os_str() == "-");
+    let json_stdout = output::to_stdout(&args.json);
     if let Some(p) = &args.json {
         let text = serde_json::to_string_pretty(&r)
             .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?

@@ -1,10 +1,10 @@
 //! `wasp example`: the paper's worked example.
 
+use crate::output::{self, emit, Output};
 use crate::run_cmd::gtkw_path;
 use crate::CliError;
 use clap::Args;
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use wasp_rtl::policy::LaunchRule;
 use wasp_sim::example::{self, ExampleConfig, ExampleError, ExampleReport};
@@ -13,15 +13,17 @@ use wasp_waves::{Format, GtkwSave, SignalInfo, VcdSink};
 /// Options of `wasp example`.
 #[derive(Args, Debug, Clone)]
 pub struct ExampleArgs {
-    /// Print the result as JSON (keys `scanline`, `all_priority_first`,
-    /// `wasp`, each with `cycles`, `stall_cycles`, hits and misses, the launch
-    /// order and the per-cycle timeline) instead of the chronographs.
-    #[arg(long)]
-    pub json: bool,
+    /// Write the result as JSON to FILE (`-` for standard output, in place
+    /// of the chronographs): keys `scanline`, `all_priority_first`, `wasp`,
+    /// each with `cycles`, `stall_cycles`, hits and misses, the launch order
+    /// and the per-cycle timeline.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
 
-    /// Write the waveform of all three runs to FILE (VCD, one time unit per
-    /// cycle, cycle 0 = reset) and a GTKWave save file FILE.gtkw that
-    /// preselects the scheduler and cache signals: `gtkwave FILE FILE.gtkw`.
+    /// Write the waveform of all three runs to FILE (`-` for standard
+    /// output; VCD, one time unit per cycle, cycle 0 = reset) and a GTKWave
+    /// save file FILE.gtkw that preselects the scheduler and cache signals:
+    /// `gtkwave FILE FILE.gtkw`.
     #[arg(long, value_name = "FILE")]
     pub vcd: Option<PathBuf>,
 
@@ -54,7 +56,7 @@ impl Default for ExampleArgs {
     fn default() -> Self {
         let d = ExampleConfig::default();
         Self {
-            json: false,
+            json: None,
             vcd: None,
             latency: d.latency,
             mshrs: d.mshrs,
@@ -74,6 +76,10 @@ fn map_err(e: ExampleError) -> CliError {
 
 /// Run the command.
 pub fn run(args: &ExampleArgs) -> Result<(), CliError> {
+    output::check(&[
+        Output::new("--json", args.json.as_deref()),
+        Output::new("--vcd", args.vcd.as_deref()),
+    ])?;
     let cfg = ExampleConfig {
         latency: args.latency,
         mshrs: args.mshrs,
@@ -85,50 +91,41 @@ pub fn run(args: &ExampleArgs) -> Result<(), CliError> {
         None => example::run(&cfg).map_err(map_err)?,
         Some(path) => write_waves(&cfg, path)?,
     };
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
-    let text = if args.json {
+    if let Some(p) = &args.json {
         let mut s = serde_json::to_string_pretty(&report)
             .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?;
         s.push('\n');
-        s
-    } else {
-        example::render_report(&report)
-    };
-    out.write_all(text.as_bytes())
-        .map_err(|e| CliError::failed(format!("writing to standard output: {e}")))?;
-    if let (Some(path), false) = (&args.vcd, args.json) {
-        writeln!(
-            out,
-            "Waveform: {} (open with: gtkwave {} {})",
+        emit(p, &s)?;
+    }
+    if output::to_stdout(&args.json) || output::to_stdout(&args.vcd) {
+        return Ok(());
+    }
+    let mut text = example::render_report(&report);
+    if let Some(path) = &args.vcd {
+        text.push_str(&format!(
+            "Waveform: {} (open with: gtkwave {} {})\n",
             path.display(),
             path.display(),
             gtkw_path(path).display()
-        )
-        .map_err(|e| CliError::failed(format!("writing to standard output: {e}")))?;
+        ));
     }
-    Ok(())
-}
-
-fn create(path: &Path) -> Result<BufWriter<File>, CliError> {
-    File::create(path)
-        .map(BufWriter::new)
-        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", path.display())))
+    emit(Path::new("-"), &text)
 }
 
 fn write_waves(cfg: &ExampleConfig, path: &Path) -> Result<ExampleReport, CliError> {
-    let mut sink = VcdSink::new(create(path)?, "wasp_example");
+    let mut sink = VcdSink::new(output::create(path)?, "wasp_example");
     let (report, last) = example::run_traced(cfg, &mut sink).map_err(map_err)?;
     let signals: Vec<SignalInfo> = sink.signals().to_vec();
-    let mut w = sink
-        .finish(last + 1)
-        .map_err(|e| CliError::failed(format!("writing {}: {e}", path.display())))?;
-    w.flush()
-        .map_err(|e| CliError::failed(format!("writing {}: {e}", path.display())))?;
-
+    sink.finish(last + 1)
+        .and_then(|mut w| w.flush())
+        .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(path))))?;
+    if output::is_stdout(path) {
+        // No file to name in a save file.
+        return Ok(report);
+    }
     let gtkw = gtkw_path(path);
     let save = gtkw_save(path, &signals, last + 1);
-    let mut g = create(&gtkw)?;
+    let mut g = output::create(&gtkw)?;
     save.write_to(&mut g)
         .and_then(|_| g.flush())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", gtkw.display())))?;

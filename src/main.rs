@@ -2,15 +2,20 @@
 
 mod bench_cmd;
 mod charts;
+mod compare_cmd;
 mod cost_cmd;
 mod example_cmd;
 mod fonts;
+mod game_data;
 mod heat;
+mod interrupt;
+mod output;
 mod palette;
 mod picture;
 mod reproduce;
 mod run_cmd;
 mod scene_cmd;
+mod scenes_dir;
 mod study;
 mod sweep_cmd;
 mod synth_cmd;
@@ -30,13 +35,9 @@ struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
 
-    /// A folder of extra scene definitions (*.toml): they add scenes or
-    /// replace a shipped one of the same name (the shipped ones are built
-    /// into the binary). Also WASP_SCENES_DIR.
-    #[arg(long, global = true, value_name = "DIR")]
-    scenes_dir: Option<std::path::PathBuf>,
-
-    /// With no subcommand: run the worked example without notes on stderr.
+    /// No progress output on stderr, before any subcommand as after it
+    /// (`wasp -q reproduce` is `wasp reproduce -q`); with no subcommand, the
+    /// worked example without notes.
     #[arg(long, short)]
     quiet: bool,
 }
@@ -65,7 +66,7 @@ enum Command {
 
     /// Run several launch policies on the same trace and print speedups
     /// against the first (the scanline baseline by default).
-    Compare(run_cmd::CompareArgs),
+    Compare(compare_cmd::CompareArgs),
 
     /// Write a synthetic workload trace (a textured-surface model with a
     /// stated memory-instruction ratio and block reuse), and report the
@@ -137,21 +138,65 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = Cli::parse();
-    if let Some(d) = &cli.scenes_dir {
-        if !d.is_dir() {
-            eprintln!(
-                "wasp: error: --scenes-dir {}: not a folder of scene definitions",
-                d.display()
-            );
-            return ExitCode::from(2);
-        }
-        wasp_frontend::def::set_scenes_dir(d.clone());
+    let mut cli = Cli::parse();
+    if let Some(c) = cli.command.as_mut() {
+        *c.quiet_mut() |= cli.quiet;
     }
-    let result = match cli.command {
+    let result = cli
+        .command
+        .as_ref()
+        .and_then(Command::scenes_dir)
+        .map_or(Ok(()), scenes_dir::ScenesDir::apply)
+        .and_then(|()| dispatch(cli));
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("wasp: error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
+impl Command {
+    /// The subcommand's own `-q`, which a `-q` before it sets too.
+    fn quiet_mut(&mut self) -> &mut bool {
+        match self {
+            Command::Example(a) => &mut a.quiet,
+            Command::Run(a) => &mut a.inputs.quiet,
+            Command::Compare(a) => &mut a.inputs.quiet,
+            Command::Synth(a) => &mut a.quiet,
+            Command::Cost(a) => &mut a.quiet,
+            Command::Bench(a) => &mut a.quiet,
+            Command::Scenes(a) => a.quiet_mut(),
+            Command::Render(a) => &mut a.quiet,
+            Command::Characterize(a) => &mut a.quiet,
+            Command::Reproduce(a) => &mut a.quiet,
+            Command::Sweep(a) => &mut a.quiet,
+            Command::Merge(a) => &mut a.quiet,
+        }
+    }
+
+    /// The `--scenes-dir` option of the commands that read scene
+    /// definitions.
+    fn scenes_dir(&self) -> Option<&scenes_dir::ScenesDir> {
+        match self {
+            Command::Scenes(a) => a.scenes_dir(),
+            Command::Render(a) => Some(&a.scene_defs),
+            Command::Characterize(a) => Some(&a.scene_defs),
+            Command::Reproduce(a) => Some(&a.scene_defs),
+            Command::Sweep(a) => Some(&a.scene_defs),
+            Command::Merge(a) => Some(&a.scene_defs),
+            _ => None,
+        }
+    }
+}
+
+/// Run the command.
+fn dispatch(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
         Some(Command::Example(args)) => example_cmd::run(&args),
         Some(Command::Run(args)) => run_cmd::run(&args),
-        Some(Command::Compare(args)) => run_cmd::compare(&args),
+        Some(Command::Compare(args)) => compare_cmd::compare(&args),
         Some(Command::Bench(args)) => bench_cmd::run(&args),
         Some(Command::Cost(args)) => cost_cmd::run(&args),
         Some(Command::Synth(args)) => synth_cmd::run(&args),
@@ -165,13 +210,6 @@ fn main() -> ExitCode {
             quiet: cli.quiet,
             ..example_cmd::ExampleArgs::default()
         }),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("wasp: error: {e}");
-            ExitCode::from(e.exit_code())
-        }
     }
 }
 

@@ -1,11 +1,12 @@
 //! `wasp scenes`, `wasp render` and `wasp characterize`: real-game and
 //! procedural scenes through the TBR front end.
 
-use crate::run_cmd::emit;
+use crate::output::{self, emit, Output};
+use crate::scenes_dir::ScenesDir;
 use crate::CliError;
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use wasp_frontend::characterize::{self, Characterization};
 use wasp_frontend::def::{self, Game, SceneDef};
@@ -23,6 +24,30 @@ use wasp_sim::stats::RunStats;
 pub struct ScenesArgs {
     #[command(subcommand)]
     pub command: ScenesCommand,
+    /// No progress output on stderr (as `-q` after `list` or `fetch`).
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+impl ScenesArgs {
+    /// The `-q` of `list` or `fetch`, set also by a `-q` before them.
+    pub fn quiet_mut(&mut self) -> &mut bool {
+        let before = self.quiet;
+        let q = match &mut self.command {
+            ScenesCommand::List(a) => &mut a.quiet,
+            ScenesCommand::Fetch(a) => &mut a.quiet,
+        };
+        *q |= before;
+        q
+    }
+
+    /// The `--scenes-dir` of `scenes list` (fetching reads no definition).
+    pub fn scenes_dir(&self) -> Option<&ScenesDir> {
+        match &self.command {
+            ScenesCommand::List(a) => Some(&a.scene_defs),
+            ScenesCommand::Fetch(_) => None,
+        }
+    }
 }
 
 /// `wasp scenes list|fetch`.
@@ -30,11 +55,24 @@ pub struct ScenesArgs {
 pub enum ScenesCommand {
     /// List the scene definitions (built in, plus --scenes-dir) and whether their game
     /// data is in the cache.
-    List,
+    List(ListArgs),
     /// Download a game's Debian packages (apt-get download) and unpack
     /// them (dpkg-deb) into the scene cache: $WASP_SCENES, else
-    /// $XDG_CACHE_HOME/wasp/scenes, else ~/.cache/wasp/scenes.
+    /// $XDG_CACHE_HOME/wasp/scenes, else ~/.cache/wasp/scenes. Needs a
+    /// Debian-family host (apt-get, dpkg-deb); all four games are about
+    /// 835 MB to download and 0.9 GB unpacked.
     Fetch(FetchArgs),
+}
+
+/// Options of `wasp scenes list`.
+#[derive(Args, Debug, Clone)]
+pub struct ListArgs {
+    #[command(flatten)]
+    pub scene_defs: ScenesDir,
+    /// No progress output on stderr; results, warnings and errors still
+    /// print. (The list shows none.)
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// Options of `wasp scenes fetch`.
@@ -46,22 +84,30 @@ pub struct FetchArgs {
     /// Every game.
     #[arg(long, conflicts_with = "games")]
     pub all: bool,
+    /// No progress output on stderr (what is downloaded and unpacked);
+    /// errors still print.
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// Options of `wasp render`.
 #[derive(Args, Debug, Clone)]
 pub struct RenderArgs {
     /// Scene name (see `wasp scenes list`) or a scene definition file.
+    /// A game's data is fetched into the scene cache if it is not there.
     #[arg(value_name = "SCENE")]
     pub scene: String,
-    /// Write the picture as PNG to FILE.
+    #[command(flatten)]
+    pub scene_defs: ScenesDir,
+    /// Write the picture as PNG to FILE (`-` for standard output).
     #[arg(long, value_name = "FILE")]
     pub png: Option<PathBuf>,
     /// Overlay, repeatable: grid, subset or subset:SUBSET (default mesh4),
     /// heat[:latency|cycles|launch] (runs the cycle model on the frame).
     #[arg(long, value_name = "OVERLAY")]
     pub overlay: Vec<Overlay>,
-    /// Save the frame's trace (for `wasp run --trace FILE`).
+    /// Save the frame's trace to FILE (`-` for standard output), for
+    /// `wasp run --trace FILE`.
     #[arg(long, value_name = "FILE")]
     pub trace_out: Option<PathBuf>,
     /// Machine configuration (TOML) for the tile size and heat-map runs;
@@ -119,10 +165,13 @@ pub struct CharacterizeArgs {
     /// is in the cache, the procedural ones included.
     #[arg(value_name = "SCENE")]
     pub scenes: Vec<String>,
-    /// Write the characterisation as JSON to FILE (`-`: standard output).
+    #[command(flatten)]
+    pub scene_defs: ScenesDir,
+    /// Write the characterisation as JSON to FILE (`-` for standard
+    /// output).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
-    /// Write it as CSV to FILE (`-`: standard output).
+    /// Write it as CSV to FILE (`-` for standard output).
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
     /// Hidden-surface removal by a depth pre-pass (see `wasp render`).
@@ -192,7 +241,7 @@ fn find_def(name: &str) -> Result<SceneDef, CliError> {
 /// Run `wasp scenes`.
 pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
     match &args.command {
-        ScenesCommand::List => {
+        ScenesCommand::List(_) => {
             let defs = def::all().map_err(scene_err)?;
             println!(
                 "{:<28} {:<14} {:<18} {:<16} {:>10}  data",
@@ -237,10 +286,15 @@ pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
                     .map(|g| parse_game(g))
                     .collect::<Result<_, _>>()?
             };
+            let quiet = f.quiet;
             for g in games {
-                let root =
-                    fetch::fetch(g, &mut |m| eprintln!("wasp: {g}: {m}")).map_err(scene_err)?;
-                if g != Game::Procedural {
+                let root = fetch::fetch(g, &mut |m| {
+                    if !quiet {
+                        eprintln!("wasp: {g}: {m}")
+                    }
+                })
+                .map_err(scene_err)?;
+                if g != Game::Procedural && !quiet {
                     eprintln!("wasp: {g}: data in {}", root.display());
                 }
             }
@@ -269,41 +323,65 @@ fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
     Ok((w as u32, h as u32))
 }
 
-/// Run `wasp render`.
-pub fn render(args: &RenderArgs) -> Result<(), CliError> {
+/// What `wasp render` draws, checked before any work.
+struct RenderJob {
+    def: SceneDef,
+    width: u32,
+    height: u32,
+    crop: Option<Rect>,
+    config: MachineConfig,
+}
+
+/// Check the options of `wasp render` before rendering: the outputs, the
+/// scene, its size and crop, the configuration.
+fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
     if args.png.is_none() && args.trace_out.is_none() && !args.timings {
         return Err(CliError::usage(
             "nothing to write: give --png FILE and/or --trace-out FILE (or --timings)",
         ));
     }
+    output::check(&[
+        Output::new("--png", args.png.as_deref()),
+        Output::new("--trace-out", args.trace_out.as_deref()),
+    ])?;
     if args.repeat == 0 {
         return Err(CliError::usage("--repeat 0: expected at least 1"));
     }
-    let mut d = find_def(&args.scene)?;
-    d.draw_order = args.draw_order.unwrap_or(d.draw_order);
-    let (w, h) = match &args.size {
+    let mut def = find_def(&args.scene)?;
+    def.draw_order = args.draw_order.unwrap_or(def.draw_order);
+    let (width, height) = match &args.size {
         Some(s) => parse_size(s)?,
-        None => (d.width, d.height),
+        None => (def.width, def.height),
     };
     // Check the crop against the frame before spending time on rendering.
-    let crop_rect = match &args.crop {
-        Some(c) => Some(parse_crop(c, w, h)?),
+    let crop = match &args.crop {
+        Some(c) => Some(parse_crop(c, width, height)?),
         None => None,
     };
     let config = match &args.config {
         Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
-    let mut best = PhaseTimes::default();
-    let clock = Stopwatch::start();
-    let mut scene = load::load_scene(&d).map_err(scene_err)?;
-    best.load = clock.lap();
+    Ok(RenderJob {
+        def,
+        width,
+        height,
+        crop,
+        config,
+    })
+}
+
+/// Run `wasp render`.
+pub fn render(args: &RenderArgs) -> Result<(), CliError> {
+    let job = render_job(args)?;
+    // A game's data is fetched when first needed, as `reproduce` does.
+    crate::game_data::fetch_missing(&[job.def.game], args.quiet).map_err(CliError::failed)?;
     let req = RenderRequest {
         overlays: args.overlay.clone(),
-        tile: config.gpu.tile_size,
+        tile: job.config.gpu.tile_size,
         depth_prepass: args.depth_prepass,
         threads: args.threads,
-        draw_order: d.draw_order,
+        draw_order: job.def.draw_order,
     };
     let run = RunOptions {
         policy: args.policy,
@@ -311,18 +389,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         record_warps: true,
         ..RunOptions::default()
     };
-    let pb = if args.quiet || !std::io::stderr().is_terminal() {
-        ProgressBar::hidden()
-    } else {
-        let pb = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
-        pb.set_style(
-            ProgressStyle::with_template("{prefix:>14} [{bar:40}] {pos}/{len} tiles {elapsed}")
-                .expect("valid template")
-                .progress_chars("=> "),
-        );
-        pb.set_prefix("heat-map run");
-        pb
-    };
+    let pb = heat_progress(args.quiet);
     // A heat overlay runs the cycle model once on the frame's trace; its
     // warp records give every heat statistic.
     let mut heat_run: Option<(RunStats, Vec<WarpRecord>)> = None;
@@ -333,42 +400,110 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
                 pb.set_position(done as u64);
             };
             heat_run = Some(
-                simulate_recording(&config, &frame.trace, &run, &mut progress)
+                simulate_recording(&job.config, &frame.trace, &run, &mut progress)
                     .map_err(|e| e.to_string())?,
             );
         }
         let (_, records) = heat_run.as_ref().expect("run");
         Ok(crate::heat::warp_values(records, stat))
     };
-    let clock = Stopwatch::start();
-    let mut out = render::render(&scene, w, h, &req, &mut heat).map_err(scene_err)?;
-    best.render = clock.lap();
-    best.raster = out.frame.timings;
-    for _ in 1..args.repeat {
-        // The same work again; results are deterministic, times are not.
-        let clock = Stopwatch::start();
-        scene = load::load_scene(&d).map_err(scene_err)?;
-        best.load = best.load.min(clock.lap());
-        let clock = Stopwatch::start();
-        out = render::render(&scene, w, h, &req, &mut heat).map_err(scene_err)?;
-        best.render = best.render.min(clock.lap());
-        let t = &out.frame.timings;
-        best.raster.textures = best.raster.textures.min(t.textures);
-        best.raster.geometry = best.raster.geometry.min(t.geometry);
-        best.raster.tiles = best.raster.tiles.min(t.tiles);
-    }
+    let (scene_name, out, mut best) = render_best(args, &job, &req, &mut heat)?;
     pb.finish_and_clear();
+    note_frame(&scene_name, &job, &out, heat_run.as_ref().map(|(r, _)| r));
+    let clock = Stopwatch::start();
+    if let Some(p) = &args.png {
+        let (img, cw, ch) = match job.crop {
+            Some(r) => crop(&out.image, job.width, r),
+            None => (out.image.clone(), job.width, job.height),
+        };
+        let bytes = render::encode_png(&img, cw, ch).map_err(scene_err)?;
+        output::write_bytes(p, &bytes)?;
+        if !args.quiet {
+            eprintln!("wasp: wrote {}", output::name(p));
+        }
+    }
+    best.png = clock.lap();
+    if let Some(p) = &args.trace_out {
+        write_trace(p, &out.frame.trace, args.quiet)?;
+    }
+    best.trace = clock.lap();
+    if args.timings {
+        if args.png.is_none() {
+            best.png.wall = 0.0;
+        }
+        if args.trace_out.is_none() {
+            best.trace.wall = 0.0;
+        }
+        print_timings(&scene_name, job.width, job.height, args.repeat, &best);
+    }
+    Ok(())
+}
+
+/// The progress bar of a heat-map run (hidden when quiet or not on a
+/// terminal).
+fn heat_progress(quiet: bool) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let pb = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
+    pb.set_style(
+        ProgressStyle::with_template("{prefix:>14} [{bar:40}] {pos}/{len} tiles {elapsed}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    pb.set_prefix("heat-map run");
+    pb
+}
+
+/// Load and render the scene `args.repeat` times: its name, the last
+/// rendering (results are deterministic) and the best time of each phase.
+fn render_best(
+    args: &RenderArgs,
+    job: &RenderJob,
+    req: &RenderRequest,
+    heat: &mut render::HeatSource<'_>,
+) -> Result<(String, render::Rendered, PhaseTimes), CliError> {
+    let mut best = PhaseTimes::default();
+    let mut out: Option<render::Rendered> = None;
+    let mut name = String::new();
+    for i in 0..args.repeat {
+        let clock = Stopwatch::start();
+        let scene = load::load_scene(&job.def).map_err(scene_err)?;
+        let load = clock.lap();
+        let clock = Stopwatch::start();
+        let r = render::render(&scene, job.width, job.height, req, heat).map_err(scene_err)?;
+        let whole = clock.lap();
+        let t = &r.frame.timings;
+        if i == 0 {
+            (best.load, best.render, best.raster) = (load, whole, *t);
+        } else {
+            best.load = best.load.min(load);
+            best.render = best.render.min(whole);
+            best.raster.textures = best.raster.textures.min(t.textures);
+            best.raster.geometry = best.raster.geometry.min(t.geometry);
+            best.raster.tiles = best.raster.tiles.min(t.tiles);
+        }
+        name = scene.name.clone();
+        out = Some(r);
+    }
+    Ok((name, out.expect("at least one repeat"), best))
+}
+
+/// The notes on stderr of a rendered frame: its draw order (and, where
+/// the painter's order changed what it shows, a note), its counts, the
+/// heat-map run and the heat range.
+fn note_frame(name: &str, job: &RenderJob, out: &render::Rendered, heat: Option<&RunStats>) {
     let s = &out.frame.stats;
-    if let Some(n) = painter_note(&d.name, d.draw_order, s.draw_order) {
+    if let Some(n) = painter_note(&job.def.name, job.def.draw_order, s.draw_order) {
         eprintln!("{n}");
     }
     eprintln!(
         "wasp: {} {}x{} ({}): {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
          positions ({:.2} per position) over {} tiles, {} quads rejected by early-Z; front end \
          {:.3} s",
-        scene.name,
-        w,
-        h,
+        name,
+        job.width,
+        job.height,
         s.draw_order,
         s.primitives,
         s.clipped,
@@ -379,44 +514,37 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         s.quads_rejected_early_z,
         out.raster_seconds
     );
-    if let Some((run, _)) = &heat_run {
+    if let Some(run) = heat {
         eprintln!("wasp: heat-map run ({}): {} cycles", run.policy, run.cycles);
     }
     if let Some((lo, hi)) = out.heat_range {
         eprintln!("wasp: heat map range {lo:.1} to {hi:.1}");
     }
-    let clock = Stopwatch::start();
-    if let Some(p) = &args.png {
-        let (img, cw, ch) = match crop_rect {
-            Some(r) => crop(&out.image, w, r),
-            None => (out.image.clone(), w, h),
-        };
-        render::write_png(p, &img, cw, ch).map_err(scene_err)?;
-        eprintln!("wasp: wrote {}", p.display());
+}
+
+/// Write a frame's trace to FILE (or standard output); say so unless
+/// `quiet`.
+fn write_trace(
+    p: &std::path::Path,
+    trace: &wasp_sim::trace::Trace,
+    quiet: bool,
+) -> Result<(), CliError> {
+    let mut w = output::create(p)?;
+    trace
+        .write(&mut w)
+        .and_then(|_| w.flush())
+        .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(p))))?;
+    if quiet {
+        return Ok(());
     }
-    best.png = clock.lap();
-    if let Some(p) = &args.trace_out {
-        let file = std::fs::File::create(p)
-            .map_err(|e| CliError::failed(format!("cannot create {}: {e}", p.display())))?;
-        out.frame
-            .trace
-            .write(std::io::BufWriter::new(file))
-            .map_err(|e| CliError::failed(format!("writing {}: {e}", p.display())))?;
+    if output::is_stdout(p) {
+        eprintln!("wasp: wrote the trace to standard output");
+    } else {
         eprintln!(
             "wasp: wrote {} (run it with `wasp run --trace {}`)",
             p.display(),
             p.display()
         );
-    }
-    best.trace = clock.lap();
-    if args.timings {
-        if args.png.is_none() {
-            best.png.wall = 0.0;
-        }
-        if args.trace_out.is_none() {
-            best.trace.wall = 0.0;
-        }
-        print_timings(&scene.name, w, h, args.repeat, &best);
     }
     Ok(())
 }
@@ -579,8 +707,10 @@ fn crop(img: &[u8], w: u32, r: Rect) -> (Vec<u8>, u32, u32) {
     (out, r.w, r.h)
 }
 
-/// Run `wasp characterize`.
-pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
+/// The scenes `wasp characterize` takes, each in every draw order asked
+/// for: the named ones (their games' data fetched if missing), else every
+/// scene whose data is in the cache.
+fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError> {
     let defs: Vec<SceneDef> = if args.scenes.is_empty() {
         let all = def::all().map_err(scene_err)?;
         let (have, missing): (Vec<_>, Vec<_>) =
@@ -594,13 +724,17 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
         }
         have
     } else {
-        args.scenes
+        let named: Vec<SceneDef> = args
+            .scenes
             .iter()
             .map(|s| find_def(s))
-            .collect::<Result<_, _>>()?
+            .collect::<Result<_, _>>()?;
+        let games: Vec<Game> = named.iter().map(|d| d.game).collect();
+        crate::game_data::fetch_missing(&games, args.quiet).map_err(CliError::failed)?;
+        named
     };
     // Each scene in each order asked for (none: its own), scene by scene.
-    let defs: Vec<SceneDef> = defs
+    Ok(defs
         .into_iter()
         .flat_map(|d| {
             let orders = match args.draw_order.is_empty() {
@@ -612,7 +746,16 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
                 ..d.clone()
             })
         })
-        .collect();
+        .collect())
+}
+
+/// Run `wasp characterize`.
+pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
+    output::check(&[
+        Output::new("--json", args.json.as_deref()),
+        Output::new("--csv", args.csv.as_deref()),
+    ])?;
+    let defs = characterize_defs(args)?;
     let mut rows: Vec<Characterization> = Vec::new();
     let mut failed = Vec::new();
     for (i, d) in defs.iter().enumerate() {
@@ -646,8 +789,7 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
     if rows.is_empty() {
         return Err(CliError::failed("no scene could be characterised"));
     }
-    let to_stdout = |p: &Option<PathBuf>| p.as_ref().is_some_and(|p| p.as_os_str() == "-");
-    if !to_stdout(&args.json) && !to_stdout(&args.csv) {
+    if !output::to_stdout(&args.json) && !output::to_stdout(&args.csv) {
         println!(
             "Workload characterisation (ours: the scenes named in each column; paper: ten \
              Android games on TEAPOT)"

@@ -2,7 +2,8 @@
 //! (docs/sweep.md), run here in parallel or as one cluster job per point,
 //! and its results combined from any number of study folders.
 
-use crate::run_cmd::emit;
+use crate::output::{self, emit, Output};
+use crate::scenes_dir::ScenesDir;
 use crate::study::cache::{read_points, write_atomic, Cache, PointRecord};
 use crate::study::jobs;
 use crate::study::merge;
@@ -19,18 +20,23 @@ pub struct SweepArgs {
     /// The sweep file (TOML; see docs/sweep.md).
     pub file: PathBuf,
 
+    #[command(flatten)]
+    pub scene_defs: ScenesDir,
+
     /// The study folder: finished points (`points/`), `results.csv` and
     /// `results.json`. A rerun skips the points it holds.
     #[arg(long, value_name = "DIR", default_value = "sweep-out")]
     pub out: PathBuf,
 
-    /// Simulations at once (default: the machine's cores).
-    #[arg(long, value_name = "N")]
+    /// Simulations at once (default: the machine's cores). Not with
+    /// --jobs-file or --list, which run nothing.
+    #[arg(long, value_name = "N", conflicts_with_all = ["jobs_file", "list"])]
     pub jobs: Option<usize>,
 
-    /// Write one shell command per point to JOBS (line N runs point N with
-    /// --point N) for a cluster, instead of running anything.
-    #[arg(long, value_name = "JOBS", conflicts_with_all = ["point", "list"])]
+    /// Write one shell command per point to FILE (`-` for standard output;
+    /// line N runs point N with --point N) for a cluster, instead of
+    /// running anything.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["point", "list"])]
     pub jobs_file: Option<PathBuf>,
 
     /// Print `N<TAB>description` for every point, and run nothing.
@@ -61,14 +67,23 @@ pub struct MergeArgs {
     #[arg(long, value_name = "FILE")]
     pub sweep: Option<PathBuf>,
 
-    /// Write the table as CSV to OUT (`-`: standard output; the default
-    /// when neither --csv nor --json is given).
-    #[arg(long, value_name = "OUT")]
+    /// With --sweep: a folder of extra scene definitions the sweep names.
+    #[command(flatten)]
+    pub scene_defs: ScenesDir,
+
+    /// Write the table as CSV to FILE (`-` for standard output; the
+    /// default when neither --csv nor --json is given).
+    #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
 
-    /// Write the records as JSON to OUT (`-`: standard output).
-    #[arg(long, value_name = "OUT")]
+    /// Write the records as JSON to FILE (`-` for standard output).
+    #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+
+    /// No progress output on stderr; results, warnings and errors still
+    /// print. (Merge shows none.)
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// Read the sweep file and expand it, every machine resolved.
@@ -86,6 +101,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     }
     let out = sweep::absolute(&args.out).map_err(CliError::usage)?;
     if let Some(jobs) = &args.jobs_file {
+        output::check(&[Output::new("--jobs-file", Some(jobs))])?;
         return write_jobs(args, &s, jobs, &out, &points);
     }
     let chosen: Vec<&SweepPoint> = match args.point {
@@ -100,6 +116,9 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         None => points.iter().collect(),
     };
     let cache = Cache::open(&out).map_err(CliError::failed)?;
+    if args.point.is_none() {
+        crate::interrupt::say_resume_on_interrupt(&out, &crate::interrupt::command_line());
+    }
     let tasks: Vec<Task> = chosen.iter().map(|p| Task::Run(p.point.clone())).collect();
     let opts = RunnerOptions {
         jobs: args
@@ -113,30 +132,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         scenes: Vec::new(),
     };
     let outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
-    let stored: Vec<(&SweepPoint, PointRecord)> = chosen
-        .iter()
-        .filter_map(|p| outcome.get(&p.point).map(|r| (*p, merge::as_stored(r))))
-        .collect();
-    let rows: Vec<(&SweepPoint, &PointRecord)> = stored.iter().map(|(p, r)| (*p, r)).collect();
-    if args.point.is_none() {
-        let csv = out.join("results.csv");
-        let json = out.join("results.json");
-        write_atomic(&csv, &merge::results_csv(&rows)).map_err(CliError::failed)?;
-        write_atomic(&json, &merge::results_json(&rows)).map_err(CliError::failed)?;
-        if !args.quiet {
-            eprintln!("wasp: wrote {} and {}", csv.display(), json.display());
-        }
-    }
-    match (args.point, rows.first()) {
-        (Some(n), Some((p, r))) => println!(
-            "point {n}/{} ({}): {:.0} cycles",
-            points.len(),
-            p.describe(),
-            r.cycles()
-        ),
-        (Some(_), None) => {}
-        (None, _) => emit(Path::new("-"), &merge::results_table(&rows, &s.policies[0]))?,
-    }
+    write_results(args, &s, &out, points.len(), &chosen, &outcome)?;
     if !args.quiet {
         eprintln!("wasp: {}", outcome.summary());
     }
@@ -155,6 +151,43 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The results of the `chosen` points of a sweep of `total`: the tables in
+/// the folder `out` and the summary on standard output (for `--point N`,
+/// its cycles only).
+fn write_results(
+    args: &SweepArgs,
+    s: &Sweep,
+    out: &Path,
+    total: usize,
+    chosen: &[&SweepPoint],
+    outcome: &runner::Outcome,
+) -> Result<(), CliError> {
+    let stored: Vec<(&SweepPoint, PointRecord)> = chosen
+        .iter()
+        .filter_map(|p| outcome.get(&p.point).map(|r| (*p, merge::as_stored(r))))
+        .collect();
+    let rows: Vec<(&SweepPoint, &PointRecord)> = stored.iter().map(|(p, r)| (*p, r)).collect();
+    if args.point.is_none() {
+        let csv = out.join("results.csv");
+        let json = out.join("results.json");
+        write_atomic(&csv, &merge::results_csv(&rows)).map_err(CliError::failed)?;
+        write_atomic(&json, &merge::results_json(&rows)).map_err(CliError::failed)?;
+        if !args.quiet {
+            eprintln!("wasp: wrote {} and {}", csv.display(), json.display());
+        }
+    }
+    match (args.point, rows.first()) {
+        (Some(n), Some((p, r))) => println!(
+            "point {n}/{total} ({}): {:.0} cycles",
+            p.describe(),
+            r.cycles()
+        ),
+        (Some(_), None) => {}
+        (None, _) => emit(Path::new("-"), &merge::results_table(&rows, &s.policies[0]))?,
+    }
+    Ok(())
+}
+
 /// Write the jobs file and say how to run it.
 fn write_jobs(
     args: &SweepArgs,
@@ -168,8 +201,7 @@ fn write_jobs(
     let file = std::fs::canonicalize(&args.file)
         .map_err(|e| CliError::usage(format!("{}: {e}", args.file.display())))?;
     let text = jobs::jobs_text(&exe, &file, out, points.len());
-    std::fs::write(jobs, text)
-        .map_err(|e| CliError::failed(format!("cannot write {}: {e}", jobs.display())))?;
+    emit(jobs, &text)?;
     let mut games: Vec<def::Game> = Vec::new();
     for d in def::all().map_err(|e| CliError::failed(e.to_string()))? {
         let used = s.scenes.contains(&d.name);
@@ -183,6 +215,10 @@ fn write_jobs(
              before the jobs (they do not fetch)",
             g.name()
         );
+    }
+    if output::is_stdout(jobs) {
+        // The jobs are the standard output: how to run them would mix in.
+        return Ok(());
     }
     let abs_jobs = sweep::absolute(jobs).map_err(CliError::usage)?;
     emit(
@@ -198,11 +234,15 @@ pub fn merge(args: &MergeArgs) -> Result<(), CliError> {
             return Err(CliError::usage(format!("{}: no such folder", d.display())));
         }
     }
+    output::check(&[
+        Output::new("--csv", args.csv.as_deref()),
+        Output::new("--json", args.json.as_deref()),
+    ])?;
     let swept = match &args.sweep {
         Some(f) => Some(load(f)?),
         None => None,
     };
-    let records = read_points(&args.dirs).map_err(CliError::failed)?;
+    let records = read_records(&args.dirs)?;
     let records = merge::combine(records).map_err(CliError::failed)?;
     let (csv, json) = (args.csv.clone(), args.json.clone());
     let csv = match (&csv, &json) {
@@ -224,7 +264,42 @@ pub fn merge(args: &MergeArgs) -> Result<(), CliError> {
         }
         return Ok(());
     };
-    let found = merge::match_points(&points, &records).map_err(CliError::failed)?;
+    merge_sweep(args, &points, &records, csv.as_deref(), json.as_deref())
+}
+
+/// The point records of the study folders `dirs`, sorted by scene and key;
+/// an error when there are none, a warning for each folder without any.
+fn read_records(dirs: &[PathBuf]) -> Result<Vec<PointRecord>, CliError> {
+    let mut records = Vec::new();
+    for d in dirs {
+        let found = read_points(std::slice::from_ref(d)).map_err(CliError::failed)?;
+        if found.is_empty() && dirs.len() > 1 {
+            eprintln!("wasp: warning: {} holds no point records", d.display());
+        }
+        records.extend(found);
+    }
+    records.sort_by(|a, b| (&a.point.scene, &a.key).cmp(&(&b.point.scene, &b.key)));
+    if records.is_empty() {
+        let names: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+        return Err(CliError::failed(format!(
+            "no point records in {} (a study folder holds them in points/SCENE.KEY.json): \
+             nothing to merge",
+            names.join(", ")
+        )));
+    }
+    Ok(records)
+}
+
+/// The rows of the sweep's `points` from `records`; the points without a
+/// result are listed (exit code 1).
+fn merge_sweep(
+    args: &MergeArgs,
+    points: &[SweepPoint],
+    records: &[PointRecord],
+    csv: Option<&Path>,
+    json: Option<&Path>,
+) -> Result<(), CliError> {
+    let found = merge::match_points(points, records).map_err(CliError::failed)?;
     let rows: Vec<(&SweepPoint, &PointRecord)> = points
         .iter()
         .zip(&found)
@@ -234,10 +309,10 @@ pub fn merge(args: &MergeArgs) -> Result<(), CliError> {
     if let Some(w) = merge::mixed_builds(&used) {
         eprintln!("wasp: warning: {w}");
     }
-    if let Some(p) = &csv {
+    if let Some(p) = csv {
         emit(p, &merge::results_csv(&rows))?;
     }
-    if let Some(p) = &json {
+    if let Some(p) = json {
         emit(p, &merge::results_json(&rows))?;
     }
     let missing: Vec<usize> = points

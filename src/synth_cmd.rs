@@ -1,14 +1,17 @@
 //! `wasp synth`: write a synthetic workload trace.
 
+use crate::output::{self, Output};
 use crate::CliError;
 use clap::Args;
+use std::io::Write;
 use std::path::PathBuf;
 use wasp_sim::synth::{generate, GenParams, GenReport};
 
 /// Options of `wasp synth`.
 #[derive(Args, Debug, Clone)]
 pub struct SynthArgs {
-    /// Output trace file.
+    /// Write the trace to FILE (`-` for standard output; the figures it
+    /// measures then go to standard error).
     #[arg(long, short, value_name = "FILE")]
     pub out: PathBuf,
     /// Frame size in pixels, WIDTHxHEIGHT.
@@ -59,6 +62,7 @@ fn parse_frame(s: &str) -> Result<(u32, u32), String> {
 
 /// Run the command.
 pub fn run(args: &SynthArgs) -> Result<(), CliError> {
+    output::check(&[Output::new("--out", Some(&args.out))])?;
     let mut p = GenParams {
         frame_w: args.frame.0,
         frame_h: args.frame.1,
@@ -85,14 +89,16 @@ pub fn run(args: &SynthArgs) -> Result<(), CliError> {
         p = q;
     }
     let trace = generate(&p).map_err(|e| CliError::failed(e.to_string()))?;
-    let file = std::fs::File::create(&args.out)
-        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", args.out.display())))?;
-    let mut w = std::io::BufWriter::new(file);
+    let mut w = output::create(&args.out)?;
     trace
         .write(&mut w)
-        .and_then(|_| std::io::Write::flush(&mut w))
-        .map_err(|e| CliError::failed(format!("writing {}: {e}", args.out.display())))?;
-    println!("{}", GenReport::new(&p, &trace));
-    println!("wrote {}", args.out.display());
+        .and_then(|_| w.flush())
+        .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(&args.out))))?;
+    if output::is_stdout(&args.out) {
+        eprintln!("{}", GenReport::new(&p, &trace));
+    } else {
+        println!("{}", GenReport::new(&p, &trace));
+        println!("wrote {}", args.out.display());
+    }
     Ok(())
 }

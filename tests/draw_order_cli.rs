@@ -31,9 +31,9 @@ fn scenes_dir(name: &str, extra: &str) -> PathBuf {
 /// `out`; its standard error.
 fn render(dir: &Path, scene: &str, out: &Path, args: &[&str]) -> String {
     let mut a = vec![
+        "render",
         "--scenes-dir",
         s(dir),
-        "render",
         scene,
         "--size",
         "392x154",
@@ -187,9 +187,9 @@ fn characterize_reports_every_order_asked_for() {
     let d = scenes_dir("characterize", "");
     let json = d.join("c.json");
     let o = wasp(&[
+        "characterize",
         "--scenes-dir",
         s(&d),
-        "characterize",
         "small-plane",
         "--draw-order",
         "as-loaded",
@@ -230,9 +230,9 @@ fn a_sweep_runs_each_draw_order_on_its_own_trace() {
     .unwrap();
     let out = d.join("out");
     let o = wasp(&[
+        "sweep",
         "--scenes-dir",
         s(&d),
-        "sweep",
         s(&file),
         "--out",
         s(&out),
@@ -255,14 +255,14 @@ fn a_sweep_runs_each_draw_order_on_its_own_trace() {
     assert!(warps(1) < warps(0), "{} vs {}", warps(1), warps(0));
     assert_ne!(json[0]["key"], json[1]["key"]);
     // Two records, two keys; the rerun takes both from the folder.
-    let o = wasp(&["--scenes-dir", s(&d), "sweep", s(&file), "--out", s(&out)]);
+    let o = wasp(&["sweep", "--scenes-dir", s(&d), s(&file), "--out", s(&out)]);
     ok(&o);
     assert!(
         stderr(&o).contains("2 tasks (0 run, 2 already done)"),
         "{}",
         stderr(&o)
     );
-    let list = ok(&wasp(&["--scenes-dir", s(&d), "sweep", s(&file), "--list"]));
+    let list = ok(&wasp(&["sweep", "--scenes-dir", s(&d), s(&file), "--list"]));
     assert_eq!(
         list,
         "1\tsmall-plane, config shipped, shared-tile, baseline, draw order as-loaded\n\

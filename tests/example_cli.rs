@@ -27,7 +27,7 @@ fn no_subcommand_shows_the_example() {
 
 #[test]
 fn json_has_the_three_runs() {
-    let o = wasp(&["example", "--json"]);
+    let o = wasp(&["example", "--json", "-"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
     let obj = v.as_object().unwrap();
@@ -53,14 +53,14 @@ fn json_has_the_three_runs() {
 
 #[test]
 fn json_is_deterministic() {
-    let a = wasp(&["example", "--json"]);
-    let b = wasp(&["example", "--json"]);
+    let a = wasp(&["example", "--json", "-"]);
+    let b = wasp(&["example", "--json", "-"]);
     assert_eq!(a.stdout, b.stdout);
 }
 
 #[test]
 fn machine_flags_change_the_result() {
-    let o = wasp(&["example", "--json", "--mshrs", "31", "--latency", "20"]);
+    let o = wasp(&["example", "--json", "-", "--mshrs", "31", "--latency", "20"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
     // Plenty of MSHRs: no stall, and clustering all misses first pays off.
@@ -115,7 +115,7 @@ fn help_explains_each_subcommand() {
 fn vcd_matches_the_chronographs_cycle_by_cycle() {
     let dir = tmp("vcd");
     let vcd = dir.join("example.vcd");
-    let o = wasp(&["example", "--json", "--vcd", vcd.to_str().unwrap()]);
+    let o = wasp(&["example", "--json", "-", "--vcd", vcd.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let report: Value = serde_json::from_str(&stdout(&o)).unwrap();
     let bytes = std::fs::read(&vcd).unwrap();
@@ -205,8 +205,13 @@ fn vcd_matches_the_chronographs_cycle_by_cycle() {
 #[test]
 fn unwritable_vcd_path_is_a_clear_error() {
     let o = wasp(&["example", "--vcd", "/nonexistent-dir/x.vcd"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("cannot create /nonexistent-dir/x.vcd"));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o)
+            .contains("--vcd /nonexistent-dir/x.vcd: the folder /nonexistent-dir does not exist"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// The launch rule: the paper's example is the same under both rules; at
@@ -215,7 +220,7 @@ fn unwritable_vcd_path_is_a_clear_error() {
 #[test]
 fn the_launch_rule_flag() {
     let json = |args: &[&str]| -> Value {
-        let mut a = vec!["example", "--json"];
+        let mut a = vec!["example", "--json", "-"];
         a.extend_from_slice(args);
         let o = wasp(&a);
         assert!(o.status.success(), "{}", stderr(&o));

@@ -160,7 +160,7 @@ fn a_scenes_folder_adds_and_replaces_definitions() {
     std::fs::write(defs.join("extra-plane.toml"), def("extra-plane", 128, 64)).unwrap();
     std::fs::write(defs.join("plane.toml"), def("procedural-plane", 192, 96)).unwrap();
     let defs_s = defs.to_str().unwrap();
-    let by_flag = ok(&wasp(&["--scenes-dir", defs_s, "scenes", "list"]));
+    let by_flag = ok(&wasp(&["scenes", "list", "--scenes-dir", defs_s]));
     let line = |list: &str, name: &str| {
         list.lines()
             .find(|l| l.split_whitespace().next() == Some(name))
@@ -194,9 +194,9 @@ fn a_scenes_folder_adds_and_replaces_definitions() {
     // An added scene renders by name.
     let t = d.join("extra.trace");
     ok(&wasp(&[
+        "render",
         "--scenes-dir",
         defs_s,
-        "render",
         "extra-plane",
         "--trace-out",
         t.to_str().unwrap(),
@@ -204,7 +204,7 @@ fn a_scenes_folder_adds_and_replaces_definitions() {
     ]));
     assert!(Trace::read(&t).unwrap().quad_count() > 0);
     // A folder that is not there is named.
-    let r = wasp(&["--scenes-dir", "/nonexistent/defs", "scenes", "list"]);
+    let r = wasp(&["scenes", "list", "--scenes-dir", "/nonexistent/defs"]);
     assert_eq!(r.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&r.stderr).contains("/nonexistent/defs"));
     let _ = std::fs::remove_dir_all(&d);
@@ -231,7 +231,7 @@ fn a_closed_pipe_ends_the_listing_quietly() {
         .unwrap();
     }
     let mut child = Command::new(env!("CARGO_BIN_EXE_wasp"))
-        .args(["--scenes-dir", d.to_str().unwrap(), "scenes", "list"])
+        .args(["scenes", "list", "--scenes-dir", d.to_str().unwrap()])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()

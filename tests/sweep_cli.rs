@@ -197,3 +197,121 @@ fn a_bad_sweep_file_is_refused_before_any_run() {
     assert_eq!(list.lines().count(), 24, "{list}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The scene cache `wasp` uses in this environment (as
+/// `wasp_frontend::fetch::cache_dir` finds it).
+fn scene_cache() -> std::path::PathBuf {
+    let env = |k: &str| std::env::var_os(k).filter(|v| !v.is_empty());
+    if let Some(d) = env("WASP_SCENES") {
+        return d.into();
+    }
+    if let Some(d) = env("XDG_CACHE_HOME").map(std::path::PathBuf::from) {
+        if d.is_absolute() {
+            return d.join("wasp").join("scenes");
+        }
+    }
+    match env("HOME") {
+        Some(h) => std::path::PathBuf::from(h).join(".cache/wasp/scenes"),
+        None => std::env::temp_dir().join("wasp-scenes"),
+    }
+}
+
+/// A stand-in for Debian's archive: a `teeworlds-data` package of version
+/// `version` (a data folder, no data: a study whose points are all stored
+/// renders nothing) built by the real dpkg-deb, and an `apt-get` on a
+/// PATH folder that hands it over. Returns that folder.
+fn stand_in_archive(d: &Path, version: &str) -> std::path::PathBuf {
+    let pkg = d.join("pkg");
+    let _ = std::fs::remove_dir_all(&pkg);
+    for dir in [
+        "DEBIAN",
+        "usr/share/games/teeworlds/data",
+        "usr/share/doc/teeworlds-data",
+    ] {
+        std::fs::create_dir_all(pkg.join(dir)).unwrap();
+    }
+    std::fs::write(
+        pkg.join("DEBIAN/control"),
+        format!(
+            "Package: teeworlds-data\nVersion: {version}\nArchitecture: all\nMaintainer: wasp \
+             tests <tests@example.org>\nDescription: a stand-in for a test\n"
+        ),
+    )
+    .unwrap();
+    std::fs::write(pkg.join("usr/share/doc/teeworlds-data/copyright"), "test\n").unwrap();
+    let deb = d.join(format!("teeworlds-data_{version}_all.deb"));
+    let built = Command::new("dpkg-deb")
+        .arg("--build")
+        .arg(&pkg)
+        .arg(&deb)
+        .output()
+        .expect("dpkg-deb");
+    assert!(built.status.success(), "{}", stderr(&built));
+    let bin = d.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let apt = bin.join("apt-get");
+    std::fs::write(
+        &apt,
+        format!(
+            "#!/bin/sh\ncase \"$1 $2\" in\n\"download --print-uris\") ;;\n\"download \"*) cp '{}' . \
+             ;;\nesac\nexit 0\n",
+            deb.display()
+        ),
+    )
+    .unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&apt, std::fs::Permissions::from_mode(0o755)).unwrap();
+    bin
+}
+
+/// A study run again with another scene cache (`WASP_SCENES`) keeps its
+/// game points: a game's scene counts by the versions of its packages, not
+/// by the folder they lie in. The other cache starts empty, so the game is
+/// fetched first (from a stand-in archive of the same version), then its
+/// points are found.
+#[cfg(unix)]
+#[test]
+#[ignore = "needs fetched game data: wasp scenes fetch teeworlds"]
+fn a_study_keeps_its_game_points_in_another_scene_cache() {
+    let marker = std::fs::read_to_string(scene_cache().join("teeworlds/.wasp-fetched")).unwrap();
+    let version = marker
+        .lines()
+        .find_map(|l| l.strip_prefix("teeworlds-data "))
+        .expect("the package's version")
+        .trim()
+        .to_string();
+    let d = common::scratch("sweep", "other-cache");
+    let (file, out) = (d.join("tw.toml"), d.join("out"));
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::write(
+        &file,
+        "scenes = [\"tw-dm1-spawn0\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \
+         \"shipped\"\nbase = \"paper\"\n",
+    )
+    .unwrap();
+    let args = ["sweep", s(&file), "--out", s(&out), "--jobs", "1"];
+    let first = wasp(&args);
+    let table = ok(&first);
+    assert!(
+        stderr(&first).contains("(1 run, 0 already done"),
+        "{}",
+        stderr(&first)
+    );
+
+    let bin = stand_in_archive(&d, &version);
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    let other = d.join("other cache");
+    let _ = std::fs::remove_dir_all(&other);
+    let again = Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .args(args)
+        .env("WASP_SCENES", &other)
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    let e = stderr(&again);
+    assert_eq!(ok(&again), table);
+    assert!(e.contains("fetching the teeworlds data"), "{e}");
+    assert!(e.contains("(0 run, 1 already done"), "{e}");
+    assert!(other.join("teeworlds/.wasp-fetched").is_file());
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -114,6 +114,35 @@ pub fn fetched_versions(game: Game) -> Option<Vec<(String, String)>> {
     )
 }
 
+/// The bytes `apt-get download` would fetch for the game's packages
+/// (their sizes as `apt-get download --print-uris` lists them), or None
+/// when apt cannot say (no apt, stale lists, unknown package).
+pub fn download_bytes(game: Game) -> Option<u64> {
+    if game == Game::Procedural {
+        return Some(0);
+    }
+    let out = Command::new("apt-get")
+        .args(["download", "--print-uris"])
+        .args(game.packages())
+        .stderr(Stdio::null())
+        .output()
+        .ok()?;
+    if !out.status.success() {
+        return None;
+    }
+    let sizes = print_uris_sizes(&String::from_utf8_lossy(&out.stdout));
+    (sizes.len() == game.packages().len()).then(|| sizes.iter().sum())
+}
+
+/// The sizes in `apt-get download --print-uris` lines (`'URI' FILE SIZE
+/// HASH`).
+fn print_uris_sizes(text: &str) -> Vec<u64> {
+    text.lines()
+        .filter(|l| l.starts_with('\''))
+        .filter_map(|l| l.split_whitespace().nth(2)?.parse().ok())
+        .collect()
+}
+
 fn tool_missing(tool: &str) -> bool {
     Command::new(tool)
         .arg("--version")
@@ -294,5 +323,16 @@ mod tests {
             }
         }
         assert!(is_fetched(Game::Procedural));
+    }
+
+    #[test]
+    fn download_sizes_come_from_the_print_uris_lines() {
+        let text =
+            "'http://deb.debian.org/debian/pool/main/t/teeworlds/teeworlds-data_0.7.5-2_all.deb' \
+                    teeworlds-data_0.7.5-2_all.deb 7633736 SHA256:b867\n\
+                    'http://x/a.deb' a_1_all.deb 10 SHA256:00\n\
+                    Reading package lists...\n";
+        assert_eq!(print_uris_sizes(text), [7_633_736, 10]);
+        assert_eq!(download_bytes(Game::Procedural), Some(0));
     }
 }

@@ -7,7 +7,7 @@
 //! scheduler watches the L1's MSHRs). Every field is documented in those
 //! files and declared once, with its bound, in `config/sections.rs`. A
 //! file that sets only some fields is read on top of a base machine
-//! ([`file`]). Unknown keys are errors, and [`MachineConfig::validate`]
+//! ([`file`](mod@file)). Unknown keys are errors, and [`MachineConfig::validate`]
 //! refuses every value the model or the scheduler's registers cannot hold,
 //! naming the field and the limit.
 
@@ -103,7 +103,7 @@ impl MachineConfig {
     /// Read and validate a TOML file: a whole machine, or a patch onto
     /// the machine its `extends` names (a shipped machine, `paper` or
     /// `paper-width2`, or a file, relative to this one), by default the
-    /// paper's (see [`file`] and docs/model.md). A file that is not UTF-8
+    /// paper's (see [`file`](mod@file) and docs/model.md). A file that is not UTF-8
     /// is named with the line and byte column of its first invalid byte.
     pub fn load(path: &Path) -> Result<Self, ConfigError> {
         file::load(path, 0)

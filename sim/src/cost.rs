@@ -5,11 +5,18 @@
 //! GPU, in bits and gate equivalents (counting rules stated in
 //! [`GateRules`]). (b) The same scheduler block synthesized by Yosys from
 //! the shipped Verilog twin (`props/verilog/wasp_sched.v`): cell counts,
-//! flip-flops and `stat -tech cmos` transistors, side by side. (c) What it
-//! saves: the register file of the extra warps the baseline needs for the
-//! same performance (the paper: WaSP at 32 warps matches the baseline at
-//! 48), sized from the register-file parameters. (e) The issue orders
-//! (`core.issue`) beside each other ([`issue_order`]).
+//! flip-flops and `stat -tech cmos` transistors, side by side, with what
+//! each counts. (c) What it would save: the register file of the extra
+//! warps the baseline needs for the same performance by the paper's claim
+//! (WaSP at 32 warps matches the baseline at 48 at width 2; at 48 beats it
+//! at 64 at width 4), sized from the register-file parameters. The claim is
+//! the paper's: this command runs no simulation, and wasp's reproduction
+//! measures it separately (`wasp reproduce`'s sensitivity rows). (d) The
+//! measured-CF variant. (e) The issue orders (`core.issue`) beside each
+//! other ([`issue_order`]).
+//!
+//! Gate equivalents are sums of multiples of 0.5 GE, printed exactly
+//! ([`ge`]), so that parts and totals agree.
 
 pub mod issue_order;
 
@@ -64,6 +71,8 @@ pub struct Savings {
     pub baseline_warps: u32,
     /// Where those two numbers come from.
     pub source: String,
+    /// Whose claim that is, and where wasp measures it.
+    pub caveat: String,
     /// Register-file bits per warp (threads x registers x bits).
     pub rf_bits_per_warp: u64,
     /// Register-file bits saved per core.
@@ -196,6 +205,8 @@ pub struct RfParams {
     pub baseline_warps: u32,
     /// Provenance of the warp counts.
     pub source: String,
+    /// Whose claim the warp counts are, and where wasp measures it.
+    pub caveat: String,
 }
 
 impl RfParams {
@@ -207,19 +218,22 @@ impl RfParams {
     /// conclusions); at width 4, WaSP with 48 warps outperforms the best
     /// baseline with 64.
     pub fn for_config(cfg: &MachineConfig) -> Self {
-        let (wasp_warps, baseline_warps, source) = if cfg.core.pipeline_width >= 4 {
-            (
-                48,
-                64,
-                "paper, width 4: WaSP with 48 warps outperforms the baseline with 64",
-            )
+        let (wasp_warps, baseline_warps, width, verb) = if cfg.core.pipeline_width >= 4 {
+            (48, 64, 4, "outperforms")
         } else {
-            (
-                32,
-                48,
-                "paper, width 2: WaSP with 32 warps matches the baseline with 48",
-            )
+            (32, 48, 2, "matches")
         };
+        let source = format!(
+            "the paper's claim, width {width}: WaSP with {wasp_warps} warps {verb} the baseline \
+             with {baseline_warps}"
+        );
+        let caveat = format!(
+            "This is the paper's claim, not a measurement of this command (which runs no \
+             simulation). wasp's own reproduction measures it differently: REPORT.md of \
+             `wasp reproduce` gives it as the sensitivity row \"WaSP@{wasp_warps} over the \
+             baseline@{baseline_warps}, width {width}\" and says whether the saving holds on \
+             its scenes; docs/results.md records the shipped suite's value."
+        );
         Self {
             threads_per_warp: 4,
             registers_per_thread: cfg.core.registers_per_thread,
@@ -227,8 +241,51 @@ impl RfParams {
             ge_per_bit: 1.5,
             wasp_warps,
             baseline_warps,
-            source: source.into(),
+            source,
+            caveat,
         }
+    }
+}
+
+/// Width of the event counts (allocations, replies, blocks, ...) a cycle
+/// in the Verilog twin's counters: its `CNT_W` default, which `wasp cost`
+/// does not change.
+const TWIN_EVENT_BITS: u32 = 8;
+
+/// Columns of the table's prose paragraphs.
+const TEXT_WIDTH: usize = 100;
+
+/// `text` broken into lines of at most `width` columns at spaces (a longer
+/// word stands alone), each ending in a newline.
+fn wrap(text: &str, width: usize) -> String {
+    let mut out = String::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.len() + 1 + word.len() > width {
+            out.push_str(&line);
+            out.push('\n');
+            line.clear();
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        out.push_str(&line);
+        out.push('\n');
+    }
+    out
+}
+
+/// Gate equivalents as text, exactly: whole numbers without a decimal,
+/// halves with one (`591`, `1146.5`); every GE rule is a multiple of 0.5 per
+/// bit, so sums print without rounding.
+pub fn ge(v: f64) -> String {
+    if v.fract() == 0.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.1}")
     }
 }
 
@@ -393,6 +450,7 @@ pub fn report(
             wasp_warps: rf.wasp_warps,
             baseline_warps: rf.baseline_warps,
             source: rf.source.clone(),
+            caveat: rf.caveat.clone(),
             rf_bits_per_warp: rf_bits,
             rf_bits_saved_per_core: rf_bits * saved_warps,
             ge_per_rf_bit: rf.ge_per_bit,
@@ -427,6 +485,22 @@ impl CostReport {
             "WaSP hardware overhead: machine {}, {} cores, CF {}, threshold {}, input queue {}",
             self.machine, self.cores, self.cf, self.threshold, self.input_queue
         );
+        self.inventory_table(&mut s);
+        self.yosys_table(&mut s);
+        self.savings_table(&mut s);
+        self.variant_table(&mut s);
+        self.issue_order_table(&mut s);
+        self.prefetchers_table(&mut s);
+        s
+    }
+
+    /// Flip-flop bits and GE of the inventory's registers.
+    fn flip_flop_ge(&self) -> f64 {
+        f64::from(self.per_core_register_bits) * self.rules.flip_flop
+    }
+
+    /// (a): the inventory per core, its totals and the counting rules.
+    fn inventory_table(&self, s: &mut String) {
         let _ = writeln!(s, "\n(a) inventory per core, from the RTL blocks");
         let _ = writeln!(
             s,
@@ -434,17 +508,20 @@ impl CostReport {
             "block", "purpose", "part", "ff", "GE"
         );
         for c in &self.per_core {
-            item_line(&mut s, c, "");
+            item_line(s, c, "");
         }
+        let ff = self.flip_flop_ge();
         let _ = writeln!(
             s,
-            "per core: {} flip-flops, {:.0} GE, ~{:.0} transistors; per GPU ({} cores): {} flip-flops, {:.0} GE",
+            "per core: {} flip-flops, {} GE ({} GE in flip-flops, {} GE of logic); per GPU ({} \
+             cores): {} flip-flops, {} GE",
             self.per_core_register_bits,
-            self.per_core_ge,
-            self.per_core_transistors,
+            ge(self.per_core_ge),
+            ge(ff),
+            ge(self.per_core_ge - ff),
             self.cores,
             self.gpu_register_bits,
-            self.gpu_ge
+            ge(self.gpu_ge)
         );
         let r = &self.rules;
         let _ = writeln!(
@@ -452,77 +529,131 @@ impl CostReport {
             "rules: flip-flop {} GE, full-adder bit {} GE, comparator bit {} GE, zero-detect input {} GE, mux2 bit {} GE, {} transistors/GE",
             r.flip_flop, r.full_adder, r.comparator_bit, r.zero_detect_input, r.mux2_bit, r.transistors_per_ge
         );
-        let _ = writeln!(s, "\n(b) the Verilog twin synthesized by Yosys (per core)");
-        match &self.yosys {
-            Some(y) => {
-                let _ = writeln!(s, "{:<28}{:>12}{:>12}", "", "inventory", "yosys");
-                let _ = writeln!(
-                    s,
-                    "{:<28}{:>12}{:>12}",
-                    "flip-flops", self.per_core_register_bits, y.flip_flops
-                );
-                let _ = writeln!(
-                    s,
-                    "{:<28}{:>12.0}{:>12}",
-                    "transistors",
-                    self.per_core_transistors,
-                    y.transistors
-                        .map(|t| t.to_string())
-                        .unwrap_or_else(|| "-".into())
-                );
-                let _ = writeln!(s, "{:<28}{:>12}{:>12}", "cells", "-", y.cells);
-                let types: Vec<String> = y
-                    .cell_types
-                    .iter()
-                    .map(|(k, v)| format!("{k} {v}"))
-                    .collect();
-                let _ = writeln!(s, "cell types: {}", types.join(", "));
-                let _ = writeln!(s, "re-derive with: {}", y.command);
-            }
-            None => {
-                let _ = writeln!(
-                    s,
-                    "no Yosys numbers: {}",
-                    self.yosys_note.as_deref().unwrap_or("unknown")
-                );
+    }
+
+    /// The inventory's flip-flops by block (`free_mshrs 5, ...`).
+    fn flip_flops_by_block(&self) -> String {
+        let mut by: Vec<(&str, u32)> = Vec::new();
+        for c in self.per_core.iter().filter(|c| c.register_bits > 0) {
+            match by.iter_mut().find(|b| b.0 == c.item.block) {
+                Some(b) => b.1 += c.register_bits,
+                None => by.push((c.item.block, c.register_bits)),
             }
         }
-        let v = &self.savings;
-        let _ = writeln!(s, "\n(c) what it saves ({})", v.source);
+        let parts: Vec<String> = by.iter().map(|(b, n)| format!("{b} {n}")).collect();
+        parts.join(", ")
+    }
+
+    /// (b): the Yosys synthesis beside the inventory, and what each counts.
+    fn yosys_table(&self, s: &mut String) {
+        let _ = writeln!(s, "\n(b) the Verilog twin synthesized by Yosys (per core)");
+        let Some(y) = &self.yosys else {
+            let _ = writeln!(
+                s,
+                "no Yosys numbers: {}",
+                self.yosys_note.as_deref().unwrap_or("unknown")
+            );
+            return;
+        };
+        let _ = writeln!(s, "{:<28}{:>12}{:>12}", "", "inventory", "yosys");
         let _ = writeln!(
             s,
-            "register file per warp: {} bits; {} warps instead of {}: {} bits = {:.1} KiB per core, {:.0} GE at {} GE/bit",
+            "{:<28}{:>12}{:>12}",
+            "flip-flops", self.per_core_register_bits, y.flip_flops
+        );
+        let yt = y.transistors.map(|t| t.to_string());
+        let _ = writeln!(
+            s,
+            "{:<28}{:>12.0}{:>12}",
+            "transistors",
+            self.per_core_transistors,
+            yt.as_deref().unwrap_or("-")
+        );
+        let _ = writeln!(s, "{:<28}{:>12}{:>12}", "cells", "-", y.cells);
+        let types: Vec<String> = y
+            .cell_types
+            .iter()
+            .map(|(k, v)| format!("{k} {v}"))
+            .collect();
+        let _ = writeln!(s, "cell types: {}", types.join(", "));
+        let _ = writeln!(s, "re-derive with: {}", y.command);
+        let ratio = y
+            .transistors
+            .map(|t| t as f64 / self.per_core_transistors.max(1.0))
+            .map_or(String::new(), |r| {
+                format!(" Yosys's count is {r:.1} times the inventory's.")
+            });
+        let text = format!(
+            "The two columns count different things. Flip-flops: the inventory's {} are the \
+             registers WaSP adds ({}); the twin keeps the threshold as a synthesis constant \
+             (no register) and tracks the split queue by two occupancy counters instead of the \
+             second FIFO's pointers, so Yosys finds {}. Transistors: the inventory's are its \
+             gate equivalents x {} (textbook static CMOS, the blocks listed in (a) only); Yosys's \
+             `stat -tech cmos` counts each generic cell of the whole twin at that cell's own \
+             size (4 for a NAND or NOR, 12 for an XOR or MUX, 16 for a flip-flop), unmapped to \
+             any library, and the twin holds logic the inventory leaves out: event counts of \
+             up to {} bits a cycle in the counters' updates, their range checks (the \
+             properties' fault output), the queue's full check and the policy select.{ratio} \
+             Both are per core; the GPU has {} cores.",
+            self.per_core_register_bits,
+            self.flip_flops_by_block(),
+            y.flip_flops,
+            self.rules.transistors_per_ge,
+            TWIN_EVENT_BITS,
+            self.cores
+        );
+        s.push_str(&wrap(&text, TEXT_WIDTH));
+    }
+
+    /// (c): the register file WaSP would save by the paper's claim.
+    fn savings_table(&self, s: &mut String) {
+        let v = &self.savings;
+        let _ = writeln!(s, "\n(c) what it would save ({})", v.source);
+        s.push_str(&wrap(&v.caveat, TEXT_WIDTH));
+        let _ = writeln!(
+            s,
+            "register file per warp: {} bits; {} warps instead of {}: {} bits = {:.1} KiB per core, {} GE at {} GE/bit",
             v.rf_bits_per_warp,
             v.wasp_warps,
             v.baseline_warps,
             v.rf_bits_saved_per_core,
             v.rf_bits_saved_per_core as f64 / 8192.0,
-            v.ge_saved_per_core,
+            ge(v.ge_saved_per_core),
             v.ge_per_rf_bit
         );
         let _ = writeln!(
             s,
-            "WaSP costs {:.2}% of the register file it saves (per core: {:.0} GE against {:.0} GE)",
+            "if the claim holds, WaSP's logic costs {:.2}% of the register file it saves (per core: {} GE against {} GE)",
             100.0 * self.per_core_ge / v.ge_saved_per_core.max(1.0),
-            self.per_core_ge,
-            v.ge_saved_per_core
+            ge(self.per_core_ge),
+            ge(v.ge_saved_per_core)
         );
+    }
+
+    /// (d): the measured-CF variant: what it adds and removes.
+    fn variant_table(&self, s: &mut String) {
         let m = &self.measured_cf_variant;
         let _ = writeln!(
             s,
             "\n(d) the measured-CF variant (wasp-m, beyond the paper): CF measured per core by a meter"
         );
         for c in &m.added {
-            item_line(&mut s, c, "+ ");
+            item_line(s, c, "+ ");
         }
         for c in &m.removed {
-            item_line(&mut s, c, "- ");
+            item_line(s, c, "- ");
         }
+        let added: f64 = m.added.iter().map(|c| c.ge).sum();
+        let removed: f64 = m.removed.iter().map(|c| c.ge).sum();
         let _ = writeln!(
             s,
-            "per core: {} flip-flops, {:.0} GE ({:+.0} GE against WaSP with a constant CF {})",
+            "per core: {} flip-flops, {} GE = WaSP's {} GE + {} GE added - {} GE removed ({:+} GE \
+             against WaSP with a constant CF {})",
             m.per_core_register_bits,
-            m.per_core_ge,
+            ge(m.per_core_ge),
+            ge(self.per_core_ge),
+            ge(added),
+            ge(removed),
             m.per_core_ge - self.per_core_ge,
             self.cf
         );
@@ -544,9 +675,6 @@ impl CostReport {
                 );
             }
         }
-        self.issue_order_table(&mut s);
-        self.prefetchers_table(&mut s);
-        s
     }
 
     /// Section (e): the issue orders.
@@ -562,17 +690,17 @@ impl CostReport {
         }
         let _ = writeln!(
             s,
-            "lrr: {} flip-flops, {:.0} GE; gto: {} flip-flops, {:.0} GE ({:+.0} GE); gto split as \
-             GPGPU-Sim's cores ({} schedulers of {} slots): {} flip-flops, {:.0} GE",
+            "lrr: {} flip-flops, {} GE; gto: {} flip-flops, {} GE ({:+} GE); gto split as \
+             GPGPU-Sim's cores ({} schedulers of {} slots): {} flip-flops, {} GE",
             o.register_bits[0],
-            o.ge[0],
+            ge(o.ge[0]),
             o.register_bits[1],
-            o.ge[1],
+            ge(o.ge[1]),
             o.ge[1] - o.ge[0],
             o.width,
             o.slots.div_ceil(o.width),
             o.gto_split.0,
-            o.gto_split.1
+            ge(o.gto_split.1)
         );
     }
 
@@ -600,13 +728,13 @@ impl CostReport {
             }
             let _ = writeln!(
                 s,
-                "per core: {} flip-flops, {} SRAM bits ({:.1} KiB), {:.0} GE ({:.1}x WaSP's {:.0} GE; SRAM at {} GE/bit)",
+                "per core: {} flip-flops, {} SRAM bits ({:.1} KiB), {} GE ({:.1}x WaSP's {} GE; SRAM at {} GE/bit)",
                 p.register_bits,
                 p.sram_bits,
                 p.sram_bits as f64 / 8192.0,
-                p.ge,
+                ge(p.ge),
                 p.ge / self.per_core_ge.max(1.0),
-                self.per_core_ge,
+                ge(self.per_core_ge),
                 SRAM_GE_PER_BIT
             );
         }
@@ -698,6 +826,79 @@ mod tests {
         assert_eq!(oracle.kind, "oracle-tile");
         assert!(oracle.sram_bits > 0 && oracle.note.contains("bound"));
         assert!(t.contains("(f) the prefetchers") && t.contains("duplicate_filter"));
+        // Exact parts and totals: 591 + 621.5 - 66 = 1146.5.
+        assert!(
+            t.contains(
+                "per core: 52 flip-flops, 1146.5 GE = WaSP's 591 GE + 621.5 GE added - 66 GE \
+                 removed (+555.5 GE against WaSP with a constant CF 3)"
+            ),
+            "{t}"
+        );
+        // Per core and per GPU in their own units.
+        assert!(
+            t.contains(
+                "per core: 36 flip-flops, 591 GE (216 GE in flip-flops, 375 GE of logic); per \
+                 GPU (4 cores): 144 flip-flops, 2364 GE\n"
+            ),
+            "{t}"
+        );
+        // The register-file claim is the paper's, and wasp's measurement is
+        // named.
+        assert!(
+            t.contains("(c) what it would save (the paper's claim, width 4: WaSP with 48 warps"),
+            "{t}"
+        );
+        let flat = t.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(
+            flat.contains("sensitivity row \"WaSP@48 over the baseline@64, width 4\""),
+            "{t}"
+        );
+        assert!(
+            t.contains("if the claim holds, WaSP's logic costs 0.60%"),
+            "{t}"
+        );
+    }
+
+    #[test]
+    fn the_yosys_column_says_what_it_counts() {
+        let mut r = report(
+            &MachineConfig::paper(),
+            GateRules::default(),
+            &RfParams::for_config(&MachineConfig::paper()),
+            false,
+        )
+        .unwrap();
+        r.yosys = parse_yosys_stat(SAMPLE);
+        let t = r.to_table();
+        let t = t.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(
+            t.contains(
+                "Flip-flops: the inventory's 36 are the registers WaSP adds (free_mshrs 5, \
+                 nonblocked_priority 7, threshold 5, input_queue 19)"
+            ),
+            "{t}"
+        );
+        assert!(t.contains("so Yosys finds 5."), "{t}");
+        // 392 against 591 GE x 4.
+        assert!(
+            t.contains("Yosys's count is 0.2 times the inventory's."),
+            "{t}"
+        );
+        assert!(t.contains("Both are per core; the GPU has 4 cores."), "{t}");
+    }
+
+    #[test]
+    fn prose_wraps_at_spaces() {
+        assert_eq!(wrap("aa bb cc", 5), "aa bb\ncc\n");
+        assert_eq!(wrap("a verylongword b", 4), "a\nverylongword\nb\n");
+        assert_eq!(wrap("", 4), "");
+    }
+
+    #[test]
+    fn gate_equivalents_print_exactly() {
+        assert_eq!(ge(591.0), "591");
+        assert_eq!(ge(1146.5), "1146.5");
+        assert_eq!(ge(555.5), "555.5");
     }
 
     /// Yosys on the twin: the meter alone has the 16 flip-flops of its

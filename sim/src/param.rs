@@ -5,7 +5,7 @@
 //! a typed struct.)
 //!
 //! A section of the configuration file is one struct declared with
-//! [`section!`](crate::param::section): each field's doc comment is its
+//! `section!`: each field's doc comment is its
 //! description, `#[range(lo..=hi)]` its bound, and its type is what the
 //! model receives. A value written as text in the file (a policy such as
 //! `wasp:0:3`, a subset, a core map) has a type that deserializes from that

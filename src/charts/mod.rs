@@ -21,23 +21,15 @@ mod bars;
 #[cfg(test)]
 mod examples;
 mod frame;
-// The heat map, tornado and XY charts serve the study "What decides
-// WaSP's gain" (issue 23); until it calls them, only tests do.
-#[allow(dead_code)]
 mod heatmap;
 mod lines;
-#[allow(dead_code)]
 mod tornado;
-#[allow(dead_code)]
 mod xy;
 
 pub use bars::draw_bars;
-#[allow(unused_imports)]
 pub use heatmap::{draw_heatmap, HeatMap};
 pub use lines::draw_lines;
-#[allow(unused_imports)]
 pub use tornado::{draw_tornado, Span, TornadoChart, TornadoRow, TornadoSeries};
-#[allow(unused_imports)]
 pub use xy::{draw_xy, Highlight, XyChart, XySeries};
 
 /// One series: a value per category or x position (None: no bar, or a gap

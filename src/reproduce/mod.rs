@@ -6,18 +6,27 @@
 //! - [`plan`]: the experiments as study points;
 //! - [`paper`]: the paper's numbers;
 //! - [`figures`]: the numbers of each figure, from the results;
-//! - [`report`]: REPORT.md, the CSV/JSON files and the plots.
+//! - [`report`]: REPORT.md, the CSV/JSON files and the plots;
+//! - [`headline`]: its side-by-side table of the paper's numbers and ours;
+//! - [`why`]: its bullets on why they differ, worded from the data by
+//!   [`prose`].
 
+#[cfg(test)]
+mod contrary;
 pub mod draw;
 pub mod figures;
+pub mod headline;
+pub mod map;
 pub mod paper;
 pub mod plan;
+pub mod prose;
 pub mod report;
+pub mod why;
 
 use crate::study::cache::Cache;
 use crate::study::runner::{self, RunnerOptions};
 use crate::CliError;
-use clap::Args;
+use clap::{Args, ValueEnum};
 use plan::Plan;
 use std::path::{Path, PathBuf};
 use wasp_frontend::def::{self, SceneDef};
@@ -26,9 +35,12 @@ use wasp_sim::config::Dispatch;
 /// Options of `wasp reproduce`.
 #[derive(Args, Debug, Clone)]
 pub struct ReproduceArgs {
-    /// A first look in about a minute: the smallest scene of each game, the
-    /// heuristics, ideal memory, the meshes, four thresholds, width 4 at
-    /// 32/48/64 warps and one timeline, on the shared-tile machine only.
+    /// A first look: 86 s of CPU time with the game data cached, which two
+    /// workers share (the first run also downloads the games' data, about
+    /// 835 MB): the smallest scene of each game, the heuristics, ideal
+    /// memory, the meshes, four thresholds, width 4 at 32/48/64 warps and
+    /// one timeline on the first machine of --machines only, and the map
+    /// over warps per core and L0 MSHRs (on the shared-tile machine).
     #[arg(long)]
     pub quick: bool,
 
@@ -48,13 +60,25 @@ pub struct ReproduceArgs {
     #[arg(long, value_delimiter = ',', value_name = "SCENES")]
     pub scenes: Option<Vec<String>>,
 
+    #[command(flatten)]
+    pub scene_defs: crate::scenes_dir::ScenesDir,
+
     /// Simulations run at once (default: the machine's cores).
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
 
-    /// No progress output on stderr.
+    /// No progress output on stderr (progress, notes of what is done, the
+    /// closing summary); warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
+
+    /// Write the map "What decides WaSP's gain" as sweep files into DIR
+    /// (map-policies.toml, map-bounds.toml, map-deep-queue.toml) and run
+    /// nothing: run them with `wasp sweep FILE --out OUT` (or one job per
+    /// point with --jobs-file), then `wasp reproduce --out OUT` finds those
+    /// points done (docs/reproduce.md).
+    #[arg(long, value_name = "DIR")]
+    pub sweep_files: Option<PathBuf>,
 }
 
 /// Which machines a reproduction runs.
@@ -88,39 +112,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
-    let all = def::all().map_err(|e| CliError::failed(e.to_string()))?;
-    let defs = match &args.scenes {
-        None => all,
-        Some(names) => {
-            let mut v = Vec::new();
-            for n in names {
-                match all.iter().find(|d| &d.name == n) {
-                    Some(d) => v.push(d.clone()),
-                    None if n.ends_with(".toml") => v.push(
-                        SceneDef::load(Path::new(n))
-                            .map_err(|e| CliError::usage(format!("--scenes: {e}")))?,
-                    ),
-                    None => {
-                        return Err(CliError::usage(format!(
-                            "--scenes: no scene `{n}`; `wasp scenes list` names them"
-                        )))
-                    }
-                }
-            }
-            let mut seen = std::collections::HashSet::new();
-            if let Some(d) = v.iter().find(|d| !seen.insert(d.name.clone())) {
-                return Err(CliError::usage(format!(
-                    "--scenes: the scene `{}` is named twice",
-                    d.name
-                )));
-            }
-            v
-        }
-    };
-    if defs.is_empty() {
-        return Err(CliError::usage("--scenes: name at least one scene"));
-    }
+    let defs = chosen_scenes(args.scenes.as_deref())?;
     let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
+    if let (Some(dir), Some(map)) = (&args.sweep_files, &plan.map) {
+        return write_sweep_files(dir, map, &plan, args.quiet);
+    }
     let cache = Cache::open(&args.out).map_err(CliError::failed)?;
     let figures = args.out.join("figures");
     std::fs::create_dir_all(&figures)
@@ -136,7 +132,14 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
             jobs,
             args.out.display()
         );
+        if let Some(map) = &plan.map {
+            eprintln!(
+                "wasp: including {}",
+                map::report::plan_text(map, plan.scenes.len())
+            );
+        }
     }
+    crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
     let opts = RunnerOptions {
         jobs,
         quiet: args.quiet,
@@ -144,11 +147,15 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         label: "reproducing".into(),
         scenes: defs.clone(),
     };
-    let outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
-    let subset = args.scenes.is_some();
-    let written = report::write(&plan, &outcome, &args.out, subset).map_err(CliError::failed)?;
-    eprintln!("wasp: {}", outcome.summary());
-    eprintln!("wasp: wrote {}", written.display());
+    let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
+    let cells = map::run_grid(&plan, &mut outcome, &cache, &opts).map_err(CliError::failed)?;
+    let command = command(args, def::scenes_dir().as_deref());
+    let written =
+        report::write(&plan, &outcome, &cells, &args.out, &command).map_err(CliError::failed)?;
+    if !args.quiet {
+        eprintln!("wasp: {}", outcome.summary());
+        eprintln!("wasp: wrote {}", written.display());
+    }
     if !outcome.failures.is_empty() {
         for f in &outcome.failures {
             eprintln!("wasp: failed: {f}");
@@ -160,4 +167,125 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+/// The scenes of `--scenes` (names of `wasp scenes list` or definition
+/// files), else every listed scene.
+fn chosen_scenes(names: Option<&[String]>) -> Result<Vec<SceneDef>, CliError> {
+    let all = def::all().map_err(|e| CliError::failed(e.to_string()))?;
+    let Some(names) = names else {
+        return Ok(all);
+    };
+    let mut v = Vec::new();
+    for n in names {
+        match all.iter().find(|d| &d.name == n) {
+            Some(d) => v.push(d.clone()),
+            None if n.ends_with(".toml") => v.push(
+                SceneDef::load(Path::new(n))
+                    .map_err(|e| CliError::usage(format!("--scenes: {e}")))?,
+            ),
+            None => {
+                return Err(CliError::usage(format!(
+                    "--scenes: no scene `{n}`; `wasp scenes list` names them"
+                )))
+            }
+        }
+    }
+    let mut seen = std::collections::HashSet::new();
+    if let Some(d) = v.iter().find(|d| !seen.insert(d.name.clone())) {
+        return Err(CliError::usage(format!(
+            "--scenes: the scene `{}` is named twice",
+            d.name
+        )));
+    }
+    if v.is_empty() {
+        return Err(CliError::usage("--scenes: name at least one scene"));
+    }
+    Ok(v)
+}
+
+/// The command that produced a report, with every option that changes
+/// its results (not `--out`, `--jobs` or `-q`), for its "Generated by"
+/// line; `scenes_dir` is the folder of extra scene definitions in effect
+/// (`--scenes-dir` or `WASP_SCENES_DIR`), which may replace shipped scenes.
+pub fn command(args: &ReproduceArgs, scenes_dir: Option<&Path>) -> report::Command {
+    let mut line = "wasp reproduce".to_string();
+    if args.quick {
+        line.push_str(" --quick");
+    }
+    if args.machines != Machines::Both {
+        let m = args.machines.to_possible_value().expect("no skipped value");
+        line.push_str(&format!(" --machines {}", m.get_name()));
+    }
+    if let Some(s) = &args.scenes {
+        line.push_str(&format!(" --scenes {}", s.join(",")));
+    }
+    if let Some(d) = scenes_dir {
+        let d = crate::study::jobs::shell_quote(&d.display().to_string());
+        line.push_str(&format!(" --scenes-dir {d}"));
+    }
+    report::Command {
+        line,
+        subset: args.scenes.is_some(),
+    }
+}
+
+/// `--sweep-files DIR`: the map's sweep files.
+fn write_sweep_files(
+    dir: &Path,
+    map: &map::plan::MapPlan,
+    plan: &Plan,
+    quiet: bool,
+) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", dir.display())))?;
+    let scenes: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
+    for (name, text) in map::sweeps::files(map, &scenes) {
+        let path = dir.join(name);
+        crate::study::cache::write_atomic(&path, &text).map_err(CliError::failed)?;
+        if !quiet {
+            eprintln!("wasp: wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_command_line_keeps_what_changes_the_results() {
+        let args = ReproduceArgs {
+            quick: true,
+            out: PathBuf::from("elsewhere"),
+            machines: Machines::PerCoreTile,
+            scenes: Some(vec!["a".into(), "b.toml".into()]),
+            scene_defs: Default::default(),
+            jobs: Some(3),
+            quiet: true,
+            sweep_files: None,
+        };
+        let c = command(&args, None);
+        assert_eq!(
+            c.line,
+            "wasp reproduce --quick --machines per-core-tile --scenes a,b.toml"
+        );
+        assert!(c.subset);
+        // A folder of scene definitions may replace shipped scenes.
+        let c = command(&args, Some(Path::new("my scenes")));
+        assert!(
+            c.line
+                .ends_with(" --scenes a,b.toml --scenes-dir 'my scenes'"),
+            "{}",
+            c.line
+        );
+        let all = ReproduceArgs {
+            quick: false,
+            machines: Machines::Both,
+            scenes: None,
+            ..args
+        };
+        assert_eq!(command(&all, None).line, "wasp reproduce");
+    }
 }

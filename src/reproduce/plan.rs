@@ -107,6 +107,49 @@ pub struct Plan {
     pub timeline_window: (u64, u64),
     /// The quick subset.
     pub quick: bool,
+    /// The map "What decides WaSP's gain" (shared-tile machine).
+    pub map: Option<super::map::plan::MapPlan>,
+}
+
+/// One scene per game, in `Game::ALL` order: for the timelines the first
+/// by name, for the quick look the one of [`QUICK_SCENES`] (else the
+/// first).
+fn one_per_game(defs: &[SceneDef], quick: bool) -> Vec<&SceneDef> {
+    let mut per_game: Vec<&SceneDef> = Vec::new();
+    for g in Game::ALL {
+        let of: Vec<&SceneDef> = defs.iter().filter(|d| d.game == g).collect();
+        let listed = of.iter().find(|d| QUICK_SCENES.contains(&d.name.as_str()));
+        let pick = if quick {
+            listed.or(of.first())
+        } else {
+            of.first()
+        };
+        if let Some(d) = pick {
+            per_game.push(d);
+        }
+    }
+    per_game
+}
+
+/// The widths of the sensitivity study: width 4 in the quick look, else
+/// widths 2 and 4, each with the paper's best warp count.
+fn widths(quick: bool) -> Vec<Width> {
+    let four = Width {
+        width: 4,
+        config: "paper",
+        paper_best_warps: 64,
+    };
+    if quick {
+        return vec![four];
+    }
+    vec![
+        Width {
+            width: 2,
+            config: "paper-width2",
+            paper_best_warps: 48,
+        },
+        four,
+    ]
 }
 
 impl Plan {
@@ -122,6 +165,7 @@ impl Plan {
             _ => 0,
         };
         let l0 = paper.l0.as_ref().map_or(paper.l1.mshrs, |c| c.mshrs);
+        let per_game = one_per_game(defs, quick);
         let mut scenes: Vec<SceneInfo> = defs
             .iter()
             .map(|d| SceneInfo {
@@ -129,21 +173,6 @@ impl Plan {
                 group: Group::of(d.game),
             })
             .collect();
-        // One scene per game for the timelines (the first by name), and for
-        // the quick look the one of QUICK_SCENES (else the first).
-        let mut per_game: Vec<&SceneDef> = Vec::new();
-        for g in Game::ALL {
-            let of: Vec<&SceneDef> = defs.iter().filter(|d| d.game == g).collect();
-            let listed = of.iter().find(|d| QUICK_SCENES.contains(&d.name.as_str()));
-            let pick = if quick {
-                listed.or(of.first())
-            } else {
-                of.first()
-            };
-            if let Some(d) = pick {
-                per_game.push(d);
-            }
-        }
         if quick {
             scenes.retain(|s| per_game.iter().any(|d| d.name == s.name));
         }
@@ -171,26 +200,7 @@ impl Plan {
             thresholds: (0..l0).step_by(step).collect(),
             meshes: vec![2, 4, 8, 16],
             early_z: if quick { vec![16] } else { vec![4, 16] },
-            widths: if quick {
-                vec![Width {
-                    width: 4,
-                    config: "paper",
-                    paper_best_warps: 64,
-                }]
-            } else {
-                vec![
-                    Width {
-                        width: 2,
-                        config: "paper-width2",
-                        paper_best_warps: 48,
-                    },
-                    Width {
-                        width: 4,
-                        config: "paper",
-                        paper_best_warps: 64,
-                    },
-                ]
-            },
+            widths: widths(quick),
             warps: if quick {
                 vec![32, 48, 64]
             } else {
@@ -204,6 +214,7 @@ impl Plan {
             },
             timeline_window: (1, 20_000),
             quick,
+            map: Some(super::map::plan::MapPlan::new(wasp, quick)),
         }
     }
 
@@ -320,6 +331,10 @@ impl Plan {
                 }
             }
         }
+        if let Some(map) = &self.map {
+            let names: Vec<String> = self.scenes.iter().map(|s| s.name.clone()).collect();
+            t.extend(map.tasks(&names));
+        }
         t
     }
 }
@@ -349,7 +364,9 @@ mod tests {
             + p.meshes.len()
             + 3 * p.early_z.len()
             + 2 * 5 * 2;
-        assert_eq!(runs, 2 * d.len() * per_scene);
+        let names: Vec<String> = p.scenes.iter().map(|s| s.name.clone()).collect();
+        let map = p.map.as_ref().unwrap().tasks(&names).len();
+        assert_eq!(runs, 2 * d.len() * per_scene + map);
         // The shipped WaSP at mesh4 is the heuristics' WaSP point described
         // another way: the same machine.
         let mut r = crate::study::point::Resolver::default();

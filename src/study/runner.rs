@@ -176,14 +176,72 @@ impl Scenes {
 /// Run `tasks` with the results stored in `cache`.
 pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcome, String> {
     let start = Instant::now();
+    let mut scenes = Scenes::with(&opts.scenes);
+    // The games' data first: a scene's identity (and so every key) holds
+    // the versions of the packages its data came from, known once fetched.
+    fetch_games(tasks, &mut scenes, opts)?;
+    let (mut out, mut todo) = resolve(tasks, cache, &mut scenes)?;
+    // Group by scene, draw order and tile size, in scene order.
+    let group_key = |r: &Ready| (r.def.name.clone(), r.def.draw_order, r.cfg.gpu.tile_size);
+    todo.sort_by_key(group_key);
+    let (groups, group_of) = group_by_scene(&todo);
+    let results = execute(&todo, &groups, &group_of, cache, opts);
+    for (i, r) in results {
+        match r {
+            Ok(Done::Point(rec)) => {
+                if let Task::Run(p) = &todo[i].task {
+                    out.points.insert(p.clone(), rec);
+                }
+            }
+            Ok(Done::Scene(c)) => {
+                out.scenes.insert(c.scene.clone(), *c);
+            }
+            Ok(Done::Drawn) => {}
+            Err(e) => out
+                .failures
+                .push(format!("{}: {e}", describe(&todo[i].task))),
+        }
+        out.ran += 1;
+    }
+    share_results(&mut out);
+    out.seconds = start.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// Fetch the data of every game the tasks' scenes need and the cache
+/// lacks (or, without `opts.fetch`, name the command that fetches it).
+fn fetch_games(tasks: &[Task], scenes: &mut Scenes, opts: &RunnerOptions) -> Result<(), String> {
+    let mut games: Vec<_> = tasks
+        .iter()
+        .map(|t| scenes.def(t.scene()).map(|d| d.game))
+        .collect::<Result<_, _>>()?;
+    games.sort_by_key(|g| g.name());
+    games.dedup();
+    games.retain(|g| !fetch::is_fetched(*g));
+    if let Some(g) = games.first().filter(|_| !opts.fetch) {
+        return Err(format!(
+            "the {} data is not fetched: run `wasp scenes fetch {}`",
+            g.name(),
+            g.name()
+        ));
+    }
+    crate::game_data::fetch_missing(&games, opts.quiet)
+        .map_err(|e| format!("{e} (its scenes need it; name the other scenes to leave them out)"))
+}
+
+/// Resolve every task to its key, effective configuration and scene as it
+/// renders it (bad scenes and overrides fail here, before any run) and
+/// take the stored results: the outcome so far and the tasks left to run.
+fn resolve(
+    tasks: &[Task],
+    cache: &Cache,
+    scenes: &mut Scenes,
+) -> Result<(Outcome, Vec<Ready>), String> {
     let mut out = Outcome::default();
     let mut resolver = Resolver::default();
-    let mut scenes = Scenes::with(&opts.scenes);
     let mut ids: HashMap<(String, DrawOrder), String> = HashMap::new();
     let mut todo: Vec<Ready> = Vec::new();
     let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
-    // Resolve every task (bad scenes and overrides fail here, before any
-    // run), and take the stored results.
     for t in tasks {
         let d = scenes.def(t.scene())?.clone();
         let d = match t {
@@ -194,27 +252,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             .entry((d.name.clone(), d.draw_order))
             .or_insert_with(|| scene_identity(&d))
             .clone();
-        let (key, cfg) = match t {
-            Task::Run(p) | Task::Timeline { point: p, .. } => {
-                let cfg = resolver
-                    .config(p)
-                    .map_err(|e| format!("{}: {e}", p.describe()))?;
-                (point_key(binary_id(), &id, &cfg), cfg)
-            }
-            Task::Characterize { config, .. } => {
-                let cfg = resolver
-                    .config(&Point::new(&d.name, config, &[]))
-                    .map_err(|e| format!("{config}: {e}"))?;
-                let tile = cfg.gpu.tile_size.to_string();
-                let key = hash_parts(&[
-                    b"wasp-scene-1",
-                    binary_id().as_bytes(),
-                    id.as_bytes(),
-                    tile.as_bytes(),
-                ]);
-                (key, cfg)
-            }
-        };
+        let (key, cfg) = task_key(t, &d, &id, &mut resolver)?;
         // A task on the same machine as an earlier one (the same key and
         // kind) shares its result.
         let id = match t {
@@ -235,27 +273,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             }
             continue;
         }
-        let done = match t {
-            Task::Run(p) => match cache.load_point(&p.scene, &key) {
-                Some(r) => {
-                    out.points.insert(p.clone(), r);
-                    true
-                }
-                None => false,
-            },
-            Task::Characterize { scene, .. } => match cache.load_scene(scene, &key) {
-                Some(c) => {
-                    out.scenes.insert(scene.clone(), c);
-                    true
-                }
-                None => false,
-            },
-            Task::Timeline { out: path, .. } => {
-                path.is_file()
-                    && std::fs::read_to_string(key_file(path)).is_ok_and(|k| k.trim() == key)
-            }
-        };
-        if done {
+        if take_stored(t, &key, cache, &mut out) {
             out.cached += 1;
         } else {
             todo.push(Ready {
@@ -266,50 +284,70 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             });
         }
     }
-    // Fetch the games the remaining tasks need.
-    let mut games: Vec<_> = todo
-        .iter()
-        .map(|r| scenes.def(r.task.scene()).map(|d| d.game))
-        .collect::<Result<_, _>>()?;
-    games.sort_by_key(|g| g.name());
-    games.dedup();
-    for g in games {
-        if fetch::is_fetched(g) {
-            continue;
+    Ok((out, todo))
+}
+
+/// The cache key and effective configuration of a task on the scene `d`
+/// of identity `id`.
+fn task_key(
+    t: &Task,
+    d: &SceneDef,
+    id: &str,
+    resolver: &mut Resolver,
+) -> Result<(String, MachineConfig), String> {
+    match t {
+        Task::Run(p) | Task::Timeline { point: p, .. } => {
+            let cfg = resolver
+                .config(p)
+                .map_err(|e| format!("{}: {e}", p.describe()))?;
+            Ok((point_key(binary_id(), id, &cfg), cfg))
         }
-        if !opts.fetch {
-            return Err(format!(
-                "the {} data is not fetched: run `wasp scenes fetch {}`",
-                g.name(),
-                g.name()
-            ));
+        Task::Characterize { config, .. } => {
+            let cfg = resolver
+                .config(&Point::new(&d.name, config, &[]))
+                .map_err(|e| format!("{config}: {e}"))?;
+            let tile = cfg.gpu.tile_size.to_string();
+            let key = hash_parts(&[
+                b"wasp-scene-1",
+                binary_id().as_bytes(),
+                id.as_bytes(),
+                tile.as_bytes(),
+            ]);
+            Ok((key, cfg))
         }
-        if !opts.quiet {
-            eprintln!(
-                "wasp: fetching the {} data (once, into the scene cache)",
-                g.name()
-            );
-        }
-        let quiet = opts.quiet;
-        fetch::fetch(g, &mut |m| {
-            if !quiet {
-                eprintln!("wasp:   {m}");
-            }
-        })
-        .map_err(|e| {
-            format!(
-                "fetching the {} data: {e} (its scenes need it; name the other scenes to leave \
-                 them out)",
-                g.name()
-            )
-        })?;
     }
-    // Group by scene, draw order and tile size, in scene order.
-    let group_key = |r: &Ready| (r.def.name.clone(), r.def.draw_order, r.cfg.gpu.tile_size);
-    todo.sort_by_key(group_key);
+}
+
+/// Put the stored result of `t` (key `key`) into `out`; whether there was
+/// one.
+fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
+    match t {
+        Task::Run(p) => match cache.load_point(&p.scene, key) {
+            Some(r) => {
+                out.points.insert(p.clone(), r);
+                true
+            }
+            None => false,
+        },
+        Task::Characterize { scene, .. } => match cache.load_scene(scene, key) {
+            Some(c) => {
+                out.scenes.insert(scene.clone(), c);
+                true
+            }
+            None => false,
+        },
+        Task::Timeline { out: path, .. } => {
+            path.is_file() && std::fs::read_to_string(key_file(path)).is_ok_and(|k| k.trim() == key)
+        }
+    }
+}
+
+/// The tasks (sorted by scene, draw order and tile size) grouped by them:
+/// the groups and each task's group.
+fn group_by_scene(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
     let mut groups: Vec<Group> = Vec::new();
     let mut group_of = Vec::with_capacity(todo.len());
-    for r in &todo {
+    for r in todo {
         let tile = r.cfg.gpu.tile_size;
         let same = groups.last().is_some_and(|g| {
             g.def.name == r.def.name && g.def.draw_order == r.def.draw_order && g.tile == tile
@@ -326,6 +364,18 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
         groups[g].remaining.fetch_add(1, Ordering::Relaxed);
         group_of.push(g);
     }
+    (groups, group_of)
+}
+
+/// Run the tasks on `opts.jobs` workers, each scene rendered once for its
+/// group; every task's result by index, in task order.
+fn execute(
+    todo: &[Ready],
+    groups: &[Group],
+    group_of: &[usize],
+    cache: &Cache,
+    opts: &RunnerOptions,
+) -> Vec<(usize, Result<Done, String>)> {
     let pb = progress(opts, todo.len());
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<(usize, Result<Done, String>)>> = Mutex::new(Vec::new());
@@ -354,24 +404,12 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     pb.finish();
     let mut results = results.into_inner().expect("lock");
     results.sort_by_key(|(i, _)| *i);
-    for (i, r) in results {
-        match r {
-            Ok(Done::Point(rec)) => {
-                if let Task::Run(p) = &todo[i].task {
-                    out.points.insert(p.clone(), rec);
-                }
-            }
-            Ok(Done::Scene(c)) => {
-                out.scenes.insert(c.scene.clone(), *c);
-            }
-            Ok(Done::Drawn) => {}
-            Err(e) => out
-                .failures
-                .push(format!("{}: {e}", describe(&todo[i].task))),
-        }
-        out.ran += 1;
-    }
-    // Points that named a machine another point ran under another name.
+    results
+}
+
+/// Fill in the points that named a machine another point ran under
+/// another name (and drop those whose twin failed).
+fn share_results(out: &mut Outcome) {
     let by_key: HashMap<String, PointRecord> = out
         .points
         .values()
@@ -394,8 +432,6 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             true
         }
     });
-    out.seconds = start.elapsed().as_secs_f64();
-    Ok(out)
 }
 
 fn describe(t: &Task) -> String {
@@ -495,7 +531,7 @@ impl Progress {
     fn tick_line(&self, done: usize, total: usize) {
         if self.lines && (done * 10 / total) != ((done - 1) * 10 / total) {
             eprintln!(
-                "wasp: {}: {done}/{total} tasks, {:.0} s",
+                "wasp: {}: {done}/{total} tasks to run, {:.0} s",
                 self.label,
                 self.start.elapsed().as_secs_f64()
             );
@@ -514,7 +550,7 @@ fn progress(opts: &RunnerOptions, total: usize) -> Progress {
         let pb = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
         pb.set_style(
             ProgressStyle::with_template(
-                "{prefix:>12} [{bar:40}] {pos}/{len} tasks {elapsed_precise} eta {eta} {msg}",
+                "{prefix:>12} [{bar:40}] {pos}/{len} tasks to run {elapsed_precise} eta {eta} {msg}",
             )
             .expect("valid template")
             .progress_chars("=> "),

@@ -127,6 +127,175 @@ fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
+/// A sweep file's text, for messages that name its lines.
+struct SweepFile<'a> {
+    text: &'a str,
+    shown: &'a str,
+    dir: &'a Path,
+}
+
+impl SweepFile<'_> {
+    /// `FILE:LINE` of byte `offset`.
+    fn at(&self, offset: usize) -> String {
+        format!("{}:{}", self.shown, line_of(self.text, offset))
+    }
+
+    /// A list field is not empty and names nothing twice.
+    fn list(&self, field: &str, v: &Spanned<Vec<Spanned<String>>>) -> Result<(), String> {
+        if v.get_ref().is_empty() {
+            return Err(format!(
+                "{}: {field} is empty: name at least one",
+                self.at(v.span().start)
+            ));
+        }
+        for (i, x) in v.get_ref().iter().enumerate() {
+            let first = v.get_ref()[..i]
+                .iter()
+                .position(|y| y.get_ref() == x.get_ref());
+            if let Some(j) = first {
+                return Err(format!(
+                    "{}: {field}[{i}] `{}` is listed twice (also {field}[{j}])",
+                    self.at(x.span().start),
+                    x.get_ref()
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// An optional list field whose values parse as `T`: each value as
+    /// written and parsed, or `[None]` when the field is absent (the
+    /// configuration keeps its own).
+    fn optional<T: std::str::FromStr>(
+        &self,
+        field: &str,
+        v: Option<&Spanned<Vec<Spanned<String>>>>,
+    ) -> Result<Vec<Option<(String, T)>>, String>
+    where
+        T::Err: std::fmt::Display,
+    {
+        let Some(v) = v else {
+            return Ok(vec![None]);
+        };
+        self.list(field, v)?;
+        v.get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, x)| {
+                let parsed = x
+                    .get_ref()
+                    .parse::<T>()
+                    .map_err(|e| format!("{}: {field}[{i}]: {e}", self.at(x.span().start)))?;
+                Ok(Some((x.get_ref().clone(), parsed)))
+            })
+            .collect()
+    }
+
+    /// The scenes named (`all`: every one of `known`).
+    fn scenes(
+        &self,
+        raw: &Spanned<Vec<Spanned<String>>>,
+        known: &[String],
+    ) -> Result<Vec<String>, String> {
+        let mut scenes = Vec::new();
+        for (i, s) in raw.get_ref().iter().enumerate() {
+            let name = s.get_ref();
+            if name == "all" {
+                if raw.get_ref().len() > 1 {
+                    return Err(format!(
+                        "{}: scenes: `all` stands for every scene and cannot be listed with others",
+                        self.at(s.span().start)
+                    ));
+                }
+                scenes = known.to_vec();
+            } else if known.contains(name) {
+                scenes.push(name.clone());
+            } else {
+                return Err(format!(
+                    "{}: scenes[{i}]: no scene named `{name}` (see `wasp scenes list`)",
+                    self.at(s.span().start)
+                ));
+            }
+        }
+        Ok(scenes)
+    }
+
+    /// The `[[configs]]` entries, checked: at least one, names unique, base
+    /// files present, overrides of the form PATH=VALUE.
+    fn configs(
+        &self,
+        raw: Option<&Spanned<Vec<Spanned<RawConfig>>>>,
+    ) -> Result<Vec<ConfigEntry>, String> {
+        let raw_configs = match raw {
+            Some(c) if !c.get_ref().is_empty() => c.get_ref(),
+            Some(c) => {
+                return Err(format!(
+                    "{}: configs is empty: add at least one [[configs]] entry",
+                    self.at(c.span().start)
+                ))
+            }
+            None => {
+                return Err(format!(
+                    "{}: no [[configs]] entry: add at least one (name, base, set)",
+                    self.shown
+                ))
+            }
+        };
+        let mut configs: Vec<ConfigEntry> = Vec::new();
+        for (i, c) in raw_configs.iter().enumerate() {
+            let c = c.get_ref();
+            let name = c.name.get_ref();
+            let here = self.at(c.name.span().start);
+            if name.trim().is_empty() {
+                return Err(format!("{here}: configs[{i}].name is empty"));
+            }
+            if let Some(j) = configs.iter().position(|x| &x.name == name) {
+                return Err(format!(
+                    "{here}: configs[{i}].name `{name}` is used twice (also configs[{j}], line {})",
+                    configs[j].line
+                ));
+            }
+            let base = self.base(i, &c.base)?;
+            for (k, s) in c.set.iter().enumerate() {
+                if !s.get_ref().contains('=') {
+                    return Err(format!(
+                        "{}: configs[{i}].set[{k}] `{}`: expected PATH=VALUE, e.g. l0.mshrs=24",
+                        self.at(s.span().start),
+                        s.get_ref()
+                    ));
+                }
+            }
+            configs.push(ConfigEntry {
+                name: name.clone(),
+                base,
+                set: c.set.iter().map(|s| s.get_ref().clone()).collect(),
+                line: line_of(self.text, c.name.span().start),
+            });
+        }
+        Ok(configs)
+    }
+
+    /// The base of entry `i`: `paper`, `paper-width2` or an existing file
+    /// (relative to the sweep file's folder), as an absolute path.
+    fn base(&self, i: usize, base: &Spanned<String>) -> Result<String, String> {
+        match base.get_ref().as_str() {
+            b @ ("paper" | "paper-width2") => Ok(b.to_string()),
+            b => {
+                let p = self.dir.join(b);
+                if !p.is_file() {
+                    return Err(format!(
+                        "{}: configs[{i}].base `{b}`: no such file ({}); a base is paper, \
+                         paper-width2 or a TOML file",
+                        self.at(base.span().start),
+                        p.display()
+                    ));
+                }
+                Ok(p.canonicalize().unwrap_or(p).display().to_string())
+            }
+        }
+    }
+}
+
 impl Sweep {
     /// Read and check the sweep file `path` against the scenes of
     /// `wasp scenes list`.
@@ -158,167 +327,42 @@ impl Sweep {
                 None => format!("{shown}: {message}"),
             }
         })?;
-        let at = |offset: usize| format!("{shown}:{}", line_of(text, offset));
-        let list = |field: &str, v: &Spanned<Vec<Spanned<String>>>| -> Result<(), String> {
-            if v.get_ref().is_empty() {
-                return Err(format!(
-                    "{}: {field} is empty: name at least one",
-                    at(v.span().start)
-                ));
-            }
-            for (i, x) in v.get_ref().iter().enumerate() {
-                let first = v.get_ref()[..i]
-                    .iter()
-                    .position(|y| y.get_ref() == x.get_ref());
-                if let Some(j) = first {
-                    return Err(format!(
-                        "{}: {field}[{i}] `{}` is listed twice (also {field}[{j}])",
-                        at(x.span().start),
-                        x.get_ref()
-                    ));
-                }
-            }
-            Ok(())
-        };
-        list("scenes", &raw.scenes)?;
-        list("policies", &raw.policies)?;
-        let mut scenes = Vec::new();
-        for (i, s) in raw.scenes.get_ref().iter().enumerate() {
-            let name = s.get_ref();
-            if name == "all" {
-                if raw.scenes.get_ref().len() > 1 {
-                    return Err(format!(
-                        "{}: scenes: `all` stands for every scene and cannot be listed with others",
-                        at(s.span().start)
-                    ));
-                }
-                scenes = known.to_vec();
-            } else if known.contains(name) {
-                scenes.push(name.clone());
-            } else {
-                return Err(format!(
-                    "{}: scenes[{i}]: no scene named `{name}` (see `wasp scenes list`)",
-                    at(s.span().start)
-                ));
-            }
-        }
+        let f = SweepFile { text, shown, dir };
+        f.list("scenes", &raw.scenes)?;
+        f.list("policies", &raw.policies)?;
+        let scenes = f.scenes(&raw.scenes, known)?;
         let mut policies = Vec::new();
         for (i, p) in raw.policies.get_ref().iter().enumerate() {
             p.get_ref()
                 .parse::<PolicySpec>()
-                .map_err(|e| format!("{}: policies[{i}]: {e}", at(p.span().start)))?;
+                .map_err(|e| format!("{}: policies[{i}]: {e}", f.at(p.span().start)))?;
             policies.push(p.get_ref().clone());
         }
-        let dispatches = match &raw.dispatches {
-            None => vec![None],
-            Some(d) => {
-                list("dispatches", d)?;
-                let mut v = Vec::new();
-                for (i, x) in d.get_ref().iter().enumerate() {
-                    x.get_ref()
-                        .parse::<Dispatch>()
-                        .map_err(|e| format!("{}: dispatches[{i}]: {e}", at(x.span().start)))?;
-                    v.push(Some(x.get_ref().clone()));
-                }
-                v
-            }
-        };
-        let draw_orders = match &raw.draw_orders {
-            None => vec![None],
-            Some(d) => {
-                list("draw_orders", d)?;
-                let mut v = Vec::new();
-                for (i, x) in d.get_ref().iter().enumerate() {
-                    let o = x
-                        .get_ref()
-                        .parse::<DrawOrder>()
-                        .map_err(|e| format!("{}: draw_orders[{i}]: {e}", at(x.span().start)))?;
-                    v.push(Some(o));
-                }
-                v
-            }
-        };
-        let raw_configs = match &raw.configs {
-            Some(c) if !c.get_ref().is_empty() => c.get_ref(),
-            Some(c) => {
-                return Err(format!(
-                    "{}: configs is empty: add at least one [[configs]] entry",
-                    at(c.span().start)
-                ))
-            }
-            None => {
-                return Err(format!(
-                    "{shown}: no [[configs]] entry: add at least one (name, base, set)"
-                ))
-            }
-        };
-        let mut configs: Vec<ConfigEntry> = Vec::new();
-        for (i, c) in raw_configs.iter().enumerate() {
-            let c = c.get_ref();
-            let name = c.name.get_ref();
-            let here = at(c.name.span().start);
-            if name.trim().is_empty() {
-                return Err(format!("{here}: configs[{i}].name is empty"));
-            }
-            if let Some(j) = configs.iter().position(|x| &x.name == name) {
-                return Err(format!(
-                    "{here}: configs[{i}].name `{name}` is used twice (also configs[{j}], line {})",
-                    configs[j].line
-                ));
-            }
-            let base = match c.base.get_ref().as_str() {
-                b @ ("paper" | "paper-width2") => b.to_string(),
-                b => {
-                    let p = dir.join(b);
-                    if !p.is_file() {
-                        return Err(format!(
-                            "{}: configs[{i}].base `{b}`: no such file ({}); a base is paper, \
-                             paper-width2 or a TOML file",
-                            at(c.base.span().start),
-                            p.display()
-                        ));
-                    }
-                    p.canonicalize().unwrap_or(p).display().to_string()
-                }
-            };
-            for (k, s) in c.set.iter().enumerate() {
-                if !s.get_ref().contains('=') {
-                    return Err(format!(
-                        "{}: configs[{i}].set[{k}] `{}`: expected PATH=VALUE, e.g. l0.mshrs=24",
-                        at(s.span().start),
-                        s.get_ref()
-                    ));
-                }
-            }
-            configs.push(ConfigEntry {
-                name: name.clone(),
-                base,
-                set: c.set.iter().map(|s| s.get_ref().clone()).collect(),
-                line: line_of(text, c.name.span().start),
-            });
-        }
-        let count = [
+        let dispatches: Vec<Option<String>> = f
+            .optional::<Dispatch>("dispatches", raw.dispatches.as_ref())?
+            .into_iter()
+            .map(|d| d.map(|(text, _)| text))
+            .collect();
+        let draw_orders: Vec<Option<DrawOrder>> = f
+            .optional::<DrawOrder>("draw_orders", raw.draw_orders.as_ref())?
+            .into_iter()
+            .map(|d| d.map(|(_, o)| o))
+            .collect();
+        let configs = f.configs(raw.configs.as_ref())?;
+        let sizes = [
             scenes.len(),
             draw_orders.len(),
             configs.len(),
             dispatches.len(),
             policies.len(),
-        ]
-        .iter()
-        .try_fold(1usize, |a, &b| a.checked_mul(b));
-        match count {
-            Some(n) if n <= MAX_POINTS => {}
-            _ => {
-                return Err(format!(
-                    "{shown}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
-                     policies is more than {MAX_POINTS} points: split the sweep into several files",
-                    scenes.len(),
-                    draw_orders.len(),
-                    configs.len(),
-                    dispatches.len(),
-                    policies.len()
-                ))
-            }
+        ];
+        let count = sizes.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
+        if count.is_none_or(|n| n > MAX_POINTS) {
+            return Err(format!(
+                "{shown}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
+                 policies is more than {MAX_POINTS} points: split the sweep into several files",
+                sizes[0], sizes[1], sizes[2], sizes[3], sizes[4]
+            ));
         }
         Ok(Sweep {
             shown: shown.to_string(),

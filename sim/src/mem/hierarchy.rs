@@ -414,16 +414,16 @@ impl MemorySystem {
 
     /// Advance everything by cycle `now`, after that cycle's accesses, in
     /// five steps:
-    /// 1. [`requests_to_l1`](Self::requests_to_l1): the L1s take L0
+    /// 1. `requests_to_l1`: the L1s take L0
     ///    requests, then, with a prefetcher, the heads of the prefetch
-    ///    queues on the ports left ([`prefetch_tick`](Self::prefetch_tick));
-    /// 2. [`requests_to_l2`](Self::requests_to_l2): the L2 takes L1
+    ///    queues on the ports left (`prefetch_tick`);
+    /// 2. `requests_to_l2`: the L2 takes L1
     ///    requests, round robin over cores;
-    /// 3. [`dram_to_l2`](Self::dram_to_l2): the DRAM accepts requests and
+    /// 3. `dram_to_l2`: the DRAM accepts requests and
     ///    its replies due at `now` fill the L2;
-    /// 4. [`l2_to_l1`](Self::l2_to_l1): L2 replies due at `now` fill the
+    /// 4. `l2_to_l1`: L2 replies due at `now` fill the
     ///    L1s;
-    /// 5. [`l1_to_l0`](Self::l1_to_l0): L1 replies due at `now` fill the
+    /// 5. `l1_to_l0`: L1 replies due at `now` fill the
     ///    L0s, and tags completing at `now` become available to
     ///    [`take_completions`](Self::take_completions).
     pub fn tick(&mut self, now: u64) {

@@ -21,6 +21,7 @@ impl Figures<'_> {
             "L0 stalled",
         );
         f.reference = None;
+        f.signed = false;
         for pol in [
             PolicySpec::Baseline,
             PolicySpec::FullPriority,
@@ -36,7 +37,8 @@ impl Figures<'_> {
             });
         }
         f.caption = "Cycles in which the L0 refuses accesses for want of an MSHR, over all \
-                     cycles: the stalls Fullpriority adds and WaSP's gate avoids (Figure 10)."
+                     cycles. The paper's Figure 10: Fullpriority adds stalls and WaSP's gate \
+                     avoids them (\"Why the numbers differ\" says whether ours do)."
             .into();
         f
     }
@@ -122,8 +124,8 @@ impl Figures<'_> {
         });
         f.paper
             .push(self.paper_line(Some(0), paper::LATENCY_CHANGE, "mean"));
-        f.caption = "The prefetching effect WaSP is built for: regular warps find their blocks \
-                     already requested."
+        f.caption = "What WaSP is built for, in the paper: regular warps find their blocks \
+                     already requested by the priority warps, so the mean latency falls."
             .into();
         f
     }

@@ -59,6 +59,9 @@ pub struct Figure {
     pub paper: Vec<PaperValue>,
     /// Values are fractions shown as percent.
     pub percent: bool,
+    /// Values are changes or speedups (`x / base - 1`), printed with their
+    /// sign (`+3.9%`); otherwise shares or amounts, printed without.
+    pub signed: bool,
     /// A reference line.
     pub reference: Option<f64>,
     /// Category indices before which a separator is drawn.

@@ -26,7 +26,6 @@ mod warps;
 
 pub use axis::{mean, Axis};
 pub use figure::{Figure, Kind, PaperValue};
-pub use numbers::pct_opt;
 pub use scenes::scene_figures;
 
 use super::paper::Claim;
@@ -106,6 +105,7 @@ impl<'a> Figures<'a> {
             series: Vec::new(),
             paper: Vec::new(),
             percent: true,
+            signed: true,
             reference: Some(0.0),
             separators,
             highlight,

@@ -15,17 +15,12 @@ pub fn change(base: &PointRecord, x: &PointRecord, path: &str) -> Option<f64> {
 }
 
 pub(super) fn fmt_claim(v: f64) -> String {
-    format!("{:+.1}%", 100.0 * v)
+    crate::reproduce::prose::pct(Some(v))
 }
 
 /// Subset size ratio of MeshN: one quad in N x N.
 pub fn size_ratio(n: u32) -> String {
     format!("1/{}", n * n)
-}
-
-/// Percent text for tables (`-` for None).
-pub fn pct_opt(v: Option<f64>) -> String {
-    v.map_or("-".into(), fmt_claim)
 }
 
 #[cfg(test)]

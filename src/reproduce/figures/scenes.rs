@@ -40,6 +40,7 @@ pub fn scene_figures(plan: &Plan, out: &Outcome) -> Vec<Figure> {
         series: Vec::new(),
         paper: Vec::new(),
         percent: false,
+        signed: false,
         reference: None,
         separators,
         highlight,

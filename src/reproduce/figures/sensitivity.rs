@@ -191,6 +191,7 @@ impl Figures<'_> {
             series,
             paper: marks,
             percent: true,
+            signed: true,
             reference: Some(0.0),
             separators: Vec::new(),
             highlight: Vec::new(),

@@ -111,6 +111,7 @@ impl Figures<'_> {
             series,
             paper: Vec::new(),
             percent: true,
+            signed: true,
             reference: Some(0.0),
             separators: Vec::new(),
             highlight: Vec::new(),

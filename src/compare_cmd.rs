@@ -1,0 +1,245 @@
+//! `wasp compare`: several launch policies on the same trace, with
+//! speedups against the first.
+
+use crate::output::{self, emit, Output};
+use crate::run_cmd::{load_config, load_trace, progress_bar, sim_err, Inputs};
+use crate::CliError;
+use clap::Args;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use wasp_rtl::policy::PolicySpec;
+use wasp_sim::config::MachineConfig;
+use wasp_sim::run::{simulate, RunOptions, SimError};
+use wasp_sim::stats::{csv_table, RunStats};
+use wasp_sim::trace::Trace;
+
+/// Options of `wasp compare`.
+#[derive(Args, Debug, Clone)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    pub inputs: Inputs,
+
+    /// Policies to compare, comma separated; the first is the reference for
+    /// speedups. Default: baseline, fullpriority, freemshr:10, the
+    /// configuration's `scheduler.policy` and, when that is WaSP, the
+    /// measured-CF variant `wasp-m` at its threshold.
+    #[arg(long, value_delimiter = ',')]
+    pub policies: Option<Vec<PolicySpec>>,
+
+    /// Also run the reference policy with ideal (zero-latency) main memory.
+    #[arg(long)]
+    pub with_ideal: bool,
+
+    /// Write every run's statistics as a JSON array to FILE (`-` for
+    /// standard output).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+
+    /// Write every run's statistics as CSV to FILE (`-` for standard
+    /// output).
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+
+    /// Simulations run at once (default: the machine's cores).
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+}
+
+/// One run of a comparison.
+struct Job {
+    label: String,
+    opts: RunOptions,
+}
+
+/// The policies `wasp compare` runs when `--policies` is not given: the
+/// scanline baseline, Fullpriority, Freemshr10, the configuration's policy
+/// and, when that is WaSP, `wasp-m` at the same threshold.
+fn default_policies(cfg: &MachineConfig) -> Vec<PolicySpec> {
+    let mut v = vec![
+        PolicySpec::Baseline,
+        PolicySpec::FullPriority,
+        PolicySpec::FreeMshr(10),
+    ];
+    let own = cfg.scheduler.policy;
+    if !v.contains(&own) {
+        v.push(own);
+    }
+    if let PolicySpec::Wasp { threshold, .. } = own {
+        v.push(PolicySpec::WaspMeasured { threshold });
+    }
+    v
+}
+
+/// Run the comparison.
+pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
+    output::check(&[
+        Output::new("--json", args.json.as_deref()),
+        Output::new("--csv", args.csv.as_deref()),
+    ])?;
+    let cfg = load_config(&args.inputs)?;
+    let trace = load_trace(&args.inputs, &cfg)?;
+    let policies = match &args.policies {
+        Some(p) => p.clone(),
+        None => default_policies(&cfg),
+    };
+    if policies.is_empty() {
+        return Err(CliError::usage("--policies: name at least one policy"));
+    }
+    let jobs = comparison_jobs(args, &policies);
+    // Check every configuration before spending time on any run.
+    for j in &jobs {
+        j.opts.apply(&cfg).map_err(sim_err)?;
+    }
+    let threads = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .clamp(1, jobs.len());
+    let runs = run_jobs(&cfg, &trace, &jobs, threads, args.inputs.quiet)?;
+    let labels: Vec<String> = jobs.iter().map(|j| j.label.clone()).collect();
+    if let Some(p) = &args.json {
+        let text = serde_json::to_string_pretty(&runs)
+            .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?
+            + "\n";
+        emit(p, &text)?;
+    }
+    if let Some(p) = &args.csv {
+        emit(p, &csv_table(&runs))?;
+    }
+    if !output::to_stdout(&args.json) && !output::to_stdout(&args.csv) {
+        emit(Path::new("-"), &compare_table(&labels, &runs))?;
+    }
+    Ok(())
+}
+
+/// The runs of a comparison: each policy, then (`--with-ideal`) the first
+/// with ideal memory.
+fn comparison_jobs(args: &CompareArgs, policies: &[PolicySpec]) -> Vec<Job> {
+    let i = &args.inputs;
+    let opts = |policy: PolicySpec, ideal: Option<bool>| RunOptions {
+        policy: Some(policy),
+        launch_rule: i.launch_rule,
+        subset: i.subset.clone(),
+        ideal_memory: ideal,
+        dispatch: i.dispatch,
+        ..RunOptions::default()
+    };
+    let mut jobs: Vec<Job> = policies
+        .iter()
+        .map(|p| Job {
+            label: p.to_string(),
+            opts: opts(*p, i.ideal_memory.then_some(true)),
+        })
+        .collect();
+    if args.with_ideal {
+        jobs.push(Job {
+            label: format!("{} +ideal memory", policies[0]),
+            opts: opts(policies[0], Some(true)),
+        });
+    }
+    jobs
+}
+
+/// Run `jobs` on `threads` threads, with one progress bar over them all;
+/// their statistics in job order.
+fn run_jobs(
+    cfg: &MachineConfig,
+    trace: &Trace,
+    jobs: &[Job],
+    threads: usize,
+    quiet: bool,
+) -> Result<Vec<RunStats>, CliError> {
+    let pb = progress_bar(quiet, trace.tiles().len() * jobs.len(), "comparing");
+    let done_tiles = Mutex::new(vec![0usize; jobs.len()]);
+    let next = Mutex::new(0usize);
+    let results: Mutex<Vec<Option<Result<RunStats, SimError>>>> =
+        Mutex::new((0..jobs.len()).map(|_| None).collect());
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| loop {
+                let i = {
+                    let mut n = next.lock().expect("lock");
+                    let i = *n;
+                    *n += 1;
+                    i
+                };
+                if i >= jobs.len() {
+                    break;
+                }
+                let mut progress = |d: usize, _t: usize| {
+                    let mut v = done_tiles.lock().expect("lock");
+                    v[i] = d;
+                    pb.set_position(v.iter().sum::<usize>() as u64);
+                };
+                let r = simulate(cfg, trace, &jobs[i].opts, &mut progress);
+                results.lock().expect("lock")[i] = Some(r);
+            });
+        }
+    });
+    pb.finish_and_clear();
+    let mut runs = Vec::with_capacity(jobs.len());
+    for (j, r) in jobs.iter().zip(results.into_inner().expect("lock")) {
+        let r = r.expect("every job ran");
+        runs.push(r.map_err(|e| CliError::failed(format!("{}: {}", j.label, sim_err(e))))?);
+    }
+    Ok(runs)
+}
+
+/// The comparison as a table: speedups against the first run.
+pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let Some(base) = runs.first() else {
+        return s;
+    };
+    let _ = writeln!(
+        s,
+        "machine {}  |  dispatch {}  |  workload {}  |  subset {}  |  launch rule {}",
+        base.machine, base.dispatch, base.workload, base.subset.subset, base.launch_rule
+    );
+    let _ = writeln!(
+        s,
+        "{:<26}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}{:>7}{:>8}{:>10}",
+        "policy",
+        "cycles",
+        "ipc",
+        "speedup",
+        "stall%",
+        "latency",
+        "l1 miss",
+        "l2 miss",
+        "energy",
+        "occ",
+        "lead",
+        "held"
+    );
+    for (l, r) in labels.iter().zip(runs) {
+        let stall = r.l0.as_ref().unwrap_or(&r.l1).stall_fraction;
+        let lead = if r.priority_lead.priority_warps > 0 {
+            format!("{:+.0}", r.priority_lead.mean)
+        } else {
+            "-".to_string()
+        };
+        let _ = writeln!(
+            s,
+            "{:<26}{:>12}{:>8.3}{:>+8.2}%{:>8.2}%{:>10.1}{:>10}{:>10}{:>9.1}uJ{:>7.1}{:>8}{:>10}",
+            l,
+            r.cycles,
+            r.ipc,
+            100.0 * (base.cycles as f64 / r.cycles as f64 - 1.0),
+            100.0 * stall,
+            r.memory_latency.all,
+            r.l1.misses,
+            r.l2.misses,
+            r.energy.total_nj / 1000.0,
+            r.avg_warps_per_core,
+            lead,
+            r.held_cycles
+        );
+    }
+    let _ = writeln!(
+        s,
+        "speedup = {} cycles / policy cycles - 1; stall% = scheduler-level cache (L0, else L1) stalled; latency = mean memory latency per warp in cycles; occ = mean warps resident per core; lead = mean raster position minus launch rank of priority warps; held = hold idle core-cycles (a free slot, a priority warp waiting, nothing launched)",
+        labels[0]
+    );
+    s
+}

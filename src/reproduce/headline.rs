@@ -1,0 +1,327 @@
+//! REPORT.md's side-by-side table: each of the paper's headline numbers
+//! beside ours, per machine and scene group, also written as
+//! `data/headline.csv`.
+
+use super::figures::{Figure, Figures};
+use super::paper;
+use super::plan::{Group, Plan, Width};
+use super::prose::pct;
+use crate::study::runner::Outcome;
+use crate::study::table::csv;
+use std::fmt::Write as _;
+use wasp_rtl::policy::PolicySpec;
+use wasp_sim::config::Dispatch;
+
+/// One row of the side-by-side table.
+pub struct Row {
+    /// What is compared.
+    pub claim: String,
+    /// The paper's value as text.
+    pub paper: String,
+    /// Ours per machine: (games, 3D, 2D, procedural).
+    pub ours: Vec<[String; 4]>,
+}
+
+/// The group means of a figure's series: games, 3D, 2D, procedural.
+pub fn group_values(f: &Figure, series: usize) -> [Option<f64>; 4] {
+    let at = |label: &str| {
+        f.categories
+            .iter()
+            .position(|c| c == label)
+            .and_then(|i| f.series.get(series).and_then(|s| s.values[i]))
+    };
+    [
+        at("mean games"),
+        at("mean 3D"),
+        at("mean 2D"),
+        at("mean procedural"),
+    ]
+}
+
+/// The group means of a figure's series as text: changes with their sign,
+/// shares without, other numbers with two decimals.
+pub fn group_means(f: &Figure, series: usize) -> [String; 4] {
+    group_values(f, series).map(|v| {
+        if f.percent && f.signed {
+            pct(v)
+        } else if f.percent {
+            super::prose::share(v)
+        } else {
+            v.map_or("-".into(), |x| format!("{x:.2}"))
+        }
+    })
+}
+
+/// The index of the series `name` (the first if there is none).
+pub fn series_index(f: &Figure, name: &str) -> usize {
+    f.series.iter().position(|s| s.name == name).unwrap_or(0)
+}
+
+/// The rows of the table.
+pub fn headline(plan: &Plan, out: &Outcome, machines: &[(Dispatch, Figures)]) -> Vec<Row> {
+    let mut rows = Vec::new();
+    policy_rows(&mut rows, plan, machines);
+    for w in &plan.widths {
+        sensitivity_rows(&mut rows, plan, machines, w);
+    }
+    workload_rows(&mut rows, plan, out, machines);
+    rows
+}
+
+type PerMachine<'a> = &'a dyn Fn(Dispatch, &Figures) -> [String; 4];
+
+fn row(claim: &str, paper: String, machines: &[(Dispatch, Figures)], f: PerMachine) -> Row {
+    Row {
+        claim: claim.into(),
+        paper,
+        ours: machines.iter().map(|(d, x)| f(*d, x)).collect(),
+    }
+}
+
+/// The policies' speedups and what WaSP changes (latency, energy, misses),
+/// and ideal memory.
+fn policy_rows(rows: &mut Vec<Row>, plan: &Plan, machines: &[(Dispatch, Figures)]) {
+    let p = |c: paper::Claim| pct(Some(c.value));
+    let heuristic = |name: String| {
+        move |d: Dispatch, x: &Figures| {
+            let f = x.heuristics(d);
+            group_means(&f, series_index(&f, &name))
+        }
+    };
+    let wasp = plan.wasp.to_string();
+    rows.push(row(
+        "WaSP speedup",
+        p(paper::WASP_SPEEDUP),
+        machines,
+        &heuristic(wasp),
+    ));
+    rows.push(row(
+        "Fullpriority speedup",
+        p(paper::FULLPRIORITY_SPEEDUP),
+        machines,
+        &heuristic("fullpriority".into()),
+    ));
+    rows.push(row(
+        "Freemshr10 speedup",
+        "like Fullpriority".into(),
+        machines,
+        &heuristic("freemshr:10".into()),
+    ));
+    rows.push(row(
+        "Memory latency change (WaSP)",
+        p(paper::LATENCY_CHANGE),
+        machines,
+        &|d, x| group_means(&x.latency_change(d), 0),
+    ));
+    rows.push(row(
+        "Priority warps' latency above regular warps'",
+        "yes".into(),
+        machines,
+        &priority_latency_counts,
+    ));
+    rows.push(row(
+        "Energy change (WaSP)",
+        p(paper::ENERGY_CHANGE),
+        machines,
+        &|d, x| group_means(&x.energy(d), 0),
+    ));
+    for (claim, series) in [
+        ("L1 misses change (WaSP)", 0),
+        ("L2 misses change (WaSP)", 1),
+    ] {
+        rows.push(row(claim, "unchanged".into(), machines, &|d, x| {
+            group_means(&x.misses(d), series)
+        }));
+    }
+    rows.push(row(
+        "Ideal-memory speedup",
+        "Figure 1 (no number)".into(),
+        machines,
+        &|d, x| group_means(&x.motivation(d), 0),
+    ));
+}
+
+/// On how many scenes of each group the priority warps' mean latency is
+/// above the regular warps'.
+fn priority_latency_counts(d: Dispatch, x: &Figures) -> [String; 4] {
+    let f = x.latency(d);
+    let (pr, rg) = (&f.series[2].values, &f.series[3].values);
+    let n = x.axis.scenes.len();
+    let count = |idx: &dyn Fn(Group) -> bool| {
+        let v: Vec<bool> = (0..n)
+            .filter(|&i| idx(x.axis.groups[i]))
+            .filter_map(|i| Some(pr[i]? > rg[i]?))
+            .collect();
+        if v.is_empty() {
+            "-".to_string()
+        } else {
+            format!("{} of {}", v.iter().filter(|&&b| b).count(), v.len())
+        }
+    };
+    [
+        count(&|g| g != Group::Procedural),
+        count(&|g| g == Group::ThreeD),
+        count(&|g| g == Group::TwoD),
+        count(&|g| g == Group::Procedural),
+    ]
+}
+
+/// The paper's claim of WaSP with fewer warps against the baseline at the
+/// paper's optimum, at a width: (WaSP's warps, the paper's value as text).
+pub fn fewer_warps_claim(w: &Width) -> (u32, paper::Claim) {
+    if w.width == 2 {
+        (32, paper::WIDTH2_WASP32_OVER_BEST)
+    } else {
+        (48, paper::WIDTH4_WASP48_OVER_BEST)
+    }
+}
+
+/// The sensitivity rows of one width: where the baseline is fastest, the
+/// baseline past the optimum, WaSP with fewer warps and WaSP at the
+/// optimum, each against the baseline at the paper's optimum.
+fn sensitivity_rows(rows: &mut Vec<Row>, plan: &Plan, machines: &[(Dispatch, Figures)], w: &Width) {
+    rows.push(row(
+        &format!("Best baseline warp count, width {}", w.width),
+        w.paper_best_warps.to_string(),
+        machines,
+        &|d, x| {
+            let b = x.best_warps(d, w).map_or("-".into(), |b| b.short());
+            [b, "-".into(), "-".into(), "-".into()]
+        },
+    ));
+    let opt = w.paper_best_warps;
+    if !plan.warps.contains(&opt) {
+        return;
+    }
+    let sens = |k: u32, pol: PolicySpec| {
+        move |d: Dispatch, x: &Figures| -> [String; 4] {
+            let v = x.sensitivity_speedup(d, w, k, pol, opt);
+            [pct(v), "-".into(), "-".into(), "-".into()]
+        }
+    };
+    if let Some(&most) = plan.warps.iter().max().filter(|&&m| m > opt) {
+        rows.push(row(
+            &format!("Baseline@{most} over the baseline@{opt}, width {}", w.width),
+            "< 0 (\"slow down after\" the optimum)".into(),
+            machines,
+            &sens(most, PolicySpec::Baseline),
+        ));
+    }
+    let (k, claim) = fewer_warps_claim(w);
+    let paper_text = if w.width == 2 {
+        ">= 0 (matches)".to_string()
+    } else {
+        pct(Some(claim.value))
+    };
+    if plan.warps.contains(&k) {
+        rows.push(row(
+            &format!("WaSP@{k} over the baseline@{opt}, width {}", w.width),
+            paper_text,
+            machines,
+            &sens(k, plan.wasp),
+        ));
+    }
+    let gain = if w.width == 2 {
+        paper::WIDTH2_WASP_GAIN
+    } else {
+        paper::WIDTH4_WASP_GAIN
+    };
+    rows.push(row(
+        &format!("WaSP@{opt} over the baseline@{opt}, width {}", w.width),
+        pct(Some(gain.value)),
+        machines,
+        &sens(opt, plan.wasp),
+    ));
+}
+
+/// The workload figures: the same on every machine.
+fn workload_rows(
+    rows: &mut Vec<Row>,
+    plan: &Plan,
+    out: &Outcome,
+    machines: &[(Dispatch, Figures)],
+) {
+    let sf = super::figures::scene_figures(plan, out);
+    let same = |claim: String, paper: String, v: [String; 4]| Row {
+        claim,
+        paper,
+        ours: machines.iter().map(|_| v.clone()).collect(),
+    };
+    let fp = &sf[2];
+    for (i, s) in fp.series.iter().enumerate() {
+        let pv = paper::footprint(&s.name).map_or("-".into(), |v| format!("{v}"));
+        rows.push(same(
+            format!("Footprint ratio, {}", s.name),
+            pv,
+            group_means(fp, i),
+        ));
+    }
+    let mesh = &sf[3];
+    if let Some(i) = mesh
+        .series
+        .iter()
+        .position(|s| s.name.starts_with("Mesh2 "))
+    {
+        rows.push(same(
+            "Footprint ratio, Mesh2 (size ratio 0.25)".into(),
+            format!("{}", paper::MESH2_FOOTPRINT.value),
+            group_means(mesh, i),
+        ));
+    }
+    for (fig, series, claim, c) in [
+        (&sf[0], 0, "Min_Estimate1", paper::MIN_ESTIMATE1),
+        (&sf[1], 0, "CF", paper::CF),
+    ] {
+        rows.push(same(
+            claim.into(),
+            format!("{}", c.value),
+            group_means(fig, series),
+        ));
+    }
+}
+
+/// The table in REPORT.md.
+pub fn headline_md(md: &mut String, rows: &[Row], plan: &Plan) {
+    let _ = writeln!(md, "\n## The paper's headline numbers beside ours\n");
+    let mut head = "| | paper |".to_string();
+    let mut rule = "|---|---|".to_string();
+    for d in &plan.dispatches {
+        let _ = write!(head, " {d}: games | 3D | 2D | procedural |");
+        rule.push_str("---|---|---|---|");
+    }
+    let _ = writeln!(md, "{head}\n{rule}");
+    for r in rows {
+        let _ = write!(md, "| {} | {} |", r.claim, r.paper);
+        for o in &r.ours {
+            let _ = write!(md, " {} | {} | {} | {} |", o[0], o[1], o[2], o[3]);
+        }
+        let _ = writeln!(md);
+    }
+    let _ = writeln!(
+        md,
+        "\nSpeedups and changes are per-scene `baseline / WaSP - 1` (cycles) or `WaSP / \
+         baseline - 1`, averaged arithmetically; sensitivity rows are means over games. \
+         `data/headline.csv` holds this table."
+    );
+}
+
+/// The table as CSV.
+pub fn headline_csv(rows: &[Row], plan: &Plan) -> String {
+    let mut s = "claim,paper".to_string();
+    for d in &plan.dispatches {
+        for g in ["games", "3D", "2D", "procedural"] {
+            let _ = write!(s, ",{d} {g}");
+        }
+    }
+    s.push('\n');
+    for r in rows {
+        let _ = write!(s, "{},{}", csv(&r.claim), csv(&r.paper));
+        for o in &r.ours {
+            for v in o {
+                let _ = write!(s, ",{}", csv(v));
+            }
+        }
+        s.push('\n');
+    }
+    s
+}

@@ -1,0 +1,355 @@
+//! The machine's unstated choices that the map varies, one at a time, each
+//! over a range a real mobile GPU could have, and the runs made at every
+//! value.
+//!
+//! Every knob is a set of `--set` overrides on the shipped machine
+//! (configs/paper.toml, shared-tile dispatch). The ranges and their sources
+//! are in docs/machine.md ("What decides WaSP's gain"); the shipped value is
+//! always one of the values, so every knob's range passes through the
+//! shipped machine.
+
+use wasp_frontend::raster::DrawOrder;
+use wasp_rtl::policy::PolicySpec;
+use wasp_sim::config::MachineConfig;
+
+/// One unstated choice of the machine and the values the map gives it.
+#[derive(Clone, Debug)]
+pub struct Knob {
+    /// Short id for files and tables (`warps`).
+    pub id: &'static str,
+    /// The configuration field(s) it sets, as a user would name them.
+    pub field: &'static str,
+    /// What it is, for labels ("warps per core").
+    pub label: &'static str,
+    /// The shipped value.
+    pub shipped: &'static str,
+    /// Every value of the full map, in ascending order, the shipped one
+    /// included.
+    pub values: &'static [&'static str],
+    /// The values of the quick look (the shipped one included).
+    pub quick: &'static [&'static str],
+    /// The overrides that give the knob a value.
+    pub sets: fn(&str) -> Vec<String>,
+    /// A value as a label ("32 warps").
+    pub unit: fn(&str) -> String,
+    /// Whether the knob is the scene's draw order (the front end's, not a
+    /// machine field): its values are draw orders and `sets` is unused.
+    pub draw_order: bool,
+}
+
+impl Knob {
+    /// The overrides of `value` (none for the shipped value, so that the
+    /// shipped point is the shipped machine, spelled the same way).
+    pub fn overrides(&self, value: &str) -> Vec<String> {
+        if value == self.shipped || self.draw_order {
+            Vec::new()
+        } else {
+            (self.sets)(value)
+        }
+    }
+
+    /// The draw order of `value` for a draw-order knob (None for the
+    /// shipped value, so that the shipped point keeps the scene's own).
+    pub fn order(&self, value: &str) -> Option<DrawOrder> {
+        (self.draw_order && value != self.shipped)
+            .then(|| value.parse().ok())
+            .flatten()
+    }
+
+    /// The values of a plan.
+    pub fn values_for(&self, quick: bool) -> &'static [&'static str] {
+        if quick {
+            self.quick
+        } else {
+            self.values
+        }
+    }
+}
+
+fn one(path: &'static str, quoted: bool) -> impl Fn(&str) -> Vec<String> {
+    move |v| {
+        if quoted {
+            vec![format!("{path}=\"{v}\"")]
+        } else {
+            vec![format!("{path}={v}")]
+        }
+    }
+}
+
+fn warps(v: &str) -> Vec<String> {
+    one("core.max_warps", false)(v)
+}
+fn l0_mshrs(v: &str) -> Vec<String> {
+    one("l0.mshrs", false)(v)
+}
+fn l1_mshrs(v: &str) -> Vec<String> {
+    one("l1.mshrs", false)(v)
+}
+fn input_queue(v: &str) -> Vec<String> {
+    one("core.input_queue", false)(v)
+}
+fn raster_rate(v: &str) -> Vec<String> {
+    one("raster.quads_per_cycle", false)(v)
+}
+fn early_z(v: &str) -> Vec<String> {
+    one("raster.rejected_per_slot", false)(v)
+}
+fn texture_latency(v: &str) -> Vec<String> {
+    one("core.texture_latency", false)(v)
+}
+fn issue(v: &str) -> Vec<String> {
+    one("core.issue", true)(v)
+}
+fn core_map(v: &str) -> Vec<String> {
+    one("raster.core_map", true)(v)
+}
+
+/// The filter rate: cycles a bilinear quad-sample holds the filter unit;
+/// trilinear takes two passes, as on the shipped machine.
+fn filter(v: &str) -> Vec<String> {
+    let n: u32 = v.parse().unwrap_or(1);
+    vec![
+        format!("core.filter_cycles_bilinear={n}"),
+        format!("core.filter_cycles_trilinear={}", 2 * n),
+    ]
+}
+
+/// DRAM latency, as the unloaded row-hit latency in cycles: the banked
+/// model's row hit costs `t_cl + t_burst + controller_latency`, so the
+/// knob sets the controller latency that gives it (the paper: "Latency
+/// 50-100 cycles").
+fn dram_latency(v: &str) -> Vec<String> {
+    let d = MachineConfig::paper().dram;
+    let hit: u32 = v.parse().unwrap_or(50);
+    let fixed = d.t_cl + d.t_burst;
+    vec![format!(
+        "dram.controller_latency={}",
+        hit.saturating_sub(fixed)
+    )]
+}
+
+fn plain(v: &str) -> String {
+    v.to_string()
+}
+
+/// Every knob of the map, in the order of docs/machine.md.
+pub fn all() -> Vec<Knob> {
+    vec![
+        Knob {
+            id: "warps",
+            field: "core.max_warps",
+            label: "warps per core",
+            shipped: "64",
+            values: &["32", "48", "64", "96", "128"],
+            quick: &["32", "64", "128"],
+            sets: warps,
+            unit: |v| format!("{v} warps"),
+            draw_order: false,
+        },
+        Knob {
+            id: "l0-mshrs",
+            field: "l0.mshrs",
+            label: "L0 MSHRs",
+            shipped: "16",
+            values: &["4", "8", "16", "31"],
+            quick: &["16", "31"],
+            sets: l0_mshrs,
+            unit: |v| format!("{v} L0 MSHRs"),
+            draw_order: false,
+        },
+        Knob {
+            id: "l1-mshrs",
+            field: "l1.mshrs",
+            label: "L1 MSHRs",
+            shipped: "16",
+            values: &["8", "16", "32"],
+            quick: &["16"],
+            sets: l1_mshrs,
+            unit: |v| format!("{v} L1 MSHRs"),
+            draw_order: false,
+        },
+        Knob {
+            id: "dram-latency",
+            field: "dram.controller_latency",
+            label: "DRAM row-hit latency",
+            shipped: "50",
+            values: &["50", "75", "100"],
+            quick: &["50"],
+            sets: dram_latency,
+            unit: |v| format!("{v}-cycle row hit"),
+            draw_order: false,
+        },
+        Knob {
+            id: "input-queue",
+            field: "core.input_queue",
+            label: "input queue entries",
+            shipped: "64",
+            values: &["16", "32", "64", "128", "256"],
+            quick: &["64"],
+            sets: input_queue,
+            unit: |v| format!("{v}-entry queue"),
+            draw_order: false,
+        },
+        Knob {
+            id: "raster-rate",
+            field: "raster.quads_per_cycle",
+            label: "raster quads a cycle",
+            shipped: "4",
+            values: &["1", "2", "4", "8"],
+            quick: &["4"],
+            sets: raster_rate,
+            unit: |v| format!("{v} quads/cycle"),
+            draw_order: false,
+        },
+        Knob {
+            id: "early-z",
+            field: "raster.rejected_per_slot",
+            label: "Early-Z rejects a slot",
+            shipped: "1",
+            values: &["1", "4", "16"],
+            quick: &["1"],
+            sets: early_z,
+            unit: |v| format!("{v} rejected/slot"),
+            draw_order: false,
+        },
+        Knob {
+            id: "texture-latency",
+            field: "core.texture_latency",
+            label: "texture latency",
+            shipped: "4",
+            values: &["1", "4", "16", "32"],
+            quick: &["4"],
+            sets: texture_latency,
+            unit: |v| format!("{v}-cycle texture"),
+            draw_order: false,
+        },
+        Knob {
+            id: "filter",
+            field: "core.filter_cycles_bilinear",
+            label: "filter cycles a quad",
+            shipped: "1",
+            values: &["1", "2", "4"],
+            quick: &["1"],
+            sets: filter,
+            unit: |v| format!("{v} cycles/quad filter"),
+            draw_order: false,
+        },
+        Knob {
+            id: "issue",
+            field: "core.issue",
+            label: "issue order",
+            shipped: "lrr",
+            values: &["lrr", "gto"],
+            quick: &["lrr"],
+            sets: issue,
+            unit: plain,
+            draw_order: false,
+        },
+        Knob {
+            id: "core-map",
+            field: "raster.core_map",
+            label: "core map",
+            shipped: "latin:8",
+            values: &["latin:4", "latin:8", "latin:16", "rowmajor:16"],
+            quick: &["latin:8"],
+            sets: core_map,
+            unit: plain,
+            draw_order: false,
+        },
+        Knob {
+            id: "draw-order",
+            field: "draw_order (scene)",
+            label: "opaque draw order",
+            shipped: "as-loaded",
+            values: &["as-loaded", "front-to-back-object", "front-to-back-draw"],
+            quick: &["as-loaded"],
+            sets: |_| Vec::new(),
+            unit: plain,
+            draw_order: true,
+        },
+    ]
+}
+
+/// The runs made at every value of every knob, on every scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Variant {
+    /// The scanline baseline.
+    Baseline,
+    /// The shipped WaSP.
+    Wasp,
+    /// Every priority warp first.
+    FullPriority,
+    /// The baseline with the raster prefetcher.
+    Raster,
+    /// The baseline with the oracle tile prefetcher: the bound of any
+    /// "launch early to prefetch" scheme.
+    Oracle,
+    /// The baseline with zero-latency main memory: the other bound.
+    Ideal,
+}
+
+impl Variant {
+    /// Every variant, in table order.
+    pub const ALL: [Variant; 6] = [
+        Variant::Baseline,
+        Variant::Wasp,
+        Variant::FullPriority,
+        Variant::Raster,
+        Variant::Oracle,
+        Variant::Ideal,
+    ];
+
+    /// The overrides of the variant, `wasp` being the shipped WaSP.
+    pub fn overrides(self, wasp: PolicySpec) -> Vec<String> {
+        let policy = |p: PolicySpec| format!("scheduler.policy=\"{p}\"");
+        match self {
+            Variant::Baseline => vec![policy(PolicySpec::Baseline)],
+            Variant::Wasp => vec![policy(wasp)],
+            Variant::FullPriority => vec![policy(PolicySpec::FullPriority)],
+            Variant::Raster => vec![
+                policy(PolicySpec::Baseline),
+                "prefetch.kind=\"raster\"".into(),
+            ],
+            Variant::Oracle => vec![
+                policy(PolicySpec::Baseline),
+                "prefetch.kind=\"oracle-tile\"".into(),
+            ],
+            Variant::Ideal => vec![policy(PolicySpec::Baseline), "memory.ideal=true".into()],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_knob_passes_through_the_shipped_machine() {
+        let paper = MachineConfig::paper();
+        for k in all() {
+            assert!(k.values.contains(&k.shipped), "{}", k.id);
+            assert!(k.quick.contains(&k.shipped), "{}", k.id);
+            assert!(k.quick.iter().all(|q| k.values.contains(q)), "{}", k.id);
+            assert!(k.overrides(k.shipped).is_empty(), "{}", k.id);
+            // The shipped value spelled as an override is the shipped
+            // machine: the knob's range really passes through it.
+            let same = wasp_sim::overrides::apply(&paper, &(k.sets)(k.shipped)).unwrap();
+            assert_eq!(same, paper, "{}", k.id);
+        }
+    }
+
+    #[test]
+    fn the_dram_knob_sets_the_row_hit_latency() {
+        let paper = MachineConfig::paper();
+        let d = &paper.dram;
+        assert_eq!(d.t_cl + d.t_burst + d.controller_latency, 50);
+        assert_eq!(dram_latency("100"), ["dram.controller_latency=83"]);
+        assert_eq!(
+            filter("4"),
+            [
+                "core.filter_cycles_bilinear=4",
+                "core.filter_cycles_trilinear=8"
+            ]
+        );
+    }
+}

@@ -1,0 +1,105 @@
+//! "What decides WaSP's gain": the map of the machine's unstated choices.
+//!
+//! The paper's machine leaves choices unstated (warps per core, MSHR
+//! counts, DRAM latency, input-queue depth, raster and Early-Z rates,
+//! texture latency and filter rate, issue order, core map). The map varies
+//! each one at a time over a range a mobile GPU could have and runs, at
+//! every value, the baseline, WaSP, Fullpriority, a raster texture
+//! prefetcher, the oracle tile prefetcher (the bound of launching early to
+//! prefetch) and ideal memory; then a 2-D grid over the two knobs that move
+//! WaSP most, chosen from those results; and the warp counts again with a
+//! deep input queue, which separates queue room from latency hiding.
+//!
+//! - [`knobs`]: the knobs, their values and the variants run at each;
+//! - [`plan`]: the points;
+//! - [`data`]: one machine's numbers over a group of scenes;
+//! - [`table`](mod@table): every machine's numbers, the ranges, the grid's choice;
+//! - [`report`]: the REPORT.md section and `data/map.*`;
+//! - [`figures`]: the tornado, warps, grid and area figures;
+//! - [`conclusion`]: the sentences on warp slots and the paper's claims;
+//! - [`sweeps`]: the map as sweep files, for one cluster job a point.
+
+pub mod conclusion;
+pub mod data;
+pub mod figures;
+pub mod knobs;
+pub mod plan;
+pub mod report;
+pub mod sweeps;
+pub mod table;
+
+use super::plan::Plan;
+use crate::study::cache::Cache;
+use crate::study::runner::{self, Outcome, RunnerOptions};
+use data::MapScenes;
+use plan::Cell;
+use table::MapTable;
+
+/// The scenes of `plan` with their groups.
+pub fn scenes(plan: &Plan) -> MapScenes<'_> {
+    MapScenes {
+        scenes: plan
+            .scenes
+            .iter()
+            .map(|s| (s.name.as_str(), s.group))
+            .collect(),
+    }
+}
+
+/// The map's table from a run's results, with the grid's cells when given.
+pub fn table(plan: &Plan, out: &Outcome, cells: &[Cell]) -> Option<MapTable> {
+    let map = plan.map.as_ref()?;
+    let sc = scenes(plan);
+    Some(MapTable::new(map, out, &sc).with_grid(map, out, &sc, cells))
+}
+
+/// The second phase: choose the two knobs that move WaSP most from the
+/// one-at-a-time results in `out`, run their grid, and add its results to
+/// `out`. Returns the grid's cells (none without a map or two knobs).
+pub fn run_grid(
+    plan: &Plan,
+    out: &mut Outcome,
+    cache: &Cache,
+    opts: &RunnerOptions,
+) -> Result<Vec<Cell>, String> {
+    let Some(map) = plan.map.as_ref() else {
+        return Ok(Vec::new());
+    };
+    let sc = scenes(plan);
+    let t = MapTable::new(map, out, &sc);
+    let Some((a, b)) = table::top_two(&t.knobs) else {
+        return Ok(Vec::new());
+    };
+    let cells = map.grid(a, b);
+    let names: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
+    let tasks = map.grid_tasks(&names, &cells);
+    if !opts.quiet {
+        eprintln!(
+            "wasp: the 2-D grid over {} and {}: {} cells, {} tasks",
+            map.knobs[a].label,
+            map.knobs[b].label,
+            cells.len(),
+            tasks.len()
+        );
+    }
+    // The first phase's machines, run or found stored: a grid point on one
+    // of them is the same as an earlier task of this run, not one done
+    // before it (a fresh run should not say "already done").
+    let known: std::collections::HashSet<String> =
+        out.points.values().map(|r| r.key.clone()).collect();
+    let more = runner::run(&tasks, cache, opts)?;
+    let again: std::collections::HashSet<&String> = more
+        .points
+        .values()
+        .map(|r| &r.key)
+        .filter(|k| known.contains(*k))
+        .collect();
+    let again = again.len().min(more.cached);
+    out.points.extend(more.points);
+    out.failures.extend(more.failures);
+    out.ran += more.ran;
+    out.cached += more.cached - again;
+    out.same += more.same + again;
+    out.seconds += more.seconds;
+    Ok(cells)
+}

@@ -1,0 +1,238 @@
+//! The map as sweep files (docs/sweep.md), so that its points can run as
+//! one cluster job each (`wasp sweep FILE --jobs-file`) into the
+//! reproduction's folder; `wasp reproduce` then finds them done (a point's
+//! cache key is its scene, effective configuration and build, not its
+//! spelling), runs the grid and writes the report.
+//!
+//! Three files, because the map is not one full grid of configurations x
+//! policies: `map-policies.toml` (every knob value under the baseline,
+//! Fullpriority and WaSP), `map-bounds.toml` (every knob value with the
+//! raster prefetcher, the oracle and ideal memory, under the baseline) and
+//! `map-deep-queue.toml` (the warp series with a deep input queue).
+
+use super::knobs::{Knob, Variant};
+use super::plan::{MapPlan, DEEP_QUEUE};
+use std::fmt::Write as _;
+use wasp_rtl::policy::PolicySpec;
+
+/// A `[[configs]]` entry: name and overrides.
+type Entry = (String, Vec<String>);
+
+fn toml_list(v: &[String]) -> String {
+    let q: Vec<String> = v
+        .iter()
+        .map(|s| format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\"")))
+        .collect();
+    format!("[{}]", q.join(", "))
+}
+
+/// A sweep file's text; `orders` are its `draw_orders` (none: the
+/// scenes' own).
+fn file(
+    comment: &str,
+    scenes: &[String],
+    policies: &[PolicySpec],
+    configs: &[Entry],
+    orders: &[&str],
+) -> String {
+    let mut s = String::new();
+    for line in comment.lines() {
+        let _ = writeln!(s, "# {line}");
+    }
+    let _ = writeln!(s, "scenes = {}", toml_list(scenes));
+    let p: Vec<String> = policies.iter().map(|p| p.to_string()).collect();
+    let _ = writeln!(s, "policies = {}", toml_list(&p));
+    let _ = writeln!(s, "dispatches = [\"shared-tile\"]");
+    if !orders.is_empty() {
+        let o: Vec<String> = orders.iter().map(|o| o.to_string()).collect();
+        let _ = writeln!(s, "draw_orders = {}", toml_list(&o));
+    }
+    for (name, set) in configs {
+        let _ = writeln!(
+            s,
+            "\n[[configs]]\nname = \"{name}\"\nbase = \"paper\"\nset = {}",
+            toml_list(set)
+        );
+    }
+    s
+}
+
+/// The knob values as configuration entries (the shipped machine once).
+fn knob_entries(map: &MapPlan) -> Vec<Entry> {
+    let mut v: Vec<Entry> = vec![("shipped".into(), Vec::new())];
+    for k in map.knobs.iter().filter(|k| !k.draw_order) {
+        for value in k.values_for(map.quick) {
+            if *value != k.shipped {
+                v.push((entry_name(k, value), k.overrides(value)));
+            }
+        }
+    }
+    v
+}
+
+fn entry_name(k: &Knob, value: &str) -> String {
+    format!("{}={}", k.id, value)
+}
+
+/// The overrides a bound adds to the baseline, and its suffix.
+fn bound(v: Variant) -> (&'static str, Vec<String>) {
+    let mut sets = v.overrides(PolicySpec::Baseline);
+    sets.retain(|s| !s.starts_with("scheduler.policy"));
+    let name = match v {
+        Variant::Raster => "raster",
+        Variant::Oracle => "oracle",
+        _ => "ideal",
+    };
+    (name, sets)
+}
+
+/// The map's sweep files on `scenes`: (file name, text).
+pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
+    let knobs = knob_entries(map);
+    let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
+    let with_bounds = |configs: &[Entry]| {
+        let mut v = Vec::new();
+        for (name, set) in configs {
+            for b in [Variant::Raster, Variant::Oracle, Variant::Ideal] {
+                let (suffix, extra) = bound(b);
+                let mut s = set.clone();
+                s.extend(extra);
+                v.push((format!("{name}+{suffix}"), s));
+            }
+        }
+        v
+    };
+    let bounds = with_bounds(&knobs);
+    let shipped: Vec<Entry> = vec![("shipped".into(), Vec::new())];
+    let orders: Vec<&str> = map
+        .knobs
+        .iter()
+        .filter(|k| k.draw_order)
+        .flat_map(|k| k.values_for(map.quick).iter().filter(|v| **v != k.shipped))
+        .copied()
+        .collect();
+    let mut deep = Vec::new();
+    for &w in &map.deep_queue_warps {
+        let set = vec![
+            format!("core.max_warps={w}"),
+            format!("core.input_queue={DEEP_QUEUE}"),
+        ];
+        let mut oracle = set.clone();
+        oracle.extend(bound(Variant::Oracle).1);
+        deep.push((format!("warps={w}+queue={DEEP_QUEUE}"), set));
+        deep.push((format!("warps={w}+queue={DEEP_QUEUE}+oracle"), oracle));
+    }
+    let head = "The map \"What decides WaSP's gain\" of `wasp reproduce`, written by \
+                `wasp reproduce --sweep-files`.\nRun it into the reproduction's folder, \
+                then `wasp reproduce --out` that folder for the grid and the report.";
+    let mut out = vec![
+        (
+            "map-policies.toml".into(),
+            file(
+                &format!("{head}\nEvery knob value under the baseline, Fullpriority and WaSP."),
+                scenes,
+                &policies,
+                &knobs,
+                &[],
+            ),
+        ),
+        (
+            "map-bounds.toml".into(),
+            file(
+                &format!(
+                    "{head}\nEvery knob value with the raster prefetcher, the oracle tile \
+                     prefetcher and ideal memory, under the baseline."
+                ),
+                scenes,
+                &[PolicySpec::Baseline],
+                &bounds,
+                &[],
+            ),
+        ),
+        (
+            "map-deep-queue.toml".into(),
+            file(
+                &format!(
+                    "{head}\nThe warp counts with a {DEEP_QUEUE}-entry input queue (the \
+                     oracle entries run under the baseline; their WaSP point is not part of \
+                     the map)."
+                ),
+                scenes,
+                &[PolicySpec::Baseline, map.wasp],
+                &deep,
+                &[],
+            ),
+        ),
+    ];
+    if !orders.is_empty() {
+        out.push((
+            "map-draw-order.toml".into(),
+            file(
+                &format!(
+                    "{head}\nThe shipped machine with the scenes drawn in other opaque \
+                     orders, under the baseline, Fullpriority and WaSP."
+                ),
+                scenes,
+                &policies,
+                &shipped,
+                &orders,
+            ),
+        ));
+        out.push((
+            "map-draw-order-bounds.toml".into(),
+            file(
+                &format!(
+                    "{head}\nThe same orders with the raster prefetcher, the oracle and \
+                     ideal memory, under the baseline."
+                ),
+                scenes,
+                &[PolicySpec::Baseline],
+                &with_bounds(&shipped),
+                &orders,
+            ),
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::point::Resolver;
+    use crate::study::sweep::Sweep;
+    use std::collections::HashSet;
+
+    #[test]
+    fn the_sweep_files_describe_the_maps_machines() {
+        let map = MapPlan::new(
+            PolicySpec::Wasp {
+                threshold: 0,
+                cf: 3.0,
+            },
+            false,
+        );
+        let scenes = vec!["procedural-plane".to_string()];
+        let dir = std::env::temp_dir().join(format!("wasp-map-sweeps-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut r = Resolver::default();
+        let mut swept = HashSet::new();
+        for (name, text) in files(&map, &scenes) {
+            let path = dir.join(name);
+            std::fs::write(&path, text).unwrap();
+            let sweep = Sweep::load(&path).unwrap();
+            for p in sweep.points().unwrap() {
+                swept.insert((toml::to_string(&*p.machine).unwrap(), p.point.draw_order));
+            }
+        }
+        std::fs::remove_dir_all(&dir).ok();
+        // Every machine of the map's one-at-a-time points is in a file.
+        for t in map.tasks(&scenes) {
+            let crate::study::runner::Task::Run(p) = t else {
+                continue;
+            };
+            let cfg = r.config(&p).unwrap();
+            let key = (toml::to_string(&cfg).unwrap(), p.draw_order);
+            assert!(swept.contains(&key), "{} is in no sweep file", p.describe());
+        }
+    }
+}
