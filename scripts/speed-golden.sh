@@ -77,6 +77,14 @@ for pol in baseline wasp:4; do
   jobs+=("slow-small-${pol//:/_}.json|--config $D/in/slow.toml --trace $D/in/small.trace --policy $pol")
 done
 jobs+=("width2-sprites-wasp_2_1.5-mesh8.json|--config $D/in/width2.toml --trace $D/in/sprites.trace --policy wasp:2:1.5 --subset mesh8")
+# The other dispatch mode and the fixed DRAM model.
+for tr in default plane sprites; do
+  t=""; [ "$tr" != default ] && t="--trace $D/in/$tr.trace"
+  for pol in baseline wasp:4; do
+    jobs+=("paper-$tr-${pol//:/_}-per-core-tile.json|--config $D/in/paper.toml $t --policy $pol --dispatch per-core-tile")
+    jobs+=("paper-$tr-${pol//:/_}-fixed-dram.json|--config $D/in/paper.toml $t --policy $pol --set dram.model=fixed")
+  done
+done
 
 printf '%s\n' "${jobs[@]}" | xargs -P 2 -I{} bash -c '
   name=${1%%|*}; args=${1#*|}
@@ -87,6 +95,8 @@ printf '%s\n' "${jobs[@]}" | xargs -P 2 -I{} bash -c '
   --vcd "$out/window.vcd" --vcd-from 0 --vcd-to 2000 --json "$out/window.json" > /dev/null
 "$W" run -q --config "$D/in/width2-t8.toml" --trace "$D/in/tiny.trace" --policy freemshr:10 \
   --vcd "$out/tiny.vcd" --json "$out/tiny-vcd.json" > /dev/null
+"$W" run -q --config "$D/in/paper.toml" --trace "$D/in/plane.trace" --dispatch per-core-tile \
+  --vcd "$out/per-core.vcd" --vcd-from 500 --vcd-to 1500 --json "$out/per-core-vcd.json" > /dev/null
 sed -i "s#$out#OUT#g" "$out"/*.gtkw 2>/dev/null || true
 
 n=$(ls "$out" | wc -l)

@@ -262,6 +262,17 @@ impl ShaderCore {
             notes.stats.occupancy_hist[0] += 1;
             return false;
         };
+        if self.warps.active() == 0
+            && self.launch.sched().queue().is_empty()
+            && self.raster.as_ref().is_none_or(OwnRaster::is_idle)
+        {
+            // No warp, none waiting to launch, none to rasterize: no stage
+            // can do anything in the cycle (no wake-up is due without a
+            // warp), which only counts.
+            self.notes.stats.occupancy_hist[0] += 1;
+            debug_assert!(self.is_idle(now));
+            return false;
+        }
         let tile = &trace.tiles()[ti];
         let done = self.issue.wake(now, tile, &mut self.warps);
         let mut progress = done != 0 && self.retire(done, now);
@@ -330,6 +341,26 @@ impl ShaderCore {
     /// clock edge; whether data returned.
     #[inline(always)]
     pub fn complete(
+        &mut self,
+        now: u64,
+        mem: &mut MemorySystem,
+    ) -> Result<bool, crate::gpu::SimError> {
+        // Most cycles nothing reaches the core: no block returns, no miss
+        // is reported, and neither the watched cache's MSHRs nor the
+        // priority warps give the scheduler's registers an event.
+        if self.notes.prio == PriorityEvents::default()
+            && mem.nothing_for(self.id)
+            && self.launch.clock_quiet(&mut self.notes)
+        {
+            return Ok(false);
+        }
+        self.complete_events(now, mem)
+    }
+
+    /// [`complete`](Self::complete) of a cycle with events (kept out of
+    /// line: the quiet cycles' test then costs its caller no call).
+    #[inline(never)]
+    fn complete_events(
         &mut self,
         now: u64,
         mem: &mut MemorySystem,

@@ -143,11 +143,11 @@ impl CoreModel for ShaderCore {
     fn is_idle(&self, now: u64) -> bool {
         ShaderCore::is_idle(self, now)
     }
-    #[inline]
+    #[inline(always)]
     fn evaluate(&mut self, now: u64, trace: &Trace, mem: &mut MemorySystem) -> bool {
         ShaderCore::evaluate(self, now, trace, mem)
     }
-    #[inline]
+    #[inline(always)]
     fn complete(&mut self, now: u64, mem: &mut MemorySystem) -> Result<bool, SimError> {
         ShaderCore::complete(self, now, mem)
     }

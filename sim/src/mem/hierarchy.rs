@@ -709,6 +709,19 @@ impl MemorySystem {
         }
     }
 
+    /// Nothing of the last cycle for `core`: no tag completed and not
+    /// taken, no [`MissEvent`] not taken, and its scheduler-level cache
+    /// allocated and filled no MSHR entry in the cycle (its
+    /// [`mshr_events`](Self::mshr_events) count none).
+    #[inline(always)]
+    pub fn nothing_for(&self, core: usize) -> bool {
+        let c = &self.cores[core];
+        let f = c.first_level();
+        c.ready.is_empty()
+            && c.misses.is_empty()
+            && (f.cycle() != self.now || f.allocated_now() | f.replied_now() == 0)
+    }
+
     /// The scheduler-level cache's MSHR events of `core` in the last cycle.
     #[inline]
     pub fn mshr_events(&self, core: usize) -> SchedCacheMshrs {

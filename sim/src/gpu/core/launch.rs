@@ -17,6 +17,7 @@ use crate::gpu::SimError;
 use crate::mem::SchedCacheMshrs;
 use crate::trace::Tile;
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
+use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchPolicy, LaunchRule};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::{EdgeEvents, LaunchScheduler};
@@ -123,6 +124,25 @@ impl Launch {
         stats.priority_launches += priority as u64;
         notes.signals.launched = Some((quad, priority));
         Some(slot)
+    }
+
+    /// The scheduler's clock edge at the end of a cycle with no events
+    /// for its registers: no MSHR event of the watched cache, no
+    /// priority-warp event (`notes.prio` empty) and no priority launch.
+    /// The registers keep their values, so the free-MSHR register still
+    /// agrees with the cache. Returns false, and does nothing, when a
+    /// priority warp launched (call [`clock`](Self::clock)).
+    #[inline(always)]
+    pub(super) fn clock_quiet(&mut self, notes: &mut Notes) -> bool {
+        debug_assert_eq!(notes.prio, PriorityEvents::default());
+        if !self.sched.clock_quiet() {
+            return false;
+        }
+        if let Some(m) = self.sched.cf_meter() {
+            notes.stats.cf_quarters_sum += u64::from(m.cf().quarters());
+            notes.stats.cf_samples += 1;
+        }
+        true
     }
 
     /// The scheduler's clock edge at the end of cycle `now` of core `core`:

@@ -58,74 +58,11 @@
 //! issued a PRECHARGE. Its queue wait is the cycles from `m + 1` to its first
 //! command.
 
+use super::channel::{Channel, QueuedRequest, NEVER, WRITE};
 use crate::mem::cache::bits_for;
 use crate::mem::config::{DramConfig, BLOCK_BYTES};
-use crate::mem::ring::Ring;
 use crate::mem::stats::DramStats;
-use std::collections::VecDeque;
 use wasp_waves::Tracer;
-
-/// The open row of a precharged bank.
-const CLOSED: u64 = u64::MAX;
-/// The `entry` of a queued write: it gets no reply.
-const WRITE: u32 = u32::MAX;
-/// `first_command` of a request that has issued none.
-const NOT_YET: u64 = u64::MAX;
-
-/// A request in a channel's queue, waiting for the scheduler.
-#[derive(Debug, Clone, Copy)]
-struct QueuedRequest {
-    /// First cycle the scheduler sees it.
-    ready: u64,
-    /// Cycle of the L2 miss (or of the write).
-    missed: u64,
-    bank: usize,
-    row: u64,
-    /// The L2's MSHR entry, or [`WRITE`].
-    entry: u32,
-    /// Cycle of its first command ([`NOT_YET`] before).
-    first_command: u64,
-    /// It issued an ACTIVATE or a PRECHARGE.
-    opened: bool,
-    /// It issued a PRECHARGE.
-    closed: bool,
-}
-
-#[derive(Debug, Clone, Copy)]
-struct Bank {
-    /// Open row, or [`CLOSED`].
-    open_row: u64,
-    /// First cycle the bank takes its next command.
-    ready: u64,
-    /// Cycle of the last ACTIVATE (for tRAS).
-    activated: u64,
-}
-
-#[derive(Debug, Clone, Copy, Default)]
-struct Reply {
-    /// Cycle the reply reaches the L2.
-    at: u64,
-    entry: u32,
-}
-
-/// One channel: its banks, its request queue, its command bus (one command
-/// a cycle) and its data bus.
-#[derive(Debug, Clone)]
-struct Channel {
-    banks: Vec<Bank>,
-    queue: VecDeque<QueuedRequest>,
-    /// Reads issued, in issue (= reply) order.
-    replies: Ring<Reply>,
-    /// First cycle the data bus is free.
-    bus_free: u64,
-    /// Column commands issued in the last cycle `accept` ran.
-    columns_now: u32,
-    /// First cycle in which the scheduler could issue a command: a lower
-    /// bound computed when a step issues nothing, lowered by every new
-    /// request. Cycles before it are skipped (the fast path; see
-    /// [`Channel::next_chance`]).
-    wake: u64,
-}
 
 /// Main memory, banked timing model (see the module docs).
 #[derive(Debug, Clone)]
@@ -138,10 +75,16 @@ pub struct BankedDram {
     /// Bound on reads in the memory at once (the L2's MSHR count), for
     /// signal widths.
     max_outstanding: u32,
-    cycle: u64,
     stats: DramStats,
-    /// Skip a channel's cycles before its `wake` (false: step every cycle,
-    /// the plain reference the tests compare the fast path with).
+    /// The earliest of the channels' `wake`s: cycles before it step no
+    /// channel.
+    wake: u64,
+    /// The earliest cycle a reply is due (the earliest of the channels'
+    /// first replies; [`NEVER`] with none).
+    next_reply: u64,
+    /// Skip cycles in which no channel can issue a command (false: step
+    /// every channel with a request in every cycle, the plain reference
+    /// the tests compare the fast path with).
     skip_idle: bool,
 }
 
@@ -149,30 +92,16 @@ impl BankedDram {
     /// A memory with every bank closed. `cfg` must have passed
     /// [`DramConfig::check`].
     pub fn new(cfg: &DramConfig, max_outstanding: u32) -> Self {
-        let n = max_outstanding as usize;
-        let channel = Channel {
-            banks: vec![
-                Bank {
-                    open_row: CLOSED,
-                    ready: 0,
-                    activated: 0,
-                };
-                cfg.banks as usize
-            ],
-            queue: VecDeque::with_capacity(n + 64),
-            replies: Ring::with_capacity(n),
-            bus_free: 0,
-            columns_now: 0,
-            wake: 0,
-        };
+        let channel = Channel::new(cfg, max_outstanding as usize);
         BankedDram {
             cfg: *cfg,
             blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
             channels: vec![channel; cfg.channels as usize],
             queued: 0,
             max_outstanding,
-            cycle: 0,
             stats: DramStats::default(),
+            wake: NEVER,
+            next_reply: NEVER,
             skip_idle: true,
         }
     }
@@ -224,35 +153,51 @@ impl BankedDram {
     fn enqueue(&mut self, now: u64, block: u64, entry: u32) {
         let (ch, bank, row) = self.place(block);
         let c = &mut self.channels[ch];
-        c.wake = c.wake.min(now + 1);
-        c.queue.push_back(QueuedRequest {
-            ready: now + 1,
-            missed: now,
-            bank,
-            row,
-            entry,
-            first_command: NOT_YET,
-            opened: false,
-            closed: false,
-        });
+        c.enqueue(&self.cfg, QueuedRequest::new(now, bank, row, entry));
+        self.wake = self.wake.min(c.wake);
         self.queued += 1;
         self.stats.max_queue = self.stats.max_queue.max(self.queued as u64);
     }
 
     /// Issue at most one command per channel in cycle `now` (once per
     /// cycle).
+    #[inline]
     pub fn accept(&mut self, now: u64) {
-        self.cycle = now;
-        let (cfg, stats) = (&self.cfg, &mut self.stats);
-        for ch in &mut self.channels {
-            ch.columns_now = 0;
-            if ch.queue.is_empty() || (self.skip_idle && now < ch.wake) {
-                continue;
-            }
-            if ch.step(cfg, stats, now) {
-                self.queued -= 1;
-            }
+        if self.skip_idle && now < self.wake {
+            return;
         }
+        self.step_channels(now);
+    }
+
+    /// [`accept`](Self::accept) in a cycle in which a channel may issue.
+    #[inline(never)]
+    fn step_channels(&mut self, now: u64) {
+        let (cfg, stats) = (&self.cfg, &mut self.stats);
+        let mut wake = NEVER;
+        let mut replied = false;
+        for ch in &mut self.channels {
+            if !ch.is_empty() && (!self.skip_idle || now >= ch.wake) {
+                let replies = ch.replies.len();
+                if ch.step(cfg, stats, now) {
+                    self.queued -= 1;
+                    replied |= ch.replies.len() > replies;
+                }
+            }
+            wake = wake.min(ch.wake);
+        }
+        self.wake = wake;
+        if replied {
+            self.next_reply = self.first_reply();
+        }
+    }
+
+    /// The earliest of the channels' first replies' cycles.
+    fn first_reply(&self) -> u64 {
+        self.channels
+            .iter()
+            .filter_map(|c| c.replies.front().map(|f| f.at))
+            .min()
+            .unwrap_or(NEVER)
     }
 
     /// The next reply due by cycle `now`, if any: its request's `entry`.
@@ -260,8 +205,8 @@ impl BankedDram {
     /// lowest channel).
     #[inline]
     pub fn pop_reply(&mut self, now: u64) -> Option<u32> {
-        if let [only] = self.channels.as_mut_slice() {
-            return only.replies.pop_front_if(|f| f.at <= now).map(|f| f.entry);
+        if now < self.next_reply {
+            return None;
         }
         let mut best: Option<(u64, usize)> = None;
         for (i, ch) in self.channels.iter().enumerate() {
@@ -272,7 +217,9 @@ impl BankedDram {
             }
         }
         let (_, i) = best?;
-        self.channels[i].replies.pop_front().map(|f| f.entry)
+        let entry = self.channels[i].replies.pop_front().map(|f| f.entry);
+        self.next_reply = self.first_reply();
+        entry
     }
 
     /// Nothing queued or in flight.
@@ -297,178 +244,15 @@ impl BankedDram {
         &self.stats
     }
 
-    /// Signals: queue depth, reads in flight, column commands issued this
-    /// cycle over all channels (as `accepted`).
+    /// Signals: queue depth, reads in flight, column commands issued in
+    /// cycle `now` over all channels (as `accepted`).
     pub fn trace<T: Tracer + ?Sized>(&self, now: u64, t: &mut T) {
         let w = bits_for(u64::from(self.max_outstanding));
         t.signal("queue", w, self.queued as u64);
         t.signal("in_flight", w, self.in_flight() as u64);
-        let issued: u32 = if self.cycle == now {
-            self.channels.iter().map(|c| c.columns_now).sum()
-        } else {
-            0
-        };
+        let issued = self.channels.iter().filter(|c| c.column_at == now).count();
         let cw = bits_for(u64::from(self.cfg.channels));
-        t.signal("accepted", cw, u64::from(issued));
-    }
-}
-
-impl Channel {
-    /// Issue at most one command in cycle `now`; whether a request left the
-    /// queue (its column command issued).
-    fn step(&mut self, cfg: &DramConfig, stats: &mut DramStats, now: u64) -> bool {
-        // Requests enter in cycle order, so the visible ones are a prefix.
-        let window = self
-            .queue
-            .iter()
-            .take(cfg.scheduler_window as usize)
-            .take_while(|r| r.ready <= now)
-            .count();
-        // Something may issue next cycle unless this one issues nothing.
-        self.wake = now + 1;
-        if window == 0 {
-            self.wake = self.queue[0].ready;
-            return false;
-        }
-        // 1. The head, if it can issue anything.
-        if self.column_ready(cfg, 0, now) {
-            self.issue_column(cfg, stats, 0, now);
-            return true;
-        }
-        if self.try_row_command(cfg, stats, 0, now, window, true) {
-            return false;
-        }
-        // 2. The oldest row hit that can issue its column command.
-        if let Some(i) = (1..window).find(|&i| self.column_ready(cfg, i, now)) {
-            self.issue_column(cfg, stats, i, now);
-            return true;
-        }
-        // 3. The oldest request that can issue a row command.
-        for i in 1..window {
-            if self.try_row_command(cfg, stats, i, now, window, false) {
-                return false;
-            }
-        }
-        self.wake = self.next_chance(cfg, now, window);
-        false
-    }
-
-    /// After a cycle `now` in which nothing could issue: the first cycle in
-    /// which something might. Until a command issues or a request arrives
-    /// (which wakes the channel), banks, bus and queue change only with
-    /// time, and each condition of the rules, once true, stays true; so the
-    /// earliest cycle any of them can turn true bounds the next command
-    /// from below:
-    /// - a row hit: its bank free and its data slot free,
-    ///   `max(bank ready, bus free - t_cl)`;
-    /// - a bank busy with another row's command: its `ready`;
-    /// - a PRECHARGE waiting for `t_ras`: `activated + t_ras`;
-    /// - the window growing: the next request's `ready`.
-    ///
-    /// A row command held only by the open-row protection waits for a
-    /// command or an arrival, which wake the channel anyway.
-    fn next_chance(&self, cfg: &DramConfig, now: u64, window: usize) -> u64 {
-        let mut wake = u64::MAX;
-        let visible = (cfg.scheduler_window as usize).min(self.queue.len());
-        if window < visible {
-            wake = self.queue[window].ready;
-        }
-        for r in self.queue.iter().take(window) {
-            let b = &self.banks[r.bank];
-            let t = if b.open_row == r.row {
-                b.ready
-                    .max(self.bus_free.saturating_sub(u64::from(cfg.t_cl)))
-            } else if b.ready > now {
-                b.ready
-            } else if b.open_row != CLOSED && now < b.activated + u64::from(cfg.t_ras) {
-                b.activated + u64::from(cfg.t_ras)
-            } else {
-                u64::MAX
-            };
-            wake = wake.min(t);
-        }
-        wake.max(now + 1)
-    }
-
-    /// Can request `i` issue its READ / WRITE in cycle `now`?
-    fn column_ready(&self, cfg: &DramConfig, i: usize, now: u64) -> bool {
-        let r = &self.queue[i];
-        let b = &self.banks[r.bank];
-        b.open_row == r.row && b.ready <= now && self.bus_free <= now + u64::from(cfg.t_cl)
-    }
-
-    fn issue_column(&mut self, c: &DramConfig, stats: &mut DramStats, i: usize, now: u64) {
-        let r = self.queue.remove(i).expect("index inside the window");
-        let burst = u64::from(c.t_burst);
-        self.banks[r.bank].ready = now + burst;
-        let data = now + u64::from(c.t_cl);
-        self.bus_free = data + burst;
-        stats.bus_busy_cycles += burst;
-        self.columns_now += 1;
-        if r.entry == WRITE {
-            stats.write_row_misses += u64::from(r.opened);
-            stats.write_row_conflicts += u64::from(r.closed);
-            return;
-        }
-        let at = data + burst - 1 + u64::from(c.controller_latency);
-        self.replies.push_back(Reply { at, entry: r.entry });
-        if r.opened {
-            stats.row_misses += 1;
-            stats.row_conflicts += u64::from(r.closed);
-        } else {
-            stats.row_hits += 1;
-        }
-        let first = r.first_command.min(now);
-        stats.queue_wait_sum += first - r.ready;
-        stats.latency_sum += at - r.missed;
-    }
-
-    /// Issue request `i`'s ACTIVATE or PRECHARGE in cycle `now` if the rules
-    /// allow; `head` lifts the open-row protection.
-    fn try_row_command(
-        &mut self,
-        cfg: &DramConfig,
-        stats: &mut DramStats,
-        i: usize,
-        now: u64,
-        window: usize,
-        head: bool,
-    ) -> bool {
-        let r = self.queue[i];
-        let b = self.banks[r.bank];
-        if b.ready > now || b.open_row == r.row {
-            return false;
-        }
-        if b.open_row == CLOSED {
-            self.banks[r.bank] = Bank {
-                open_row: r.row,
-                ready: now + u64::from(cfg.t_rcd),
-                activated: now,
-            };
-            stats.activates += 1;
-        } else {
-            if now < b.activated + u64::from(cfg.t_ras) {
-                return false;
-            }
-            let protected = !head
-                && self
-                    .queue
-                    .iter()
-                    .take(window)
-                    .any(|o| o.bank == r.bank && o.row == b.open_row);
-            if protected {
-                return false;
-            }
-            let bank = &mut self.banks[r.bank];
-            bank.open_row = CLOSED;
-            bank.ready = now + u64::from(cfg.t_rp);
-            stats.precharges += 1;
-            self.queue[i].closed = true;
-        }
-        let q = &mut self.queue[i];
-        q.opened = true;
-        q.first_command = q.first_command.min(now);
-        true
+        t.signal("accepted", cw, issued as u64);
     }
 }
 
@@ -670,21 +454,49 @@ mod tests {
         }
     }
 
+    /// The signals of `d` in cycle `now`, as (name, value) pairs.
+    fn signals(d: &BankedDram, now: u64) -> Vec<(String, u64)> {
+        struct Record(Vec<(String, u64)>);
+        impl Tracer for Record {
+            fn push_scope(&mut self, _: &str) {}
+            fn pop_scope(&mut self) {}
+            fn signal(&mut self, name: &str, _: u32, value: u64) {
+                self.0.push((name.to_string(), value));
+            }
+        }
+        let mut r = Record(Vec::new());
+        d.trace(now, &mut r);
+        r.0
+    }
+
     #[test]
     fn skipping_idle_cycles_changes_nothing() {
-        // The fast path (channels sleep until their next chance) against the
-        // plain reference (every channel steps every cycle): the same replies
-        // in the same cycles and the same counters, for light and heavy
-        // random traffic, reads and writes, several windows and channels.
-        for (window, channels, rate) in [(1, 1, 0.05), (2, 2, 0.3), (16, 4, 0.1), (16, 1, 0.15)] {
+        // The fast path (the memory sleeps until a channel's next chance)
+        // against the plain reference (every channel steps every cycle):
+        // the same replies in the same cycles, the same signals every
+        // cycle and the same counters, for light and heavy random traffic,
+        // reads and writes, several windows, channels and tRAS (which
+        // holds precharges, so that the open-row protection and tRAS both
+        // decide wake-ups).
+        let cases = [
+            (1, 1, 0.05, 26),
+            (2, 2, 0.3, 26),
+            (16, 4, 0.1, 26),
+            (16, 1, 0.15, 26),
+            (16, 1, 0.4, 60),
+            (3, 2, 0.2, 0),
+            (256, 1, 0.3, 26),
+        ];
+        for (window, channels, rate, t_ras) in cases {
             let c = DramConfig {
                 scheduler_window: window,
                 channels,
+                t_ras,
                 ..cfg()
             };
             let mut fast = BankedDram::new(&c, 64);
             let mut plain = BankedDram::new(&c, 64).stepping_every_cycle();
-            let mut rng = Rng::new(u64::from(window) * 7 + u64::from(channels));
+            let mut rng = Rng::new(u64::from(window) * 7 + u64::from(channels) + u64::from(t_ras));
             let (mut a, mut b) = (Vec::new(), Vec::new());
             let mut n = 0u32;
             for now in 0..80_000u64 {
@@ -708,6 +520,7 @@ mod tests {
                     b.push((now, e));
                 }
                 assert_eq!(fast.queued(), plain.queued(), "cycle {now}");
+                assert_eq!(signals(&fast, now), signals(&plain, now), "cycle {now}");
             }
             assert_eq!(a.len(), n as usize);
             assert_eq!(a, b, "window {window}, channels {channels}");

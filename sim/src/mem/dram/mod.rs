@@ -20,6 +20,7 @@
 //! says).
 
 mod banked;
+mod channel;
 mod fixed;
 
 pub use banked::BankedDram;
