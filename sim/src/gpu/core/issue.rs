@@ -337,6 +337,29 @@ impl<M: SlotMask> Picks<M> {
             None => self.alu,
         }
     }
+
+    /// Take slot `s`: its ALU instruction when `s` is in `ready`
+    /// (`on_alu(s)` saying whether its run ends), else its texture
+    /// instruction. Returns whether it took the texture instruction.
+    #[inline(always)]
+    pub(crate) fn take(
+        &mut self,
+        s: usize,
+        ready: M,
+        on_alu: &mut impl FnMut(usize) -> bool,
+    ) -> bool {
+        let bit = M::bit(s);
+        let tex = ready & bit == M::ZERO;
+        if tex {
+            self.tex = Some(s);
+        } else {
+            self.alu |= bit;
+            self.run_end |= M::bit_if(s, on_alu(s));
+        }
+        self.issued += 1;
+        self.last = s as u32;
+        tex
+    }
 }
 
 /// One issue order: its pick and the state it keeps between cycles.

@@ -157,16 +157,7 @@ pub(crate) fn pick<M: SlotMask>(
     for part in [cand & greedy, cand & !greedy] {
         let o = Oldest::of(part, (width - p.issued) as usize, &age);
         for &s in &o.slot[..o.n] {
-            let s = s as usize;
-            let bit = M::bit(s);
-            if ready & bit != M::ZERO {
-                p.alu |= bit;
-                p.run_end |= M::bit_if(s, on_alu(s));
-            } else {
-                p.tex = Some(s);
-            }
-            p.issued += 1;
-            p.last = s as u32;
+            p.take(s as usize, ready, &mut on_alu);
         }
     }
     p

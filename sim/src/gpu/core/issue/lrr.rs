@@ -69,16 +69,10 @@ pub(crate) fn pick<M: SlotMask>(
     while p.issued < width && rot != M::ZERO {
         let s = (rot.lowest() + rr as usize) & (M::BITS as usize - 1);
         rot = rot.without_lowest();
-        let bit = M::bit(s);
-        if ready & bit != M::ZERO {
-            p.alu |= bit;
-            p.run_end |= M::bit_if(s, on_alu(s));
-        } else {
-            p.tex = Some(s);
+        if p.take(s, ready, &mut on_alu) {
+            // The texture port is taken: only ALU-ready slots remain.
             rot &= ready.rotate_right(rr);
         }
-        p.issued += 1;
-        p.last = s as u32;
     }
     p
 }
