@@ -35,7 +35,7 @@ use wasp_sim::config::Dispatch;
 /// Options of `wasp reproduce`.
 #[derive(Args, Debug, Clone)]
 pub struct ReproduceArgs {
-    /// A first look: 86 s of CPU time with the game data cached, which two
+    /// A first look: 74 s of CPU time with the game data cached, which two
     /// workers share (the first run also downloads the games' data, about
     /// 835 MB): the smallest scene of each game, the heuristics, ideal
     /// memory, the meshes, four thresholds, width 4 at 32/48/64 warps and
@@ -79,6 +79,13 @@ pub struct ReproduceArgs {
     /// points done (docs/reproduce.md).
     #[arg(long, value_name = "DIR")]
     pub sweep_files: Option<PathBuf>,
+
+    /// The scenes of the map "What decides WaSP's gain": budget (every scene
+    /// but the three 3D scenes with the most cycles, so that the whole
+    /// study fits in 15 minutes on two cores; scenes named with --scenes
+    /// always run) or all. The paper's experiments run on every scene.
+    #[arg(long, value_name = "WHICH", default_value = "budget")]
+    pub map_scenes: map::plan::SceneChoice,
 }
 
 /// Which machines a reproduction runs.
@@ -116,7 +123,8 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
     // The map "What decides WaSP's gain" runs on the shared-tile machine
     // beside the paper's experiments.
-    let map = map::plan::MapPlan::new(plan.wasp, plan.quick);
+    let map =
+        map::plan::MapPlan::new(plan.wasp, plan.quick).on(args.map_scenes, args.scenes.is_some());
     if let Some(dir) = &args.sweep_files {
         return write_sweep_files(dir, &map, &plan, args.quiet);
     }
@@ -138,7 +146,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         );
         eprintln!(
             "wasp: including {}",
-            map::report::plan_text(&map, plan.scenes.len())
+            map::report::plan_text(&map, &map::scene_names(&plan, &map), plan.scenes.len())
         );
     }
     crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
@@ -220,6 +228,13 @@ pub fn command(args: &ReproduceArgs, scenes_dir: Option<&Path>) -> report::Comma
         let m = args.machines.to_possible_value().expect("no skipped value");
         line.push_str(&format!(" --machines {}", m.get_name()));
     }
+    if args.map_scenes != map::plan::SceneChoice::default() {
+        let m = args
+            .map_scenes
+            .to_possible_value()
+            .expect("no skipped value");
+        line.push_str(&format!(" --map-scenes {}", m.get_name()));
+    }
     if let Some(s) = &args.scenes {
         line.push_str(&format!(" --scenes {}", s.join(",")));
     }
@@ -242,7 +257,7 @@ fn write_sweep_files(
 ) -> Result<(), CliError> {
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::failed(format!("cannot create {}: {e}", dir.display())))?;
-    let scenes: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
+    let scenes = map::scene_names(plan, map);
     for (name, text) in map::sweeps::files(map, &scenes) {
         let path = dir.join(name);
         crate::study::cache::write_atomic(&path, &text).map_err(CliError::failed)?;
@@ -268,11 +283,12 @@ mod tests {
             jobs: Some(3),
             quiet: true,
             sweep_files: None,
+            map_scenes: map::plan::SceneChoice::All,
         };
         let c = command(&args, None);
         assert_eq!(
             c.line,
-            "wasp reproduce --quick --machines per-core-tile --scenes a,b.toml"
+            "wasp reproduce --quick --machines per-core-tile --map-scenes all --scenes a,b.toml"
         );
         assert!(c.subset);
         // A folder of scene definitions may replace shipped scenes.
@@ -287,6 +303,7 @@ mod tests {
             quick: false,
             machines: Machines::Both,
             scenes: None,
+            map_scenes: map::plan::SceneChoice::Budget,
             ..args
         };
         assert_eq!(command(&all, None).line, "wasp reproduce");

@@ -35,28 +35,37 @@ use data::MapScenes;
 use plan::{Cell, MapPlan};
 use table::MapTable;
 
-/// The scenes of `plan` with their groups.
-pub fn scenes(plan: &Plan) -> MapScenes<'_> {
+/// The scenes of `plan` the map runs on, with their groups.
+pub fn scenes<'a>(plan: &'a Plan, map: &MapPlan) -> MapScenes<'a> {
     MapScenes {
         scenes: plan
             .scenes
             .iter()
+            .filter(|s| map.keeps(&s.name))
             .map(|s| (s.name.as_str(), s.group))
             .collect(),
     }
 }
 
+/// The names of the scenes of `plan` the map runs on, in plan order.
+pub fn scene_names(plan: &Plan, map: &MapPlan) -> Vec<String> {
+    scenes(plan, map)
+        .scenes
+        .iter()
+        .map(|s| s.0.to_string())
+        .collect()
+}
+
 /// The map's table from a run's results, with the grid's cells when given.
 pub fn table(plan: &Plan, map: &MapPlan, out: &Outcome, cells: &[Cell]) -> MapTable {
-    let sc = scenes(plan);
+    let sc = scenes(plan, map);
     MapTable::new(map, out, &sc).with_grid(map, out, &sc, cells)
 }
 
 /// The map's one-at-a-time tasks on the scenes of `plan` (the grid's come
 /// after them, from [`run_grid`]).
 pub fn tasks(plan: &Plan, map: &MapPlan) -> Vec<crate::study::runner::Task> {
-    let names: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
-    map.tasks(&names)
+    map.tasks(&scene_names(plan, map))
 }
 
 /// The second phase: choose the two knobs that move WaSP most from the
@@ -69,14 +78,13 @@ pub fn run_grid(
     cache: &Cache,
     opts: &RunnerOptions,
 ) -> Result<Vec<Cell>, String> {
-    let sc = scenes(plan);
+    let sc = scenes(plan, map);
     let t = MapTable::new(map, out, &sc);
     let Some((a, b)) = table::top_two(&t.knobs) else {
         return Ok(Vec::new());
     };
     let cells = map.grid(a, b);
-    let names: Vec<String> = plan.scenes.iter().map(|s| s.name.clone()).collect();
-    let tasks = map.grid_tasks(&names, &cells);
+    let tasks = map.grid_tasks(&scene_names(plan, map), &cells);
     if !opts.quiet {
         eprintln!(
             "wasp: the 2-D grid over {} and {}: {} cells, {} tasks",

@@ -79,6 +79,7 @@ pub fn write(md: &mut String, x: &Section) -> Result<(), String> {
     write_atomic(&x.data.join("map.json"), &json)?;
     let _ = writeln!(md, "\n## What decides WaSP's gain\n");
     intro(md, map, t);
+    scenes_note(md, x.plan, map);
     knobs_table(md, map);
     ranking(md, t, groups);
     embed(md, figures::tornado(t, x.figs, x.data)?);
@@ -308,9 +309,38 @@ pub fn to_csv(t: &MapTable) -> String {
     s
 }
 
+/// Which of the reproduction's scenes the map runs on, when not all.
+fn scenes_note(md: &mut String, plan: &Plan, map: &MapPlan) {
+    let kept = super::scene_names(plan, map);
+    let left: Vec<&str> = plan
+        .scenes
+        .iter()
+        .map(|s| s.name.as_str())
+        .filter(|n| !map.keeps(n))
+        .collect();
+    if left.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        md,
+        "The map runs on {} of the reproduction's {} scenes. It leaves out {}, the 3D scenes \
+         with the most cycles, which would double its time (`--map-scenes all` runs it on \
+         every scene); every game keeps at least two scenes, and the paper's experiments \
+         above run on all {}.\n",
+        kept.len(),
+        plan.scenes.len(),
+        left.iter()
+            .map(|n| format!("`{n}`"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        plan.scenes.len()
+    );
+}
+
 /// The plan in words, printed before the run: knobs, values, scenes and
 /// simulations.
-pub fn plan_text(map: &MapPlan, scenes: usize) -> String {
+pub fn plan_text(map: &MapPlan, names: &[String], all: usize) -> String {
+    let scenes = names.len();
     let values: usize = map
         .knobs
         .iter()
@@ -325,9 +355,14 @@ pub fn plan_text(map: &MapPlan, scenes: usize) -> String {
     let runs = scenes * ((values + 1) * Variant::ALL.len() + deep);
     format!(
         "the map \"What decides WaSP's gain\": {} knobs, {values} values besides the shipped \
-         machine, {} warp counts with a {DEEP_QUEUE}-entry input queue, on {scenes} scenes: \
+         machine, {} warp counts with a {DEEP_QUEUE}-entry input queue, on {scenes} scenes{}: \
          up to {runs} simulations, then a 2-D grid over the two knobs that move WaSP most",
         varied,
-        map.deep_queue_warps.len()
+        map.deep_queue_warps.len(),
+        if scenes < all {
+            format!(" of {all} (--map-scenes all for every scene)")
+        } else {
+            String::new()
+        }
     )
 }
