@@ -202,6 +202,13 @@ impl ShaderCore {
         self.launch.accept(quad, x, y)
     }
 
+    /// Every slot of the input queue is taken: [`push_quad`](Self::push_quad)
+    /// refuses any quad until a warp launches.
+    #[inline]
+    pub fn input_full(&self) -> bool {
+        self.launch.sched().queue().is_full()
+    }
+
     /// Surviving quads of its own tile the core's rasterizer has put in
     /// the input queue so far (per-core-tile dispatch).
     #[inline]

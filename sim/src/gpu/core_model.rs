@@ -51,6 +51,9 @@ pub trait CoreModel: Traceable + Sized {
     /// Offer quad `quad` at in-tile (x, y) to the input queue; `false`
     /// when its FIFO is full.
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool;
+    /// Every slot of the input queue is taken: [`push_quad`](Self::push_quad)
+    /// refuses any quad until a warp launches.
+    fn input_full(&self) -> bool;
     /// Surviving quads of its own tile its rasterizer has put in the input
     /// queue so far (per-core-tile dispatch; they are quads `0..n` in
     /// rasterization order).
@@ -116,6 +119,10 @@ impl CoreModel for ShaderCore {
     #[inline]
     fn push_quad(&mut self, quad: u32, x: u32, y: u32) -> bool {
         ShaderCore::push_quad(self, quad, x, y)
+    }
+    #[inline]
+    fn input_full(&self) -> bool {
+        ShaderCore::input_full(self)
     }
     #[inline]
     fn quads_entered(&self) -> u32 {

@@ -87,6 +87,11 @@ pub struct SharedRaster {
     next_tile: usize,
     /// Where the rasterizer is in the open tile.
     cursor: RasterCursor,
+    /// The core whose full input queue refused the quad at the cursor
+    /// (back-pressure): the quad is offered again only once that queue has
+    /// room, since until then the core refuses it (`CoreModel::input_full`)
+    /// and nothing else of the rasterizer can move.
+    waiting_on: Option<usize>,
     /// Colour-buffer lines still to write, oldest tile's first (a tile's
     /// flush may still run when the next tile closes).
     flush: VecDeque<u64>,
@@ -126,6 +131,7 @@ impl SharedRaster {
             tile: None,
             next_tile: 0,
             cursor: RasterCursor::default(),
+            waiting_on: None,
             flush: VecDeque::new(),
             stats: RasterStats::default(),
             signals: RasterSignals::default(),
@@ -197,6 +203,7 @@ impl SharedRaster {
             self.next_tile += 1;
             self.tile = Some(t);
             self.cursor = RasterCursor::start(&tiles[t]);
+            self.waiting_on = None;
             for c in cores.iter_mut() {
                 c.begin_shared_tile(t);
             }
@@ -214,6 +221,16 @@ impl SharedRaster {
         if self.cursor.done() {
             self.stats.barrier_cycles += 1;
             return false;
+        }
+        if let Some(c) = self.waiting_on {
+            // Still refused: the cycle is one more of back-pressure, as the
+            // offer below would find.
+            if cores[c].input_full() {
+                self.stats.backpressure_cycles += 1;
+                self.signals.backpressure = true;
+                return false;
+            }
+            self.waiting_on = None;
         }
         let before = self.stats.quads_rasterized;
         while budget > 0 {
@@ -233,6 +250,7 @@ impl SharedRaster {
             let q = tile.quad(i as usize).expect("quad in tile");
             let core = self.map.core(q.x(), q.y());
             if !cores[core].push_quad(i, q.x(), q.y()) {
+                self.waiting_on = Some(core);
                 self.stats.backpressure_cycles += 1;
                 self.signals.backpressure = true;
                 break;

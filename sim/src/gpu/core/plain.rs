@@ -574,6 +574,10 @@ impl CoreModel for PlainCore {
         self.sched.enqueue(quad, x, y).is_ok()
     }
 
+    fn input_full(&self) -> bool {
+        self.sched.queue().is_full()
+    }
+
     fn quads_entered(&self) -> u32 {
         self.raster.delivered()
     }
