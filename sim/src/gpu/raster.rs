@@ -266,11 +266,18 @@ impl SharedRaster {
     /// After the cores' end of cycle: close the open tile if every quad is
     /// rasterized and every core has drained it (the barrier), and queue
     /// its colour-buffer flush. Returns the closed tile.
+    #[inline]
     pub fn end_cycle<C: CoreModel>(&mut self, trace: &Trace, cores: &mut [C]) -> Option<usize> {
         let t = self.tile?;
         if !self.cursor.done() || !cores.iter().all(|c| c.drained()) {
             return None;
         }
+        Some(self.close(t, trace, cores))
+    }
+
+    /// Close tile `t` (the barrier passed).
+    #[inline(never)]
+    fn close<C: CoreModel>(&mut self, t: usize, trace: &Trace, cores: &mut [C]) -> usize {
         for c in cores.iter_mut() {
             c.end_shared_tile();
         }
@@ -278,7 +285,7 @@ impl SharedRaster {
         if self.flush_mode != ColorFlush::None {
             flush_lines(trace, t, &mut self.flush);
         }
-        Some(t)
+        t
     }
 }
 
