@@ -22,6 +22,8 @@
 mod banked;
 mod channel;
 mod fixed;
+#[cfg(test)]
+mod plain;
 
 pub use banked::BankedDram;
 pub use fixed::FixedDram;
