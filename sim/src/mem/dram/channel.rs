@@ -7,7 +7,9 @@
 //! - the queue is kept in two parts, in arrival order: `oldest`, the first
 //!   `scheduler_window` requests (all of them when there are fewer), whose
 //!   visible prefix is the scheduler's window; and `backlog`, the requests
-//!   behind them, which move up as requests leave;
+//!   behind them, which move up as requests leave. A request leaving
+//!   `oldest` leaves a tombstone, so that nothing moves; tombstones go when
+//!   the first live request passes them or `oldest` fills up;
 //! - per bank, the window's requests that hit its open row and those that
 //!   do not are counted as the window and the banks change (a request
 //!   becomes visible or leaves, an ACTIVATE, a PRECHARGE), so a step
@@ -54,6 +56,9 @@ pub(super) struct QueuedRequest {
     opened: bool,
     /// It issued a PRECHARGE.
     closed: bool,
+    /// It has left the window (its column command issued): a tombstone
+    /// in `Channel::oldest`.
+    dead: bool,
 }
 
 impl QueuedRequest {
@@ -70,6 +75,7 @@ impl QueuedRequest {
             first_command: NOT_YET,
             opened: false,
             closed: false,
+            dead: false,
         }
     }
 }
@@ -175,11 +181,21 @@ impl BankCounts {
 pub(super) struct Channel {
     /// The banks; the first `banks` of the configuration are used.
     banks: Box<[Bank; MAX_BANKS]>,
-    /// The oldest `scheduler_window` requests, a contiguous slice (a
-    /// column command removes one of them).
+    /// The oldest `scheduler_window` requests in arrival order, with the
+    /// tombstones of those that have left (a column command marks its
+    /// request `dead` rather than moving the ones behind it up); the
+    /// tombstones are dropped when the first live request moves past them
+    /// and when the vector is full.
     oldest: Vec<QueuedRequest>,
-    /// Requests of `oldest` the scheduler has seen: its window (they
-    /// enter in cycle order, so the visible ones are a prefix).
+    /// Index in `oldest` of the first live request (its length with none).
+    head: usize,
+    /// Live requests in `oldest`.
+    live: usize,
+    /// `oldest` holds at most this many entries, live or dead.
+    room: usize,
+    /// Entries of `oldest` the scheduler has seen: the live ones of them
+    /// are its window (requests enter in cycle order, so the visible ones
+    /// are a prefix, and a tombstone was visible).
     visible: usize,
     /// The window's requests per bank.
     counts: Box<BankCounts>,
@@ -209,7 +225,10 @@ impl Channel {
                     activated: 0,
                 }; MAX_BANKS],
             ),
-            oldest: Vec::with_capacity(cfg.scheduler_window as usize),
+            oldest: Vec::with_capacity(4 * cfg.scheduler_window as usize),
+            head: 0,
+            live: 0,
+            room: 4 * cfg.scheduler_window as usize,
             visible: 0,
             counts: Box::new(BankCounts::EMPTY),
             backlog: Ring::with_capacity(max_outstanding + 64),
@@ -223,22 +242,51 @@ impl Channel {
     /// Whether no request waits.
     #[inline]
     pub(super) fn is_empty(&self) -> bool {
-        self.oldest.is_empty()
+        self.live == 0
     }
 
     /// Queue `r` in the cycle before its `ready`, behind the others.
     #[inline]
     pub(super) fn enqueue(&mut self, cfg: &DramConfig, r: QueuedRequest) {
-        if self.oldest.len() < cfg.scheduler_window as usize {
+        if self.live < cfg.scheduler_window as usize {
             // It enters the window when it becomes visible: the scheduler
             // looks again then.
             self.wake = self.wake.min(r.ready);
-            self.oldest.push(r);
+            self.push_oldest(r);
         } else {
             // Behind the window: it moves up when a request leaves, in a
             // cycle in which the channel steps anyway.
             self.backlog.push_back(r);
         }
+    }
+
+    /// Append `r` to `oldest`, first dropping the tombstones if it is
+    /// full.
+    #[inline]
+    fn push_oldest(&mut self, r: QueuedRequest) {
+        if self.oldest.len() == self.room {
+            self.compact();
+        }
+        self.oldest.push(r);
+        self.live += 1;
+    }
+
+    /// Drop the tombstones of `oldest`.
+    #[cold]
+    fn compact(&mut self) {
+        let dead_seen = self.oldest[..self.visible]
+            .iter()
+            .filter(|r| r.dead)
+            .count();
+        self.oldest.retain(|r| !r.dead);
+        self.visible -= dead_seen;
+        self.head = 0;
+    }
+
+    /// The first live request if the scheduler sees it.
+    #[inline(always)]
+    fn visible_head(&self) -> Option<&QueuedRequest> {
+        self.oldest[..self.visible].get(self.head)
     }
 
     #[inline(always)]
@@ -282,18 +330,19 @@ impl Channel {
     /// left the queue.
     #[inline]
     fn command(&mut self, cfg: &DramConfig, stats: &mut DramStats, now: u64) -> bool {
-        let Some(head) = self.oldest[..self.visible].first() else {
+        let Some(head) = self.visible_head() else {
             return false;
         };
+        let h = self.head;
         let bus_ok = self.bus_free <= now + u64::from(cfg.t_cl);
         // 1. The head, if it can issue anything.
         let b = self.bank(usize::from(head.bank));
         if b.open_row == head.row {
             if b.ready <= now && bus_ok {
-                self.issue_column(cfg, stats, 0, now);
+                self.issue_column(cfg, stats, h, now);
                 return true;
             }
-        } else if self.try_row_command(cfg, stats, 0, now, true) {
+        } else if self.try_row_command(cfg, stats, h, now, true) {
             return false;
         }
         // 2. The oldest row hit that can issue its column command: one in
@@ -304,13 +353,15 @@ impl Channel {
                 free |= u64::from(self.bank(k).ready <= now) << k;
             }
             if free != 0 {
-                let i = self.oldest[..self.visible]
+                let i = self.oldest[h..self.visible]
                     .iter()
                     .position(|r| {
-                        free >> (usize::from(r.bank) % MAX_BANKS) & 1 == 1 && self.hits(r)
+                        free >> (usize::from(r.bank) % MAX_BANKS) & 1 == 1
+                            && self.hits(r)
+                            && !r.dead
                     })
                     .expect("a free bank with a hit has a request hitting it");
-                self.issue_column(cfg, stats, i, now);
+                self.issue_column(cfg, stats, h + i, now);
                 return true;
             }
         }
@@ -326,11 +377,11 @@ impl Channel {
             free |= u64::from(ok) << k;
         }
         if free != 0 {
-            let found = self.oldest[1..self.visible]
-                .iter()
-                .position(|r| free >> (usize::from(r.bank) % MAX_BANKS) & 1 == 1 && !self.hits(r));
+            let found = self.oldest[h + 1..self.visible].iter().position(|r| {
+                free >> (usize::from(r.bank) % MAX_BANKS) & 1 == 1 && !self.hits(r) && !r.dead
+            });
             if let Some(i) = found {
-                let issued = self.try_row_command(cfg, stats, i + 1, now, false);
+                let issued = self.try_row_command(cfg, stats, h + 1 + i, now, false);
                 debug_assert!(issued, "a request of a free bank takes its row command");
             }
         }
@@ -373,7 +424,7 @@ impl Channel {
             wake = wake.min(t);
         }
         // The head is not held by the protection.
-        if let Some(r) = self.oldest[..self.visible].first() {
+        if let Some(r) = self.visible_head() {
             let b = self.bank(usize::from(r.bank));
             if b.open_row != r.row && b.open_row != CLOSED {
                 wake = wake.min(b.ready.max(b.activated + t_ras));
@@ -382,15 +433,29 @@ impl Channel {
         wake.max(now + 1)
     }
 
-    /// Issue request `i`'s READ / WRITE in cycle `now`: it leaves the
-    /// queue, and the first request of the backlog moves up.
+    /// Issue the READ / WRITE of request `i` (an index in `oldest`) in
+    /// cycle `now`: it leaves the queue, and the first request of the
+    /// backlog moves up.
     fn issue_column(&mut self, c: &DramConfig, stats: &mut DramStats, i: usize, now: u64) {
-        let r = self.oldest.remove(i);
-        self.visible -= 1;
+        let r = self.oldest[i];
+        self.oldest[i].dead = true;
+        self.live -= 1;
+        if i == self.head {
+            self.head += 1;
+            while self.oldest.get(self.head).is_some_and(|r| r.dead) {
+                self.head += 1;
+            }
+            if self.head == self.oldest.len() {
+                // Nothing left but tombstones, all of them seen.
+                self.oldest.clear();
+                self.head = 0;
+                self.visible = 0;
+            }
+        }
         let k = usize::from(r.bank) % MAX_BANKS;
         self.counts.remove_hit(k);
         if let Some(next) = self.backlog.pop_front() {
-            self.oldest.push(next);
+            self.push_oldest(next);
         }
         let burst = u64::from(c.t_burst);
         self.banks[k].ready = now + burst;
@@ -441,9 +506,9 @@ impl Channel {
             };
             stats.activates += 1;
             let row = r.row;
-            let hits = self.oldest[..self.visible]
+            let hits = self.oldest[self.head..self.visible]
                 .iter()
-                .filter(|o| usize::from(o.bank) % MAX_BANKS == k && o.row == row)
+                .filter(|o| usize::from(o.bank) % MAX_BANKS == k && o.row == row && !o.dead)
                 .count();
             self.counts.set_bank(k, hits as u16);
         } else {
@@ -468,9 +533,17 @@ impl Channel {
     #[cfg(debug_assertions)]
     fn check_counts(&self) {
         let mut fresh = BankCounts::EMPTY;
-        for r in &self.oldest[..self.visible] {
+        for r in self.oldest[self.head..self.visible]
+            .iter()
+            .filter(|r| !r.dead)
+        {
             fresh.add(usize::from(r.bank) % MAX_BANKS, self.hits(r));
         }
+        assert!(self.oldest[..self.head].iter().all(|r| r.dead));
+        assert!(self.oldest[self.visible..].iter().all(|r| !r.dead));
+        let live = self.oldest.iter().filter(|r| !r.dead).count();
+        assert_eq!(live, self.live, "live requests");
+        assert!(self.oldest.get(self.head).is_none_or(|r| !r.dead));
         assert_eq!(fresh.hits, self.counts.hits, "row hits per bank");
         assert_eq!(fresh.others, self.counts.others, "other requests per bank");
         assert_eq!(
