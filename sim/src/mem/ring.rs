@@ -48,6 +48,16 @@ impl<T: Copy + Default> Ring<T> {
         }
     }
 
+    /// The newest item.
+    #[inline]
+    pub(crate) fn back(&self) -> Option<&T> {
+        if self.len == 0 {
+            None
+        } else {
+            Some(&self.buf[(self.head + self.len - 1) & (self.buf.len() - 1)])
+        }
+    }
+
     /// Append `x`.
     #[inline]
     pub(crate) fn push_back(&mut self, x: T) {
@@ -145,6 +155,7 @@ mod tests {
                 }
             }
             assert_eq!(r.front(), d.front());
+            assert_eq!(r.back(), d.back());
             assert_eq!((r.len(), r.is_empty()), (d.len(), d.is_empty()));
         }
         while let Some(v) = d.pop_front() {

@@ -79,6 +79,9 @@ pub struct BankedDram {
     /// The earliest of the channels' `wake`s: cycles before it step no
     /// channel.
     wake: u64,
+    /// Each channel's `wake`, side by side ([`NEVER`] for an empty
+    /// channel).
+    wakes: Box<[u64]>,
     /// The earliest cycle a reply is due (the earliest of the channels'
     /// first replies; [`NEVER`] with none).
     next_reply: u64,
@@ -101,6 +104,7 @@ impl BankedDram {
             max_outstanding,
             stats: DramStats::default(),
             wake: NEVER,
+            wakes: vec![NEVER; cfg.channels as usize].into(),
             next_reply: NEVER,
             skip_idle: true,
         }
@@ -154,6 +158,7 @@ impl BankedDram {
         let (ch, bank, row) = self.place(block);
         let c = &mut self.channels[ch];
         c.enqueue(&self.cfg, QueuedRequest::new(now, bank, row, entry));
+        self.wakes[ch] = c.wake;
         self.wake = self.wake.min(c.wake);
         self.queued += 1;
         self.stats.max_queue = self.stats.max_queue.max(self.queued as u64);
@@ -163,35 +168,63 @@ impl BankedDram {
     /// cycle).
     #[inline]
     pub fn accept(&mut self, now: u64) {
-        if self.skip_idle && now < self.wake {
+        if !self.skip_idle {
+            self.wake_every_channel(now);
+        }
+        if now < self.wake {
             return;
         }
         self.step_channels(now);
     }
 
+    /// The plain reference: every channel with a request steps in cycle
+    /// `now`.
+    #[cold]
+    fn wake_every_channel(&mut self, now: u64) {
+        for (ch, w) in self.channels.iter().zip(self.wakes.iter_mut()) {
+            if !ch.is_empty() {
+                *w = now;
+            }
+        }
+        self.wake = now;
+    }
+
     /// [`accept`](Self::accept) in a cycle in which a channel may issue.
     #[inline(never)]
     fn step_channels(&mut self, now: u64) {
-        let (cfg, stats) = (&self.cfg, &mut self.stats);
         let mut wake = NEVER;
-        let mut replied = false;
-        for ch in &mut self.channels {
-            if !ch.is_empty() && (!self.skip_idle || now >= ch.wake) {
+        let BankedDram {
+            cfg,
+            channels,
+            wakes,
+            stats,
+            queued,
+            next_reply,
+            ..
+        } = self;
+        for (ch, w) in channels.iter_mut().zip(wakes.iter_mut()) {
+            if *w <= now {
                 let replies = ch.replies.len();
                 if ch.step(cfg, stats, now) {
-                    self.queued -= 1;
-                    replied |= ch.replies.len() > replies;
+                    *queued -= 1;
+                    if ch.replies.len() > replies {
+                        // A later reply than any queued one: the channel's
+                        // first only if it has no other.
+                        let at = ch.replies.back().map_or(NEVER, |r| r.at);
+                        *next_reply = (*next_reply).min(at);
+                    }
                 }
+                *w = ch.wake;
             }
-            wake = wake.min(ch.wake);
+            wake = wake.min(*w);
         }
         self.wake = wake;
-        if replied {
-            self.next_reply = self.first_reply();
-        }
+        #[cfg(debug_assertions)]
+        assert_eq!(self.next_reply, self.first_reply());
     }
 
     /// The earliest of the channels' first replies' cycles.
+    #[cfg(debug_assertions)]
     fn first_reply(&self) -> u64 {
         self.channels
             .iter()
@@ -208,17 +241,26 @@ impl BankedDram {
         if now < self.next_reply {
             return None;
         }
-        let mut best: Option<(u64, usize)> = None;
+        // The earliest first reply is due (it is `next_reply`); the next
+        // `next_reply` is the earliest of the others' and the one behind
+        // it.
+        let (mut best, mut at, mut others) = (0, NEVER, NEVER);
         for (i, ch) in self.channels.iter().enumerate() {
             if let Some(f) = ch.replies.front() {
-                if f.at <= now && best.is_none_or(|(at, _)| f.at < at) {
-                    best = Some((f.at, i));
+                if f.at < at {
+                    others = others.min(at);
+                    (best, at) = (i, f.at);
+                } else {
+                    others = others.min(f.at);
                 }
             }
         }
-        let (_, i) = best?;
-        let entry = self.channels[i].replies.pop_front().map(|f| f.entry);
-        self.next_reply = self.first_reply();
+        debug_assert!(at <= now);
+        let replies = &mut self.channels[best].replies;
+        let entry = replies.pop_front().map(|f| f.entry);
+        self.next_reply = others.min(replies.front().map_or(NEVER, |f| f.at));
+        #[cfg(debug_assertions)]
+        assert_eq!(self.next_reply, self.first_reply());
         entry
     }
 

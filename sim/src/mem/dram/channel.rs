@@ -316,6 +316,7 @@ impl Channel {
 
     /// Issue at most one command in cycle `now`; whether a request left the
     /// queue (its column command issued). Then set `wake`.
+    #[inline(always)]
     pub(super) fn step(&mut self, cfg: &DramConfig, stats: &mut DramStats, now: u64) -> bool {
         self.see(now);
         let left = self.command(cfg, stats, now);
