@@ -88,6 +88,9 @@ struct Bank {
     ready: u64,
     /// Cycle of the last ACTIVATE (for tRAS).
     activated: u64,
+    /// First cycle the bank takes a row command: `ready`, and with a row
+    /// open, `activated + t_ras` (the open-row protection aside).
+    row_free: u64,
 }
 
 /// The set bits of a bank mask, lowest first.
@@ -223,6 +226,7 @@ impl Channel {
                     open_row: CLOSED,
                     ready: 0,
                     activated: 0,
+                    row_free: 0,
                 }; MAX_BANKS],
             ),
             oldest: Vec::with_capacity(4 * cfg.scheduler_window as usize),
@@ -322,7 +326,7 @@ impl Channel {
         let left = self.command(cfg, stats, now);
         self.see(now);
         #[cfg(debug_assertions)]
-        self.check_counts();
+        self.check_counts(cfg);
         self.wake = self.next_chance(cfg, now);
         left
     }
@@ -368,14 +372,10 @@ impl Channel {
         }
         // 3. The oldest request that can issue a row command: one in a
         // free bank, closed, or open for tRAS and not protected.
-        let t_ras = u64::from(cfg.t_ras);
+        // (A closed bank has no row hit, so it is never protected.)
         let mut free = 0u64;
-        for k in Bits(self.counts.other_banks) {
-            let b = self.bank(k);
-            let ok = b.ready <= now
-                && (b.open_row == CLOSED
-                    || (now >= b.activated + t_ras && self.counts.hit_banks >> k & 1 == 0));
-            free |= u64::from(ok) << k;
+        for k in Bits(self.counts.other_banks & !self.counts.hit_banks) {
+            free |= u64::from(self.bank(k).row_free <= now) << k;
         }
         if free != 0 {
             let found = self.oldest[h + 1..self.visible].iter().position(|r| {
@@ -399,36 +399,30 @@ impl Channel {
     /// only:
     /// - a row hit: its bank free and its data slot free,
     ///   `max(bank ready, bus free - t_cl)`;
-    /// - an ACTIVATE: its bank's `ready`;
-    /// - a PRECHARGE: its bank's `ready` and `activated + t_ras`; never,
+    /// - an ACTIVATE or a PRECHARGE: its bank's `row_free`; never,
     ///   without a command or an arrival first, while the open-row
-    ///   protection holds it (not the head's);
+    ///   protection holds it (not the head's; a closed bank has no row
+    ///   hit, so it is never protected);
     /// - the window growing: the first invisible request's `ready`.
+    #[inline]
     fn next_chance(&self, cfg: &DramConfig, now: u64) -> u64 {
         let mut wake = self.oldest.get(self.visible).map_or(NEVER, |r| r.ready);
-        let data = self.bus_free.saturating_sub(u64::from(cfg.t_cl));
-        let t_ras = u64::from(cfg.t_ras);
         let hit_banks = self.counts.hit_banks;
+        // The earliest of `max(ready, data)` is `max(earliest ready, data)`.
+        let mut hit_ready = NEVER;
         for k in Bits(hit_banks) {
-            wake = wake.min(self.bank(k).ready.max(data));
+            hit_ready = hit_ready.min(self.bank(k).ready);
         }
-        for k in Bits(self.counts.other_banks) {
-            let b = self.bank(k);
-            let t = if b.open_row == CLOSED {
-                b.ready
-            } else if hit_banks >> k & 1 == 1 {
-                // Protected (the head is taken below).
-                NEVER
-            } else {
-                b.ready.max(b.activated + t_ras)
-            };
-            wake = wake.min(t);
+        let data = self.bus_free.saturating_sub(u64::from(cfg.t_cl));
+        wake = wake.min(hit_ready.max(data));
+        for k in Bits(self.counts.other_banks & !hit_banks) {
+            wake = wake.min(self.bank(k).row_free);
         }
         // The head is not held by the protection.
         if let Some(r) = self.visible_head() {
             let b = self.bank(usize::from(r.bank));
-            if b.open_row != r.row && b.open_row != CLOSED {
-                wake = wake.min(b.ready.max(b.activated + t_ras));
+            if b.open_row != r.row {
+                wake = wake.min(b.row_free);
             }
         }
         wake.max(now + 1)
@@ -459,7 +453,9 @@ impl Channel {
             self.push_oldest(next);
         }
         let burst = u64::from(c.t_burst);
-        self.banks[k].ready = now + burst;
+        let b = &mut self.banks[k];
+        b.ready = now + burst;
+        b.row_free = b.ready.max(b.activated + u64::from(c.t_ras));
         let data = now + u64::from(c.t_cl);
         self.bus_free = data + burst;
         stats.bus_busy_cycles += burst;
@@ -500,10 +496,12 @@ impl Channel {
             return false;
         }
         if b.open_row == CLOSED {
+            let ready = now + u64::from(cfg.t_rcd);
             self.banks[k] = Bank {
                 open_row: r.row,
-                ready: now + u64::from(cfg.t_rcd),
+                ready,
                 activated: now,
+                row_free: ready.max(now + u64::from(cfg.t_ras)),
             };
             stats.activates += 1;
             let row = r.row;
@@ -520,6 +518,7 @@ impl Channel {
             let bank = &mut self.banks[k];
             bank.open_row = CLOSED;
             bank.ready = now + u64::from(cfg.t_rp);
+            bank.row_free = bank.ready;
             stats.precharges += 1;
             self.oldest[i].closed = true;
             self.counts.set_bank(k, 0);
@@ -530,9 +529,18 @@ impl Channel {
         true
     }
 
-    /// The counts against a count of the window from scratch.
+    /// The counts against a count of the window from scratch, and each
+    /// bank's `row_free` against its definition.
     #[cfg(debug_assertions)]
-    fn check_counts(&self) {
+    fn check_counts(&self, cfg: &DramConfig) {
+        for b in self.banks.iter() {
+            let t_ras = if b.open_row == CLOSED {
+                0
+            } else {
+                u64::from(cfg.t_ras)
+            };
+            assert_eq!(b.row_free, b.ready.max(b.activated + t_ras), "{b:?}");
+        }
         let mut fresh = BankCounts::EMPTY;
         for r in self.oldest[self.head..self.visible]
             .iter()
