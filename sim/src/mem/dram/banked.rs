@@ -69,6 +69,10 @@ use wasp_waves::Tracer;
 pub struct BankedDram {
     cfg: DramConfig,
     blocks_per_row: u64,
+    /// The base-2 logarithms of the channels, banks and blocks per row
+    /// when all three are powers of two (the mapping's divisions are then
+    /// shifts).
+    shifts: Option<(u32, u32, u32)>,
     channels: Vec<Channel>,
     /// Requests waiting in all channels' queues.
     queued: usize,
@@ -99,6 +103,16 @@ impl BankedDram {
         BankedDram {
             cfg: *cfg,
             blocks_per_row: u64::from(cfg.row_bytes / BLOCK_BYTES),
+            shifts: [cfg.channels, cfg.banks, cfg.row_bytes / BLOCK_BYTES]
+                .iter()
+                .all(|n| n.is_power_of_two())
+                .then(|| {
+                    (
+                        cfg.channels.trailing_zeros(),
+                        cfg.banks.trailing_zeros(),
+                        (cfg.row_bytes / BLOCK_BYTES).trailing_zeros(),
+                    )
+                }),
             channels: vec![channel; cfg.channels as usize],
             queued: 0,
             max_outstanding,
@@ -122,6 +136,19 @@ impl BankedDram {
     /// on the lowest block-address bits, banks on the next ones.
     #[inline]
     fn place(&self, block: u64) -> (usize, usize, u64) {
+        if let Some((c, b, r)) = self.shifts {
+            let in_channel = block >> c;
+            return (
+                (block & ((1 << c) - 1)) as usize,
+                (in_channel & ((1 << b) - 1)) as usize,
+                in_channel >> (b + r),
+            );
+        }
+        self.place_by_division(block)
+    }
+
+    /// [`place`](Self::place) by its definition.
+    fn place_by_division(&self, block: u64) -> (usize, usize, u64) {
         let channels = u64::from(self.cfg.channels);
         let banks = u64::from(self.cfg.banks);
         let in_channel = block / channels;
@@ -628,6 +655,36 @@ mod tests {
             assert!((got - top[0]).abs() < 0.02 * line_rate, "flat: {top:?}");
         }
         assert!(curve.windows(2).all(|w| w[1] >= w[0] - 0.01 * line_rate));
+    }
+
+    #[test]
+    fn the_mapping_by_shifts_is_the_mapping_by_division() {
+        let mut rng = Rng::new(3);
+        for (channels, banks, row_bytes) in [
+            (4, 8, 2048),
+            (1, 1, 64),
+            (2, 64, 256),
+            (3, 8, 2048),
+            (4, 6, 512),
+            (4, 8, 192),
+        ] {
+            let c = DramConfig {
+                model: DramModel::Banked,
+                channels,
+                banks,
+                row_bytes,
+                ..DramConfig::default()
+            };
+            let d = BankedDram::new(&c, 8);
+            let pow2 = [channels, banks, row_bytes]
+                .iter()
+                .all(|n| n.is_power_of_two());
+            assert_eq!(d.shifts.is_some(), pow2);
+            for _ in 0..10_000 {
+                let block = rng.next_u64() >> rng.below(64);
+                assert_eq!(d.place(block), d.place_by_division(block), "{c:?} {block}");
+            }
+        }
     }
 
     #[test]
