@@ -254,8 +254,8 @@ impl Channel {
     pub(super) fn enqueue(&mut self, cfg: &DramConfig, r: QueuedRequest) {
         if self.live < cfg.scheduler_window as usize {
             // It enters the window when it becomes visible: the scheduler
-            // looks again then.
-            self.wake = self.wake.min(r.ready);
+            // looks again when it could take a command.
+            self.wake = self.wake.min(self.first_chance(cfg, &r));
             self.push_oldest(r);
         } else {
             // Behind the window: it moves up when a request leaves, in a
@@ -391,22 +391,26 @@ impl Channel {
 
     /// After cycle `now`'s step: the first cycle in which something might
     /// issue. Until a command issues or a request enters the window
-    /// (which wakes the channel), banks, bus and queue change only with
-    /// time, and each condition of the rules, once true, stays true
-    /// (the window only grows, which can only add to the open-row
-    /// protection); so the earliest cycle any of them can turn true bounds
-    /// the next command from below. Each depends on the request's bank
-    /// only:
+    /// (which lowers `wake` to its first chance), banks, bus and queue
+    /// change only with time, and each condition of the rules, once true,
+    /// stays true (the window only grows, which can only add to the
+    /// open-row protection); so the earliest cycle any of them can turn
+    /// true bounds the next command from below. Each depends on the
+    /// request's bank only:
     /// - a row hit: its bank free and its data slot free,
     ///   `max(bank ready, bus free - t_cl)`;
     /// - an ACTIVATE or a PRECHARGE: its bank's `row_free`; never,
     ///   without a command or an arrival first, while the open-row
     ///   protection holds it (not the head's; a closed bank has no row
     ///   hit, so it is never protected);
-    /// - the window growing: the first invisible request's `ready`.
+    /// - a request still to become visible: its
+    ///   [`first_chance`](Self::first_chance).
     #[inline]
     fn next_chance(&self, cfg: &DramConfig, now: u64) -> u64 {
-        let mut wake = self.oldest.get(self.visible).map_or(NEVER, |r| r.ready);
+        let mut wake = NEVER;
+        for r in &self.oldest[self.visible..] {
+            wake = wake.min(self.first_chance(cfg, r));
+        }
         let hit_banks = self.counts.hit_banks;
         // The earliest of `max(ready, data)` is `max(earliest ready, data)`.
         let mut hit_ready = NEVER;
@@ -426,6 +430,22 @@ impl Channel {
             }
         }
         wake.max(now + 1)
+    }
+
+    /// The first cycle in which `r`, still to become visible, could take
+    /// a command if banks and bus do not change before: once visible, its
+    /// row hit or row command as for the window's requests (the open-row
+    /// protection, which it may add to, only holds commands back).
+    #[inline]
+    fn first_chance(&self, cfg: &DramConfig, r: &QueuedRequest) -> u64 {
+        let b = self.bank(usize::from(r.bank));
+        let t = if b.open_row == r.row {
+            b.ready
+                .max(self.bus_free.saturating_sub(u64::from(cfg.t_cl)))
+        } else {
+            b.row_free
+        };
+        t.max(r.ready)
     }
 
     /// Issue the READ / WRITE of request `i` (an index in `oldest`) in
