@@ -525,10 +525,16 @@ impl Channel {
             };
             stats.activates += 1;
             let row = r.row;
-            let hits = self.oldest[self.head..self.visible]
-                .iter()
-                .filter(|o| usize::from(o.bank) % MAX_BANKS == k && o.row == row && !o.dead)
-                .count();
+            // Every request of a closed bank is an other; a lone one is
+            // this one.
+            let hits = if self.counts.others[k] == 1 {
+                1
+            } else {
+                self.oldest[self.head..self.visible]
+                    .iter()
+                    .filter(|o| usize::from(o.bank) % MAX_BANKS == k && o.row == row && !o.dead)
+                    .count()
+            };
             self.counts.set_bank(k, hits as u16);
         } else {
             let protected = !head && self.counts.hit_banks >> k & 1 == 1;
