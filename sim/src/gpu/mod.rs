@@ -140,6 +140,8 @@ pub struct Gpu<'t, C = ShaderCore> {
     /// One per renderer: the GPU (shared-tile) or each core (per-core).
     trackers: Vec<TileTracker>,
     timeline: Option<Timeline>,
+    /// The waveform's scope name of each core (`core0`, ...), made once.
+    core_scopes: Vec<String>,
     tiles_done: usize,
     now: u64,
     /// The last cycle in which a stage of a core or the raster pipeline
@@ -220,6 +222,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             }
             Dispatcher::PerCore { .. } => prefetch::build(&cfg.prefetch, trace, cores.len(), None),
         };
+        let core_scopes = (0..cores.len()).map(|i| format!("core{i}")).collect();
         Ok(Self {
             cfg: cfg.clone(),
             trace,
@@ -229,6 +232,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             prefetch,
             trackers,
             timeline: None,
+            core_scopes,
             tiles_done: 0,
             now: 0,
             last_progress: 0,
@@ -528,7 +532,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             t.pop_scope();
         }
         for (i, c) in self.cores.iter().enumerate() {
-            t.push_scope(&format!("core{i}"));
+            t.push_scope(&self.core_scopes[i]);
             c.trace(t);
             self.mem.trace(i, t);
             t.pop_scope();
