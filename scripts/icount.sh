@@ -12,13 +12,20 @@
 # models and prints mispredicted branches and L1 data misses per core-cycle
 # (a simple model of the host, but deterministic: wall-clock timing on a
 # shared machine cannot see a 3% change). Extra arguments of `wasp run` go in
-# ICOUNT_ARGS, e.g. ICOUNT_ARGS="--dispatch per-core-tile".
+# ICOUNT_ARGS, e.g. ICOUNT_ARGS="--dispatch per-core-tile". ICOUNT_TRACE=FILE
+# counts a run of that trace instead of the bench workload (a real scene's,
+# from `wasp render SCENE --trace-out FILE`).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 bin=$(realpath "${1:-$repo/target/release/wasp}")
 command -v valgrind > /dev/null || { echo "icount: valgrind is not installed" >&2; exit 1; }
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
-"$bin" synth --frame 512x256 --seed 1 --out "$out/bench.trace" > /dev/null
+if [ -n "${ICOUNT_TRACE:-}" ]; then
+  [ -r "$ICOUNT_TRACE" ] || { echo "icount: cannot read ICOUNT_TRACE=$ICOUNT_TRACE" >&2; exit 1; }
+  ln -s "$(realpath "$ICOUNT_TRACE")" "$out/bench.trace"
+else
+  "$bin" synth --frame 512x256 --seed 1 --out "$out/bench.trace" > /dev/null
+fi
 sim=()
 [ "${ICOUNT_SIM:-0}" = 1 ] && sim=(--branch-sim=yes --cache-sim=yes)
 valgrind --tool=callgrind "${sim[@]}" --callgrind-out-file="$out/cg" \
@@ -29,7 +36,7 @@ import json, re, signal, subprocess, sys
 signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 out = sys.argv[1]
 run = json.load(open(f"{out}/run.json"))
-cc = run["cycles"] * 4  # the paper machine's four cores
+cc = run["cycles"] * len(run["occupancy"]["per_core_mean"])  # core-cycles
 lines = open(f"{out}/cg").read().splitlines()
 names = next(l.split()[1:] for l in lines if l.startswith("events:"))
 values = next(l.split()[1:] for l in lines if l.startswith(("summary:", "totals:")))
