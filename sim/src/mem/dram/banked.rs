@@ -326,7 +326,7 @@ impl BankedDram {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::mem::config::DramModel;
     use crate::rng::Rng;
@@ -524,7 +524,7 @@ mod tests {
     }
 
     /// The signals of `d` in cycle `now`, as (name, value) pairs.
-    fn signals(d: &BankedDram, now: u64) -> Vec<(String, u64)> {
+    pub(in crate::mem::dram) fn signals(d: &BankedDram, now: u64) -> Vec<(String, u64)> {
         struct Record(Vec<(String, u64)>);
         impl Tracer for Record {
             fn push_scope(&mut self, _: &str) {}

@@ -230,25 +230,16 @@ impl PlainDram {
 mod tests {
     use super::*;
     use crate::mem::config::DramModel;
+    use crate::mem::dram::banked::tests::signals;
     use crate::mem::dram::BankedDram;
     use crate::rng::Rng;
-    use wasp_waves::Tracer;
 
     /// Column commands `d` issued in cycle `now` (its `accepted` signal).
     fn accepted(d: &BankedDram, now: u64) -> u64 {
-        struct Pick(u64);
-        impl Tracer for Pick {
-            fn push_scope(&mut self, _: &str) {}
-            fn pop_scope(&mut self) {}
-            fn signal(&mut self, name: &str, _: u32, value: u64) {
-                if name == "accepted" {
-                    self.0 = value;
-                }
-            }
-        }
-        let mut p = Pick(0);
-        d.trace(now, &mut p);
-        p.0
+        signals(d, now)
+            .into_iter()
+            .find_map(|(name, v)| (name == "accepted").then_some(v))
+            .expect("the memory traces `accepted`")
     }
 
     /// `d` and the plain model under the same random traffic in the first
