@@ -93,6 +93,16 @@ struct Bank {
     row_free: u64,
 }
 
+impl Bank {
+    /// `row_free` by its definition, for a memory of `t_ras`.
+    #[inline]
+    fn row_free_now(&self, t_ras: u32) -> u64 {
+        // A closed bank's ACTIVATE is past `activated` already.
+        let t_ras = if self.open_row == CLOSED { 0 } else { t_ras };
+        self.ready.max(self.activated + u64::from(t_ras))
+    }
+}
+
 /// The set bits of a bank mask, lowest first.
 struct Bits(u64);
 
@@ -475,7 +485,7 @@ impl Channel {
         let burst = u64::from(c.t_burst);
         let b = &mut self.banks[k];
         b.ready = now + burst;
-        b.row_free = b.ready.max(b.activated + u64::from(c.t_ras));
+        b.row_free = b.row_free_now(c.t_ras);
         let data = now + u64::from(c.t_cl);
         self.bus_free = data + burst;
         stats.bus_busy_cycles += burst;
@@ -516,13 +526,14 @@ impl Channel {
             return false;
         }
         if b.open_row == CLOSED {
-            let ready = now + u64::from(cfg.t_rcd);
-            self.banks[k] = Bank {
+            let bank = &mut self.banks[k];
+            *bank = Bank {
                 open_row: r.row,
-                ready,
+                ready: now + u64::from(cfg.t_rcd),
                 activated: now,
-                row_free: ready.max(now + u64::from(cfg.t_ras)),
+                row_free: 0,
             };
+            bank.row_free = bank.row_free_now(cfg.t_ras);
             stats.activates += 1;
             let row = r.row;
             // Every request of a closed bank is an other; a lone one is
@@ -544,7 +555,7 @@ impl Channel {
             let bank = &mut self.banks[k];
             bank.open_row = CLOSED;
             bank.ready = now + u64::from(cfg.t_rp);
-            bank.row_free = bank.ready;
+            bank.row_free = bank.row_free_now(cfg.t_ras);
             stats.precharges += 1;
             self.oldest[i].closed = true;
             self.counts.set_bank(k, 0);
@@ -560,12 +571,7 @@ impl Channel {
     #[cfg(debug_assertions)]
     fn check_counts(&self, cfg: &DramConfig) {
         for b in self.banks.iter() {
-            let t_ras = if b.open_row == CLOSED {
-                0
-            } else {
-                u64::from(cfg.t_ras)
-            };
-            assert_eq!(b.row_free, b.ready.max(b.activated + t_ras), "{b:?}");
+            assert_eq!(b.row_free, b.row_free_now(cfg.t_ras), "{b:?}");
         }
         let mut fresh = BankCounts::EMPTY;
         for r in self.oldest[self.head..self.visible]
