@@ -523,6 +523,43 @@ pub(super) mod tests {
         }
     }
 
+    /// A memory the lockstep tests drive with reads and writes.
+    pub(in crate::mem::dram) trait Driven {
+        fn request(&mut self, now: u64, block: u64, entry: u32);
+        fn write(&mut self, now: u64, block: u64);
+    }
+
+    impl Driven for BankedDram {
+        fn request(&mut self, now: u64, block: u64, entry: u32) {
+            BankedDram::request(self, now, block, entry);
+        }
+        fn write(&mut self, now: u64, block: u64) {
+            BankedDram::write(self, now, block);
+        }
+    }
+
+    /// One random access in cycle `now`, to a block below `blocks`, sent
+    /// to both `a` and `b`: a fifth of them writes, the reads numbered
+    /// from `*n` on.
+    pub(in crate::mem::dram) fn send_random(
+        rng: &mut Rng,
+        now: u64,
+        blocks: u64,
+        n: &mut u32,
+        a: &mut impl Driven,
+        b: &mut impl Driven,
+    ) {
+        let block = rng.below(blocks);
+        if rng.chance(0.2) {
+            a.write(now, block);
+            b.write(now, block);
+        } else {
+            a.request(now, block, *n);
+            b.request(now, block, *n);
+            *n += 1;
+        }
+    }
+
     /// The signals of `d` in cycle `now`, as (name, value) pairs.
     pub(in crate::mem::dram) fn signals(d: &BankedDram, now: u64) -> Vec<(String, u64)> {
         struct Record(Vec<(String, u64)>);
@@ -570,15 +607,7 @@ pub(super) mod tests {
             let mut n = 0u32;
             for now in 0..80_000u64 {
                 if now < 10_000 && rng.chance(rate) {
-                    let block = rng.below(4 * 16 * 6);
-                    if rng.chance(0.2) {
-                        fast.write(now, block);
-                        plain.write(now, block);
-                    } else {
-                        fast.request(now, block, n);
-                        plain.request(now, block, n);
-                        n += 1;
-                    }
+                    send_random(&mut rng, now, 4 * 16 * 6, &mut n, &mut fast, &mut plain);
                 }
                 fast.accept(now);
                 plain.accept(now);

@@ -230,9 +230,18 @@ impl PlainDram {
 mod tests {
     use super::*;
     use crate::mem::config::DramModel;
-    use crate::mem::dram::banked::tests::signals;
+    use crate::mem::dram::banked::tests::{send_random, signals, Driven};
     use crate::mem::dram::BankedDram;
     use crate::rng::Rng;
+
+    impl Driven for PlainDram {
+        fn request(&mut self, now: u64, block: u64, entry: u32) {
+            PlainDram::request(self, now, block, entry);
+        }
+        fn write(&mut self, now: u64, block: u64) {
+            PlainDram::write(self, now, block);
+        }
+    }
 
     /// Column commands `d` issued in cycle `now` (its `accepted` signal).
     fn accepted(d: &BankedDram, now: u64) -> u64 {
@@ -258,15 +267,7 @@ mod tests {
             let burst = if rng.chance(0.01) { 20 } else { 1 };
             for _ in 0..burst {
                 if now < cycles && rng.chance(rate) {
-                    let block = rng.below(blocks);
-                    if rng.chance(0.2) {
-                        fast.write(now, block);
-                        plain.write(now, block);
-                    } else {
-                        fast.request(now, block, n);
-                        plain.request(now, block, n);
-                        n += 1;
-                    }
+                    send_random(&mut rng, now, blocks, &mut n, &mut fast, &mut plain);
                 }
             }
             fast.accept(now);
