@@ -23,6 +23,7 @@ forbid() {
   done
 }
 forbid wasp-trace wasp-rtl wasp-waves wasp-sim wasp-frontend wasp-props
+forbid wasp-gltrace wasp-trace wasp-rtl wasp-waves wasp-sim wasp-frontend wasp-props
 forbid wasp-waves wasp-rtl wasp-trace wasp-sim wasp-frontend wasp-props
 forbid wasp-rtl wasp-trace wasp-sim wasp-frontend wasp-props
 forbid wasp-sim wasp-frontend wasp-props image zip flate2 roxmltree
@@ -35,4 +36,4 @@ forbid wasp-kani-shim wasp-rtl wasp-trace wasp-waves wasp-sim wasp-frontend wasp
 python3 scripts/import-cycles.py --self-test || fail=1
 python3 scripts/import-cycles.py || fail=1
 [ "$fail" = 0 ] || exit 1
-echo "layering: rtl, waves, trace < sim, frontend < wasp; props on sim and rtl; kani shim alone" >&2
+echo "layering: rtl, waves, trace, gltrace < sim, frontend < wasp; props on sim and rtl; kani shim alone" >&2
