@@ -2,7 +2,8 @@
 //! properties), the API its calls belong to, and the stream of its calls,
 //! decoded one chunk at a time as they are iterated.
 
-use crate::container::{self, Compression};
+use crate::api::Api;
+use crate::container::{self, Compression, Container};
 use crate::decoder::Decoder;
 use crate::error::Fault;
 use crate::events::{EventFault, Events};
@@ -18,53 +19,6 @@ pub const MAX_VERSION: u32 = 6;
 /// How many calls [`Capture::open`] reads ahead to find the API when the
 /// first calls name none.
 const API_LOOKAHEAD: usize = 1024;
-
-/// The API a capture's calls belong to, decided as apitrace decides it:
-/// by the first function whose name belongs to a window-system API.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Api {
-    /// OpenGL through GLX, WGL or CGL (`glX*`, `wgl[A-Z]*`, `CGL*`).
-    Gl,
-    /// OpenGL or OpenGL ES through EGL (`egl[A-Z]*`).
-    Egl,
-    /// Direct3D or DirectDraw (`Direct*`, `D3D*`, `Create*`).
-    Dx,
-    /// No call (within the first ones read) names an API.
-    Unknown,
-}
-
-impl Api {
-    /// The API a function's name belongs to, or [`Api::Unknown`].
-    pub fn from_function(name: &str) -> Api {
-        let b = name.as_bytes();
-        let upper_at = |i: usize| b.get(i).is_some_and(u8::is_ascii_uppercase);
-        if name.starts_with("glX")
-            || (name.starts_with("wgl") && upper_at(3))
-            || name.starts_with("CGL")
-        {
-            Api::Gl
-        } else if name.starts_with("egl") && upper_at(3) {
-            Api::Egl
-        } else if name.starts_with("Direct")
-            || name.starts_with("D3D")
-            || name.starts_with("Create")
-        {
-            Api::Dx
-        } else {
-            Api::Unknown
-        }
-    }
-
-    /// A name for messages.
-    pub fn describe(self) -> &'static str {
-        match self {
-            Api::Gl => "OpenGL (GLX/WGL/CGL)",
-            Api::Egl => "OpenGL or OpenGL ES (EGL)",
-            Api::Dx => "Direct3D/DirectDraw",
-            Api::Unknown => "no API (no call names GLX, WGL, CGL, EGL or Direct3D)",
-        }
-    }
-}
 
 /// An apitrace capture, open for reading. Iterating it yields its calls in
 /// the order `apitrace dump` prints them, each numbered as apitrace numbers
@@ -95,7 +49,21 @@ impl Capture {
     /// to know its API.
     pub fn open(path: impl AsRef<Path>) -> Result<Capture, CaptureError> {
         let path = path.as_ref().to_path_buf();
-        let (container, compression) = container::open(&path).map_err(|message| CaptureError {
+        let container = container::open(&path);
+        Capture::start(path, container)
+    }
+
+    /// A capture held in memory (`bytes`, the whole file as apitrace wrote
+    /// it); `name` stands for the file in errors.
+    pub fn from_bytes(name: impl Into<PathBuf>, bytes: Vec<u8>) -> Result<Capture, CaptureError> {
+        Capture::start(name.into(), container::from_bytes(bytes))
+    }
+
+    fn start(
+        path: PathBuf,
+        container: Result<(Container, Compression), String>,
+    ) -> Result<Capture, CaptureError> {
+        let (container, compression) = container.map_err(|message| CaptureError {
             file: path.clone(),
             offset: None,
             call: None,
@@ -149,6 +117,15 @@ impl Capture {
                 message: format!("the capture's calls are {}, not OpenGL", other.describe()),
             }),
         }
+    }
+
+    /// The numbers of the calls handed out so far that have no leave event:
+    /// calls still open when the capture ended (a program killed inside a
+    /// call, typically its last glXSwapBuffers). Their return value and
+    /// output arguments are missing. `apitrace dump` marks them
+    /// `// incomplete`.
+    pub fn incomplete_calls(&self) -> &[u64] {
+        &self.events.incomplete
     }
 
     /// How far into the decompressed stream the reader is.
@@ -241,19 +218,10 @@ fn read_header(stream: &mut Stream) -> Result<Header, Fault> {
 mod tests {
     use super::*;
     use crate::Value;
-    use std::io::Write;
 
-    /// A capture file of `body` in one Snappy chunk.
-    pub(crate) fn capture_of(name: &str, body: &[u8]) -> PathBuf {
-        let c = snap::raw::Encoder::new().compress_vec(body).unwrap();
-        let mut f = b"at".to_vec();
-        f.extend_from_slice(&(c.len() as u32).to_le_bytes());
-        f.extend_from_slice(&c);
-        let dir = std::env::temp_dir().join(format!("wasp-gltrace-capture-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let p = dir.join(name);
-        std::fs::File::create(&p).unwrap().write_all(&f).unwrap();
-        p
+    /// A capture of `body` in one Snappy chunk, named `name`.
+    fn capture_of(name: &str, body: &[u8]) -> Result<Capture, CaptureError> {
+        Capture::from_bytes(name, crate::container::tests::snappy_file(&[body]))
     }
 
     /// Version 6, semantic 6, one property, then: call 0 glXSwapBuffers
@@ -276,7 +244,7 @@ mod tests {
 
     #[test]
     fn header_api_and_calls_in_leave_order_with_their_numbers() {
-        let mut c = Capture::open(capture_of("two", &two_calls())).unwrap();
+        let mut c = capture_of("two", &two_calls()).unwrap();
         assert_eq!((c.version, c.semantic_version, c.api), (6, 6, Api::Gl));
         assert_eq!(c.property("k"), Some("v"));
         c.require_gl().unwrap();
@@ -289,11 +257,17 @@ mod tests {
         assert_eq!(calls[1].ret, Some(Value::Bool(true)));
         assert_eq!(&calls[1].arg_names[..], ["dpy", "drawable"]);
         assert!(c.next().is_none());
+        assert!(c.incomplete_calls().is_empty());
+        // Cut before call 0's leave: call 0 comes last, incomplete.
+        let cut = &two_calls()[..71];
+        let mut c = capture_of("open", cut).unwrap();
+        let nos: Vec<u64> = c.by_ref().map(|r| r.unwrap().no).collect();
+        assert_eq!((nos, c.incomplete_calls()), (vec![1, 0], &[0u64][..]));
     }
 
     #[test]
     fn newer_versions_other_apis_and_bad_events_are_refused_by_name() {
-        let e = Capture::open(capture_of("v7", &[7, 7, 0])).err().unwrap();
+        let e = capture_of("v7", &[7, 7, 0]).err().unwrap();
         assert!(
             e.message.contains("version is 7") && e.to_string().contains("v7"),
             "{e}"
@@ -302,7 +276,7 @@ mod tests {
         let mut b = vec![5, 0x00, 0x00, 0x00, 17];
         b.extend_from_slice(b"Direct3DCreate9Ex");
         b.extend_from_slice(&[0, 0x00]);
-        let c = Capture::open(capture_of("d3d", &b)).unwrap();
+        let c = capture_of("d3d", &b).unwrap();
         assert_eq!(c.api, Api::Dx);
         let e = c.require_gl().unwrap_err();
         assert!(
@@ -310,13 +284,13 @@ mod tests {
             "{e}"
         );
         // Event 0x07 after the header.
-        let mut c = Capture::open(capture_of("event", &[6, 6, 0, 0x07])).unwrap();
+        let mut c = capture_of("event", &[6, 6, 0, 0x07]).unwrap();
         let e = c.next().unwrap().unwrap_err();
         assert_eq!((e.call, e.offset), (Some(0), Some(3)));
         assert!(e.message.contains("unknown event 0x07"), "{e}");
         assert!(c.next().is_none());
         // A leave for a call never entered.
-        let mut c = Capture::open(capture_of("leave", &[6, 6, 0, 0x01, 0x09, 0x00])).unwrap();
+        let mut c = capture_of("leave", &[6, 6, 0, 0x01, 0x09, 0x00]).unwrap();
         let e = c.next().unwrap().unwrap_err();
         assert!(e.message.contains("call 9, which is not open"), "{e}");
     }
@@ -325,8 +299,7 @@ mod tests {
     fn every_truncation_is_an_error_naming_the_call_and_offset_or_a_clean_end() {
         let whole = two_calls();
         for cut in 0..whole.len() {
-            let p = capture_of(&format!("cut{cut}"), &whole[..cut]);
-            let got: Vec<Result<Call, CaptureError>> = match Capture::open(&p) {
+            let got: Vec<Result<Call, CaptureError>> = match capture_of("cut", &whole[..cut]) {
                 Ok(c) => c.collect(),
                 Err(e) => vec![Err(e)],
             };

@@ -32,15 +32,18 @@ pub enum Compression {
     Gzip,
 }
 
+/// What a container reads its bytes from: a file or memory.
+type Source = Box<dyn Read + Send>;
+
 /// A source of decompressed blocks.
 pub(crate) enum Container {
     Snappy(SnappyChunks),
-    Gzip(Box<MultiGzDecoder<BufReader<File>>>),
+    Gzip(Box<MultiGzDecoder<BufReader<Source>>>),
 }
 
 /// The reader of apitrace's Snappy framing.
 pub(crate) struct SnappyChunks {
-    file: BufReader<File>,
+    file: BufReader<Source>,
     /// Offset in the file of the next chunk's length.
     file_offset: u64,
     file_len: u64,
@@ -51,30 +54,43 @@ pub(crate) struct SnappyChunks {
 /// Opens `path` and recognizes its container by its first bytes. The error
 /// is a plain message; the caller names the file.
 pub(crate) fn open(path: &Path) -> Result<(Container, Compression), String> {
-    let mut file = File::open(path).map_err(|e| format!("cannot open the capture: {e}"))?;
-    let file_len = file
+    let file = File::open(path).map_err(|e| format!("cannot open the capture: {e}"))?;
+    let len = file
         .metadata()
         .map_err(|e| format!("cannot read the capture's size: {e}"))?
         .len();
+    from_source(Box::new(file), len)
+}
+
+/// A container over a capture's bytes held in memory.
+pub(crate) fn from_bytes(bytes: Vec<u8>) -> Result<(Container, Compression), String> {
+    let len = bytes.len() as u64;
+    from_source(Box::new(std::io::Cursor::new(bytes)), len)
+}
+
+/// Recognizes the container of the `len` bytes of `source` by its first
+/// bytes.
+fn from_source(mut source: Source, len: u64) -> Result<(Container, Compression), String> {
     let mut magic = [0u8; 4];
-    let got = read_full(&mut file, &mut magic).map_err(|e| format!("cannot read: {e}"))?;
+    let got = read_full(&mut source, &mut magic).map_err(|e| format!("cannot read: {e}"))?;
     let magic = &magic[..got];
+    // The bytes after the magic, then the rest of the source.
+    let rest = |skip: usize| -> BufReader<Source> {
+        let head = std::io::Cursor::new(magic[skip..].to_vec());
+        BufReader::with_capacity(1 << 16, Box::new(head.chain(source)))
+    };
     if magic.starts_with(&SNAPPY_MAGIC) {
-        let mut file = BufReader::new(file);
-        seek_to(&mut file, 2)?;
         let chunks = SnappyChunks {
-            file,
+            file: rest(2),
             file_offset: 2,
-            file_len,
+            file_len: len,
             compressed: Vec::new(),
             decoder: snap::raw::Decoder::new(),
         };
         return Ok((Container::Snappy(chunks), Compression::Snappy));
     }
     if magic.starts_with(&GZIP_MAGIC) {
-        let mut file = BufReader::new(file);
-        seek_to(&mut file, 0)?;
-        let gz = MultiGzDecoder::new(file);
+        let gz = MultiGzDecoder::new(rest(0));
         return Ok((Container::Gzip(Box::new(gz)), Compression::Gzip));
     }
     if magic == ZSTD_MAGIC {
@@ -180,13 +196,6 @@ fn io_fault(offset: u64, at: u64, e: std::io::Error) -> Fault {
     )
 }
 
-fn seek_to(file: &mut BufReader<File>, to: u64) -> Result<(), String> {
-    use std::io::{Seek, SeekFrom};
-    file.seek(SeekFrom::Start(to))
-        .map(|_| ())
-        .map_err(|e| format!("cannot seek in the capture: {e}"))
-}
-
 /// Reads until `buf` is full or the reader ends; returns the bytes read.
 fn read_full(r: &mut impl Read, buf: &mut [u8]) -> std::io::Result<usize> {
     let mut got = 0;
@@ -210,7 +219,7 @@ fn hex(bytes: &[u8]) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use std::io::Write;
 
@@ -231,7 +240,8 @@ mod tests {
         Ok(all)
     }
 
-    fn snappy_file(blocks: &[&[u8]]) -> Vec<u8> {
+    /// A capture file of `blocks`, one Snappy chunk each.
+    pub(crate) fn snappy_file(blocks: &[&[u8]]) -> Vec<u8> {
         let mut f = SNAPPY_MAGIC.to_vec();
         for b in blocks {
             let c = snap::raw::Encoder::new().compress_vec(b).unwrap();

@@ -155,15 +155,7 @@ impl Decoder {
                 Value::Repr(Box::new(human), Box::new(machine))
             }
             0x0f => Value::String(self.wide_string()?),
-            _ => {
-                return Err(Fault::corrupt(
-                    at,
-                    format!(
-                        "unknown value type 0x{tag:02x} at decompressed offset {at} \
-                         (the format's types are 0x00 to 0x0f)"
-                    ),
-                ))
-            }
+            _ => return Err(Fault::unknown(at, "value type", tag, "0x00 to 0x0f")),
         })
     }
 
@@ -307,15 +299,7 @@ impl Decoder {
                     0x04 | 0x05 => {
                         self.stream.uint()?;
                     }
-                    t => {
-                        return Err(Fault::corrupt(
-                            at,
-                            format!(
-                                "unknown backtrace detail 0x{t:02x} at decompressed offset {at} \
-                                 (the format's are 0x00 to 0x05)"
-                            ),
-                        ))
-                    }
+                    t => return Err(Fault::unknown(at, "backtrace detail", t, "0x00 to 0x05")),
                 }
             }
             self.frames.define(id, ());
@@ -330,8 +314,8 @@ mod tests {
     use crate::error::FaultKind;
     use crate::stream::tests::stream_of;
 
-    fn decode(name: &str, version: u64, bytes: &[u8]) -> Decoder {
-        Decoder::new(stream_of(name, &[bytes]), version)
+    fn decode(version: u64, bytes: &[u8]) -> Decoder {
+        Decoder::new(stream_of(&[bytes]), version)
     }
 
     #[test]
@@ -357,7 +341,7 @@ mod tests {
         b.extend_from_slice(&[0x0c, 0x01, 0x01, 0x00]);
         b.extend_from_slice(&[0x0e, 0x07, 0x01, b'T', 0x09, 0x03, 0x04, 0x05]);
         b.extend_from_slice(&[0x0f, 0x02, 0xe9, 0x01, 0x41]);
-        let mut d = decode("all", 6, &b);
+        let mut d = decode(6, &b);
         let want = [
             Value::Null,
             Value::Bool(false),
@@ -396,19 +380,19 @@ mod tests {
     #[test]
     fn old_enums_unknown_types_deep_nesting_and_big_ids_are_handled() {
         // Version 2: `id name value` on every use.
-        let mut d = decode("old", 2, &[0x09, 0x00, 0x01, b'A', 0x04, 0x07, 0x09, 0x00]);
+        let mut d = decode(2, &[0x09, 0x00, 0x01, b'A', 0x04, 0x07, 0x09, 0x00]);
         assert_eq!(d.value().unwrap(), Value::Enum(7));
         assert_eq!(d.value().unwrap(), Value::Enum(7));
-        let mut d = decode("unknown", 6, &[0x10]);
+        let mut d = decode(6, &[0x10]);
         let e = d.value().unwrap_err();
         assert!(
             matches!(e.kind, FaultKind::Corrupt(ref m) if m.contains("unknown value type 0x10"))
         );
         let deep: Vec<u8> = std::iter::repeat_n([0x0b, 0x01], 100).flatten().collect();
-        let mut d = decode("deep", 6, &deep);
+        let mut d = decode(6, &deep);
         let e = d.value().unwrap_err();
         assert!(matches!(e.kind, FaultKind::Corrupt(ref m) if m.contains("nest deeper")));
-        let mut d = decode("id", 6, &[0x0a, 0x80, 0x80, 0x80, 0x01, 0x00, 0x00]);
+        let mut d = decode(6, &[0x0a, 0x80, 0x80, 0x80, 0x01, 0x00, 0x00]);
         let e = d.value().unwrap_err();
         assert!(
             matches!(e.kind, FaultKind::Corrupt(ref m) if m.contains("id 2097152 is out of range"))
@@ -419,10 +403,10 @@ mod tests {
     fn backtraces_are_skipped_with_their_frames_defined_once() {
         // Two frames: id 0 with a module and a line, then id 0 again.
         let b = [0x02, 0x00, 0x01, 0x01, b'm', 0x04, 0x0a, 0x00, 0x00, 0x07];
-        let mut d = decode("bt", 6, &b);
+        let mut d = decode(6, &b);
         d.skip_backtrace().unwrap();
         assert_eq!(d.stream.byte().unwrap(), 0x07);
-        let mut d = decode("btbad", 6, &[0x01, 0x00, 0x09]);
+        let mut d = decode(6, &[0x01, 0x00, 0x09]);
         assert!(d.skip_backtrace().is_err());
     }
 }

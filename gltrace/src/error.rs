@@ -59,6 +59,18 @@ impl Fault {
         }
     }
 
+    /// An unknown tag byte: `what` it was to be (an event, a value type...)
+    /// and the tags the format has.
+    pub fn unknown(offset: u64, what: &str, tag: u8, known: &str) -> Fault {
+        Fault::corrupt(
+            offset,
+            format!(
+                "unknown {what} 0x{tag:02x} at decompressed offset {offset} (the format's are \
+                 {known})"
+            ),
+        )
+    }
+
     /// The error for `file`, with the call number where known; `context`
     /// says what was being read when the stream ended (for truncations).
     pub fn into_error(self, file: &Path, call: Option<u64>, context: &str) -> CaptureError {

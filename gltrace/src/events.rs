@@ -3,9 +3,10 @@
 //! (arguments by index, the return value, the thread, a backtrace, flags).
 //! Calls are handed out as they complete, in the order of their leave
 //! events, as apitrace's own parser does; calls still open when the
-//! stream ends follow, in the order they were entered.
+//! stream ends follow, in the order they were entered, and are noted as
+//! incomplete (apitrace's dump marks them `// incomplete`).
 
-use crate::capture::Api;
+use crate::api::Api;
 use crate::decoder::{Decoder, FunctionSig};
 use crate::error::Fault;
 use crate::{Call, Value};
@@ -59,6 +60,9 @@ pub(crate) struct Events {
     next_no: u64,
     /// The API, from the first function signature that names one.
     pub api: Api,
+    /// The calls handed out with no leave event (open when the stream
+    /// ended), by number.
+    pub incomplete: Vec<u64>,
 }
 
 impl Events {
@@ -68,6 +72,7 @@ impl Events {
             open: VecDeque::new(),
             next_no: 0,
             api: Api::Unknown,
+            incomplete: Vec::new(),
         }
     }
 
@@ -81,7 +86,9 @@ impl Events {
                 context: "a chunk".into(),
             })?;
             if ended {
-                return Ok(self.open.pop_front().map(Open::into_call));
+                let call = self.open.pop_front().map(Open::into_call);
+                self.incomplete.extend(call.as_ref().map(|c| c.no));
+                return Ok(call);
             }
             let event = self.decoder.stream.byte().map_err(|fault| EventFault {
                 fault,
@@ -103,13 +110,7 @@ impl Events {
                     }
                 }
                 e => {
-                    let fault = Fault::corrupt(
-                        start,
-                        format!(
-                            "unknown event 0x{e:02x} at decompressed offset {start} \
-                             (the format's are 0x00 enter and 0x01 leave)"
-                        ),
-                    );
+                    let fault = Fault::unknown(start, "event", e, "0x00 enter and 0x01 leave");
                     let call = Some(self.next_no);
                     return Err(EventFault {
                         fault,
@@ -217,15 +218,7 @@ impl Events {
                 0x05 => {
                     self.decoder.stream.uint()?;
                 }
-                d => {
-                    return Err(Fault::corrupt(
-                        at,
-                        format!(
-                            "unknown call detail 0x{d:02x} at decompressed offset {at} \
-                             (the format's are 0x00 to 0x05)"
-                        ),
-                    ))
-                }
+                d => return Err(Fault::unknown(at, "call detail", d, "0x00 to 0x05")),
             }
         }
     }

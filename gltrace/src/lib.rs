@@ -20,6 +20,7 @@
 //! It stands at the bottom of the workspace with `wasp-trace`: it depends
 //! on no crate of the workspace.
 
+mod api;
 mod call;
 mod capture;
 mod container;
@@ -30,8 +31,9 @@ mod frames;
 mod stream;
 mod value;
 
+pub use api::Api;
 pub use call::{is_frame_end, Call};
-pub use capture::{Api, Capture, MAX_VERSION};
+pub use capture::{Capture, MAX_VERSION};
 pub use container::Compression;
 pub use error::CaptureError;
 pub use frames::{count_frames, frames, Frame, Frames};

@@ -192,21 +192,11 @@ impl Stream {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use std::io::Write;
 
-    /// A stream over `blocks` (each one Snappy chunk), through a real file.
-    pub(crate) fn stream_of(name: &str, blocks: &[&[u8]]) -> Stream {
-        let mut f = crate::container::SNAPPY_MAGIC.to_vec();
-        for b in blocks {
-            let c = snap::raw::Encoder::new().compress_vec(b).unwrap();
-            f.extend_from_slice(&(c.len() as u32).to_le_bytes());
-            f.extend_from_slice(&c);
-        }
-        let dir = std::env::temp_dir().join(format!("wasp-gltrace-stream-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let p = dir.join(name);
-        std::fs::File::create(&p).unwrap().write_all(&f).unwrap();
-        Stream::new(crate::container::open(&p).unwrap().0)
+    /// A stream over `blocks` (each one Snappy chunk).
+    pub(crate) fn stream_of(blocks: &[&[u8]]) -> Stream {
+        let file = crate::container::tests::snappy_file(blocks);
+        Stream::new(crate::container::from_bytes(file).unwrap().0)
     }
 
     #[test]
@@ -217,7 +207,7 @@ pub(crate) mod tests {
         all.extend_from_slice(&[0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x01]);
         all.extend_from_slice(&[0x03, 1, 2, 3]);
         for cut in 1..all.len() {
-            let mut s = stream_of(&format!("cut{cut}"), &[&all[..cut], &all[cut..]]);
+            let mut s = stream_of(&[&all[..cut], &all[cut..]]);
             assert_eq!(s.uint().unwrap(), 300);
             assert_eq!(s.string().unwrap(), "hi");
             assert_eq!(s.f32().unwrap(), 1.5);
@@ -231,11 +221,11 @@ pub(crate) mod tests {
 
     #[test]
     fn oversized_integers_and_lengths_past_the_end_are_faults() {
-        let mut s = stream_of("big", &[&[0xff; 10], &[0x7f]]);
+        let mut s = stream_of(&[&[0xff; 10], &[0x7f]]);
         let e = s.uint().unwrap_err();
         assert!(matches!(e.kind, FaultKind::Corrupt(ref m) if m.contains("64 bits")));
         // A blob claiming 2^40 bytes with 3 present: truncated, at offset 9.
-        let mut s = stream_of("long", &[&[0x80, 0x80, 0x80, 0x80, 0x80, 0x20, 7, 8, 9]]);
+        let mut s = stream_of(&[&[0x80, 0x80, 0x80, 0x80, 0x80, 0x20, 7, 8, 9]]);
         let e = s.blob().unwrap_err();
         assert_eq!((e.kind, e.offset), (FaultKind::Truncated, 9));
     }
