@@ -156,6 +156,12 @@ impl Capture {
     }
 }
 
+// A capture can be read on another thread than the one that opened it.
+const _: fn() = || {
+    fn send<T: Send>() {}
+    send::<Capture>();
+};
+
 impl Iterator for Capture {
     type Item = Result<Call, CaptureError>;
 
