@@ -24,6 +24,7 @@ pub mod characterize;
 pub mod def;
 pub mod fetch;
 pub mod frozen_bubble;
+mod image_decode;
 pub mod load;
 pub mod openarena;
 pub mod procedural;

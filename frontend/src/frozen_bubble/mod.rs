@@ -64,7 +64,6 @@
 //! the `sprite` template with [`Filter::Bilinear`] (a GPU port scales the
 //! 640x480 screen to the frame).
 
-use super::bytes::Bytes;
 use super::def::SceneDef;
 use super::teeworlds::program;
 use super::{Blend, Camera, Filter, Material, Mesh, Scene, SceneError, Texture};
