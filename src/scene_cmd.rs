@@ -12,6 +12,7 @@ use wasp_frontend::characterize::{self, Characterization};
 use wasp_frontend::def::{self, Game, SceneDef};
 use wasp_frontend::raster::{DrawOrder, Frame};
 use wasp_frontend::render::{self, HeatStat, Overlay, RenderRequest, WarpValue};
+use wasp_frontend::texture::FormatChoice;
 use wasp_frontend::{fetch, load};
 use wasp_rtl::policy::PolicySpec;
 use wasp_rtl::subset::SubsetSpec;
@@ -138,6 +139,14 @@ pub struct RenderArgs {
     /// painter's order whatever this says.
     #[arg(long, value_name = "ORDER")]
     pub draw_order: Option<DrawOrder>,
+    /// How the textures are stored: rgba8, etc2 (per texture: ETC2 RGB,
+    /// or ETC2 RGBA where its alpha is used), etc2-rgb, etc2-rgba,
+    /// astc-4x4, astc-6x6 or astc-8x8 (default: the scene definition's
+    /// `texture_format`, rgba8 for every shipped scene; see
+    /// docs/textures.md). It moves the blocks the trace lists, not the
+    /// picture.
+    #[arg(long, value_name = "FORMAT")]
+    pub texture_format: Option<FormatChoice>,
     /// Print where the time went: loading the scene (parsing meshes,
     /// decoding textures) and the front end (mip chains, geometry and
     /// binning, raster + early-Z + texturing + shading + trace), wall-clock
@@ -182,6 +191,11 @@ pub struct CharacterizeArgs {
     /// scene's own `draw_order`).
     #[arg(long, value_name = "ORDER")]
     pub draw_order: Vec<DrawOrder>,
+    /// How the textures are stored (see `wasp render`); repeat it to
+    /// characterise every scene in each format given (default: each
+    /// scene's own `texture_format`).
+    #[arg(long, value_name = "FORMAT")]
+    pub texture_format: Vec<FormatChoice>,
     /// No progress output on stderr (progress bars, notes of what is being
     /// done); results, warnings and errors still print.
     #[arg(long, short)]
@@ -349,6 +363,7 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
     }
     let mut def = find_def(&args.scene)?;
     def.draw_order = args.draw_order.unwrap_or(def.draw_order);
+    def.texture_format = args.texture_format.unwrap_or(def.texture_format);
     let (width, height) = match &args.size {
         Some(s) => parse_size(s)?,
         None => (def.width, def.height),
@@ -382,6 +397,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         depth_prepass: args.depth_prepass,
         threads: args.threads,
         draw_order: job.def.draw_order,
+        texture_format: job.def.texture_format,
     };
     let run = RunOptions {
         policy: args.policy,
@@ -733,7 +749,8 @@ fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError>
         crate::game_data::fetch_missing(&games, args.quiet).map_err(CliError::failed)?;
         named
     };
-    // Each scene in each order asked for (none: its own), scene by scene.
+    // Each scene in each order and format asked for (none: its own),
+    // scene by scene.
     Ok(defs
         .into_iter()
         .flat_map(|d| {
@@ -741,9 +758,17 @@ fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError>
                 true => vec![d.draw_order],
                 false => args.draw_order.clone(),
             };
-            orders.into_iter().map(move |o| SceneDef {
-                draw_order: o,
-                ..d.clone()
+            let formats = match args.texture_format.is_empty() {
+                true => vec![d.texture_format],
+                false => args.texture_format.clone(),
+            };
+            orders.into_iter().flat_map(move |o| {
+                let d = d.clone();
+                formats.clone().into_iter().map(move |f| SceneDef {
+                    draw_order: o,
+                    texture_format: f,
+                    ..d.clone()
+                })
             })
         })
         .collect())
@@ -760,10 +785,13 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
     let mut failed = Vec::new();
     for (i, d) in defs.iter().enumerate() {
         if !args.quiet {
-            let order = match args.draw_order.is_empty() {
+            let mut order = match args.draw_order.is_empty() {
                 true => String::new(),
                 false => format!(" in draw order {}", d.draw_order),
             };
+            if !args.texture_format.is_empty() {
+                order.push_str(&format!(" with textures as {}", d.texture_format));
+            }
             eprintln!(
                 "wasp: characterising {}{order} ({} of {})",
                 d.name,
@@ -781,8 +809,14 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
                 rows.push(c)
             }
             Err(e) => {
-                eprintln!("wasp: {} ({}): {e}", d.name, d.draw_order);
-                failed.push(format!("{} ({})", d.name, d.draw_order));
+                eprintln!(
+                    "wasp: {} ({}, {}): {e}",
+                    d.name, d.draw_order, d.texture_format
+                );
+                failed.push(format!(
+                    "{} ({}, {})",
+                    d.name, d.draw_order, d.texture_format
+                ));
             }
         }
     }

@@ -89,6 +89,14 @@ pub struct Characterization {
     /// effect: a 2D scene is always drawn as loaded).
     #[serde(default)]
     pub draw_order: DrawOrder,
+    /// How the textures were stored (the trace's `texture-format`, `rgba8`
+    /// when it names none).
+    #[serde(default = "rgba8")]
+    pub texture_format: String,
+    /// Distinct blocks per tile with a warp (the tile's texture footprint,
+    /// a mean over tiles).
+    #[serde(default)]
+    pub blocks_per_tile: f64,
     /// Texture instructions / instructions (Table I).
     pub mem_instr_ratio: f64,
     /// Memory-block reuse in tile (Table I).
@@ -106,6 +114,10 @@ pub struct Characterization {
     pub footprints: Vec<SubsetFootprint>,
     /// Seconds to rasterize (not part of the figures).
     pub raster_seconds: f64,
+}
+
+fn rgba8() -> String {
+    "rgba8".into()
 }
 
 /// The paper's value of a subset's footprint ratio, where stated.
@@ -221,6 +233,13 @@ pub fn characterize(scene: &str, frame: &Frame, raster_seconds: f64) -> Characte
         rejected_early_z: rejected,
         rejected_early_z_share: ratio(rejected as f64, (rejected + s.warps) as f64),
         draw_order: frame.stats.draw_order,
+        texture_format: frame
+            .trace
+            .header()
+            .texture_format
+            .clone()
+            .unwrap_or_else(rgba8),
+        blocks_per_tile: ratio(s.tile_unique_blocks as f64, s.warp_tiles as f64),
         mem_instr_ratio: s.mem_instr_ratio,
         reuse: s.reuse,
         cf: s.cf,
@@ -242,8 +261,8 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
 }
 
 /// Load, rasterize (trace only, 64-pixel tiles, in the definition's draw
-/// order; hidden-surface removal by a depth pre-pass if `depth_prepass`)
-/// and characterise a scene.
+/// order and texture format; hidden-surface removal by a depth pre-pass if
+/// `depth_prepass`) and characterise a scene.
 pub fn characterize_def(
     def: &SceneDef,
     depth_prepass: bool,
@@ -253,6 +272,7 @@ pub fn characterize_def(
         colour: false,
         depth_prepass,
         draw_order: def.draw_order,
+        texture_format: def.texture_format,
         ..RasterOptions::default()
     };
     let (frame, secs) = rasterize_timed(&scene, def.width, def.height, &opts)?;
@@ -277,6 +297,7 @@ const FIGURES: &[Figure] = &[
     ),
     ("quad positions", |c| c.positions.to_string(), "-"),
     ("draw order", |c| c.draw_order.to_string(), "-"),
+    ("texture format", |c| c.texture_format.clone(), "-"),
     (
         "shaded warps per quad position",
         |c| format!("{:.2}", c.warps_per_position),
@@ -311,6 +332,11 @@ const FIGURES: &[Figure] = &[
         "CF (blocks/warp)",
         |c| format!("{:.2}", c.cf),
         "2.5 mean (III-B)",
+    ),
+    (
+        "distinct blocks per tile",
+        |c| format!("{:.1}", c.blocks_per_tile),
+        "-",
     ),
     (
         "blocks/tex instr",
@@ -396,7 +422,7 @@ pub fn csv(rows: &[Characterization]) -> String {
         "scene,workload,width,height,tiles,warps,warps_per_tile,positions,warps_per_position,\
          rejected_early_z,mem_instr_ratio,reuse,cf,blocks_per_tex_instr,min_estimate1,\
          min_estimate2,draw_order,warps_per_position_p50,warps_per_position_p90,\
-         warps_per_position_p99,rejected_early_z_share",
+         warps_per_position_p99,rejected_early_z_share,texture_format,blocks_per_tile",
     );
     if let Some(r) = rows.first() {
         for f in &r.footprints {
@@ -411,7 +437,7 @@ pub fn csv(rows: &[Characterization]) -> String {
         let _ = write!(
             out,
             "{},\"{}\",{},{},{},{},{:.3},{},{:.4},{},{:.5},{:.4},{:.4},{:.4},{:.5},{:.5},{},{:.4},\
-             {:.4},{:.4},{:.5}",
+             {:.4},{:.4},{:.5},{},{:.2}",
             c.scene,
             c.workload.replace('"', "'"),
             c.width,
@@ -432,7 +458,9 @@ pub fn csv(rows: &[Characterization]) -> String {
             c.warps_per_position_p50,
             c.warps_per_position_p90,
             c.warps_per_position_p99,
-            c.rejected_early_z_share
+            c.rejected_early_z_share,
+            c.texture_format,
+            c.blocks_per_tile
         );
         for f in &c.footprints {
             let _ = write!(out, ",{:.5}", f.footprint_ratio);
@@ -462,6 +490,7 @@ mod tests {
             description: String::new(),
             shader: None,
             draw_order: Default::default(),
+            texture_format: Default::default(),
         };
         let c = characterize_def(&def, false).unwrap();
         assert_eq!(c.footprints.len(), SubsetSpec::all().len());

@@ -10,9 +10,11 @@
 //! height = 768
 //! description = "Lighthouse track, behind the first start position"
 //! draw_order = "as-loaded"      # optional: as-loaded (default) | front-to-back-object | front-to-back-draw
+//! texture_format = "rgba8"      # optional: rgba8 (default) | etc2 | etc2-rgb | etc2-rgba | astc-4x4 | astc-6x6 | astc-8x8
 //! ```
 
 use super::raster::DrawOrder;
+use super::texture::FormatChoice;
 use super::SceneError;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -105,6 +107,11 @@ pub struct SceneDef {
     /// default, `front-to-back-object` or `front-to-back-draw`).
     #[serde(default)]
     pub draw_order: DrawOrder,
+    /// How the scene's textures are stored ([`FormatChoice`]: `rgba8`, the
+    /// default, the `etc2` rule, or one format for all; see
+    /// docs/textures.md).
+    #[serde(default)]
+    pub texture_format: FormatChoice,
 }
 
 impl SceneDef {
@@ -249,6 +256,7 @@ pub(crate) fn test_def(game: Game, map: &str, camera: &str, width: u32, height: 
         description: String::new(),
         shader: None,
         draw_order: Default::default(),
+        texture_format: Default::default(),
     }
 }
 
@@ -308,6 +316,30 @@ mod tests {
         assert!(
             m.contains("`back-to-front`")
                 && m.contains("`as-loaded`, `front-to-back-object`, `front-to-back-draw`"),
+            "{m}"
+        );
+    }
+
+    #[test]
+    fn the_texture_format_is_optional_and_checked() {
+        let ok = "name = \"x\"\ngame = \"supertuxkart\"\nmap = \"m\"\ncamera = \"start:0\"\nwidth = 64\nheight = 32\n";
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        assert_eq!(d.texture_format, FormatChoice::Rgba8);
+        for c in FormatChoice::all() {
+            let text = format!("{ok}texture_format = \"{c}\"\n");
+            let d = SceneDef::parse(&text, Path::new("x.toml")).unwrap();
+            assert_eq!(d.texture_format, c);
+        }
+        let e = SceneDef::parse(
+            &format!("{ok}texture_format = \"dxt1\"\n"),
+            Path::new("dir/x.toml"),
+        )
+        .unwrap_err();
+        let m = e.to_string();
+        assert!(m.starts_with("dir/x.toml: ") && m.contains("line 7"), "{m}");
+        assert!(
+            m.contains("unknown texture format `dxt1`")
+                && m.contains("rgba8, etc2, etc2-rgb, etc2-rgba, astc-4x4, astc-6x6, astc-8x8"),
             "{m}"
         );
     }

@@ -50,6 +50,7 @@ mod tests {
             description: String::new(),
             shader: None,
             draw_order: Default::default(),
+            texture_format: Default::default(),
         };
         assert_eq!(load_scene(&def).unwrap().name, "procedural:sprites");
     }

@@ -21,6 +21,7 @@
 //!   maximum is drawn bottom right.
 
 use super::raster::{rasterize_timed, DrawOrder, Frame, RasterOptions};
+use super::texture::FormatChoice;
 use super::{Scene, SceneError};
 use std::fmt;
 use std::path::Path;
@@ -133,6 +134,8 @@ pub struct RenderRequest {
     pub threads: usize,
     /// The order of the opaque geometry ([`RasterOptions::draw_order`]).
     pub draw_order: DrawOrder,
+    /// How the textures are stored ([`RasterOptions::texture_format`]).
+    pub texture_format: FormatChoice,
 }
 
 /// A rendered frame.
@@ -180,6 +183,7 @@ pub fn render(
         depth_prepass: req.depth_prepass,
         threads: req.threads,
         draw_order: req.draw_order,
+        texture_format: req.texture_format,
         ..RasterOptions::default()
     };
     let (frame, raster_seconds) =
@@ -499,6 +503,7 @@ pub(crate) fn write_preview(scene: &Scene, width: u32, height: u32, out: &Path) 
         depth_prepass: false,
         threads: 0,
         draw_order: DrawOrder::AsLoaded,
+        texture_format: FormatChoice::Rgba8,
     };
     let r = render(scene, width, height, &req, &mut |_, _| Ok(Vec::new())).expect("renders");
     write_png(out, &r.image, width, height).expect("writes the PNG");

@@ -3,8 +3,8 @@
 //!
 //! A point names a scene, a base configuration (`paper`, `paper-width2` or
 //! a TOML file) and the `--set` overrides applied to it in order, and
-//! optionally the draw order the scene is rendered in (default: the scene
-//! definition's own). Every
+//! optionally the draw order the scene is rendered in and the format its
+//! textures are stored in (default: the scene definition's own). Every
 //! other knob a study varies (policy, dispatch, subset, ideal memory,
 //! warps, MSHRs) is one of those overrides, so two points that describe the
 //! same machine on the same scene resolve to the same effective
@@ -25,6 +25,7 @@ use std::sync::OnceLock;
 use wasp_frontend::def::SceneDef;
 use wasp_frontend::fetch;
 use wasp_frontend::raster::DrawOrder;
+use wasp_frontend::texture::FormatChoice;
 use wasp_sim::config::MachineConfig;
 
 /// One scene on one machine.
@@ -42,6 +43,11 @@ pub struct Point {
     /// on two traces and have two keys.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub draw_order: Option<DrawOrder>,
+    /// How the scene's textures are stored (`None`: the scene definition's
+    /// `texture_format`). Points of one scene in two formats run on two
+    /// traces and have two keys.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub texture_format: Option<FormatChoice>,
 }
 
 impl Point {
@@ -52,6 +58,7 @@ impl Point {
             config: config.to_string(),
             sets: sets.iter().map(|s| s.to_string()).collect(),
             draw_order: None,
+            texture_format: None,
         }
     }
 
@@ -63,11 +70,21 @@ impl Point {
         }
     }
 
+    /// The same point on the scene with its textures stored as `format`.
+    pub fn stored(&self, format: FormatChoice) -> Point {
+        Point {
+            texture_format: Some(format),
+            ..self.clone()
+        }
+    }
+
     /// The scene definition `def` (of [`Point::scene`]) as this point
-    /// renders it: with the point's draw order, if it names one.
+    /// renders it: with the point's draw order and texture format, where
+    /// it names them.
     pub fn scene_def(&self, def: &SceneDef) -> SceneDef {
         SceneDef {
             draw_order: self.draw_order.unwrap_or(def.draw_order),
+            texture_format: self.texture_format.unwrap_or(def.texture_format),
             ..def.clone()
         }
     }
@@ -84,6 +101,9 @@ impl Point {
         let mut s = format!("{} on {}", self.scene, self.config);
         if let Some(o) = self.draw_order {
             s.push_str(&format!(" --draw-order {o}"));
+        }
+        if let Some(f) = self.texture_format {
+            s.push_str(&format!(" --texture-format {f}"));
         }
         for x in &self.sets {
             s.push_str(" --set ");
@@ -237,6 +257,24 @@ mod tests {
         assert!(!json.contains("draw_order"), "{json}");
         let back: Point = serde_json::from_str(&serde_json::to_string(&ordered).unwrap()).unwrap();
         assert_eq!(back, ordered);
+    }
+
+    #[test]
+    fn two_texture_formats_of_a_scene_make_two_keys() {
+        let def = wasp_frontend::def::lookup("procedural-plane").unwrap();
+        let cfg = Resolver::default()
+            .config(&Point::new("procedural-plane", "paper", &[]))
+            .unwrap();
+        let p = Point::new("procedural-plane", "paper", &[]);
+        let key = |p: &Point| point_key("bin", &scene_identity(&p.scene_def(&def)), &cfg);
+        let etc2 = p.stored(FormatChoice::Etc2);
+        assert_ne!(key(&p), key(&etc2));
+        assert_eq!(key(&p), key(&p.stored(FormatChoice::Rgba8)));
+        assert!(etc2.describe().ends_with("--texture-format etc2"));
+        let json = serde_json::to_string(&p).unwrap();
+        assert!(!json.contains("texture_format"), "{json}");
+        let back: Point = serde_json::from_str(&serde_json::to_string(&etc2).unwrap()).unwrap();
+        assert_eq!(back, etc2);
     }
 
     #[test]

@@ -20,6 +20,7 @@ use std::time::Instant;
 use wasp_frontend::characterize::{characterize, Characterization};
 use wasp_frontend::def::{self, SceneDef};
 use wasp_frontend::raster::{rasterize_timed, DrawOrder, Frame, RasterOptions};
+use wasp_frontend::texture::FormatChoice;
 use wasp_frontend::{fetch, load};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::run::{simulate, simulate_timeline, RunOptions};
@@ -181,8 +182,16 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     // the versions of the packages its data came from, known once fetched.
     fetch_games(tasks, &mut scenes, opts)?;
     let (mut out, mut todo) = resolve(tasks, cache, &mut scenes)?;
-    // Group by scene, draw order and tile size, in scene order.
-    let group_key = |r: &Ready| (r.def.name.clone(), r.def.draw_order, r.cfg.gpu.tile_size);
+    // Group by scene, draw order, texture format and tile size, in scene
+    // order.
+    let group_key = |r: &Ready| {
+        (
+            r.def.name.clone(),
+            r.def.draw_order,
+            r.def.texture_format,
+            r.cfg.gpu.tile_size,
+        )
+    };
     todo.sort_by_key(group_key);
     let (groups, group_of) = group_by_scene(&todo);
     let results = execute(&todo, &groups, &group_of, cache, opts);
@@ -239,7 +248,7 @@ fn resolve(
 ) -> Result<(Outcome, Vec<Ready>), String> {
     let mut out = Outcome::default();
     let mut resolver = Resolver::default();
-    let mut ids: HashMap<(String, DrawOrder), String> = HashMap::new();
+    let mut ids: HashMap<(String, DrawOrder, FormatChoice), String> = HashMap::new();
     let mut todo: Vec<Ready> = Vec::new();
     let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
     for t in tasks {
@@ -249,7 +258,7 @@ fn resolve(
             Task::Characterize { .. } => d,
         };
         let id = ids
-            .entry((d.name.clone(), d.draw_order))
+            .entry((d.name.clone(), d.draw_order, d.texture_format))
             .or_insert_with(|| scene_identity(&d))
             .clone();
         let (key, cfg) = task_key(t, &d, &id, &mut resolver)?;
@@ -342,7 +351,8 @@ fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
     }
 }
 
-/// The tasks (sorted by scene, draw order and tile size) grouped by them:
+/// The tasks (sorted by scene, draw order, texture format and tile size)
+/// grouped by them:
 /// the groups and each task's group.
 fn group_by_scene(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
     let mut groups: Vec<Group> = Vec::new();
@@ -350,7 +360,10 @@ fn group_by_scene(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
     for r in todo {
         let tile = r.cfg.gpu.tile_size;
         let same = groups.last().is_some_and(|g| {
-            g.def.name == r.def.name && g.def.draw_order == r.def.draw_order && g.tile == tile
+            g.def.name == r.def.name
+                && g.def.draw_order == r.def.draw_order
+                && g.def.texture_format == r.def.texture_format
+                && g.tile == tile
         });
         if !same {
             groups.push(Group {
@@ -478,6 +491,7 @@ pub fn render(d: &SceneDef, tile: u32) -> Result<Frame, String> {
         colour: false,
         threads: 1,
         draw_order: d.draw_order,
+        texture_format: d.texture_format,
         ..RasterOptions::default()
     };
     rasterize_timed(&scene, d.width, d.height, &opts)

@@ -403,6 +403,7 @@ impl Sweep {
                         config: c.base.clone(),
                         sets,
                         draw_order: None,
+                        texture_format: None,
                     };
                     let cfg = resolver.config(&p).map_err(|e| {
                         let d = d.as_deref().unwrap_or("its own dispatch");

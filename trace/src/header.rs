@@ -15,6 +15,11 @@ pub struct TraceHeader {
     pub frame_h: u32,
     /// Tile edge in pixels (even).
     pub tile: u32,
+    /// How the textures whose blocks the trace lists were stored (the
+    /// `texture-format NAME` line): a lowercase name such as `etc2` or
+    /// `astc-8x8`; `None` when the trace does not say, which for a trace
+    /// of the front end means RGBA8 (every trace before the line existed).
+    pub texture_format: Option<String>,
     /// Header comment lines, the text after `#` verbatim.
     pub notes: Vec<String>,
 }
@@ -27,6 +32,7 @@ impl TraceHeader {
             frame_w,
             frame_h,
             tile,
+            texture_format: None,
             notes: Vec::new(),
         }
     }
@@ -45,6 +51,9 @@ impl TraceHeader {
         }
         for note in &self.notes {
             check_text(note, TextField::Note)?;
+        }
+        if let Some(f) = &self.texture_format {
+            check_format_name(f)?;
         }
         for (dim, v) in [("width", self.frame_w), ("height", self.frame_h)] {
             if v == 0 || v > MAX_FRAME_DIM {
@@ -88,6 +97,20 @@ impl TraceHeader {
 
 const BLANKS: &[char] = &[' ', '\t'];
 
+/// Checks a texture format name: 1 to 32 lowercase ASCII letters, digits
+/// and `-`.
+pub(crate) fn check_format_name(s: &str) -> Result<(), Problem> {
+    let ok = !s.is_empty()
+        && s.len() <= 32
+        && s.bytes()
+            .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'-');
+    if ok {
+        Ok(())
+    } else {
+        Err(Problem::BadTextureFormat(s.to_string()))
+    }
+}
+
 /// Checks that a workload name or note holds no character a line cannot.
 pub(crate) fn check_text(s: &str, field: TextField) -> Result<(), Problem> {
     if s.chars().any(|c| c.is_control() && c != '\t') {
@@ -124,6 +147,9 @@ mod tests {
             bad(TraceHeader::new("w", 1, 1, 514)),
             Problem::BadTileSize(514)
         );
+        let mut f = TraceHeader::new("w", 1, 1, 2);
+        f.texture_format = Some("ETC 2".into());
+        assert_eq!(bad(f), Problem::BadTextureFormat("ETC 2".into()));
         let mut h = TraceHeader::new("w", 1, 1, 2);
         h.notes.push("x\ry".into());
         assert!(matches!(

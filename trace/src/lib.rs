@@ -54,10 +54,21 @@
 //!   (everything after the `#`, verbatim) and a writer writes them back right
 //!   after line 1. Other comments are dropped. There are no comments at the end
 //!   of a line.
-//! * **Header**, before the first tile and in this order, each exactly once:
+//! * **Header**, before the first tile and in this order, each exactly once
+//!   (`texture-format` at most once):
 //!   * `workload NAME` — provenance: NAME is the rest of the line, not empty.
 //!     A synthetic workload's name starts with `synthetic:` and names its
 //!     generator parameters.
+//!   * `texture-format NAME` (optional) — how the textures whose blocks the
+//!     texture instructions list are stored: NAME is 1 to 32 lowercase
+//!     letters, digits and `-`, the front end's format choice (`etc2`,
+//!     `etc2-rgb`, `etc2-rgba`, `astc-4x4`, `astc-6x6`, `astc-8x8`: see
+//!     `docs/textures.md`). Without the line a trace does not say; a trace of
+//!     the front end then holds RGBA8 textures (a 64-byte block is 4x4
+//!     texels), as every trace did before the line existed, and the front
+//!     end writes no line for RGBA8, so such traces are unchanged. A reader
+//!     accepts the line in every version and keeps its name; it changes
+//!     nothing the cycle model does (a block is a block).
 //!   * `frame W H tile T` — frame width and height in pixels (1 to 65536) and
 //!     the tile edge in pixels (even, 2 to 512). The frame is cut into
 //!     ceil(W/T) x ceil(H/T) tiles; a tile holds (T/2) x (T/2) quads of 2x2

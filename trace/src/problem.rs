@@ -97,6 +97,9 @@ pub enum Problem {
     },
     /// The workload name is empty.
     EmptyWorkload,
+    /// A `texture-format` name that is not 1 to 32 lowercase letters,
+    /// digits and `-`.
+    BadTextureFormat(String),
     /// A workload name or note holds characters a line cannot.
     BadText {
         /// Which field.
@@ -293,6 +296,11 @@ impl fmt::Display for Problem {
                  `frame W H tile T` before the first tile)",
                 clip(found)
             ),
+            MisplacedHeader("texture-format") => write!(
+                f,
+                "header line `texture-format` repeated or after the `frame` line (expected \
+                 it at most once, between `workload NAME` and `frame W H tile T`)"
+            ),
             MisplacedHeader(h) => write!(
                 f,
                 "header line `{h}` repeated or after the first tile (expected it once, \
@@ -329,6 +337,12 @@ impl fmt::Display for Problem {
                 clip(found)
             ),
             EmptyWorkload => write!(f, "empty workload name (expected `workload NAME`)"),
+            BadTextureFormat(s) => write!(
+                f,
+                "texture format `{}` (expected 1 to 32 lowercase letters, digits and `-`, \
+                 e.g. `texture-format etc2`)",
+                clip(s)
+            ),
             BadText { field, why } => {
                 let name = match field {
                     TextField::Workload => "workload name",

@@ -9,4 +9,5 @@ mod format_md;
 mod fuzz;
 mod malformed;
 mod rejected;
+mod texture_format;
 mod trilinear;

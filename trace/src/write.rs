@@ -18,6 +18,9 @@ impl Trace {
             let _ = writeln!(buf, "#{note}");
         }
         let _ = writeln!(buf, "workload {}", h.workload);
+        if let Some(f) = &h.texture_format {
+            let _ = writeln!(buf, "texture-format {f}");
+        }
         let _ = writeln!(buf, "frame {} {} tile {}", h.frame_w, h.frame_h, h.tile);
         out.write_all(buf.as_bytes())?;
         for tile in &self.tiles {

@@ -25,6 +25,11 @@ pub struct RasterOptions {
     /// The order of the opaque geometry ([`DrawOrder`]; the default, as
     /// loaded, is the order every trace had before the option existed).
     pub draw_order: DrawOrder,
+    /// How the textures are stored ([`FormatChoice`]: RGBA8, the default
+    /// and the layout of every trace before compressed formats, or a
+    /// compressed format or rule); it moves the blocks a texture
+    /// instruction touches, not the picture.
+    pub texture_format: FormatChoice,
 }
 
 impl Default for RasterOptions {
@@ -36,6 +41,7 @@ impl Default for RasterOptions {
             depth_prepass: false,
             threads: 0,
             draw_order: DrawOrder::AsLoaded,
+            texture_format: FormatChoice::Rgba8,
         }
     }
 }

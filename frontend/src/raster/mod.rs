@@ -92,7 +92,7 @@
 //! their heap layout). [`Frame::timings`] says where the time went (`wasp
 //! render --timings`).
 
-use super::texture::{QuadTexels, TextureSet, TextureUse};
+use super::texture::{FormatChoice, QuadTexels, TextureFormat, TextureSet, TextureUse};
 use super::{Blend, Camera, Scene, SceneError, ShaderOp, Vec3};
 use crate::trace::{Trace, TraceHeader};
 use serde::Serialize;

@@ -28,7 +28,8 @@ pub(super) fn rasterize_with(
     let setups = geometry(scene, &runs, width, height, opts, &mut stats)?;
     timings.geometry = clock.elapsed().as_secs_f64();
     let tex_clock = std::time::Instant::now();
-    let uses = texture_uses(scene, &setups);
+    let formats = texture_formats(scene, opts.texture_format)?;
+    let uses = texture_uses(scene, &setups, &formats);
     let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
     timings.textures = tex_clock.elapsed().as_secs_f64();
     let mats = material_infos(scene);
@@ -40,7 +41,7 @@ pub(super) fn rasterize_with(
     let mut join = Join {
         scene_name: &scene.name,
         stats,
-        builder: trace_builder(scene, width, height, opts.tile, order_note)?,
+        builder: trace_builder(scene, width, height, opts, order_note)?,
         image: clear_image(width, height),
         width,
         height,
@@ -66,7 +67,7 @@ pub(super) fn rasterize_with(
         ..
     } = join;
     builder
-        .note(summary_note(&stats, &textures))
+        .note(summary_note(&stats, &textures, opts.texture_format))
         .map_err(|e| fail(format!("trace note: {e}")))?;
     let trace = builder
         .finish()
@@ -122,17 +123,27 @@ fn initial_stats(scene: &Scene, opts: &RasterOptions) -> RasterStats {
     }
 }
 
+/// The format of each texture under `choice` (RGBA8 without looking at
+/// the textures), or the error naming the texture that cannot take it.
+fn texture_formats(scene: &Scene, choice: FormatChoice) -> Result<Vec<TextureFormat>, SceneError> {
+    match choice {
+        FormatChoice::Rgba8 => Ok(vec![TextureFormat::Rgba8; scene.textures.len()]),
+        _ => choice.formats(scene),
+    }
+}
+
 /// How each texture is used: only those of materials a set-up triangle
 /// uses are sampled; an alpha test reads its material's first texture's
-/// alpha.
-fn texture_uses(scene: &Scene, setups: &[Setup]) -> Vec<TextureUse> {
-    let mut uses = vec![
-        TextureUse {
+/// alpha; each is stored in its entry of `formats`.
+fn texture_uses(scene: &Scene, setups: &[Setup], formats: &[TextureFormat]) -> Vec<TextureUse> {
+    let mut uses: Vec<TextureUse> = formats
+        .iter()
+        .map(|&format| TextureUse {
             sampled: false,
             alpha_tested: false,
-        };
-        scene.textures.len()
-    ];
+            format,
+        })
+        .collect();
     let mut used_mat = vec![false; scene.materials.len()];
     for s in setups {
         used_mat[s.material as usize] = true;
@@ -205,10 +216,13 @@ fn trace_builder(
     scene: &Scene,
     width: u32,
     height: u32,
-    t: u32,
+    opts: &RasterOptions,
     order_note: Option<String>,
 ) -> Result<TraceBuilder, SceneError> {
-    let mut header = TraceHeader::new(scene.name.clone(), width, height, t);
+    let mut header = TraceHeader::new(scene.name.clone(), width, height, opts.tile);
+    // RGBA8 writes no line: its traces stay as they were.
+    header.texture_format = (opts.texture_format != FormatChoice::Rgba8)
+        .then(|| opts.texture_format.name().to_string());
     header
         .notes
         .push(format!(" scene {} ({})", scene.name, scene.source));
@@ -332,13 +346,20 @@ fn raster_tiles(
 }
 
 /// The trace's closing note: what was rasterized and how much overdraw,
-/// and where the texture heap is.
-fn summary_note(stats: &RasterStats, textures: &TextureSet) -> String {
+/// and where the texture heap is and how its textures are stored.
+fn summary_note(stats: &RasterStats, textures: &TextureSet, choice: FormatChoice) -> String {
+    let layout = match choice {
+        FormatChoice::Rgba8 => "4x4-texel 64-byte blocks in Morton order".to_string(),
+        _ => format!(
+            "textures as {choice} ({}), 64-byte blocks in Morton order",
+            format_counts(textures)
+        ),
+    };
     format!(
         " rasterized by wasp scene::raster: {} triangles ({} clipped, {} culled), {} quads \
          covered, {} rejected by early-Z, {} fragments shaded, one warp each in \
          rasterization order, at {} quad positions ({:.2} warps per position); texture heap \
-         {} KiB at {:#x}, 4x4-texel 64-byte blocks in Morton order",
+         {} KiB at {:#x}, {layout}",
         stats.primitives,
         stats.clipped,
         stats.culled_outside + stats.culled_back_faces,
@@ -354,6 +375,23 @@ fn summary_note(stats: &RasterStats, textures: &TextureSet) -> String {
         textures.heap_bytes() / 1024,
         crate::texture::HEAP_BASE
     )
+}
+
+/// How many textures of the set are in each format: `12 etc2-rgb, 3
+/// etc2-rgba`, formats in [`TextureFormat::ALL`] order.
+fn format_counts(textures: &TextureSet) -> String {
+    let parts: Vec<String> = TextureFormat::ALL
+        .iter()
+        .filter_map(|&f| {
+            let n = textures.textures().iter().filter(|t| t.format == f).count();
+            (n > 0).then(|| format!("{n} {f}"))
+        })
+        .collect();
+    if parts.is_empty() {
+        "no textures".into()
+    } else {
+        parts.join(", ")
+    }
 }
 
 pub(super) fn to_u8(c: [f32; 4]) -> [u8; 4] {
@@ -512,6 +550,7 @@ mod tests {
                 description: String::new(),
                 shader: None,
                 draw_order: Default::default(),
+                texture_format: Default::default(),
             };
             let scene = procedural::load(&def).unwrap();
             for depth_prepass in [false, true] {
@@ -538,5 +577,88 @@ mod tests {
             }
         }
         assert!(rejected > 0, "no procedural scene rejected a quad");
+    }
+
+    #[test]
+    fn compressed_formats_move_blocks_not_warps_and_are_recorded() {
+        let scene = ortho_scene(
+            vec![quad_mesh(0.0, 0.0, 256.0, 192.0, 0.0, 0)],
+            vec![mat("m", Blend::Opaque, 0)],
+            256.0,
+            192.0,
+        );
+        let with = |choice: FormatChoice| {
+            let opts = RasterOptions {
+                texture_format: choice,
+                threads: 1,
+                ..RasterOptions::default()
+            };
+            rasterize(&scene, 256, 192, &opts).unwrap()
+        };
+        let plain = rasterize(&scene, 256, 192, &RasterOptions::default()).unwrap();
+        let rgba8 = with(FormatChoice::Rgba8);
+        assert_eq!(trace_bytes(&rgba8), trace_bytes(&plain));
+        assert_eq!(rgba8.trace.header().texture_format, None);
+        let etc2 = with(FormatChoice::Etc2);
+        let astc = with(FormatChoice::All(TextureFormat::Astc8x8));
+        assert_eq!(etc2.trace.header().texture_format.as_deref(), Some("etc2"));
+        let text = etc2.trace.to_text();
+        assert!(text.contains("\ntexture-format etc2\n"), "{text:.300}");
+        assert!(
+            text.contains("textures as etc2 (1 etc2-rgb)"),
+            "{text:.900}"
+        );
+        let (a, b, c) = (plain.trace.stats(), etc2.trace.stats(), astc.trace.stats());
+        assert_eq!((a.warps, a.tex_instrs), (b.warps, b.tex_instrs));
+        assert_eq!(plain.image, etc2.image, "the picture is the same");
+        // A line holds 8x (ETC2 RGB) and 16x (ASTC 8x8) the texels.
+        // Level 0 of the 64x64 texture, all of it read (magnified).
+        assert_eq!(a.frame_unique_blocks, 256);
+        assert_eq!(b.frame_unique_blocks, 32);
+        assert_eq!(c.frame_unique_blocks, 16);
+        assert!(c.tile_unique_blocks < b.tile_unique_blocks);
+        assert!(b.tile_unique_blocks < a.tile_unique_blocks);
+        assert!(c.cf <= b.cf && b.cf < a.cf, "{} {} {}", a.cf, b.cf, c.cf);
+    }
+
+    #[test]
+    fn a_texture_whose_alpha_is_used_cannot_be_forced_into_etc2_rgb() {
+        let mut scene = ortho_scene(
+            vec![quad_mesh(0.0, 0.0, 128.0, 128.0, 0.0, 0)],
+            vec![mat("leaves", Blend::AlphaTest, 0)],
+            128.0,
+            128.0,
+        );
+        let rgb = RasterOptions {
+            texture_format: FormatChoice::All(TextureFormat::Etc2Rgb),
+            ..RasterOptions::default()
+        };
+        // Opaque texels: nothing is lost, ETC2 RGB is fine.
+        assert!(rasterize(&scene, 128, 128, &rgb).is_ok());
+        scene.textures[0].rgba[3] = 0;
+        let e = rasterize(&scene, 128, 128, &rgb).unwrap_err().to_string();
+        assert!(
+            e.starts_with("test:ortho: texture `c` cannot be stored as etc2-rgb"),
+            "{e}"
+        );
+        assert!(
+            e.contains("allowed texture formats for it: rgba8, etc2, etc2-rgba, astc-4x4, astc-6x6, astc-8x8"),
+            "{e}"
+        );
+        // The rule gives it ETC2 RGBA.
+        let rule = RasterOptions {
+            texture_format: FormatChoice::Etc2,
+            ..RasterOptions::default()
+        };
+        let f = rasterize(&scene, 128, 128, &rule).unwrap();
+        assert!(f
+            .trace
+            .header()
+            .notes
+            .iter()
+            .any(|n| n.contains("(1 etc2-rgba)")));
+        // An opaque material never needs the alpha.
+        scene.materials[0].blend = Blend::Opaque;
+        assert!(rasterize(&scene, 128, 128, &rgb).is_ok());
     }
 }

@@ -142,6 +142,7 @@ mod tests {
         let u = |alpha_tested| TextureUse {
             sampled: true,
             alpha_tested,
+            ..TextureUse::default()
         };
         let alpha = TextureSet::with_threads(&texs, 2, &[u(true), u(false), u(true), u(true)]);
         // Unsampled textures: the same layout, no texels beyond level 0.
@@ -151,6 +152,7 @@ mod tests {
             &[TextureUse {
                 sampled: false,
                 alpha_tested: true,
+                ..TextureUse::default()
             }],
         );
         for (a, b) in one.textures().iter().zip(bare.textures()) {

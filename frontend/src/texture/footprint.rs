@@ -222,9 +222,10 @@ impl TextureSet<'_> {
         let lambda = self.quad_lambda(sample.texture, &uvs);
         let levels = self.levels_for(sample.texture, sample.filter, lambda);
         let (la, lb, _) = levels;
-        // A block holds the texels of one (x / 4, y / 4) cell of its level,
-        // so the distinct cells the texels fall in (few: at most 16 per
-        // level) give the distinct blocks; levels never share a block.
+        // A block holds the texels of one cell of its level (4x4 texels in
+        // RGBA8, the format's line region otherwise), so the distinct cells
+        // the texels fall in (few: at most 16 per level) give the distinct
+        // blocks; levels never share a block.
         let mut push_level = |level: &MipLevel, slot: usize| {
             let mut cells = [0u64; 16];
             let mut n = 0;
@@ -241,8 +242,8 @@ impl TextureSet<'_> {
                 // cell edge (or wrap), and so in y: only the distinct cells
                 // are looked up (nearest: one texel, x1 = x0, y1 = y0).
                 let f = footprint(level, sample.filter, tex.repeat, *uv);
-                let (cx0, cx1) = (f.x0 / BLOCK_TEXELS, f.x1 / BLOCK_TEXELS);
-                let (cy0, cy1) = (f.y0 / BLOCK_TEXELS, f.y1 / BLOCK_TEXELS);
+                let (cx0, cy0) = level.cell_of(f.x0, f.y0);
+                let (cx1, cy1) = level.cell_of(f.x1, f.y1);
                 add(cx0, cy0);
                 if cx1 != cx0 {
                     add(cx1, cy0);
@@ -257,9 +258,11 @@ impl TextureSet<'_> {
                     q.px[slot][i] = f;
                 }
             }
-            out.extend(cells[..n].iter().map(|&k| {
-                level.block_of((k as u32) * BLOCK_TEXELS, ((k >> 32) as u32) * BLOCK_TEXELS)
-            }));
+            out.extend(
+                cells[..n]
+                    .iter()
+                    .map(|&k| level.block_of_cell(k as u32, (k >> 32) as u32)),
+            );
         };
         push_level(&tex.levels[la], 0);
         if lb != la {

@@ -1,7 +1,8 @@
 //! The texture heap: each texture's mip levels laid out block-linear
-//! (4x4-texel blocks in Morton order, levels one after another, textures
-//! aligned to [`TEXTURE_ALIGN`] from [`HEAP_BASE`]), the chains built on
-//! worker threads.
+//! (64-byte lines, each holding the texel region its format packs into a
+//! line, in Morton order; levels one after another, textures aligned to
+//! [`TEXTURE_ALIGN`] from [`HEAP_BASE`]), the chains built on worker
+//! threads.
 
 use super::*;
 
@@ -19,6 +20,9 @@ pub struct MipLevel<'a> {
     pub first_block: u64,
     /// Blocks the level occupies (its padded block grid).
     pub block_count: u64,
+    /// The texel region one block (64-byte line) holds: its width and
+    /// height as log2 when a power of two, else the width and height.
+    cell: Cell,
     /// log2 of the padded block grid's width.
     pw_log2: u32,
     /// log2 of the Morton square edge in blocks.
@@ -29,10 +33,26 @@ pub struct MipLevel<'a> {
 }
 
 impl MipLevel<'_> {
+    /// The cell (column, row of the level's grid of 64-byte blocks) of
+    /// texel (`x`, `y`).
+    #[inline]
+    pub fn cell_of(&self, x: u32, y: u32) -> (u32, u32) {
+        match self.cell {
+            Cell::Shift(sx, sy) => (x >> sx, y >> sy),
+            Cell::Div(w, h) => (x / w, y / h),
+        }
+    }
+
     /// Block number of the block holding texel (`x`, `y`) (inside the level).
     #[inline]
     pub fn block_of(&self, x: u32, y: u32) -> u64 {
-        let (bx, by) = (x / BLOCK_TEXELS, y / BLOCK_TEXELS);
+        let (bx, by) = self.cell_of(x, y);
+        self.block_of_cell(bx, by)
+    }
+
+    /// Block number of the block of cell (`bx`, `by`) ([`MipLevel::cell_of`]).
+    #[inline]
+    pub fn block_of_cell(&self, bx: u32, by: u32) -> u64 {
         let mask = (1u32 << self.k) - 1;
         let inner = morton2(bx & mask, by & mask);
         let squares_per_row = 1u64 << (self.pw_log2 - self.k);
@@ -41,11 +61,32 @@ impl MipLevel<'_> {
     }
 }
 
+/// The texel region of a 64-byte block: edges as shifts (powers of two,
+/// the common case) or divisors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Cell {
+    Shift(u32, u32),
+    Div(u32, u32),
+}
+
+impl Cell {
+    fn of(format: TextureFormat) -> Cell {
+        let (w, h) = format.line_texels();
+        if w.is_power_of_two() && h.is_power_of_two() {
+            Cell::Shift(w.trailing_zeros(), h.trailing_zeros())
+        } else {
+            Cell::Div(w, h)
+        }
+    }
+}
+
 /// One texture in the heap: its mip chain and address range.
 #[derive(Clone, Debug)]
 pub struct HeapTexture<'a> {
     /// Name (from the scene).
     pub name: String,
+    /// How it is stored.
+    pub format: TextureFormat,
     /// Repeat (true) or clamp to edge.
     pub repeat: bool,
     /// Byte address of level 0.
@@ -63,20 +104,6 @@ pub struct TextureSet<'a> {
     end: u64,
 }
 
-/// Interleaves the low 16 bits of x (even bit positions) and y (odd).
-#[inline]
-fn morton2(x: u32, y: u32) -> u64 {
-    fn spread(v: u32) -> u64 {
-        let mut v = u64::from(v & 0xffff);
-        v = (v | (v << 8)) & 0x00ff_00ff;
-        v = (v | (v << 4)) & 0x0f0f_0f0f;
-        v = (v | (v << 2)) & 0x3333_3333;
-        v = (v | (v << 1)) & 0x5555_5555;
-        v
-    }
-    spread(x) | (spread(y) << 1)
-}
-
 /// How the front end uses a texture ([`TextureSet::with_threads`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TextureUse {
@@ -86,6 +113,8 @@ pub struct TextureUse {
     /// Whether an alpha test reads its alpha (then its levels get an
     /// alpha-only copy).
     pub alpha_tested: bool,
+    /// How it is stored ([`TextureFormat`]: where its texels' blocks lie).
+    pub format: TextureFormat,
 }
 
 impl Default for TextureUse {
@@ -93,6 +122,7 @@ impl Default for TextureUse {
         TextureUse {
             sampled: true,
             alpha_tested: false,
+            format: TextureFormat::Rgba8,
         }
     }
 }
@@ -123,7 +153,7 @@ impl<'a> TextureSet<'a> {
         let mut addr = HEAP_BASE;
         for (i, (t, chain)) in textures.iter().zip(chains).enumerate() {
             let with_alpha = use_of(i).alpha_tested && use_of(i).sampled;
-            let placed = place(t, chain, addr, with_alpha);
+            let placed = place(t, chain, addr, with_alpha, use_of(i).format);
             addr = (placed.base + placed.bytes).div_ceil(TEXTURE_ALIGN) * TEXTURE_ALIGN;
             out.push(placed);
         }
@@ -185,17 +215,27 @@ fn mip_chains<'a>(
     chains
 }
 
-/// Place texture `t`'s levels (`chain`) in the heap from `addr`: each
-/// level's 4x4-texel blocks in Morton order over a power-of-two grid of
-/// blocks, the levels one after the other; `with_alpha` adds each level's
+/// Place texture `t`'s levels (`chain`) in the heap from `addr`, stored
+/// as `format`: each level's 64-byte blocks (the texel region `format`
+/// packs into one) in Morton order over a power-of-two grid of blocks,
+/// the levels one after the other; `with_alpha` adds each level's
 /// alpha-only copy.
-fn place<'a>(t: &Texture, chain: Chain<'a>, addr: u64, with_alpha: bool) -> HeapTexture<'a> {
+fn place<'a>(
+    t: &Texture,
+    chain: Chain<'a>,
+    addr: u64,
+    with_alpha: bool,
+    format: TextureFormat,
+) -> HeapTexture<'a> {
     let base = addr;
     let mut levels = Vec::with_capacity(chain.len());
     let mut block = base / BLOCK_BYTES;
+    let (cw, ch) = format.line_texels();
     for (w, h, rgba) in chain {
-        let bw = w.div_ceil(BLOCK_TEXELS).next_power_of_two();
-        let bh = h.div_ceil(BLOCK_TEXELS).next_power_of_two();
+        // Whole format blocks, then whole lines: a line's region is a
+        // whole number of blocks, so ceil(w / region) is both.
+        let bw = w.div_ceil(cw).next_power_of_two();
+        let bh = h.div_ceil(ch).next_power_of_two();
         let (pw_log2, ph_log2) = (bw.trailing_zeros(), bh.trailing_zeros());
         let block_count = u64::from(bw) * u64::from(bh);
         let alpha = if with_alpha {
@@ -209,6 +249,7 @@ fn place<'a>(t: &Texture, chain: Chain<'a>, addr: u64, with_alpha: bool) -> Heap
             rgba,
             first_block: block,
             block_count,
+            cell: Cell::of(format),
             pw_log2,
             k: pw_log2.min(ph_log2),
             alpha,
@@ -217,6 +258,7 @@ fn place<'a>(t: &Texture, chain: Chain<'a>, addr: u64, with_alpha: bool) -> Heap
     }
     HeapTexture {
         name: t.name.clone(),
+        format,
         repeat: t.repeat,
         base,
         bytes: block * BLOCK_BYTES - base,
@@ -278,5 +320,61 @@ mod tests {
         all.sort_unstable();
         all.dedup();
         assert_eq!(all.len(), n, "no block shared between levels or textures");
+    }
+
+    #[test]
+    fn every_format_packs_its_line_region_into_one_block() {
+        let texs = [tex("a", 64, 64, true), tex("b", 100, 20, false)];
+        for format in TextureFormat::ALL {
+            let uses = [TextureUse {
+                format,
+                ..TextureUse::default()
+            }; 2];
+            let set = TextureSet::with_threads(&texs, 1, &uses);
+            let (cw, ch) = format.line_texels();
+            let mut all = Vec::new();
+            for ht in set.textures() {
+                assert_eq!(ht.format, format);
+                let (lo, hi) = (ht.base / 64, (ht.base + ht.bytes) / 64);
+                for l in &ht.levels {
+                    let mut mine = Vec::new();
+                    for y in 0..l.height {
+                        for x in 0..l.width {
+                            let blk = l.block_of(x, y);
+                            // The texel's line is its region's first texel's.
+                            assert_eq!(blk, l.block_of(x / cw * cw, y / ch * ch), "{format}");
+                            assert!(blk >= lo && blk < hi, "{format}");
+                            mine.push(blk);
+                        }
+                    }
+                    mine.sort_unstable();
+                    mine.dedup();
+                    let expect = l.width.div_ceil(cw) as usize * l.height.div_ceil(ch) as usize;
+                    assert_eq!(mine.len(), expect, "{format} {}x{}", l.width, l.height);
+                    all.extend(mine);
+                }
+            }
+            let n = all.len();
+            all.sort_unstable();
+            all.dedup();
+            assert_eq!(all.len(), n, "{format}: no block shared");
+        }
+        // ETC2 RGB: level 0 of a 64x64 texture is 4x8 lines of 16x8 texels;
+        // the first two lines side by side, then the one below.
+        let uses = [TextureUse {
+            format: TextureFormat::Etc2Rgb,
+            ..TextureUse::default()
+        }];
+        let set = TextureSet::with_threads(&texs[..1], 1, &uses);
+        let l0 = &set.textures()[0].levels[0];
+        assert_eq!(l0.block_count, 32);
+        assert_eq!(l0.block_of(16, 0), l0.first_block + 1);
+        assert_eq!(l0.block_of(0, 8), l0.first_block + 2);
+        assert_eq!(l0.block_of(15, 7), l0.first_block);
+        // RGBA8: 256 lines for the same level.
+        assert_eq!(
+            TextureSet::new(&texs[..1]).textures()[0].levels[0].block_count,
+            256
+        );
     }
 }

@@ -5,7 +5,11 @@
 //! # Layout
 //!
 //! * A 64-byte memory block (one cache line) holds a 4x4 block of RGBA8
-//!   texels (16 texels x 4 bytes).
+//!   texels (16 texels x 4 bytes), or, for a texture in a compressed
+//!   format, the texel region its compressed blocks fill (for example
+//!   16x8 texels of ETC2 RGB, 16x16 of ASTC 8x8): the module [`format`]
+//!   gives every format's region and where a texel's bytes lie in it.
+//!   Below, "block" is the 64-byte memory block and "cell" its region.
 //! * Each texture gets a full mip chain, box-filtered (2x2 average) from
 //!   level 0 down to 1x1 (an odd edge drops its last row or column, a
 //!   1-texel edge stays 1).
@@ -14,8 +18,8 @@
 //!   on a 64 KiB boundary ([`TEXTURE_ALIGN`]), in scene order, so two
 //!   textures never share a block. Its levels follow one another, level 0
 //!   first; each level starts on a block boundary.
-//! * Inside a level, the grid of 4x4-texel blocks is padded to powers of
-//!   two (`pw` x `ph` blocks) and stored in Morton (Z) order: the level is
+//! * Inside a level, the grid of cells (4x4 texels in RGBA8) is padded to
+//!   powers of two (`pw` x `ph` blocks) and stored in Morton (Z) order: the level is
 //!   cut into squares of `2^k` x `2^k` blocks (`2^k = min(pw, ph)`), blocks
 //!   inside a square in Morton order (x in the even bits, y in the odd
 //!   bits), squares in row-major order. This is how GPUs swizzle textures
@@ -59,16 +63,20 @@ mod filter;
 #[cfg(test)]
 mod fixtures;
 mod footprint;
+pub mod format;
 mod heap;
 mod mip;
 
 pub use footprint::*;
+use format::morton2;
+pub use format::{alpha_needed, FormatChoice, TextureFormat};
 pub use heap::*;
 use mip::*;
 
 /// Bytes of one memory block (cache line).
 pub const BLOCK_BYTES: u64 = 64;
-/// Texels along one edge of the texel block a memory block holds.
+/// Texels along one edge of the texel block a memory block holds in RGBA8
+/// ([`TextureFormat::line_texels`] for every format).
 pub const BLOCK_TEXELS: u32 = 4;
 /// Byte address of the texture heap.
 pub const HEAP_BASE: u64 = 0x1000_0000;

@@ -66,6 +66,11 @@ pub struct Metrics {
     pub oracle_reserve_wait: Option<f64>,
     /// The DRAM's mean queue wait under the oracle, and under WaSP.
     pub dram_wait: (Option<f64>, Option<f64>),
+    /// The baseline run's CF: distinct blocks per warp.
+    pub cf: Option<f64>,
+    /// The baseline run's distinct blocks per tile (Min_Estimate1 x warps
+    /// / tiles: the tiles' summed footprints over the tiles).
+    pub blocks_per_tile: Option<f64>,
 }
 
 impl Metrics {
@@ -170,6 +175,12 @@ pub fn metrics(
             stat(Variant::Oracle, "dram.avg_queue_wait"),
             stat(Variant::Wasp, "dram.avg_queue_wait"),
         ),
+        cf: stat(Variant::Baseline, "cf"),
+        blocks_per_tile: per_scene(&|s: &str| {
+            let r = rec(s, Variant::Baseline)?;
+            let (tiles, warps) = (r.get("tiles")?, r.get("warps")?);
+            (tiles > 0.0).then(|| r.get("min_estimate1").unwrap_or(0.0) * warps / tiles)
+        }),
     }
 }
 

@@ -9,6 +9,7 @@
 //! shipped machine.
 
 use wasp_frontend::raster::DrawOrder;
+use wasp_frontend::texture::FormatChoice;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::MachineConfig;
 
@@ -35,13 +36,16 @@ pub struct Knob {
     /// Whether the knob is the scene's draw order (the front end's, not a
     /// machine field): its values are draw orders and `sets` is unused.
     pub draw_order: bool,
+    /// Whether the knob is the scenes' texture format (the front end's):
+    /// its values are [`FormatChoice`]s and `sets` is unused.
+    pub texture_format: bool,
 }
 
 impl Knob {
     /// The overrides of `value` (none for the shipped value, so that the
     /// shipped point is the shipped machine, spelled the same way).
     pub fn overrides(&self, value: &str) -> Vec<String> {
-        if value == self.shipped || self.draw_order {
+        if value == self.shipped || self.draw_order || self.texture_format {
             Vec::new()
         } else {
             (self.sets)(value)
@@ -54,6 +58,20 @@ impl Knob {
         (self.draw_order && value != self.shipped)
             .then(|| value.parse().ok())
             .flatten()
+    }
+
+    /// The texture format of `value` for a texture-format knob (None for
+    /// the shipped value, so that the shipped point keeps the scene's own).
+    pub fn format(&self, value: &str) -> Option<FormatChoice> {
+        (self.texture_format && value != self.shipped)
+            .then(|| value.parse().ok())
+            .flatten()
+    }
+
+    /// Whether the knob is the front end's (draw order, texture format),
+    /// not a machine field.
+    pub fn scene_knob(&self) -> bool {
+        self.draw_order || self.texture_format
     }
 
     /// The values of a plan.
@@ -149,6 +167,7 @@ pub fn all() -> Vec<Knob> {
             sets: warps,
             unit: |v| format!("{v} warps"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "l0-mshrs",
@@ -160,6 +179,7 @@ pub fn all() -> Vec<Knob> {
             sets: l0_mshrs,
             unit: |v| format!("{v} L0 MSHRs"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "l1-mshrs",
@@ -171,6 +191,7 @@ pub fn all() -> Vec<Knob> {
             sets: l1_mshrs,
             unit: |v| format!("{v} L1 MSHRs"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "dram-latency",
@@ -182,6 +203,7 @@ pub fn all() -> Vec<Knob> {
             sets: dram_latency,
             unit: |v| format!("{v}-cycle row hit"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "input-queue",
@@ -193,6 +215,7 @@ pub fn all() -> Vec<Knob> {
             sets: input_queue,
             unit: |v| format!("{v}-entry queue"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "raster-rate",
@@ -204,6 +227,7 @@ pub fn all() -> Vec<Knob> {
             sets: raster_rate,
             unit: |v| format!("{v} quads/cycle"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "early-z",
@@ -215,6 +239,7 @@ pub fn all() -> Vec<Knob> {
             sets: early_z,
             unit: |v| format!("{v} rejected/slot"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "texture-latency",
@@ -226,6 +251,7 @@ pub fn all() -> Vec<Knob> {
             sets: texture_latency,
             unit: |v| format!("{v}-cycle texture"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "filter",
@@ -237,6 +263,7 @@ pub fn all() -> Vec<Knob> {
             sets: filter,
             unit: |v| format!("{v} cycles/quad filter"),
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "issue",
@@ -248,6 +275,7 @@ pub fn all() -> Vec<Knob> {
             sets: issue,
             unit: plain,
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "core-map",
@@ -259,6 +287,7 @@ pub fn all() -> Vec<Knob> {
             sets: core_map,
             unit: plain,
             draw_order: false,
+            texture_format: false,
         },
         Knob {
             id: "draw-order",
@@ -270,6 +299,19 @@ pub fn all() -> Vec<Knob> {
             sets: |_| Vec::new(),
             unit: plain,
             draw_order: true,
+            texture_format: false,
+        },
+        Knob {
+            id: "texture-format",
+            field: "texture_format (scene)",
+            label: "texture format",
+            shipped: "rgba8",
+            values: &["rgba8", "etc2", "astc-8x8"],
+            quick: &["rgba8", "etc2"],
+            sets: |_| Vec::new(),
+            unit: |v| format!("textures {v}"),
+            draw_order: false,
+            texture_format: true,
         },
     ]
 }
@@ -335,6 +377,13 @@ mod tests {
             assert!(k.quick.contains(&k.shipped), "{}", k.id);
             assert!(k.quick.iter().all(|q| k.values.contains(q)), "{}", k.id);
             assert!(k.overrides(k.shipped).is_empty(), "{}", k.id);
+            if k.texture_format {
+                for v in k.values {
+                    let f = k.format(v);
+                    assert_eq!(f.is_none(), *v == k.shipped, "{v}");
+                    assert!(k.overrides(v).is_empty(), "{v}");
+                }
+            }
             // The shipped value spelled as an override is the shipped
             // machine: the knob's range really passes through it.
             let same = wasp_sim::overrides::apply(&paper, &(k.sets)(k.shipped)).unwrap();

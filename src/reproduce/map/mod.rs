@@ -17,6 +17,7 @@
 //! - [`report`]: the REPORT.md section and `data/map.*`;
 //! - [`figures`]: the tornado, warps, grid and area figures;
 //! - [`conclusion`]: the sentences on warp slots and the paper's claims;
+//! - [`textures`]: the sentence on compressed textures and the paper's CF;
 //! - [`sweeps`]: the map as sweep files, for one cluster job a point.
 
 pub mod conclusion;
@@ -27,6 +28,7 @@ pub mod plan;
 pub mod report;
 pub mod sweeps;
 pub mod table;
+pub mod textures;
 
 use super::plan::Plan;
 use crate::study::cache::Cache;

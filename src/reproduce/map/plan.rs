@@ -118,6 +118,10 @@ impl MapPlan {
     /// Knob `k` at `value` on `scene` under `v`.
     pub fn knob_point(&self, scene: &str, k: &Knob, value: &str, v: Variant) -> Point {
         let p = self.point(scene, &k.overrides(value), v);
+        let p = match k.format(value) {
+            Some(f) => p.stored(f),
+            None => p,
+        };
         match k.order(value) {
             Some(o) => p.drawn(o),
             None => p,
@@ -144,6 +148,10 @@ impl MapPlan {
         let mut sets = ka.overrides(c.a.1);
         sets.extend(kb.overrides(c.b.1));
         let p = self.point(scene, &sets, v);
+        let p = match ka.format(c.a.1).or(kb.format(c.b.1)) {
+            Some(f) => p.stored(f),
+            None => p,
+        };
         match ka.order(c.a.1).or(kb.order(c.b.1)) {
             Some(o) => p.drawn(o),
             None => p,

@@ -103,6 +103,7 @@ pub fn write(md: &mut String, x: &Section) -> Result<(), String> {
     );
     embed(md, figures::area(x.plan, x.out, x.figs, x.data)?);
     conclusion::claims(md, t, groups);
+    super::textures::compressed(md, t, groups);
     Ok(())
 }
 
@@ -273,7 +274,7 @@ fn grid(md: &mut String, map: &MapPlan, t: &MapTable, groups: &[Group]) {
 /// Every row of the map as CSV: machine, group, then the numbers.
 pub fn to_csv(t: &MapTable) -> String {
     let mut s = "knob,value,label,group,baseline_cycles_vs_shipped,wasp,fullpriority,\
-                 raster,oracle,ideal,gate_closed,lead,drain\n"
+                 raster,oracle,ideal,gate_closed,lead,drain,cf,blocks_per_tile\n"
         .to_string();
     let mut rows: Vec<&Row> = vec![&t.shipped];
     for k in &t.knobs {
@@ -289,7 +290,7 @@ pub fn to_csv(t: &MapTable) -> String {
             let m = r.of(g);
             let _ = writeln!(
                 s,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 csv(&r.knob),
                 csv(&r.value),
                 csv(&r.label),
@@ -302,7 +303,9 @@ pub fn to_csv(t: &MapTable) -> String {
                 f(m.ideal),
                 f(m.gate_closed),
                 f(m.lead),
-                f(m.drain)
+                f(m.drain),
+                f(m.cf),
+                f(m.blocks_per_tile)
             );
         }
     }

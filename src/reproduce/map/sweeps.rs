@@ -8,7 +8,9 @@
 //! policies: `map-policies.toml` (every knob value under the baseline,
 //! Fullpriority and WaSP), `map-bounds.toml` (every knob value with the
 //! raster prefetcher, the oracle and ideal memory, under the baseline) and
-//! `map-deep-queue.toml` (the warp series with a deep input queue).
+//! `map-deep-queue.toml` (the warp series with a deep input queue). The
+//! texture-format knob's points are in no file (a sweep file names no
+//! texture format): `wasp reproduce` runs them with the grid.
 
 use super::knobs::{Knob, Variant};
 use super::plan::{MapPlan, DEEP_QUEUE};
@@ -60,7 +62,7 @@ fn file(
 /// The knob values as configuration entries (the shipped machine once).
 fn knob_entries(map: &MapPlan) -> Vec<Entry> {
     let mut v: Vec<Entry> = vec![("shipped".into(), Vec::new())];
-    for k in map.knobs.iter().filter(|k| !k.draw_order) {
+    for k in map.knobs.iter().filter(|k| !k.scene_knob()) {
         for value in k.values_for(map.quick) {
             if *value != k.shipped {
                 v.push((entry_name(k, value), k.overrides(value)));
@@ -238,11 +240,16 @@ mod tests {
             }
         }
         std::fs::remove_dir_all(&dir).ok();
-        // Every machine of the map's one-at-a-time points is in a file.
+        // Every machine of the map's one-at-a-time points is in a file,
+        // but the texture-format knob's (sweep files name no texture
+        // format: `wasp reproduce` runs those points itself).
         for t in map.tasks(&scenes) {
             let crate::study::runner::Task::Run(p) = t else {
                 continue;
             };
+            if p.texture_format.is_some() {
+                continue;
+            }
             let cfg = r.config(&p).unwrap();
             let key = (toml::to_string(&cfg).unwrap(), p.draw_order);
             assert!(swept.contains(&key), "{} is in no sweep file", p.describe());

@@ -29,6 +29,8 @@ pub(super) struct Parser<'a> {
     blocks: Vec<u64>,
     notes: Vec<String>,
     workload: Option<String>,
+    /// The `texture-format` line's name, if read.
+    texture_format: Option<String>,
     /// Present once the `frame` line has been read.
     pub(super) builder: Option<TraceBuilder>,
     /// A version-1 file: quads in strictly increasing scanline order.
@@ -53,6 +55,7 @@ impl<'a> Parser<'a> {
             blocks: Vec::new(),
             notes: Vec::new(),
             workload: None,
+            texture_format: None,
             builder,
             scanline_order: version == FORMAT_VERSION_1,
             version,
@@ -120,6 +123,7 @@ impl<'a> Parser<'a> {
                 b.rejected(n)
             }
             "workload" => self.workload_line(trimmed),
+            "texture-format" => self.texture_format_line(fields),
             "frame" => self.frame_line(fields),
             "tile" => {
                 let b = self.body(directive)?;
@@ -181,6 +185,29 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// `texture-format NAME`: after `workload`, before `frame`, at most once.
+    fn texture_format_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
+        if self.texture_format.is_some() || self.builder.is_some() {
+            return Err(Problem::MisplacedHeader("texture-format"));
+        }
+        if self.workload.is_none() {
+            return Err(Problem::MissingHeader {
+                missing: "workload NAME",
+                found: "texture-format".to_string(),
+            });
+        }
+        if fields.len() != 2 {
+            return Err(Problem::WrongFieldCount {
+                directive: "texture-format",
+                found: fields.len(),
+                usage: "texture-format NAME",
+            });
+        }
+        crate::header::check_format_name(fields[1])?;
+        self.texture_format = Some(fields[1].to_string());
+        Ok(())
+    }
+
     fn frame_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
         if self.builder.is_some() {
             return Err(Problem::MisplacedHeader("frame"));
@@ -203,6 +230,7 @@ impl<'a> Parser<'a> {
         let t = dec_u32(fields[4], "tile size", u64::from(crate::MAX_TILE_SIZE))?;
         let mut header = TraceHeader::new(workload, w, h, t);
         header.notes = self.notes.clone();
+        header.texture_format = self.texture_format.clone();
         let mut builder = TraceBuilder::new(header)?;
         if self.scanline_order {
             builder.require_scanline_order();
