@@ -84,6 +84,13 @@ pub struct Inputs {
     #[arg(long, value_name = "MODE")]
     pub dispatch: Option<Dispatch>,
 
+    /// Of a trace of several frames, measure the last frame after K earlier
+    /// ones: run frames n-1-K to n-1 in order (caches and DRAM carrying
+    /// over) and report the last. Default: every frame before the last.
+    /// The report is always the last frame's, with a record per frame run.
+    #[arg(long, value_name = "K")]
+    pub warm: Option<usize>,
+
     /// Change one configuration field, e.g. `--set l0.mshrs=24` or
     /// `--set dram.model=fixed` (dotted TOML path = TOML value; repeatable,
     /// applied in order after --config, before the other options).
@@ -174,8 +181,29 @@ pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
     Ok(cfg)
 }
 
-/// Load (or generate) the trace named by the inputs.
+/// Load (or generate) the trace named by the inputs, and check that it
+/// has the frames `--warm` asks for.
 pub fn load_trace(inputs: &Inputs, cfg: &MachineConfig) -> Result<Trace, CliError> {
+    let trace = read_trace(inputs, cfg)?;
+    let n = trace.frame_count();
+    match inputs.warm {
+        Some(k) if k >= n => Err(CliError::usage(format!(
+            "--warm {k}: {} has {n} frame{}, so at most {} can run before the last",
+            inputs
+                .trace
+                .as_ref()
+                .map_or("the synthetic trace".to_string(), |p| p
+                    .display()
+                    .to_string()),
+            if n == 1 { "" } else { "s" },
+            n - 1
+        ))),
+        _ => Ok(trace),
+    }
+}
+
+/// Read (or generate) the trace named by the inputs.
+fn read_trace(inputs: &Inputs, cfg: &MachineConfig) -> Result<Trace, CliError> {
     match &inputs.trace {
         Some(p) => Trace::read(p).map_err(|e| CliError::usage(e.to_string())),
         None => {
@@ -193,6 +221,13 @@ pub fn load_trace(inputs: &Inputs, cfg: &MachineConfig) -> Result<Trace, CliErro
             generate(&params).map_err(|e| CliError::failed(format!("generating the trace: {e}")))
         }
     }
+}
+
+/// The tiles a run of `trace` with `opts` renders (its frames').
+pub fn run_tiles(trace: &Trace, opts: &RunOptions) -> usize {
+    opts.frames(trace).map_or(0, |f| {
+        trace.tiles().len() - trace.frame_range(f.start).start
+    })
 }
 
 /// A progress bar of `total` tiles on stderr (hidden when quiet or not on
@@ -301,8 +336,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
         vcd_window: window,
         timeline,
         record_warps: false,
+        warm: args.inputs.warm,
     };
-    let pb = progress_bar(args.inputs.quiet, trace.tiles().len(), "simulating");
+    let pb = progress_bar(args.inputs.quiet, run_tiles(&trace, &opts), "simulating");
     let mut progress = |done: usize, _total: usize| pb.set_position(done as u64);
     let stats = match (&args.vcd, &args.timeline) {
         (Some(path), _) => {

@@ -8,6 +8,7 @@ use crate::memo::Memo;
 use crate::problem::{Problem, TextField};
 use crate::stats::TraceStats;
 use crate::tile::Tile;
+use crate::TraceBuilder;
 
 /// A whole trace: header and tiles in traversal (file) order, cut into
 /// one or more frames (consecutive runs of tiles, see [`Trace::frames`]).
@@ -71,6 +72,20 @@ impl Trace {
     /// belongs to.
     pub fn frame_of_tile(&self, tile: usize) -> usize {
         self.frame_starts.partition_point(|&s| s <= tile) - 1
+    }
+
+    /// The frames of `first`, then those of each trace of `rest`, in one
+    /// trace with `first`'s header (its workload and notes): what `wasp
+    /// trace-cat` writes. Fails if a trace of `rest` has another frame or
+    /// tile size ([`Problem::FrameMismatch`]).
+    pub fn concat(first: Trace, rest: impl IntoIterator<Item = Trace>) -> Result<Trace, Problem> {
+        let mut b = TraceBuilder::new(first.header.clone())?;
+        b.append(first)?;
+        for t in rest {
+            b.next_frame()?;
+            b.append(t)?;
+        }
+        b.finish()
     }
 
     /// Quads (warps) in the whole trace.

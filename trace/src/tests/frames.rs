@@ -170,3 +170,25 @@ fn appending_a_trace_of_frames_continues_the_current_frame() {
     );
     assert_eq!(&all.tiles()[2..], t.tiles());
 }
+
+#[test]
+fn traces_concatenate_frame_after_frame() {
+    let t = three_frames();
+    let mut b = Trace::builder(TraceHeader::new("other", 128, 64, 64)).unwrap();
+    frame(&mut b, 5);
+    let one = b.finish().unwrap();
+    let all = Trace::concat(one.clone(), [t.clone(), one.clone()]).unwrap();
+    assert_eq!(all.header().workload, "other");
+    assert_eq!(all.frame_count(), 5);
+    assert_eq!(all.frame_tiles(0), one.tiles());
+    assert_eq!(all.frame_tiles(2), t.frame_tiles(1));
+    assert_eq!(all.frame_tiles(4), one.tiles());
+    let small = Trace::builder(TraceHeader::new("w", 64, 64, 64))
+        .unwrap()
+        .finish()
+        .unwrap();
+    assert!(matches!(
+        Trace::concat(one, [small]),
+        Err(Problem::FrameMismatch { .. })
+    ));
+}
