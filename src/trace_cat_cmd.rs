@@ -18,7 +18,8 @@ pub struct TraceCatArgs {
     /// the first trace's workload name and header notes.
     #[arg(long, short, value_name = "FILE")]
     pub out: PathBuf,
-    /// No notes on stderr.
+    /// No progress output on stderr (the note of what was written);
+    /// results, warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
 }

@@ -5,18 +5,9 @@
 use super::*;
 use crate::gpu::Gpu;
 use crate::stats::FrameRecord;
-use crate::synth::{generate, GenParams};
 use crate::trace::Instr;
 
-fn synth(seed: u64) -> Trace {
-    generate(&GenParams {
-        frame_w: 256,
-        frame_h: 128,
-        seed,
-        ..GenParams::default()
-    })
-    .unwrap()
-}
+use super::tests::small_synth as synth;
 
 /// `t` with every block number moved by `offset` (the same frame drawn
 /// with other textures).
