@@ -379,7 +379,8 @@ fn run_with_timeline(
     if timeline.samples.is_empty() {
         return Err(CliError::usage(format!(
             "--timeline-from {}: the run ended at cycle {}, before the window",
-            timeline.from, stats.cycles
+            timeline.from,
+            stats.last_cycle()
         )));
     }
     crate::timeline_plot::draw(&timeline, path).map_err(CliError::failed)?;
@@ -409,7 +410,7 @@ fn run_with_vcd(
         .with_time_axis(vcd.axis);
     let scale = sink.units_per_cycle();
     let stats = simulate_traced(cfg, trace, opts, &mut sink, progress).map_err(sim_err)?;
-    if let Some((from, to)) = vcd.window.filter(|w| w.0 > stats.cycles) {
+    if let Some((from, to)) = vcd.window.filter(|w| w.0 > stats.last_cycle()) {
         // The window is known to be empty only once the run has ended.
         let to = if to == u64::MAX {
             String::new()
@@ -419,14 +420,14 @@ fn run_with_vcd(
         eprintln!(
             "wasp: warning: the run ended at cycle {}, before --vcd-from {from}: {} holds \
              no cycle of the window {from}..{to}",
-            stats.cycles,
+            stats.last_cycle(),
             output::name(path)
         );
     }
     let signals = sink.signals().to_vec();
     let end = match vcd.window {
-        Some((_, to)) => to.min(stats.cycles) + 1,
-        None => stats.cycles + 1,
+        Some((_, to)) => to.min(stats.last_cycle()) + 1,
+        None => stats.last_cycle() + 1,
     };
     sink.finish(end)
         .and_then(|mut w| w.flush())

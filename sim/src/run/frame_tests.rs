@@ -80,6 +80,7 @@ fn a_repeated_frame_finds_the_caches_warm() {
     assert!(b.dram_requests < a.dram_requests);
     assert!(b.cycles < a.cycles);
     assert_eq!(b.start_cycle, a.cycles, "frame 1 starts when frame 0 ends");
+    assert_eq!(s.last_cycle(), a.cycles + b.cycles);
     // The report is the last frame's.
     assert_eq!(FrameRecord::of(1, a.cycles, &s), *b);
     assert_eq!(s.tiles, one.tiles().len() as u64);
@@ -94,6 +95,7 @@ fn a_repeated_frame_finds_the_caches_warm() {
     let first = RunStats::collect_frame(&cfg(), &two, 0, gpu.end_frame().unwrap());
     assert_eq!(first, alone);
     assert!(alone.frames.is_empty() && !alone.to_json().contains("\"frames\""));
+    assert_eq!(alone.last_cycle(), alone.cycles);
 }
 
 #[test]

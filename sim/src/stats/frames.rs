@@ -98,6 +98,15 @@ impl FrameRecord {
 }
 
 impl RunStats {
+    /// The run's last cycle: [`cycles`](RunStats::cycles) for a one-frame
+    /// trace, the end of the last frame for several (the cycles the
+    /// waveform and the timeline count).
+    pub fn last_cycle(&self) -> u64 {
+        self.frames
+            .last()
+            .map_or(self.cycles, |f| f.start_cycle + f.cycles)
+    }
+
     /// The per-frame table of a trace of several frames (nothing for one
     /// frame): a line per frame run, the last one the report's.
     pub(super) fn frame_lines(&self, s: &mut String) {
