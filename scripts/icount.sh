@@ -14,7 +14,8 @@
 # shared machine cannot see a 3% change). Extra arguments of `wasp run` go in
 # ICOUNT_ARGS, e.g. ICOUNT_ARGS="--dispatch per-core-tile". ICOUNT_TRACE=FILE
 # counts a run of that trace instead of the bench workload (a real scene's,
-# from `wasp render SCENE --trace-out FILE`).
+# from `wasp render SCENE --trace-out FILE`; a trace of several frames, from
+# `wasp trace-cat`, counts every frame's cycles).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 bin=$(realpath "${1:-$repo/target/release/wasp}")
@@ -36,7 +37,9 @@ import json, re, signal, subprocess, sys
 signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 out = sys.argv[1]
 run = json.load(open(f"{out}/run.json"))
-cc = run["cycles"] * len(run["occupancy"]["per_core_mean"])  # core-cycles
+# Core-cycles; a trace of several frames runs every frame's cycles.
+cycles = sum(f["cycles"] for f in run["frames"]) if "frames" in run else run["cycles"]
+cc = cycles * len(run["occupancy"]["per_core_mean"])
 lines = open(f"{out}/cg").read().splitlines()
 names = next(l.split()[1:] for l in lines if l.startswith("events:"))
 values = next(l.split()[1:] for l in lines if l.startswith(("summary:", "totals:")))

@@ -2,7 +2,7 @@
 //! speedups against the first.
 
 use crate::output::{self, emit, Output};
-use crate::run_cmd::{load_config, load_trace, progress_bar, sim_err, Inputs};
+use crate::run_cmd::{load_config, load_trace, progress_bar, run_tiles, sim_err, Inputs};
 use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -121,6 +121,7 @@ fn comparison_jobs(args: &CompareArgs, policies: &[PolicySpec]) -> Vec<Job> {
         subset: i.subset.clone(),
         ideal_memory: ideal,
         dispatch: i.dispatch,
+        warm: i.warm,
         ..RunOptions::default()
     };
     let mut jobs: Vec<Job> = policies
@@ -148,7 +149,8 @@ fn run_jobs(
     threads: usize,
     quiet: bool,
 ) -> Result<Vec<RunStats>, CliError> {
-    let pb = progress_bar(quiet, trace.tiles().len() * jobs.len(), "comparing");
+    let tiles = jobs.first().map_or(0, |j| run_tiles(trace, &j.opts));
+    let pb = progress_bar(quiet, tiles * jobs.len(), "comparing");
     let done_tiles = Mutex::new(vec![0usize; jobs.len()]);
     let next = Mutex::new(0usize);
     let results: Mutex<Vec<Option<Result<RunStats, SimError>>>> =
@@ -203,6 +205,14 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
     }
     if let Some(p) = &base.prefetch {
         let _ = write!(s, "  |  prefetch {}", p.kind);
+    }
+    if let Some(last) = base.frames.last() {
+        let _ = write!(
+            s,
+            "  |  frame {} after {} earlier",
+            last.frame,
+            base.frames.len() - 1
+        );
     }
     s.push('\n');
     let _ = writeln!(

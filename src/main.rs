@@ -20,6 +20,7 @@ mod study;
 mod sweep_cmd;
 mod synth_cmd;
 mod timeline_plot;
+mod trace_cat_cmd;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -72,6 +73,13 @@ enum Command {
     /// stated memory-instruction ratio and block reuse), and report the
     /// figures it measures. Synthetic workloads say so in their names.
     Synth(synth_cmd::SynthArgs),
+
+    /// Join traces into one trace of several frames: the frames of each
+    /// file after those of the one before (`wasp trace-cat A.trace
+    /// B.trace --out AB.trace`). `run` and `compare` run the frames in
+    /// order, caches and DRAM carrying over, and report the last frame;
+    /// `--warm K` runs only the K frames before it.
+    TraceCat(trace_cat_cmd::TraceCatArgs),
 
     /// The hardware overhead of WaSP: an inventory from the RTL blocks in
     /// bits and gate equivalents, the Verilog twin synthesized by Yosys, and
@@ -165,6 +173,7 @@ impl Command {
             Command::Run(a) => &mut a.inputs.quiet,
             Command::Compare(a) => &mut a.inputs.quiet,
             Command::Synth(a) => &mut a.quiet,
+            Command::TraceCat(a) => &mut a.quiet,
             Command::Cost(a) => &mut a.quiet,
             Command::Bench(a) => &mut a.quiet,
             Command::Scenes(a) => a.quiet_mut(),
@@ -200,6 +209,7 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Bench(args)) => bench_cmd::run(&args),
         Some(Command::Cost(args)) => cost_cmd::run(&args),
         Some(Command::Synth(args)) => synth_cmd::run(&args),
+        Some(Command::TraceCat(args)) => trace_cat_cmd::run(&args),
         Some(Command::Scenes(args)) => scene_cmd::scenes(&args),
         Some(Command::Render(args)) => scene_cmd::render(&args),
         Some(Command::Characterize(args)) => scene_cmd::characterize(&args),

@@ -84,6 +84,13 @@ pub struct Inputs {
     #[arg(long, value_name = "MODE")]
     pub dispatch: Option<Dispatch>,
 
+    /// Of a trace of several frames, measure the last frame after K earlier
+    /// ones: run frames n-1-K to n-1 in order (caches and DRAM carrying
+    /// over) and report the last. Default: every frame before the last.
+    /// The report is always the last frame's, with a record per frame run.
+    #[arg(long, value_name = "K")]
+    pub warm: Option<usize>,
+
     /// Change one configuration field, e.g. `--set l0.mshrs=24` or
     /// `--set dram.model=fixed` (dotted TOML path = TOML value; repeatable,
     /// applied in order after --config, before the other options).
@@ -174,8 +181,29 @@ pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
     Ok(cfg)
 }
 
-/// Load (or generate) the trace named by the inputs.
+/// Load (or generate) the trace named by the inputs, and check that it
+/// has the frames `--warm` asks for.
 pub fn load_trace(inputs: &Inputs, cfg: &MachineConfig) -> Result<Trace, CliError> {
+    let trace = read_trace(inputs, cfg)?;
+    let n = trace.frame_count();
+    match inputs.warm {
+        Some(k) if k >= n => Err(CliError::usage(format!(
+            "--warm {k}: {} has {n} frame{}, so at most {} can run before the last",
+            inputs
+                .trace
+                .as_ref()
+                .map_or("the synthetic trace".to_string(), |p| p
+                    .display()
+                    .to_string()),
+            if n == 1 { "" } else { "s" },
+            n - 1
+        ))),
+        _ => Ok(trace),
+    }
+}
+
+/// Read (or generate) the trace named by the inputs.
+fn read_trace(inputs: &Inputs, cfg: &MachineConfig) -> Result<Trace, CliError> {
     match &inputs.trace {
         Some(p) => Trace::read(p).map_err(|e| CliError::usage(e.to_string())),
         None => {
@@ -193,6 +221,13 @@ pub fn load_trace(inputs: &Inputs, cfg: &MachineConfig) -> Result<Trace, CliErro
             generate(&params).map_err(|e| CliError::failed(format!("generating the trace: {e}")))
         }
     }
+}
+
+/// The tiles a run of `trace` with `opts` renders (its frames').
+pub fn run_tiles(trace: &Trace, opts: &RunOptions) -> usize {
+    opts.frames(trace).map_or(0, |f| {
+        trace.tiles().len() - trace.frame_range(f.start).start
+    })
 }
 
 /// A progress bar of `total` tiles on stderr (hidden when quiet or not on
@@ -301,8 +336,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
         vcd_window: window,
         timeline,
         record_warps: false,
+        warm: args.inputs.warm,
     };
-    let pb = progress_bar(args.inputs.quiet, trace.tiles().len(), "simulating");
+    let pb = progress_bar(args.inputs.quiet, run_tiles(&trace, &opts), "simulating");
     let mut progress = |done: usize, _total: usize| pb.set_position(done as u64);
     let stats = match (&args.vcd, &args.timeline) {
         (Some(path), _) => {
@@ -343,7 +379,8 @@ fn run_with_timeline(
     if timeline.samples.is_empty() {
         return Err(CliError::usage(format!(
             "--timeline-from {}: the run ended at cycle {}, before the window",
-            timeline.from, stats.cycles
+            timeline.from,
+            stats.last_cycle()
         )));
     }
     crate::timeline_plot::draw(&timeline, path).map_err(CliError::failed)?;
@@ -373,7 +410,7 @@ fn run_with_vcd(
         .with_time_axis(vcd.axis);
     let scale = sink.units_per_cycle();
     let stats = simulate_traced(cfg, trace, opts, &mut sink, progress).map_err(sim_err)?;
-    if let Some((from, to)) = vcd.window.filter(|w| w.0 > stats.cycles) {
+    if let Some((from, to)) = vcd.window.filter(|w| w.0 > stats.last_cycle()) {
         // The window is known to be empty only once the run has ended.
         let to = if to == u64::MAX {
             String::new()
@@ -383,14 +420,14 @@ fn run_with_vcd(
         eprintln!(
             "wasp: warning: the run ended at cycle {}, before --vcd-from {from}: {} holds \
              no cycle of the window {from}..{to}",
-            stats.cycles,
+            stats.last_cycle(),
             output::name(path)
         );
     }
     let signals = sink.signals().to_vec();
     let end = match vcd.window {
-        Some((_, to)) => to.min(stats.cycles) + 1,
-        None => stats.cycles + 1,
+        Some((_, to)) => to.min(stats.last_cycle()) + 1,
+        None => stats.last_cycle() + 1,
     };
     sink.finish(end)
         .and_then(|mut w| w.flush())

@@ -8,11 +8,12 @@ mod common;
 use common::{ok, scratch, stderr, stdout, wasp};
 
 /// Every subcommand, as typed.
-const COMMANDS: [&[&str]; 13] = [
+const COMMANDS: [&[&str]; 14] = [
     &["example"],
     &["run"],
     &["compare"],
     &["synth"],
+    &["trace-cat"],
     &["cost"],
     &["bench"],
     &["scenes", "list"],
@@ -105,6 +106,7 @@ fn every_output_option_takes_a_file_or_standard_output() {
         (&["run"], &["--json", "--csv", "--vcd", "--timeline"]),
         (&["compare"], &["--json", "--csv"]),
         (&["synth"], &["--out"]),
+        (&["trace-cat"], &["--out"]),
         (&["cost"], &["--json"]),
         (&["bench"], &["--json"]),
         (&["render"], &["--png", "--trace-out"]),

@@ -2,11 +2,17 @@
 //! clocked to the end by the one run loop ([`run`]), its counters made
 //! into [`RunStats`] ([`RunStats::collect`]). The GPU itself knows nothing
 //! of the report, so the dependencies point one way: run -> stats -> gpu.
+//!
+//! A trace of several frames runs them in order on one GPU, caches and
+//! DRAM carrying over (see [`crate::gpu`]); the report is that of the
+//! last frame run, with a record of every frame run
+//! ([`RunStats::frames`]). [`RunOptions::warm`] runs only the last frame
+//! and the K frames before it.
 
 use crate::config::{Dispatch, MachineConfig};
 use crate::gpu::{CoreModel, Gpu, ShaderCore};
 pub use crate::gpu::{SimError, WarpRecord};
-use crate::stats::RunStats;
+use crate::stats::{FrameRecord, RunStats};
 use crate::timeline::Timeline;
 use crate::trace::Trace;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
@@ -33,9 +39,30 @@ pub struct RunOptions {
     pub dispatch: Option<Dispatch>,
     /// Record a [`Timeline`] of the cycles `from..=to`.
     pub timeline: Option<(u64, u64)>,
+    /// Of a trace of several frames, run the last frame after this many
+    /// earlier ones (`wasp run --warm K`: frames n-1-K to n-1); `None`:
+    /// every frame. The report is the last frame's either way.
+    pub warm: Option<usize>,
 }
 
 impl RunOptions {
+    /// The frames of `trace` a run covers: the last one and
+    /// [`warm`](Self::warm) before it (all of them without), or an error
+    /// when the trace has fewer.
+    pub fn frames(&self, trace: &Trace) -> Result<std::ops::Range<usize>, SimError> {
+        let n = trace.frame_count();
+        match self.warm {
+            None => Ok(0..n),
+            Some(k) if k < n => Ok(n - 1 - k..n),
+            Some(k) => Err(SimError::Config(format!(
+                "warm-up of {k} frames: the trace has {n} frame{}, so at most {} can run \
+                 before the last",
+                if n == 1 { "" } else { "s" },
+                n - 1
+            ))),
+        }
+    }
+
     /// The configuration with the overrides applied, validated.
     pub fn apply(&self, cfg: &MachineConfig) -> Result<MachineConfig, SimError> {
         let mut c = cfg.clone();
@@ -94,6 +121,7 @@ pub(crate) fn run_on<C: CoreModel, S: CycleSink>(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Run, SimError> {
     let cfg = opts.apply(cfg)?;
+    let frames = opts.frames(trace)?;
     let mut gpu = Gpu::<C>::build(&cfg, trace)?;
     if opts.record_warps {
         gpu.record_warps();
@@ -103,30 +131,45 @@ pub(crate) fn run_on<C: CoreModel, S: CycleSink>(
         to
     });
     let mut timeline = None;
-    let total = trace.tiles().len();
-    while !gpu.done() {
-        let next = gpu.cycle() + 1;
-        let sampled = opts
-            .vcd_window
-            .is_none_or(|(from, to)| (from..=to).contains(&next));
-        match sink.as_deref_mut() {
-            Some(s) if sampled => gpu.step_traced(Some(s))?,
-            _ => gpu.step()?,
+    let run_tiles = trace.frame_range(frames.start).start..trace.tiles().len();
+    let total = run_tiles.len();
+    let mut records = Vec::new();
+    let mut last = None;
+    for f in frames.clone() {
+        // (A one-frame run needs no call: a new GPU runs every tile.)
+        if frames.len() > 1 || run_tiles.start > 0 {
+            gpu.start_frame(trace.frame_range(f));
         }
-        if gpu.cycle().is_multiple_of(4096) {
-            progress(gpu.tiles_done(), total);
+        while !gpu.done() {
+            let next = gpu.cycle() + 1;
+            let sampled = opts
+                .vcd_window
+                .is_none_or(|(from, to)| (from..=to).contains(&next));
+            match sink.as_deref_mut() {
+                Some(s) if sampled => gpu.step_traced(Some(s))?,
+                _ => gpu.step()?,
+            }
+            if gpu.cycle().is_multiple_of(4096) {
+                progress(gpu.tiles_done(), total);
+            }
+            if timeline.is_none() && window_end.is_some_and(|to| gpu.cycle() > to) {
+                // The window is recorded; the rest of the run needs no samples.
+                timeline = gpu.take_timeline();
+            }
         }
-        if timeline.is_none() && window_end.is_some_and(|to| gpu.cycle() > to) {
-            // The window is recorded; the rest of the run needs no samples.
-            timeline = gpu.take_timeline();
+        let stats = RunStats::collect_frame(&cfg, trace, f, gpu.end_frame()?);
+        if trace.frame_count() > 1 {
+            records.push(FrameRecord::of(f, gpu.cycle() - stats.cycles, &stats));
         }
+        last = Some(stats);
     }
     progress(gpu.tiles_done(), total);
     if timeline.is_none() {
         timeline = gpu.take_timeline();
     }
     let warps = gpu.take_records();
-    let stats = RunStats::collect(&cfg, trace, gpu.finish()?);
+    let mut stats = last.expect("a run covers at least one frame");
+    stats.frames = records;
     Ok(Run {
         stats,
         timeline,
@@ -187,5 +230,7 @@ pub fn simulate_traced<S: CycleSink>(
     Ok(run(cfg, trace, opts, Some(sink), progress)?.stats)
 }
 
+#[cfg(test)]
+mod frame_tests;
 #[cfg(test)]
 mod tests;

@@ -10,10 +10,12 @@
 use crate::config::MachineConfig;
 use crate::gpu::{CoreStats, LeadStats, RasterStats, RunCounters, TileRecord, TileTimingStats};
 use crate::mem::{CacheStats, MemStats};
-use crate::trace::{mean_footprint_ratio, Trace};
+use crate::trace::{mean_footprint_ratio_of, Trace};
 use serde::Serialize;
 
+mod frames;
 mod prefetch;
+pub use frames::{FrameLevel, FrameRecord};
 pub use prefetch::PrefetchReport;
 
 /// One cache level's counters, summed over cores.
@@ -186,7 +188,7 @@ pub struct SubsetStats {
 }
 
 impl SubsetStats {
-    fn of(cfg: &MachineConfig, trace: &Trace, cores: &[CoreStats]) -> Self {
+    fn of(cfg: &MachineConfig, trace: &Trace, frame: usize, cores: &[CoreStats]) -> Self {
         let spec = &cfg.scheduler.subset;
         let side = cfg.quads_per_side();
         let subset = spec.build(side);
@@ -198,7 +200,9 @@ impl SubsetStats {
                 format!("{spec} (unused by the baseline)")
             },
             subset_size_ratio: subset.size_ratio(side),
-            texture_footprint_ratio: mean_footprint_ratio(trace, |x, y| subset.is_priority(x, y)),
+            texture_footprint_ratio: mean_footprint_ratio_of(trace.frame_tiles(frame), |x, y| {
+                subset.is_priority(x, y)
+            }),
             priority_warps: total(cores, |c| c.priority_launches),
         }
     }
@@ -513,7 +517,14 @@ pub struct RunStats {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prefetch: Option<PrefetchReport>,
     /// Every tile: start, end, fill, drain, peak occupancy, primary misses.
+    /// (Of a trace of several frames, the last frame's tiles, their
+    /// cycles counted from the run's start.)
     pub per_tile: Vec<TileRecord>,
+    /// Of a trace of several frames, one record per frame run, in order;
+    /// everything else in the report is the last frame's. Empty (and left
+    /// out of the JSON) for a one-frame trace.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub frames: Vec<FrameRecord>,
 }
 
 fn is_default_issue(issue: &str) -> bool {
@@ -534,8 +545,21 @@ fn mean(sum: f64, n: u64) -> f64 {
 }
 
 impl RunStats {
-    /// Gather the statistics of a finished run.
+    /// Gather the statistics of a finished run of a one-frame trace (of
+    /// its last frame, for several).
     pub fn collect(cfg: &MachineConfig, trace: &Trace, counters: RunCounters) -> Self {
+        Self::collect_frame(cfg, trace, trace.frame_count() - 1, counters)
+    }
+
+    /// Gather the statistics of frame `frame` of `trace` from its
+    /// counters (the workload figures are the frame's own). The
+    /// [`frames`](Self::frames) records are left empty.
+    pub fn collect_frame(
+        cfg: &MachineConfig,
+        trace: &Trace,
+        frame: usize,
+        counters: RunCounters,
+    ) -> Self {
         let RunCounters {
             cycles,
             cores,
@@ -547,7 +571,7 @@ impl RunStats {
         let sum = |f: fn(&CoreStats) -> u64| total(cores, f);
         let instructions = sum(|c| c.instructions);
         let tex = sum(|c| c.tex_instructions);
-        let ts = trace.stats();
+        let ts = trace.frame_stats(frame);
         let sched = &cfg.scheduler;
         RunStats {
             machine: cfg.name.clone(),
@@ -586,7 +610,7 @@ impl RunStats {
                 (samples > 0).then(|| sum(|c| c.cf_quarters_sum) as f64 / 4.0 / samples as f64)
             },
             blocked: BlockedStats::of(cores, tex),
-            subset: SubsetStats::of(cfg, trace, cores),
+            subset: SubsetStats::of(cfg, trace, frame, cores),
             mem_instr_ratio: ts.mem_instr_ratio,
             min_estimate1: ts.min_estimate1,
             cf: ts.cf,
@@ -595,6 +619,7 @@ impl RunStats {
             energy: EnergyStats::of(cfg, mem, n, instructions, tex, cycles),
             prefetch: PrefetchReport::of(cfg, &mem.prefetch),
             per_tile: inst.per_tile,
+            frames: Vec::new(),
         }
     }
 

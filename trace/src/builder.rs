@@ -24,10 +24,40 @@ impl Trace {
 ///
 /// A call that returns an error changes nothing, so a caller may report it
 /// and stop. `begin_quad` closes the previous quad, `end_tile` the tile.
+///
+/// # Frames
+///
+/// A trace holds one or more frames, each a sequence of tiles (a tile
+/// position appears at most once per frame). The builder starts in frame
+/// 0; [`next_frame`](TraceBuilder::next_frame) closes the current frame
+/// and starts the next. A builder that never calls it builds a one-frame
+/// trace, written in format 4 exactly as before frames existed; a trace of
+/// two or more frames is written in format 5. To emit frames `A..B` of a
+/// capture into one trace:
+///
+/// ```
+/// # use wasp_trace::{Trace, TraceHeader, Instr};
+/// let mut b = Trace::builder(TraceHeader::new("capture", 64, 64, 64)).unwrap();
+/// for frame in 3..6 {
+///     if frame > 3 {
+///         b.next_frame().unwrap(); // closes the previous frame
+///     }
+///     b.begin_tile(0, 0).unwrap(); // the same tile again: a new frame
+///     b.quad(0, 0, &[Instr::Alu(frame)]).unwrap();
+///     b.end_tile().unwrap();
+/// }
+/// let t = b.finish().unwrap();
+/// assert_eq!(t.frame_count(), 3);
+/// assert_eq!(t.frames().collect::<Vec<_>>(), vec![0..1, 1..2, 2..3]);
+/// assert!(t.to_text().starts_with("wasp-trace 5\n"));
+/// ```
 #[derive(Debug)]
 pub struct TraceBuilder {
     header: TraceHeader,
     tiles: Vec<Tile>,
+    /// The index in `tiles` of each frame's first tile (`[0]` to begin).
+    frame_starts: Vec<usize>,
+    /// The tile positions of the current frame.
     seen: HashSet<(u32, u32)>,
     open: Option<Tile>,
     /// Version 1's rule: quads in strictly increasing scanline order.
@@ -44,6 +74,7 @@ impl TraceBuilder {
         Ok(TraceBuilder {
             header,
             tiles: Vec::new(),
+            frame_starts: vec![0],
             seen: HashSet::new(),
             open: None,
             scanline_order: false,
@@ -63,9 +94,28 @@ impl TraceBuilder {
         &self.header
     }
 
-    /// Number of closed tiles so far.
+    /// Number of closed tiles so far (of every frame).
     pub fn tile_count(&self) -> usize {
         self.tiles.len()
+    }
+
+    /// Number of frames so far, the current one included (1 to begin).
+    pub fn frame_count(&self) -> usize {
+        self.frame_starts.len()
+    }
+
+    /// Closes the current frame and starts the next: the tiles built from
+    /// now on belong to it, and every tile position is free again. Fails,
+    /// changing nothing, if a tile is open ([`Problem::TileNotClosed`]).
+    /// A frame may be empty (two calls in a row): a frame that drew
+    /// nothing.
+    pub fn next_frame(&mut self) -> Result<(), Problem> {
+        if let Some(t) = &self.open {
+            return Err(Problem::TileNotClosed { tx: t.tx, ty: t.ty });
+        }
+        self.frame_starts.push(self.tiles.len());
+        self.seen.clear();
+        Ok(())
     }
 
     /// Adds a header note (a comment line written after line 1).
@@ -369,9 +419,11 @@ impl TraceBuilder {
     }
 
     /// Moves the tiles of `part`, a trace of the same frame and tile size
-    /// (built, say, on another thread), to the end of this one. Fails,
-    /// changing nothing, if a tile is open, the frame or tile size differ,
-    /// a tile of `part` is already here (or twice in `part`), or this
+    /// (built, say, on another thread), to the end of this one: the tiles
+    /// of its first frame join the current frame, each later frame of
+    /// `part` starts a new frame here. Fails, changing nothing, if a tile
+    /// is open, the frame or tile size differ, a tile of `part` is already
+    /// in its frame here (or twice in one frame of `part`), or this
     /// builder requires scanline order and a tile of `part` breaks it.
     pub fn append(&mut self, part: Trace) -> Result<(), Problem> {
         if let Some(t) = &self.open {
@@ -385,8 +437,15 @@ impl TraceBuilder {
             });
         }
         let mut new = HashSet::new();
-        for tile in &part.tiles {
-            if self.seen.contains(&(tile.tx, tile.ty)) || !new.insert((tile.tx, tile.ty)) {
+        for (i, tile) in part.tiles.iter().enumerate() {
+            // A new frame of `part` at this tile starts with no position
+            // taken; its first frame continues this builder's.
+            if part.frame_starts[1..].contains(&i) {
+                new.clear();
+            }
+            let first_frame = i < part.frame_starts.get(1).copied().unwrap_or(usize::MAX);
+            let here = first_frame && self.seen.contains(&(tile.tx, tile.ty));
+            if here || !new.insert((tile.tx, tile.ty)) {
                 return Err(Problem::DuplicateTile {
                     tx: tile.tx,
                     ty: tile.ty,
@@ -411,7 +470,18 @@ impl TraceBuilder {
                 }
             }
         }
-        self.seen.extend(new);
+        let base = self.tiles.len();
+        if part.frame_starts.len() > 1 {
+            // The current frame is now `part`'s last (perhaps empty) one.
+            self.seen.clear();
+            let last = part.frame_range(part.frame_starts.len() - 1);
+            self.seen
+                .extend(part.tiles[last].iter().map(|t| (t.tx, t.ty)));
+        } else {
+            self.seen.extend(new);
+        }
+        self.frame_starts
+            .extend(part.frame_starts[1..].iter().map(|&s| base + s));
         self.tiles.extend(part.tiles);
         Ok(())
     }
@@ -424,6 +494,7 @@ impl TraceBuilder {
         Ok(Trace {
             header: self.header,
             tiles: self.tiles,
+            frame_starts: self.frame_starts,
             stats: Memo::default(),
         })
     }

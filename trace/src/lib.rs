@@ -1,8 +1,8 @@
-//! The wasp trace: the shaded quads of one frame, tile by tile, the quads
+//! The wasp trace: the shaded quads of one or more frames, tile by tile, the quads
 //! Early-Z rejected between them, and the instructions each shaded quad's
 //! shader executes — the input of the cycle model.
 //!
-//! # Format `wasp-trace 4` (and `wasp-trace 3`, `2`, `1`)
+//! # Format `wasp-trace 4` and `5` (and `wasp-trace 3`, `2`, `1`)
 //!
 //! (The same text is in `tests/traces/FORMAT.md`; a test checks that the two
 //! agree.)
@@ -45,9 +45,10 @@
 //! start and end of a line are ignored. No line may hold any other control
 //! character.
 //!
-//! * **Line 1** is exactly `wasp-trace 4` (or, below, `wasp-trace 3`,
-//!   `wasp-trace 2` or `wasp-trace 1`): the magic word and the format
-//!   version. A reader rejects any other version.
+//! * **Line 1** is exactly `wasp-trace 4` (`wasp-trace 5` for a trace of
+//!   several frames, or, below, `wasp-trace 3`, `wasp-trace 2` or
+//!   `wasp-trace 1`): the magic word and the format version. A reader
+//!   rejects any other version.
 //! * **Comments**: a line whose first non-blank character is `#` is a comment;
 //!   blank lines are ignored. Both may appear anywhere after line 1. Comments
 //!   before the `frame` line are the header *notes*: a reader keeps their text
@@ -76,10 +77,18 @@
 //! * **Tile record**: `tile TX TY` (tile column and row, inside the frame),
 //!   then the tile's `q` lines (one per warp) and `z` lines (rejected quads)
 //!   in rasterization order, then `end` alone on its line. A tile appears at
-//!   most once and holds at least one line, a `q` or a `z`: a tile of `z`
+//!   most once per frame and holds at least one line, a `q` or a `z`: a tile of `z`
 //!   lines only is a tile whose every quad Early-Z rejected (it costs the
 //!   rasterizer time and launches no warp). Tiles appear in traversal order
 //!   (the front end emits Z-order; a reader does not check the order).
+//! * **Frames** (version 5): `next-frame` alone on its line, outside any
+//!   tile record, ends a frame and starts the next. A trace without such a
+//!   line is one frame; with N of them it has N + 1 frames, in file order,
+//!   each a sequence of tile records as above, all of the header's frame and
+//!   tile size. A frame may hold no tile (a `next-frame` line right after
+//!   the header, after another, or at the end of the file): a frame that
+//!   drew nothing. The cycle model runs the frames in order, caches and
+//!   main memory carrying over from one to the next (`docs/model.md`).
 //! * **Quad**: `q X Y INSTR...` — one warp: one shaded (primitive, quad)
 //!   fragment. X, Y are the in-tile quad column and row (0 to T/2-1); the
 //!   quad's top-left pixel (TX*T + 2X, TY*T + 2Y) lies inside the frame. The
@@ -119,13 +128,22 @@
 //!   shader or scene; they keep a corrupt number from running the model for
 //!   minutes.
 //!
+//! **Version 5** (`wasp-trace 5`) is version 4 with `next-frame` lines. A
+//! writer writes version 5 exactly when the trace has two or more frames,
+//! and version 4 otherwise, so a one-frame trace is written as it was
+//! before frames existed; a version-5 file of one frame reads as that trace
+//! and is written back in version 4 (line 1 changes). A reader rejects a
+//! `next-frame` line in a version-4 (or older) file, naming the version.
+//! Every version-4 trace is a version-5 trace of one frame.
+//!
 //! **Version 3** (`wasp-trace 3`) is version 4 without `T` instructions: it
 //! does not say which samples are trilinear, and a reader takes every
 //! texture instruction of a version-3 (or older) file as bilinear. A reader
 //! rejects a `T` instruction in a version-3, -2 or -1 file, naming the
 //! version and the token. Every version-3 trace is a version-4 trace, and a
-//! writer always writes version 4: reading an older file and writing it back
-//! changes line 1 only (for a file in the writer's canonical form).
+//! writer writes version 4 (5 for several frames): reading an older file and
+//! writing it back changes line 1 only (for a file in the writer's canonical
+//! form).
 //!
 //! **Version 2** (`wasp-trace 2`) is version 3 without `z` lines: a reader
 //! rejects a `z` line in a version-2 (or version-1) file, naming the version.
@@ -163,7 +181,9 @@
 //!
 //! # In memory
 //!
-//! [`Trace`] holds a [`TraceHeader`] and the [`Tile`]s in file order. A tile
+//! [`Trace`] holds a [`TraceHeader`] and the [`Tile`]s in file order, with
+//! the index of each frame's first tile ([`Trace::frames`] gives each
+//! frame's tiles as a range; [`TraceBuilder::next_frame`] starts a frame). A tile
 //! keeps its quads, instructions and block numbers in three flat vectors (no
 //! allocation per quad or instruction; a texture instruction's trilinear
 //! flag shares its 12-byte entry), so a tile is self-contained and a
@@ -203,11 +223,14 @@ pub use error::TraceError;
 pub use header::TraceHeader;
 pub use instr::{Instr, OpKind};
 pub use limits::{
-    FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, MAGIC, MAX_ALU_RUN,
-    MAX_FRAME_DIM, MAX_QUAD_INSTRS, MAX_REJECTED_RUN, MAX_TEX_BLOCKS, MAX_TILE_SIZE,
+    FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, FORMAT_VERSION_FRAMES,
+    FRAME_MARKER, MAGIC, MAX_ALU_RUN, MAX_FRAME_DIM, MAX_QUAD_INSTRS, MAX_REJECTED_RUN,
+    MAX_TEX_BLOCKS, MAX_TILE_SIZE,
 };
 pub use problem::{Problem, TextField};
-pub use stats::{footprint_ratio, mean_footprint_ratio, TileStats, TraceStats};
+pub use stats::{
+    footprint_ratio, mean_footprint_ratio, mean_footprint_ratio_of, TileStats, TraceStats,
+};
 pub use tile::{Instrs, QuadRef, QuadSpan, Quads, Tile};
 pub use trace::Trace;
 pub use zorder::{morton, z_order};

@@ -3,8 +3,15 @@
 
 /// The magic word on line 1.
 pub const MAGIC: &str = "wasp-trace";
-/// The format version this crate writes (and reads).
+/// The format version this crate writes a one-frame trace in (and reads).
 pub const FORMAT_VERSION: u32 = 4;
+/// The format version of a trace of two or more frames: version 4 with
+/// [`FRAME_MARKER`] lines between frames. This crate writes a trace in it
+/// exactly when the trace has two or more frames, so a one-frame trace is
+/// written as before frames existed.
+pub const FORMAT_VERSION_FRAMES: u32 = 5;
+/// The line between two frames of a format-5 trace.
+pub const FRAME_MARKER: &str = "next-frame";
 /// The previous version, which this crate also reads: no trilinear
 /// marker (`T`), every texture instruction taken as bilinear.
 pub const FORMAT_VERSION_3: u32 = 3;

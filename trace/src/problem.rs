@@ -3,8 +3,9 @@
 use std::fmt;
 
 use crate::limits::{
-    FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, MAGIC, MAX_ALU_RUN,
-    MAX_FRAME_DIM, MAX_QUAD_INSTRS, MAX_REJECTED_RUN, MAX_TEX_BLOCKS, MAX_TILE_SIZE,
+    FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, FORMAT_VERSION_FRAMES,
+    FRAME_MARKER, MAGIC, MAX_ALU_RUN, MAX_FRAME_DIM, MAX_QUAD_INSTRS, MAX_REJECTED_RUN,
+    MAX_TEX_BLOCKS, MAX_TILE_SIZE,
 };
 
 /// Which free-text header field a [`Problem::BadText`] is about.
@@ -33,6 +34,9 @@ pub enum Problem {
     AdjacentRejected,
     /// A `z` line in a trace of a version without them.
     RejectedInOldVersion(u32),
+    /// A frame boundary (`next-frame`) in a trace of a version without
+    /// them (before 5).
+    FrameMarkerInOldVersion(u32),
     /// A trilinear texture instruction (`T...`) in a trace of a version
     /// without them (before 4).
     TrilinearInOldVersion {
@@ -45,7 +49,7 @@ pub enum Problem {
     InvalidUtf8,
     /// A line holds a control character other than tab.
     ControlCharacter,
-    /// Line 1 is not `wasp-trace 4`, `3`, `2` or `1`.
+    /// Line 1 is not `wasp-trace 5`, `4`, `3`, `2` or `1`.
     BadMagic(String),
     /// Line 1 names another format version.
     UnsupportedVersion(String),
@@ -243,9 +247,9 @@ impl fmt::Display for Problem {
         match self {
             EmptyInput => write!(
                 f,
-                "empty input (expected `{MAGIC} {FORMAT_VERSION}`, `{MAGIC} \
-                 {FORMAT_VERSION_3}`, `{MAGIC} {FORMAT_VERSION_2}` or `{MAGIC} \
-                 {FORMAT_VERSION_1}` on line 1)"
+                "empty input (expected `{MAGIC} {FORMAT_VERSION_FRAMES}`, `{MAGIC} \
+                 {FORMAT_VERSION}`, `{MAGIC} {FORMAT_VERSION_3}`, `{MAGIC} \
+                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)"
             ),
             InvalidUtf8 => write!(f, "invalid UTF-8 (expected UTF-8 text)"),
             ZeroRejected => write!(f, "0 rejected quads (expected `z N` with N at least 1)"),
@@ -266,6 +270,12 @@ impl fmt::Display for Problem {
                 "`z` line in a format-{v} trace (expected `z` lines only from format \
                  {FORMAT_VERSION_3} on: write `{MAGIC} {FORMAT_VERSION}` on line 1)"
             ),
+            FrameMarkerInOldVersion(v) => write!(
+                f,
+                "`{FRAME_MARKER}` line in a format-{v} trace (expected frame boundaries \
+                 only in format {FORMAT_VERSION_FRAMES}: write `{MAGIC} \
+                 {FORMAT_VERSION_FRAMES}` on line 1)"
+            ),
             TrilinearInOldVersion { version, token } => write!(
                 f,
                 "trilinear texture instruction `{}` in a format-{version} trace \
@@ -279,15 +289,16 @@ impl fmt::Display for Problem {
             ),
             BadMagic(s) => write!(
                 f,
-                "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION}`, `{MAGIC} \
-                 {FORMAT_VERSION_3}`, `{MAGIC} {FORMAT_VERSION_2}` or `{MAGIC} \
-                 {FORMAT_VERSION_1}` on line 1)",
+                "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION_FRAMES}`, `{MAGIC} \
+                 {FORMAT_VERSION}`, `{MAGIC} {FORMAT_VERSION_3}`, `{MAGIC} \
+                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)",
                 clip(s)
             ),
             UnsupportedVersion(v) => write!(
                 f,
-                "unsupported format version `{}` (expected {FORMAT_VERSION}, \
-                 {FORMAT_VERSION_3}, {FORMAT_VERSION_2} or {FORMAT_VERSION_1})",
+                "unsupported format version `{}` (expected {FORMAT_VERSION_FRAMES}, \
+                 {FORMAT_VERSION}, {FORMAT_VERSION_3}, {FORMAT_VERSION_2} or \
+                 {FORMAT_VERSION_1})",
                 clip(v)
             ),
             MissingHeader { missing, found } => write!(
@@ -370,7 +381,7 @@ impl fmt::Display for Problem {
             ),
             DuplicateTile { tx, ty } => write!(
                 f,
-                "tile {tx} {ty} appears twice (expected each tile at most once)"
+                "tile {tx} {ty} appears twice (expected each tile at most once per frame)"
             ),
             TileNotClosed { tx, ty } => write!(
                 f,
@@ -494,10 +505,16 @@ mod tests {
             msg,
             "x.trace:5: quad 40 3 outside the tile (expected x and y from 0 to 31)"
         );
-        let (_, _, msg) = fail("wasp-trace 5\n");
+        let (_, _, msg) = fail("wasp-trace 6\n");
         assert_eq!(
             msg,
-            "x.trace:1: unsupported format version `5` (expected 4, 3, 2 or 1)"
+            "x.trace:1: unsupported format version `6` (expected 5, 4, 3, 2 or 1)"
+        );
+        let (_, _, msg) = fail(&body("tile 0 0\nq 0 0 a1\nend\nnext-frame\n"));
+        assert_eq!(
+            msg,
+            "x.trace:7: `next-frame` line in a format-2 trace (expected frame boundaries only \
+             in format 5: write `wasp-trace 5` on line 1)"
         );
         let (_, _, msg) = fail(&body1("tile 0 0\nq 1 0 a1\nq 1 0 a2\n"));
         assert_eq!(

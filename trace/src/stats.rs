@@ -53,7 +53,7 @@
 //! (CF, Min_Estimate1, reuse, [`mean_footprint_ratio`]) give them weight 0
 //! (they touch no block either).
 
-use super::{Tile, Trace};
+use super::{Tile, Trace, TraceHeader};
 use serde::Serialize;
 
 /// Statistics of one tile. Counts are exact; the ratios are methods.
@@ -210,12 +210,13 @@ pub struct TraceStats {
 }
 
 impl TraceStats {
-    pub(super) fn of(trace: &Trace) -> TraceStats {
+    /// The statistics of `tiles`, `frames` frames of the trace with header
+    /// `header` (every frame's quad positions count in `frame_quads`).
+    fn of(header: &TraceHeader, tiles: &[Tile], frames: usize) -> TraceStats {
         // Each tile's distinct blocks serve its own statistics and, merged,
         // the frame's distinct blocks (far fewer than its block accesses).
         let mut all: Vec<u64> = Vec::new();
-        let tiles: Vec<TileStats> = trace
-            .tiles()
+        let tiles: Vec<TileStats> = tiles
             .iter()
             .map(|t| {
                 let unique = t.unique_blocks_counted();
@@ -240,11 +241,11 @@ impl TraceStats {
         }
         all.sort_unstable();
         all.dedup();
-        let frame_quads = trace.header().frame_quads();
+        let frame_quads = header.frame_quads() * frames as u64;
         let cf = ratio(warp_blocks as f64, warps as f64);
         let min_estimate1 = ratio(unique as f64, warps as f64);
         TraceStats {
-            workload: trace.header().workload.clone(),
+            workload: header.workload.clone(),
             tiles: tiles.len() as u64,
             warp_tiles,
             warps,
@@ -286,8 +287,26 @@ impl Trace {
     }
 
     /// Whole-trace statistics (see [`TraceStats`] for the definitions).
+    /// Over several frames they pool every frame's tiles, and
+    /// `frame_quads` counts the quads of every frame.
     pub fn stats(&self) -> TraceStats {
-        self.stats.0.get_or_init(|| TraceStats::of(self)).clone()
+        self.stats
+            .0
+            .get_or_init(|| TraceStats::of(&self.header, &self.tiles, self.frame_count()))
+            .clone()
+    }
+
+    /// The statistics of frame `frame` alone (those of the whole trace
+    /// for a one-frame trace).
+    ///
+    /// # Panics
+    ///
+    /// If `frame >= frame_count()`.
+    pub fn frame_stats(&self, frame: usize) -> TraceStats {
+        if self.frame_count() == 1 {
+            return self.stats();
+        }
+        TraceStats::of(&self.header, self.frame_tiles(frame), 1)
     }
 }
 
@@ -318,8 +337,13 @@ fn footprint(tile: &Tile, is_priority: &impl Fn(u32, u32) -> bool) -> (usize, us
 /// least one block, weighted by their warps (0 if no tile touches a block).
 /// A tile without warps touches no block, so it is left out.
 pub fn mean_footprint_ratio(trace: &Trace, is_priority: impl Fn(u32, u32) -> bool) -> f64 {
+    mean_footprint_ratio_of(trace.tiles(), is_priority)
+}
+
+/// [`mean_footprint_ratio`] over `tiles` (one frame's, say).
+pub fn mean_footprint_ratio_of(tiles: &[Tile], is_priority: impl Fn(u32, u32) -> bool) -> f64 {
     let (mut num, mut den) = (0.0, 0.0);
-    for tile in trace.tiles() {
+    for tile in tiles {
         let (selected, total) = footprint(tile, &is_priority);
         if total > 0 {
             let w = tile.quad_count() as f64;
@@ -407,7 +431,7 @@ mod tests {
         let first = t.stats();
         // The remembered statistics are the computed ones, and a trace that
         // has them equals one that has not computed them yet.
-        assert_eq!(first, TraceStats::of(&t));
+        assert_eq!(first, TraceStats::of(t.header(), t.tiles(), 1));
         assert_eq!(t.stats(), first);
         assert_eq!(t, fresh);
         assert!(format!("{t:?}").contains("Memo(computed)"));

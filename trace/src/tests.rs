@@ -6,6 +6,7 @@
 mod bounds;
 mod files;
 mod format_md;
+mod frames;
 mod fuzz;
 mod malformed;
 mod rejected;

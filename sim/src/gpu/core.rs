@@ -246,6 +246,11 @@ impl ShaderCore {
         &self.notes.stats
     }
 
+    /// Set every counter to zero (a frame begins; the core's state stays).
+    pub fn reset_stats(&mut self) {
+        self.notes.stats = self.notes.stats.cleared();
+    }
+
     /// No stage of the core can make progress in cycle `now` (before it
     /// runs): no tile, or every stage idle and no data outstanding.
     pub fn is_idle(&self, now: u64) -> bool {

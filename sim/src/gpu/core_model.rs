@@ -68,6 +68,9 @@ pub trait CoreModel: Traceable + Sized {
     fn launched_now(&self) -> Option<(u32, bool)>;
     /// The core's counters.
     fn stats(&self) -> &CoreStats;
+    /// Set every counter to zero, the core's state unchanged (a frame
+    /// begins; the core is idle).
+    fn reset_stats(&mut self);
     /// No stage can make progress in cycle `now` (asked before it runs):
     /// a cycle of an idle core changes nothing but its counters.
     fn is_idle(&self, now: u64) -> bool;
@@ -146,6 +149,9 @@ impl CoreModel for ShaderCore {
     #[inline]
     fn stats(&self) -> &CoreStats {
         ShaderCore::stats(self)
+    }
+    fn reset_stats(&mut self) {
+        ShaderCore::reset_stats(self)
     }
     fn is_idle(&self, now: u64) -> bool {
         ShaderCore::is_idle(self, now)

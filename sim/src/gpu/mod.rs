@@ -16,6 +16,20 @@
 //!
 //! Either way a tile fills and drains. A run ends when every tile is
 //! rendered, every colour buffer flushed and the memory system is idle.
+//!
+//! **Frames.** A trace of several frames runs them in order
+//! ([`Gpu::start_frame`], [`Gpu::end_frame`]). A frame ends as a one-frame
+//! run ends (every tile of it rendered, every colour buffer flushed, the
+//! memory system idle), and the next frame's first tile opens in the next
+//! cycle. What carries over from one frame to the next is the state of the
+//! memory hierarchy: the contents and replacement order of every cache
+//! (L0, L1, L2), the DRAM banks' open rows and timing, the prefetchers'
+//! state; and the cores' scheduler state (an idle core keeps its
+//! registers, such as WaSP-M's CF meter). Nothing is flushed or
+//! invalidated at a frame's end beyond what every tile's end does (its
+//! colour buffer's flush to the frame buffer, the tile buffers being
+//! per tile). Only the counters restart: each frame's statistics are its
+//! own.
 
 mod core;
 mod core_model;
@@ -122,6 +136,8 @@ enum Dispatcher {
     PerCore {
         /// Next tile to hand out.
         next_tile: usize,
+        /// The end of the frame's tiles.
+        end: usize,
     },
     /// The GPU's one raster pipeline.
     Shared(SharedRaster),
@@ -143,6 +159,15 @@ pub struct Gpu<'t, C = ShaderCore> {
     /// The waveform's scope name of each core (`core0`, ...), made once.
     core_scopes: Vec<String>,
     tiles_done: usize,
+    /// The tiles of the frame being run (an index range of the trace's
+    /// tiles): nothing at or past its end is dispatched.
+    frame: std::ops::Range<usize>,
+    /// The cycle before the frame's first one (0 for the first frame).
+    frame_start: u64,
+    /// `tiles_done` when the frame began.
+    frame_tiles_done: usize,
+    /// The memory counters when the frame began (`None`: all zero).
+    mem_base: Option<MemStats>,
     now: u64,
     /// The last cycle in which a stage of a core or the raster pipeline
     /// made progress, or a tile began or ended (for the watchdog).
@@ -211,7 +236,10 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             (Dispatcher::Shared(raster), vec![TileTracker::new()])
         } else {
             (
-                Dispatcher::PerCore { next_tile: 0 },
+                Dispatcher::PerCore {
+                    next_tile: 0,
+                    end: trace.tiles().len(),
+                },
                 vec![TileTracker::new(); cfg.gpu.cores as usize],
             )
         };
@@ -234,6 +262,10 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             timeline: None,
             core_scopes,
             tiles_done: 0,
+            frame: 0..trace.tiles().len(),
+            frame_start: 0,
+            frame_tiles_done: 0,
+            mem_base: None,
             now: 0,
             last_progress: 0,
         })
@@ -279,12 +311,44 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
         self.now
     }
 
-    /// Whether every tile is rendered (and flushed) and the memory system
-    /// is idle.
+    /// Start the frame of the trace's tiles `tiles` (a range of
+    /// [`Trace::frames`]): only its tiles are dispatched until it is
+    /// [`done`](Self::done). The GPU must be done with the previous frame
+    /// (or new); the counters restart, the state carries over (see the
+    /// module docs). A new GPU runs the whole trace as one frame without
+    /// a call.
+    pub fn start_frame(&mut self, tiles: std::ops::Range<usize>) {
+        debug_assert!(
+            self.now == 0 || self.done(),
+            "a frame starts on an idle GPU"
+        );
+        match &mut self.dispatch {
+            Dispatcher::PerCore { next_tile, end } => {
+                *next_tile = tiles.start;
+                *end = tiles.end;
+            }
+            Dispatcher::Shared(r) => r.start_frame(tiles.clone()),
+        }
+        self.frame = tiles;
+        if self.now == 0 {
+            return; // nothing counted yet
+        }
+        for c in self.cores.iter_mut() {
+            c.reset_stats();
+        }
+        self.trackers = vec![TileTracker::new(); self.trackers.len()];
+        self.mem.restart_peaks();
+        self.mem_base = Some(self.mem.stats());
+        self.frame_start = self.now;
+        self.frame_tiles_done = self.tiles_done;
+    }
+
+    /// Whether every tile of the frame is rendered (and flushed) and the
+    /// memory system is idle.
     pub fn done(&self) -> bool {
-        let n = self.trace.tiles().len();
+        let n = self.frame.end;
         let fed = match &self.dispatch {
-            Dispatcher::PerCore { next_tile } => *next_tile >= n,
+            Dispatcher::PerCore { next_tile, .. } => *next_tile >= n,
             Dispatcher::Shared(r) => r.done(n),
         };
         fed && self.cores.iter().all(|c| c.idle()) && self.mem.is_idle()
@@ -360,14 +424,14 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
     /// progress.
     #[inline(always)]
     fn evaluate_per_core(&mut self, now: u64) -> bool {
-        let Dispatcher::PerCore { next_tile } = &mut self.dispatch else {
+        let Dispatcher::PerCore { next_tile, end } = &mut self.dispatch else {
             unreachable!("per-core-tile dispatch")
         };
         let tiles = self.trace.tiles();
         let mut progress = false;
         let pf_on = self.prefetch.is_some();
         for (i, c) in self.cores.iter_mut().enumerate() {
-            if c.idle() && *next_tile < tiles.len() {
+            if c.idle() && *next_tile < *end {
                 c.assign_tile(*next_tile, &tiles[*next_tile]);
                 self.trackers[i].start(*next_tile as u32, Some(i as u32), now);
                 if let Some(tl) = self.timeline.as_mut() {
@@ -507,7 +571,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
     #[inline(never)]
     fn watchdog(&self) -> Result<(), SimError> {
         let rastering = match &self.dispatch {
-            Dispatcher::Shared(r) => !r.done(self.trace.tiles().len()),
+            Dispatcher::Shared(r) => !r.done(self.frame.end),
             Dispatcher::PerCore { .. } => false,
         };
         let busy = rastering || self.cores.iter().any(|c| !c.idle());
@@ -559,11 +623,20 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
     }
 
     /// The counters of a run that is [`Gpu::done`], after checking that
-    /// every warp and quad of the trace went through.
+    /// every warp and quad of the trace (of its last frame) went through.
     pub fn finish(self) -> Result<RunCounters, SimError> {
+        self.end_frame()
+    }
+
+    /// The counters of the frame that is [`Gpu::done`] (since
+    /// [`start_frame`](Self::start_frame)), after checking that every
+    /// warp and quad of its tiles went through. Its cycles are those of
+    /// the frame; tile records keep the run's cycles.
+    pub fn end_frame(&self) -> Result<RunCounters, SimError> {
         let launched: u64 = self.cores.iter().map(|c| c.stats().warps_launched).sum();
         let finished: u64 = self.cores.iter().map(|c| c.stats().warps_finished).sum();
-        let quads = self.trace.quad_count() as u64;
+        let tiles = &self.trace.tiles()[self.frame.clone()];
+        let quads = tiles.iter().map(|t| t.quad_count() as u64).sum::<u64>();
         if launched != quads || finished != quads {
             return Err(SimError::Internal(format!(
                 "warps not conserved: {quads} quads in the trace, {launched} launched, {finished} finished"
@@ -578,7 +651,7 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 ..RasterStats::default()
             },
         };
-        let expect_raster = quads + self.trace.rejected_count();
+        let expect_raster = quads + tiles.iter().map(|t| t.rejected_count()).sum::<u64>();
         if raster.quads_rasterized != expect_raster {
             return Err(SimError::Internal(format!(
                 "quads not conserved: {expect_raster} in the trace (rejected ones included), {} rasterized",
@@ -592,16 +665,20 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
             .collect();
         per_tile.sort_by_key(|r| r.tile);
         let instruments = RunInstruments {
-            tiles: self.tiles_done as u64,
+            tiles: (self.tiles_done - self.frame_tiles_done) as u64,
             raster,
             priority_lead: TileTracker::lead_stats(&self.trackers),
             tile_timing: TileTracker::timing(&per_tile),
             per_tile,
         };
+        let mem = match &self.mem_base {
+            None => self.mem.stats(),
+            Some(base) => self.mem.stats().since(base),
+        };
         Ok(RunCounters {
-            cycles: self.now,
+            cycles: self.now - self.frame_start,
             cores: core_stats,
-            mem: self.mem.stats(),
+            mem,
             instruments,
         })
     }

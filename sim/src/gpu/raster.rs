@@ -85,6 +85,9 @@ pub struct SharedRaster {
     /// The open tile.
     tile: Option<usize>,
     next_tile: usize,
+    /// The end of the frame's tiles: none at or past it is opened
+    /// (`usize::MAX`: the trace's end).
+    end: usize,
     /// Where the rasterizer is in the open tile.
     cursor: RasterCursor,
     /// The core whose full input queue refused the quad at the cursor
@@ -130,6 +133,7 @@ impl SharedRaster {
             flush_mode,
             tile: None,
             next_tile: 0,
+            end: usize::MAX,
             cursor: RasterCursor::default(),
             waiting_on: None,
             flush: VecDeque::new(),
@@ -143,7 +147,16 @@ impl SharedRaster {
         self.tile
     }
 
-    /// Every tile rendered and its colour buffer flushed.
+    /// Start a frame: its tiles `tiles` are opened in order, the counters
+    /// start from zero. The pipeline must be [`done`](Self::done) with
+    /// the previous frame.
+    pub fn start_frame(&mut self, tiles: std::ops::Range<usize>) {
+        self.next_tile = tiles.start;
+        self.end = tiles.end;
+        self.stats = RasterStats::default();
+    }
+
+    /// Every tile before `tiles` rendered and its colour buffer flushed.
     pub fn done(&self, tiles: usize) -> bool {
         self.tile.is_none() && self.next_tile >= tiles && self.flush.is_empty()
     }
@@ -186,7 +199,7 @@ impl SharedRaster {
         let mut opened = None;
         if self.tile.is_none() {
             let may_open = self.flush_mode != ColorFlush::Blocking || self.flush.is_empty();
-            if self.next_tile >= tiles.len() {
+            if self.next_tile >= tiles.len().min(self.end) {
                 return RasterCycle {
                     opened: None,
                     progress,

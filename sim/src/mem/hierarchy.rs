@@ -774,6 +774,17 @@ impl MemorySystem {
         o
     }
 
+    /// Restart the counters that keep a peak (the DRAM FIFO's and the
+    /// prefetch queues' largest depth) at their present value: a frame
+    /// begins, and its peaks are its own. Sums need no restart: a frame's
+    /// are [`MemStats::since`] the reading at its start.
+    pub fn restart_peaks(&mut self) {
+        self.dram.restart_max_queue();
+        for q in &mut self.pf {
+            q.restart_max_len();
+        }
+    }
+
     /// Counters of every level so far.
     pub fn stats(&self) -> MemStats {
         // Every cache lives through every tick. The occupancy integrals run

@@ -67,6 +67,27 @@ impl CacheStats {
         self.cycles += o.cycles;
     }
 
+    /// The counters since `before`, an earlier reading of the same cache
+    /// (every field is a sum over events or cycles).
+    pub fn since(&self, before: &CacheStats) -> CacheStats {
+        CacheStats {
+            accesses: self.accesses - before.accesses,
+            hits: self.hits - before.hits,
+            misses: self.misses - before.misses,
+            secondary_misses: self.secondary_misses - before.secondary_misses,
+            stall_cycles: self.stall_cycles - before.stall_cycles,
+            stall_refusals: self.stall_refusals - before.stall_refusals,
+            merge_stalls: self.merge_stalls - before.merge_stalls,
+            port_busy: self.port_busy - before.port_busy,
+            fills: self.fills - before.fills,
+            miss_wait_sum: self.miss_wait_sum - before.miss_wait_sum,
+            mshr_held_sum: self.mshr_held_sum - before.mshr_held_sum,
+            mshr_outstanding_sum: self.mshr_outstanding_sum - before.mshr_outstanding_sum,
+            mshr_full_cycles: self.mshr_full_cycles - before.mshr_full_cycles,
+            cycles: self.cycles - before.cycles,
+        }
+    }
+
     /// Hits over accepted accesses (0 when there were none).
     pub fn hit_rate(&self) -> f64 {
         ratio(self.hits, self.accesses)
@@ -135,6 +156,27 @@ pub struct DramStats {
 }
 
 impl DramStats {
+    /// The counters since `before`, an earlier reading; `max_queue` is
+    /// this reading's (restarted when `before` was taken, see
+    /// `MemorySystem::restart_peaks`).
+    pub fn since(&self, before: &DramStats) -> DramStats {
+        DramStats {
+            requests: self.requests - before.requests,
+            row_hits: self.row_hits - before.row_hits,
+            row_misses: self.row_misses - before.row_misses,
+            latency_sum: self.latency_sum - before.latency_sum,
+            queue_wait_sum: self.queue_wait_sum - before.queue_wait_sum,
+            max_queue: self.max_queue,
+            writes: self.writes - before.writes,
+            write_row_misses: self.write_row_misses - before.write_row_misses,
+            row_conflicts: self.row_conflicts - before.row_conflicts,
+            write_row_conflicts: self.write_row_conflicts - before.write_row_conflicts,
+            activates: self.activates - before.activates,
+            precharges: self.precharges - before.precharges,
+            bus_busy_cycles: self.bus_busy_cycles - before.bus_busy_cycles,
+        }
+    }
+
     /// Average cycles from an L2 miss to its reply.
     pub fn avg_latency(&self) -> f64 {
         ratio(self.latency_sum, self.requests)
@@ -166,6 +208,34 @@ pub struct MemStats {
     /// The prefetchers' counters, summed over the cores (zero without one).
     #[serde(default)]
     pub prefetch: PrefetchStats,
+}
+
+impl MemStats {
+    /// The counters since `before`, an earlier reading of the same
+    /// hierarchy (what one frame of a run did; see [`CacheStats::since`],
+    /// [`DramStats::since`] and [`PrefetchStats::since`]).
+    pub fn since(&self, before: &MemStats) -> MemStats {
+        let opt = |a: &Option<CacheStats>, b: &Option<CacheStats>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.since(b)),
+            (a, _) => *a,
+        };
+        MemStats {
+            l0: opt(&self.l0, &before.l0),
+            l1: self.l1.since(&before.l1),
+            l2: self.l2.since(&before.l2),
+            dram: self.dram.since(&before.dram),
+            per_core: self
+                .per_core
+                .iter()
+                .zip(&before.per_core)
+                .map(|(a, b)| CoreMemStats {
+                    l0: opt(&a.l0, &b.l0),
+                    l1: a.l1.since(&b.l1),
+                })
+                .collect(),
+            prefetch: self.prefetch.since(&before.prefetch),
+        }
+    }
 }
 
 fn ratio(num: u64, den: u64) -> f64 {

@@ -24,7 +24,7 @@ fn cfg_for(trace: &Trace) -> MachineConfig {
     c
 }
 
-fn small_synth(seed: u64) -> Trace {
+pub(super) fn small_synth(seed: u64) -> Trace {
     generate(&GenParams {
         frame_w: 256,
         frame_h: 128,

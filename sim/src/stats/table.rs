@@ -12,6 +12,7 @@ impl RunStats {
         self.warp_lines(&mut s);
         self.pipeline_lines(&mut s);
         self.workload_lines(&mut s);
+        self.frame_lines(&mut s);
         s
     }
 

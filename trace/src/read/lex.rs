@@ -2,12 +2,13 @@
 //! and the decoding of numbers, block numbers and instruction tokens.
 
 use crate::{
-    Problem, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, MAGIC,
-    MAX_ALU_RUN, MAX_TEX_BLOCKS,
+    Problem, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3,
+    FORMAT_VERSION_FRAMES, MAGIC, MAX_ALU_RUN, MAX_TEX_BLOCKS,
 };
 
 /// Every version the reader accepts, newest first.
-const VERSIONS: [u32; 4] = [
+const VERSIONS: [u32; 5] = [
+    FORMAT_VERSION_FRAMES,
     FORMAT_VERSION,
     FORMAT_VERSION_3,
     FORMAT_VERSION_2,

@@ -4,7 +4,7 @@
 use super::lex::{check_line, check_magic, dec_u32, instr_token, lines, tokens, Tok};
 use crate::{
     Problem, Trace, TraceBuilder, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_3,
-    MAX_QUAD_INSTRS,
+    FORMAT_VERSION_FRAMES, FRAME_MARKER, MAX_QUAD_INSTRS,
 };
 
 /// Checks line 1 (the magic line) and returns a parser for the rest of
@@ -122,6 +122,20 @@ impl<'a> Parser<'a> {
                 )?;
                 b.rejected(n)
             }
+            FRAME_MARKER => {
+                if self.version < FORMAT_VERSION_FRAMES {
+                    return Err(Problem::FrameMarkerInOldVersion(self.version));
+                }
+                let b = self.body(directive)?;
+                if fields.len() != 1 {
+                    return Err(Problem::WrongFieldCount {
+                        directive: FRAME_MARKER,
+                        found: fields.len(),
+                        usage: FRAME_MARKER,
+                    });
+                }
+                b.next_frame()
+            }
             "workload" => self.workload_line(trimmed),
             "texture-format" => self.texture_format_line(fields),
             "frame" => self.frame_line(fields),
@@ -166,6 +180,9 @@ impl<'a> Parser<'a> {
                     None if self.workload.is_none() => "`workload NAME`",
                     None => "`frame W H tile T`",
                     Some(b) if b.open_tile().is_some() => "`q X Y ...`, `z N` or `end`",
+                    Some(_) if self.version >= FORMAT_VERSION_FRAMES => {
+                        "`tile TX TY` or `next-frame`"
+                    }
                     Some(_) => "`tile TX TY`",
                 },
             }),

@@ -142,6 +142,7 @@ proptest! {
             let part = Trace {
                 header: t.header().clone(),
                 tiles: vec![tile.clone()],
+                frame_starts: vec![0],
                 stats: Memo::default(),
             };
             let part = Trace::parse(&part.to_text(), "part").unwrap();

@@ -83,9 +83,9 @@ fn every_malformation_is_reported_with_its_line() {
             )
         }),
         (
-            "wasp-trace 5\n".into(),
+            "wasp-trace 6\n".into(),
             1,
-            |p| matches!(p, UnsupportedVersion(v) if v == "5"),
+            |p| matches!(p, UnsupportedVersion(v) if v == "6"),
         ),
         (
             "wasp-trace 0\n".into(),

@@ -601,6 +601,9 @@ impl CoreModel for PlainCore {
     fn stats(&self) -> &CoreStats {
         &self.stats
     }
+    fn reset_stats(&mut self) {
+        self.stats = self.stats.cleared();
+    }
 
     fn is_idle(&self, now: u64) -> bool {
         let Some(_) = self.tile else {

@@ -65,6 +65,17 @@ pub struct CoreStats {
     pub blocked_cycles: [u64; 2],
 }
 
+impl CoreStats {
+    /// Every counter zero, the occupancy histogram as long as this one's
+    /// (what a core counts from when a frame begins).
+    pub fn cleared(&self) -> CoreStats {
+        CoreStats {
+            occupancy_hist: vec![0; self.occupancy_hist.len()],
+            ..CoreStats::default()
+        }
+    }
+}
+
 /// What one warp did, for per-quad pictures (heat maps) and analysis.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct WarpRecord {

@@ -297,6 +297,11 @@ impl BankedDram {
         self.queued == 0 && self.channels.iter().all(|c| c.replies.is_empty())
     }
 
+    /// Restart `max_queue` at the requests queued now (a frame begins).
+    pub fn restart_max_queue(&mut self) {
+        self.stats.max_queue = self.queued() as u64;
+    }
+
     /// Requests waiting in the queues (including those with a row command
     /// issued but no column command yet).
     pub fn queued(&self) -> usize {

@@ -214,6 +214,11 @@ impl FixedDram {
         self.queue.is_empty() && self.row_hits.is_empty() && self.row_misses.is_empty()
     }
 
+    /// Restart `max_queue` at the requests queued now (a frame begins).
+    pub fn restart_max_queue(&mut self) {
+        self.stats.max_queue = self.queued() as u64;
+    }
+
     /// Requests waiting in the FIFO.
     pub fn queued(&self) -> usize {
         self.queue.len()

@@ -124,6 +124,12 @@ impl Dram {
         each!(self, d => d.in_flight())
     }
 
+    /// Restart the `max_queue` counter at the requests queued now (a
+    /// frame begins: its largest FIFO depth is its own).
+    pub fn restart_max_queue(&mut self) {
+        each!(mut self, d => d.restart_max_queue())
+    }
+
     /// Counters so far.
     pub fn stats(&self) -> &DramStats {
         each!(self, d => d.stats())

@@ -44,6 +44,15 @@ impl MarkCounts {
         self.late += o.late;
         self.useless += o.useless;
     }
+
+    /// The counts since `before`, an earlier reading.
+    pub fn since(&self, before: &MarkCounts) -> MarkCounts {
+        MarkCounts {
+            useful: self.useful - before.useful,
+            late: self.late - before.late,
+            useless: self.useless - before.useless,
+        }
+    }
 }
 
 /// The marks of one cache (empty, and never touched, for a cache that

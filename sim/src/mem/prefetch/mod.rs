@@ -175,6 +175,16 @@ pub struct PrefetchStats {
 }
 
 impl PrefetchStats {
+    /// The counters since `before`, an earlier reading (`unused_at_end`
+    /// is this reading's: lines unused now).
+    pub fn since(&self, before: &PrefetchStats) -> PrefetchStats {
+        PrefetchStats {
+            queue: self.queue.since(&before.queue),
+            lines: self.lines.since(&before.lines),
+            unused_at_end: self.unused_at_end,
+        }
+    }
+
     /// Add `o` into `self`.
     pub fn add(&mut self, o: &PrefetchStats) {
         self.queue.add(&o.queue);

@@ -56,6 +56,23 @@ impl QueueCounts {
         self.reserve_waits += o.reserve_waits;
         self.max_len = self.max_len.max(o.max_len);
     }
+
+    /// The counts since `before` (an earlier reading of the same queue);
+    /// `max_len` is this reading's (restarted when `before` was taken).
+    pub fn since(&self, before: &QueueCounts) -> QueueCounts {
+        QueueCounts {
+            generated: self.generated - before.generated,
+            duplicates: self.duplicates - before.duplicates,
+            dropped: self.dropped - before.dropped,
+            cancelled: self.cancelled - before.cancelled,
+            issued: self.issued - before.issued,
+            hits: self.hits - before.hits,
+            pending: self.pending - before.pending,
+            misses: self.misses - before.misses,
+            reserve_waits: self.reserve_waits - before.reserve_waits,
+            max_len: self.max_len,
+        }
+    }
 }
 
 /// One core's prefetch queue.
@@ -70,6 +87,12 @@ pub struct PrefetchQueue {
 }
 
 impl PrefetchQueue {
+    /// Restart the `max_len` counter at the entries queued now (a frame
+    /// begins).
+    pub fn restart_max_len(&mut self) {
+        self.counts.max_len = self.q.len() as u64;
+    }
+
     /// An empty queue of `capacity` entries (allocated now), skipping
     /// blocks already queued when `filter` holds.
     pub fn new(capacity: usize, filter: bool) -> Self {
