@@ -93,7 +93,7 @@
 //! render --timings`).
 
 use super::texture::{QuadTexels, TextureSet, TextureUse};
-use super::{Blend, Camera, Scene, SceneError, ShaderOp, Vec3};
+use super::{Blend, Camera, Compare, DrawState, Scene, SceneError, ShaderOp, Vec3};
 use crate::trace::{Trace, TraceHeader};
 use serde::Serialize;
 
