@@ -25,6 +25,7 @@ pub mod def;
 pub mod draw_state;
 pub mod fetch;
 pub mod frozen_bubble;
+pub mod gl;
 pub mod load;
 pub mod openarena;
 pub mod procedural;
