@@ -22,4 +22,4 @@ pub mod textures;
 pub mod tracker;
 
 pub use import::{import, ImportError, ImportOptions, Imported, TextureInfo};
-pub use summary::Summary;
+pub use summary::{DrawSummary, Summary};

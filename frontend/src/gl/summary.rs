@@ -47,6 +47,22 @@ pub struct Summary {
     /// Draws skipped for needing what is not modelled, and by what.
     pub unsupported_draws_skipped: u64,
     pub unsupported: BTreeMap<String, u64>,
+    /// Per draw call, in issue order (JSON only).
+    pub draws: Vec<DrawSummary>,
+}
+
+/// One draw call's counts.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct DrawSummary {
+    /// The call's number in the capture.
+    pub call: u64,
+    /// Its triangles after primitive assembly.
+    pub triangles: u64,
+    /// Its quads shaded (warps) and rejected by Early-Z.
+    pub quads_shaded: u64,
+    pub quads_rejected_early_z: u64,
+    /// Pixels it shaded.
+    pub pixels: u64,
 }
 
 impl Summary {
@@ -79,6 +95,19 @@ impl Summary {
             unmodelled_calls: imp.unmodelled.clone(),
             unsupported_draws_skipped: imp.unsupported.values().sum(),
             unsupported: imp.unsupported.clone(),
+            draws: imp
+                .scene
+                .materials
+                .iter()
+                .zip(&frame.stats.materials)
+                .map(|(m, st)| DrawSummary {
+                    call: m.name.trim_start_matches("call ").parse().unwrap_or(0),
+                    triangles: st.triangles,
+                    quads_shaded: st.warps,
+                    quads_rejected_early_z: st.quads_rejected_early_z,
+                    pixels: st.pixels,
+                })
+                .collect(),
         }
     }
 
