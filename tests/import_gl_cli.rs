@@ -8,7 +8,7 @@ mod common;
 use common::{ok, stderr, wasp};
 
 /// Draw calls per frame of quads.trace: `apitrace dump tests/gl/quads.trace
-/// | grep -cE '^[0-9]+ glDraw'` prints 21 for its 3 frames, 7 each (two
+/// | grep -cE '^[0-9]+ glDraw(Arrays|Elements)'` prints 21 for its 3 frames, 7 each (two
 /// glDrawElements, a strip and a fan, three GL_QUADS).
 const DRAWS_PER_FRAME: u64 = 7;
 

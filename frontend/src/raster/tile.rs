@@ -681,4 +681,107 @@ mod tests {
             f.stats.quads_rejected_early_z
         );
     }
+
+    /// A scene in clip space (w = 1): `quads` of (NDC rectangle, z, state)
+    /// each its own material, drawn in order.
+    fn clip_scene(quads: &[([f32; 4], f32, crate::DrawState)]) -> Scene {
+        let mut meshes = Vec::new();
+        let mut materials = Vec::new();
+        for (i, (r, z, st)) in quads.iter().enumerate() {
+            // Counter-clockwise in NDC (y up).
+            meshes.push(quad_mesh(r[0], r[1], r[2], r[3], *z, i));
+            let mut mt = mat("q", Blend::Opaque, 0);
+            mt.state = Some(*st);
+            materials.push(mt);
+        }
+        Scene {
+            name: "test:clip".into(),
+            source: "unit test".into(),
+            meshes,
+            materials,
+            textures: vec![checker("c", 64)],
+            camera: Camera::Clip,
+        }
+    }
+
+    #[test]
+    fn per_draw_states_decide_scissor_culling_depth_and_clears() {
+        use crate::{Compare, Cull, DrawState};
+        let opaque = DrawState::for_blend(Blend::Opaque);
+        let all = [-1.0, -1.0, 1.0, 1.0];
+        let opts = RasterOptions {
+            threads: 1,
+            ..Default::default()
+        };
+        let run = |q: &[([f32; 4], f32, DrawState)]| {
+            rasterize(&clip_scene(q), 32, 32, &opts).unwrap().stats
+        };
+        // A scissor of pixels 3..9 x 5..6 (odd edges): exactly 6 pixels.
+        let sc = DrawState {
+            scissor: Some([3, 5, 9, 6]),
+            ..opaque
+        };
+        let st = run(&[(all, 0.0, sc)]);
+        assert_eq!(st.pixels_shaded, 6);
+        assert_eq!(st.positions, 4, "quads at columns 2, 4, 6, 8");
+        // Back faces culled: the counter-clockwise quad stays, a clockwise
+        // front face setting culls it.
+        let back = DrawState {
+            cull: Cull::Back,
+            ..opaque
+        };
+        assert_eq!(run(&[(all, 0.0, back)]).pixels_shaded, 32 * 32);
+        let cw = DrawState {
+            front_ccw: false,
+            ..back
+        };
+        let st = run(&[(all, 0.0, cw)]);
+        assert_eq!((st.pixels_shaded, st.culled_back_faces), (0, 2));
+        // A near square then a far one: rejected by GL_LESS, not after a
+        // depth clear between them, nor with the far one's depth range
+        // pulled in front, nor with a large negative polygon offset.
+        let far = |st: DrawState| run(&[(all, -0.5, opaque), (all, 0.5, st)]);
+        let less = DrawState {
+            depth_test: Some(Compare::Less),
+            ..opaque
+        };
+        assert_eq!(far(less).quads_rejected_early_z, 16 * 16 + 16);
+        let cleared = DrawState {
+            depth_epoch: 1,
+            ..less
+        };
+        assert_eq!(far(cleared).quads_rejected_early_z, 0);
+        let range = DrawState {
+            depth_range: Some([0.0, 0.1]),
+            ..less
+        };
+        assert_eq!(far(range).quads_rejected_early_z, 0);
+        let offset = DrawState {
+            polygon_offset: Some((0.0, -16_777_216.0 * 0.6)),
+            ..less
+        };
+        assert_eq!(far(offset).quads_rejected_early_z, 0);
+        // A far square (0.9) rejected coarsely sets the coarse bound to
+        // 0.25; GL_GREATER then writes a farther depth (0.75): the bound
+        // follows, so a square between the two (0.5) passes everywhere,
+        // none of it rejected on the old bound.
+        let greater = DrawState {
+            depth_test: Some(Compare::Greater),
+            ..opaque
+        };
+        let mid = DrawState {
+            depth_test: Some(Compare::LEqual),
+            ..opaque
+        };
+        let st = run(&[
+            (all, -0.5, opaque),
+            (all, 0.8, mid),
+            (all, 0.5, greater),
+            (all, 0.0, mid),
+        ]);
+        assert_eq!(st.materials[1].quads_rejected_early_z, 16 * 16 + 16);
+        assert_eq!(st.materials[2].quads_rejected_early_z, 0);
+        assert_eq!(st.materials[3].quads_rejected_early_z, 0);
+        assert_eq!(st.materials[3].warps, 16 * 16 + 16);
+    }
 }
