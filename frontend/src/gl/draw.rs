@@ -3,7 +3,7 @@
 //! into triangles; each vertex fetched from the arrays and transformed to
 //! clip space by the draw's matrices, each texture unit's coordinates by
 //! its texture matrix. The result ([`DrawRec`]) waits for the frame's size,
-//! which places it on screen ([`super::import`]).
+//! which places it on screen ([`mod@super::import`]).
 
 use super::args::{self, CallError, Pointer};
 use super::arrays::{self, Array};

@@ -8,7 +8,7 @@
 //! arrays and buffers, textures, the fixed-function state), records the
 //! selected frame's draws in clip space ([`draw`]) and places them in the
 //! frame with one material per draw carrying the engine's pipeline state
-//! ([`import`]); [`summary`] reports what it saw.
+//! ([`mod@import`]); [`summary`] reports what it saw.
 
 pub mod args;
 pub mod arrays;

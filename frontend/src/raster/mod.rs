@@ -106,6 +106,7 @@ mod pipeline;
 mod records;
 mod setup;
 mod tile;
+mod validate;
 
 use coverage::*;
 pub use frame::*;
@@ -115,6 +116,7 @@ use pipeline::*;
 use records::*;
 use setup::*;
 use tile::*;
+use validate::*;
 
 /// Sub-pixel bits of the fixed-point screen coordinates.
 const SUBPIXEL_BITS: u32 = 8;
