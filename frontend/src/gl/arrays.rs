@@ -322,18 +322,20 @@ mod tests {
     use super::*;
     use wasp_gltrace::Value;
 
+    /// `name(size, ty, stride, ptr)` numbered `no`.
+    fn ptr(no: u64, name: &str, size: i64, ty: i64, stride: i64, p: Value) -> Call {
+        let i = Value::SInt;
+        call(no, name, vec![i(size), e(ty), i(stride), p])
+    }
+
     #[test]
     fn recorded_arrays_and_buffers_give_their_elements() {
         let mut a = Arrays::new(2);
         a.client_state(gl::VERTEX_ARRAY, true).unwrap();
         // Interleaved x, y, z, pad: stride 16.
         let data = floats(&[1.0, 2.0, 3.0, 9.0, 4.0, 5.0, 6.0, 9.0]);
-        a.pointer(&call(
-            1,
-            "glVertexPointer",
-            vec![Value::SInt(3), e(gl::FLOAT), Value::SInt(16), data],
-        ))
-        .unwrap();
+        a.pointer(&ptr(1, "glVertexPointer", 3, gl::FLOAT, 16, data))
+            .unwrap();
         let v = a.vertex.clone().unwrap();
         assert!(
             v.enabled,
@@ -360,15 +362,13 @@ mod tests {
         ))
         .unwrap();
         a.client_unit = 1;
-        a.pointer(&call(
+        a.pointer(&ptr(
             3,
             "glTexCoordPointer",
-            vec![
-                Value::SInt(2),
-                e(gl::SHORT),
-                Value::SInt(0),
-                Value::Opaque(4),
-            ],
+            2,
+            gl::SHORT,
+            0,
+            Value::Opaque(4),
         ))
         .unwrap();
         a.buffer_sub_data(&call(
@@ -389,15 +389,13 @@ mod tests {
         assert!(a.texcoord[0].is_none());
         // An address with no buffer bound: data unknown, said at use.
         a.bind_buffer(gl::ARRAY_BUFFER, 0).unwrap();
-        a.pointer(&call(
+        a.pointer(&ptr(
             5,
             "glColorPointer",
-            vec![
-                Value::SInt(4),
-                e(gl::UNSIGNED_BYTE),
-                Value::SInt(0),
-                Value::Opaque(0x1000),
-            ],
+            4,
+            gl::UNSIGNED_BYTE,
+            0,
+            Value::Opaque(0x1000),
         ))
         .unwrap();
         let c = a.colour.clone().unwrap();

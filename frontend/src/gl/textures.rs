@@ -200,24 +200,12 @@ impl Textures {
     /// glTexImage2D(target, level, internalformat, width, height, border,
     /// format, type, pixels).
     pub fn image(&mut self, call: &Call) -> Result<(), CallError> {
-        let level = level_of(call, 1)?;
-        let internal = args::int(call, 2)?;
-        let (width, height) = size_of(call, 3)?;
-        let (format, ty) = (args::int(call, 6)?, args::int(call, 7)?);
+        let (level, l) = read_level(call, false)?;
+        let (width, height, format, ty) = (l.width, l.height, l.format, l.ty);
         let pixels = call.arg(8).as_bytes().map(<[u8]>::to_vec);
         let (align, row_len) = (self.unpack_alignment, self.unpack_row_length);
         let t = self.bound_mut();
-        t.levels.insert(
-            level,
-            Level {
-                width,
-                height,
-                internal,
-                format,
-                ty,
-                compressed: false,
-            },
-        );
+        t.levels.insert(level, l);
         if level == 0 {
             let n = width as usize * height as usize;
             match pixels {
@@ -287,27 +275,39 @@ impl Textures {
     /// height, border, imageSize, data): the size and format kept, level 0's
     /// texels the placeholder.
     pub fn compressed_image(&mut self, call: &Call) -> Result<(), CallError> {
-        let level = level_of(call, 1)?;
-        let internal = args::int(call, 2)?;
-        let (width, height) = size_of(call, 3)?;
+        let (level, l) = read_level(call, true)?;
+        let (width, height, internal) = (l.width, l.height, l.internal);
         let t = self.bound_mut();
-        t.levels.insert(
-            level,
-            Level {
-                width,
-                height,
-                internal,
-                format: internal,
-                ty: 0,
-                compressed: true,
-            },
-        );
+        t.levels.insert(level, l);
         if level == 0 {
             t.rgba = PLACEHOLDER.repeat(width as usize * height as usize);
             t.placeholder = Some(format!("compressed format {}", gl::name(internal)));
         }
         Ok(())
     }
+}
+
+/// The level number and level of an upload (glTexImage2D's or
+/// glCompressedTexImage2D's arguments: target, level, internal format,
+/// width, height, ..., and for an uncompressed one the format and type).
+fn read_level(call: &Call, compressed: bool) -> Result<(u32, Level), CallError> {
+    let level = level_of(call, 1)?;
+    let internal = args::int(call, 2)?;
+    let (width, height) = size_of(call, 3)?;
+    let (format, ty) = if compressed {
+        (internal, 0)
+    } else {
+        (args::int(call, 6)?, args::int(call, 7)?)
+    };
+    let l = Level {
+        width,
+        height,
+        internal,
+        format,
+        ty,
+        compressed,
+    };
+    Ok((level, l))
 }
 
 fn level_of(call: &Call, i: usize) -> Result<u32, CallError> {
@@ -401,6 +401,14 @@ mod tests {
         )
     }
 
+    /// glTexSubImage2D of level 0 at (x, y), w x h, GL_ALPHA bytes `px`.
+    fn sub_alpha(no: u64, [x, y, w, h]: [i64; 4], px: Vec<u8>) -> Call {
+        let i = Value::SInt;
+        let a = vec![e(gl::TEXTURE_2D), i(0), i(x), i(y), i(w), i(h)];
+        let b = vec![e(gl::ALPHA), e(gl::UNSIGNED_BYTE), Value::Blob(px)];
+        call(no, "glTexSubImage2D", [a, b].concat())
+    }
+
     #[test]
     fn uploads_keep_levels_formats_and_level_zero_as_rgba() {
         let mut t = Textures::new(2);
@@ -433,23 +441,7 @@ mod tests {
         assert_eq!(t.units[0].bound, 0, "unit 0 untouched");
         // A sub-image on level 0, then the filter and wrap parameters.
         t.pixel_store(gl::UNPACK_ALIGNMENT, 1).unwrap();
-        let i = Value::SInt;
-        t.sub_image(&call(
-            3,
-            "glTexSubImage2D",
-            vec![
-                e(gl::TEXTURE_2D),
-                i(0),
-                i(2),
-                i(1),
-                i(1),
-                i(1),
-                e(gl::ALPHA),
-                e(gl::UNSIGNED_BYTE),
-                Value::Blob(vec![33]),
-            ],
-        ))
-        .unwrap();
+        t.sub_image(&sub_alpha(3, [2, 1, 1, 1], vec![33])).unwrap();
         assert_eq!(&t.objects[&5].rgba[5 * 4..6 * 4], &[255, 255, 255, 33]);
         t.parameter(gl::TEXTURE_MIN_FILTER, gl::LINEAR_MIPMAP_LINEAR)
             .unwrap();
@@ -463,21 +455,7 @@ mod tests {
             t.parameter(0x8191, 1).is_err(),
             "GL_GENERATE_MIPMAP is counted"
         );
-        let bad = t.sub_image(&call(
-            4,
-            "glTexSubImage2D",
-            vec![
-                e(gl::TEXTURE_2D),
-                i(0),
-                i(2),
-                i(1),
-                i(5),
-                i(1),
-                e(gl::ALPHA),
-                e(gl::UNSIGNED_BYTE),
-                Value::Blob(vec![0; 5]),
-            ],
-        ));
+        let bad = t.sub_image(&sub_alpha(4, [2, 1, 5, 1], vec![0; 5]));
         assert!(bad.unwrap_err().message.contains("outside"));
     }
 
