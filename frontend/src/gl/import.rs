@@ -84,9 +84,22 @@ pub struct Imported {
     pub triangles: u64,
     /// Draws skipped (with `skip_unsupported`), by what they need.
     pub unsupported: BTreeMap<String, u64>,
+    /// Unsupported draws of the frames before it (not imported), by
+    /// feature.
+    pub unsupported_in_earlier_frames: BTreeMap<String, u64>,
     /// Calls up to the frame's end the model does not use, by name.
     pub unmodelled: BTreeMap<String, u64>,
     pub textures: Vec<TextureInfo>,
+}
+
+/// A frame read to its swap: its recording, the unmodelled calls and the
+/// earlier frames' unsupported draws up to it, and its swap's number.
+struct Finished {
+    index: u64,
+    build: FrameBuild,
+    unmodelled: BTreeMap<String, u64>,
+    earlier: BTreeMap<String, u64>,
+    last_call: u64,
 }
 
 /// One frame's recording.
@@ -118,7 +131,10 @@ pub fn import(
     let mut frame = 0u64;
     let mut cur = FrameBuild::default();
     let mut unmodelled: BTreeMap<String, u64> = BTreeMap::new();
-    let mut done: Option<(u64, FrameBuild, BTreeMap<String, u64>, u64)> = None;
+    // Unsupported draws (immediate mode, display lists) of the frames
+    // before the current one, by feature.
+    let mut earlier: BTreeMap<String, u64> = BTreeMap::new();
+    let mut done: Option<Finished> = None;
     for call in calls {
         let call = call?;
         let build = opts.frame.is_none_or(|n| n == frame);
@@ -135,15 +151,25 @@ pub fn import(
                     cur.error.get_or_insert(e);
                 }
             },
-            Effect::UnsupportedDraw(f) if build => cur.unsupported(&call, f),
-            Effect::Draw | Effect::UnsupportedDraw(_) => {}
+            Effect::UnsupportedDraw(f) => cur.unsupported(&call, f),
+            Effect::Draw => {}
             Effect::FrameEnd => {
                 let next = FrameBuild {
                     first_call: call.no + 1,
                     ..Default::default()
                 };
-                let finished = std::mem::replace(&mut cur, next);
-                done = Some((frame, finished, unmodelled.clone(), call.no));
+                let build = std::mem::replace(&mut cur, next);
+                let before = earlier.clone();
+                for (f, n) in &build.unsupported {
+                    *earlier.entry(f.clone()).or_default() += n;
+                }
+                done = Some(Finished {
+                    index: frame,
+                    build,
+                    unmodelled: unmodelled.clone(),
+                    earlier: before,
+                    last_call: call.no,
+                });
                 frame += 1;
                 if opts.frame.is_some_and(|n| n + 1 == frame) {
                     break;
@@ -152,8 +178,13 @@ pub fn import(
         }
     }
     let frames_read = frame;
-    let Some((index, build, unmodelled, last_call)) =
-        done.filter(|d| opts.frame.is_none_or(|n| n == d.0))
+    let Some(Finished {
+        index,
+        build,
+        unmodelled,
+        earlier,
+        last_call,
+    }) = done.filter(|d| opts.frame.is_none_or(|n| n == d.index))
     else {
         return Err(ImportError::Frame(
             file.into(),
@@ -193,6 +224,7 @@ pub fn import(
         draw_calls: build.draws.len() as u64,
         triangles: build.draws.iter().map(|d| d.triangles).sum(),
         unsupported: build.unsupported,
+        unsupported_in_earlier_frames: earlier,
         unmodelled,
         textures,
     })
@@ -496,8 +528,15 @@ mod tests {
             skip_unsupported: true,
             ..Default::default()
         };
-        let ok = import(imm.into_iter().map(Ok), path, opts).unwrap();
+        let ok = import(imm.clone().into_iter().map(Ok), path, opts).unwrap();
         assert_eq!(ok.unsupported.values().sum::<u64>(), 1);
+        // Imported after it, that frame's draw is counted as earlier.
+        let mut later = imm.clone();
+        later.extend(frame(None, &[[0.0, 0.0, 8.0, 8.0, 0.0]]));
+        let next = import(later.into_iter().map(Ok), path, ImportOptions::default()).unwrap();
+        assert!(next.unsupported.is_empty());
+        let want = [("immediate mode (glBegin/glEnd)".to_string(), 1)];
+        assert_eq!(next.unsupported_in_earlier_frames, want.into());
         assert_eq!(ok.unmodelled.get("glXMakeCurrent"), Some(&1));
     }
 }

@@ -47,6 +47,9 @@ pub struct Summary {
     /// Draws skipped for needing what is not modelled, and by what.
     pub unsupported_draws_skipped: u64,
     pub unsupported: BTreeMap<String, u64>,
+    /// Draws of the frames before it that need what is not modelled (not
+    /// imported, so not errors), by feature.
+    pub unsupported_in_earlier_frames: BTreeMap<String, u64>,
     /// Per draw call, in issue order (JSON only).
     pub draws: Vec<DrawSummary>,
 }
@@ -95,6 +98,7 @@ impl Summary {
             unmodelled_calls: imp.unmodelled.clone(),
             unsupported_draws_skipped: imp.unsupported.values().sum(),
             unsupported: imp.unsupported.clone(),
+            unsupported_in_earlier_frames: imp.unsupported_in_earlier_frames.clone(),
             draws: imp
                 .scene
                 .materials
@@ -180,6 +184,14 @@ impl Summary {
             self.unsupported_draws_skipped
         );
         for (n, c) in &self.unsupported {
+            let _ = writeln!(s, "  {n}: {c}");
+        }
+        let earlier: u64 = self.unsupported_in_earlier_frames.values().sum();
+        let _ = writeln!(
+            s,
+            "unsupported draws in earlier frames (not imported): {earlier}"
+        );
+        for (n, c) in &self.unsupported_in_earlier_frames {
             let _ = writeln!(s, "  {n}: {c}");
         }
         s
