@@ -104,7 +104,7 @@ fn unsupported(ctx: &Context) -> Option<String> {
     }
     for (u, unit) in ctx.textures.units.iter().enumerate() {
         if let Some(&cap) = unit.enabled_other.first() {
-            return Some(format!("{} on texture unit {u}", gl::name(cap)));
+            return Some(format!("{} enabled on texture unit {u}", gl::name(cap)));
         }
         if unit.enabled_2d && u >= UV_SETS {
             return Some(format!(

@@ -148,6 +148,16 @@ pub fn name(v: i64) -> String {
         (0x2A02, "GL_POLYGON_OFFSET_LINE"),
         (0x3000, "GL_CLIP_PLANE0"),
         (0x4000, "GL_LIGHT0"),
+        (TEXTURE_1D, "GL_TEXTURE_1D"),
+        (TEXTURE_3D, "GL_TEXTURE_3D"),
+        (TEXTURE_CUBE_MAP, "GL_TEXTURE_CUBE_MAP"),
+        (0x8191, "GL_GENERATE_MIPMAP"),
+        (0x813C, "GL_TEXTURE_BASE_LEVEL"),
+        (0x813D, "GL_TEXTURE_MAX_LEVEL"),
+        (0x84FE, "GL_TEXTURE_MAX_ANISOTROPY_EXT"),
+        (0x8501, "GL_TEXTURE_LOD_BIAS"),
+        (0x8571, "GL_COMBINE_RGB"),
+        (0x8572, "GL_COMBINE_ALPHA"),
     ];
     known
         .iter()
