@@ -81,6 +81,8 @@ pub struct Imported {
     /// asked for).
     pub frames_read: u64,
     pub draw_calls: u64,
+    /// The draws' call numbers, in issue order (material `i` is draw `i`).
+    pub draw_call_numbers: Vec<u64>,
     pub triangles: u64,
     /// Draws skipped (with `skip_unsupported`), by what they need.
     pub unsupported: BTreeMap<String, u64>,
@@ -222,6 +224,7 @@ pub fn import(
         calls: (build.first_call, last_call),
         frames_read,
         draw_calls: build.draws.len() as u64,
+        draw_call_numbers: build.draws.iter().map(|d| d.call).collect(),
         triangles: build.draws.iter().map(|d| d.triangles).sum(),
         unsupported: build.unsupported,
         unsupported_in_earlier_frames: earlier,
