@@ -542,4 +542,53 @@ mod tests {
         assert_eq!(next.unsupported_in_earlier_frames, want.into());
         assert_eq!(ok.unmodelled.get("glXMakeCurrent"), Some(&1));
     }
+
+    #[test]
+    fn a_draw_in_a_sub_viewport_lands_in_its_rectangle_and_no_further() {
+        // A 64x64 window: a 2x2 square at its bottom-left corner, then a
+        // draw whose viewport is the top-right quarter (window x 32..64,
+        // y 32..64: frame rows 0..32) with a square overflowing the view
+        // volume on every side: clipped to the viewport, exactly 32 x 32
+        // pixels, all in the top-right 32x32 tile.
+        let mut calls = frame(None, &[[0.0, 0.0, 2.0, 2.0, 0.0]]);
+        let i = Value::SInt;
+        let swap = calls.pop().unwrap();
+        calls.push(call(0, "glViewport", vec![i(32), i(32), i(32), i(32)]));
+        let big = floats(&[
+            -10.0, -10.0, 0.0, 80.0, -10.0, 0.0, 80.0, 80.0, 0.0, -10.0, 80.0, 0.0,
+        ]);
+        calls.push(call(
+            0,
+            "glVertexPointer",
+            vec![i(3), e(gl::FLOAT), i(0), big],
+        ));
+        calls.push(call(0, "glDrawArrays", vec![e(gl::QUADS), i(0), i(4)]));
+        calls.push(swap);
+        let imp = import(
+            calls.into_iter().map(Ok),
+            Path::new("t"),
+            ImportOptions::default(),
+        )
+        .unwrap();
+        assert_eq!((imp.width, imp.height), (64, 64));
+        let opts = RasterOptions {
+            tile: 32,
+            threads: 1,
+            ..Default::default()
+        };
+        let f = rasterize(&imp.scene, 64, 64, &opts).unwrap();
+        assert_eq!(f.stats.materials[1].pixels, 32 * 32);
+        let at = |x: u32, y: u32| f.trace.tiles().iter().find(|t| (t.tx(), t.ty()) == (x, y));
+        assert_eq!(
+            at(1, 0).unwrap().quad_count() as u64,
+            f.stats.materials[1].warps
+        );
+        let corner = at(0, 1).unwrap();
+        assert_eq!(
+            corner.quad_count(),
+            2,
+            "one quad: a fragment of each triangle"
+        );
+        assert!(at(0, 0).is_none() && at(1, 1).is_none());
+    }
 }
