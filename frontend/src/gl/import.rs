@@ -129,57 +129,7 @@ pub fn import(
     file: &Path,
     opts: ImportOptions,
 ) -> Result<Imported, ImportError> {
-    let mut ctx = Context::default();
-    let mut frame = 0u64;
-    let mut cur = FrameBuild::default();
-    let mut unmodelled: BTreeMap<String, u64> = BTreeMap::new();
-    // Unsupported draws (immediate mode, display lists) of the frames
-    // before the current one, by feature.
-    let mut earlier: BTreeMap<String, u64> = BTreeMap::new();
-    let mut done: Option<Finished> = None;
-    for call in calls {
-        let call = call?;
-        let build = opts.frame.is_none_or(|n| n == frame);
-        match ctx
-            .apply(&call)
-            .map_err(|e| ImportError::Call(file.into(), e))?
-        {
-            Effect::Modelled => {}
-            Effect::Unmodelled(n) => *unmodelled.entry(n).or_default() += 1,
-            Effect::Draw if build => match draw::record(&ctx, &call) {
-                Ok(Ok(rec)) => cur.draws.push(rec),
-                Ok(Err(feature)) => cur.unsupported(&call, feature),
-                Err(e) => {
-                    cur.error.get_or_insert(e);
-                }
-            },
-            Effect::UnsupportedDraw(f) => cur.unsupported(&call, f),
-            Effect::Draw => {}
-            Effect::FrameEnd => {
-                let next = FrameBuild {
-                    first_call: call.no + 1,
-                    ..Default::default()
-                };
-                let build = std::mem::replace(&mut cur, next);
-                let before = earlier.clone();
-                for (f, n) in &build.unsupported {
-                    *earlier.entry(f.clone()).or_default() += n;
-                }
-                done = Some(Finished {
-                    index: frame,
-                    build,
-                    unmodelled: unmodelled.clone(),
-                    earlier: before,
-                    last_call: call.no,
-                });
-                frame += 1;
-                if opts.frame.is_some_and(|n| n + 1 == frame) {
-                    break;
-                }
-            }
-        }
-    }
-    let frames_read = frame;
+    let (ctx, done, frames_read) = read(calls, file, opts)?;
     let Some(Finished {
         index,
         build,
@@ -231,6 +181,68 @@ pub fn import(
         unmodelled,
         textures,
     })
+}
+
+/// Read the calls from the first to the swap of the frame asked for (to
+/// the end without one), tracking the state and recording the draws of
+/// the frames that may be imported: the context, the last frame finished
+/// and the complete frames read.
+fn read(
+    calls: impl IntoIterator<Item = Result<Call, CaptureError>>,
+    file: &Path,
+    opts: ImportOptions,
+) -> Result<(Context, Option<Finished>, u64), ImportError> {
+    let mut ctx = Context::default();
+    let mut frame = 0u64;
+    let mut cur = FrameBuild::default();
+    let mut unmodelled: BTreeMap<String, u64> = BTreeMap::new();
+    // Unsupported draws (immediate mode, display lists) of the frames
+    // before the current one, by feature.
+    let mut earlier: BTreeMap<String, u64> = BTreeMap::new();
+    let mut done: Option<Finished> = None;
+    for call in calls {
+        let call = call?;
+        let build = opts.frame.is_none_or(|n| n == frame);
+        match ctx
+            .apply(&call)
+            .map_err(|e| ImportError::Call(file.into(), e))?
+        {
+            Effect::Modelled => {}
+            Effect::Unmodelled(n) => *unmodelled.entry(n).or_default() += 1,
+            Effect::Draw if build => match draw::record(&ctx, &call) {
+                Ok(Ok(rec)) => cur.draws.push(rec),
+                Ok(Err(feature)) => cur.unsupported(&call, feature),
+                Err(e) => {
+                    cur.error.get_or_insert(e);
+                }
+            },
+            Effect::UnsupportedDraw(f) => cur.unsupported(&call, f),
+            Effect::Draw => {}
+            Effect::FrameEnd => {
+                let next = FrameBuild {
+                    first_call: call.no + 1,
+                    ..Default::default()
+                };
+                let build = std::mem::replace(&mut cur, next);
+                let before = earlier.clone();
+                for (f, n) in &build.unsupported {
+                    *earlier.entry(f.clone()).or_default() += n;
+                }
+                done = Some(Finished {
+                    index: frame,
+                    build,
+                    unmodelled: unmodelled.clone(),
+                    earlier: before,
+                    last_call: call.no,
+                });
+                frame += 1;
+                if opts.frame.is_some_and(|n| n + 1 == frame) {
+                    break;
+                }
+            }
+        }
+    }
+    Ok((ctx, done, frame))
 }
 
 /// The frame's size: the extent of its draws' viewports (the current one
