@@ -462,6 +462,7 @@ mod tests {
             description: String::new(),
             shader: None,
             draw_order: Default::default(),
+            route: Default::default(),
         };
         let c = characterize_def(&def, false).unwrap();
         assert_eq!(c.footprints.len(), SubsetSpec::all().len());

@@ -25,6 +25,7 @@ fn every_map_loads() {
             description: String::new(),
             shader: None,
             draw_order: Default::default(),
+            route: Default::default(),
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {

@@ -132,6 +132,7 @@ mod tests {
             description: String::new(),
             shader: None,
             draw_order: Default::default(),
+            route: Default::default(),
         }
     }
 

@@ -512,6 +512,7 @@ mod tests {
                 description: String::new(),
                 shader: None,
                 draw_order: Default::default(),
+                route: Default::default(),
             };
             let scene = procedural::load(&def).unwrap();
             for depth_prepass in [false, true] {

@@ -24,6 +24,7 @@ fn every_track_loads() {
             description: String::new(),
             shader: None,
             draw_order: Default::default(),
+            route: Default::default(),
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {
