@@ -8,7 +8,7 @@ mod common;
 use common::{ok, scratch, stderr, stdout, wasp};
 
 /// Every subcommand, as typed.
-const COMMANDS: [&[&str]; 13] = [
+const COMMANDS: [&[&str]; 14] = [
     &["example"],
     &["run"],
     &["compare"],
@@ -17,6 +17,7 @@ const COMMANDS: [&[&str]; 13] = [
     &["bench"],
     &["scenes", "list"],
     &["scenes", "fetch"],
+    &["scenes", "capture"],
     &["render"],
     &["characterize"],
     &["reproduce"],
@@ -34,6 +35,7 @@ fn help(cmd: &[&str]) -> String {
 fn every_command_takes_quiet_and_only_scene_readers_take_a_scenes_folder() {
     let readers = [
         "scenes list",
+        "scenes capture",
         "render",
         "characterize",
         "reproduce",

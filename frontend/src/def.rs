@@ -388,13 +388,18 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("d/x.toml: ") && e.contains("line 7"), "{e}");
-        assert!(e.contains("`gpu`") && e.contains("`loader`, `engine`"), "{e}");
+        assert!(
+            e.contains("`gpu`") && e.contains("expected `loader` or `engine`"),
+            "{e}"
+        );
         let stk = ok.replace("openarena", "supertuxkart");
         let e = SceneDef::parse(&format!("{stk}route = \"engine\"\n"), Path::new("s.toml"))
             .unwrap_err()
             .to_string();
         assert!(
-            e.starts_with("s.toml: ") && e.contains("supertuxkart") && e.contains("openarena and teeworlds"),
+            e.starts_with("s.toml: ")
+                && e.contains("supertuxkart")
+                && e.contains("openarena and teeworlds"),
             "{e}"
         );
     }

@@ -160,7 +160,9 @@ pub fn capture(args: &CaptureArgs) -> Result<(), CliError> {
     let result = match def.game {
         Game::Openarena => openarena::capture(&def, args.frames, &partial, &work, &progress),
         Game::Teeworlds => teeworlds::capture(&def, &partial, &work, &progress),
-        g => Err(format!("{g}: no engine capture (route = \"engine\" is refused for it)")),
+        g => Err(format!(
+            "{g}: no engine capture (route = \"engine\" is refused for it)"
+        )),
     };
     let run = match result {
         Ok(run) => run,
@@ -260,7 +262,10 @@ mod tests {
     #[test]
     fn captures_live_in_the_scene_cache() {
         let (t, j) = capture_paths("oa-dm1-spawn0-engine");
-        assert_eq!(t.parent(), Some(fetch::cache_dir().join("captures").as_path()));
+        assert_eq!(
+            t.parent(),
+            Some(fetch::cache_dir().join("captures").as_path())
+        );
         assert!(t.ends_with("oa-dm1-spawn0-engine.trace"));
         assert!(j.ends_with("oa-dm1-spawn0-engine.json"));
     }

@@ -19,6 +19,9 @@
 //!    back to rest on the spawn point, and turns 180 degrees on the spot
 //!    (`+left` for 10 frames at `cl_yawspeed 900`, then `cl_yawspeed 0`
 //!    before `-left`, so the key's release adds no turn);
+//!    from `team spectator` until the turn is done nothing is drawn
+//!    (`r_norefresh 1`: those frames still end in a swap, with no draw
+//!    call);
 //! 4. `viewpos` prints the view, then the frames at the camera are drawn
 //!    and `viewpos` prints it again before `quit`.
 //!
@@ -90,10 +93,10 @@ pub fn script(origin: [f32; 3], yaw: f32, frames: u32) -> String {
     // `wait N` waits N/2 frames (two command-buffer runs a frame).
     let w = |frames: u32| 2 * frames;
     format!(
-        "wait {}\nteam spectator\nwait {}\nset fixedtime {FRAME_MS}\nwait {}\n\
-         setviewpos {:.3} {:.3} {:.3} {back}\nwait {}\n\
+        "wait {}\nteam spectator\nset r_norefresh 1\nwait {}\nset fixedtime {FRAME_MS}\n\
+         wait {}\nsetviewpos {:.3} {:.3} {:.3} {back}\nwait {}\n\
          set cl_yawspeed {turn_speed}\n+left\nwait {}\nset cl_yawspeed 0\n-left\n\
-         viewpos\nwait {}\nviewpos\nquit\n",
+         set r_norefresh 0\nviewpos\nwait {}\nviewpos\nquit\n",
         w(15),
         w(10),
         w(5),
@@ -133,7 +136,12 @@ pub fn engine_args(def: &SceneDef, home: &Path) -> Vec<String> {
     set("cg_draw2D", "0");
     set("cg_drawGun", "0");
     set("con_notifytime", "0");
-    a.extend(["+devmap".into(), def.map.clone(), "+exec".into(), "wasp-capture.cfg".into()]);
+    a.extend([
+        "+devmap".into(),
+        def.map.clone(),
+        "+exec".into(),
+        "wasp-capture.cfg".into(),
+    ]);
     a
 }
 
@@ -164,7 +172,9 @@ pub fn check_view(views: &[[i64; 4]], eye: [f32; 3], yaw: f32) -> Result<[i64; 4
         ));
     };
     let off = |v: &[i64; 4]| {
-        let d = (0..3).map(|i| (v[i] as f32 - eye[i]).abs()).fold(0.0, f32::max);
+        let d = (0..3)
+            .map(|i| (v[i] as f32 - eye[i]).abs())
+            .fold(0.0, f32::max);
         let dy = ((v[3] as f32 - yaw).rem_euclid(360.0) + 180.0).rem_euclid(360.0) - 180.0;
         d <= 1.0 && dy.abs() <= 1.0
     };
@@ -212,7 +222,10 @@ pub fn capture(
     let mut said = 0;
     let marks = [
         ("CL_InitCGame", "map loaded"),
-        ("entered the game", "in the game; moving the spectator to the spawn point"),
+        (
+            "entered the game",
+            "in the game; moving the spectator to the spawn point",
+        ),
         (") : ", "at the camera; drawing the frames"),
         ("Server Shutdown", "quitting"),
     ];
@@ -271,10 +284,19 @@ mod tests {
     #[test]
     fn the_spectator_glides_back_to_the_spawn_point_and_turns() {
         let s = script([280.0, 1416.0, -120.0], 180.0, 5);
-        assert!(s.contains("setviewpos 208.000 1416.000 -121.000 360\n"), "{s}");
-        assert!(s.contains("set fixedtime 20\n") && s.ends_with("viewpos\nquit\n"), "{s}");
+        assert!(
+            s.contains("setviewpos 208.000 1416.000 -121.000 360\n"),
+            "{s}"
+        );
+        assert!(
+            s.contains("set fixedtime 20\n") && s.ends_with("viewpos\nquit\n"),
+            "{s}"
+        );
         // 10 frames (wait 20) at 900 degrees/s, 20 ms each: 180 degrees.
-        assert!(s.contains("set cl_yawspeed 900\n+left\nwait 20\nset cl_yawspeed 0\n-left\n"), "{s}");
+        assert!(
+            s.contains("set cl_yawspeed 900\n+left\nwait 20\nset cl_yawspeed 0\n-left\n"),
+            "{s}"
+        );
         assert!(s.contains("wait 10\nviewpos\nquit"), "{s}");
         let s = script([0.0, 0.0, 0.0], 90.0, 1);
         assert!(s.contains("setviewpos -0.000 72.000 -1.000 270\n"), "{s}");
@@ -309,9 +331,12 @@ mod tests {
 
     #[test]
     fn the_engine_is_narrower_than_the_loader() {
-        // cg_fov 90 across 1960 pixels: 42.8 degrees up the 768 rows.
-        assert!((fov_y_deg(1960, 768) - 42.81).abs() < 0.01);
-        assert!((fov_y_deg(640, 480) - 73.74).abs() < 0.01, "the loader's 73.74 at 4:3");
+        // cg_fov 90 across 1960 pixels: 42.79 degrees up the 768 rows.
+        assert!((fov_y_deg(1960, 768) - 42.79).abs() < 0.01);
+        assert!(
+            (fov_y_deg(640, 480) - 73.74).abs() < 0.01,
+            "the loader's 73.74 at 4:3"
+        );
     }
 
     #[test]
@@ -319,7 +344,10 @@ mod tests {
         let def = wasp_frontend::def::lookup("oa-dm1-spawn0-engine").unwrap();
         let a = engine_args(&def, Path::new("/tmp/h"));
         let plus = a.iter().filter(|w| w.starts_with('+')).count();
-        assert!(plus < 32, "{plus}: ioquake3 drops command-line commands past 32");
+        assert!(
+            plus < 32,
+            "{plus}: ioquake3 drops command-line commands past 32"
+        );
         assert!(a.windows(2).any(|w| w == ["+devmap", "oa_dm1"]));
         assert!(a.windows(3).any(|w| w == ["+set", "r_customwidth", "1960"]));
     }

@@ -95,15 +95,23 @@ pub fn capture(
     let home = work.0.join("home");
     std::fs::create_dir_all(&home).map_err(|e| format!("{}: {e}", home.display()))?;
     let mut cmd = Command::new("unshare");
-    cmd.args(["--user", "--map-root-user", "--net", "sh", "-c", SCRIPT, "sh"])
-        .arg(&work.0)
-        .arg(out)
-        .arg(format!("{}x{}", def.width, def.height))
-        .arg(server_commands(&def.map))
-        .arg(client_commands(def))
-        .env("HOME", &home)
-        .env("SERVER", SERVER)
-        .env("CLIENT", CLIENT);
+    cmd.args([
+        "--user",
+        "--map-root-user",
+        "--net",
+        "sh",
+        "-c",
+        SCRIPT,
+        "sh",
+    ])
+    .arg(&work.0)
+    .arg(out)
+    .arg(format!("{}x{}", def.width, def.height))
+    .arg(server_commands(&def.map))
+    .arg(client_commands(def))
+    .env("HOME", &home)
+    .env("SERVER", SERVER)
+    .env("CLIENT", CLIENT);
     let command = tools::command_line(&cmd);
     progress.say(&format!(
         "Teeworlds {}: server on 127.0.0.1:{PORT} and client {}x{} in a network namespace \
@@ -153,8 +161,7 @@ pub fn capture(
         ));
     }
     Ok(EngineRun {
-        engine: "Teeworlds 0.7 client (Debian teeworlds) with teeworlds-server on 127.0.0.1"
-            .into(),
+        engine: "Teeworlds 0.7 client (Debian teeworlds) with teeworlds-server on 127.0.0.1".into(),
         command,
         script: Some(SCRIPT.to_string()),
         frames_at_camera: None,
@@ -178,11 +185,17 @@ mod tests {
     fn only_loopback_is_named() {
         let def = wasp_frontend::def::lookup("tw-dm1-spawn0-engine").unwrap();
         let s = server_commands(&def.map);
-        assert!(s.contains("sv_map dm1") && s.contains("bindaddr 127.0.0.1"), "{s}");
+        assert!(
+            s.contains("sv_map dm1") && s.contains("bindaddr 127.0.0.1"),
+            "{s}"
+        );
         assert!(s.contains("sv_register 0"), "{s}");
         let c = client_commands(&def);
         assert!(c.ends_with("connect 127.0.0.1:8303"), "{c}");
-        assert!(c.contains("gfx_screen_width 1960; gfx_screen_height 768"), "{c}");
+        assert!(
+            c.contains("gfx_screen_width 1960; gfx_screen_height 768"),
+            "{c}"
+        );
         assert!(SCRIPT.contains("ip link set lo up"));
     }
 

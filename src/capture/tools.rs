@@ -301,7 +301,10 @@ mod tests {
         let e = check(&needs).unwrap_err();
         assert!(e.contains("\n    apt-get install openarena xvfb"), "{e}");
         assert!(!e.contains("dash"), "{e}");
-        assert!(e.contains("/nonexistent/wasp-test/openarena (openarena)"), "{e}");
+        assert!(
+            e.contains("/nonexistent/wasp-test/openarena (openarena)"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -319,11 +322,15 @@ mod tests {
     fn a_group_past_its_deadline_is_stopped() {
         let d = WorkDir::new("group-test").unwrap();
         let log = d.0.join("log");
-        let mut g = Group::spawn(Command::new("sh").args(["-c", "sleep 30 & sleep 30"]), &log)
-            .unwrap();
+        let mut g =
+            Group::spawn(Command::new("sh").args(["-c", "sleep 30 & sleep 30"]), &log).unwrap();
         let t = Instant::now();
         let e = g
-            .wait_until(Instant::now() + Duration::from_millis(300), "sleep", &mut || {})
+            .wait_until(
+                Instant::now() + Duration::from_millis(300),
+                "sleep",
+                &mut || {},
+            )
             .unwrap_err();
         assert!(e.contains("sleep did not finish"), "{e}");
         assert!(t.elapsed() < Duration::from_secs(5));
