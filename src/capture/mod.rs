@@ -148,7 +148,7 @@ pub fn capture(args: &CaptureArgs) -> Result<(), CliError> {
         println!("{}", trace.display());
         return Ok(());
     }
-    let needs = tools::needs(def.game);
+    let needs = needs(def.game);
     let packages = tools::check(&needs).map_err(CliError::failed)?;
     let dir = trace.parent().expect("captures folder");
     std::fs::create_dir_all(dir)
@@ -172,6 +172,16 @@ pub fn capture(args: &CaptureArgs) -> Result<(), CliError> {
         }
     };
     finish(&def, run, packages, &partial, &trace, &json, &progress)
+}
+
+/// The programs and packages a capture of `game` needs.
+pub fn needs(game: Game) -> Vec<tools::Need> {
+    let engine: &[tools::Need] = match game {
+        Game::Openarena => &openarena::NEEDS,
+        Game::Teeworlds => &teeworlds::NEEDS,
+        _ => &[],
+    };
+    engine.iter().chain(&tools::COMMON_NEEDS).copied().collect()
 }
 
 /// What an engine's capture run reports.
@@ -257,6 +267,17 @@ mod tests {
             engine_scene("tw-dm1-spawn0-engine").unwrap().game,
             Game::Teeworlds
         );
+    }
+
+    #[test]
+    fn every_engine_needs_xvfb_and_apitrace() {
+        for g in [Game::Openarena, Game::Teeworlds] {
+            let pk: Vec<&str> = needs(g).iter().map(|n| n.package).collect();
+            assert!(pk.contains(&"xvfb") && pk.contains(&"apitrace"), "{pk:?}");
+        }
+        let tw: Vec<&str> = needs(Game::Teeworlds).iter().map(|n| n.package).collect();
+        assert!(tw.contains(&"teeworlds") && tw.contains(&"teeworlds-server"));
+        assert_eq!(needs(Game::Openarena)[0].package, "openarena");
     }
 
     #[test]

@@ -31,7 +31,7 @@
 //! The script's `viewpos` lines are checked against the spawn point: the
 //! eye must be [`EYE_HEIGHT`] above the spawn origin, at the spawn's yaw.
 
-use super::tools::{self, Group, WorkDir};
+use super::tools::{self, Group, Need, WorkDir};
 use super::{EngineRun, Progress};
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -42,6 +42,11 @@ use wasp_frontend::openarena::{scene_spawn, EYE_HEIGHT};
 
 /// The engine binary of Debian's `openarena` package.
 pub const ENGINE: &str = "/usr/lib/ioquake3/ioquake3";
+/// What the capture runs besides Xvfb and apitrace.
+pub const NEEDS: [Need; 1] = [Need {
+    program: ENGINE,
+    package: "openarena",
+}];
 /// The game folder the `openarena` package's wrapper passes as
 /// `fs_basepath`.
 const BASEPATH: &str = "/usr/lib/openarena";

@@ -21,7 +21,7 @@
 //! under one), then the whole process group is stopped (apitrace writes the
 //! capture out on the signal).
 
-use super::tools::{self, Group, WorkDir};
+use super::tools::{self, Group, Need, WorkDir};
 use super::{EngineRun, Progress};
 use serde_json::json;
 use std::path::Path;
@@ -33,6 +33,26 @@ use wasp_frontend::def::SceneDef;
 pub const CLIENT: &str = "/usr/games/teeworlds";
 /// The server binary of Debian's `teeworlds-server` package.
 pub const SERVER: &str = "/usr/games/teeworlds-server";
+/// What the capture runs besides Xvfb and apitrace: the client, the
+/// server, and what makes their network namespace.
+pub const NEEDS: [Need; 4] = [
+    Need {
+        program: CLIENT,
+        package: "teeworlds",
+    },
+    Need {
+        program: SERVER,
+        package: "teeworlds-server",
+    },
+    Need {
+        program: "unshare",
+        package: "util-linux",
+    },
+    Need {
+        program: "ip",
+        package: "iproute2",
+    },
+];
 /// The server's port on 127.0.0.1.
 pub const PORT: u16 = 8303;
 /// Seconds the client draws after the player entered the game.

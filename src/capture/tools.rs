@@ -9,7 +9,6 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
-use wasp_frontend::def::Game;
 
 /// A program a capture runs and the Debian package that ships it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -20,43 +19,17 @@ pub struct Need {
     pub package: &'static str,
 }
 
-/// The programs and packages a capture of `game` needs.
-pub fn needs(game: Game) -> Vec<Need> {
-    let mut n = match game {
-        Game::Openarena => vec![Need {
-            program: super::openarena::ENGINE,
-            package: "openarena",
-        }],
-        Game::Teeworlds => vec![
-            Need {
-                program: super::teeworlds::CLIENT,
-                package: "teeworlds",
-            },
-            Need {
-                program: super::teeworlds::SERVER,
-                package: "teeworlds-server",
-            },
-            Need {
-                program: "unshare",
-                package: "util-linux",
-            },
-            Need {
-                program: "ip",
-                package: "iproute2",
-            },
-        ],
-        _ => Vec::new(),
-    };
-    n.push(Need {
+/// What every capture needs besides its engine: Xvfb and apitrace.
+pub const COMMON_NEEDS: [Need; 2] = [
+    Need {
         program: "xvfb-run",
         package: "xvfb",
-    });
-    n.push(Need {
+    },
+    Need {
         program: "apitrace",
         package: "apitrace",
-    });
-    n
-}
+    },
+];
 
 /// `program` as found: itself if absolute, else the first match on PATH
 /// (and `/usr/sbin`, `/sbin`, where `ip` lives).
@@ -305,17 +278,6 @@ mod tests {
             e.contains("/nonexistent/wasp-test/openarena (openarena)"),
             "{e}"
         );
-    }
-
-    #[test]
-    fn every_engine_needs_xvfb_and_apitrace() {
-        for g in [Game::Openarena, Game::Teeworlds] {
-            let pk: Vec<&str> = needs(g).iter().map(|n| n.package).collect();
-            assert!(pk.contains(&"xvfb") && pk.contains(&"apitrace"), "{pk:?}");
-        }
-        let tw: Vec<&str> = needs(Game::Teeworlds).iter().map(|n| n.package).collect();
-        assert!(tw.contains(&"teeworlds") && tw.contains(&"teeworlds-server"));
-        assert_eq!(needs(Game::Openarena)[0].package, "openarena");
     }
 
     #[test]
