@@ -157,6 +157,7 @@ pub fn capture(args: &CaptureArgs) -> Result<(), CliError> {
     let work = tools::WorkDir::new(&def.name).map_err(CliError::failed)?;
     let partial = dir.join(format!(".{}.{}.trace", def.name, std::process::id()));
     let _ = std::fs::remove_file(&partial);
+    tools::stop_groups_on_interrupt(&partial);
     let result = match def.game {
         Game::Openarena => openarena::capture(&def, args.frames, &partial, &work, &progress),
         Game::Teeworlds => teeworlds::capture(&def, &partial, &work, &progress),

@@ -5,10 +5,63 @@
 //! group of their own that is always stopped (TERM, then KILL) when the
 //! run ends, fails or passes its deadline.
 
+use std::ffi::CString;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
+use std::sync::atomic::{AtomicI32, Ordering};
+use std::sync::OnceLock;
 use std::time::{Duration, Instant};
+
+/// The process group running now (0: none), for the interrupt handler.
+static RUNNING: AtomicI32 = AtomicI32::new(0);
+/// The partial capture the interrupt handler removes.
+static PARTIAL: OnceLock<CString> = OnceLock::new();
+
+/// On SIGINT, SIGTERM or SIGHUP, stop the running process group (TERM,
+/// then KILL a second later),
+/// remove the partial capture `partial` and end with status 130: the
+/// engine, Xvfb and a game server never outlive wasp.
+pub fn stop_groups_on_interrupt(partial: &Path) {
+    use std::os::unix::ffi::OsStrExt;
+    let Ok(c) = CString::new(partial.as_os_str().as_bytes()) else {
+        return;
+    };
+    if PARTIAL.set(c).is_err() {
+        return;
+    }
+    for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+        // SAFETY: installs a handler that only calls kill(2), sleep(3),
+        // unlink(2), write(2) and _exit(2), all async-signal-safe, on data
+        // set before.
+        unsafe {
+            libc::signal(
+                sig,
+                on_interrupt as extern "C" fn(libc::c_int) as libc::sighandler_t,
+            );
+        }
+    }
+}
+
+extern "C" fn on_interrupt(_: libc::c_int) {
+    let pg = RUNNING.load(Ordering::SeqCst);
+    let msg = b"\nwasp: capture interrupted: the engine is stopped, nothing is kept\n";
+    // SAFETY: async-signal-safe calls only (see stop_groups_on_interrupt).
+    unsafe {
+        if pg > 0 {
+            // TERM first, so that Xvfb removes its display's lock file,
+            // then KILL whatever is left a second later.
+            libc::kill(-pg, libc::SIGTERM);
+            libc::sleep(1);
+            libc::kill(-pg, libc::SIGKILL);
+        }
+        if let Some(p) = PARTIAL.get() {
+            libc::unlink(p.as_ptr());
+        }
+        libc::write(2, msg.as_ptr().cast(), msg.len());
+        libc::_exit(130)
+    }
+}
 
 /// A program a capture runs and the Debian package that ships it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -135,6 +188,7 @@ impl Group {
             .stderr(err)
             .spawn()
             .map_err(|e| format!("cannot run {:?}: {e}", cmd.get_program()))?;
+        RUNNING.store(child.id() as i32, Ordering::SeqCst);
         Ok(Self {
             child,
             started: Instant::now(),
@@ -193,6 +247,16 @@ impl Group {
         let _ = self.child.wait();
     }
 
+    /// Forget the group in the interrupt handler once it is gone.
+    fn forget(&self) {
+        let _ = RUNNING.compare_exchange(
+            self.child.id() as i32,
+            0,
+            Ordering::SeqCst,
+            Ordering::SeqCst,
+        );
+    }
+
     /// Whether any process of the group is still there.
     fn group_alive(&self) -> bool {
         // SAFETY: signal 0 only checks that the group exists.
@@ -205,6 +269,7 @@ impl Drop for Group {
         if !matches!(self.child.try_wait(), Ok(Some(_))) || self.group_alive() {
             self.stop();
         }
+        self.forget();
     }
 }
 
