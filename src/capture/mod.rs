@@ -39,9 +39,11 @@ pub struct CaptureArgs {
     #[arg(long)]
     pub force: bool,
     /// OpenArena: frames drawn at the scene's camera once it is in place
-    /// (warm-up frames, then the last one, which is the scene's frame).
-    #[arg(long, value_name = "N", default_value_t = openarena::DEFAULT_FRAMES)]
-    pub frames: u32,
+    /// (warm-up frames, then the last one, which is the scene's frame);
+    /// default 5. (The Teeworlds client counts no frames: it draws 2 s
+    /// after the player joins.)
+    #[arg(long, value_name = "N")]
+    pub frames: Option<u32>,
     /// No progress output on stderr; errors still print.
     #[arg(long, short)]
     pub quiet: bool,
@@ -130,12 +132,24 @@ fn engine_scene(name: &str) -> Result<SceneDef, CliError> {
     Ok(d)
 }
 
+/// The frames at the camera `--frames` asks for on scene `def`.
+fn frames(def: &SceneDef, asked: Option<u32>) -> Result<u32, CliError> {
+    match (def.game, asked) {
+        (_, Some(0)) => Err(CliError::usage("--frames 0: expected at least 1")),
+        (Game::Openarena, n) => Ok(n.unwrap_or(openarena::DEFAULT_FRAMES)),
+        (_, Some(n)) => Err(CliError::usage(format!(
+            "--frames {n}: {} is a {} scene, whose client counts no frames (it draws for \
+             2 s after the player joins); --frames applies to OpenArena scenes",
+            def.name, def.game
+        ))),
+        (_, None) => Ok(0),
+    }
+}
+
 /// Run `wasp scenes capture`.
 pub fn capture(args: &CaptureArgs) -> Result<(), CliError> {
     let def = engine_scene(&args.scene)?;
-    if args.frames == 0 {
-        return Err(CliError::usage("--frames 0: expected at least 1"));
-    }
+    let frames = frames(&def, args.frames)?;
     let (trace, json) = capture_paths(&def.name);
     if trace.is_file() && json.is_file() && !args.force {
         if !args.quiet {
@@ -159,7 +173,7 @@ pub fn capture(args: &CaptureArgs) -> Result<(), CliError> {
     let _ = std::fs::remove_file(&partial);
     tools::stop_groups_on_interrupt(&partial);
     let result = match def.game {
-        Game::Openarena => openarena::capture(&def, args.frames, &partial, &work, &progress),
+        Game::Openarena => openarena::capture(&def, frames, &partial, &work, &progress),
         Game::Teeworlds => teeworlds::capture(&def, &partial, &work, &progress),
         g => Err(format!(
             "{g}: no engine capture (route = \"engine\" is refused for it)"
@@ -279,6 +293,18 @@ mod tests {
         let tw: Vec<&str> = needs(Game::Teeworlds).iter().map(|n| n.package).collect();
         assert!(tw.contains(&"teeworlds") && tw.contains(&"teeworlds-server"));
         assert_eq!(needs(Game::Openarena)[0].package, "openarena");
+    }
+
+    #[test]
+    fn frames_apply_to_openarena_only() {
+        let oa = def::lookup("oa-dm1-spawn0-engine").unwrap();
+        let tw = def::lookup("tw-dm1-spawn0-engine").unwrap();
+        assert_eq!(frames(&oa, None).unwrap(), openarena::DEFAULT_FRAMES);
+        assert_eq!(frames(&oa, Some(3)).unwrap(), 3);
+        assert!(frames(&oa, Some(0)).is_err());
+        let e = frames(&tw, Some(3)).unwrap_err().to_string();
+        assert!(e.contains("--frames 3") && e.contains("OpenArena"), "{e}");
+        assert!(frames(&tw, None).is_ok());
     }
 
     #[test]

@@ -208,8 +208,8 @@ pub fn capture(
     let home: PathBuf = work.0.join("home");
     let cfg_dir = home.join("baseoa");
     std::fs::create_dir_all(&cfg_dir).map_err(|e| format!("{}: {e}", cfg_dir.display()))?;
-    let text = script(origin, yaw, frames);
-    std::fs::write(cfg_dir.join("wasp-capture.cfg"), &text).map_err(|e| e.to_string())?;
+    let cfg = script(origin, yaw, frames);
+    std::fs::write(cfg_dir.join("wasp-capture.cfg"), &cfg).map_err(|e| e.to_string())?;
     let mut cmd = Command::new("xvfb-run");
     cmd.args(["-a", "-s"])
         .arg(format!("-screen 0 {}x{}x24", def.width, def.height))
@@ -255,7 +255,7 @@ pub fn capture(
     Ok(EngineRun {
         engine: "ioquake3 (Debian openarena), renderer opengl1".into(),
         command,
-        script: Some(text_of(&text, &self::script(origin, yaw, frames))),
+        script: Some(cfg),
         frames_at_camera: Some(frames),
         seconds,
         camera: json!({
@@ -269,11 +269,6 @@ pub fn capture(
             "frame_ms": FRAME_MS,
         }),
     })
-}
-
-/// The script as run (the engine's log is only used to check the view).
-fn text_of(_log: &str, script: &str) -> String {
-    script.to_string()
 }
 
 /// The engine's vertical field of view at `w` x `h` for its default
