@@ -1,6 +1,7 @@
 //! `wasp`: the command-line front end of the wasp cycle model.
 
 mod bench_cmd;
+mod capture;
 mod charts;
 mod compare_cmd;
 mod cost_cmd;

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use wasp_frontend::characterize::{self, Characterization};
-use wasp_frontend::def::{self, Game, SceneDef};
+use wasp_frontend::def::{self, Game, Route, SceneDef};
 use wasp_frontend::raster::{DrawOrder, Frame};
 use wasp_frontend::render::{self, HeatStat, Overlay, RenderRequest, WarpValue};
 use wasp_frontend::texture::FormatChoice;
@@ -37,15 +37,18 @@ impl ScenesArgs {
         let q = match &mut self.command {
             ScenesCommand::List(a) => &mut a.quiet,
             ScenesCommand::Fetch(a) => &mut a.quiet,
+            ScenesCommand::Capture(a) => &mut a.quiet,
         };
         *q |= before;
         q
     }
 
-    /// The `--scenes-dir` of `scenes list` (fetching reads no definition).
+    /// The `--scenes-dir` of `scenes list` and `scenes capture` (fetching
+    /// reads no definition).
     pub fn scenes_dir(&self) -> Option<&ScenesDir> {
         match &self.command {
             ScenesCommand::List(a) => Some(&a.scene_defs),
+            ScenesCommand::Capture(a) => Some(&a.scene_defs),
             ScenesCommand::Fetch(_) => None,
         }
     }
@@ -63,6 +66,12 @@ pub enum ScenesCommand {
     /// Debian-family host (apt-get, dpkg-deb); all four games are about
     /// 835 MB to download and 0.9 GB unpacked.
     Fetch(FetchArgs),
+    /// Run a game's own engine headless (xvfb-run) at an engine-route
+    /// scene's camera and resolution under apitrace, and store the capture
+    /// in the scene cache (captures/SCENE.trace, with SCENE.json beside
+    /// it). Needs the game's Debian package (openarena, or teeworlds and
+    /// teeworlds-server), xvfb and apitrace; installs nothing.
+    Capture(crate::capture::CaptureArgs),
 }
 
 /// Options of `wasp scenes list`.
@@ -249,20 +258,36 @@ fn find_def(name: &str) -> Result<SceneDef, CliError> {
     if is_toml && !p.exists() {
         return Err(CliError::usage(format!("{name}: no such scene file")));
     }
-    def::lookup(name).map_err(|e| CliError::usage(e.to_string()))
+    let d = def::lookup(name).map_err(|e| CliError::usage(e.to_string()))?;
+    if d.route == Route::Engine {
+        return Err(CliError::usage(format!(
+            "scene {} takes the engine route (route = \"engine\"): its frame comes from the \
+             game's engine, not a loader; run `wasp scenes capture {}`, then import the capture \
+             with `wasp import-gl`",
+            d.name, d.name
+        )));
+    }
+    Ok(d)
 }
 
 /// Run `wasp scenes`.
 pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
     match &args.command {
         ScenesCommand::List(_) => {
-            let defs = def::all().map_err(scene_err)?;
+            let defs = def::every().map_err(scene_err)?;
             println!(
                 "{:<28} {:<14} {:<18} {:<16} {:>10}  data",
                 "scene", "game", "map", "camera", "frame"
             );
             for d in &defs {
-                let data = if d.game == Game::Procedural {
+                let data = if d.route == Route::Engine {
+                    let (trace, _) = crate::capture::capture_paths(&d.name);
+                    if trace.is_file() {
+                        "engine: captured".to_string()
+                    } else {
+                        format!("engine: not captured (wasp scenes capture {})", d.name)
+                    }
+                } else if d.game == Game::Procedural {
                     "built in".to_string()
                 } else if fetch::is_fetched(d.game) {
                     "fetched".to_string()
@@ -314,6 +339,7 @@ pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
             }
             Ok(())
         }
+        ScenesCommand::Capture(a) => crate::capture::capture(a),
     }
 }
 

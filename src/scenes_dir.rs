@@ -1,6 +1,6 @@
 //! The `--scenes-dir` option, offered by the commands that read scene
-//! definitions (`scenes list`, `render`, `characterize`, `reproduce`,
-//! `sweep`, `merge --sweep`) and by no other.
+//! definitions (`scenes list`, `scenes capture`, `render`, `characterize`,
+//! `reproduce`, `sweep`, `merge --sweep`) and by no other.
 
 use crate::CliError;
 use clap::Args;

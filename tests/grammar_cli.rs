@@ -18,6 +18,7 @@ const COMMANDS: [&[&str]; 14] = [
     &["bench"],
     &["scenes", "list"],
     &["scenes", "fetch"],
+    &["scenes", "capture"],
     &["render"],
     &["characterize"],
     &["reproduce"],
@@ -35,6 +36,7 @@ fn help(cmd: &[&str]) -> String {
 fn every_command_takes_quiet_and_only_scene_readers_take_a_scenes_folder() {
     let readers = [
         "scenes list",
+        "scenes capture",
         "render",
         "characterize",
         "reproduce",

@@ -16,12 +16,24 @@ pub const BUILTIN: &[(&str, &str)] = &[
         include_str!("../../scenes/oa-dm1-spawn0.toml"),
     ),
     (
+        "oa-dm1-spawn0-engine",
+        include_str!("../../scenes/oa-dm1-spawn0-engine.toml"),
+    ),
+    (
         "oa-dm5-spawn1",
         include_str!("../../scenes/oa-dm5-spawn1.toml"),
     ),
     (
+        "oa-dm5-spawn1-engine",
+        include_str!("../../scenes/oa-dm5-spawn1-engine.toml"),
+    ),
+    (
         "oa-wrackdm17-spawn2",
         include_str!("../../scenes/oa-wrackdm17-spawn2.toml"),
+    ),
+    (
+        "oa-wrackdm17-spawn2-engine",
+        include_str!("../../scenes/oa-wrackdm17-spawn2-engine.toml"),
     ),
     (
         "procedural-plane",
@@ -54,6 +66,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
     (
         "tw-dm1-spawn0",
         include_str!("../../scenes/tw-dm1-spawn0.toml"),
+    ),
+    (
+        "tw-dm1-spawn0-engine",
+        include_str!("../../scenes/tw-dm1-spawn0-engine.toml"),
     ),
     (
         "tw-dm6-center",

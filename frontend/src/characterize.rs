@@ -491,6 +491,7 @@ mod tests {
             shader: None,
             draw_order: Default::default(),
             texture_format: Default::default(),
+            route: Default::default(),
         };
         let c = characterize_def(&def, false).unwrap();
         assert_eq!(c.footprints.len(), SubsetSpec::all().len());

@@ -11,7 +11,15 @@
 //! description = "Lighthouse track, behind the first start position"
 //! draw_order = "as-loaded"      # optional: as-loaded (default) | front-to-back-object | front-to-back-draw
 //! texture_format = "rgba8"      # optional: rgba8 (default) | etc2 | etc2-rgb | etc2-rgba | astc-4x4 | astc-6x6 | astc-8x8
+//! route = "loader"              # optional: loader (default) | engine (OpenArena, Teeworlds)
 //! ```
+//!
+//! The route says where the scene's draw calls come from: `loader` (the
+//! default) re-reads the game's data with wasp's loader; `engine` runs the
+//! game's own engine headless under apitrace (`wasp scenes capture`), for
+//! the games whose engines are fixed-function GL (OpenArena, Teeworlds).
+//! [`all`] lists the loader-route scenes (what `render`, `characterize`,
+//! `reproduce` and `sweep` draw); [`every`] lists both routes.
 
 use super::raster::DrawOrder;
 use super::texture::FormatChoice;
@@ -81,6 +89,38 @@ impl fmt::Display for Game {
     }
 }
 
+/// Where a scene's draw calls come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Route {
+    /// wasp's loader re-reads the game's data (the default).
+    #[default]
+    Loader,
+    /// The game's own engine, run headless under apitrace
+    /// (`wasp scenes capture`).
+    Engine,
+}
+
+impl Route {
+    /// The name in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Route::Loader => "loader",
+            Route::Engine => "engine",
+        }
+    }
+
+    /// The games whose engine wasp can capture: fixed-function OpenGL 1.x
+    /// engines packaged by Debian.
+    pub const ENGINE_GAMES: [Game; 2] = [Game::Openarena, Game::Teeworlds];
+}
+
+impl fmt::Display for Route {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// One scene definition.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -112,6 +152,10 @@ pub struct SceneDef {
     /// docs/textures.md).
     #[serde(default)]
     pub texture_format: FormatChoice,
+    /// Where the draw calls come from ([`Route`]: `loader`, the default,
+    /// or `engine`).
+    #[serde(default)]
+    pub route: Route,
 }
 
 impl SceneDef {
@@ -132,6 +176,18 @@ impl SceneDef {
             return Err(SceneError::in_file(
                 source,
                 format!("name {:?}: must be non-empty, without spaces", d.name),
+            ));
+        }
+        if d.route == Route::Engine && !Route::ENGINE_GAMES.contains(&d.game) {
+            let games: Vec<&str> = Route::ENGINE_GAMES.iter().map(|g| g.name()).collect();
+            return Err(SceneError::in_file(
+                source,
+                format!(
+                    "route = \"engine\" with game = \"{}\": only {} have an engine wasp can \
+                     capture (fixed-function OpenGL); use route = \"loader\"",
+                    d.game,
+                    games.join(" and ")
+                ),
             ));
         }
         Ok(d)
@@ -166,10 +222,18 @@ pub fn scenes_dir() -> Option<PathBuf> {
     })
 }
 
-/// Every scene definition: the shipped ones embedded in the binary
-/// ([`super::builtin::BUILTIN`]), then those of [`scenes_dir`], which add
-/// scenes or replace a shipped one of the same name; sorted by name.
+/// Every loader-route scene definition of [`every`]: the scenes `render`,
+/// `characterize`, `reproduce` and `sweep` draw, sorted by name.
 pub fn all() -> Result<Vec<SceneDef>, SceneError> {
+    let mut defs = every()?;
+    defs.retain(|d| d.route == Route::Loader);
+    Ok(defs)
+}
+
+/// Every scene definition of both routes: the shipped ones embedded in the
+/// binary ([`super::builtin::BUILTIN`]), then those of [`scenes_dir`], which
+/// add scenes or replace a shipped one of the same name; sorted by name.
+pub fn every() -> Result<Vec<SceneDef>, SceneError> {
     let mut defs: Vec<SceneDef> = super::builtin::BUILTIN
         .iter()
         .map(|(name, text)| SceneDef::parse(text, Path::new(&format!("(built in) {name}.toml"))))
@@ -186,14 +250,14 @@ pub fn all() -> Result<Vec<SceneDef>, SceneError> {
     Ok(defs)
 }
 
-/// The scene `name` of [`all`], or the definition file `name` (a path
-/// ending in `.toml`).
+/// The scene `name` of [`every`] (either route), or the definition file
+/// `name` (a path ending in `.toml`).
 pub fn lookup(name: &str) -> Result<SceneDef, SceneError> {
     let as_path = Path::new(name);
     if as_path.extension().is_some_and(|x| x == "toml") && as_path.exists() {
         return SceneDef::load(as_path);
     }
-    let defs = all()?;
+    let defs = every()?;
     let names: Vec<&str> = defs.iter().map(|d| d.name.as_str()).collect();
     defs.iter()
         .find(|d| d.name == name)
@@ -257,6 +321,7 @@ pub(crate) fn test_def(game: Game, map: &str, camera: &str, width: u32, height: 
         shader: None,
         draw_order: Default::default(),
         texture_format: Default::default(),
+        route: Route::Loader,
     }
 }
 
@@ -342,6 +407,69 @@ mod tests {
                 && m.contains("rgba8, etc2, etc2-rgb, etc2-rgba, astc-4x4, astc-6x6, astc-8x8"),
             "{m}"
         );
+    }
+
+    #[test]
+    fn the_route_is_optional_and_checked() {
+        let ok = "name = \"x\"\ngame = \"openarena\"\nmap = \"oa_dm1\"\ncamera = \"spawn:0\"\nwidth = 64\nheight = 32\n";
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        assert_eq!(d.route, Route::Loader);
+        let d = SceneDef::parse(&format!("{ok}route = \"engine\"\n"), Path::new("x.toml")).unwrap();
+        assert_eq!(d.route, Route::Engine);
+        let e = SceneDef::parse(&format!("{ok}route = \"gpu\"\n"), Path::new("d/x.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("d/x.toml: ") && e.contains("line 7"), "{e}");
+        assert!(
+            e.contains("`gpu`") && e.contains("expected `loader` or `engine`"),
+            "{e}"
+        );
+        let stk = ok.replace("openarena", "supertuxkart");
+        let e = SceneDef::parse(&format!("{stk}route = \"engine\"\n"), Path::new("s.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("s.toml: ")
+                && e.contains("supertuxkart")
+                && e.contains("openarena and teeworlds"),
+            "{e}"
+        );
+    }
+
+    #[test]
+
+    fn engine_scenes_are_listed_but_not_drawn() {
+        let every = every().unwrap();
+        let all = all().unwrap();
+        let engine: Vec<&str> = every
+            .iter()
+            .filter(|d| d.route == Route::Engine)
+            .map(|d| d.name.as_str())
+            .collect();
+        assert_eq!(
+            engine,
+            [
+                "oa-dm1-spawn0-engine",
+                "oa-dm5-spawn1-engine",
+                "oa-wrackdm17-spawn2-engine",
+                "tw-dm1-spawn0-engine"
+            ]
+        );
+        assert_eq!(all.len() + engine.len(), every.len());
+        assert!(all.iter().all(|d| d.route == Route::Loader));
+        // Each twin has the camera, map and frame of its loader scene.
+        for name in engine {
+            let twin = every.iter().find(|d| d.name == name).unwrap();
+            let base = all
+                .iter()
+                .find(|d| d.name == name.trim_end_matches("-engine"))
+                .unwrap();
+            assert_eq!(
+                (&twin.game, &twin.map, &twin.camera, twin.width, twin.height),
+                (&base.game, &base.map, &base.camera, base.width, base.height)
+            );
+        }
+        assert!(lookup("oa-dm1-spawn0-engine").is_ok());
     }
 
     #[test]

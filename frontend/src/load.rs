@@ -2,7 +2,7 @@
 //! scenes read from the scene cache ([`super::fetch`]) by their game's
 //! loader.
 
-use super::def::{Game, SceneDef};
+use super::def::{Game, Route, SceneDef};
 use super::fetch::{data_root, is_fetched, package_root};
 use super::{procedural, Scene, SceneError};
 
@@ -10,6 +10,17 @@ use super::{procedural, Scene, SceneError};
 /// scenes from the cache through the game's loader.
 pub fn load_scene(def: &SceneDef) -> Result<Scene, SceneError> {
     let game = def.game;
+    if def.route == Route::Engine {
+        return Err(SceneError::in_file(
+            &def.name,
+            format!(
+                "route = \"engine\": the scene's draw calls come from the game's engine, not a \
+                 loader; run `wasp scenes capture {}`, then import the capture with `wasp \
+                 import-gl`",
+                def.name
+            ),
+        ));
+    }
     if game == Game::Procedural {
         return procedural::load(def);
     }
@@ -51,6 +62,7 @@ mod tests {
             shader: None,
             draw_order: Default::default(),
             texture_format: Default::default(),
+            route: Default::default(),
         };
         assert_eq!(load_scene(&def).unwrap().name, "procedural:sprites");
     }

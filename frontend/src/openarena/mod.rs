@@ -219,8 +219,9 @@ fn spawn_point(bsp: &Bsp, bsp_path: &Path, spawn_n: usize) -> Result<(Vec3, f32)
     })
 }
 
-/// Load map `def.map` from `data_root` (see the module documentation).
-pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
+/// The pk3s under `data_root`, map `def.map` parsed from them, and the
+/// spawn point (origin, yaw in degrees) its `spawn:N` camera names.
+fn open_map(data_root: &Path, def: &SceneDef) -> Result<(Paks, Bsp, Vec3, f32), SceneError> {
     let mut paks = Paks::open(data_root)?;
     let entry = format!("maps/{}.bsp", def.map);
     if !paks.contains(&entry) {
@@ -240,6 +241,21 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
     let bsp = parse_bsp(&bytes, &bsp_path)?;
     drop(bytes);
     let (origin, yaw) = spawn_point(&bsp, &bsp_path, spawn_n)?;
+    Ok((paks, bsp, origin, yaw))
+}
+
+/// The spawn point (origin, yaw in degrees) of scene `def`'s `spawn:N`
+/// camera in its map under `data_root`: where the loader's camera stands
+/// ([`EYE_HEIGHT`] above the origin), and where `wasp scenes capture`
+/// places the engine's.
+pub fn scene_spawn(data_root: &Path, def: &SceneDef) -> Result<(Vec3, f32), SceneError> {
+    let (_, _, origin, yaw) = open_map(data_root, def)?;
+    Ok((origin, yaw))
+}
+
+/// Load map `def.map` from `data_root` (see the module documentation).
+pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
+    let (mut paks, bsp, origin, yaw) = open_map(data_root, def)?;
     let shaders = shader_scripts(&mut paks)?;
     let mut b = Builder {
         paks: &mut paks,

@@ -133,6 +133,7 @@ mod tests {
             shader: None,
             draw_order: Default::default(),
             texture_format: Default::default(),
+            route: Default::default(),
         }
     }
 

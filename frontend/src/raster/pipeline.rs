@@ -552,6 +552,7 @@ mod tests {
                 shader: None,
                 draw_order: Default::default(),
                 texture_format: Default::default(),
+                route: Default::default(),
             };
             let scene = procedural::load(&def).unwrap();
             for depth_prepass in [false, true] {

@@ -25,6 +25,7 @@ fn every_track_loads() {
             shader: None,
             draw_order: Default::default(),
             texture_format: Default::default(),
+            route: Default::default(),
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {
