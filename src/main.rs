@@ -5,6 +5,7 @@ mod capture;
 mod charts;
 mod compare_cmd;
 mod cost_cmd;
+mod engine_render;
 mod example_cmd;
 mod fonts;
 mod game_data;
@@ -220,6 +221,9 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Synth(args)) => synth_cmd::run(&args),
         Some(Command::TraceCat(args)) => trace_cat_cmd::run(&args),
         Some(Command::Scenes(args)) => scene_cmd::scenes(&args),
+        Some(Command::Render(args)) if engine_render::is_engine_scene(&args.scene) => {
+            engine_render::render(&args)
+        }
         Some(Command::Render(args)) => scene_cmd::render(&args),
         Some(Command::ImportGl(args)) => import_gl_cmd::run(&args),
         Some(Command::Characterize(args)) => scene_cmd::characterize(&args),

@@ -64,9 +64,10 @@ fn only_engine_scenes_are_captured() {
 }
 
 #[test]
-fn an_engine_scene_is_not_rendered_by_a_loader() {
+fn an_engine_scene_is_rendered_from_its_capture_only() {
     let d = scratch("capture", "render-engine");
     let png = d.join("x.png");
+    // Without --trace-out: nothing is captured or written.
     let o = wasp(&[
         "render",
         "oa-dm1-spawn0-engine",
@@ -76,10 +77,28 @@ fn an_engine_scene_is_not_rendered_by_a_loader() {
     assert_eq!(o.status.code(), Some(2));
     let e = stderr(&o);
     assert!(
-        e.contains("wasp scenes capture oa-dm1-spawn0-engine") && e.contains("wasp import-gl"),
+        e.contains("engine route") && e.contains("--trace-out"),
         "{e}"
     );
     assert!(!png.exists());
+    // The loader's options are refused by name.
+    let t = d.join("x.trace");
+    let o = wasp(&[
+        "render",
+        "oa-dm1-spawn0-engine",
+        "--trace-out",
+        t.to_str().unwrap(),
+        "--overlay",
+        "grid",
+        "--depth-prepass",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(
+        e.contains("--overlay, --depth-prepass apply to loader scenes only"),
+        "{e}"
+    );
+    assert!(!t.exists());
     let o = wasp(&["characterize", "tw-dm1-spawn0-engine"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }

@@ -112,7 +112,7 @@ impl Progress {
 }
 
 /// The engine-route scene `name`, or a usage error saying why not.
-fn engine_scene(name: &str) -> Result<SceneDef, CliError> {
+pub fn engine_scene(name: &str) -> Result<SceneDef, CliError> {
     let d = def::lookup(name).map_err(|e| CliError::usage(e.to_string()))?;
     if d.route != Route::Engine {
         let twins: Vec<String> = def::every()
@@ -146,35 +146,47 @@ fn frames(def: &SceneDef, asked: Option<u32>) -> Result<u32, CliError> {
     }
 }
 
-/// Run `wasp scenes capture`.
+/// Run `wasp scenes capture`: the capture's path goes to standard output.
 pub fn capture(args: &CaptureArgs) -> Result<(), CliError> {
     let def = engine_scene(&args.scene)?;
-    let frames = frames(&def, args.frames)?;
+    let trace = ensure_capture(&def, args.force, args.frames, args.quiet)?;
+    println!("{}", trace.display());
+    Ok(())
+}
+
+/// The capture of engine-route scene `def` in the scene cache: the one
+/// there (unless `force`), else a new one. Returns its path.
+pub fn ensure_capture(
+    def: &SceneDef,
+    force: bool,
+    frames_asked: Option<u32>,
+    quiet: bool,
+) -> Result<PathBuf, CliError> {
+    let frames = frames(def, frames_asked)?;
     let (trace, json) = capture_paths(&def.name);
-    if trace.is_file() && json.is_file() && !args.force {
-        if !args.quiet {
+    if trace.is_file() && json.is_file() && !force {
+        if !quiet {
             eprintln!(
                 "wasp: capture: {} is in the scene cache: {} (--force captures again)",
                 def.name,
                 trace.display()
             );
         }
-        println!("{}", trace.display());
-        return Ok(());
+        return Ok(trace);
     }
     let needs = needs(def.game);
     let packages = tools::check(&needs).map_err(CliError::failed)?;
     let dir = trace.parent().expect("captures folder");
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::failed(format!("{}: cannot create: {e}", dir.display())))?;
-    let progress = Progress::new(args.quiet);
+    let progress = Progress::new(quiet);
     let work = tools::WorkDir::new(&def.name).map_err(CliError::failed)?;
     let partial = dir.join(format!(".{}.{}.trace", def.name, std::process::id()));
     let _ = std::fs::remove_file(&partial);
     tools::stop_groups_on_interrupt(&partial);
     let result = match def.game {
-        Game::Openarena => openarena::capture(&def, frames, &partial, &work, &progress),
-        Game::Teeworlds => teeworlds::capture(&def, &partial, &work, &progress),
+        Game::Openarena => openarena::capture(def, frames, &partial, &work, &progress),
+        Game::Teeworlds => teeworlds::capture(def, &partial, &work, &progress),
         g => Err(format!(
             "{g}: no engine capture (route = \"engine\" is refused for it)"
         )),
@@ -186,7 +198,8 @@ pub fn capture(args: &CaptureArgs) -> Result<(), CliError> {
             return Err(CliError::failed(format!("capture of {}: {e}", def.name)));
         }
     };
-    finish(&def, run, packages, &partial, &trace, &json, &progress)
+    finish(def, run, packages, &partial, &trace, &json, &progress)?;
+    Ok(trace)
 }
 
 /// The programs and packages a capture of `game` needs.
@@ -262,7 +275,6 @@ fn finish(
         side.seconds,
         trace.display()
     ));
-    println!("{}", trace.display());
     Ok(())
 }
 

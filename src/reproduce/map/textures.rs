@@ -4,10 +4,10 @@
 //! texture-format knob's rows of the run (kept apart from the other
 //! conclusions, [`super::conclusion`]).
 
-use super::report::pct;
 use super::table::{KnobResult, MapTable};
 use crate::reproduce::paper;
 use crate::reproduce::plan::Group;
+use crate::reproduce::prose::pct;
 use std::fmt::Write as _;
 
 /// The paragraph on the texture-format knob for each group of `groups`
