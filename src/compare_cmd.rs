@@ -72,10 +72,13 @@ fn default_policies(cfg: &MachineConfig) -> Vec<PolicySpec> {
 
 /// Run the comparison.
 pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
-    output::check(&[
-        Output::new("--json", args.json.as_deref()),
-        Output::new("--csv", args.csv.as_deref()),
-    ])?;
+    output::check(
+        &[
+            Output::new("--json", args.json.as_deref()),
+            Output::new("--csv", args.csv.as_deref()),
+        ],
+        &args.inputs.files(),
+    )?;
     let cfg = load_config(&args.inputs)?;
     let trace = load_trace(&args.inputs, &cfg)?;
     let policies = match &args.policies {

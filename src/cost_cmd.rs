@@ -43,7 +43,10 @@ pub struct CostArgs {
 
 /// Run the command.
 pub fn run(args: &CostArgs) -> Result<(), CliError> {
-    output::check(&[Output::new("--json", args.json.as_deref())])?;
+    output::check(
+        &[Output::new("--json", args.json.as_deref())],
+        &[output::Input::file("--config", args.config.as_deref())],
+    )?;
     let cfg = match &args.config {
         Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),

@@ -5,7 +5,7 @@ use crate::output::{self, emit, Output};
 use crate::CliError;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::subset::SubsetSpec;
@@ -94,6 +94,16 @@ pub struct Inputs {
     /// done); results, warnings and errors still print.
     #[arg(long, short)]
     pub quiet: bool,
+}
+
+impl Inputs {
+    /// The input files, which no output may overwrite.
+    pub fn files(&self) -> [output::Input<'_>; 2] {
+        [
+            output::Input::file("--config", self.config.as_deref()),
+            output::Input::file("--trace", self.trace.as_deref()),
+        ]
+    }
 }
 
 /// Options of `wasp run`.
@@ -282,12 +292,21 @@ fn timeline_window(args: &RunArgs) -> Result<Option<(u64, u64)>, CliError> {
 pub fn run(args: &RunArgs) -> Result<(), CliError> {
     // The options are checked before the (possibly long) trace is read and
     // simulated.
-    output::check(&[
-        Output::new("--json", args.json.as_deref()),
-        Output::new("--csv", args.csv.as_deref()),
-        Output::new("--vcd", args.vcd.as_deref()),
-        Output::file_only("--timeline", args.timeline.as_deref()),
-    ])?;
+    let gtkw = args
+        .vcd
+        .as_deref()
+        .filter(|p| !output::is_stdout(p))
+        .map(gtkw_path);
+    output::check(
+        &[
+            Output::new("--json", args.json.as_deref()),
+            Output::new("--csv", args.csv.as_deref()),
+            Output::new("--vcd", args.vcd.as_deref()),
+            Output::new("--vcd's save file", gtkw.as_deref()),
+            Output::file_only("--timeline", args.timeline.as_deref()),
+        ],
+        &args.inputs.files(),
+    )?;
     let window = vcd_window(args)?;
     let timeline = timeline_window(args)?;
     let cfg = load_config(&args.inputs)?;
@@ -393,7 +412,7 @@ fn run_with_vcd(
         None => stats.cycles + 1,
     };
     sink.finish(end)
-        .and_then(|mut w| w.flush())
+        .and_then(|w| w.finish())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(path))))?;
     if output::is_stdout(path) {
         if !vcd.quiet {

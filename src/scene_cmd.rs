@@ -6,7 +6,7 @@ use crate::scenes_dir::ScenesDir;
 use crate::CliError;
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use wasp_frontend::characterize::{self, Characterization};
 use wasp_frontend::def::{self, Game, SceneDef};
@@ -340,10 +340,16 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
             "nothing to write: give --png FILE and/or --trace-out FILE (or --timings)",
         ));
     }
-    output::check(&[
-        Output::new("--png", args.png.as_deref()),
-        Output::new("--trace-out", args.trace_out.as_deref()),
-    ])?;
+    output::check(
+        &[
+            Output::new("--png", args.png.as_deref()),
+            Output::new("--trace-out", args.trace_out.as_deref()),
+        ],
+        &[
+            output::Input::file("--config", args.config.as_deref()),
+            output::Input::folder("--scenes-dir", args.scene_defs.scenes_dir.as_deref()),
+        ],
+    )?;
     if args.repeat == 0 {
         return Err(CliError::usage("--repeat 0: expected at least 1"));
     }
@@ -532,7 +538,7 @@ fn write_trace(
     let mut w = output::create(p)?;
     trace
         .write(&mut w)
-        .and_then(|_| w.flush())
+        .and_then(|_| w.finish())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(p))))?;
     if quiet {
         return Ok(());
@@ -751,10 +757,16 @@ fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError>
 
 /// Run `wasp characterize`.
 pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
-    output::check(&[
-        Output::new("--json", args.json.as_deref()),
-        Output::new("--csv", args.csv.as_deref()),
-    ])?;
+    output::check(
+        &[
+            Output::new("--json", args.json.as_deref()),
+            Output::new("--csv", args.csv.as_deref()),
+        ],
+        &[output::Input::folder(
+            "--scenes-dir",
+            args.scene_defs.scenes_dir.as_deref(),
+        )],
+    )?;
     let defs = characterize_defs(args)?;
     let mut rows: Vec<Characterization> = Vec::new();
     let mut failed = Vec::new();
