@@ -7,7 +7,7 @@ use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{PolicyName, PolicySpec};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::run::{simulate, RunOptions, SimError};
 use wasp_sim::stats::{csv_table, RunStats};
@@ -22,9 +22,11 @@ pub struct CompareArgs {
     /// Policies to compare, comma separated; the first is the reference for
     /// speedups. Default: baseline, fullpriority, freemshr:10, the
     /// configuration's `scheduler.policy` and, when that is WaSP, the
-    /// measured-CF variant `wasp-m` at its threshold.
+    /// measured-CF variant `wasp-m` at its threshold. Names as in `wasp run
+    /// --policy`: a bare `wasp` is the machine's own (the shipped
+    /// `wasp:0:3`), and the table names every policy resolved.
     #[arg(long, value_delimiter = ',')]
-    pub policies: Option<Vec<PolicySpec>>,
+    pub policies: Option<Vec<PolicyName>>,
 
     /// Also run the reference policy with ideal (zero-latency) main memory.
     #[arg(long)]
@@ -82,7 +84,7 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
     let cfg = load_config(&args.inputs)?;
     let trace = load_trace(&args.inputs, &cfg)?;
     let policies = match &args.policies {
-        Some(p) => p.clone(),
+        Some(p) => p.iter().map(|p| p.resolve(cfg.scheduler.policy)).collect(),
         None => default_policies(&cfg),
     };
     if policies.is_empty() {

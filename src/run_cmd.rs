@@ -7,7 +7,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use wasp_rtl::policy::{LaunchRule, PolicySpec};
+use wasp_rtl::policy::{LaunchRule, PolicyName};
 use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::BlockedOn;
 use wasp_sim::config::{Dispatch, MachineConfig};
@@ -112,11 +112,16 @@ pub struct RunArgs {
     #[command(flatten)]
     pub inputs: Inputs,
 
-    /// Launch policy: baseline, fullpriority, freemshr:N,
-    /// `wasp[:THRESHOLD[:CF]]` or `wasp-m[:THRESHOLD]` (WaSP with a CF measured
-    /// per core). Overrides scheduler.policy.
+    /// Launch policy: baseline, fullpriority, freemshr[:N],
+    /// wasp[:THRESHOLD[:CF]] or wasp-m[:THRESHOLD] (WaSP with a CF measured
+    /// per core). Names are lower case. A bare `wasp` takes its threshold
+    /// and CF from the machine's scheduler.policy (the shipped `wasp:0:3`),
+    /// `wasp-m` its threshold (`wasp-m:0`), `freemshr` its N when the
+    /// machine's policy is freemshr:N, else 10 (the paper's Freemshr10);
+    /// `wasp:T` alone uses the paper's CF 2.5. Outputs name the resolved
+    /// policy. Overrides scheduler.policy.
     #[arg(long, value_name = "POLICY")]
-    pub policy: Option<PolicySpec>,
+    pub policy: Option<PolicyName>,
 
     /// Write the statistics as JSON to FILE (`-` for standard output).
     #[arg(long, value_name = "FILE")]
@@ -312,7 +317,7 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     let cfg = load_config(&args.inputs)?;
     let trace = load_trace(&args.inputs, &cfg)?;
     let opts = RunOptions {
-        policy: args.policy,
+        policy: args.policy.map(|p| p.resolve(cfg.scheduler.policy)),
         launch_rule: args.inputs.launch_rule,
         subset: args.inputs.subset.clone(),
         ideal_memory: args.inputs.ideal_memory.then_some(true),

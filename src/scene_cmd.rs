@@ -13,7 +13,7 @@ use wasp_frontend::def::{self, Game, SceneDef};
 use wasp_frontend::raster::{DrawOrder, Frame};
 use wasp_frontend::render::{self, HeatStat, Overlay, RenderRequest, WarpValue};
 use wasp_frontend::{fetch, load};
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::PolicyName;
 use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::MachineConfig;
 use wasp_sim::run::{simulate_recording, RunOptions, WarpRecord};
@@ -114,9 +114,11 @@ pub struct RenderArgs {
     /// default: the embedded configs/paper.toml.
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
-    /// Launch policy of the heat-map run (overrides scheduler.policy).
+    /// Launch policy of the heat-map run (overrides scheduler.policy; a
+    /// bare `wasp`, `wasp-m` or `freemshr` takes its constants from the
+    /// machine's, as in `wasp run --policy`).
     #[arg(long, value_name = "POLICY")]
-    pub policy: Option<PolicySpec>,
+    pub policy: Option<PolicyName>,
     /// Priority subset of the heat-map run (overrides scheduler.subset).
     #[arg(long, value_name = "SUBSET")]
     pub subset: Option<SubsetSpec>,
@@ -390,7 +392,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         draw_order: job.def.draw_order,
     };
     let run = RunOptions {
-        policy: args.policy,
+        policy: args.policy.map(|p| p.resolve(job.config.scheduler.policy)),
         subset: args.subset.clone(),
         record_warps: true,
         ..RunOptions::default()

@@ -11,6 +11,22 @@
 
 use crate::config::{ConfigError, MachineConfig};
 use serde::Deserialize;
+use wasp_rtl::policy::{PolicyName, PolicySpec};
+
+/// A bare policy family (`wasp`, `wasp-m`, `freemshr`) set as
+/// `scheduler.policy` takes its constants from the policy it replaces
+/// ([`PolicyName::resolve`]); anything else is kept as written.
+fn resolve_bare_policy(slot: &toml::Value, value: toml::Value) -> toml::Value {
+    let (Some(old), Some(new)) = (slot.as_str(), value.as_str()) else {
+        return value;
+    };
+    match (old.parse::<PolicySpec>(), new.parse::<PolicyName>()) {
+        (Ok(old), Ok(name @ PolicyName::Bare(_))) => {
+            toml::Value::String(name.resolve(old).to_string())
+        }
+        _ => value,
+    }
+}
 
 /// `cfg` with every override in `sets` (each `PATH=VALUE`) applied, then
 /// validated.
@@ -31,8 +47,11 @@ pub fn apply(cfg: &MachineConfig, sets: &[String]) -> Result<MachineConfig, Conf
             )
         })?;
         let path = path.trim();
-        let value = parse_value(text.trim());
+        let mut value = parse_value(text.trim());
         let slot = field(&mut root, path).map_err(|m| fail(set, m))?;
+        if path == "scheduler.policy" {
+            value = resolve_bare_policy(slot, value);
+        }
         if !same_kind(slot, &value) {
             return Err(fail(
                 set,
@@ -134,10 +153,26 @@ fn kind(v: &toml::Value) -> &'static str {
 mod tests {
     use super::*;
     use crate::mem::DramModel;
-    use wasp_rtl::policy::PolicySpec;
 
     fn sets(s: &[&str]) -> Vec<String> {
         s.iter().map(|x| x.to_string()).collect()
+    }
+
+    #[test]
+    fn a_bare_policy_takes_the_machines_constants() {
+        let base = MachineConfig::paper();
+        let p = |sets_: &[&str]| apply(&base, &sets(sets_)).unwrap().scheduler.policy;
+        assert_eq!(p(&["scheduler.policy=wasp"]), base.scheduler.policy);
+        assert_eq!(
+            p(&["scheduler.policy=wasp:5:2", "scheduler.policy=wasp-m"]),
+            PolicySpec::WaspMeasured { threshold: 5 }
+        );
+        assert_eq!(
+            p(&["scheduler.policy=freemshr"]),
+            PolicySpec::FreeMshr(PolicySpec::FREEMSHR_DEFAULT)
+        );
+        // The shipped file's policy is the shipped constant.
+        assert_eq!(base.scheduler.policy, PolicySpec::SHIPPED_WASP);
     }
 
     #[test]
