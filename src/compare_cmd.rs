@@ -209,6 +209,14 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
     if let Some(p) = &base.prefetch {
         let _ = write!(s, "  |  prefetch {}", p.kind);
     }
+    if base.ideal_memory {
+        let _ = write!(s, "  |  ideal memory");
+    }
+    let _ = write!(
+        s,
+        "\nwarps per core {}  input queue {} entries",
+        base.occupancy.max_warps, base.input_queue
+    );
     s.push('\n');
     let _ = writeln!(
         s,

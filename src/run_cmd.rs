@@ -175,16 +175,27 @@ pub fn read_config(path: &Path) -> Result<MachineConfig, CliError> {
     MachineConfig::load(path).map_err(|e| CliError::usage(e.to_string()))
 }
 
-/// Load the configuration named by the inputs.
-pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
-    let cfg = match &inputs.config {
+/// The machine of `--config FILE` (else the embedded paper.toml) with the
+/// `--set` overrides applied, named as run: its name followed by every
+/// override ([`wasp_sim::overrides::describe`]).
+pub fn machine(config: Option<&Path>, sets: &[String]) -> Result<MachineConfig, CliError> {
+    let cfg = match config {
         Some(p) => read_config(p)?,
         None => MachineConfig::paper(),
     };
-    let mut cfg = wasp_sim::overrides::apply(&cfg, &inputs.set)
-        .map_err(|e| CliError::usage(e.to_string()))?;
-    if let Some(b) = inputs.blocked_on {
+    let mut out =
+        wasp_sim::overrides::apply(&cfg, sets).map_err(|e| CliError::usage(e.to_string()))?;
+    out.name = wasp_sim::overrides::describe(&out.name, sets);
+    Ok(out)
+}
+
+/// Load the configuration named by the inputs; `--blocked-on` is named
+/// with the overrides when it changes the machine.
+pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
+    let mut cfg = machine(inputs.config.as_deref(), &inputs.set)?;
+    if let Some(b) = inputs.blocked_on.filter(|b| *b != cfg.scheduler.blocked_on) {
         cfg.scheduler.blocked_on = b;
+        cfg.name = format!("{} + scheduler.blocked_on={b}", cfg.name);
     }
     Ok(cfg)
 }

@@ -149,6 +149,22 @@ fn kind(v: &toml::Value) -> &'static str {
     }
 }
 
+/// The name of a machine as run: `base` (its configured name) followed by
+/// every override but `name=...` as written, spaces around `=` removed:
+/// `paper-width4-64warps + core.max_warps=32 + l0.mshrs=16`. With no
+/// override it is `base` alone.
+pub fn describe(base: &str, sets: &[String]) -> String {
+    let mut s = base.to_string();
+    for set in sets {
+        let (path, value) = set.split_once('=').unwrap_or((set, ""));
+        if path.trim() == "name" {
+            continue;
+        }
+        s.push_str(&format!(" + {}={}", path.trim(), value.trim()));
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -156,6 +172,15 @@ mod tests {
 
     fn sets(s: &[&str]) -> Vec<String> {
         s.iter().map(|x| x.to_string()).collect()
+    }
+
+    #[test]
+    fn a_machine_is_named_with_its_overrides() {
+        assert_eq!(describe("m", &[]), "m");
+        assert_eq!(
+            describe("m", &sets(&["core.max_warps = 32", "name=x", "l0.mshrs=8"])),
+            "m + core.max_warps=32 + l0.mshrs=8"
+        );
     }
 
     #[test]
