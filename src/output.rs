@@ -54,15 +54,17 @@ impl<'a> Output<'a> {
 }
 
 /// One input of a command that an output must not overwrite: a file
-/// (`--trace`, `--config`, a sweep file) or a folder whose files the
-/// command reads (`--scenes-dir`, a study's `points/`).
+/// (`--trace`, `--config`, a sweep file) or a folder whose files of one
+/// extension the command reads (`--scenes-dir`'s `*.toml`, a study's
+/// `points/*.json`).
 pub struct Input<'a> {
     /// The flag (or argument) as the user types it.
     pub flag: &'static str,
     /// Its value, if given.
     pub path: Option<&'a Path>,
-    /// Whether it is a folder: no output may be inside it.
-    pub folder: bool,
+    /// For a folder, the extension of the files the command reads in it:
+    /// no output may be such a file there.
+    pub folder: Option<&'static str>,
 }
 
 impl<'a> Input<'a> {
@@ -71,16 +73,16 @@ impl<'a> Input<'a> {
         Self {
             flag,
             path,
-            folder: false,
+            folder: None,
         }
     }
 
-    /// An input folder.
-    pub fn folder(flag: &'static str, path: Option<&'a Path>) -> Self {
+    /// An input folder whose `*.EXT` files the command reads.
+    pub fn folder(flag: &'static str, path: Option<&'a Path>, ext: &'static str) -> Self {
         Self {
             flag,
             path,
-            folder: true,
+            folder: Some(ext),
         }
     }
 }
@@ -132,16 +134,20 @@ fn not_an_input(flag: &str, path: &Path, inputs: &[Input]) -> Result<(), CliErro
         let Some(ip) = i.path.filter(|p| !is_stdout(p)) else {
             continue;
         };
-        if i.folder && inside(path, ip) {
-            return Err(CliError::usage(format!(
-                "{flag} {} is inside the folder {} {}, which this command reads: name a \
-                 file elsewhere",
-                path.display(),
-                i.flag,
-                ip.display()
-            )));
+        if let Some(ext) = i.folder {
+            let read = path.extension().is_some_and(|e| e == ext);
+            if read && inside(path, ip) {
+                return Err(CliError::usage(format!(
+                    "{flag} {}: {} {} holds the *.{ext} files this command reads; name a \
+                     file elsewhere or of another kind",
+                    path.display(),
+                    i.flag,
+                    ip.display()
+                )));
+            }
+            continue;
         }
-        if !i.folder && same_file(path, ip) {
+        if same_file(path, ip) {
             return Err(CliError::usage(format!(
                 "{flag} {} names the same file as {} {}: the output would overwrite the \
                  input; name another file",
@@ -494,11 +500,18 @@ mod tests {
         let inside = d.join("x.json");
         let e = check(
             &[Output::new("--json", Some(&inside))],
-            &[Input::folder("--scenes-dir", Some(&d))],
+            &[Input::folder("the study folder", Some(&d), "json")],
         )
         .unwrap_err()
         .to_string();
-        assert!(e.contains("is inside the folder --scenes-dir"), "{e}");
+        assert!(e.contains("the study folder"), "{e}");
+        // Files of another kind in the folder are not read: they may be
+        // written.
+        assert!(check(
+            &[Output::new("--json", Some(&inside))],
+            &[Input::folder("--scenes-dir", Some(&d), "toml")]
+        )
+        .is_ok());
         // Another file, or standard output, is fine.
         assert!(check(
             &[Output::new("--json", Some(&d.join("out.json")))],

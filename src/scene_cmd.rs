@@ -349,7 +349,11 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
         ],
         &[
             output::Input::file("--config", args.config.as_deref()),
-            output::Input::folder("--scenes-dir", args.scene_defs.scenes_dir.as_deref()),
+            output::Input::folder(
+                "--scenes-dir",
+                args.scene_defs.scenes_dir.as_deref(),
+                "toml",
+            ),
         ],
     )?;
     if args.repeat == 0 {
@@ -767,6 +771,7 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
         &[output::Input::folder(
             "--scenes-dir",
             args.scene_defs.scenes_dir.as_deref(),
+            "toml",
         )],
     )?;
     let defs = characterize_defs(args)?;

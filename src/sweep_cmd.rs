@@ -216,7 +216,11 @@ fn bases(s: &Sweep) -> Vec<PathBuf> {
 fn sweep_inputs<'a>(args: &'a SweepArgs, bases: &'a [PathBuf]) -> Vec<output::Input<'a>> {
     let mut v = vec![
         output::Input::file("the sweep file", Some(&args.file)),
-        output::Input::folder("--scenes-dir", args.scene_defs.scenes_dir.as_deref()),
+        output::Input::folder(
+            "--scenes-dir",
+            args.scene_defs.scenes_dir.as_deref(),
+            "toml",
+        ),
     ];
     v.extend(
         bases
@@ -284,7 +288,7 @@ pub fn merge(args: &MergeArgs) -> Result<(), CliError> {
     inputs.extend(
         points_dirs
             .iter()
-            .map(|d| output::Input::folder("the study folder", Some(d))),
+            .map(|d| output::Input::folder("the study folder", Some(d), "json")),
     );
     output::check(
         &[
