@@ -213,6 +213,18 @@ pub fn check(outputs: &[Output], inputs: &[Input]) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Check an output folder option before any work: `path`, if it exists,
+/// must be a folder (`what` says what the command writes in it).
+pub fn folder(flag: &str, path: &Path, what: &str) -> Result<(), CliError> {
+    if path.exists() && !path.is_dir() {
+        return Err(CliError::usage(format!(
+            "{flag} {}: is a file; {flag} names a folder ({what}), made if missing",
+            path.display()
+        )));
+    }
+    Ok(())
+}
+
 /// Whether a file can be created at `path`: its folder exists, it is not
 /// itself a folder, and a file can be made in that folder (tried with a
 /// probe file, removed at once: permissions, a read-only file system or a

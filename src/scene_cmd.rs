@@ -84,6 +84,10 @@ pub struct FetchArgs {
     /// Every game.
     #[arg(long, conflicts_with = "games")]
     pub all: bool,
+    /// Fetch a game again even when its data is already in the cache (by
+    /// default a fetched game is skipped, saying so).
+    #[arg(long)]
+    pub force: bool,
     /// No progress output on stderr (what is downloaded and unpacked);
     /// errors still print.
     #[arg(long, short)]
@@ -290,6 +294,15 @@ pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
             };
             let quiet = f.quiet;
             for g in games {
+                if g != Game::Procedural && fetch::is_fetched(g) && !f.force {
+                    if !quiet {
+                        eprintln!(
+                            "wasp: {g}: already fetched in {}; skipped (--force fetches it again)",
+                            fetch::cache_dir().display()
+                        );
+                    }
+                    continue;
+                }
                 let root = fetch::fetch(g, &mut |m| {
                     if !quiet {
                         eprintln!("wasp: {g}: {m}")
@@ -421,7 +434,13 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     };
     let (scene_name, out, mut best) = render_best(args, &job, &req, &mut heat)?;
     pb.finish_and_clear();
-    note_frame(&scene_name, &job, &out, heat_run.as_ref().map(|(r, _)| r));
+    note_frame(
+        &scene_name,
+        &job,
+        &out,
+        heat_run.as_ref().map(|(r, _)| r),
+        args.quiet,
+    );
     let clock = Stopwatch::start();
     if let Some(p) = &args.png {
         let (img, cw, ch) = match job.crop {
@@ -503,11 +522,21 @@ fn render_best(
 
 /// The notes on stderr of a rendered frame: its draw order (and, where
 /// the painter's order changed what it shows, a note), its counts, the
-/// heat-map run and the heat range.
-fn note_frame(name: &str, job: &RenderJob, out: &render::Rendered, heat: Option<&RunStats>) {
+/// heat-map run and the heat range (under `quiet`, the painter's note alone).
+fn note_frame(
+    name: &str,
+    job: &RenderJob,
+    out: &render::Rendered,
+    heat: Option<&RunStats>,
+    quiet: bool,
+) {
     let s = &out.frame.stats;
+    // A draw order that changes nothing is a warning: it prints under -q.
     if let Some(n) = painter_note(&job.def.name, job.def.draw_order, s.draw_order) {
         eprintln!("{n}");
+    }
+    if quiet {
+        return;
     }
     eprintln!(
         "wasp: {} {}x{} ({}): {} triangles ({} clipped), {} warps (one per fragment) at {} quad \

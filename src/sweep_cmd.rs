@@ -99,6 +99,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     if args.list {
         return emit(Path::new("-"), &sweep::listing(&points));
     }
+    output::folder("--out", &args.out, "points/, results.csv and results.json")?;
     let out = sweep::absolute(&args.out).map_err(CliError::usage)?;
     if let Some(jobs) = &args.jobs_file {
         output::check(

@@ -84,3 +84,18 @@ fn a_finished_run_replaces_its_output_and_leaves_no_temporary_file() {
         .collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+#[test]
+fn a_folder_option_naming_a_file_says_it_needs_a_folder() {
+    let d = dir("out-folder");
+    let f = d.join("report.md");
+    std::fs::write(&f, "mine").unwrap();
+    let o = wasp(&["reproduce", "-q", "--quick", "--out", f.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--out names a folder"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), "mine");
+}

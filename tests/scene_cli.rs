@@ -252,3 +252,40 @@ fn a_closed_pipe_ends_the_listing_quietly() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn fetch_skips_a_fetched_game_and_render_q_prints_nothing() {
+    let cache = dir("fetched-cache");
+    let root = cache.join("teeworlds");
+    std::fs::create_dir_all(&root).unwrap();
+    std::fs::write(root.join(".wasp-fetched"), "teeworlds-data 1\n").unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .args(["scenes", "fetch", "teeworlds"])
+        .env("WASP_SCENES", &cache)
+        .output()
+        .unwrap();
+    let e = common::stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains("teeworlds: already fetched") && e.contains("--force"),
+        "{e}"
+    );
+    // The marker is untouched: nothing was fetched again.
+    assert_eq!(
+        std::fs::read_to_string(root.join(".wasp-fetched")).unwrap(),
+        "teeworlds-data 1\n"
+    );
+    let out = dir("quiet").join("q.trace");
+    let o = wasp(&[
+        "render",
+        "procedural-sprites",
+        "--size",
+        "128x64",
+        "-q",
+        "--trace-out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    assert_eq!(common::stdout(&o), "");
+    assert_eq!(common::stderr(&o), "");
+}

@@ -65,15 +65,55 @@ pub fn apply(cfg: &MachineConfig, sets: &[String]) -> Result<MachineConfig, Conf
         }
         *slot = value;
     }
-    let out = MachineConfig::deserialize(root).map_err(|e| ConfigError {
-        source: "--set".into(),
-        message: e.to_string().trim_end().to_string(),
+    let out = MachineConfig::deserialize(root.clone()).map_err(|e| {
+        let message = e.to_string().trim_end().to_string();
+        // A number its field's type cannot hold (`l0.mshrs=-1`): name the
+        // set and the field's allowed range.
+        let bad = sets.iter().rev().find_map(|set| {
+            let (path, text) = set.split_once('=')?;
+            let path = path.trim();
+            let in_field = message.contains(&format!("`{path}`"));
+            let int = matches!(parse_value(text.trim()), toml::Value::Integer(_));
+            (in_field && int).then(|| (set, path, text.trim()))
+        });
+        match bad {
+            Some((set, path, text)) => fail(
+                set,
+                format!(
+                    "{path} = {text}: must be in {}",
+                    allowed_range(&root, path).unwrap_or_else(|| "0..=4294967295".into())
+                ),
+            ),
+            None => ConfigError {
+                source: "--set".into(),
+                message,
+            },
+        }
     })?;
     out.validate().map_err(|message| ConfigError {
         source: format!("--set {}", sets.join(" --set ")),
         message,
     })?;
     Ok(out)
+}
+
+/// The range `validate` allows for the integer field `path` (`1..=4096`),
+/// found by probing the field with its type's extremes.
+fn allowed_range(root: &toml::Value, path: &str) -> Option<String> {
+    for probe in [0, i64::from(u32::MAX)] {
+        let mut r = root.clone();
+        *field(&mut r, path).ok()? = toml::Value::Integer(probe);
+        let Ok(c) = MachineConfig::deserialize(r) else {
+            continue;
+        };
+        if let Err(m) = c.validate() {
+            if let Some(i) = m.find(": must be in ").filter(|_| m.contains(path)) {
+                let rest = &m[i + ": must be in ".len()..];
+                return Some(rest.split([' ', ';', ',']).next()?.to_string());
+            }
+        }
+    }
+    None
 }
 
 /// The TOML value `text` stands for, or the string `text` itself.
@@ -172,6 +212,22 @@ mod tests {
 
     fn sets(s: &[&str]) -> Vec<String> {
         s.iter().map(|x| x.to_string()).collect()
+    }
+
+    #[test]
+    fn a_number_its_type_cannot_hold_names_the_range() {
+        let base = MachineConfig::paper();
+        let e = apply(&base, &sets(&["l0.mshrs=-1"]))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "--set l0.mshrs=-1: l0.mshrs = -1: must be in 1..=4096");
+        let e = apply(&base, &sets(&["prefetch.l1_reserve=-3"]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("prefetch.l1_reserve = -3: must be in 0..="),
+            "{e}"
+        );
     }
 
     #[test]

@@ -119,6 +119,14 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
+    crate::output::folder(
+        "--out",
+        &args.out,
+        "REPORT.md, figures/, data/ and the finished points",
+    )?;
+    if let Some(d) = &args.sweep_files {
+        crate::output::folder("--sweep-files", d, "one sweep file per group")?;
+    }
     let defs = chosen_scenes(args.scenes.as_deref())?;
     let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
     // The map "What decides WaSP's gain" runs on the shared-tile machine
