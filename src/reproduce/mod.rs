@@ -144,7 +144,8 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     tasks.extend(map::tasks(&plan, &map));
     if !args.quiet {
         eprintln!(
-            "wasp: reproducing the paper{}: {} scenes, {} machine(s), {} tasks, {} at once, into {}",
+            "wasp: reproducing the paper{}: {} scenes, {} machine(s), {} tasks before the 2-D \
+             grid (its tasks follow once these choose its knobs), {} at once, into {}",
             if args.quick { " (quick look)" } else { "" },
             plan.scenes.len(),
             plan.dispatches.len(),
@@ -172,7 +173,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     let written = report::write(&plan, Some(&map), &outcome, &cells, &args.out, &command)
         .map_err(CliError::failed)?;
     if !args.quiet {
-        eprintln!("wasp: {}", outcome.summary());
+        eprintln!(
+            "wasp: in all (the {} tasks before the grid and the grid's): {}",
+            tasks.len(),
+            outcome.summary()
+        );
         eprintln!("wasp: wrote {}", written.display());
     }
     if !outcome.failures.is_empty() {
