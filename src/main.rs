@@ -3,6 +3,7 @@
 mod bench_cmd;
 mod charts;
 mod compare_cmd;
+mod compare_variants;
 mod cost_cmd;
 mod example_cmd;
 mod fonts;
