@@ -13,6 +13,7 @@
 
 #[cfg(test)]
 mod contrary;
+pub mod digits;
 pub mod draw;
 pub mod figures;
 pub mod headline;
