@@ -7,14 +7,18 @@
 //! - [`paper`]: the paper's numbers;
 //! - [`figures`]: the numbers of each figure, from the results;
 //! - [`report`]: REPORT.md, the CSV/JSON files and the plots;
-//! - [`headline`]: its side-by-side table of the paper's numbers and ours;
+//! - [`answer`]: its opening "The answer", generated from the run;
+//! - [`headline`]: its side-by-side table of the paper's numbers and ours
+//!   (printed with [`digits`]; sweeps' edges flagged by [`edges`]);
 //! - [`why`]: its bullets on why they differ, worded from the data by
 //!   [`prose`].
 
+pub mod answer;
 #[cfg(test)]
 mod contrary;
 pub mod digits;
 pub mod draw;
+pub mod edges;
 pub mod figures;
 pub mod headline;
 pub mod map;

@@ -63,6 +63,8 @@ pub fn write(
         .iter()
         .map(|&d| (d, Figures::new(plan, out)))
         .collect();
+    let map_table = map.map(|m| super::map::table(plan, m, out, cells));
+    super::answer::answer(&mut md, plan, &machines, map_table.as_ref());
     let rows = headline(plan, out, &machines);
     write_atomic(&data.join("headline.csv"), &headline_csv(&rows, plan))?;
     headline_md(&mut md, &rows, plan);
@@ -274,6 +276,10 @@ fn figure(md: &mut String, f: &Figure, data: &Path, figs: &Path) -> Result<(), S
     if !f.paper.is_empty() {
         let marks: Vec<String> = f.paper.iter().map(|p| p.label.clone()).collect();
         let _ = writeln!(md, "\nThe paper: {}.", marks.join("; "));
+    }
+    let edge = super::edges::figure_note(f);
+    if !edge.is_empty() {
+        let _ = write!(md, "\n{edge}");
     }
     let _ = writeln!(md);
     Ok(())

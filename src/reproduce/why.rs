@@ -481,8 +481,8 @@ fn misses_note(md: &mut String, n: &Notes) {
         .map(|(l, v)| format!("{l} misses change by {}", pct(*v)))
         .collect();
     let reading = if changed.is_empty() {
-        "unchanged within 1%, as the paper reports: the tile's working set fits the L1 and \
-         L2, so the order of warps changes when blocks arrive, not how many"
+        "unchanged within 1%, as the paper reports: the order of warps changes when blocks \
+         arrive, not how many are fetched"
             .to_string()
     } else {
         format!(
