@@ -108,6 +108,16 @@ pub fn dominated(scenes: &[(String, f64)]) -> Option<String> {
     ))
 }
 
+/// When one game dominates group `g`'s mean of series `s` of `f`, " (mostly
+/// GAME: median ..., per game ...)", else nothing.
+pub fn dominance_note(x: &Figures, f: &Figure, s: usize, g: Group) -> String {
+    by_group(x, f, s)
+        .iter()
+        .find(|v| v.group == g)
+        .and_then(|v| dominated(&v.scenes))
+        .map_or_else(String::new, |d| format!(" ({d})"))
+}
+
 /// A group's mean as text, with its median and per-game values when one
 /// game dominates it.
 fn mean_text(g: &GroupValues, text: &str) -> String {
