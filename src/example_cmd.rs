@@ -75,11 +75,7 @@ fn map_err(e: ExampleError) -> CliError {
 
 /// Run the command.
 pub fn run(args: &ExampleArgs) -> Result<(), CliError> {
-    let gtkw = args
-        .vcd
-        .as_deref()
-        .filter(|p| !output::is_stdout(p))
-        .map(gtkw_path);
+    let gtkw = crate::run_cmd::save_file_of(args.vcd.as_deref());
     output::check(
         &[
             Output::new("--json", args.json.as_deref()),

@@ -257,6 +257,12 @@ pub fn gtkw_path(vcd: &Path) -> PathBuf {
     PathBuf::from(s)
 }
 
+/// The GTKWave save file written beside a `--vcd FILE` (none for
+/// standard output): an output too, checked with the others.
+pub fn save_file_of(vcd: Option<&Path>) -> Option<PathBuf> {
+    vcd.filter(|p| !output::is_stdout(p)).map(gtkw_path)
+}
+
 /// The VCD window of `--vcd-from`/`--vcd-to`, checked.
 fn vcd_window(args: &RunArgs) -> Result<Option<(u64, u64)>, CliError> {
     match (args.vcd_from, args.vcd_to) {
@@ -308,11 +314,7 @@ fn timeline_window(args: &RunArgs) -> Result<Option<(u64, u64)>, CliError> {
 pub fn run(args: &RunArgs) -> Result<(), CliError> {
     // The options are checked before the (possibly long) trace is read and
     // simulated.
-    let gtkw = args
-        .vcd
-        .as_deref()
-        .filter(|p| !output::is_stdout(p))
-        .map(gtkw_path);
+    let gtkw = save_file_of(args.vcd.as_deref());
     output::check(
         &[
             Output::new("--json", args.json.as_deref()),

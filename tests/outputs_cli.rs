@@ -4,7 +4,7 @@
 //! only once it is whole.
 
 mod common;
-use common::run::{dir, tiny_config, tiny_trace};
+use common::run::{dir, run_tiny, tiny_config, tiny_trace};
 use common::{ok, stderr, wasp};
 
 #[test]
@@ -65,16 +65,7 @@ fn a_finished_run_replaces_its_output_and_leaves_no_temporary_file() {
     let cfg = tiny_config(&d);
     let json = d.join("r.json");
     std::fs::write(&json, "old").unwrap();
-    ok(&wasp(&[
-        "run",
-        "-q",
-        "--config",
-        &cfg,
-        "--trace",
-        &tiny_trace(),
-        "--json",
-        json.to_str().unwrap(),
-    ]));
+    ok(&run_tiny(&cfg, &["--json", json.to_str().unwrap()]));
     let text = std::fs::read_to_string(&json).unwrap();
     assert!(text.starts_with('{'), "{text}");
     let left: Vec<String> = std::fs::read_dir(&d)

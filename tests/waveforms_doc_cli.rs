@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 use wasp_waves::readback;
 
 mod common;
-use common::run::{dir, tiny_config, tiny_trace};
+use common::run::{dir, run_tiny, tiny_config};
 use common::{ok, wasp};
 
 /// The backticked words of docs/waveforms.md between `from` and `to`,
@@ -57,18 +57,10 @@ fn the_documented_preselections_are_the_save_files() {
     let mut run = BTreeSet::new();
     for policy in ["wasp", "wasp-m"] {
         let vcd = d.join(format!("{policy}.vcd"));
-        ok(&wasp(&[
-            "run",
-            "-q",
-            "--config",
+        ok(&run_tiny(
             &cfg,
-            "--trace",
-            &tiny_trace(),
-            "--policy",
-            policy,
-            "--vcd",
-            vcd.to_str().unwrap(),
-        ]));
+            &["--policy", policy, "--vcd", vcd.to_str().unwrap()],
+        ));
         run.extend(saved(&d.join(format!("{policy}.vcd.gtkw"))));
     }
     assert_eq!(
@@ -120,18 +112,10 @@ fn the_datapath_holds_the_last_decision_as_documented() {
     // before (the shipped CF 3, twelve quarters).
     let cfg = tiny_config(&d);
     let vcd = d.join("r.vcd");
-    ok(&wasp(&[
-        "run",
-        "-q",
-        "--config",
+    ok(&run_tiny(
         &cfg,
-        "--trace",
-        &tiny_trace(),
-        "--policy",
-        "wasp",
-        "--vcd",
-        vcd.to_str().unwrap(),
-    ]));
+        &["--policy", "wasp", "--vcd", vcd.to_str().unwrap()],
+    ));
     let (n, before) = datapath_matches(&vcd, "wasp.core0", 12, 1);
     assert!(n > 0);
     assert_eq!(before, n, "run: the previous cycle's registers");

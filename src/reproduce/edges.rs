@@ -1,11 +1,10 @@
 //! Best points at the edge of a sweep: for every swept figure (a line
-//! over thresholds or warp counts) and every knob of the map, the report
-//! says when the best value lies at the first or last value swept, since
-//! the best may then lie beyond the range.
+//! over thresholds or warp counts) and (through [`best_at_edge`], in
+//! `map::edges`) every numeric knob of the map, the report says when the
+//! best value lies at the first or last value swept, since the best may
+//! then lie beyond the range.
 
 use super::figures::{Figure, Kind};
-use super::map::table::MapTable;
-use super::plan::Group;
 
 /// Where the best (largest) of `values` lies among `labels`, if at an
 /// edge: (its label, its value, the range as text). `None` when the best
@@ -55,41 +54,6 @@ pub fn figure_note(f: &Figure) -> String {
     }
     format!(
         "**At the edge of the range**: {}; the best may lie beyond it.\n",
-        notes.join("; ")
-    )
-}
-
-/// The map's numeric knobs whose best WaSP value (group mean) lies at an
-/// edge of the values swept, per group; empty when none does.
-pub fn map_note(t: &MapTable, groups: &[Group]) -> String {
-    let mut notes = Vec::new();
-    for &g in groups {
-        let at: Vec<String> = t
-            .knobs
-            .iter()
-            // A range has edges only when its values are numbers.
-            .filter(|k| k.rows.iter().all(|r| r.value.parse::<f64>().is_ok()))
-            .filter_map(|k| {
-                let labels: Vec<String> = k.rows.iter().map(|r| r.value.clone()).collect();
-                let values: Vec<Option<f64>> = k.rows.iter().map(|r| r.of(g).wasp).collect();
-                let (best, v, range) = best_at_edge(&labels, &values)?;
-                Some(format!(
-                    "{} {best} ({}; swept {range})",
-                    k.label,
-                    super::prose::pct(Some(v))
-                ))
-            })
-            .collect();
-        if !at.is_empty() {
-            notes.push(format!("{} scenes: {}", g.label(), at.join(", ")));
-        }
-    }
-    if notes.is_empty() {
-        return String::new();
-    }
-    format!(
-        "**At the edge of the range**: WaSP's best value of these knobs is the first or last \
-         value swept, so its best may lie beyond the range: {}.\n\n",
         notes.join("; ")
     )
 }

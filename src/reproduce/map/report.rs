@@ -82,7 +82,7 @@ pub fn write(md: &mut String, x: &Section) -> Result<(), String> {
     scenes_note(md, x.plan, map);
     knobs_table(md, map);
     ranking(md, t, groups);
-    md.push_str(&crate::reproduce::edges::map_note(t, groups));
+    md.push_str(&super::edges::map_note(t, groups));
     embed(md, figures::tornado(t, x.figs, x.data)?);
     for &g in groups {
         group_table(md, t, g);
