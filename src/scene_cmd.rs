@@ -367,6 +367,11 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
                 args.scene_defs.scenes_dir.as_deref(),
                 "toml",
             ),
+            // A scene named by its definition file.
+            output::Input::file(
+                "the scene file",
+                Some(std::path::Path::new(&args.scene)).filter(|p| p.is_file()),
+            ),
         ],
     )?;
     if args.repeat == 0 {

@@ -41,6 +41,17 @@ fn an_output_naming_the_trace_is_refused_and_the_trace_kept() {
     assert!(stderr(&o).contains("--config"), "{}", stderr(&o));
     let o = wasp(&["cost", "--no-yosys", "--config", &cfg, "--json", &cfg]);
     assert_eq!(o.status.code(), Some(2));
+    // A scene named by its definition file is an input of render.
+    let scene = d.join("mine.toml");
+    std::fs::write(&scene, "name = \"mine\"\n").unwrap();
+    let sc = scene.to_str().unwrap();
+    let o = wasp(&["render", sc, "-q", "--trace-out", sc]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("the scene file"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(&scene).unwrap(),
+        "name = \"mine\"\n"
+    );
     // The save file of --vcd is an output too.
     let vcd = d.join("w.vcd");
     let o = wasp(&[
