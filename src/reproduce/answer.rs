@@ -291,14 +291,19 @@ fn claims_sentence(plan: &Plan, d: Dispatch, x: &Figures) -> String {
             format!("the {} scenes", v.join(" and "))
         }
     };
+    let latency = match lat[0] {
+        Some(v) if v < 0.0 => format!("falls {}", pct(Some(v)).trim_start_matches('-')),
+        Some(v) if v > 0.0 => format!("rises {}", pct(Some(v)).trim_start_matches('+')),
+        Some(_) => "does not change".to_string(),
+        None => "was not measured".to_string(),
+    };
     format!(
         "The paper's claims on the {d} machine: WaSP's +3.9% is reached on {}; WaSP at least \
-         as fast as Fullpriority (the paper: +3.9% against +1.3%) holds on {}; the memory \
-         latency falls {} on the games (the paper: {}).",
+         as fast as Fullpriority (the paper: +3.9% against +1.3%) holds on {}; WaSP's mean \
+         memory latency {latency} on the games (the paper: falls {}).",
         list(&reach),
         list(&above),
-        pct(lat[0]),
-        pct(Some(paper::LATENCY_CHANGE.value))
+        pct(Some(paper::LATENCY_CHANGE.value)).trim_start_matches('-')
     )
 }
 
