@@ -97,7 +97,9 @@ pub fn dominated(scenes: &[(String, f64)]) -> Option<String> {
         .iter()
         .map(|(g, vs)| {
             let m = vs.iter().sum::<f64>() / vs.len() as f64;
-            format!("{g} {} ({} scenes)", pct(Some(m)), vs.len())
+            let n = vs.len();
+            let scenes = if n == 1 { "scene" } else { "scenes" };
+            format!("{g} {} ({n} {scenes})", pct(Some(m)))
         })
         .collect();
     Some(format!(
@@ -134,7 +136,7 @@ pub fn answer(
     machines: &[(Dispatch, Figures)],
     map: Option<&MapTable>,
 ) {
-    let _ = writeln!(md, "## The answer\n");
+    let _ = writeln!(md, "\n## The answer\n");
     let mut s: Vec<String> = Vec::new();
     s.push(what_ran(plan));
     for (d, x) in machines {
