@@ -112,8 +112,8 @@ pub struct RunArgs {
     #[command(flatten)]
     pub inputs: Inputs,
 
-    /// Launch policy: baseline, fullpriority, freemshr[:N],
-    /// wasp[:THRESHOLD[:CF]] or wasp-m[:THRESHOLD] (WaSP with a CF measured
+    /// Launch policy: baseline, fullpriority, `freemshr[:N]`,
+    /// `wasp[:THRESHOLD[:CF]]` or `wasp-m[:THRESHOLD]` (WaSP with a CF measured
     /// per core). Names are lower case. A bare `wasp` takes its threshold
     /// and CF from the machine's scheduler.policy (the shipped `wasp:0:3`),
     /// `wasp-m` its threshold (`wasp-m:0`), `freemshr` its N when the
@@ -176,11 +176,24 @@ pub fn read_config(path: &Path) -> Result<MachineConfig, CliError> {
 }
 
 /// The machine of `--config FILE` (else the embedded paper.toml) with the
-/// `--set` overrides applied, named as run: its name followed by every
-/// override ([`wasp_sim::overrides::describe`]).
+/// `--set` overrides applied, named as run: its name (a file that does not
+/// set `name` is its base's name `+ FILE`) followed by every override
+/// ([`wasp_sim::overrides::describe`]).
 pub fn machine(config: Option<&Path>, sets: &[String]) -> Result<MachineConfig, CliError> {
     let cfg = match config {
-        Some(p) => read_config(p)?,
+        Some(p) => {
+            let mut c = read_config(p)?;
+            // A file that patches a base without naming itself is named as
+            // the base plus the file, not as the base alone.
+            let named = std::fs::read_to_string(p)
+                .ok()
+                .and_then(|t| t.parse::<toml::Table>().ok())
+                .is_some_and(|t| t.contains_key("name"));
+            if !named {
+                c.name = format!("{} + {}", c.name, p.display());
+            }
+            c
+        }
         None => MachineConfig::paper(),
     };
     let mut out =

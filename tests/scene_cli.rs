@@ -26,7 +26,6 @@ fn rendered_traces_are_format_4_with_one_warp_per_fragment_for_any_thread_count(
             "320x192",
             "--threads",
             threads,
-            "-q",
             "--trace-out",
             p.to_str().unwrap(),
         ]);
