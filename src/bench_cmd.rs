@@ -79,7 +79,13 @@ const NOISY: f64 = 0.10;
 
 /// Run the benchmark.
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
-    output::check(&[Output::new("--json", args.json.as_deref())])?;
+    output::check(
+        &[Output::new("--json", args.json.as_deref())],
+        &[
+            output::Input::file("--config", args.config.as_deref()),
+            output::Input::file("--trace", args.trace.as_deref()),
+        ],
+    )?;
     let cfg = match &args.config {
         Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),

@@ -1,13 +1,15 @@
 //! `wasp compare`: several launch policies on the same trace, with
-//! speedups against the first.
+//! speedups against the first; with `--variant`, on machine variants too
+//! ([`crate::compare_variants`]), against one reference row.
 
+use crate::compare_variants::{self as variants, Row, Variant};
 use crate::output::{self, emit, Output};
 use crate::run_cmd::{load_config, load_trace, progress_bar, run_tiles, sim_err, Inputs};
 use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::{PolicyName, PolicySpec};
 use wasp_sim::config::MachineConfig;
 use wasp_sim::run::{simulate, RunOptions, SimError};
 use wasp_sim::stats::{csv_table, RunStats};
@@ -22,9 +24,11 @@ pub struct CompareArgs {
     /// Policies to compare, comma separated; the first is the reference for
     /// speedups. Default: baseline, fullpriority, freemshr:10, the
     /// configuration's `scheduler.policy` and, when that is WaSP, the
-    /// measured-CF variant `wasp-m` at its threshold.
+    /// measured-CF variant `wasp-m` at its threshold. Names as in `wasp run
+    /// --policy`: a bare `wasp` is the machine's own (the shipped
+    /// `wasp:0:3`), and the table names every policy resolved.
     #[arg(long, value_delimiter = ',')]
-    pub policies: Option<Vec<PolicySpec>>,
+    pub policies: Option<Vec<PolicyName>>,
 
     /// Also run the reference policy with ideal (zero-latency) main memory.
     #[arg(long)]
@@ -43,11 +47,29 @@ pub struct CompareArgs {
     /// Simulations run at once (default: the machine's cores).
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
+
+    /// A machine variant, NAME:KEY=VALUE[,KEY=VALUE...] (repeatable): the
+    /// policies run also on the machine with these overrides (after
+    /// --config and --set), in rows named NAME/POLICY, e.g. `--variant
+    /// raster:prefetch.kind=raster --variant oracle:prefetch.kind=oracle-tile`.
+    /// The table, JSON and CSV then give every row's speedup against one
+    /// reference (--reference).
+    #[arg(long = "variant", value_name = "NAME:KEY=VALUE[,...]")]
+    pub variants: Vec<Variant>,
+
+    /// The row every speedup is against, by its name in the table
+    /// (`baseline`, `raster/baseline`, `wasp:0:3 +ideal memory`...).
+    /// Default: the first policy on the machine without a variant.
+    #[arg(long, value_name = "ROW")]
+    pub reference: Option<String>,
 }
 
 /// One run of a comparison.
 struct Job {
     label: String,
+    /// The variant's name, `None` on the machine as configured.
+    variant: Option<String>,
+    cfg: MachineConfig,
     opts: RunOptions,
 }
 
@@ -72,30 +94,38 @@ fn default_policies(cfg: &MachineConfig) -> Vec<PolicySpec> {
 
 /// Run the comparison.
 pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
-    output::check(&[
-        Output::new("--json", args.json.as_deref()),
-        Output::new("--csv", args.csv.as_deref()),
-    ])?;
+    output::check(
+        &[
+            Output::new("--json", args.json.as_deref()),
+            Output::new("--csv", args.csv.as_deref()),
+        ],
+        &args.inputs.files(),
+    )?;
     let cfg = load_config(&args.inputs)?;
     let trace = load_trace(&args.inputs, &cfg)?;
     let policies = match &args.policies {
-        Some(p) => p.clone(),
+        Some(p) => p.iter().map(|p| p.resolve(cfg.scheduler.policy)).collect(),
         None => default_policies(&cfg),
     };
     if policies.is_empty() {
         return Err(CliError::usage("--policies: name at least one policy"));
     }
-    let jobs = comparison_jobs(args, &policies);
+    let machines = variants::machines(&cfg, &args.variants)?;
+    let jobs = comparison_jobs(args, &policies, &cfg, &machines);
+    let reference = reference_index(args, &jobs)?;
     // Check every configuration before spending time on any run.
     for j in &jobs {
-        j.opts.apply(&cfg).map_err(sim_err)?;
+        j.opts.apply(&j.cfg).map_err(sim_err)?;
     }
     let threads = args
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
         .clamp(1, jobs.len());
-    let runs = run_jobs(&cfg, &trace, &jobs, threads, args.inputs.quiet)?;
+    let runs = run_jobs(&trace, &jobs, threads, args.inputs.quiet)?;
     let labels: Vec<String> = jobs.iter().map(|j| j.label.clone()).collect();
+    if !args.variants.is_empty() || args.reference.is_some() {
+        return write_against(args, &jobs, &runs, reference, &machines);
+    }
     if let Some(p) = &args.json {
         let text = serde_json::to_string_pretty(&runs)
             .map_err(|e| CliError::failed(format!("encoding JSON: {e}")))?
@@ -111,9 +141,65 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The row `--reference` names (the first when not given).
+fn reference_index(args: &CompareArgs, jobs: &[Job]) -> Result<usize, CliError> {
+    let Some(r) = &args.reference else {
+        return Ok(0);
+    };
+    jobs.iter().position(|j| &j.label == r).ok_or_else(|| {
+        let names: Vec<&str> = jobs.iter().map(|j| j.label.as_str()).collect();
+        CliError::usage(format!(
+            "--reference {r}: no such row (the rows: {})",
+            names.join(", ")
+        ))
+    })
+}
+
+/// The outputs of a comparison with variants or a chosen reference: every
+/// row's speedup against the reference row, in the table, JSON and CSV.
+fn write_against(
+    args: &CompareArgs,
+    jobs: &[Job],
+    runs: &[RunStats],
+    reference: usize,
+    machines: &[(Variant, MachineConfig)],
+) -> Result<(), CliError> {
+    let rows: Vec<Row> = jobs
+        .iter()
+        .zip(runs)
+        .map(|(j, r)| Row {
+            row: &j.label,
+            variant: j.variant.as_deref(),
+            reference: &jobs[reference].label,
+            speedup_percent: variants::speedup(&runs[reference], r),
+            stats: r,
+        })
+        .collect();
+    if let Some(p) = &args.json {
+        emit(p, &variants::json(&rows)?)?;
+    }
+    if let Some(p) = &args.csv {
+        emit(p, &variants::csv(&rows))?;
+    }
+    if !output::to_stdout(&args.json) && !output::to_stdout(&args.csv) {
+        let labels: Vec<String> = jobs.iter().map(|j| j.label.clone()).collect();
+        let table = compare_table_against(&labels, runs, reference);
+        let (first, rest) = table.split_once('\n').unwrap_or((&table, ""));
+        let text = format!("{first}\n{}{rest}", variants::header(machines));
+        emit(Path::new("-"), &text)?;
+    }
+    Ok(())
+}
+
 /// The runs of a comparison: each policy, then (`--with-ideal`) the first
-/// with ideal memory.
-fn comparison_jobs(args: &CompareArgs, policies: &[PolicySpec]) -> Vec<Job> {
+/// with ideal memory, on the machine as configured; then each policy on
+/// each variant's machine.
+fn comparison_jobs(
+    args: &CompareArgs,
+    policies: &[PolicySpec],
+    cfg: &MachineConfig,
+    machines: &[(Variant, MachineConfig)],
+) -> Vec<Job> {
     let i = &args.inputs;
     let opts = |policy: PolicySpec, ideal: Option<bool>| RunOptions {
         policy: Some(policy),
@@ -128,14 +214,26 @@ fn comparison_jobs(args: &CompareArgs, policies: &[PolicySpec]) -> Vec<Job> {
         .iter()
         .map(|p| Job {
             label: p.to_string(),
+            variant: None,
+            cfg: cfg.clone(),
             opts: opts(*p, i.ideal_memory.then_some(true)),
         })
         .collect();
     if args.with_ideal {
         jobs.push(Job {
             label: format!("{} +ideal memory", policies[0]),
+            variant: None,
+            cfg: cfg.clone(),
             opts: opts(policies[0], Some(true)),
         });
+    }
+    for (v, vcfg) in machines {
+        jobs.extend(policies.iter().map(|p| Job {
+            label: format!("{}/{p}", v.name),
+            variant: Some(v.name.clone()),
+            cfg: vcfg.clone(),
+            opts: opts(*p, i.ideal_memory.then_some(true)),
+        }));
     }
     jobs
 }
@@ -143,7 +241,6 @@ fn comparison_jobs(args: &CompareArgs, policies: &[PolicySpec]) -> Vec<Job> {
 /// Run `jobs` on `threads` threads, with one progress bar over them all;
 /// their statistics in job order.
 fn run_jobs(
-    cfg: &MachineConfig,
     trace: &Trace,
     jobs: &[Job],
     threads: usize,
@@ -172,7 +269,7 @@ fn run_jobs(
                     v[i] = d;
                     pb.set_position(v.iter().sum::<usize>() as u64);
                 };
-                let r = simulate(cfg, trace, &jobs[i].opts, &mut progress);
+                let r = simulate(&jobs[i].cfg, trace, &jobs[i].opts, &mut progress);
                 results.lock().expect("lock")[i] = Some(r);
             });
         }
@@ -188,11 +285,25 @@ fn run_jobs(
 
 /// The comparison as a table: speedups against the first run.
 pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
+    compare_table_against(labels, runs, 0)
+}
+
+/// The comparison as a table: the header from the first run's machine,
+/// speedups against the run `reference`.
+pub fn compare_table_against(labels: &[String], runs: &[RunStats], reference: usize) -> String {
     use std::fmt::Write as _;
     let mut s = String::new();
     let Some(base) = runs.first() else {
         return s;
     };
+    let against = &runs[reference];
+    // Wide enough for every label (26 columns, as always, when they fit).
+    let w = labels
+        .iter()
+        .map(|l| l.len() + 1)
+        .max()
+        .unwrap_or(0)
+        .max(26);
     let _ = write!(
         s,
         "machine {}  |  dispatch {}  |  workload {}  |  subset {}  |  launch rule {}",
@@ -214,10 +325,18 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
             base.frames.len() - 1
         );
     }
+    if base.ideal_memory {
+        let _ = write!(s, "  |  ideal memory");
+    }
+    let _ = write!(
+        s,
+        "\nwarps per core {}  input queue {} entries",
+        base.occupancy.max_warps, base.input_queue
+    );
     s.push('\n');
     let _ = writeln!(
         s,
-        "{:<26}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}{:>7}{:>8}{:>10}",
+        "{:<w$}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}{:>7}{:>8}{:>10}",
         "policy",
         "cycles",
         "ipc",
@@ -240,11 +359,11 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
         };
         let _ = writeln!(
             s,
-            "{:<26}{:>12}{:>8.3}{:>+8.2}%{:>8.2}%{:>10.1}{:>10}{:>10}{:>9.1}uJ{:>7.1}{:>8}{:>10}",
+            "{:<w$}{:>12}{:>8.3}{:>+8.2}%{:>8.2}%{:>10.1}{:>10}{:>10}{:>9.1}uJ{:>7.1}{:>8}{:>10}",
             l,
             r.cycles,
             r.ipc,
-            100.0 * (base.cycles as f64 / r.cycles as f64 - 1.0),
+            variants::speedup(against, r),
             100.0 * stall,
             r.memory_latency.all,
             r.l1.misses,
@@ -258,7 +377,7 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
     let _ = writeln!(
         s,
         "speedup = {} cycles / policy cycles - 1; stall% = scheduler-level cache (L0, else L1) stalled; latency = mean memory latency per warp in cycles; occ = mean warps resident per core; lead = mean raster position minus launch rank of priority warps; held = hold idle core-cycles (a free slot, a priority warp waiting, nothing launched)",
-        labels[0]
+        labels[reference]
     );
     s
 }

@@ -6,7 +6,6 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use wasp_rtl::cost::GateRules;
 use wasp_sim::config::limits::MAX_WARPS;
-use wasp_sim::config::MachineConfig;
 use wasp_sim::cost::{report, RfParams};
 
 /// Options of `wasp cost`.
@@ -15,6 +14,12 @@ pub struct CostArgs {
     /// Machine configuration (TOML); default: the embedded paper.toml.
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
+    /// Change one configuration field, e.g. `--set core.max_warps=32`
+    /// (dotted TOML path = TOML value; repeatable, applied in order after
+    /// --config, as in `wasp run`). The report names the machine with its
+    /// overrides.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<String>,
     /// Do not run Yosys on the Verilog twin.
     #[arg(long)]
     pub no_yosys: bool,
@@ -43,11 +48,11 @@ pub struct CostArgs {
 
 /// Run the command.
 pub fn run(args: &CostArgs) -> Result<(), CliError> {
-    output::check(&[Output::new("--json", args.json.as_deref())])?;
-    let cfg = match &args.config {
-        Some(p) => crate::run_cmd::read_config(p)?,
-        None => MachineConfig::paper(),
-    };
+    output::check(
+        &[Output::new("--json", args.json.as_deref())],
+        &[output::Input::file("--config", args.config.as_deref())],
+    )?;
+    let cfg = crate::run_cmd::machine(args.config.as_deref(), &args.set)?;
     let mut rf = RfParams::for_config(&cfg);
     if let Some(r) = args.registers_per_thread {
         rf.registers_per_thread = r;

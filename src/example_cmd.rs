@@ -4,7 +4,6 @@ use crate::output::{self, emit, Output};
 use crate::run_cmd::gtkw_path;
 use crate::CliError;
 use clap::Args;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use wasp_rtl::policy::LaunchRule;
 use wasp_sim::example::{self, ExampleConfig, ExampleError, ExampleReport};
@@ -76,10 +75,15 @@ fn map_err(e: ExampleError) -> CliError {
 
 /// Run the command.
 pub fn run(args: &ExampleArgs) -> Result<(), CliError> {
-    output::check(&[
-        Output::new("--json", args.json.as_deref()),
-        Output::new("--vcd", args.vcd.as_deref()),
-    ])?;
+    let gtkw = crate::run_cmd::save_file_of(args.vcd.as_deref());
+    output::check(
+        &[
+            Output::new("--json", args.json.as_deref()),
+            Output::new("--vcd", args.vcd.as_deref()),
+            Output::new("--vcd's save file", gtkw.as_deref()),
+        ],
+        &[],
+    )?;
     let cfg = ExampleConfig {
         latency: args.latency,
         mshrs: args.mshrs,
@@ -117,7 +121,7 @@ fn write_waves(cfg: &ExampleConfig, path: &Path) -> Result<ExampleReport, CliErr
     let (report, last) = example::run_traced(cfg, &mut sink).map_err(map_err)?;
     let signals: Vec<SignalInfo> = sink.signals().to_vec();
     sink.finish(last + 1)
-        .and_then(|mut w| w.flush())
+        .and_then(|w| w.finish())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(path))))?;
     if output::is_stdout(path) {
         // No file to name in a save file.
@@ -127,7 +131,7 @@ fn write_waves(cfg: &ExampleConfig, path: &Path) -> Result<ExampleReport, CliErr
     let save = gtkw_save(path, &signals, last + 1);
     let mut g = output::create(&gtkw)?;
     save.write_to(&mut g)
-        .and_then(|_| g.flush())
+        .and_then(|_| g.finish())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", gtkw.display())))?;
     Ok(report)
 }

@@ -2,7 +2,7 @@
 //! OpenGL 1.x program, drawn by wasp's own raster front end into a trace
 //! (and a picture), with the import's summary (docs/import-gl.md).
 
-use crate::output::{self, Output};
+use crate::output::{self, Input, Output};
 use crate::CliError;
 use clap::Args;
 use std::path::PathBuf;
@@ -48,11 +48,14 @@ pub struct ImportGlArgs {
 
 /// Run `wasp import-gl`.
 pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
-    output::check(&[
-        Output::new("--trace-out", Some(&args.trace_out)),
-        Output::new("--png", args.png.as_deref()),
-        Output::new("--json", args.json.as_deref()),
-    ])?;
+    output::check(
+        &[
+            Output::new("--trace-out", Some(&args.trace_out)),
+            Output::new("--png", args.png.as_deref()),
+            Output::new("--json", args.json.as_deref()),
+        ],
+        &[Input::file("CAPTURE", Some(&args.capture))],
+    )?;
     let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
     let clock = std::time::Instant::now();
     let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;

@@ -4,6 +4,7 @@ mod bench_cmd;
 mod capture;
 mod charts;
 mod compare_cmd;
+mod compare_variants;
 mod cost_cmd;
 mod engine_render;
 mod example_cmd;

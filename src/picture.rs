@@ -52,7 +52,8 @@ pub(crate) fn save(
             picture.render(&root)?;
             root.present().map_err(failed)?;
         }
-        std::fs::write(path, text).map_err(|e| format!("writing {}: {e}", path.display()))
+        crate::output::write_atomic(path, text.as_bytes())
+            .map_err(|e| format!("writing {}: {e}", path.display()))
     } else {
         let mut pixels = vec![0u8; w as usize * h as usize * 3];
         {
@@ -62,7 +63,10 @@ pub(crate) fn save(
         }
         let img = image::RgbImage::from_raw(w, h, pixels)
             .ok_or_else(|| format!("{who}: the pixel buffer has the wrong size"))?;
-        img.save_with_format(path, image::ImageFormat::Png)
+        let mut png = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut png, image::ImageFormat::Png)
+            .map_err(|e| format!("{who}: encoding the PNG: {e}"))?;
+        crate::output::write_atomic(path, png.get_ref())
             .map_err(|e| format!("writing {}: {e}", path.display()))
     }
 }

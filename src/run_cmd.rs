@@ -5,9 +5,9 @@ use crate::output::{self, emit, Output};
 use crate::CliError;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use wasp_rtl::policy::{LaunchRule, PolicySpec};
+use wasp_rtl::policy::{LaunchRule, PolicyName};
 use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::BlockedOn;
 use wasp_sim::config::{Dispatch, MachineConfig};
@@ -103,17 +103,32 @@ pub struct Inputs {
     pub quiet: bool,
 }
 
+impl Inputs {
+    /// The input files, which no output may overwrite.
+    pub fn files(&self) -> [output::Input<'_>; 2] {
+        [
+            output::Input::file("--config", self.config.as_deref()),
+            output::Input::file("--trace", self.trace.as_deref()),
+        ]
+    }
+}
+
 /// Options of `wasp run`.
 #[derive(Args, Debug, Clone)]
 pub struct RunArgs {
     #[command(flatten)]
     pub inputs: Inputs,
 
-    /// Launch policy: baseline, fullpriority, freemshr:N,
+    /// Launch policy: baseline, fullpriority, `freemshr[:N]`,
     /// `wasp[:THRESHOLD[:CF]]` or `wasp-m[:THRESHOLD]` (WaSP with a CF measured
-    /// per core). Overrides scheduler.policy.
+    /// per core). Names are lower case. A bare `wasp` takes its threshold
+    /// and CF from the machine's scheduler.policy (the shipped `wasp:0:3`),
+    /// `wasp-m` its threshold (`wasp-m:0`), `freemshr` its N when the
+    /// machine's policy is freemshr:N, else 10 (the paper's Freemshr10);
+    /// `wasp:T` alone uses the paper's CF 2.5. Outputs name the resolved
+    /// policy. Overrides scheduler.policy.
     #[arg(long, value_name = "POLICY")]
-    pub policy: Option<PolicySpec>,
+    pub policy: Option<PolicyName>,
 
     /// Write the statistics as JSON to FILE (`-` for standard output).
     #[arg(long, value_name = "FILE")]
@@ -167,16 +182,40 @@ pub fn read_config(path: &Path) -> Result<MachineConfig, CliError> {
     MachineConfig::load(path).map_err(|e| CliError::usage(e.to_string()))
 }
 
-/// Load the configuration named by the inputs.
-pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
-    let cfg = match &inputs.config {
-        Some(p) => read_config(p)?,
+/// The machine of `--config FILE` (else the embedded paper.toml) with the
+/// `--set` overrides applied, named as run: its name (a file that does not
+/// set `name` is its base's name `+ FILE`) followed by every override
+/// ([`wasp_sim::overrides::describe`]).
+pub fn machine(config: Option<&Path>, sets: &[String]) -> Result<MachineConfig, CliError> {
+    let cfg = match config {
+        Some(p) => {
+            let mut c = read_config(p)?;
+            // A file that patches a base without naming itself is named as
+            // the base plus the file, not as the base alone.
+            let named = std::fs::read_to_string(p)
+                .ok()
+                .and_then(|t| t.parse::<toml::Table>().ok())
+                .is_some_and(|t| t.contains_key("name"));
+            if !named {
+                c.name = format!("{} + {}", c.name, p.display());
+            }
+            c
+        }
         None => MachineConfig::paper(),
     };
-    let mut cfg = wasp_sim::overrides::apply(&cfg, &inputs.set)
-        .map_err(|e| CliError::usage(e.to_string()))?;
-    if let Some(b) = inputs.blocked_on {
+    let mut out =
+        wasp_sim::overrides::apply(&cfg, sets).map_err(|e| CliError::usage(e.to_string()))?;
+    out.name = wasp_sim::overrides::describe(&out.name, sets);
+    Ok(out)
+}
+
+/// Load the configuration named by the inputs; `--blocked-on` is named
+/// with the overrides when it changes the machine.
+pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
+    let mut cfg = machine(inputs.config.as_deref(), &inputs.set)?;
+    if let Some(b) = inputs.blocked_on.filter(|b| *b != cfg.scheduler.blocked_on) {
         cfg.scheduler.blocked_on = b;
+        cfg.name = format!("{} + scheduler.blocked_on={b}", cfg.name);
     }
     Ok(cfg)
 }
@@ -266,6 +305,12 @@ pub fn gtkw_path(vcd: &Path) -> PathBuf {
     PathBuf::from(s)
 }
 
+/// The GTKWave save file written beside a `--vcd FILE` (none for
+/// standard output): an output too, checked with the others.
+pub fn save_file_of(vcd: Option<&Path>) -> Option<PathBuf> {
+    vcd.filter(|p| !output::is_stdout(p)).map(gtkw_path)
+}
+
 /// The VCD window of `--vcd-from`/`--vcd-to`, checked.
 fn vcd_window(args: &RunArgs) -> Result<Option<(u64, u64)>, CliError> {
     match (args.vcd_from, args.vcd_to) {
@@ -317,18 +362,23 @@ fn timeline_window(args: &RunArgs) -> Result<Option<(u64, u64)>, CliError> {
 pub fn run(args: &RunArgs) -> Result<(), CliError> {
     // The options are checked before the (possibly long) trace is read and
     // simulated.
-    output::check(&[
-        Output::new("--json", args.json.as_deref()),
-        Output::new("--csv", args.csv.as_deref()),
-        Output::new("--vcd", args.vcd.as_deref()),
-        Output::file_only("--timeline", args.timeline.as_deref()),
-    ])?;
+    let gtkw = save_file_of(args.vcd.as_deref());
+    output::check(
+        &[
+            Output::new("--json", args.json.as_deref()),
+            Output::new("--csv", args.csv.as_deref()),
+            Output::new("--vcd", args.vcd.as_deref()),
+            Output::new("--vcd's save file", gtkw.as_deref()),
+            Output::file_only("--timeline", args.timeline.as_deref()),
+        ],
+        &args.inputs.files(),
+    )?;
     let window = vcd_window(args)?;
     let timeline = timeline_window(args)?;
     let cfg = load_config(&args.inputs)?;
     let trace = load_trace(&args.inputs, &cfg)?;
     let opts = RunOptions {
-        policy: args.policy,
+        policy: args.policy.map(|p| p.resolve(cfg.scheduler.policy)),
         launch_rule: args.inputs.launch_rule,
         subset: args.inputs.subset.clone(),
         ideal_memory: args.inputs.ideal_memory.then_some(true),
@@ -430,7 +480,7 @@ fn run_with_vcd(
         None => stats.last_cycle() + 1,
     };
     sink.finish(end)
-        .and_then(|mut w| w.flush())
+        .and_then(|w| w.finish())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(path))))?;
     if output::is_stdout(path) {
         if !vcd.quiet {

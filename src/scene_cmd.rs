@@ -6,7 +6,7 @@ use crate::scenes_dir::ScenesDir;
 use crate::CliError;
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use wasp_frontend::characterize::{self, Characterization};
 use wasp_frontend::def::{self, Game, Route, SceneDef};
@@ -14,7 +14,7 @@ use wasp_frontend::raster::{DrawOrder, Frame};
 use wasp_frontend::render::{self, HeatStat, Overlay, RenderRequest, WarpValue};
 use wasp_frontend::texture::FormatChoice;
 use wasp_frontend::{fetch, load};
-use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::policy::PolicyName;
 use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::MachineConfig;
 use wasp_sim::run::{simulate_recording, RunOptions, WarpRecord};
@@ -94,6 +94,10 @@ pub struct FetchArgs {
     /// Every game.
     #[arg(long, conflicts_with = "games")]
     pub all: bool,
+    /// Fetch a game again even when its data is already in the cache (by
+    /// default a fetched game is skipped, saying so).
+    #[arg(long)]
+    pub force: bool,
     /// No progress output on stderr (what is downloaded and unpacked);
     /// errors still print.
     #[arg(long, short)]
@@ -124,9 +128,11 @@ pub struct RenderArgs {
     /// default: the embedded configs/paper.toml.
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
-    /// Launch policy of the heat-map run (overrides scheduler.policy).
+    /// Launch policy of the heat-map run (overrides scheduler.policy; a
+    /// bare `wasp`, `wasp-m` or `freemshr` takes its constants from the
+    /// machine's, as in `wasp run --policy`).
     #[arg(long, value_name = "POLICY")]
-    pub policy: Option<PolicySpec>,
+    pub policy: Option<PolicyName>,
     /// Priority subset of the heat-map run (overrides scheduler.subset).
     #[arg(long, value_name = "SUBSET")]
     pub subset: Option<SubsetSpec>,
@@ -327,6 +333,15 @@ pub fn scenes(args: &ScenesArgs) -> Result<(), CliError> {
             };
             let quiet = f.quiet;
             for g in games {
+                if g != Game::Procedural && fetch::is_fetched(g) && !f.force {
+                    if !quiet {
+                        eprintln!(
+                            "wasp: {g}: already fetched in {}; skipped (--force fetches it again)",
+                            fetch::cache_dir().display()
+                        );
+                    }
+                    continue;
+                }
                 let root = fetch::fetch(g, &mut |m| {
                     if !quiet {
                         eprintln!("wasp: {g}: {m}")
@@ -380,10 +395,25 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
             "nothing to write: give --png FILE and/or --trace-out FILE (or --timings)",
         ));
     }
-    output::check(&[
-        Output::new("--png", args.png.as_deref()),
-        Output::new("--trace-out", args.trace_out.as_deref()),
-    ])?;
+    output::check(
+        &[
+            Output::new("--png", args.png.as_deref()),
+            Output::new("--trace-out", args.trace_out.as_deref()),
+        ],
+        &[
+            output::Input::file("--config", args.config.as_deref()),
+            output::Input::folder(
+                "--scenes-dir",
+                args.scene_defs.scenes_dir.as_deref(),
+                "toml",
+            ),
+            // A scene named by its definition file.
+            output::Input::file(
+                "the scene file",
+                Some(std::path::Path::new(&args.scene)).filter(|p| p.is_file()),
+            ),
+        ],
+    )?;
     if args.repeat == 0 {
         return Err(CliError::usage("--repeat 0: expected at least 1"));
     }
@@ -426,7 +456,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         texture_format: job.def.texture_format,
     };
     let run = RunOptions {
-        policy: args.policy,
+        policy: args.policy.map(|p| p.resolve(job.config.scheduler.policy)),
         subset: args.subset.clone(),
         record_warps: true,
         ..RunOptions::default()
@@ -451,7 +481,13 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     };
     let (scene_name, out, mut best) = render_best(args, &job, &req, &mut heat)?;
     pb.finish_and_clear();
-    note_frame(&scene_name, &job, &out, heat_run.as_ref().map(|(r, _)| r));
+    note_frame(
+        &scene_name,
+        &job,
+        &out,
+        heat_run.as_ref().map(|(r, _)| r),
+        args.quiet,
+    );
     let clock = Stopwatch::start();
     if let Some(p) = &args.png {
         let (img, cw, ch) = match job.crop {
@@ -533,11 +569,21 @@ fn render_best(
 
 /// The notes on stderr of a rendered frame: its draw order (and, where
 /// the painter's order changed what it shows, a note), its counts, the
-/// heat-map run and the heat range.
-fn note_frame(name: &str, job: &RenderJob, out: &render::Rendered, heat: Option<&RunStats>) {
+/// heat-map run and the heat range (under `quiet`, the painter's note alone).
+fn note_frame(
+    name: &str,
+    job: &RenderJob,
+    out: &render::Rendered,
+    heat: Option<&RunStats>,
+    quiet: bool,
+) {
     let s = &out.frame.stats;
+    // A draw order that changes nothing is a warning: it prints under -q.
     if let Some(n) = painter_note(&job.def.name, job.def.draw_order, s.draw_order) {
         eprintln!("{n}");
+    }
+    if quiet {
+        return;
     }
     eprintln!(
         "wasp: {} {}x{} ({}): {} triangles ({} clipped), {} warps (one per fragment) at {} quad \
@@ -574,7 +620,7 @@ pub(crate) fn write_trace(
     let mut w = output::create(p)?;
     trace
         .write(&mut w)
-        .and_then(|_| w.flush())
+        .and_then(|_| w.finish())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(p))))?;
     if quiet {
         return Ok(());
@@ -802,10 +848,17 @@ fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError>
 
 /// Run `wasp characterize`.
 pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
-    output::check(&[
-        Output::new("--json", args.json.as_deref()),
-        Output::new("--csv", args.csv.as_deref()),
-    ])?;
+    output::check(
+        &[
+            Output::new("--json", args.json.as_deref()),
+            Output::new("--csv", args.csv.as_deref()),
+        ],
+        &[output::Input::folder(
+            "--scenes-dir",
+            args.scene_defs.scenes_dir.as_deref(),
+            "toml",
+        )],
+    )?;
     let defs = characterize_defs(args)?;
     let mut rows: Vec<Characterization> = Vec::new();
     let mut failed = Vec::new();

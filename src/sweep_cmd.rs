@@ -99,9 +99,13 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     if args.list {
         return emit(Path::new("-"), &sweep::listing(&points));
     }
+    output::folder("--out", &args.out, "points/, results.csv and results.json")?;
     let out = sweep::absolute(&args.out).map_err(CliError::usage)?;
     if let Some(jobs) = &args.jobs_file {
-        output::check(&[Output::new("--jobs-file", Some(jobs))])?;
+        output::check(
+            &[Output::new("--jobs-file", Some(jobs))],
+            &sweep_inputs(args, &bases(&s)),
+        )?;
         return write_jobs(args, &s, jobs, &out, &points);
     }
     let chosen: Vec<&SweepPoint> = match args.point {
@@ -116,6 +120,16 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         None => points.iter().collect(),
     };
     let cache = Cache::open(&out).map_err(CliError::failed)?;
+    if args.point.is_none() {
+        let (csv, json) = (out.join("results.csv"), out.join("results.json"));
+        output::check(
+            &[
+                Output::new("--out's results.csv", Some(&csv)),
+                Output::new("--out's results.json", Some(&json)),
+            ],
+            &sweep_inputs(args, &bases(&s)),
+        )?;
+    }
     if args.point.is_none() {
         crate::interrupt::say_resume_on_interrupt(&out, &crate::interrupt::command_line());
     }
@@ -188,6 +202,35 @@ fn write_results(
     Ok(())
 }
 
+/// The configuration files a sweep names (its entries' bases that are
+/// files).
+fn bases(s: &Sweep) -> Vec<PathBuf> {
+    s.configs
+        .iter()
+        .map(|c| PathBuf::from(&c.base))
+        .filter(|p| p.is_absolute())
+        .collect()
+}
+
+/// What `wasp sweep` reads, which no output may overwrite: the sweep file,
+/// the configuration files it names and the scene definitions' folder.
+fn sweep_inputs<'a>(args: &'a SweepArgs, bases: &'a [PathBuf]) -> Vec<output::Input<'a>> {
+    let mut v = vec![
+        output::Input::file("the sweep file", Some(&args.file)),
+        output::Input::folder(
+            "--scenes-dir",
+            args.scene_defs.scenes_dir.as_deref(),
+            "toml",
+        ),
+    ];
+    v.extend(
+        bases
+            .iter()
+            .map(|b| output::Input::file("a configuration the sweep file names", Some(b))),
+    );
+    v
+}
+
 /// Write the jobs file and say how to run it.
 fn write_jobs(
     args: &SweepArgs,
@@ -234,10 +277,27 @@ pub fn merge(args: &MergeArgs) -> Result<(), CliError> {
             return Err(CliError::usage(format!("{}: no such folder", d.display())));
         }
     }
-    output::check(&[
-        Output::new("--csv", args.csv.as_deref()),
-        Output::new("--json", args.json.as_deref()),
-    ])?;
+    let points_dirs: Vec<PathBuf> = args
+        .dirs
+        .iter()
+        .map(|d| match d.join("points").is_dir() {
+            true => d.join("points"),
+            false => d.clone(),
+        })
+        .collect();
+    let mut inputs = vec![output::Input::file("--sweep", args.sweep.as_deref())];
+    inputs.extend(
+        points_dirs
+            .iter()
+            .map(|d| output::Input::folder("the study folder", Some(d), "json")),
+    );
+    output::check(
+        &[
+            Output::new("--csv", args.csv.as_deref()),
+            Output::new("--json", args.json.as_deref()),
+        ],
+        &inputs,
+    )?;
     let swept = match &args.sweep {
         Some(f) => Some(load(f)?),
         None => None,

@@ -3,7 +3,6 @@
 use crate::output::{self, Output};
 use crate::CliError;
 use clap::Args;
-use std::io::Write;
 use std::path::PathBuf;
 use wasp_sim::synth::{generate, GenParams, GenReport};
 
@@ -62,7 +61,7 @@ fn parse_frame(s: &str) -> Result<(u32, u32), String> {
 
 /// Run the command.
 pub fn run(args: &SynthArgs) -> Result<(), CliError> {
-    output::check(&[Output::new("--out", Some(&args.out))])?;
+    output::check(&[Output::new("--out", Some(&args.out))], &[])?;
     let mut p = GenParams {
         frame_w: args.frame.0,
         frame_h: args.frame.1,
@@ -92,7 +91,7 @@ pub fn run(args: &SynthArgs) -> Result<(), CliError> {
     let mut w = output::create(&args.out)?;
     trace
         .write(&mut w)
-        .and_then(|_| w.flush())
+        .and_then(|_| w.finish())
         .map_err(|e| CliError::failed(format!("writing {}: {e}", output::name(&args.out))))?;
     if output::is_stdout(&args.out) {
         eprintln!("{}", GenReport::new(&p, &trace));

@@ -1,7 +1,7 @@
 //! `wasp trace-cat`: join traces into one trace of several frames, the
 //! frames of each file after those of the one before.
 
-use crate::output::{self, emit, Output};
+use crate::output::{self, emit, Input, Output};
 use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -26,7 +26,12 @@ pub struct TraceCatArgs {
 
 /// Run the command.
 pub fn run(args: &TraceCatArgs) -> Result<(), CliError> {
-    output::check(&[Output::new("--out", Some(&args.out))])?;
+    let inputs: Vec<Input> = args
+        .traces
+        .iter()
+        .map(|t| Input::file("TRACE", Some(t)))
+        .collect();
+    output::check(&[Output::new("--out", Some(&args.out))], &inputs)?;
     let read = |p: &Path| Trace::read(p).map_err(|e| CliError::usage(e.to_string()));
     let first = read(&args.traces[0])?;
     let mut rest = Vec::with_capacity(args.traces.len() - 1);

@@ -42,13 +42,20 @@ fn golden(trace: &str, policy: &str) -> Value {
     serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
 }
 
-/// The run without its `filter` block, which the golden runs predate, and
+/// The run without its `filter` block, which the golden runs predate, its
+/// machine named as in the golden runs (without the overrides), and
 /// reduced to the fields the golden runs have (later ones, such as
 /// `launch_rule`, `blocked_on` and `blocked`, are new fields, not changed
 /// ones; the test fails if a golden field is missing).
 fn without_filter(mut v: Value, golden: &Value) -> (Value, Value) {
     let o = v.as_object_mut().unwrap();
     let f = o.remove("filter").expect("filter block");
+    // The machine is named with the run's overrides, which the golden runs
+    // predate: its base name must be the golden one.
+    let base = golden["machine"].as_str().unwrap();
+    let named = o["machine"].as_str().unwrap().to_string();
+    assert!(named.starts_with(&format!("{base} + ")), "{named}");
+    o.insert("machine".into(), golden["machine"].clone());
     let keys = golden.as_object().unwrap();
     o.retain(|k, _| keys.contains_key(k));
     (v, f)

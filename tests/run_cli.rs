@@ -217,15 +217,21 @@ fn a_partial_config_file_patches_the_shipped_machine() {
     let trace = synth_trace(&d, 3);
     let patch = d.join("l0.toml");
     std::fs::write(&patch, "[l0]\nmshrs = 8\n").unwrap();
-    let from_file = run_json(&["--trace", &trace, "--config", patch.to_str().unwrap()]);
+    let mut from_file = run_json(&["--trace", &trace, "--config", patch.to_str().unwrap()]);
     let from_set = run_json(&["--trace", &trace, "--set", "l0.mshrs=8"]);
+    // Each names what changed the base: the file, or the override.
+    let p = patch.display().to_string();
+    assert_eq!(from_file["machine"], format!("paper-width4-64warps + {p}"));
+    assert_eq!(from_set["machine"], "paper-width4-64warps + l0.mshrs=8");
+    from_file["machine"] = from_set["machine"].clone();
     assert_eq!(from_file, from_set);
     assert_ne!(from_file, run_json(&["--trace", &trace]));
     let w2 = d.join("w2.toml");
     std::fs::write(&w2, "extends = \"paper-width2\"\n[l1]\nmshrs = 8\n").unwrap();
     let narrow = run_json(&["--trace", &trace, "--config", w2.to_str().unwrap()]);
     assert!(narrow["l0"].is_null(), "no L0 at width 2");
-    assert_eq!(narrow["machine"], "paper-width2-48warps");
+    let w2 = w2.display().to_string();
+    assert_eq!(narrow["machine"], format!("paper-width2-48warps + {w2}"));
     // An unknown key still fails, naming the file and line.
     std::fs::write(&patch, "[l0]\nmshrs = 8\nmshr = 9\n").unwrap();
     let o = wasp(&["run", "-q", "--config", patch.to_str().unwrap()]);

@@ -104,7 +104,11 @@ fn the_json_names_the_blocked_rule_and_counts_episodes() {
     for rule in ["first-level", "l1-miss", "dram"] {
         let a = run_json(&["--trace", &t, "--policy", "wasp:4", "--blocked-on", rule]);
         let set = format!("scheduler.blocked_on=\"{rule}\"");
-        let b = run_json(&["--trace", &t, "--policy", "wasp:4", "--set", &set]);
+        let mut b = run_json(&["--trace", &t, "--policy", "wasp:4", "--set", &set]);
+        // Each names the machine with the option as given.
+        let named = b["machine"].as_str().unwrap().to_string();
+        assert!(named.ends_with(&format!(" + {set}")), "{named}");
+        b["machine"] = a["machine"].clone();
         assert_eq!(a, b, "{rule}");
         assert_eq!(a["blocked_on"], rule);
         let e = a["blocked"]["episodes"].as_u64().unwrap();

@@ -26,7 +26,6 @@ fn rendered_traces_are_format_4_with_one_warp_per_fragment_for_any_thread_count(
             "320x192",
             "--threads",
             threads,
-            "-q",
             "--trace-out",
             p.to_str().unwrap(),
         ]);
@@ -251,4 +250,41 @@ fn a_closed_pipe_ends_the_listing_quietly() {
         out.status
     );
     let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn fetch_skips_a_fetched_game_and_render_q_prints_nothing() {
+    let cache = dir("fetched-cache");
+    let root = cache.join("teeworlds");
+    std::fs::create_dir_all(&root).unwrap();
+    std::fs::write(root.join(".wasp-fetched"), "teeworlds-data 1\n").unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .args(["scenes", "fetch", "teeworlds"])
+        .env("WASP_SCENES", &cache)
+        .output()
+        .unwrap();
+    let e = common::stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains("teeworlds: already fetched") && e.contains("--force"),
+        "{e}"
+    );
+    // The marker is untouched: nothing was fetched again.
+    assert_eq!(
+        std::fs::read_to_string(root.join(".wasp-fetched")).unwrap(),
+        "teeworlds-data 1\n"
+    );
+    let out = dir("quiet").join("q.trace");
+    let o = wasp(&[
+        "render",
+        "procedural-sprites",
+        "--size",
+        "128x64",
+        "-q",
+        "--trace-out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    assert_eq!(common::stdout(&o), "");
+    assert_eq!(common::stderr(&o), "");
 }

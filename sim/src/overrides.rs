@@ -11,6 +11,22 @@
 
 use crate::config::{ConfigError, MachineConfig};
 use serde::Deserialize;
+use wasp_rtl::policy::{PolicyName, PolicySpec};
+
+/// A bare policy family (`wasp`, `wasp-m`, `freemshr`) set as
+/// `scheduler.policy` takes its constants from the policy it replaces
+/// ([`PolicyName::resolve`]); anything else is kept as written.
+fn resolve_bare_policy(slot: &toml::Value, value: toml::Value) -> toml::Value {
+    let (Some(old), Some(new)) = (slot.as_str(), value.as_str()) else {
+        return value;
+    };
+    match (old.parse::<PolicySpec>(), new.parse::<PolicyName>()) {
+        (Ok(old), Ok(name @ PolicyName::Bare(_))) => {
+            toml::Value::String(name.resolve(old).to_string())
+        }
+        _ => value,
+    }
+}
 
 /// `cfg` with every override in `sets` (each `PATH=VALUE`) applied, then
 /// validated.
@@ -31,8 +47,11 @@ pub fn apply(cfg: &MachineConfig, sets: &[String]) -> Result<MachineConfig, Conf
             )
         })?;
         let path = path.trim();
-        let value = parse_value(text.trim());
+        let mut value = parse_value(text.trim());
         let slot = field(&mut root, path).map_err(|m| fail(set, m))?;
+        if path == "scheduler.policy" {
+            value = resolve_bare_policy(slot, value);
+        }
         if !same_kind(slot, &value) {
             return Err(fail(
                 set,
@@ -46,15 +65,55 @@ pub fn apply(cfg: &MachineConfig, sets: &[String]) -> Result<MachineConfig, Conf
         }
         *slot = value;
     }
-    let out = MachineConfig::deserialize(root).map_err(|e| ConfigError {
-        source: "--set".into(),
-        message: e.to_string().trim_end().to_string(),
+    let out = MachineConfig::deserialize(root.clone()).map_err(|e| {
+        let message = e.to_string().trim_end().to_string();
+        // A number its field's type cannot hold (`l0.mshrs=-1`): name the
+        // set and the field's allowed range.
+        let bad = sets.iter().rev().find_map(|set| {
+            let (path, text) = set.split_once('=')?;
+            let path = path.trim();
+            let in_field = message.contains(&format!("`{path}`"));
+            let int = matches!(parse_value(text.trim()), toml::Value::Integer(_));
+            (in_field && int).then(|| (set, path, text.trim()))
+        });
+        match bad {
+            Some((set, path, text)) => fail(
+                set,
+                format!(
+                    "{path} = {text}: must be in {}",
+                    allowed_range(&root, path).unwrap_or_else(|| "0..=4294967295".into())
+                ),
+            ),
+            None => ConfigError {
+                source: "--set".into(),
+                message,
+            },
+        }
     })?;
     out.validate().map_err(|message| ConfigError {
         source: format!("--set {}", sets.join(" --set ")),
         message,
     })?;
     Ok(out)
+}
+
+/// The range `validate` allows for the integer field `path` (`1..=4096`),
+/// found by probing the field with its type's extremes.
+fn allowed_range(root: &toml::Value, path: &str) -> Option<String> {
+    for probe in [0, i64::from(u32::MAX)] {
+        let mut r = root.clone();
+        *field(&mut r, path).ok()? = toml::Value::Integer(probe);
+        let Ok(c) = MachineConfig::deserialize(r) else {
+            continue;
+        };
+        if let Err(m) = c.validate() {
+            if let Some(i) = m.find(": must be in ").filter(|_| m.contains(path)) {
+                let rest = &m[i + ": must be in ".len()..];
+                return Some(rest.split([' ', ';', ',']).next()?.to_string());
+            }
+        }
+    }
+    None
 }
 
 /// The TOML value `text` stands for, or the string `text` itself.
@@ -130,14 +189,71 @@ fn kind(v: &toml::Value) -> &'static str {
     }
 }
 
+/// The name of a machine as run: `base` (its configured name) followed by
+/// every override but `name=...` as written, spaces around `=` removed:
+/// `paper-width4-64warps + core.max_warps=32 + l0.mshrs=16`. With no
+/// override it is `base` alone.
+pub fn describe(base: &str, sets: &[String]) -> String {
+    let mut s = base.to_string();
+    for set in sets {
+        let (path, value) = set.split_once('=').unwrap_or((set, ""));
+        if path.trim() == "name" {
+            continue;
+        }
+        s.push_str(&format!(" + {}={}", path.trim(), value.trim()));
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::mem::DramModel;
-    use wasp_rtl::policy::PolicySpec;
 
     fn sets(s: &[&str]) -> Vec<String> {
         s.iter().map(|x| x.to_string()).collect()
+    }
+
+    #[test]
+    fn a_number_its_type_cannot_hold_names_the_range() {
+        let base = MachineConfig::paper();
+        let e = apply(&base, &sets(&["l0.mshrs=-1"]))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "--set l0.mshrs=-1: l0.mshrs = -1: must be in 1..=4096");
+        let e = apply(&base, &sets(&["prefetch.l1_reserve=-3"]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("prefetch.l1_reserve = -3: must be in 0..="),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_machine_is_named_with_its_overrides() {
+        assert_eq!(describe("m", &[]), "m");
+        assert_eq!(
+            describe("m", &sets(&["core.max_warps = 32", "name=x", "l0.mshrs=8"])),
+            "m + core.max_warps=32 + l0.mshrs=8"
+        );
+    }
+
+    #[test]
+    fn a_bare_policy_takes_the_machines_constants() {
+        let base = MachineConfig::paper();
+        let p = |sets_: &[&str]| apply(&base, &sets(sets_)).unwrap().scheduler.policy;
+        assert_eq!(p(&["scheduler.policy=wasp"]), base.scheduler.policy);
+        assert_eq!(
+            p(&["scheduler.policy=wasp:5:2", "scheduler.policy=wasp-m"]),
+            PolicySpec::WaspMeasured { threshold: 5 }
+        );
+        assert_eq!(
+            p(&["scheduler.policy=freemshr"]),
+            PolicySpec::FreeMshr(PolicySpec::FREEMSHR_DEFAULT)
+        );
+        // The shipped file's policy is the shipped constant.
+        assert_eq!(base.scheduler.policy, PolicySpec::SHIPPED_WASP);
     }
 
     #[test]

@@ -425,6 +425,10 @@ impl GateStats {
 pub struct RunStats {
     /// Machine name.
     pub machine: String,
+    /// Input FIFO entries per core (`core.input_queue`), for the table's
+    /// header; not in the JSON or CSV, whose fields predate it.
+    #[serde(skip)]
+    pub input_queue: u32,
     /// Workload (from the trace; synthetic workloads say so).
     pub workload: String,
     /// Launch policy.
@@ -575,6 +579,7 @@ impl RunStats {
         let sched = &cfg.scheduler;
         RunStats {
             machine: cfg.name.clone(),
+            input_queue: cfg.core.input_queue,
             workload: trace.header().workload.clone(),
             policy: sched.policy.to_string(),
             launch_rule: sched.launch_rule.to_string(),

@@ -7,13 +7,18 @@
 //! - [`paper`]: the paper's numbers;
 //! - [`figures`]: the numbers of each figure, from the results;
 //! - [`report`]: REPORT.md, the CSV/JSON files and the plots;
-//! - [`headline`]: its side-by-side table of the paper's numbers and ours;
+//! - [`answer`]: its opening "The answer", generated from the run;
+//! - [`headline`]: its side-by-side table of the paper's numbers and ours
+//!   (printed with [`digits`]; sweeps' edges flagged by [`edges`]);
 //! - [`why`]: its bullets on why they differ, worded from the data by
 //!   [`prose`].
 
+pub mod answer;
 #[cfg(test)]
 mod contrary;
+pub mod digits;
 pub mod draw;
+pub mod edges;
 pub mod figures;
 pub mod headline;
 pub mod map;
@@ -119,6 +124,14 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
+    crate::output::folder(
+        "--out",
+        &args.out,
+        "REPORT.md, figures/, data/ and the finished points",
+    )?;
+    if let Some(d) = &args.sweep_files {
+        crate::output::folder("--sweep-files", d, "one sweep file per group")?;
+    }
     let defs = chosen_scenes(args.scenes.as_deref())?;
     let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
     // The map "What decides WaSP's gain" runs on the shared-tile machine
@@ -136,7 +149,8 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     tasks.extend(map::tasks(&plan, &map));
     if !args.quiet {
         eprintln!(
-            "wasp: reproducing the paper{}: {} scenes, {} machine(s), {} tasks, {} at once, into {}",
+            "wasp: reproducing the paper{}: {} scenes, {} machine(s), {} tasks before the 2-D \
+             grid (its tasks follow once these choose its knobs), {} at once, into {}",
             if args.quick { " (quick look)" } else { "" },
             plan.scenes.len(),
             plan.dispatches.len(),
@@ -164,7 +178,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     let written = report::write(&plan, Some(&map), &outcome, &cells, &args.out, &command)
         .map_err(CliError::failed)?;
     if !args.quiet {
-        eprintln!("wasp: {}", outcome.summary());
+        eprintln!(
+            "wasp: in all (the {} tasks before the grid and the grid's): {}",
+            tasks.len(),
+            outcome.summary()
+        );
         eprintln!("wasp: wrote {}", written.display());
     }
     if !outcome.failures.is_empty() {

@@ -144,7 +144,9 @@ pub fn why(md: &mut String, plan: &Plan, out: &Outcome, machines: &[(Dispatch, F
 /// memory leaves.
 fn speedup_note(md: &mut String, n: &Notes) {
     let m = n.wasp_gain();
-    let ideal = group_values(&n.figures.motivation(n.machine), 0);
+    let motivation = n.figures.motivation(n.machine);
+    let ideal = group_values(&motivation, 0);
+    let mostly = |g| super::answer::dominance_note(n.figures, &motivation, 0, g);
     let verdict = m[0].map_or("no measurement".into(), |v| {
         speedup_against_paper(v, paper::WASP_SPEEDUP.value)
     });
@@ -158,9 +160,11 @@ fn speedup_note(md: &mut String, n: &Notes) {
     let headroom = if over.is_empty() {
         format!(
             "WaSP's speedup stays within the headroom memory leaves: ideal memory makes the \
-             baseline {} on 3D scenes and {} on 2D ones.",
+             baseline {}{} on 3D scenes and {}{} on 2D ones.",
             faster_or_slower(ideal[1]),
-            faster_or_slower(ideal[2])
+            mostly(Group::ThreeD),
+            faster_or_slower(ideal[2]),
+            mostly(Group::TwoD)
         )
     } else {
         format!(
@@ -481,8 +485,8 @@ fn misses_note(md: &mut String, n: &Notes) {
         .map(|(l, v)| format!("{l} misses change by {}", pct(*v)))
         .collect();
     let reading = if changed.is_empty() {
-        "unchanged within 1%, as the paper reports: the tile's working set fits the L1 and \
-         L2, so the order of warps changes when blocks arrive, not how many"
+        "unchanged within 1%, as the paper reports: the order of warps changes when blocks \
+         arrive, not how many are fetched"
             .to_string()
     } else {
         format!(

@@ -147,11 +147,8 @@ pub fn read_points(dirs: &[PathBuf]) -> Result<Vec<PointRecord>, String> {
 /// Write `text` to `path` through a temporary file in the same folder and
 /// a rename, so that a reader never sees half a file.
 pub fn write_atomic(path: &Path, text: &str) -> Result<(), String> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(format!(".tmp{}", std::process::id()));
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, text).map_err(|e| format!("cannot write {}: {e}", tmp.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| format!("cannot write {}: {e}", path.display()))
+    crate::output::write_atomic(path, text.as_bytes())
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 #[cfg(test)]

@@ -182,6 +182,17 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     // the versions of the packages its data came from, known once fetched.
     fetch_games(tasks, &mut scenes, opts)?;
     let (mut out, mut todo) = resolve(tasks, cache, &mut scenes)?;
+    if !opts.quiet {
+        // The counts the progress and the closing line use, tied together.
+        eprintln!(
+            "wasp: {}: {} tasks: {} to run, {} already done, {} the same as another",
+            opts.label,
+            tasks.len(),
+            todo.len(),
+            out.cached,
+            out.same
+        );
+    }
     // Group by scene, draw order, texture format and tile size, in scene
     // order.
     let group_key = |r: &Ready| {

@@ -49,3 +49,12 @@ pub fn run_json(args: &[&str]) -> Value {
     a.extend_from_slice(args);
     serde_json::from_str(&ok(&wasp(&a))).unwrap()
 }
+
+/// `wasp run -q` of the tiny trace on the machine `cfg` ([`tiny_config`])
+/// with `args`: the process's output, whatever its status.
+pub fn run_tiny(cfg: &str, args: &[&str]) -> std::process::Output {
+    let t = tiny_trace();
+    let mut a = vec!["run", "-q", "--config", cfg, "--trace", &t];
+    a.extend_from_slice(args);
+    wasp(&a)
+}

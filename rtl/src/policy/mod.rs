@@ -17,12 +17,14 @@
 mod baseline;
 mod freemshr;
 mod fullpriority;
+mod name;
 mod wasp;
 mod wasp_measured;
 
 pub use baseline::Baseline;
 pub use freemshr::FreeMshrN;
 pub use fullpriority::FullPriority;
+pub use name::{PolicyFamily, PolicyName};
 pub use wasp::Wasp;
 pub use wasp_measured::WaspMeasured;
 
@@ -233,9 +235,33 @@ pub enum PolicySpec {
 }
 
 impl PolicySpec {
+    /// The shipped machine's policy (configs/paper.toml): WaSP with
+    /// threshold 0 and CF 3. A bare `wasp` in a configuration file means
+    /// it; on the command line a bare name takes the machine's own
+    /// ([`PolicyName::resolve`]).
+    pub const SHIPPED_WASP: PolicySpec = PolicySpec::Wasp {
+        threshold: 0,
+        cf: 3.0,
+    };
+
+    /// The N of a bare `freemshr` when the machine's policy is not a
+    /// FreeMSHR-N: the paper's rival Freemshr10.
+    pub const FREEMSHR_DEFAULT: u32 = 10;
+
     /// The paper's WaSP with threshold `t` and CF = 2.5.
     pub fn wasp(threshold: u32) -> Self {
         PolicySpec::Wasp { threshold, cf: 2.5 }
+    }
+
+    /// The measured-CF variant at this policy's threshold (`wasp-m:T` for
+    /// `wasp:T:CF` or `wasp-m:T`); the shipped threshold otherwise.
+    pub fn measured(self) -> Self {
+        match self {
+            PolicySpec::Wasp { threshold, .. } | PolicySpec::WaspMeasured { threshold } => {
+                PolicySpec::WaspMeasured { threshold }
+            }
+            _ => PolicySpec::SHIPPED_WASP.measured(),
+        }
     }
 
     /// Whether the policy reads the free-MSHR register.
@@ -310,8 +336,15 @@ impl fmt::Display for PolicySpec {
 impl FromStr for PolicySpec {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let lower = s.trim().to_ascii_lowercase();
-        let parts: Vec<&str> = lower.split(':').collect();
+        let trimmed = s.trim();
+        // Names are case-sensitive: `WASP` is not silently `wasp`.
+        if trimmed != trimmed.to_ascii_lowercase() && trimmed != "Freemshr10" {
+            return Err(format!(
+                "unknown policy `{s}`: policy names are lower case (`{}`)",
+                trimmed.to_ascii_lowercase()
+            ));
+        }
+        let parts: Vec<&str> = trimmed.split(':').collect();
         let int = |p: &str, what: &str| {
             p.parse::<u32>()
                 .map_err(|_| format!("policy `{s}`: {what} `{p}` is not a non-negative integer"))
@@ -320,8 +353,9 @@ impl FromStr for PolicySpec {
             ["baseline"] | ["scanline"] => Ok(PolicySpec::Baseline),
             ["fullpriority"] | ["full-priority"] => Ok(PolicySpec::FullPriority),
             ["freemshr", n] => Ok(PolicySpec::FreeMshr(int(n, "N")?)),
-            ["freemshr10"] => Ok(PolicySpec::FreeMshr(10)),
-            ["wasp"] => Ok(PolicySpec::wasp(4)),
+            ["freemshr10"] | ["Freemshr10"] => Ok(PolicySpec::FreeMshr(10)),
+            ["freemshr"] => Ok(PolicySpec::FreeMshr(PolicySpec::FREEMSHR_DEFAULT)),
+            ["wasp"] => Ok(PolicySpec::SHIPPED_WASP),
             ["wasp", t] => Ok(PolicySpec::wasp(int(t, "threshold")?)),
             ["wasp", t, cf] => Ok(PolicySpec::Wasp {
                 threshold: int(t, "threshold")?,
@@ -329,12 +363,12 @@ impl FromStr for PolicySpec {
                     .parse::<f64>()
                     .map_err(|_| format!("policy `{s}`: CF `{cf}` is not a number"))?,
             }),
-            ["wasp-m"] => Ok(PolicySpec::WaspMeasured { threshold: 4 }),
+            ["wasp-m"] => Ok(PolicySpec::SHIPPED_WASP.measured()),
             ["wasp-m", t] => Ok(PolicySpec::WaspMeasured {
                 threshold: int(t, "threshold")?,
             }),
             _ => Err(format!(
-                "unknown policy `{s}` (expected baseline, fullpriority, freemshr:N, wasp[:threshold[:cf]], wasp-m[:threshold])"
+                "unknown policy `{s}` (expected baseline, fullpriority, freemshr[:N], wasp[:threshold[:cf]], wasp-m[:threshold])"
             )),
         }
     }
@@ -374,7 +408,22 @@ mod tests {
             "scanline".parse::<PolicySpec>().unwrap(),
             PolicySpec::Baseline
         );
-        assert_eq!("wasp".parse::<PolicySpec>().unwrap(), PolicySpec::wasp(4));
+        assert_eq!(
+            "wasp".parse::<PolicySpec>().unwrap(),
+            PolicySpec::SHIPPED_WASP
+        );
+        assert_eq!(
+            "wasp-m".parse::<PolicySpec>().unwrap(),
+            PolicySpec::WaspMeasured { threshold: 0 }
+        );
+        assert_eq!(
+            "freemshr".parse::<PolicySpec>().unwrap(),
+            PolicySpec::FreeMshr(10)
+        );
+        assert!("WASP"
+            .parse::<PolicySpec>()
+            .unwrap_err()
+            .contains("lower case (`wasp`)"));
         assert!("wasp:x"
             .parse::<PolicySpec>()
             .unwrap_err()

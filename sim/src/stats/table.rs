@@ -19,6 +19,11 @@ impl RunStats {
     /// The machine, the run's totals and the filter unit.
     fn machine_lines(&self, s: &mut String) {
         let _ = writeln!(s, "machine {}  |  workload {}", self.machine, self.workload);
+        let _ = writeln!(
+            s,
+            "warps per core {}  input queue {} entries",
+            self.occupancy.max_warps, self.input_queue
+        );
         let _ = write!(
             s,
             "policy {}  launch rule {}  subset {}  ideal memory {}",

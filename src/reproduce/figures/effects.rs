@@ -64,8 +64,8 @@ impl Figures<'_> {
         }
         f.paper
             .push(self.paper_line(None, paper::MISS_CHANGE, "unchanged"));
-        f.caption = "WaSP reorders warps inside a tile; the tile's working set fits the L1 and \
-                     L2, so the paper sees no change in their misses."
+        f.caption = "WaSP reorders warps inside a tile; the paper sees no change in L1 and L2 \
+                     misses."
             .into();
         f
     }

@@ -22,6 +22,7 @@
 
 pub mod conclusion;
 pub mod data;
+pub mod edges;
 pub mod figures;
 pub mod knobs;
 pub mod plan;

@@ -82,6 +82,7 @@ pub fn write(md: &mut String, x: &Section) -> Result<(), String> {
     scenes_note(md, x.plan, map);
     knobs_table(md, map);
     ranking(md, t, groups);
+    md.push_str(&super::edges::map_note(t, groups));
     embed(md, figures::tornado(t, x.figs, x.data)?);
     for &g in groups {
         group_table(md, t, g);
@@ -125,8 +126,8 @@ fn intro(md: &mut String, map: &MapPlan, t: &MapTable) {
         map.wasp,
         if map.quick {
             format!(
-                " **Quick look**: {varied} of the {} knobs below, fewer values, one scene per \
-                 game; the full study varies every knob.",
+                " **Quick look**: the {varied} knobs below of the {} the full study varies, \
+                 fewer values, one scene per game.",
                 t.knobs.len()
             )
         } else {
@@ -146,7 +147,13 @@ fn intro(md: &mut String, map: &MapPlan, t: &MapTable) {
 
 fn knobs_table(md: &mut String, map: &MapPlan) {
     let _ = writeln!(md, "| knob | field | values | shipped |\n|---|---|---|---|");
-    for k in &map.knobs {
+    // Only the knobs this run varies (a quick look holds some at their
+    // shipped value).
+    let varied = map
+        .knobs
+        .iter()
+        .filter(|k| k.values_for(map.quick).iter().any(|v| *v != k.shipped));
+    for k in varied {
         let _ = writeln!(
             md,
             "| {} | `{}` | {} | {} |",
