@@ -8,6 +8,7 @@ mod example_cmd;
 mod fonts;
 mod game_data;
 mod heat;
+mod import_gl_cmd;
 mod interrupt;
 mod output;
 mod palette;
@@ -97,6 +98,12 @@ enum Command {
     /// save its trace for `wasp run --trace`.
     Render(scene_cmd::RenderArgs),
 
+    /// Import one frame of an apitrace capture of a fixed-function OpenGL
+    /// 1.x program: its draw calls, in issue order and with the state the
+    /// program set, through wasp's rasterizer, Early-Z and texture path
+    /// into a trace (docs/import-gl.md). Prints a summary.
+    ImportGl(import_gl_cmd::ImportGlArgs),
+
     /// Characterise scenes like the paper's Table I: memory-instruction
     /// ratio, block reuse in tile, CF, Min_Estimate1/2 and the texture
     /// footprint ratio of every priority subset, beside the paper's values.
@@ -169,6 +176,7 @@ impl Command {
             Command::Bench(a) => &mut a.quiet,
             Command::Scenes(a) => a.quiet_mut(),
             Command::Render(a) => &mut a.quiet,
+            Command::ImportGl(a) => &mut a.quiet,
             Command::Characterize(a) => &mut a.quiet,
             Command::Reproduce(a) => &mut a.quiet,
             Command::Sweep(a) => &mut a.quiet,
@@ -202,6 +210,7 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Synth(args)) => synth_cmd::run(&args),
         Some(Command::Scenes(args)) => scene_cmd::scenes(&args),
         Some(Command::Render(args)) => scene_cmd::render(&args),
+        Some(Command::ImportGl(args)) => import_gl_cmd::run(&args),
         Some(Command::Characterize(args)) => scene_cmd::characterize(&args),
         Some(Command::Reproduce(args)) => reproduce::run(&args),
         Some(Command::Sweep(args)) => sweep_cmd::sweep(&args),

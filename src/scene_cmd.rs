@@ -540,7 +540,7 @@ fn note_frame(name: &str, job: &RenderJob, out: &render::Rendered, heat: Option<
 
 /// Write a frame's trace to FILE (or standard output); say so unless
 /// `quiet`.
-fn write_trace(
+pub(crate) fn write_trace(
     p: &std::path::Path,
     trace: &wasp_sim::trace::Trace,
     quiet: bool,

@@ -22,8 +22,10 @@ pub mod builtin;
 pub mod bytes;
 pub mod characterize;
 pub mod def;
+pub mod draw_state;
 pub mod fetch;
 pub mod frozen_bubble;
+pub mod gl;
 mod image_decode;
 pub mod load;
 pub mod openarena;
@@ -35,6 +37,8 @@ pub mod supertuxkart;
 pub mod teeworlds;
 pub mod texture;
 mod vec3;
+
+pub use draw_state::{BlendFactor, Compare, Cull, DrawState};
 
 // The trace crate and its generator under the paths the modules use.
 use wasp_trace as trace;
@@ -111,8 +115,9 @@ pub enum ShaderOp {
     Tex(TexSample),
 }
 
-/// A material: blend mode and its shader program.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// A material: blend mode, its shader program and, where the engine's own
+/// pipeline state is known, that state.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// Name (for reports).
     pub name: String,
@@ -120,6 +125,11 @@ pub struct Material {
     pub blend: Blend,
     /// The shader program: its texture instructions name the textures.
     pub shader: Vec<ShaderOp>,
+    /// The pipeline state of its draws. `None` (every loader): the state
+    /// its blend mode means ([`DrawState::for_blend`]), alpha-blended
+    /// triangles drawn back to front after the others. `Some` (the GL
+    /// importer): this state, every triangle in submission order.
+    pub state: Option<DrawState>,
 }
 
 /// A triangle mesh in world space (2D scenes: z is the layer depth, larger
@@ -145,6 +155,10 @@ pub struct Mesh {
     /// a draw order sorts it, as engines draw their sky after the opaque
     /// pass rather than sorting it by depth.
     pub sky: bool,
+    /// Clip-space w of each vertex, for [`Camera::Clip`] (whose positions
+    /// are clip-space x, y, z): `None` is w = 1 everywhere. Only a
+    /// [`Camera::Clip`] scene may have it.
+    pub clip_w: Option<Vec<f32>>,
 }
 
 /// One draw call of the game's renderer inside a [`Mesh`] (loaders merge
@@ -193,6 +207,12 @@ pub enum Camera {
         /// Height of the view.
         height: f32,
     },
+    /// Positions are already in clip space (x, y, z, with w from
+    /// [`Mesh::clip_w`]): the view-projection is the identity, and
+    /// normalized device coordinates (-1, -1)..(1, 1) fill the frame, y
+    /// up. Used by the GL importer, which transforms the engine's vertices
+    /// by the engine's own matrices and viewport.
+    Clip,
 }
 
 /// A scene ready to rasterize.

@@ -100,6 +100,7 @@ impl Sprites<'_> {
         let shader = program(self.template, Some(ti), Filter::Bilinear)
             .map_err(|m| SceneError::in_file(self.lpath, m))?;
         self.materials.push(Material {
+            state: None,
             name: format!("frozen-bubble:{rel}"),
             blend,
             shader,

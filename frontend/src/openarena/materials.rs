@@ -181,6 +181,7 @@ impl Builder<'_> {
                 Some(img) => {
                     let t = self.texture(&img, true)?;
                     self.materials.push(Material {
+                        state: None,
                         name: s.name.clone(),
                         blend: Blend::Opaque,
                         shader: shader::unlit(t, Filter::Trilinear),
@@ -214,6 +215,7 @@ impl Builder<'_> {
                 None => (s.name.clone(), shader::standard(t, Filter::Trilinear)),
             };
             self.materials.push(Material {
+                state: None,
                 name,
                 blend,
                 shader: program,

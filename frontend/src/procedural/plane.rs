@@ -448,6 +448,7 @@ pub fn plane(camera: &str, template: &str) -> Result<Scene, SceneError> {
         white,
     ];
     let mat = |name: &str, base: usize, lm: usize, filter: Filter| Material {
+        state: None,
         name: name.into(),
         blend: Blend::Opaque,
         shader: shader::lightmapped(base, lm, filter),

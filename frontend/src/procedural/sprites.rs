@@ -354,6 +354,7 @@ pub fn sprites(camera: &str, width: u32, height: u32) -> Result<Scene, SceneErro
     let (panel, portrait, digits) = side_panel(&layout);
     let sparkles = sparkles(&layout, &mut rng);
     let sprite = |name: &str, blend: Blend, tex: usize, filter: Filter| Material {
+        state: None,
         name: name.into(),
         blend,
         shader: shader::sprite(tex, filter),

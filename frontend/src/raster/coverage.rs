@@ -6,9 +6,11 @@ use super::*;
 
 /// The coverage mask of the quad with top-left pixel (qx, qy): bit i for
 /// pixel i (0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right),
-/// pixels at or beyond (xend, yend) excluded.
+/// pixels at or beyond (xend, yend) or outside the triangle's bounding
+/// box (its scissor rectangle) excluded.
 #[inline]
 pub(super) fn coverage(s: &Setup, qx: u32, qy: u32, xend: u32, yend: u32) -> u8 {
+    let (xend, yend) = (xend.min(s.bbox[1]), yend.min(s.bbox[3]));
     let cx = i64::from(qx) * SUB + SUB / 2;
     let cy = i64::from(qy) * SUB + SUB / 2;
     let e = &s.edges;
@@ -20,7 +22,8 @@ pub(super) fn coverage(s: &Setup, qx: u32, qy: u32, xend: u32, yend: u32) -> u8 
     let mut mask = 0u8;
     for i in 0..4u32 {
         let (dx, dy) = (i & 1, i >> 1);
-        if qx + dx >= xend || qy + dy >= yend {
+        let (px, py) = (qx + dx, qy + dy);
+        if px >= xend || py >= yend || px < s.bbox[0] || py < s.bbox[2] {
             continue;
         }
         let (ox, oy) = (i64::from(dx) * SUB, i64::from(dy) * SUB);
@@ -60,12 +63,16 @@ pub(super) fn span_of(cover: &[(i64, i64); 2], x0: u32, x1: u32) -> (u32, u32) {
 }
 
 /// The pixel columns whose centres are on or inside all three edges of `s`
-/// in pixel row `row`: an inclusive range, empty when lo > hi. Exact: the
-/// same integer test as [`coverage`], solved for x.
+/// in pixel row `row`, inside its bounding box (its scissor rectangle):
+/// an inclusive range, empty when lo > hi. Exact: the same integer test as
+/// [`coverage`], solved for x.
 #[inline]
 pub(super) fn row_cover(s: &Setup, row: u32) -> (i64, i64) {
     let cy = i64::from(row) * SUB + SUB / 2;
-    let (mut lo, mut hi) = (i64::MIN, i64::MAX);
+    if row < s.bbox[2] || row >= s.bbox[3] {
+        return (1, 0);
+    }
+    let (mut lo, mut hi) = (i64::from(s.bbox[0]), i64::from(s.bbox[1]) - 1);
     for e in &s.edges {
         let (a, v0) = (e[0], e[1] * cy + e[2]);
         // Inside at pixel x: a (x SUB + SUB/2) + v0 >= 0.
@@ -196,6 +203,16 @@ impl CoarseDepth {
     #[inline]
     pub(super) fn wrote(&mut self, lx: u32, ly: u32) {
         let k = self.block(lx, ly);
+        self.dirty[k] = true;
+    }
+
+    /// Tile pixel (lx, ly) got a depth `z` farther than the one it had
+    /// (only depth tests other than `<`, `<=`, `==` allow it): the block's
+    /// bound is raised to stay an upper bound.
+    #[inline]
+    pub(super) fn raised(&mut self, lx: u32, ly: u32, z: f32) {
+        let k = self.block(lx, ly);
+        self.max[k] = self.max[k].max(z);
         self.dirty[k] = true;
     }
 

@@ -40,6 +40,7 @@ pub(super) fn checker(name: &str, n: u32) -> Texture {
 
 pub(super) fn mat(name: &str, blend: Blend, tex: usize) -> Material {
     Material {
+        state: None,
         name: name.into(),
         blend,
         shader: crate::shader::standard(tex, Filter::Bilinear),

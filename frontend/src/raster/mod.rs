@@ -93,7 +93,7 @@
 //! render --timings`).
 
 use super::texture::{FormatChoice, QuadTexels, TextureFormat, TextureSet, TextureUse};
-use super::{Blend, Camera, Scene, SceneError, ShaderOp, Vec3};
+use super::{Blend, Camera, Compare, DrawState, Scene, SceneError, ShaderOp, Vec3};
 use crate::trace::{Trace, TraceHeader};
 use serde::Serialize;
 
@@ -106,6 +106,7 @@ mod pipeline;
 mod records;
 mod setup;
 mod tile;
+mod validate;
 
 use coverage::*;
 pub use frame::*;
@@ -115,6 +116,7 @@ use pipeline::*;
 use records::*;
 use setup::*;
 use tile::*;
+use validate::*;
 
 /// Sub-pixel bits of the fixed-point screen coordinates.
 const SUBPIXEL_BITS: u32 = 8;

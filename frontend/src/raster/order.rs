@@ -77,7 +77,7 @@ impl DrawOrder {
     /// where it is [`DrawOrder::AsLoaded`].
     pub fn effective(self, scene: &Scene) -> DrawOrder {
         match scene.camera {
-            Camera::Ortho { .. } => DrawOrder::AsLoaded,
+            Camera::Ortho { .. } | Camera::Clip => DrawOrder::AsLoaded,
             Camera::Perspective { .. } => self,
         }
     }

@@ -153,7 +153,8 @@ fn texture_uses(scene: &Scene, setups: &[Setup], formats: &[TextureFormat]) -> V
         for op in &m.shader {
             if let ShaderOp::Tex(s) = op {
                 uses[s.texture].sampled = true;
-                uses[s.texture].alpha_tested |= first && m.blend == Blend::AlphaTest;
+                let state = m.state.unwrap_or(DrawState::for_blend(m.blend));
+                uses[s.texture].alpha_tested |= first && state.alpha_test.is_some();
                 first = false;
             }
         }
@@ -176,7 +177,7 @@ fn material_infos(scene: &Scene) -> Vec<MatInfo> {
                 })
                 .collect();
             MatInfo {
-                blend: m.blend,
+                state: m.state.unwrap_or(DrawState::for_blend(m.blend)),
                 tex,
                 shader: m.shader.clone(),
             }

@@ -3,7 +3,7 @@
 //! screen coordinates, and binning into tiles.
 
 use super::*;
-use crate::{Material, Mesh};
+use crate::{DrawState, Material, Mesh};
 
 /// A vertex in clip space with its attributes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -205,6 +205,12 @@ pub(super) fn view_projection(scene: &Scene, aspect: f64) -> Result<[[f64; 4]; 4
             width,
             height,
         } => ortho(scene, left, top, width, height).map_err(|m| bad(&m)),
+        Camera::Clip => Ok([
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ]),
     }
 }
 
@@ -293,115 +299,6 @@ fn ortho(
     ])
 }
 
-/// Checks the scene's references so the pipeline cannot index out of range.
-pub(super) fn validate(scene: &Scene) -> Result<(), SceneError> {
-    let err = |m: String| SceneError::in_file(&scene.name, m);
-    for (i, t) in scene.textures.iter().enumerate() {
-        if t.width == 0 || t.height == 0 || t.rgba.len() != t.width as usize * t.height as usize * 4
-        {
-            return Err(err(format!(
-                "texture {i} ({}): {}x{} with {} bytes (expected width x height x 4 > 0)",
-                t.name,
-                t.width,
-                t.height,
-                t.rgba.len()
-            )));
-        }
-    }
-    for (i, m) in scene.materials.iter().enumerate() {
-        validate_material(scene, i, m).map_err(err)?;
-    }
-    for (i, m) in scene.meshes.iter().enumerate() {
-        validate_mesh(scene, i, m).map_err(err)?;
-    }
-    Ok(())
-}
-
-/// Material `i`: a program that does something, sampling textures that
-/// exist through UV set 0 or 1.
-fn validate_material(scene: &Scene, i: usize, m: &Material) -> Result<(), String> {
-    if m.shader.is_empty() || m.shader.iter().all(|op| matches!(op, ShaderOp::Alu(0))) {
-        return Err(format!(
-            "material {i} ({}) has an empty shader program",
-            m.name
-        ));
-    }
-    for op in &m.shader {
-        if let ShaderOp::Tex(s) = op {
-            if s.texture >= scene.textures.len() {
-                return Err(format!(
-                    "material {i} ({}) samples texture {} of {}",
-                    m.name,
-                    s.texture,
-                    scene.textures.len()
-                ));
-            }
-            if s.uv_set > 1 {
-                return Err(format!(
-                    "material {i} ({}) uses UV set {} (expected 0 or 1)",
-                    m.name, s.uv_set
-                ));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Mesh `i`: a material that exists, UVs for every position (second UVs
-/// where the material samples them), whole triangles of vertices that
-/// exist, draw calls covering every triangle.
-fn validate_mesh(scene: &Scene, i: usize, m: &Mesh) -> Result<(), String> {
-    let n = m.positions.len();
-    if m.material >= scene.materials.len() {
-        return Err(format!(
-            "mesh {i} uses material {} of {}",
-            m.material,
-            scene.materials.len()
-        ));
-    }
-    if m.uv.len() != n {
-        return Err(format!("mesh {i}: {} UVs for {n} positions", m.uv.len()));
-    }
-    match &m.uv2 {
-        Some(uv2) if uv2.len() != n => {
-            return Err(format!(
-                "mesh {i}: {} second UVs for {n} positions",
-                uv2.len()
-            ))
-        }
-        None => {
-            let needs = scene.materials[m.material]
-                .shader
-                .iter()
-                .any(|op| matches!(op, ShaderOp::Tex(s) if s.uv_set == 1));
-            if needs {
-                return Err(format!(
-                    "mesh {i}: material {} samples UV set 1 but the mesh has no second UVs",
-                    scene.materials[m.material].name
-                ));
-            }
-        }
-        _ => {}
-    }
-    if !m.indices.len().is_multiple_of(3) {
-        return Err(format!(
-            "mesh {i}: {} indices (expected a multiple of 3)",
-            m.indices.len()
-        ));
-    }
-    if let Some(&bad) = m.indices.iter().find(|&&x| x as usize >= n) {
-        return Err(format!("mesh {i}: index {bad} of {n} vertices"));
-    }
-    let drawn: u64 = m.draws.iter().map(|d| u64::from(d.triangles)).sum();
-    if !m.draws.is_empty() && drawn != m.indices.len() as u64 / 3 {
-        return Err(format!(
-            "mesh {i}: its draw calls cover {drawn} triangles of {}",
-            m.indices.len() / 3
-        ));
-    }
-    Ok(())
-}
-
 /// A triangle's vertices in screen space: positions snapped to 1/256
 /// pixel (x, y) and the attributes (depth, 1/w, u/w, v/w, u2/w, v2/w).
 struct Snapped {
@@ -413,7 +310,12 @@ struct Snapped {
 /// Project and snap a clip-space triangle; `None` when a vertex does not
 /// land on a finite screen position.
 #[inline]
-fn snap(v: &[ClipVert; 3], width: u32, height: u32) -> Option<Snapped> {
+fn snap(
+    v: &[ClipVert; 3],
+    width: u32,
+    height: u32,
+    depth_range: Option<[f64; 2]>,
+) -> Option<Snapped> {
     let (wf, hf) = (f64::from(width), f64::from(height));
     let mut sx = [0i64; 3];
     let mut sy = [0i64; 3];
@@ -429,8 +331,9 @@ fn snap(v: &[ClipVert; 3], width: u32, height: u32) -> Option<Snapped> {
         }
         sx[i] = (x * SUB as f64).round() as i64;
         sy[i] = (y * SUB as f64).round() as i64;
+        let depth = nz * 0.5 + 0.5;
         attrs[i] = [
-            nz * 0.5 + 0.5,
+            depth_range.map_or(depth, |[n, f]| n + (f - n) * depth),
             inv_w,
             v[i].uv[0] * inv_w,
             v[i].uv[1] * inv_w,
@@ -482,17 +385,27 @@ fn attribute_planes(t: &Snapped) -> ([[f64; 3]; 6], [f64; 2]) {
     (planes, [x0, y0])
 }
 
-/// Builds the setup of one screen triangle; `None` if degenerate or culled.
+/// What set-up needs of a triangle's draw: its material and pipeline
+/// state (`None`: the material has none, and back faces are culled when
+/// `cull_back` says so), and its depth key.
+#[derive(Clone, Copy)]
+pub(super) struct SetupCtx<'a> {
+    pub(super) material: u32,
+    pub(super) state: Option<&'a DrawState>,
+    pub(super) cull_back: bool,
+    pub(super) sort_w: f64,
+}
+
+/// Builds the setup of one screen triangle; `None` if degenerate, culled
+/// or outside the frame (or the draw's scissor rectangle).
 pub(super) fn setup(
     v: &[ClipVert; 3],
     width: u32,
     height: u32,
-    material: u32,
-    sort_w: f64,
-    cull_back: bool,
+    cx: SetupCtx,
     stats: &mut RasterStats,
 ) -> Option<Setup> {
-    let Some(t) = snap(v, width, height) else {
+    let Some(t) = snap(v, width, height, cx.state.and_then(|s| s.depth_range)) else {
         stats.degenerate += 1;
         return None;
     };
@@ -503,7 +416,11 @@ pub(super) fn setup(
         return None;
     }
     // Screen y grows down: counter-clockwise in NDC is negative here.
-    if cull_back && area2 > 0 {
+    let culled = match cx.state {
+        None => cx.cull_back && area2 > 0,
+        Some(st) => st.culls(area2 < 0),
+    };
+    if culled {
         stats.culled_back_faces += 1;
         return None;
     }
@@ -518,13 +435,23 @@ pub(super) fn setup(
     // Pixel i has its centre at (i + 0.5): covered range of centres.
     let lo = |v: i64| ((v - SUB / 2 + SUB - 1).div_euclid(SUB)).max(0);
     let hi = |v: i64, lim: u32| ((v - SUB / 2).div_euclid(SUB) + 1).min(i64::from(lim));
-    let bbox = [lo(xmin), hi(xmax, width), lo(ymin), hi(ymax, height)];
+    let mut bbox = [lo(xmin), hi(xmax, width), lo(ymin), hi(ymax, height)];
+    if let Some([x0, y0, x1, y1]) = cx.state.and_then(|s| s.scissor) {
+        bbox[0] = bbox[0].max(i64::from(x0));
+        bbox[1] = bbox[1].min(i64::from(x1));
+        bbox[2] = bbox[2].max(i64::from(y0));
+        bbox[3] = bbox[3].min(i64::from(y1));
+    }
     if bbox[0] >= bbox[1] || bbox[2] >= bbox[3] {
         // Covers no pixel centre of the frame.
         stats.culled_outside += 1;
         return None;
     }
-    let (planes, origin) = attribute_planes(&t);
+    let (mut planes, origin) = attribute_planes(&t);
+    if let Some((factor, units)) = cx.state.and_then(|s| s.polygon_offset) {
+        let slope = planes[0][1].abs().max(planes[0][2].abs());
+        planes[0][0] += f64::from(factor) * slope + f64::from(units) * DEPTH_UNIT;
+    }
     let min_inv_w = t.attrs.iter().map(|a| a[1]).fold(f64::INFINITY, f64::min);
     Some(Setup {
         edges,
@@ -537,8 +464,8 @@ pub(super) fn setup(
         planes,
         origin,
         min_inv_w,
-        material,
-        sort_w,
+        material: cx.material,
+        sort_w: cx.sort_w,
     })
 }
 
@@ -555,6 +482,10 @@ pub(super) fn overlaps(s: &Setup, x0: u32, x1: u32, y0: u32, y1: u32) -> bool {
     }
     true
 }
+
+/// The smallest depth difference of polygon offset's `units`: one step of
+/// a 24-bit depth buffer (wasp).
+const DEPTH_UNIT: f64 = 1.0 / 16_777_216.0;
 
 /// Each mesh's clip-space positions, kept from its first run to its last
 /// (a sorted draw order visits a mesh many times).
@@ -580,6 +511,11 @@ impl ClipCache {
         let (clip, from) = (&mut self.clips[mesh], &scene.meshes[mesh].positions);
         if clip.len() != from.len() {
             clip.extend(from.iter().map(|&p| transform(m, p)));
+            if let Some(w) = &scene.meshes[mesh].clip_w {
+                for (c, &w) in clip.iter_mut().zip(w) {
+                    c[3] = f64::from(w);
+                }
+            }
         }
         clip
     }
@@ -620,10 +556,18 @@ struct SetupLists<'a> {
 }
 
 impl SetupLists<'_> {
-    /// Clip triangle `tri` of `mesh` (clip-space positions `p`), then set
-    /// up the triangles of its fan.
+    /// Clip triangle `tri` of `mesh` (clip-space positions `p`; material
+    /// `mat`; `blend`: to the back-to-front list), then set up the
+    /// triangles of its fan.
     #[inline]
-    fn triangle(&mut self, mesh: &Mesh, blend: bool, tri: [ClipVert; 3], p: &[[f64; 4]; 3]) {
+    fn triangle(
+        &mut self,
+        mesh: &Mesh,
+        mat: &Material,
+        blend: bool,
+        tri: [ClipVert; 3],
+        p: &[[f64; 4]; 3],
+    ) {
         let sort_w = (p[0][3] + p[1][3] + p[2][3]) / 3.0;
         let cut = clip_triangle(tri, &mut self.poly, &mut self.tmp);
         if cut {
@@ -635,15 +579,13 @@ impl SetupLists<'_> {
         }
         for k in 1..self.poly.len() - 1 {
             let tri = [self.poly[0], self.poly[k], self.poly[k + 1]];
-            if let Some(s) = setup(
-                &tri,
-                self.width,
-                self.height,
-                mesh.material as u32,
+            let cx = SetupCtx {
+                material: mesh.material as u32,
+                state: mat.state.as_ref(),
+                cull_back: self.cull_back,
                 sort_w,
-                self.cull_back,
-                self.stats,
-            ) {
+            };
+            if let Some(s) = setup(&tri, self.width, self.height, cx, self.stats) {
                 if blend {
                     self.blended.push(s);
                 } else {
@@ -679,7 +621,7 @@ pub(super) fn geometry(
     for (i, run) in runs.iter().enumerate() {
         let mesh = &scene.meshes[run.mesh];
         let material = &scene.materials[mesh.material];
-        let blend = material.blend == Blend::AlphaBlend;
+        let blend = material.blend == Blend::AlphaBlend && material.state.is_none();
         let clip = clips.positions(&m, scene, run.mesh);
         let tris = run.count as u64;
         out.stats.primitives += tris;
@@ -700,7 +642,7 @@ pub(super) fn geometry(
                     [f64::from(u[idx[k]][0]), f64::from(u[idx[k]][1])]
                 }),
             };
-            out.triangle(mesh, blend, [vert(0), vert(1), vert(2)], &p);
+            out.triangle(mesh, material, blend, [vert(0), vert(1), vert(2)], &p);
         }
         clips.release(i, run.mesh);
     }

@@ -21,7 +21,8 @@ pub(super) struct Frag {
 
 /// Per-shader facts the inner loop needs.
 pub(super) struct MatInfo {
-    pub(super) blend: Blend,
+    /// Its pipeline state (its own, or what its blend mode means).
+    pub(super) state: crate::DrawState,
     /// Texture instructions in program order.
     pub(super) tex: Vec<crate::TexSample>,
     /// The whole program.
@@ -208,8 +209,17 @@ pub(super) fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut
         depth_prepass(ctx, &area, list, b);
         b.coarse.invalidate();
     }
+    let mut epoch = 0;
     for &si in list {
-        raster_triangle(ctx, &area, &ctx.setups[si as usize], b);
+        let s = &ctx.setups[si as usize];
+        let e = ctx.mats[s.material as usize].state.depth_epoch;
+        if e != epoch {
+            // The engine cleared the depth buffer since the last triangle.
+            b.depth.fill(1.0);
+            b.coarse.clear();
+            epoch = e;
+        }
+        raster_triangle(ctx, &area, s, b);
     }
     if ctx.colour {
         for ly in 0..area.th {
@@ -225,7 +235,8 @@ pub(super) fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut
 fn depth_prepass(ctx: &TileCtx, a: &TileArea, list: &[u32], b: &mut TileBuf) {
     for &si in list {
         let s = &ctx.setups[si as usize];
-        if ctx.mats[s.material as usize].blend != Blend::Opaque {
+        let st = &ctx.mats[s.material as usize].state;
+        if !st.is_opaque() || !matches!(st.depth_test, Some(Compare::LEqual | Compare::Less)) {
             continue;
         }
         let (x0, x1, y0, y1) = a.span(s);
@@ -250,6 +261,7 @@ fn depth_prepass(ctx: &TileCtx, a: &TileArea, list: &[u32], b: &mut TileBuf) {
 #[inline]
 fn raster_triangle(ctx: &TileCtx, a: &TileArea, s: &Setup, b: &mut TileBuf) {
     let mat = &ctx.mats[s.material as usize];
+    let hiz = ctx.hiz && mat.state.depth_test.is_some_and(|c| c.fails_when_farther());
     let (x0, x1, y0, y1) = a.span(s);
     for qy in (y0..y1).step_by(2) {
         let cover = [row_cover(s, qy), row_cover(s, qy + 1)];
@@ -261,7 +273,7 @@ fn raster_triangle(ctx: &TileCtx, a: &TileArea, s: &Setup, b: &mut TileBuf) {
                 (a.ox + ((xa - a.ox) / CoarseDepth::BLOCK_W + 1) * CoarseDepth::BLOCK_W).min(rx1);
             let seg = (xa, xb);
             xa = xb;
-            if ctx.hiz && coarse_reject(a, s, &cover, qy, seg, b) {
+            if hiz && coarse_reject(a, s, &cover, qy, seg, b) {
                 continue;
             }
             for qx in (seg.0..seg.1).step_by(2) {
@@ -339,7 +351,11 @@ fn raster_quad(
     for i in (0..4u32).filter(|i| mask & (1 << i) != 0) {
         let (px, py) = (qx + (i & 1), qy + (i >> 1));
         z[i as usize] = s.depth_at(f64::from(px) + 0.5, f64::from(py) + 0.5);
-        if z[i as usize] <= b.depth[a.at(px, py)] {
+        let pass = match mat.state.depth_test {
+            Some(c) => c.passes(z[i as usize], b.depth[a.at(px, py)]),
+            None => true,
+        };
+        if pass {
             live |= 1 << i;
         }
     }
@@ -412,7 +428,7 @@ fn texture_blocks(
     b: &mut TileBuf,
 ) -> [f32; 8] {
     let mut lambdas = [0.0f32; 8];
-    let alpha_tested = mat.blend == Blend::AlphaTest;
+    let alpha_tested = mat.state.alpha_test.is_some();
     for (k, smp) in mat.tex.iter().enumerate() {
         let set = if smp.uv_set == 1 { uv2 } else { uv };
         let lambda = if k == 0 && alpha_tested {
@@ -436,47 +452,49 @@ fn texture_blocks(
     lambdas
 }
 
-/// Depth writes and colour of a fragment's live pixels. An opaque or
-/// alpha-tested pixel's colour is deferred: only the last one written to a
-/// pixel shows, so it is shaded once, when a blended fragment needs it as
-/// the destination or at the end of the tile (same inputs, same colour as
-/// shading every fragment). A blended pixel is shaded over what is there
-/// and writes no depth.
+/// Depth writes and colour of a fragment's live pixels. A pixel the
+/// alpha test fails writes nothing. An unblended pixel's colour is
+/// deferred: only the last one written to a pixel shows, so it is shaded
+/// once, when a blended fragment needs it as the destination or at the end
+/// of the tile (same inputs, same colour as shading every fragment). A
+/// blended pixel is shaded over what is there. Depth is written where the
+/// state says so.
 #[inline]
 fn write_pixels(ctx: &TileCtx, a: &TileArea, mat: &MatInfo, f: &Fragment, b: &mut TileBuf) {
+    let st = &mat.state;
     for i in (0..4u32).filter(|i| f.live & (1 << i) != 0) {
         let (px, py) = (f.qx + (i & 1), f.qy + (i >> 1));
         let at = a.at(px, py);
         let k = i as usize;
-        let write = match mat.blend {
-            Blend::Opaque => true,
-            Blend::AlphaTest => {
-                // Without texture, alpha 1 (as `shade`).
-                f.texels.map_or(1.0, |q| ctx.textures.quad_alpha(q, k)) >= 0.5
+        if let Some((cmp, reference)) = st.alpha_test {
+            // Without texture, alpha 1 (as `shade`).
+            let alpha = f.texels.map_or(1.0, |q| ctx.textures.quad_alpha(q, k));
+            if !cmp.passes(alpha, reference) {
+                continue;
             }
-            Blend::AlphaBlend => {
-                if ctx.colour {
+        }
+        if ctx.colour && st.colour_write {
+            match st.blend {
+                Some((sf, df)) => {
                     b.resolve(ctx, at);
                     let c = shade(ctx.textures, mat, &f.uv[k], &f.uv2[k], f.lambdas);
                     let d = b.colour[at];
-                    let a = c[3];
-                    b.colour[at] = [
-                        c[0] * a + d[0] * (1.0 - a),
-                        c[1] * a + d[1] * (1.0 - a),
-                        c[2] * a + d[2] * (1.0 - a),
-                        1.0,
-                    ];
+                    let mix = |j: usize| c[j] * sf.of(&c, &d, j) + d[j] * df.of(&c, &d, j);
+                    b.colour[at] = [mix(0), mix(1), mix(2), 1.0];
                 }
-                false
+                None => {
+                    b.pending[at] = f.index + 1;
+                    b.pending_uv[at] = [f.uv[k], f.uv2[k]];
+                }
             }
-        };
-        if write {
+        }
+        if st.depth_write {
+            if f.z[k] > b.depth[at] {
+                b.coarse.raised(px - a.ox, py - a.oy, f.z[k]);
+            } else {
+                b.coarse.wrote(px - a.ox, py - a.oy);
+            }
             b.depth[at] = f.z[k];
-            b.coarse.wrote(px - a.ox, py - a.oy);
-            if ctx.colour {
-                b.pending[at] = f.index + 1;
-                b.pending_uv[at] = [f.uv[k], f.uv2[k]];
-            }
         }
     }
 }
@@ -662,5 +680,108 @@ mod tests {
             g.stats.quads_rejected_early_z,
             f.stats.quads_rejected_early_z
         );
+    }
+
+    /// A scene in clip space (w = 1): `quads` of (NDC rectangle, z, state)
+    /// each its own material, drawn in order.
+    fn clip_scene(quads: &[([f32; 4], f32, crate::DrawState)]) -> Scene {
+        let mut meshes = Vec::new();
+        let mut materials = Vec::new();
+        for (i, (r, z, st)) in quads.iter().enumerate() {
+            // Counter-clockwise in NDC (y up).
+            meshes.push(quad_mesh(r[0], r[1], r[2], r[3], *z, i));
+            let mut mt = mat("q", Blend::Opaque, 0);
+            mt.state = Some(*st);
+            materials.push(mt);
+        }
+        Scene {
+            name: "test:clip".into(),
+            source: "unit test".into(),
+            meshes,
+            materials,
+            textures: vec![checker("c", 64)],
+            camera: Camera::Clip,
+        }
+    }
+
+    #[test]
+    fn per_draw_states_decide_scissor_culling_depth_and_clears() {
+        use crate::{Compare, Cull, DrawState};
+        let opaque = DrawState::for_blend(Blend::Opaque);
+        let all = [-1.0, -1.0, 1.0, 1.0];
+        let opts = RasterOptions {
+            threads: 1,
+            ..Default::default()
+        };
+        let run = |q: &[([f32; 4], f32, DrawState)]| {
+            rasterize(&clip_scene(q), 32, 32, &opts).unwrap().stats
+        };
+        // A scissor of pixels 3..9 x 5..6 (odd edges): exactly 6 pixels.
+        let sc = DrawState {
+            scissor: Some([3, 5, 9, 6]),
+            ..opaque
+        };
+        let st = run(&[(all, 0.0, sc)]);
+        assert_eq!(st.pixels_shaded, 6);
+        assert_eq!(st.positions, 4, "quads at columns 2, 4, 6, 8");
+        // Back faces culled: the counter-clockwise quad stays, a clockwise
+        // front face setting culls it.
+        let back = DrawState {
+            cull: Cull::Back,
+            ..opaque
+        };
+        assert_eq!(run(&[(all, 0.0, back)]).pixels_shaded, 32 * 32);
+        let cw = DrawState {
+            front_ccw: false,
+            ..back
+        };
+        let st = run(&[(all, 0.0, cw)]);
+        assert_eq!((st.pixels_shaded, st.culled_back_faces), (0, 2));
+        // A near square then a far one: rejected by GL_LESS, not after a
+        // depth clear between them, nor with the far one's depth range
+        // pulled in front, nor with a large negative polygon offset.
+        let far = |st: DrawState| run(&[(all, -0.5, opaque), (all, 0.5, st)]);
+        let less = DrawState {
+            depth_test: Some(Compare::Less),
+            ..opaque
+        };
+        assert_eq!(far(less).quads_rejected_early_z, 16 * 16 + 16);
+        let cleared = DrawState {
+            depth_epoch: 1,
+            ..less
+        };
+        assert_eq!(far(cleared).quads_rejected_early_z, 0);
+        let range = DrawState {
+            depth_range: Some([0.0, 0.1]),
+            ..less
+        };
+        assert_eq!(far(range).quads_rejected_early_z, 0);
+        let offset = DrawState {
+            polygon_offset: Some((0.0, -16_777_216.0 * 0.6)),
+            ..less
+        };
+        assert_eq!(far(offset).quads_rejected_early_z, 0);
+        // A far square (0.9) rejected coarsely sets the coarse bound to
+        // 0.25; GL_GREATER then writes a farther depth (0.75): the bound
+        // follows, so a square between the two (0.5) passes everywhere,
+        // none of it rejected on the old bound.
+        let greater = DrawState {
+            depth_test: Some(Compare::Greater),
+            ..opaque
+        };
+        let mid = DrawState {
+            depth_test: Some(Compare::LEqual),
+            ..opaque
+        };
+        let st = run(&[
+            (all, -0.5, opaque),
+            (all, 0.8, mid),
+            (all, 0.5, greater),
+            (all, 0.0, mid),
+        ]);
+        assert_eq!(st.materials[1].quads_rejected_early_z, 16 * 16 + 16);
+        assert_eq!(st.materials[2].quads_rejected_early_z, 0);
+        assert_eq!(st.materials[3].quads_rejected_early_z, 0);
+        assert_eq!(st.materials[3].warps, 16 * 16 + 16);
     }
 }

@@ -190,6 +190,7 @@ impl<'a> Builder<'a> {
             None => {
                 let t = self.texture(&path, false)?;
                 self.materials.push(Material {
+                    state: None,
                     name: texture.to_string(),
                     blend: props.blend,
                     shader: shader::standard(t, Filter::Trilinear),
@@ -314,6 +315,7 @@ impl<'a> Builder<'a> {
                 None => {
                     let t = self.texture(&path, false)?;
                     self.materials.push(Material {
+                        state: None,
                         name: format!("sky {name}"),
                         blend: Blend::Opaque,
                         shader: shader::unlit(t, Filter::Bilinear),

@@ -224,6 +224,7 @@ impl Builder<'_> {
             None => shader::standard(t0, Filter::Trilinear),
         };
         self.materials.push(Material {
+            state: None,
             name: base_name.to_string(),
             blend: props.blend,
             shader,
@@ -239,6 +240,7 @@ impl Builder<'_> {
             return i;
         }
         self.materials.push(Material {
+            state: None,
             name: "untextured (vertex colour)".into(),
             blend: Blend::Opaque,
             shader: vec![ShaderOp::Alu(10)],

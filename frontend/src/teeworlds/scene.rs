@@ -151,6 +151,7 @@ impl Builder<'_> {
         let shader = program(self.template, tex, Filter::Bilinear)
             .map_err(|m| SceneError::in_file(self.map_path, m))?;
         self.materials.push(Material {
+            state: None,
             name,
             blend,
             shader,

@@ -1,0 +1,542 @@
+//! Importing one frame: the calls read from the capture's start (state is
+//! tracked through every earlier frame), the selected frame's draws
+//! recorded, then placed in the frame (its size is the viewports' extent)
+//! as a clip-space [`Scene`] of one mesh and one material per draw, in
+//! issue order.
+
+use super::args::CallError;
+use super::draw::{self, DrawRec};
+use super::enums as gl;
+use super::tracker::{Context, Effect};
+use crate::{Blend, Camera, Material, Mesh, Scene, ShaderOp, TexSample, Texture};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use wasp_gltrace::{Call, CaptureError};
+
+/// What to import.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ImportOptions {
+    /// The frame (from 0); `None`: the last complete one.
+    pub frame: Option<u64>,
+    /// Count draws that need what is not modelled instead of failing.
+    pub skip_unsupported: bool,
+}
+
+/// An error importing: the capture's own, or one at a call or a frame,
+/// with the file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ImportError {
+    /// Reading the capture failed.
+    Capture(CaptureError),
+    /// A call the importer refuses.
+    Call(PathBuf, CallError),
+    /// The frame asked for is not there, or has no size.
+    Frame(PathBuf, String),
+}
+
+impl std::fmt::Display for ImportError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ImportError::Capture(e) => write!(f, "{e}"),
+            ImportError::Call(p, e) => write!(f, "{}, {e}", p.display()),
+            ImportError::Frame(p, m) => write!(f, "{}: {m}", p.display()),
+        }
+    }
+}
+
+impl std::error::Error for ImportError {}
+
+impl From<CaptureError> for ImportError {
+    fn from(e: CaptureError) -> Self {
+        ImportError::Capture(e)
+    }
+}
+
+/// A texture the frame samples, for the summary.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct TextureInfo {
+    /// The GL name.
+    pub id: u32,
+    pub width: u32,
+    pub height: u32,
+    /// Level 0's internal format, pixel format and type.
+    pub format: String,
+    /// The levels the engine uploaded.
+    pub levels: Vec<u32>,
+    /// Why its texels are the placeholder, if they are.
+    pub placeholder: Option<String>,
+}
+
+/// One frame imported: the scene to rasterize and what the import saw.
+#[derive(Clone, Debug)]
+pub struct Imported {
+    pub scene: Scene,
+    pub width: u32,
+    pub height: u32,
+    /// The frame's index and its calls (first, last: the swap).
+    pub frame: u64,
+    pub calls: (u64, u64),
+    /// Complete frames read (all of the capture's when the last was
+    /// asked for).
+    pub frames_read: u64,
+    pub draw_calls: u64,
+    pub triangles: u64,
+    /// Draws skipped (with `skip_unsupported`), by what they need.
+    pub unsupported: BTreeMap<String, u64>,
+    /// Unsupported draws of the frames before it (not imported), by
+    /// feature.
+    pub unsupported_in_earlier_frames: BTreeMap<String, u64>,
+    /// Calls up to the frame's end the model does not use, by name.
+    pub unmodelled: BTreeMap<String, u64>,
+    pub textures: Vec<TextureInfo>,
+}
+
+/// A frame read to its swap: its recording, the unmodelled calls and the
+/// earlier frames' unsupported draws up to it, and its swap's number.
+struct Finished {
+    index: u64,
+    build: FrameBuild,
+    unmodelled: BTreeMap<String, u64>,
+    earlier: BTreeMap<String, u64>,
+    last_call: u64,
+}
+
+/// One frame's recording.
+#[derive(Default)]
+struct FrameBuild {
+    first_call: u64,
+    draws: Vec<DrawRec>,
+    unsupported: BTreeMap<String, u64>,
+    first_unsupported: Option<CallError>,
+    error: Option<CallError>,
+}
+
+impl FrameBuild {
+    fn unsupported(&mut self, call: &Call, feature: String) {
+        self.first_unsupported.get_or_insert_with(|| {
+            CallError::at(call, format!("needs {feature}, which is not modelled"))
+        });
+        *self.unsupported.entry(feature).or_default() += 1;
+    }
+}
+
+/// Import one frame of the calls `calls` (read from `file`).
+pub fn import(
+    calls: impl IntoIterator<Item = Result<Call, CaptureError>>,
+    file: &Path,
+    opts: ImportOptions,
+) -> Result<Imported, ImportError> {
+    let mut ctx = Context::default();
+    let mut frame = 0u64;
+    let mut cur = FrameBuild::default();
+    let mut unmodelled: BTreeMap<String, u64> = BTreeMap::new();
+    // Unsupported draws (immediate mode, display lists) of the frames
+    // before the current one, by feature.
+    let mut earlier: BTreeMap<String, u64> = BTreeMap::new();
+    let mut done: Option<Finished> = None;
+    for call in calls {
+        let call = call?;
+        let build = opts.frame.is_none_or(|n| n == frame);
+        match ctx
+            .apply(&call)
+            .map_err(|e| ImportError::Call(file.into(), e))?
+        {
+            Effect::Modelled => {}
+            Effect::Unmodelled(n) => *unmodelled.entry(n).or_default() += 1,
+            Effect::Draw if build => match draw::record(&ctx, &call) {
+                Ok(Ok(rec)) => cur.draws.push(rec),
+                Ok(Err(feature)) => cur.unsupported(&call, feature),
+                Err(e) => {
+                    cur.error.get_or_insert(e);
+                }
+            },
+            Effect::UnsupportedDraw(f) => cur.unsupported(&call, f),
+            Effect::Draw => {}
+            Effect::FrameEnd => {
+                let next = FrameBuild {
+                    first_call: call.no + 1,
+                    ..Default::default()
+                };
+                let build = std::mem::replace(&mut cur, next);
+                let before = earlier.clone();
+                for (f, n) in &build.unsupported {
+                    *earlier.entry(f.clone()).or_default() += n;
+                }
+                done = Some(Finished {
+                    index: frame,
+                    build,
+                    unmodelled: unmodelled.clone(),
+                    earlier: before,
+                    last_call: call.no,
+                });
+                frame += 1;
+                if opts.frame.is_some_and(|n| n + 1 == frame) {
+                    break;
+                }
+            }
+        }
+    }
+    let frames_read = frame;
+    let Some(Finished {
+        index,
+        build,
+        unmodelled,
+        earlier,
+        last_call,
+    }) = done.filter(|d| opts.frame.is_none_or(|n| n == d.index))
+    else {
+        return Err(ImportError::Frame(
+            file.into(),
+            match opts.frame {
+                Some(n) => format!(
+                    "frame {n} is past the end: the capture has {frames_read} complete frames \
+                     (0 to {})",
+                    frames_read.saturating_sub(1)
+                ),
+                None => "the capture has no complete frame (no buffer swap)".into(),
+            },
+        ));
+    };
+    if let Some(e) = build.error {
+        return Err(ImportError::Call(file.into(), e));
+    }
+    if let (Some(e), false) = (&build.first_unsupported, opts.skip_unsupported) {
+        let mut e = e.clone();
+        e.message += " (--skip-unsupported counts such draws and goes on)";
+        return Err(ImportError::Call(file.into(), e));
+    }
+    let (width, height) = frame_size(&build.draws, &ctx).ok_or_else(|| {
+        ImportError::Frame(
+            file.into(),
+            format!("frame {index} has no viewport (glViewport)"),
+        )
+    })?;
+    let (scene, textures) = scene_of(&build.draws, width, height, file, index)
+        .map_err(|e| ImportError::Call(file.into(), e))?;
+    Ok(Imported {
+        scene,
+        width,
+        height,
+        frame: index,
+        calls: (build.first_call, last_call),
+        frames_read,
+        draw_calls: build.draws.len() as u64,
+        triangles: build.draws.iter().map(|d| d.triangles).sum(),
+        unsupported: build.unsupported,
+        unsupported_in_earlier_frames: earlier,
+        unmodelled,
+        textures,
+    })
+}
+
+/// The frame's size: the extent of its draws' viewports (the current one
+/// without draws), so the window (wasp: the engine's full-window viewport
+/// is the frame).
+fn frame_size(draws: &[DrawRec], ctx: &Context) -> Option<(u32, u32)> {
+    let ext = |v: &[i64; 4]| (v[0] + v[2], v[1] + v[3]);
+    let (w, h) = if draws.is_empty() {
+        ext(&ctx.state.viewport)
+    } else {
+        draws
+            .iter()
+            .map(|d| ext(&d.fixed.viewport))
+            .fold((0, 0), |a, b| (a.0.max(b.0), a.1.max(b.1)))
+    };
+    (w > 0 && h > 0 && w <= 16384 && h <= 16384).then_some((w as u32, h as u32))
+}
+
+/// ALU instructions of a texture environment mode (wasp).
+fn env_alu(mode: i64) -> u32 {
+    match mode {
+        gl::REPLACE => 0,
+        gl::DECAL | gl::BLEND_ENV | gl::COMBINE => 2,
+        _ => 1,
+    }
+}
+
+/// The scene of a frame's draws in a `w` x `h` frame, and its textures'
+/// summary.
+fn scene_of(
+    draws: &[DrawRec],
+    w: u32,
+    h: u32,
+    file: &Path,
+    frame: u64,
+) -> Result<(Scene, Vec<TextureInfo>), CallError> {
+    let mut textures: Vec<Texture> = Vec::new();
+    let mut infos: Vec<TextureInfo> = Vec::new();
+    let mut seen: Vec<*const super::textures::TexObject> = Vec::new();
+    let (mut meshes, mut materials) = (Vec::new(), Vec::new());
+    for d in draws {
+        let state = d.fixed.draw_state(w, h).map_err(|m| CallError {
+            call: d.call,
+            name: "draw".into(),
+            message: m,
+        })?;
+        // (wasp) program: a2, then per sampled unit T(unit) and its
+        // environment's ALU, an ALU for the alpha test, a1 to write.
+        let mut shader = vec![ShaderOp::Alu(2)];
+        for s in &d.sampled {
+            let p = Arc::as_ptr(&s.texture);
+            let index = seen.iter().position(|&q| q == p).unwrap_or_else(|| {
+                seen.push(p);
+                textures.push(s.texture.texture());
+                infos.push(info(&s.texture));
+                seen.len() - 1
+            });
+            shader.push(ShaderOp::Tex(TexSample {
+                texture: index,
+                uv_set: s.unit as u8,
+                filter: s.texture.filter(),
+            }));
+            shader.push(ShaderOp::Alu(env_alu(s.env_mode)));
+        }
+        shader.push(ShaderOp::Alu(1 + u32::from(state.alpha_test.is_some())));
+        shader.retain(|op| *op != ShaderOp::Alu(0));
+        let blend = if state.blend.is_some() {
+            Blend::AlphaBlend
+        } else if state.alpha_test.is_some() {
+            Blend::AlphaTest
+        } else {
+            Blend::Opaque
+        };
+        materials.push(Material {
+            name: format!("call {}", d.call),
+            blend,
+            shader,
+            state: Some(state),
+        });
+        meshes.push(mesh_of(d, &d.fixed.viewport, w, h, materials.len() - 1));
+    }
+    let scene = Scene {
+        name: format!("gl:{}:frame{frame}", file.display()),
+        source: format!("apitrace capture {}, frame {frame}", file.display()),
+        meshes,
+        materials,
+        textures,
+        camera: Camera::Clip,
+    };
+    Ok((scene, infos))
+}
+
+/// A draw's mesh: clip-space positions with the viewport folded in
+/// (linear in clip space: the viewport's rectangle of a `w` x `h` frame
+/// becomes its place in the frame's normalized device coordinates).
+fn mesh_of(d: &DrawRec, vp: &[i64; 4], w: u32, h: u32, material: usize) -> Mesh {
+    let (wf, hf) = (f64::from(w), f64::from(h));
+    let (vx, vy, vw, vh) = (vp[0] as f64, vp[1] as f64, vp[2] as f64, vp[3] as f64);
+    let (sx, ox) = (vw / wf, (2.0 * vx + vw) / wf - 1.0);
+    let (sy, oy) = (vh / hf, (2.0 * vy + vh) / hf - 1.0);
+    let positions = d
+        .clip
+        .iter()
+        .map(|p| {
+            [
+                (p[0] * sx + p[3] * ox) as f32,
+                (p[1] * sy + p[3] * oy) as f32,
+                p[2] as f32,
+            ]
+        })
+        .collect();
+    Mesh {
+        positions,
+        uv: d.uv[0].clone(),
+        uv2: d
+            .sampled
+            .iter()
+            .any(|s| s.unit == 1)
+            .then(|| d.uv[1].clone()),
+        indices: d.indices.clone(),
+        material,
+        clip_w: Some(d.clip.iter().map(|p| p[3] as f32).collect()),
+        ..Default::default()
+    }
+}
+
+fn info(t: &super::textures::TexObject) -> TextureInfo {
+    let l0 = &t.levels[&0];
+    TextureInfo {
+        id: t.id,
+        width: l0.width,
+        height: l0.height,
+        format: if l0.compressed {
+            format!("{} (compressed)", gl::name(l0.internal))
+        } else {
+            format!(
+                "{} from {}/{}",
+                gl::name(l0.internal),
+                gl::name(l0.format),
+                gl::name(l0.ty)
+            )
+        },
+        levels: t.levels.keys().copied().collect(),
+        placeholder: t.placeholder.clone(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::args::test_calls::*;
+    use super::*;
+    use crate::raster::{rasterize, RasterOptions};
+    use wasp_gltrace::Value;
+
+    /// A frame of a 64x64 window: glOrtho(0, 64, 0, 64, -1, 1), depth test
+    /// with `func`, then each square (x0, y0, x1, y1, z) of `squares` drawn
+    /// as GL_QUADS in that order; one swap.
+    fn frame(func: Option<i64>, squares: &[[f32; 5]]) -> Vec<Call> {
+        let i = Value::SInt;
+        let mut c = vec![
+            call(0, "glXMakeCurrent", vec![]),
+            call(0, "glViewport", vec![i(0), i(0), i(64), i(64)]),
+            call(0, "glClear", vec![Value::Bitmask(0x4100)]),
+            call(0, "glMatrixMode", vec![e(gl::PROJECTION)]),
+            call(
+                0,
+                "glOrtho",
+                vec![f(0.0), f(64.0), f(0.0), f(64.0), f(-1.0), f(1.0)],
+            ),
+            call(0, "glEnableClientState", vec![e(0x8074)]),
+        ];
+        if let Some(func) = func {
+            c.push(call(0, "glEnable", vec![e(gl::DEPTH_TEST)]));
+            c.push(call(0, "glDepthFunc", vec![e(func)]));
+        }
+        for s in squares {
+            let [x0, y0, x1, y1, z] = *s;
+            let v = floats(&[x0, y0, z, x1, y0, z, x1, y1, z, x0, y1, z]);
+            c.push(call(
+                0,
+                "glVertexPointer",
+                vec![i(3), e(gl::FLOAT), i(0), v],
+            ));
+            c.push(call(0, "glDrawArrays", vec![e(gl::QUADS), i(0), i(4)]));
+        }
+        c.push(call(0, "glXSwapBuffers", vec![]));
+        for (n, k) in c.iter_mut().enumerate() {
+            k.no = n as u64;
+        }
+        c
+    }
+
+    fn run(calls: Vec<Call>) -> (Imported, crate::raster::Frame) {
+        let imp = import(
+            calls.into_iter().map(Ok),
+            Path::new("t.trace"),
+            ImportOptions::default(),
+        )
+        .unwrap();
+        let opts = RasterOptions {
+            threads: 1,
+            ..Default::default()
+        };
+        let f = rasterize(&imp.scene, imp.width, imp.height, &opts).unwrap();
+        (imp, f)
+    }
+
+    #[test]
+    fn a_near_square_drawn_first_rejects_exactly_its_area_of_the_far_one() {
+        // GL_LESS; the near square (z = 0.5: window depth 0.25) covers the
+        // bottom-left 32x32 pixels, the far one (window depth 0.75) all
+        // 64x64. Each square's two triangles share a diagonal, so the 16
+        // quads a 32-pixel diagonal crosses hold a fragment of each.
+        let near = [0.0, 0.0, 32.0, 32.0, 0.5];
+        let far = [0.0, 0.0, 64.0, 64.0, -0.5];
+        let (imp, f) = run(frame(Some(gl::NEVER + 1), &[near, far]));
+        assert_eq!(
+            (imp.width, imp.height, imp.draw_calls, imp.triangles),
+            (64, 64, 2, 4)
+        );
+        let near_quads = 16 * 16 + 16;
+        assert_eq!(f.stats.materials[0].warps, near_quads);
+        // The far square: its 256 quads under the near one, and the 16
+        // duplicates of its diagonal there, rejected; the rest shaded.
+        assert_eq!(f.stats.quads_rejected_early_z, 16 * 16 + 16);
+        assert_eq!(f.stats.materials[1].warps, 32 * 32 - 16 * 16 + 16);
+        assert_eq!(f.stats.positions, 32 * 32);
+        // Far first: nothing is rejected; without the depth test neither.
+        let (_, g) = run(frame(Some(gl::NEVER + 1), &[far, near]));
+        assert_eq!(g.stats.quads_rejected_early_z, 0);
+        assert_eq!(g.stats.warps, near_quads + 32 * 32 + 32);
+        let (_, h) = run(frame(None, &[near, far]));
+        assert_eq!(
+            (h.stats.quads_rejected_early_z, h.stats.warps),
+            (0, g.stats.warps)
+        );
+        // GL_GREATER against the cleared depth 1: no fragment passes, every
+        // covered quad is rejected.
+        let (_, k) = run(frame(Some(gl::NEVER + 4), &[near, far]));
+        assert_eq!(k.stats.warps, 0);
+        assert_eq!(k.stats.quads_rejected_early_z, near_quads + 32 * 32 + 32);
+    }
+
+    #[test]
+    fn frames_are_selected_and_bad_ones_say_how_many_there_are() {
+        let one = frame(None, &[[0.0, 0.0, 8.0, 8.0, 0.0]]);
+        let mut two = one.clone();
+        two.extend(frame(
+            None,
+            &[[0.0, 0.0, 8.0, 8.0, 0.0], [8.0, 8.0, 16.0, 16.0, 0.0]],
+        ));
+        for (n, k) in two.iter_mut().enumerate() {
+            k.no = n as u64;
+        }
+        let path = Path::new("t.trace");
+        let last = import(
+            two.clone().into_iter().map(Ok),
+            path,
+            ImportOptions::default(),
+        )
+        .unwrap();
+        assert_eq!((last.frame, last.draw_calls, last.frames_read), (1, 2, 2));
+        let opts = ImportOptions {
+            frame: Some(0),
+            ..Default::default()
+        };
+        let first = import(two.clone().into_iter().map(Ok), path, opts).unwrap();
+        assert_eq!((first.frame, first.draw_calls, first.calls.0), (0, 1, 0));
+        let opts = ImportOptions {
+            frame: Some(2),
+            ..Default::default()
+        };
+        let msg = import(two.clone().into_iter().map(Ok), path, opts)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            msg.contains("t.trace") && msg.contains("2 complete frames (0 to 1)"),
+            "{msg}"
+        );
+        // A draw with no vertex array: an error naming the call.
+        let mut bad = one.clone();
+        bad.retain(|c| &*c.name != "glEnableClientState");
+        let err = import(bad.into_iter().map(Ok), path, ImportOptions::default()).unwrap_err();
+        assert!(
+            err.to_string().contains("glDrawArrays): no vertex array"),
+            "{err}"
+        );
+        // Immediate mode: an error, or with skip_unsupported a count.
+        let mut imm = one;
+        imm.insert(7, call(7, "glBegin", vec![e(gl::TRIANGLES)]));
+        let err = import(
+            imm.clone().into_iter().map(Ok),
+            path,
+            ImportOptions::default(),
+        );
+        assert!(err.unwrap_err().to_string().contains("immediate mode"));
+        let opts = ImportOptions {
+            skip_unsupported: true,
+            ..Default::default()
+        };
+        let ok = import(imm.clone().into_iter().map(Ok), path, opts).unwrap();
+        assert_eq!(ok.unsupported.values().sum::<u64>(), 1);
+        // Imported after it, that frame's draw is counted as earlier.
+        let mut later = imm.clone();
+        later.extend(frame(None, &[[0.0, 0.0, 8.0, 8.0, 0.0]]));
+        let next = import(later.into_iter().map(Ok), path, ImportOptions::default()).unwrap();
+        assert!(next.unsupported.is_empty());
+        let want = [("immediate mode (glBegin/glEnd)".to_string(), 1)];
+        assert_eq!(next.unsupported_in_earlier_frames, want.into());
+        assert_eq!(ok.unmodelled.get("glXMakeCurrent"), Some(&1));
+    }
+}

@@ -1,0 +1,107 @@
+//! `wasp import-gl`: one frame of an apitrace capture of a fixed-function
+//! OpenGL 1.x program, drawn by wasp's own raster front end into a trace
+//! (and a picture), with the import's summary (docs/import-gl.md).
+
+use crate::output::{self, Output};
+use crate::CliError;
+use clap::Args;
+use std::path::PathBuf;
+use wasp_frontend::gl::{self, ImportOptions, Summary};
+use wasp_frontend::raster::{rasterize, RasterOptions};
+use wasp_frontend::render;
+
+/// Tile edge of the imported frame (the paper's 64).
+const TILE: u32 = 64;
+
+/// Arguments of `wasp import-gl`.
+#[derive(Args, Debug)]
+pub struct ImportGlArgs {
+    /// The apitrace capture (`apitrace trace --api gl -o FILE PROGRAM`).
+    #[arg(value_name = "CAPTURE")]
+    pub capture: PathBuf,
+    /// The frame to import, from 0 (each ends at a buffer swap); default:
+    /// the last complete frame.
+    #[arg(long, value_name = "N")]
+    pub frame: Option<u64>,
+    /// Save the frame's trace to FILE (`-` for standard output), for
+    /// `wasp run --trace FILE`.
+    #[arg(long, value_name = "FILE")]
+    pub trace_out: PathBuf,
+    /// Write wasp's picture of the frame as PNG to FILE (`-` for standard
+    /// output).
+    #[arg(long, value_name = "FILE")]
+    pub png: Option<PathBuf>,
+    /// Write the summary as JSON to FILE (`-` for standard output).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Count the draws that need what is not modelled (a shader program,
+    /// immediate mode, display lists, texture coordinate generation, a
+    /// primitive other than triangles and quads) instead of stopping at
+    /// the first.
+    #[arg(long)]
+    pub skip_unsupported: bool,
+    /// No progress output on stderr; results, warnings and errors still
+    /// print.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Run `wasp import-gl`.
+pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
+    output::check(&[
+        Output::new("--trace-out", Some(&args.trace_out)),
+        Output::new("--png", args.png.as_deref()),
+        Output::new("--json", args.json.as_deref()),
+    ])?;
+    let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
+    let clock = std::time::Instant::now();
+    let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;
+    capture.require_gl().map_err(|e| failed(&e))?;
+    let opts = ImportOptions {
+        frame: args.frame,
+        skip_unsupported: args.skip_unsupported,
+    };
+    let imported = gl::import(capture, &args.capture, opts).map_err(|e| failed(&e))?;
+    let read = clock.elapsed().as_secs_f64();
+    let raster = RasterOptions {
+        tile: TILE,
+        colour: args.png.is_some(),
+        ..RasterOptions::default()
+    };
+    let frame = rasterize(&imported.scene, imported.width, imported.height, &raster)
+        .map_err(|e| failed(&e))?;
+    if !args.quiet {
+        eprintln!(
+            "wasp: imported frame {} of {} ({} draw calls) in {read:.2} s, rasterized in {:.2} s",
+            imported.frame,
+            args.capture.display(),
+            imported.draw_calls,
+            frame.timings.total()
+        );
+    }
+    let summary = Summary::new(&args.capture.display().to_string(), &imported, &frame);
+    crate::scene_cmd::write_trace(&args.trace_out, &frame.trace, args.quiet)?;
+    if let Some(p) = &args.png {
+        let bytes =
+            render::encode_png(&frame.image, frame.width, frame.height).map_err(|e| failed(&e))?;
+        output::write_bytes(p, &bytes)?;
+        if !args.quiet {
+            eprintln!("wasp: wrote {}", output::name(p));
+        }
+    }
+    if let Some(p) = &args.json {
+        let text = serde_json::to_string_pretty(&summary).map_err(|e| failed(&e))? + "\n";
+        output::emit(p, &text)?;
+    }
+    // The summary goes to standard output unless an output took it.
+    let stdout_taken = [Some(&args.trace_out), args.png.as_ref(), args.json.as_ref()]
+        .into_iter()
+        .flatten()
+        .any(|p| output::is_stdout(p));
+    if stdout_taken {
+        eprint!("{}", summary.text());
+    } else {
+        print!("{}", summary.text());
+    }
+    Ok(())
+}
