@@ -2,6 +2,7 @@
 
 mod bench_cmd;
 mod charts;
+mod check_mesa;
 mod compare_cmd;
 mod cost_cmd;
 mod example_cmd;
