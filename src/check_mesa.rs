@@ -5,7 +5,7 @@
 //! frame's picture, wasp rasterizes the frame with its per-pixel maps, and
 //! the two views are compared: the figures printed and written to
 //! DIR/agreement.json, the disagreement maps to DIR/*.png
-//! (docs/import-gl.md, "Checked against Mesa").
+//! (docs/scenes.md, "Checked against Mesa").
 
 use crate::CliError;
 use serde::Serialize;
@@ -105,22 +105,30 @@ pub fn run(
         let bytes = render::encode_png(&rgba, w, h).map_err(|e| failed(&e))?;
         write(&dir.join(name), &bytes)?;
     }
+    print_results(dir, &report);
+    Ok(agreement)
+}
+
+/// The figures on standard output, with the notes of the rewriting.
+fn print_results(dir: &Path, r: &Report) {
     println!("checked against Mesa ({}):", dir.display());
-    print!("{}", agreement.text());
+    print!("{}", r.agreement.text());
     println!(
-        "wasp fragments: {shaded} shaded (passed the depth test), {} of them discarded by the \
+        "wasp fragments: {} shaded (passed the depth test), {} of them discarded by the \
          alpha test",
-        shaded - written
+        r.wasp_fragments_shaded, r.wasp_fragments_alpha_discarded
     );
-    if odd > 0 {
-        println!("warning: {odd} pixels of Mesa's count picture have unequal channels");
+    if r.mesa_count_channel_mismatch > 0 {
+        println!(
+            "warning: {} pixels of Mesa's count picture have unequal channels",
+            r.mesa_count_channel_mismatch
+        );
     }
-    for (r, what) in [(&replays[0].0, "id"), (&replays[1].0, "count")] {
-        for (note, n) in &r.notes {
+    for (replay, what) in [(r.id_replay, "id"), (r.count_replay, "count")] {
+        for (note, n) in &replay.notes {
             println!("note ({what} replay): {note}: {n}");
         }
     }
-    Ok(agreement)
 }
 
 /// Per material, the GL name of its first sampled texture (`None`:

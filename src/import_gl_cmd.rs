@@ -43,7 +43,7 @@ pub struct ImportGlArgs {
     /// Check the frame against Mesa: glretrace replays of rewritten
     /// captures give, per pixel, the fragments written and the texture of
     /// the last one; the agreement with wasp's is printed and written to
-    /// DIR (agreement.json and disagreement maps, docs/import-gl.md).
+    /// DIR (agreement.json and disagreement maps, docs/scenes.md).
     #[arg(long, value_name = "DIR")]
     pub check_mesa: Option<PathBuf>,
     /// No progress output on stderr; results, warnings and errors still

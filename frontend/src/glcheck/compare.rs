@@ -134,8 +134,8 @@ fn percent(n: u64, of: u64) -> f64 {
     if of == 0 {
         100.0
     } else {
-        // Two decimals, so the figures print as they are stored.
-        (n as f64 * 10_000.0 / of as f64).round() / 100.0
+        // Four decimals, so the figures print as they are stored.
+        (n as f64 * 1_000_000.0 / of as f64).round() / 10_000.0
     }
 }
 
@@ -216,7 +216,7 @@ impl Agreement {
     pub fn text(&self) -> String {
         let (c, d, t) = (&self.coverage, &self.depth_complexity, &self.texture);
         let mut s = format!(
-            "coverage agreement: {:.2}% of {}x{} pixels (both {}, Mesa only {}, wasp only {}, \
+            "coverage agreement: {:.4}% of {}x{} pixels (both {}, Mesa only {}, wasp only {}, \
              neither {})\n",
             c.agreement_percent,
             self.width,
@@ -227,7 +227,7 @@ impl Agreement {
             c.neither
         );
         s += &format!(
-            "depth complexity: {:.2}% exact over {} covered pixels, mean |wasp - Mesa| {:.4}, \
+            "depth complexity: {:.4}% exact over {} covered pixels, mean |wasp - Mesa| {:.4}, \
              mean Mesa {:.4}, wasp {:.4}\n",
             d.exact_percent, d.pixels, d.mean_abs_difference, d.mesa_mean, d.wasp_mean
         );
@@ -238,7 +238,7 @@ impl Agreement {
             .collect();
         s += &format!("  wasp - Mesa: {}\n", hist.join(", "));
         s += &format!(
-            "texture agreement: {:.2}% of {} pixels both cover\n",
+            "texture agreement: {:.4}% of {} pixels both cover\n",
             t.agreement_percent, t.pixels
         );
         for (m, w, n) in &t.confusions {
@@ -294,7 +294,7 @@ mod tests {
         let t = &a.texture;
         assert_eq!((t.pixels, t.same, t.agreement_percent), (2, 1, 50.0));
         assert_eq!(t.confusions, [("3".into(), "4".into(), 1)]);
-        assert!(a.text().contains("coverage agreement: 60.00%"));
+        assert!(a.text().contains("coverage agreement: 60.0000%"));
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! The rewriter of a capture into one `glretrace` replays to measure a
-//! frame (docs/import-gl.md, "Checked against Mesa"). Both modes replace
+//! frame (docs/scenes.md, "Checked against Mesa"). Both modes replace
 //! the colour of every fragment and keep everything that decides which
 //! fragments are written (geometry, matrices, viewport, scissor, depth,
 //! culling, polygon offset, the alpha test and the texture alpha it
@@ -25,6 +25,7 @@
 //! and state of earlier frames are there.
 
 use super::texels::{id_texels, Unpack, RGBA8};
+use super::vertex_alpha::VertexAlpha;
 use crate::gl::enums as gl;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -126,6 +127,7 @@ struct Rewriter {
     /// Whether a frame ended (a swap was written) yet.
     swapped: bool,
     clear_pending: bool,
+    vertex_alpha: VertexAlpha,
     out: Rewritten,
 }
 
@@ -156,6 +158,7 @@ pub fn rewrite(
         context: false,
         swapped: false,
         clear_pending: false,
+        vertex_alpha: VertexAlpha::default(),
         out: Rewritten::default(),
     };
     let mut swap = None;
@@ -179,6 +182,13 @@ pub fn rewrite(
             r.clear_frame(&call, &mut calls);
         }
         r.swapped |= wasp_gltrace::is_frame_end(&call.name);
+        r.vertex_alpha.follow(&call);
+        if call.no >= frame.0 && is_draw(&call.name) && r.vertex_alpha.draw_reads_vertex_alpha() {
+            r.note(
+                "alpha-tested draw of the frame whose vertex alpha is below 1 (replayed with 1)"
+                    .into(),
+            );
+        }
         r.call(call, &mut calls);
         for c in &calls {
             let no = w.write_call(c).map_err(io)?;
@@ -355,6 +365,8 @@ impl Rewriter {
                 if call.arg(2).as_f64() == Some(CLAMP as f64) {
                     call.args[2] = Value::Enum(CLAMP_TO_EDGE);
                     call.name = Arc::from("glTexParameteri");
+                    // (The border colour would mix into the id colour.)
+                    self.note("GL_CLAMP wrap (replayed as GL_CLAMP_TO_EDGE)".into());
                 }
             }
             "glPixelStorei" | "glPixelStoref" => self.pixel_store(&mut call),
@@ -573,6 +585,77 @@ fn arg_u32(call: &Call, i: usize) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// tests/gl/quads.trace rewritten for frame 1 (calls 90 to 159), read
+    /// back.
+    fn rewritten(mode: Mode) -> (Rewritten, Vec<Call>) {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let capture = Capture::open(root.join("tests/gl/quads.trace")).unwrap();
+        let dir = std::env::temp_dir().join(format!("wasp-glcheck-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join(format!("{mode:?}.trace"));
+        let r = rewrite(capture, mode, (90, 159), (256, 128), &out).unwrap();
+        let calls = Capture::open(&out).unwrap().map(Result::unwrap).collect();
+        (r, calls)
+    }
+
+    fn named<'a>(calls: &'a [Call], name: &'a str) -> impl Iterator<Item = &'a Call> + 'a {
+        calls.iter().filter(move |c| &*c.name == name)
+    }
+
+    #[test]
+    fn the_id_replay_names_textures_and_keeps_their_alpha() {
+        let (r, calls) = rewritten(Mode::Id);
+        // Frame 0's 7 draws are left out; the capture ends at frame 1's swap.
+        assert_eq!(r.earlier_draws_left_out, 7);
+        assert_eq!((r.uploads, r.notes.len()), (3, 0));
+        assert_eq!(calls.len() as u64, r.calls_written);
+        let last = calls.last().unwrap();
+        assert_eq!((&*last.name, last.no), ("glXSwapBuffers", r.swap_call));
+        let uploads: Vec<&Call> = named(&calls, "glTexImage2D").collect();
+        for (up, name) in uploads.iter().zip([1u32, 1, 2]) {
+            assert_eq!(up.arg(2).as_i64(), Some(RGBA8));
+            let texels = up.arg(8).as_bytes().unwrap();
+            assert!(texels.chunks(4).all(|t| t[..3] == id_colour(name)));
+        }
+        // Texture 2's checkerboard alpha is kept: 8 texels of 0, 8 of 255.
+        let alpha: Vec<u8> = uploads[2].arg(8).as_bytes().unwrap()[3..]
+            .iter()
+            .step_by(4)
+            .copied()
+            .collect();
+        assert_eq!(alpha.iter().filter(|&&a| a == 0).count(), 8);
+        assert_eq!(alpha.iter().filter(|&&a| a == 255).count(), 8);
+        let enables_blend = named(&calls, "glEnable").any(|c| c.arg(0).as_i64() == Some(gl::BLEND));
+        assert!(!enables_blend);
+        assert_eq!(
+            named(&calls, "glEnableClientState")
+                .filter(|c| c.arg(0).as_i64() == Some(gl::COLOR_ARRAY))
+                .count(),
+            0
+        );
+        assert!(named(&calls, "glDisableClientState").count() >= 2);
+    }
+
+    #[test]
+    fn the_count_replay_adds_one_per_fragment() {
+        let (_, calls) = rewritten(Mode::Count);
+        for up in named(&calls, "glTexImage2D") {
+            let texels = up.arg(8).as_bytes().unwrap();
+            assert!(texels.chunks(4).all(|t| t[..3] == [1, 1, 1]));
+        }
+        let funcs: Vec<&Call> = named(&calls, "glBlendFunc").collect();
+        assert!(funcs.len() >= 2);
+        for f in funcs {
+            assert_eq!(f.args, [Value::Enum(gl::ONE), Value::Enum(gl::ONE)]);
+        }
+        let blend: Vec<bool> = calls
+            .iter()
+            .filter(|c| c.arg(0).as_i64() == Some(gl::BLEND))
+            .map(|c| &*c.name == "glEnable")
+            .collect();
+        assert!(!blend.is_empty() && blend.iter().all(|&on| on));
+    }
 
     #[test]
     fn id_colours_name_textures_and_keep_the_clear_and_untextured_apart() {
