@@ -157,8 +157,8 @@ fn on_path(tool: &str) -> bool {
 }
 
 /// An error naming the packages unless glretrace, xvfb-run and xauth are
-/// installed.
-fn require_tools() -> Result<(), CliError> {
+/// installed (checked before anything is imported or written).
+pub fn require_tools() -> Result<(), CliError> {
     let missing: Vec<&str> = ["glretrace", "xvfb-run", "xauth"]
         .into_iter()
         .filter(|t| !on_path(t))

@@ -59,6 +59,9 @@ pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
         Output::new("--png", args.png.as_deref()),
         Output::new("--json", args.json.as_deref()),
     ])?;
+    if args.check_mesa.is_some() {
+        crate::check_mesa::require_tools()?;
+    }
     let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
     let clock = std::time::Instant::now();
     let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;

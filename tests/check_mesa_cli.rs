@@ -142,3 +142,28 @@ fn quads_frames_agree_with_mesa_and_a_wrong_frame_does_not() {
         wrong.text()
     );
 }
+
+#[test]
+fn without_the_tools_it_names_the_packages_and_writes_nothing() {
+    let dir = common::scratch("checkmesa", "notools");
+    let empty = dir.join("empty-path");
+    std::fs::create_dir_all(&empty).unwrap();
+    let cap = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gl/quads.trace");
+    let trace = dir.join("out.trace");
+    let out = Command::new(env!("CARGO_BIN_EXE_wasp"))
+        .env("PATH", &empty)
+        .args(["import-gl", cap.to_str().unwrap(), "--trace-out"])
+        .arg(&trace)
+        .arg("--check-mesa")
+        .arg(dir.join("mesa"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("glretrace, xvfb-run, xauth")
+            && err.contains("sudo apt-get install apitrace xvfb xauth"),
+        "{err}"
+    );
+    assert!(!trace.exists() && !dir.join("mesa").exists());
+}

@@ -1,8 +1,8 @@
 //! Checking an imported GL frame against Mesa (`wasp import-gl
 //! --check-mesa`, docs/scenes.md): the capture rewritten into replays
-//! whose pictures measure the frame ([`rewrite`]: a texture id per pixel,
+//! whose pictures measure the frame ([`mod@rewrite`]: a texture id per pixel,
 //! a count of fragments per pixel), Mesa's and wasp's views of every pixel
-//! compared ([`compare`]: coverage, depth complexity, texture) and drawn
+//! compared ([`mod@compare`]: coverage, depth complexity, texture) and drawn
 //! as disagreement maps ([`images`]).
 
 pub mod compare;
