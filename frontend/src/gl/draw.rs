@@ -175,30 +175,7 @@ pub fn record(ctx: &Context, call: &Call) -> Result<Result<DrawRec, String>, Cal
             ))
         }
     };
-    // The vertices used, renumbered in order of first use.
-    let (lo, hi) = list
-        .iter()
-        .fold((u32::MAX, 0), |(a, b), &i| (a.min(i), b.max(i)));
-    let mut remap = vec![
-        u32::MAX;
-        if list.is_empty() {
-            0
-        } else {
-            (hi - lo) as usize + 1
-        }
-    ];
-    let mut used: Vec<u32> = Vec::new();
-    let mut indices = Vec::with_capacity(tris.len() * 3);
-    for t in &tris {
-        for &i in t {
-            let r = &mut remap[(i - lo) as usize];
-            if *r == u32::MAX {
-                *r = used.len() as u32;
-                used.push(i);
-            }
-            indices.push(*r);
-        }
-    }
+    let (used, indices) = renumber(&tris);
     let mvp = ctx.matrices.mvp();
     let bytes = ctx
         .arrays
@@ -236,6 +213,24 @@ pub fn record(ctx: &Context, call: &Call) -> Result<Result<DrawRec, String>, Cal
         fixed: ctx.state.clone(),
         sampled,
     }))
+}
+
+/// The vertices triangles `tris` use, in order of first use, and the
+/// triangles' indices into them.
+fn renumber(tris: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
+    // A map, not a table over the index range: an index far past the
+    // others (a corrupt one, found out at the vertex fetch) costs nothing.
+    let mut remap: std::collections::HashMap<u32, u32> = Default::default();
+    let mut used: Vec<u32> = Vec::new();
+    let mut indices = Vec::with_capacity(tris.len() * 3);
+    for &i in tris.iter().flatten() {
+        let r = *remap.entry(i).or_insert_with(|| {
+            used.push(i);
+            used.len() as u32 - 1
+        });
+        indices.push(r);
+    }
+    (used, indices)
 }
 
 /// Unit `u`'s coordinates of the vertices `used` through its texture

@@ -81,6 +81,8 @@ pub struct Imported {
     /// asked for).
     pub frames_read: u64,
     pub draw_calls: u64,
+    /// The draws' call numbers, in issue order (material `i` is draw `i`).
+    pub draw_call_numbers: Vec<u64>,
     pub triangles: u64,
     /// Draws skipped (with `skip_unsupported`), by what they need.
     pub unsupported: BTreeMap<String, u64>,
@@ -127,6 +129,69 @@ pub fn import(
     file: &Path,
     opts: ImportOptions,
 ) -> Result<Imported, ImportError> {
+    let (ctx, done, frames_read) = read(calls, file, opts)?;
+    let Some(Finished {
+        index,
+        build,
+        unmodelled,
+        earlier,
+        last_call,
+    }) = done.filter(|d| opts.frame.is_none_or(|n| n == d.index))
+    else {
+        return Err(ImportError::Frame(
+            file.into(),
+            match opts.frame {
+                Some(n) => format!(
+                    "frame {n} is past the end: the capture has {frames_read} complete frames \
+                     (0 to {})",
+                    frames_read.saturating_sub(1)
+                ),
+                None => "the capture has no complete frame (no buffer swap)".into(),
+            },
+        ));
+    };
+    if let Some(e) = build.error {
+        return Err(ImportError::Call(file.into(), e));
+    }
+    if let (Some(e), false) = (&build.first_unsupported, opts.skip_unsupported) {
+        let mut e = e.clone();
+        e.message += " (--skip-unsupported counts such draws and goes on)";
+        return Err(ImportError::Call(file.into(), e));
+    }
+    let (width, height) = frame_size(&build.draws, &ctx).ok_or_else(|| {
+        ImportError::Frame(
+            file.into(),
+            format!("frame {index} has no viewport (glViewport)"),
+        )
+    })?;
+    let (scene, textures) = scene_of(&build.draws, width, height, file, index)
+        .map_err(|e| ImportError::Call(file.into(), e))?;
+    Ok(Imported {
+        scene,
+        width,
+        height,
+        frame: index,
+        calls: (build.first_call, last_call),
+        frames_read,
+        draw_calls: build.draws.len() as u64,
+        draw_call_numbers: build.draws.iter().map(|d| d.call).collect(),
+        triangles: build.draws.iter().map(|d| d.triangles).sum(),
+        unsupported: build.unsupported,
+        unsupported_in_earlier_frames: earlier,
+        unmodelled,
+        textures,
+    })
+}
+
+/// Read the calls from the first to the swap of the frame asked for (to
+/// the end without one), tracking the state and recording the draws of
+/// the frames that may be imported: the context, the last frame finished
+/// and the complete frames read.
+fn read(
+    calls: impl IntoIterator<Item = Result<Call, CaptureError>>,
+    file: &Path,
+    opts: ImportOptions,
+) -> Result<(Context, Option<Finished>, u64), ImportError> {
     let mut ctx = Context::default();
     let mut frame = 0u64;
     let mut cur = FrameBuild::default();
@@ -177,57 +242,7 @@ pub fn import(
             }
         }
     }
-    let frames_read = frame;
-    let Some(Finished {
-        index,
-        build,
-        unmodelled,
-        earlier,
-        last_call,
-    }) = done.filter(|d| opts.frame.is_none_or(|n| n == d.index))
-    else {
-        return Err(ImportError::Frame(
-            file.into(),
-            match opts.frame {
-                Some(n) => format!(
-                    "frame {n} is past the end: the capture has {frames_read} complete frames \
-                     (0 to {})",
-                    frames_read.saturating_sub(1)
-                ),
-                None => "the capture has no complete frame (no buffer swap)".into(),
-            },
-        ));
-    };
-    if let Some(e) = build.error {
-        return Err(ImportError::Call(file.into(), e));
-    }
-    if let (Some(e), false) = (&build.first_unsupported, opts.skip_unsupported) {
-        let mut e = e.clone();
-        e.message += " (--skip-unsupported counts such draws and goes on)";
-        return Err(ImportError::Call(file.into(), e));
-    }
-    let (width, height) = frame_size(&build.draws, &ctx).ok_or_else(|| {
-        ImportError::Frame(
-            file.into(),
-            format!("frame {index} has no viewport (glViewport)"),
-        )
-    })?;
-    let (scene, textures) = scene_of(&build.draws, width, height, file, index)
-        .map_err(|e| ImportError::Call(file.into(), e))?;
-    Ok(Imported {
-        scene,
-        width,
-        height,
-        frame: index,
-        calls: (build.first_call, last_call),
-        frames_read,
-        draw_calls: build.draws.len() as u64,
-        triangles: build.draws.iter().map(|d| d.triangles).sum(),
-        unsupported: build.unsupported,
-        unsupported_in_earlier_frames: earlier,
-        unmodelled,
-        textures,
-    })
+    Ok((ctx, done, frame))
 }
 
 /// The frame's size: the extent of its draws' viewports (the current one
@@ -538,5 +553,54 @@ mod tests {
         let want = [("immediate mode (glBegin/glEnd)".to_string(), 1)];
         assert_eq!(next.unsupported_in_earlier_frames, want.into());
         assert_eq!(ok.unmodelled.get("glXMakeCurrent"), Some(&1));
+    }
+
+    #[test]
+    fn a_draw_in_a_sub_viewport_lands_in_its_rectangle_and_no_further() {
+        // A 64x64 window: a 2x2 square at its bottom-left corner, then a
+        // draw whose viewport is the top-right quarter (window x 32..64,
+        // y 32..64: frame rows 0..32) with a square overflowing the view
+        // volume on every side: clipped to the viewport, exactly 32 x 32
+        // pixels, all in the top-right 32x32 tile.
+        let mut calls = frame(None, &[[0.0, 0.0, 2.0, 2.0, 0.0]]);
+        let i = Value::SInt;
+        let swap = calls.pop().unwrap();
+        calls.push(call(0, "glViewport", vec![i(32), i(32), i(32), i(32)]));
+        let big = floats(&[
+            -10.0, -10.0, 0.0, 80.0, -10.0, 0.0, 80.0, 80.0, 0.0, -10.0, 80.0, 0.0,
+        ]);
+        calls.push(call(
+            0,
+            "glVertexPointer",
+            vec![i(3), e(gl::FLOAT), i(0), big],
+        ));
+        calls.push(call(0, "glDrawArrays", vec![e(gl::QUADS), i(0), i(4)]));
+        calls.push(swap);
+        let imp = import(
+            calls.into_iter().map(Ok),
+            Path::new("t"),
+            ImportOptions::default(),
+        )
+        .unwrap();
+        assert_eq!((imp.width, imp.height), (64, 64));
+        let opts = RasterOptions {
+            tile: 32,
+            threads: 1,
+            ..Default::default()
+        };
+        let f = rasterize(&imp.scene, 64, 64, &opts).unwrap();
+        assert_eq!(f.stats.materials[1].pixels, 32 * 32);
+        let at = |x: u32, y: u32| f.trace.tiles().iter().find(|t| (t.tx(), t.ty()) == (x, y));
+        assert_eq!(
+            at(1, 0).unwrap().quad_count() as u64,
+            f.stats.materials[1].warps
+        );
+        let corner = at(0, 1).unwrap();
+        assert_eq!(
+            corner.quad_count(),
+            2,
+            "one quad: a fragment of each triangle"
+        );
+        assert!(at(0, 0).is_none() && at(1, 1).is_none());
     }
 }

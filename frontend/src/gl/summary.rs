@@ -100,12 +100,11 @@ impl Summary {
             unsupported: imp.unsupported.clone(),
             unsupported_in_earlier_frames: imp.unsupported_in_earlier_frames.clone(),
             draws: imp
-                .scene
-                .materials
+                .draw_call_numbers
                 .iter()
                 .zip(&frame.stats.materials)
-                .map(|(m, st)| DrawSummary {
-                    call: m.name.trim_start_matches("call ").parse().unwrap_or(0),
+                .map(|(&call, st)| DrawSummary {
+                    call,
                     triangles: st.triangles,
                     quads_shaded: st.warps,
                     quads_rejected_early_z: st.quads_rejected_early_z,
