@@ -196,7 +196,7 @@ pub fn compare(mesa: &View, wasp: &View) -> Agreement {
         if d.pixels == 0 {
             0.0
         } else {
-            (s as f64 / d.pixels as f64 * 1e4).round() / 1e4
+            s as f64 / d.pixels as f64
         }
     };
     (d.mean_abs_difference, d.mesa_mean, d.wasp_mean) = (mean(abs), mean(sum_m), mean(sum_w));
@@ -227,7 +227,7 @@ impl Agreement {
             c.neither
         );
         s += &format!(
-            "depth complexity: {:.4}% exact over {} covered pixels, mean |wasp - Mesa| {:.4}, \
+            "depth complexity: {:.4}% exact over {} covered pixels, mean |wasp - Mesa| {:.6}, \
              mean Mesa {:.4}, wasp {:.4}\n",
             d.exact_percent, d.pixels, d.mean_abs_difference, d.mesa_mean, d.wasp_mean
         );
