@@ -60,6 +60,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         png: args.png.clone(),
         json: None,
         skip_unsupported: false,
+        check_mesa: None,
         quiet: args.quiet,
     })
 }

@@ -40,6 +40,12 @@ pub struct ImportGlArgs {
     /// the first.
     #[arg(long)]
     pub skip_unsupported: bool,
+    /// Check the frame against Mesa: glretrace replays of rewritten
+    /// captures give, per pixel, the fragments written and the texture of
+    /// the last one; the agreement with wasp's is printed and written to
+    /// DIR (agreement.json and disagreement maps, docs/scenes.md).
+    #[arg(long, value_name = "DIR")]
+    pub check_mesa: Option<PathBuf>,
     /// No progress output on stderr; results, warnings and errors still
     /// print.
     #[arg(long, short)]
@@ -56,6 +62,9 @@ pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
         ],
         &[Input::file("CAPTURE", Some(&args.capture))],
     )?;
+    if args.check_mesa.is_some() {
+        crate::check_mesa::require_tools()?;
+    }
     let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
     let clock = std::time::Instant::now();
     let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;
@@ -105,6 +114,9 @@ pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
         eprint!("{}", summary.text());
     } else {
         print!("{}", summary.text());
+    }
+    if let Some(dir) = &args.check_mesa {
+        crate::check_mesa::run(&args.capture, &imported, dir, args.quiet)?;
     }
     Ok(())
 }

@@ -3,6 +3,7 @@
 mod bench_cmd;
 mod capture;
 mod charts;
+mod check_mesa;
 mod compare_cmd;
 mod compare_variants;
 mod cost_cmd;

@@ -26,6 +26,7 @@ pub mod draw_state;
 pub mod fetch;
 pub mod frozen_bubble;
 pub mod gl;
+pub mod glcheck;
 mod image_decode;
 pub mod load;
 pub mod openarena;

@@ -17,6 +17,9 @@
 //! # Ok::<(), wasp_gltrace::CaptureError>(())
 //! ```
 //!
+//! [`CaptureWriter`] writes calls back into a capture that `glretrace`
+//! replays (the inverse of the reader, for rewritten captures).
+//!
 //! It stands at the bottom of the workspace with `wasp-trace`: it depends
 //! on no crate of the workspace.
 
@@ -30,6 +33,7 @@ mod events;
 mod frames;
 mod stream;
 mod value;
+mod writer;
 
 pub use api::Api;
 pub use call::{is_frame_end, Call};
@@ -38,3 +42,4 @@ pub use container::Compression;
 pub use error::CaptureError;
 pub use frames::{count_frames, frames, Frame, Frames};
 pub use value::Value;
+pub use writer::{CaptureWriter, WRITE_VERSION};

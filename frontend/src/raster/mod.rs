@@ -101,6 +101,7 @@ mod coverage;
 #[cfg(test)]
 mod fixtures;
 mod frame;
+mod maps;
 mod order;
 mod pipeline;
 mod records;
@@ -110,6 +111,8 @@ mod validate;
 
 use coverage::*;
 pub use frame::*;
+use maps::TileMaps;
+pub use maps::{rasterize_with_maps, PixelMaps};
 pub use order::DrawOrder;
 use order::*;
 use pipeline::*;

@@ -14,6 +14,18 @@ pub(super) fn rasterize_with(
     opts: &RasterOptions,
     hiz: bool,
 ) -> Result<Frame, SceneError> {
+    rasterize_frame(scene, width, height, opts, hiz, false).map(|(f, _)| f)
+}
+
+/// [`rasterize_with`], and with `maps` the frame's [`PixelMaps`].
+pub(super) fn rasterize_frame(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    opts: &RasterOptions,
+    hiz: bool,
+    maps: bool,
+) -> Result<(Frame, Option<PixelMaps>), SceneError> {
     let fail = |m: String| SceneError::in_file(&scene.name, m);
     check_frame(scene, width, height, opts)?;
     let mut stats = initial_stats(scene, opts);
@@ -47,6 +59,7 @@ pub(super) fn rasterize_with(
         height,
         tile: opts.tile,
         colour: opts.colour,
+        maps: maps.then(|| PixelMaps::new(width, height)),
     };
     let ctx = TileCtx {
         setups: &setups,
@@ -58,12 +71,14 @@ pub(super) fn rasterize_with(
         colour: opts.colour,
         prepass: opts.depth_prepass,
         hiz,
+        maps,
     };
     raster_tiles(&ctx, &lists, threads, &mut join)?;
     let Join {
         stats,
         mut builder,
         image,
+        maps,
         ..
     } = join;
     builder
@@ -73,14 +88,15 @@ pub(super) fn rasterize_with(
         .finish()
         .map_err(|e| fail(format!("building the trace: {e}")))?;
     timings.tiles = clock.elapsed().as_secs_f64() - timings.textures - timings.geometry;
-    Ok(Frame {
+    let frame = Frame {
         trace,
         width,
         height,
         image,
         stats,
         timings,
-    })
+    };
+    Ok((frame, maps))
 }
 
 /// Check the frame size, the tile size and the scene.
@@ -253,6 +269,8 @@ struct Join<'a> {
     tile: u32,
     /// Whether the picture is drawn.
     colour: bool,
+    /// The per-pixel maps, when asked for.
+    maps: Option<PixelMaps>,
 }
 
 impl Join<'_> {
@@ -283,6 +301,9 @@ impl Join<'_> {
                     self.image[at..at + 4].copy_from_slice(&c);
                 }
             }
+        }
+        if let (Some(m), Some(tm)) = (&mut self.maps, &b.maps) {
+            m.join(tm, (ox, oy, tw, th, t));
         }
         let fail = |e: crate::trace::Problem| {
             SceneError::in_file(self.scene_name, format!("building the trace: {e}"))

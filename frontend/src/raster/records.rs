@@ -163,6 +163,7 @@ mod tests {
             colour: false,
             prepass: false,
             hiz: true,
+            maps: false,
         };
         let header = TraceHeader::new("w", 128, 64, 64);
         let mut b = TileBuf::new(64, 0);

@@ -42,6 +42,8 @@ pub(super) struct TileCtx<'a> {
     /// Reject quads by the tile's coarse depth before testing them one by
     /// one (the same results; off only to check that in tests).
     pub(super) hiz: bool,
+    /// Record the per-pixel maps ([`PixelMaps`]).
+    pub(super) maps: bool,
 }
 
 /// One tile's working state and results, reused from tile to tile.
@@ -84,6 +86,8 @@ pub(super) struct TileBuf {
     /// The tile's trace records (None: the tile rasterized no quad, so it
     /// has no record).
     pub(super) part: Result<Option<Trace>, crate::trace::Problem>,
+    /// The tile's per-pixel maps (only when the context asks for them).
+    pub(super) maps: Option<TileMaps>,
 }
 
 impl TileBuf {
@@ -108,6 +112,7 @@ impl TileBuf {
             positions: 0,
             seen: vec![false; (tile / 2 * (tile / 2)) as usize],
             part: Ok(None),
+            maps: None,
         }
     }
 
@@ -205,6 +210,11 @@ impl TileArea {
 pub(super) fn raster_tile(ctx: &TileCtx, tx: u32, ty: u32, list: &[u32], b: &mut TileBuf) {
     let area = TileArea::new(ctx, tx, ty);
     b.reset();
+    if ctx.maps {
+        b.maps
+            .get_or_insert_with(|| TileMaps::new(ctx.tile))
+            .clear();
+    }
     if ctx.prepass {
         depth_prepass(ctx, &area, list, b);
         b.coarse.invalidate();
@@ -365,6 +375,12 @@ fn raster_quad(
     }
     let npix = u64::from(live.count_ones());
     b.pixels += npix;
+    if let Some(m) = &mut b.maps {
+        for i in (0..4u32).filter(|i| live & (1 << i) != 0) {
+            let at = a.at(qx + (i & 1), qy + (i >> 1));
+            m.shaded[at] = m.shaded[at].saturating_add(1);
+        }
+    }
     b.per_material[mc][0] += 1;
     b.per_material[mc][2] += npix;
     let (uv, uv2) = quad_uvs(s, mat, qx, qy);
@@ -471,6 +487,12 @@ fn write_pixels(ctx: &TileCtx, a: &TileArea, mat: &MatInfo, f: &Fragment, b: &mu
             let alpha = f.texels.map_or(1.0, |q| ctx.textures.quad_alpha(q, k));
             if !cmp.passes(alpha, reference) {
                 continue;
+            }
+        }
+        if let Some(m) = &mut b.maps {
+            m.written[at] = m.written[at].saturating_add(1);
+            if st.colour_write {
+                m.last[at] = b.frags[f.index as usize].material + 1;
             }
         }
         if ctx.colour && st.colour_write {
