@@ -56,6 +56,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     import_gl_cmd::run(&ImportGlArgs {
         capture,
         frame: None,
+        frames: None,
         trace_out,
         png: args.png.clone(),
         json: None,

@@ -7,8 +7,9 @@ use crate::CliError;
 use clap::Args;
 use std::path::PathBuf;
 use wasp_frontend::gl::{self, ImportOptions, Summary};
-use wasp_frontend::raster::{rasterize, RasterOptions};
+use wasp_frontend::raster::{rasterize, Frame, RasterOptions};
 use wasp_frontend::render;
+use wasp_sim::trace::Trace;
 
 /// Tile edge of the imported frame (the paper's 64).
 const TILE: u32 = 64;
@@ -21,8 +22,14 @@ pub struct ImportGlArgs {
     pub capture: PathBuf,
     /// The frame to import, from 0 (each ends at a buffer swap); default:
     /// the last complete frame.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", conflicts_with = "frames")]
     pub frame: Option<u64>,
+    /// Import frames A to B (both included, from 0) into one trace of
+    /// several frames, run in order by `wasp run` with caches and DRAM
+    /// carrying over (`--warm K` there measures the last after K earlier).
+    /// The summary, picture and Mesa check are the last frame's.
+    #[arg(long, value_name = "A..B", value_parser = parse_frames)]
+    pub frames: Option<FrameRange>,
     /// Save the frame's trace to FILE (`-` for standard output), for
     /// `wasp run --trace FILE`.
     #[arg(long, value_name = "FILE")]
@@ -52,6 +59,53 @@ pub struct ImportGlArgs {
     pub quiet: bool,
 }
 
+/// A range of frames, `A..B` (both included).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameRange {
+    /// The first frame.
+    pub first: u64,
+    /// The last frame (at least `first`).
+    pub last: u64,
+}
+
+/// Parse `--frames A..B`.
+fn parse_frames(s: &str) -> Result<FrameRange, String> {
+    let bad = || format!("`{s}`: expected A..B, frames A to B from 0 with A <= B (e.g. 10..14)");
+    let (a, b) = s.split_once("..").ok_or_else(bad)?;
+    let (first, last) = (
+        a.trim().parse::<u64>().map_err(|_| bad())?,
+        b.trim().parse::<u64>().map_err(|_| bad())?,
+    );
+    if first > last {
+        return Err(bad());
+    }
+    Ok(FrameRange { first, last })
+}
+
+/// Import frame `frame` (`None`: the last complete one) of the capture
+/// and rasterize it (with its picture when `colour`).
+fn import_frame(
+    args: &ImportGlArgs,
+    frame: Option<u64>,
+    colour: bool,
+) -> Result<(gl::Imported, Frame), CliError> {
+    let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
+    let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;
+    let opts = ImportOptions {
+        frame,
+        skip_unsupported: args.skip_unsupported,
+    };
+    let imported = gl::import(capture, &args.capture, opts).map_err(|e| failed(&e))?;
+    let raster = RasterOptions {
+        tile: TILE,
+        colour,
+        ..RasterOptions::default()
+    };
+    let frame = rasterize(&imported.scene, imported.width, imported.height, &raster)
+        .map_err(|e| failed(&e))?;
+    Ok((imported, frame))
+}
+
 /// Run `wasp import-gl`.
 pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
     output::check(
@@ -69,19 +123,30 @@ pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
     let clock = std::time::Instant::now();
     let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;
     capture.require_gl().map_err(|e| failed(&e))?;
-    let opts = ImportOptions {
-        frame: args.frame,
-        skip_unsupported: args.skip_unsupported,
+    let (earlier, last) = match args.frames {
+        Some(r) => (r.first..r.last, Some(r.last)),
+        None => (0..0, args.frame),
     };
-    let imported = gl::import(capture, &args.capture, opts).map_err(|e| failed(&e))?;
-    let read = clock.elapsed().as_secs_f64();
-    let raster = RasterOptions {
-        tile: TILE,
-        colour: args.png.is_some(),
-        ..RasterOptions::default()
-    };
-    let frame = rasterize(&imported.scene, imported.width, imported.height, &raster)
-        .map_err(|e| failed(&e))?;
+    drop(capture);
+    // The last frame first: a range past the capture's end fails at once.
+    let (imported, frame) = import_frame(args, last, args.png.is_some())?;
+    let read = clock.elapsed().as_secs_f64() - frame.timings.total();
+    // Earlier frames of a range: each imported on its own (the state is
+    // tracked from the capture's start every time) and rasterized without
+    // a picture.
+    let mut traces = Vec::new();
+    for f in earlier {
+        let (imported, frame) = import_frame(args, Some(f), false)?;
+        if !args.quiet {
+            eprintln!(
+                "wasp: imported frame {} ({} draw calls, {} quads shaded)",
+                imported.frame,
+                imported.draw_calls,
+                frame.trace.quad_count()
+            );
+        }
+        traces.push(frame.trace);
+    }
     if !args.quiet {
         eprintln!(
             "wasp: imported frame {} of {} ({} draw calls) in {read:.2} s, rasterized in {:.2} s",
@@ -92,7 +157,15 @@ pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
         );
     }
     let summary = Summary::new(&args.capture.display().to_string(), &imported, &frame);
-    crate::scene_cmd::write_trace(&args.trace_out, &frame.trace, args.quiet)?;
+    if traces.is_empty() {
+        crate::scene_cmd::write_trace(&args.trace_out, &frame.trace, args.quiet)?;
+    } else {
+        let mut frames = traces.into_iter();
+        let first = frames.next().expect("a range has an earlier frame");
+        let rest = frames.chain(std::iter::once(frame.trace.clone()));
+        let joined = Trace::concat(first, rest).map_err(|e| failed(&e))?;
+        crate::scene_cmd::write_trace(&args.trace_out, &joined, args.quiet)?;
+    }
     if let Some(p) = &args.png {
         let bytes =
             render::encode_png(&frame.image, frame.width, frame.height).map_err(|e| failed(&e))?;

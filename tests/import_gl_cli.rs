@@ -142,6 +142,53 @@ fn frames_are_chosen_by_index_and_the_first_differs_from_the_last() {
 }
 
 #[test]
+fn a_range_of_frames_is_one_trace_whose_frames_are_the_single_imports() {
+    // Each frame alone, then frames 0..2 in one trace.
+    let single: Vec<String> = (0..3)
+        .map(|f| {
+            let (_, _, t) = import(&format!("single{f}"), &["--frame", &f.to_string()]);
+            std::fs::read_to_string(t).unwrap()
+        })
+        .collect();
+    let (out, j, t) = import("range", &["--frames", "0..2"]);
+    assert_eq!(u(&j["frame"]), 2, "the summary is the last frame's");
+    assert!(
+        out.lines()
+            .any(|l| l == format!("draw calls: {DRAWS_PER_FRAME}")),
+        "{out}"
+    );
+    let joined = std::fs::read_to_string(&t).unwrap();
+    assert_eq!(joined.matches("\nnext-frame").count(), 2, "three frames");
+    // The tile lines of each frame are those of its single import.
+    let tiles = |text: &str| -> Vec<String> {
+        text.lines()
+            .skip_while(|l| !l.starts_with("tile"))
+            .filter(|l| *l != "next-frame")
+            .map(str::to_string)
+            .collect()
+    };
+    let want: Vec<String> = single.iter().flat_map(|t| tiles(t)).collect();
+    assert_eq!(tiles(&joined), want);
+    // A range past the end, or backwards, writes nothing.
+    let d = common::scratch("importgl", "range-bad");
+    let out = d.join("never.trace");
+    let cap = capture();
+    for (range, says) in [("1..3", "3 complete frames"), ("2..1", "A <= B")] {
+        let o = wasp(&[
+            "import-gl",
+            s(&cap),
+            "--frames",
+            range,
+            "--trace-out",
+            s(&out),
+        ]);
+        assert!(!o.status.success());
+        assert!(stderr(&o).contains(says), "{range}: {}", stderr(&o));
+        assert!(!out.exists());
+    }
+}
+
+#[test]
 fn bad_input_is_an_error_that_names_the_file_and_writes_nothing() {
     let d = common::scratch("importgl", "bad");
     let out = d.join("never.trace");
