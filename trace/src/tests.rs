@@ -10,4 +10,5 @@ mod fuzz;
 mod malformed;
 mod rejected;
 mod texture_format;
+mod texture_map;
 mod trilinear;
