@@ -22,7 +22,7 @@ use wasp_frontend::def::{self, SceneDef};
 use wasp_frontend::raster::{rasterize_timed, DrawOrder, Frame, RasterOptions};
 use wasp_frontend::texture::FormatChoice;
 use wasp_frontend::{fetch, load};
-use wasp_sim::config::MachineConfig;
+use wasp_sim::config::{MachineConfig, TextureCache};
 use wasp_sim::run::{simulate, simulate_timeline, RunOptions};
 
 /// One piece of work on a scene.
@@ -146,6 +146,9 @@ struct Ready {
 struct Group {
     def: SceneDef,
     tile: u32,
+    /// The trace lists decoded texture lines (`memory.texture_cache =
+    /// "decompressed"`).
+    decoded: bool,
     frame: Mutex<Option<Result<Arc<Frame>, String>>>,
     remaining: AtomicUsize,
 }
@@ -182,14 +185,15 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     // the versions of the packages its data came from, known once fetched.
     fetch_games(tasks, &mut scenes, opts)?;
     let (mut out, mut todo) = resolve(tasks, cache, &mut scenes)?;
-    // Group by scene, draw order, texture format and tile size, in scene
-    // order.
+    // Group by scene, draw order, texture format, tile size and the
+    // lines the trace lists, in scene order.
     let group_key = |r: &Ready| {
         (
             r.def.name.clone(),
             r.def.draw_order,
             r.def.texture_format,
             r.cfg.gpu.tile_size,
+            decoded_lines(&r.cfg),
         )
     };
     todo.sort_by_key(group_key);
@@ -351,24 +355,33 @@ fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
     }
 }
 
-/// The tasks (sorted by scene, draw order, texture format and tile size)
-/// grouped by them:
+/// Whether a machine's trace lists decoded texture lines: its texture
+/// caches hold decompressed texels.
+fn decoded_lines(cfg: &MachineConfig) -> bool {
+    cfg.memory.texture_cache == TextureCache::Decompressed
+}
+
+/// The tasks (sorted by scene, draw order, texture format, tile size and
+/// the lines the trace lists) grouped by them:
 /// the groups and each task's group.
 fn group_by_scene(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
     let mut groups: Vec<Group> = Vec::new();
     let mut group_of = Vec::with_capacity(todo.len());
     for r in todo {
         let tile = r.cfg.gpu.tile_size;
+        let decoded = decoded_lines(&r.cfg);
         let same = groups.last().is_some_and(|g| {
             g.def.name == r.def.name
                 && g.def.draw_order == r.def.draw_order
                 && g.def.texture_format == r.def.texture_format
                 && g.tile == tile
+                && g.decoded == decoded
         });
         if !same {
             groups.push(Group {
                 def: r.def.clone(),
                 tile,
+                decoded,
                 frame: Mutex::new(None),
                 remaining: AtomicUsize::new(0),
             });
@@ -476,15 +489,16 @@ enum Done {
 fn frame_of(g: &Group) -> Result<Arc<Frame>, String> {
     let mut slot = g.frame.lock().expect("lock");
     if slot.is_none() {
-        *slot = Some(render(&g.def, g.tile).map(Arc::new));
+        *slot = Some(render(&g.def, g.tile, g.decoded).map(Arc::new));
     }
     slot.as_ref().expect("set").clone()
 }
 
 /// The scene's frame as `wasp render SCENE --trace-out` makes it, in the
-/// definition's draw order (the trace does not depend on the colour pass,
-/// which is skipped).
-pub fn render(d: &SceneDef, tile: u32) -> Result<Frame, String> {
+/// definition's draw order and texture format, listing decoded texture
+/// lines when `decoded` (`--texture-cache decompressed`; the trace does
+/// not depend on the colour pass, which is skipped).
+pub fn render(d: &SceneDef, tile: u32, decoded: bool) -> Result<Frame, String> {
     let scene = load::load_scene(d).map_err(|e| e.to_string())?;
     let opts = RasterOptions {
         tile,
@@ -492,6 +506,7 @@ pub fn render(d: &SceneDef, tile: u32) -> Result<Frame, String> {
         threads: 1,
         draw_order: d.draw_order,
         texture_format: d.texture_format,
+        decoded_lines: decoded,
         ..RasterOptions::default()
     };
     rasterize_timed(&scene, d.width, d.height, &opts)
@@ -623,7 +638,7 @@ mod tests {
         let warps = |r: &PointRecord| r.get("warps").unwrap();
         assert!(warps(b) < warps(a), "{} vs {}", warps(b), warps(a));
         // Its frame is the one `render` makes in that order.
-        let f = render(&sorted.scene_def(&plane), 64).unwrap();
+        let f = render(&sorted.scene_def(&plane), 64, false).unwrap();
         assert_eq!(f.stats.draw_order, DrawOrder::FrontToBackObject);
         assert_eq!(f.trace.quad_count() as f64, warps(b));
         // Stored under its key: a second run takes both from the folder.
