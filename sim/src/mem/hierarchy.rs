@@ -256,6 +256,16 @@ fn l2_target(core: u32, entry: u32, l1_mshrs: u32) -> u32 {
     core * l1_mshrs + entry
 }
 
+/// The stored line and L2 target of core `core`'s L1 request `r` when the
+/// L1s hold decoded lines (`map`).
+#[inline(never)]
+fn l2_request(map: &TextureMap, r: Request, core: u32, l1_mshrs: u32) -> (u64, u32) {
+    (
+        map.stored(r.block).unwrap_or(r.block),
+        l2_target(core, r.entry, l1_mshrs),
+    )
+}
+
 /// L2 reply to the L1 of a core.
 #[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
@@ -604,10 +614,13 @@ impl MemorySystem {
     /// ports are used or no head can go. A core leaves the rounds when the
     /// L2 refuses its head (MSHRs full or merge full) or its next head is
     /// not ready.
+    ///
+    /// When the L1s hold decoded lines ([`map_texture_lines`](Self::
+    /// map_texture_lines)) the L2 is asked for the stored line and its
+    /// target names the L1 entry to fill ([`l2_request`]).
     #[inline(always)]
     fn requests_to_l2(&mut self, now: u64) {
         let report = self.report_misses;
-        let l1_mshrs = self.cfg.l1.mshrs;
         let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
         'arbitrate: while !self.l2_order.is_empty() {
             let mut kept = 0;
@@ -621,10 +634,7 @@ impl MemorySystem {
                 // and its target names the L1 entry to fill.
                 let (block, target) = match &self.texmap {
                     None => (r.block, core),
-                    Some(map) => (
-                        map.stored(r.block).unwrap_or(r.block),
-                        l2_target(core, r.entry, l1_mshrs),
-                    ),
+                    Some(map) => l2_request(map, r, core, self.cfg.l1.mshrs),
                 };
                 match self.l2.access_entry_unmarked(now, block, target) {
                     (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
@@ -663,31 +673,37 @@ impl MemorySystem {
         let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
         self.dram.accept(now);
         while let Some(entry) = self.dram.pop_reply(now) {
+            if self.texmap.is_some() {
+                self.fill_l2_decoded(now, entry, l2_reply);
+                continue;
+            }
             let block = self.l2.pending_block(entry);
-            let targets = self.l2.fill_entry_unmarked(now, entry);
-            if self.texmap.is_none() {
-                for &core in targets {
-                    self.to_l1.push_back(L2Reply {
-                        at: l2_reply,
-                        core,
-                        block,
-                    });
-                }
-            } else {
-                // Each target is an L1 entry waiting for its own decoded line.
-                let l1_mshrs = self.cfg.l1.mshrs;
-                for &t in targets {
-                    let (core, e) = (t / l1_mshrs, t % l1_mshrs);
-                    self.to_l1.push_back(L2Reply {
-                        at: l2_reply,
-                        core,
-                        block: self.cores[core as usize].l1.pending_block(e),
-                    });
-                }
+            for &core in self.l2.fill_entry_unmarked(now, entry) {
+                self.to_l1.push_back(L2Reply {
+                    at: l2_reply,
+                    core,
+                    block,
+                });
             }
         }
         // Keep the L2's MSHR occupancy current for its readers.
         self.l2.release(now);
+    }
+
+    /// Step 3's fill of L2 entry `entry` when the L1s hold decoded lines:
+    /// each target is an L1 entry ([`l2_target`]) waiting for its own
+    /// decoded line, which the reply carries up.
+    #[inline(never)]
+    fn fill_l2_decoded(&mut self, now: u64, entry: u32, l2_reply: u64) {
+        let l1_mshrs = self.cfg.l1.mshrs;
+        for &t in self.l2.fill_entry_unmarked(now, entry) {
+            let (core, e) = (t / l1_mshrs, t % l1_mshrs);
+            self.to_l1.push_back(L2Reply {
+                at: l2_reply,
+                core,
+                block: self.cores[core as usize].l1.pending_block(e),
+            });
+        }
     }
 
     /// Step 4: L2 replies due at `now` fill the L1s; their targets go on to
