@@ -647,4 +647,39 @@ mod tests {
         assert_eq!(again.points[&sorted], *b);
         let _ = std::fs::remove_dir_all(&dir);
     }
+
+    #[test]
+    fn a_decompressed_texture_cache_runs_on_the_decoded_lines() {
+        let dir = std::env::temp_dir().join(format!("wasp-runner-texcache-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let cache = Cache::open(&dir).unwrap();
+        let mut plane = def::lookup("procedural-plane").unwrap();
+        plane.name = "test-small-plane".into();
+        (plane.width, plane.height) = (256, 128);
+        let opts = RunnerOptions {
+            jobs: 2,
+            quiet: true,
+            fetch: false,
+            label: "test".into(),
+            scenes: vec![plane.clone()],
+        };
+        let rgba8 = Point::new("test-small-plane", "paper", &[]);
+        let etc2 = rgba8.stored(FormatChoice::Etc2);
+        let decoded = etc2.with("memory.texture_cache=\"decompressed\"");
+        let tasks = [
+            Task::Run(rgba8.clone()),
+            Task::Run(etc2.clone()),
+            Task::Run(decoded.clone()),
+        ];
+        let out = run(&tasks, &cache, &opts).unwrap();
+        assert!(out.failures.is_empty(), "{:?}", out.failures);
+        assert_eq!(out.ran, 3);
+        let get = |p: &Point, s: &str| out.points[p].get(s).unwrap();
+        // The L1s see the RGBA8 lines; the DRAM sees the compressed ones.
+        assert_eq!(get(&decoded, "cf"), get(&rgba8, "cf"));
+        assert_eq!(get(&decoded, "warps"), get(&rgba8, "warps"));
+        assert!(get(&etc2, "cf") < get(&rgba8, "cf"));
+        assert!(get(&decoded, "dram.requests") < get(&rgba8, "dram.requests"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
