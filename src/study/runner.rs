@@ -600,11 +600,10 @@ fn progress(opts: &RunnerOptions, total: usize) -> Progress {
 mod tests {
     use super::*;
 
-    #[test]
-    fn a_point_runs_on_the_scene_rendered_in_its_draw_order() {
-        let dir = std::env::temp_dir().join(format!("wasp-runner-order-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        let cache = Cache::open(&dir).unwrap();
+    /// A cache in `dir` and runner options for a 256x128 procedural plane
+    /// named `test-small-plane`.
+    fn small_plane(dir: &std::path::Path) -> (Cache, SceneDef, RunnerOptions) {
+        let cache = Cache::open(dir).unwrap();
         let mut plane = def::lookup("procedural-plane").unwrap();
         plane.name = "test-small-plane".into();
         (plane.width, plane.height) = (256, 128);
@@ -615,6 +614,14 @@ mod tests {
             label: "test".into(),
             scenes: vec![plane.clone()],
         };
+        (cache, plane, opts)
+    }
+
+    #[test]
+    fn a_point_runs_on_the_scene_rendered_in_its_draw_order() {
+        let dir = std::env::temp_dir().join(format!("wasp-runner-order-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let (cache, plane, opts) = small_plane(&dir);
         let loaded = Point::new("test-small-plane", "paper", &[]);
         let sorted = loaded.drawn(DrawOrder::FrontToBackObject);
         let same = loaded.drawn(DrawOrder::AsLoaded);
@@ -652,17 +659,7 @@ mod tests {
     fn a_decompressed_texture_cache_runs_on_the_decoded_lines() {
         let dir = std::env::temp_dir().join(format!("wasp-runner-texcache-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        let cache = Cache::open(&dir).unwrap();
-        let mut plane = def::lookup("procedural-plane").unwrap();
-        plane.name = "test-small-plane".into();
-        (plane.width, plane.height) = (256, 128);
-        let opts = RunnerOptions {
-            jobs: 2,
-            quiet: true,
-            fetch: false,
-            label: "test".into(),
-            scenes: vec![plane.clone()],
-        };
+        let (cache, _, opts) = small_plane(&dir);
         let rgba8 = Point::new("test-small-plane", "paper", &[]);
         let etc2 = rgba8.stored(FormatChoice::Etc2);
         let decoded = etc2.with("memory.texture_cache=\"decompressed\"");

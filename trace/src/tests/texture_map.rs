@@ -95,13 +95,7 @@ fn misuse_of_the_map_is_reported_with_its_line() {
             "before `frame",
         ),
     ];
-    for (text, line, says) in cases {
-        let e = Trace::parse(&text, "f.trace").unwrap_err();
-        assert_eq!(e.line(), Some(line), "{e}");
-        let m = e.to_string();
-        assert!(m.starts_with(&format!("f.trace:{line}: ")), "{m}");
-        assert!(m.contains(says), "{m}");
-    }
+    crate::testkit::reported_at(&cases);
     assert!(matches!(
         Trace::parse(&WITH.replace("t10,1f", "t10,20"), "x")
             .unwrap_err()
