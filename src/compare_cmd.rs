@@ -204,6 +204,9 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
     if let Some(p) = &base.prefetch {
         let _ = write!(s, "  |  prefetch {}", p.kind);
     }
+    if base.texture_cache != "compressed" {
+        let _ = write!(s, "  |  texture cache {}", base.texture_cache);
+    }
     s.push('\n');
     let _ = writeln!(
         s,
