@@ -328,6 +328,9 @@ pub fn compare_table_against(labels: &[String], runs: &[RunStats], reference: us
     if base.ideal_memory {
         let _ = write!(s, "  |  ideal memory");
     }
+    if base.texture_cache != "compressed" {
+        let _ = write!(s, "  |  texture cache {}", base.texture_cache);
+    }
     let _ = write!(
         s,
         "\nwarps per core {}  input queue {} entries",

@@ -16,7 +16,7 @@ use wasp_frontend::texture::FormatChoice;
 use wasp_frontend::{fetch, load};
 use wasp_rtl::policy::PolicyName;
 use wasp_rtl::subset::SubsetSpec;
-use wasp_sim::config::MachineConfig;
+use wasp_sim::config::{MachineConfig, TextureCache};
 use wasp_sim::run::{simulate_recording, RunOptions, WarpRecord};
 use wasp_sim::stats::RunStats;
 
@@ -162,6 +162,14 @@ pub struct RenderArgs {
     /// picture.
     #[arg(long, value_name = "FORMAT")]
     pub texture_format: Option<FormatChoice>,
+    /// What the machine's texture caches hold: compressed (the trace lists
+    /// the stored lines of the textures) or decompressed (it lists their
+    /// decoded RGBA8 lines and maps each to the stored line holding it,
+    /// for `memory.texture_cache = "decompressed"`; see docs/textures.md).
+    /// Default: the --config's `memory.texture_cache`, compressed in the
+    /// shipped machines. Changes nothing with rgba8 textures.
+    #[arg(long, value_name = "CACHE")]
+    pub texture_cache: Option<TextureCache>,
     /// Print where the time went: loading the scene (parsing meshes,
     /// decoding textures) and the front end (mip chains, geometry and
     /// binning, raster + early-Z + texturing + shading + trace), wall-clock
@@ -429,10 +437,14 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
         Some(c) => Some(parse_crop(c, width, height)?),
         None => None,
     };
-    let config = match &args.config {
+    let mut config = match &args.config {
         Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
+    // The heat map's run holds in its texture caches what the trace lists.
+    if let Some(c) = args.texture_cache {
+        config.memory.texture_cache = c;
+    }
     Ok(RenderJob {
         def,
         width,
@@ -454,6 +466,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         threads: args.threads,
         draw_order: job.def.draw_order,
         texture_format: job.def.texture_format,
+        decoded_lines: job.config.memory.texture_cache == TextureCache::Decompressed,
     };
     let run = RunOptions {
         policy: args.policy.map(|p| p.resolve(job.config.scheduler.policy)),

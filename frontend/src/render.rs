@@ -136,6 +136,8 @@ pub struct RenderRequest {
     pub draw_order: DrawOrder,
     /// How the textures are stored ([`RasterOptions::texture_format`]).
     pub texture_format: FormatChoice,
+    /// List decoded texture lines ([`RasterOptions::decoded_lines`]).
+    pub decoded_lines: bool,
 }
 
 /// A rendered frame.
@@ -184,6 +186,7 @@ pub fn render(
         threads: req.threads,
         draw_order: req.draw_order,
         texture_format: req.texture_format,
+        decoded_lines: req.decoded_lines,
         ..RasterOptions::default()
     };
     let (frame, raster_seconds) =
@@ -504,6 +507,7 @@ pub(crate) fn write_preview(scene: &Scene, width: u32, height: u32, out: &Path) 
         threads: 0,
         draw_order: DrawOrder::AsLoaded,
         texture_format: FormatChoice::Rgba8,
+        decoded_lines: false,
     };
     let r = render(scene, width, height, &req, &mut |_, _| Ok(Vec::new())).expect("renders");
     write_png(out, &r.image, width, height).expect("writes the PNG");

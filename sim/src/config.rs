@@ -22,7 +22,7 @@ mod choice;
 mod core_map;
 pub mod file;
 mod sections;
-pub use choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming, IssueOrder};
+pub use choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming, IssueOrder, TextureCache};
 pub use core_map::{CoreMap, CoreMapTable};
 pub use sections::{
     limits, CoreConfig, EnergyConfig, GpuConfig, MemoryConfig, RasterConfig, SchedulerConfig,
@@ -60,7 +60,7 @@ pub struct MachineConfig {
     pub l2: CacheConfig,
     /// Main memory (banked or fixed-latency open-row DRAM).
     pub dram: DramConfig,
-    /// Ideal-memory switch.
+    /// Ideal-memory switch and what the texture caches hold.
     pub memory: MemoryConfig,
     /// The prefetcher into the L1s (`none` when the section is absent).
     #[serde(default)]

@@ -455,6 +455,11 @@ pub struct RunStats {
     /// ran `lrr`.
     #[serde(skip_serializing_if = "is_default_issue")]
     pub issue: String,
+    /// What the texture caches hold (`memory.texture_cache`). Left out of
+    /// the JSON and the table under the default, `compressed`, so that
+    /// their outputs are those of the model before the option existed.
+    #[serde(skip_serializing_if = "is_default_texture_cache")]
+    pub texture_cache: String,
     /// GPU cycles until every tile is rendered and memory is idle.
     pub cycles: u64,
     /// Warp instructions per GPU cycle.
@@ -535,6 +540,11 @@ fn is_default_issue(issue: &str) -> bool {
     issue == crate::config::IssueOrder::default().to_string()
 }
 
+/// Whether `cache` names the default `memory.texture_cache`.
+fn is_default_texture_cache(cache: &str) -> bool {
+    cache == crate::config::TextureCache::default().to_string()
+}
+
 /// A counter summed over the cores.
 fn total(cores: &[CoreStats], f: impl Fn(&CoreStats) -> u64) -> u64 {
     cores.iter().map(f).sum()
@@ -590,6 +600,7 @@ impl RunStats {
             ideal_memory: cfg.memory.ideal,
             blocked_on: sched.blocked_on.to_string(),
             issue: cfg.core.issue.to_string(),
+            texture_cache: cfg.memory.texture_cache.to_string(),
             cycles,
             ipc: instructions as f64 / cycles.max(1) as f64,
             warps: sum(|c| c.warps_finished),

@@ -15,6 +15,7 @@ use super::table::csv;
 use std::collections::{BTreeSet, HashMap, HashSet};
 use std::fmt::Write as _;
 use wasp_frontend::raster::DrawOrder;
+use wasp_frontend::texture::FormatChoice;
 
 /// `records` without repeats: records of the same key and point count once,
 /// and records of the same key must hold the same statistics.
@@ -73,10 +74,11 @@ pub fn match_points<'a>(
     builds.sort_by_key(|b| (*b != me, *b));
     builds.dedup();
     let mut scenes = Scenes::default();
-    let mut ids: HashMap<(String, Option<DrawOrder>), String> = HashMap::new();
+    type At = (String, Option<DrawOrder>, Option<FormatChoice>);
+    let mut ids: HashMap<At, String> = HashMap::new();
     let mut out = Vec::with_capacity(points.len());
     for p in points {
-        let at = (p.scene.clone(), p.point.draw_order);
+        let at = (p.scene.clone(), p.point.draw_order, p.point.texture_format);
         if !ids.contains_key(&at) {
             let id = scene_identity(&p.point.scene_def(scenes.def(&p.scene)?));
             ids.insert(at.clone(), id);
@@ -134,8 +136,16 @@ const SWEEP_COLUMNS: [&str; 6] = [
     "draw_order",
 ];
 
+/// Whether some point of `rows` names a texture format (then the outputs
+/// show each point's; without, they are those of sweeps before texture
+/// formats).
+fn names_formats(rows: &[(&SweepPoint, &PointRecord)]) -> bool {
+    rows.iter().any(|(p, _)| p.point.texture_format.is_some())
+}
+
 /// The sweep's results as CSV: `point`, `config`, `dispatch`, `policy`,
-/// `scene`, `draw_order` (the effective one), then every flattened
+/// `scene`, `draw_order` (the effective one), `texture_format` (the
+/// effective one, when some point names one), then every flattened
 /// statistic (`wasp run --csv`'s names, in
 /// the order they first appear in the rows; a statistic named like a sweep
 /// column, e.g. the simulator's `policy`, is `stats.NAME`).
@@ -155,7 +165,11 @@ pub fn results_csv(rows: &[(&SweepPoint, &PointRecord)]) -> String {
             names.push(k);
         }
     }
+    let formats = names_formats(rows);
     let mut s = SWEEP_COLUMNS.join(",");
+    if formats {
+        s.push_str(",texture_format");
+    }
     for n in &names {
         let n = if SWEEP_COLUMNS.contains(n) {
             format!("stats.{n}")
@@ -176,6 +190,9 @@ pub fn results_csv(rows: &[(&SweepPoint, &PointRecord)]) -> String {
             csv(&p.scene),
             p.draw_order
         );
+        if formats {
+            let _ = write!(s, ",{}", p.texture_format);
+        }
         let row: HashMap<&str, &str> = row.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
         for n in &names {
             let _ = write!(s, ",{}", row.get(n).copied().unwrap_or(""));
@@ -191,7 +208,7 @@ pub fn results_json(rows: &[(&SweepPoint, &PointRecord)]) -> String {
     let v: Vec<serde_json::Value> = rows
         .iter()
         .map(|(p, r)| {
-            serde_json::json!({
+            let mut v = serde_json::json!({
                 "point": p.index,
                 "config": p.config,
                 "dispatch": p.dispatch,
@@ -203,7 +220,13 @@ pub fn results_json(rows: &[(&SweepPoint, &PointRecord)]) -> String {
                 "key": r.key,
                 "binary": r.binary,
                 "stats": r.stats,
-            })
+            });
+            // Only a point that names a texture format shows it: the
+            // results of other sweeps stay as they were.
+            if p.point.texture_format.is_some() {
+                v["texture_format"] = serde_json::json!(p.texture_format);
+            }
+            v
         })
         .collect();
     serde_json::to_string_pretty(&v).expect("results serialize") + "\n"
@@ -213,16 +236,24 @@ pub fn results_json(rows: &[(&SweepPoint, &PointRecord)]) -> String {
 /// cycles and the speedup against `first_policy` on the same scene, draw
 /// order, configuration and dispatch (`-` when that point has no result).
 pub fn results_table(rows: &[(&SweepPoint, &PointRecord)], first_policy: &str) -> String {
-    fn at(p: &SweepPoint) -> (&str, DrawOrder, &str, &str) {
-        (&p.scene, p.draw_order, &p.config, &p.dispatch)
+    fn at(p: &SweepPoint) -> (&str, DrawOrder, FormatChoice, &str, &str) {
+        (
+            &p.scene,
+            p.draw_order,
+            p.texture_format,
+            &p.config,
+            &p.dispatch,
+        )
     }
+    let formats = names_formats(rows);
     let reference: HashMap<_, f64> = rows
         .iter()
         .filter(|(p, _)| p.policy == first_policy)
         .map(|(p, r)| (at(p), r.cycles()))
         .collect();
+    let order = if formats { "order/textures" } else { "order" };
     let head = [
-        "point", "scene", "order", "config", "dispatch", "policy", "cycles", "speedup",
+        "point", "scene", order, "config", "dispatch", "policy", "cycles", "speedup",
     ];
     let mut cells: Vec<[String; 8]> = vec![head.map(String::from)];
     for (p, r) in rows {
@@ -234,7 +265,11 @@ pub fn results_table(rows: &[(&SweepPoint, &PointRecord)], first_policy: &str) -
         cells.push([
             p.index.to_string(),
             p.scene.clone(),
-            p.draw_order.to_string(),
+            if formats {
+                format!("{}/{}", p.draw_order, p.texture_format)
+            } else {
+                p.draw_order.to_string()
+            },
             p.config.clone(),
             p.dispatch.clone(),
             p.policy.clone(),
@@ -266,10 +301,11 @@ pub fn results_table(rows: &[(&SweepPoint, &PointRecord)], first_policy: &str) -
         s.push_str(line.trim_end());
         s.push('\n');
     }
+    let also = if formats { ", texture format" } else { "" };
     let _ = writeln!(
         s,
-        "speedup = {first_policy} cycles / cycles - 1 on the same scene, draw order, config and \
-         dispatch"
+        "speedup = {first_policy} cycles / cycles - 1 on the same scene, draw order{also}, config \
+         and dispatch"
     );
     s
 }

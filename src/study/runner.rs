@@ -22,7 +22,7 @@ use wasp_frontend::def::{self, SceneDef};
 use wasp_frontend::raster::{rasterize_timed, DrawOrder, Frame, RasterOptions};
 use wasp_frontend::texture::FormatChoice;
 use wasp_frontend::{fetch, load};
-use wasp_sim::config::MachineConfig;
+use wasp_sim::config::{MachineConfig, TextureCache};
 use wasp_sim::run::{simulate, simulate_timeline, RunOptions};
 
 /// One piece of work on a scene.
@@ -146,6 +146,9 @@ struct Ready {
 struct Group {
     def: SceneDef,
     tile: u32,
+    /// The trace lists decoded texture lines (`memory.texture_cache =
+    /// "decompressed"`).
+    decoded: bool,
     frame: Mutex<Option<Result<Arc<Frame>, String>>>,
     remaining: AtomicUsize,
 }
@@ -193,14 +196,15 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
             out.same
         );
     }
-    // Group by scene, draw order, texture format and tile size, in scene
-    // order.
+    // Group by scene, draw order, texture format, tile size and the
+    // lines the trace lists, in scene order.
     let group_key = |r: &Ready| {
         (
             r.def.name.clone(),
             r.def.draw_order,
             r.def.texture_format,
             r.cfg.gpu.tile_size,
+            decoded_lines(&r.cfg),
         )
     };
     todo.sort_by_key(group_key);
@@ -362,24 +366,33 @@ fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
     }
 }
 
-/// The tasks (sorted by scene, draw order, texture format and tile size)
-/// grouped by them:
+/// Whether a machine's trace lists decoded texture lines: its texture
+/// caches hold decompressed texels.
+fn decoded_lines(cfg: &MachineConfig) -> bool {
+    cfg.memory.texture_cache == TextureCache::Decompressed
+}
+
+/// The tasks (sorted by scene, draw order, texture format, tile size and
+/// the lines the trace lists) grouped by them:
 /// the groups and each task's group.
 fn group_by_scene(todo: &[Ready]) -> (Vec<Group>, Vec<usize>) {
     let mut groups: Vec<Group> = Vec::new();
     let mut group_of = Vec::with_capacity(todo.len());
     for r in todo {
         let tile = r.cfg.gpu.tile_size;
+        let decoded = decoded_lines(&r.cfg);
         let same = groups.last().is_some_and(|g| {
             g.def.name == r.def.name
                 && g.def.draw_order == r.def.draw_order
                 && g.def.texture_format == r.def.texture_format
                 && g.tile == tile
+                && g.decoded == decoded
         });
         if !same {
             groups.push(Group {
                 def: r.def.clone(),
                 tile,
+                decoded,
                 frame: Mutex::new(None),
                 remaining: AtomicUsize::new(0),
             });
@@ -487,15 +500,16 @@ enum Done {
 fn frame_of(g: &Group) -> Result<Arc<Frame>, String> {
     let mut slot = g.frame.lock().expect("lock");
     if slot.is_none() {
-        *slot = Some(render(&g.def, g.tile).map(Arc::new));
+        *slot = Some(render(&g.def, g.tile, g.decoded).map(Arc::new));
     }
     slot.as_ref().expect("set").clone()
 }
 
 /// The scene's frame as `wasp render SCENE --trace-out` makes it, in the
-/// definition's draw order (the trace does not depend on the colour pass,
-/// which is skipped).
-pub fn render(d: &SceneDef, tile: u32) -> Result<Frame, String> {
+/// definition's draw order and texture format, listing decoded texture
+/// lines when `decoded` (`--texture-cache decompressed`; the trace does
+/// not depend on the colour pass, which is skipped).
+pub fn render(d: &SceneDef, tile: u32, decoded: bool) -> Result<Frame, String> {
     let scene = load::load_scene(d).map_err(|e| e.to_string())?;
     let opts = RasterOptions {
         tile,
@@ -503,6 +517,7 @@ pub fn render(d: &SceneDef, tile: u32) -> Result<Frame, String> {
         threads: 1,
         draw_order: d.draw_order,
         texture_format: d.texture_format,
+        decoded_lines: decoded,
         ..RasterOptions::default()
     };
     rasterize_timed(&scene, d.width, d.height, &opts)
@@ -596,11 +611,10 @@ fn progress(opts: &RunnerOptions, total: usize) -> Progress {
 mod tests {
     use super::*;
 
-    #[test]
-    fn a_point_runs_on_the_scene_rendered_in_its_draw_order() {
-        let dir = std::env::temp_dir().join(format!("wasp-runner-order-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        let cache = Cache::open(&dir).unwrap();
+    /// A cache in `dir` and runner options for a 256x128 procedural plane
+    /// named `test-small-plane`.
+    fn small_plane(dir: &std::path::Path) -> (Cache, SceneDef, RunnerOptions) {
+        let cache = Cache::open(dir).unwrap();
         let mut plane = def::lookup("procedural-plane").unwrap();
         plane.name = "test-small-plane".into();
         (plane.width, plane.height) = (256, 128);
@@ -611,6 +625,14 @@ mod tests {
             label: "test".into(),
             scenes: vec![plane.clone()],
         };
+        (cache, plane, opts)
+    }
+
+    #[test]
+    fn a_point_runs_on_the_scene_rendered_in_its_draw_order() {
+        let dir = std::env::temp_dir().join(format!("wasp-runner-order-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let (cache, plane, opts) = small_plane(&dir);
         let loaded = Point::new("test-small-plane", "paper", &[]);
         let sorted = loaded.drawn(DrawOrder::FrontToBackObject);
         let same = loaded.drawn(DrawOrder::AsLoaded);
@@ -634,13 +656,38 @@ mod tests {
         let warps = |r: &PointRecord| r.get("warps").unwrap();
         assert!(warps(b) < warps(a), "{} vs {}", warps(b), warps(a));
         // Its frame is the one `render` makes in that order.
-        let f = render(&sorted.scene_def(&plane), 64).unwrap();
+        let f = render(&sorted.scene_def(&plane), 64, false).unwrap();
         assert_eq!(f.stats.draw_order, DrawOrder::FrontToBackObject);
         assert_eq!(f.trace.quad_count() as f64, warps(b));
         // Stored under its key: a second run takes both from the folder.
         let again = run(&tasks, &cache, &opts).unwrap();
         assert_eq!((again.ran, again.cached), (0, 2));
         assert_eq!(again.points[&sorted], *b);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_decompressed_texture_cache_runs_on_the_decoded_lines() {
+        let dir = std::env::temp_dir().join(format!("wasp-runner-texcache-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let (cache, _, opts) = small_plane(&dir);
+        let rgba8 = Point::new("test-small-plane", "paper", &[]);
+        let etc2 = rgba8.stored(FormatChoice::Etc2);
+        let decoded = etc2.with("memory.texture_cache=\"decompressed\"");
+        let tasks = [
+            Task::Run(rgba8.clone()),
+            Task::Run(etc2.clone()),
+            Task::Run(decoded.clone()),
+        ];
+        let out = run(&tasks, &cache, &opts).unwrap();
+        assert!(out.failures.is_empty(), "{:?}", out.failures);
+        assert_eq!(out.ran, 3);
+        let get = |p: &Point, s: &str| out.points[p].get(s).unwrap();
+        // The L1s see the RGBA8 lines; the DRAM sees the compressed ones.
+        assert_eq!(get(&decoded, "cf"), get(&rgba8, "cf"));
+        assert_eq!(get(&decoded, "warps"), get(&rgba8, "warps"));
+        assert!(get(&etc2, "cf") < get(&rgba8, "cf"));
+        assert!(get(&decoded, "dram.requests") < get(&rgba8, "dram.requests"));
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

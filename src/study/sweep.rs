@@ -1,5 +1,5 @@
-//! A sweep file: a user's grid of scenes x draw orders x configurations x
-//! dispatch modes x launch policies (docs/sweep.md), and its expansion
+//! A sweep file: a user's grid of scenes x draw orders x texture formats x
+//! configurations x dispatch modes x launch policies (docs/sweep.md), and its expansion
 //! into points (see
 //! [`super::jobs`] for running them one at a time on a cluster).
 //!
@@ -8,16 +8,18 @@
 //! policies = ["baseline", "wasp:0:3"]    # scheduler.policy values
 //! dispatches = ["shared-tile"]           # optional: default the config's own
 //! draw_orders = ["as-loaded", "front-to-back-draw"]  # optional: default the scene's own
+//! texture_formats = ["rgba8", "etc2"]    # optional: default the scene's own
 //! [[configs]]
 //! name = "shipped"                       # the label in the results
 //! base = "paper"                         # paper | paper-width2 | a TOML file
 //! set = ["l0.mshrs=8"]                   # --set overrides, in order
 //! ```
 //!
-//! Points are numbered from 1 in the order scene, draw order,
-//! configuration, dispatch, policy (the last varies fastest). Everything
-//! is checked when the file is read and expanded, before any simulation:
-//! unknown fields, scenes, draw orders, policies and dispatch modes,
+//! Points are numbered from 1 in the order scene, draw order, texture
+//! format, configuration, dispatch, policy (the last varies fastest).
+//! Everything is checked when the file is read and expanded, before any
+//! simulation: unknown fields, scenes, draw orders, texture formats,
+//! policies and dispatch modes,
 //! duplicate names, missing base files, and every point's effective
 //! configuration.
 
@@ -27,6 +29,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use toml::Spanned;
 use wasp_frontend::raster::DrawOrder;
+use wasp_frontend::texture::FormatChoice;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
 
@@ -41,6 +44,7 @@ struct RawSweep {
     policies: Spanned<Vec<Spanned<String>>>,
     dispatches: Option<Spanned<Vec<Spanned<String>>>>,
     draw_orders: Option<Spanned<Vec<Spanned<String>>>>,
+    texture_formats: Option<Spanned<Vec<Spanned<String>>>>,
     configs: Option<Spanned<Vec<Spanned<RawConfig>>>>,
 }
 
@@ -82,6 +86,9 @@ pub struct Sweep {
     /// Draw orders, in order; `[None]` when the file names none (each
     /// scene's own).
     pub draw_orders: Vec<Option<DrawOrder>>,
+    /// Texture formats, in order; `[None]` when the file names none (each
+    /// scene's own).
+    pub texture_formats: Vec<Option<FormatChoice>>,
     /// Launch policies (`scheduler.policy` values), in order.
     pub policies: Vec<String>,
 }
@@ -101,6 +108,8 @@ pub struct SweepPoint {
     pub policy: String,
     /// The effective draw order (the file's, else the scene's own).
     pub draw_order: DrawOrder,
+    /// The effective texture format (the file's, else the scene's own).
+    pub texture_format: FormatChoice,
     /// The point the runner runs.
     pub point: Point,
     /// Its effective configuration (shared by the point's scenes).
@@ -109,7 +118,8 @@ pub struct SweepPoint {
 
 impl SweepPoint {
     /// `scene, config NAME, DISPATCH, POLICY` for listings and messages,
-    /// with `, draw order ORDER` when the point names one.
+    /// with `, draw order ORDER` and `, textures FORMAT` when the point
+    /// names them.
     pub fn describe(&self) -> String {
         let mut s = format!(
             "{}, config {}, {}, {}",
@@ -117,6 +127,9 @@ impl SweepPoint {
         );
         if let Some(o) = self.point.draw_order {
             s.push_str(&format!(", draw order {o}"));
+        }
+        if let Some(f) = self.point.texture_format {
+            s.push_str(&format!(", textures {f}"));
         }
         s
     }
@@ -348,10 +361,15 @@ impl Sweep {
             .into_iter()
             .map(|d| d.map(|(_, o)| o))
             .collect();
+        let texture_formats: Vec<Option<FormatChoice>> = f
+            .optional::<FormatChoice>("texture_formats", raw.texture_formats.as_ref())?
+            .into_iter()
+            .map(|d| d.map(|(_, t)| t))
+            .collect();
         let configs = f.configs(raw.configs.as_ref())?;
         let sizes = [
             scenes.len(),
-            draw_orders.len(),
+            draw_orders.len() * texture_formats.len(),
             configs.len(),
             dispatches.len(),
             policies.len(),
@@ -359,9 +377,15 @@ impl Sweep {
         let count = sizes.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
         if count.is_none_or(|n| n > MAX_POINTS) {
             return Err(format!(
-                "{shown}: {} scenes x {} draw orders x {} configs x {} dispatches x {} \
-                 policies is more than {MAX_POINTS} points: split the sweep into several files",
-                sizes[0], sizes[1], sizes[2], sizes[3], sizes[4]
+                "{shown}: {} scenes x {} draw orders x {} texture formats x {} configs x {} \
+                 dispatches x {} policies is more than {MAX_POINTS} points: split the sweep into \
+                 several files",
+                sizes[0],
+                draw_orders.len(),
+                texture_formats.len(),
+                sizes[2],
+                sizes[3],
+                sizes[4]
             ));
         }
         Ok(Sweep {
@@ -370,6 +394,7 @@ impl Sweep {
             configs,
             dispatches,
             draw_orders,
+            texture_formats,
             policies,
         })
     }
@@ -378,6 +403,7 @@ impl Sweep {
     pub fn len(&self) -> usize {
         self.scenes.len()
             * self.draw_orders.len()
+            * self.texture_formats.len()
             * self.configs.len()
             * self.dispatches.len()
             * self.policies.len()
@@ -418,26 +444,31 @@ impl Sweep {
         }
         let mut out = Vec::with_capacity(self.len());
         for scene in &self.scenes {
-            // The scene's own order, for the points that name none.
-            let own = wasp_frontend::def::lookup(scene)
-                .map_err(|e| format!("{}: {e}", self.shown))?
-                .draw_order;
+            // The scene's own order and format, for the points that name
+            // none.
+            let def =
+                wasp_frontend::def::lookup(scene).map_err(|e| format!("{}: {e}", self.shown))?;
             for &order in &self.draw_orders {
-                for (c, pol, p, cfg) in &machines {
-                    let point = Point {
-                        scene: scene.clone(),
-                        ..p.clone()
-                    };
-                    out.push(SweepPoint {
-                        index: out.len() + 1,
-                        scene: scene.clone(),
-                        config: c.name.clone(),
-                        dispatch: cfg.raster.dispatch.to_string(),
-                        policy: (*pol).clone(),
-                        draw_order: order.unwrap_or(own),
-                        point: order.map_or(point.clone(), |o| point.drawn(o)),
-                        machine: cfg.clone(),
-                    });
+                for &format in &self.texture_formats {
+                    for (c, pol, p, cfg) in &machines {
+                        let mut point = Point {
+                            scene: scene.clone(),
+                            ..p.clone()
+                        };
+                        point.draw_order = order;
+                        point.texture_format = format;
+                        out.push(SweepPoint {
+                            index: out.len() + 1,
+                            scene: scene.clone(),
+                            config: c.name.clone(),
+                            dispatch: cfg.raster.dispatch.to_string(),
+                            policy: (*pol).clone(),
+                            draw_order: order.unwrap_or(def.draw_order),
+                            texture_format: format.unwrap_or(def.texture_format),
+                            point,
+                            machine: cfg.clone(),
+                        });
+                    }
                 }
             }
         }
@@ -645,6 +676,46 @@ set = ["l0.mshrs=8"]
     }
 
     #[test]
+    fn texture_formats_vary_after_the_draw_order_and_are_checked() {
+        let s = parse(
+            "scenes = [\"procedural-plane\"]\ndraw_orders = [\"as-loaded\", \"front-to-back-draw\"]\ntexture_formats = [\"rgba8\", \"etc2\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+        )
+        .unwrap();
+        assert_eq!(s.len(), 2 * 2);
+        let pts = s.points().unwrap();
+        let formats: Vec<FormatChoice> = pts.iter().map(|p| p.texture_format).collect();
+        use FormatChoice::{Etc2 as E, Rgba8 as R};
+        assert_eq!(formats, [R, E, R, E]);
+        assert_eq!(pts[1].point.texture_format, Some(E));
+        assert_eq!(
+            pts[3].point,
+            pts[0].point.drawn(DrawOrder::FrontToBackDraw).stored(E)
+        );
+        assert_eq!(
+            pts[1].describe(),
+            "procedural-plane, config a, shared-tile, baseline, draw order as-loaded, textures etc2"
+        );
+        // Without the list, each scene keeps its own format.
+        let pts = parse(GOOD).unwrap().points().unwrap();
+        assert!(pts.iter().all(|p| p.point.texture_format.is_none()));
+        assert!(pts.iter().all(|p| p.texture_format == R));
+        for (text, want) in [
+            (
+                "scenes = [\"procedural-plane\"]\ntexture_formats = [\"dxt1\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+                "sweep.toml:2: texture_formats[0]: unknown texture format `dxt1` (expected one of \
+                 rgba8, etc2,",
+            ),
+            (
+                "scenes = [\"procedural-plane\"]\ntexture_formats = [\"etc2\", \"etc2\"]\npolicies = [\"baseline\"]\n[[configs]]\nname = \"a\"\nbase = \"paper\"\n",
+                "sweep.toml:2: texture_formats[1] `etc2` is listed twice (also texture_formats[0])",
+            ),
+        ] {
+            let e = parse(text).unwrap_err();
+            assert!(e.starts_with(want), "got: {e}\nwant: {want}");
+        }
+    }
+
+    #[test]
     fn an_override_that_does_not_resolve_names_its_machine() {
         let s = parse(
             "scenes = [\"procedural-plane\"]\npolicies = [\"baseline\", \"wasp\"]\n[[configs]]\nname = \"ok\"\nbase = \"paper\"\n[[configs]]\nname = \"bad\"\nbase = \"paper\"\nset = [\"l0.mshrs=0\"]\n",
@@ -673,8 +744,8 @@ set = ["l0.mshrs=8"]
         let e = parse(&text).unwrap_err();
         assert!(
             e.contains(
-                "1 scenes x 1 draw orders x 300 configs x 1 dispatches x 400 policies is more \
-                 than 100000 points"
+                "1 scenes x 1 draw orders x 1 texture formats x 300 configs x 1 dispatches x \
+                 400 policies is more than 100000 points"
             ),
             "{e}"
         );

@@ -337,6 +337,9 @@ impl TraceBuilder {
         if let Some(b) = first_duplicate(blocks) {
             return Err(Problem::DuplicateBlock(b));
         }
+        if let Some(map) = &self.header.texture_map {
+            blocks.iter().try_for_each(|&b| map.check_block(b))?;
+        }
         self.open_quad()?;
         let count = self.quad_room(1)?;
         let tile = self.open_quad()?;

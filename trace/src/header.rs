@@ -3,6 +3,7 @@
 
 use crate::limits::{MAX_FRAME_DIM, MAX_TILE_SIZE};
 use crate::problem::{Problem, TextField};
+use crate::TextureMap;
 
 /// The header: provenance, frame and tile size, and the header notes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -20,6 +21,12 @@ pub struct TraceHeader {
     /// `astc-8x8`; `None` when the trace does not say, which for a trace
     /// of the front end means RGBA8 (every trace before the line existed).
     pub texture_format: Option<String>,
+    /// The map of a trace whose texture instructions list decoded lines
+    /// (the `texture-lines decoded` line and its `texture-level` lines):
+    /// the RGBA8 lines of the texels, each mapped to the compressed line
+    /// of the stored texture holding them ([`TextureMap`]). `None` for a
+    /// trace that lists the stored lines, as every trace without the line.
+    pub texture_map: Option<TextureMap>,
     /// Header comment lines, the text after `#` verbatim.
     pub notes: Vec<String>,
 }
@@ -33,6 +40,7 @@ impl TraceHeader {
             frame_h,
             tile,
             texture_format: None,
+            texture_map: None,
             notes: Vec::new(),
         }
     }

@@ -56,7 +56,7 @@
 //!   after line 1. Other comments are dropped. There are no comments at the end
 //!   of a line.
 //! * **Header**, before the first tile and in this order, each exactly once
-//!   (`texture-format` at most once):
+//!   (`texture-format` and `texture-lines` at most once):
 //!   * `workload NAME` — provenance: NAME is the rest of the line, not empty.
 //!     A synthetic workload's name starts with `synthetic:` and names its
 //!     generator parameters.
@@ -70,6 +70,23 @@
 //!     end writes no line for RGBA8, so such traces are unchanged. A reader
 //!     accepts the line in every version and keeps its name; it changes
 //!     nothing the cycle model does (a block is a block).
+//!   * `texture-lines decoded` (optional, at most once) and its
+//!     `texture-level R0 RW RH S0 SW SH RX RY` lines (any number, after it)
+//!     — the texture instructions list the lines of the *decoded* texels
+//!     (RGBA8, 4x4 texels a 64-byte line, laid out as an RGBA8 trace's),
+//!     for a machine whose L0/L1 texture caches hold decompressed texels
+//!     (`memory.texture_cache = "decompressed"`), while memory holds the
+//!     textures as `texture-format` says. Each `texture-level` line maps one
+//!     mip level: R0 (hex) is its first RGBA8 line and RW x RH its grid of
+//!     RGBA8 lines, S0 (hex) its first stored (compressed) line and SW x SH
+//!     that grid (all four powers of two, 1 to 65536), and RX x RY (1 to 16
+//!     each) the RGBA8 lines one stored line holds. Both grids are laid out
+//!     in Morton squares (docs/textures.md), and RGBA8 line (x, y) of a level
+//!     lies in stored line (x / RX, y / RY). Levels appear in increasing R0
+//!     order and do not overlap; every block of every texture instruction
+//!     lies in a level and maps inside its stored grid. Without the line the
+//!     texture instructions list the stored lines, as in every trace before
+//!     the line existed.
 //!   * `frame W H tile T` — frame width and height in pixels (1 to 65536) and
 //!     the tile edge in pixels (even, 2 to 512). The frame is cut into
 //!     ceil(W/T) x ceil(H/T) tiles; a tile holds (T/2) x (T/2) quads of 2x2
@@ -213,6 +230,7 @@ mod stats;
 mod testkit;
 #[cfg(test)]
 mod tests;
+mod texmap;
 mod tile;
 mod trace;
 mod write;
@@ -231,6 +249,7 @@ pub use problem::{Problem, TextField};
 pub use stats::{
     footprint_ratio, mean_footprint_ratio, mean_footprint_ratio_of, TileStats, TraceStats,
 };
+pub use texmap::{MapLevel, TextureMap, MAX_GRID, MAX_LINES_PER_LINE};
 pub use tile::{Instrs, QuadRef, QuadSpan, Quads, Tile};
 pub use trace::Trace;
 pub use zorder::{morton, z_order};

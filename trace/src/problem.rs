@@ -104,6 +104,15 @@ pub enum Problem {
     /// A `texture-format` name that is not 1 to 32 lowercase letters,
     /// digits and `-`.
     BadTextureFormat(String),
+    /// A `texture-lines` line other than `texture-lines decoded`, or one
+    /// repeated or misplaced (its word, as found).
+    BadTextureLines(String),
+    /// A `texture-level` line that is malformed, misplaced or does not fit
+    /// the levels before it (why).
+    BadTextureLevel(String),
+    /// A texture instruction's block that lies in no `texture-level` of a
+    /// decoded-lines trace, or outside its level's stored grid.
+    BlockOutsideTextureMap(u64),
     /// A workload name or note holds characters a line cannot.
     BadText {
         /// Which field.
@@ -353,6 +362,22 @@ impl fmt::Display for Problem {
                 "texture format `{}` (expected 1 to 32 lowercase letters, digits and `-`, \
                  e.g. `texture-format etc2`)",
                 clip(s)
+            ),
+            BadTextureLines(s) => write!(
+                f,
+                "`texture-lines {}` (expected `texture-lines decoded`, at most once, after \
+                 `workload NAME` and before the `texture-level` lines and `frame W H tile T`)",
+                clip(s)
+            ),
+            BadTextureLevel(why) => write!(
+                f,
+                "bad `texture-level` line: {why} (expected `texture-level R0 RW RH S0 SW SH RX RY` \
+                 after `texture-lines decoded`, before `frame W H tile T`)"
+            ),
+            BlockOutsideTextureMap(b) => write!(
+                f,
+                "block {b:x} lies in no `texture-level` of this decoded-lines trace, or outside \
+                 its level's stored grid (expected every texture block inside a level)"
             ),
             BadText { field, why } => {
                 let name = match field {

@@ -43,6 +43,18 @@ pub(crate) fn fail(text: &str) -> (usize, Problem, String) {
 }
 
 /// A version-2 trace of `HEAD` and the lines `s`.
+/// Each text of `cases` fails to parse as `f.trace` at its line, with a
+/// message that says its words.
+pub(crate) fn reported_at(cases: &[(String, usize, &str)]) {
+    for (text, line, says) in cases {
+        let e = crate::Trace::parse(text, "f.trace").unwrap_err();
+        assert_eq!(e.line(), Some(*line), "{e}");
+        let m = e.to_string();
+        assert!(m.starts_with(&format!("f.trace:{line}: ")), "{m}");
+        assert!(m.contains(says), "{m}");
+    }
+}
+
 pub(crate) fn body(s: &str) -> String {
     format!("{HEAD}{s}")
 }

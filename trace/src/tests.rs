@@ -11,4 +11,5 @@ mod fuzz;
 mod malformed;
 mod rejected;
 mod texture_format;
+mod texture_map;
 mod trilinear;

@@ -29,6 +29,12 @@ impl Trace {
         if let Some(f) = &h.texture_format {
             let _ = writeln!(buf, "texture-format {f}");
         }
+        if let Some(map) = &h.texture_map {
+            buf.push_str("texture-lines decoded\n");
+            for level in map.levels() {
+                let _ = writeln!(buf, "texture-level {}", level.to_fields());
+            }
+        }
         let _ = writeln!(buf, "frame {} {} tile {}", h.frame_w, h.frame_h, h.tile);
         out.write_all(buf.as_bytes())?;
         // The frames after the first, by their first tile.

@@ -30,6 +30,12 @@ pub struct RasterOptions {
     /// compressed format or rule); it moves the blocks a texture
     /// instruction touches, not the picture.
     pub texture_format: FormatChoice,
+    /// List the *decoded* lines of compressed textures (laid out as RGBA8)
+    /// and map them to the stored lines (`texture-lines decoded`), for a
+    /// machine whose L0/L1 hold decompressed texels
+    /// (`memory.texture_cache = "decompressed"`). Off: the trace lists the
+    /// stored lines. Changes nothing with RGBA8, whose lines are both.
+    pub decoded_lines: bool,
 }
 
 impl Default for RasterOptions {
@@ -42,6 +48,7 @@ impl Default for RasterOptions {
             threads: 0,
             draw_order: DrawOrder::AsLoaded,
             texture_format: FormatChoice::Rgba8,
+            decoded_lines: false,
         }
     }
 }

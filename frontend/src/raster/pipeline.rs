@@ -41,8 +41,16 @@ pub(super) fn rasterize_frame(
     timings.geometry = clock.elapsed().as_secs_f64();
     let tex_clock = std::time::Instant::now();
     let formats = texture_formats(scene, opts.texture_format)?;
-    let uses = texture_uses(scene, &setups, &formats);
+    // Decoded lines: the textures laid out as RGBA8, mapped to their
+    // stored lines.
+    let decoded = opts.decoded_lines && opts.texture_format != FormatChoice::Rgba8;
+    let laid_out = match decoded {
+        true => vec![TextureFormat::Rgba8; formats.len()],
+        false => formats.clone(),
+    };
+    let uses = texture_uses(scene, &setups, &laid_out);
     let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
+    let map = decoded.then(|| textures.decoded_map(&formats));
     timings.textures = tex_clock.elapsed().as_secs_f64();
     let mats = material_infos(scene);
     let lists = bin(&setups, opts.tile, width, height, &mut stats);
@@ -53,7 +61,7 @@ pub(super) fn rasterize_frame(
     let mut join = Join {
         scene_name: &scene.name,
         stats,
-        builder: trace_builder(scene, width, height, opts, order_note)?,
+        builder: trace_builder(scene, width, height, opts, order_note, map)?,
         image: clear_image(width, height),
         width,
         height,
@@ -82,7 +90,7 @@ pub(super) fn rasterize_frame(
         ..
     } = join;
     builder
-        .note(summary_note(&stats, &textures, opts.texture_format))
+        .note(summary_note(&stats, &textures, &formats, opts))
         .map_err(|e| fail(format!("trace note: {e}")))?;
     let trace = builder
         .finish()
@@ -235,11 +243,13 @@ fn trace_builder(
     height: u32,
     opts: &RasterOptions,
     order_note: Option<String>,
+    map: Option<crate::trace::TextureMap>,
 ) -> Result<TraceBuilder, SceneError> {
     let mut header = TraceHeader::new(scene.name.clone(), width, height, opts.tile);
     // RGBA8 writes no line: its traces stay as they were.
     header.texture_format = (opts.texture_format != FormatChoice::Rgba8)
         .then(|| opts.texture_format.name().to_string());
+    header.texture_map = map;
     header
         .notes
         .push(format!(" scene {} ({})", scene.name, scene.source));
@@ -369,12 +379,23 @@ fn raster_tiles(
 
 /// The trace's closing note: what was rasterized and how much overdraw,
 /// and where the texture heap is and how its textures are stored.
-fn summary_note(stats: &RasterStats, textures: &TextureSet, choice: FormatChoice) -> String {
+fn summary_note(
+    stats: &RasterStats,
+    textures: &TextureSet,
+    formats: &[TextureFormat],
+    opts: &RasterOptions,
+) -> String {
+    let choice = opts.texture_format;
     let layout = match choice {
         FormatChoice::Rgba8 => "4x4-texel 64-byte blocks in Morton order".to_string(),
+        _ if opts.decoded_lines => format!(
+            "textures as {choice} ({}), listed as their decoded 4x4-texel 64-byte blocks in \
+             Morton order",
+            format_counts(formats)
+        ),
         _ => format!(
             "textures as {choice} ({}), 64-byte blocks in Morton order",
-            format_counts(textures)
+            format_counts(formats)
         ),
     };
     format!(
@@ -401,11 +422,11 @@ fn summary_note(stats: &RasterStats, textures: &TextureSet, choice: FormatChoice
 
 /// How many textures of the set are in each format: `12 etc2-rgb, 3
 /// etc2-rgba`, formats in [`TextureFormat::ALL`] order.
-fn format_counts(textures: &TextureSet) -> String {
+fn format_counts(formats: &[TextureFormat]) -> String {
     let parts: Vec<String> = TextureFormat::ALL
         .iter()
         .filter_map(|&f| {
-            let n = textures.textures().iter().filter(|t| t.format == f).count();
+            let n = formats.iter().filter(|&&t| t == f).count();
             (n > 0).then(|| format!("{n} {f}"))
         })
         .collect();

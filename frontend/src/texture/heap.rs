@@ -172,6 +172,49 @@ impl<'a> TextureSet<'a> {
     pub fn heap_bytes(&self) -> u64 {
         self.end - HEAP_BASE
     }
+
+    /// The map from this set's lines, which must be laid out as RGBA8
+    /// (the decoded texels), to the lines of the same textures stored as
+    /// `formats` (one per texture, in scene order; RGBA8 beyond its end),
+    /// placed as [`TextureSet::with_threads`] places them: one
+    /// `texture-level` per level ([`TextureMap`]).
+    pub fn decoded_map(&self, formats: &[TextureFormat]) -> TextureMap {
+        let mut map = TextureMap::new();
+        let mut addr = HEAP_BASE;
+        for (i, t) in self.textures.iter().enumerate() {
+            debug_assert_eq!(t.format, TextureFormat::Rgba8, "decoded lines are RGBA8");
+            let format = formats.get(i).copied().unwrap_or_default();
+            let (lx, ly) = format.line_texels();
+            let mut block = addr / BLOCK_BYTES;
+            for l in &t.levels {
+                let (sw, sh) = line_grid(l.width, l.height, format);
+                let rw = 1u32 << l.pw_log2;
+                map.push(MapLevel {
+                    first: l.first_block,
+                    grid: (rw, (l.block_count >> l.pw_log2) as u32),
+                    stored_first: block,
+                    stored_grid: (sw, sh),
+                    per_line: (lx / 4, ly / 4),
+                })
+                .expect("levels are laid out in increasing block order");
+                block += u64::from(sw) * u64::from(sh);
+            }
+            addr = (block * BLOCK_BYTES).div_ceil(TEXTURE_ALIGN) * TEXTURE_ALIGN;
+        }
+        map
+    }
+}
+
+/// The grid of 64-byte lines of a `w` x `h` level stored as `format`:
+/// whole format blocks, then whole lines (a line's region is a whole
+/// number of blocks, so ceil(w / region) is both), padded to powers of
+/// two.
+fn line_grid(w: u32, h: u32, format: TextureFormat) -> (u32, u32) {
+    let (cw, ch) = format.line_texels();
+    (
+        w.div_ceil(cw).next_power_of_two(),
+        h.div_ceil(ch).next_power_of_two(),
+    )
 }
 
 /// Every texture's mip chain (texels beyond level 0 only for sampled
@@ -230,12 +273,8 @@ fn place<'a>(
     let base = addr;
     let mut levels = Vec::with_capacity(chain.len());
     let mut block = base / BLOCK_BYTES;
-    let (cw, ch) = format.line_texels();
     for (w, h, rgba) in chain {
-        // Whole format blocks, then whole lines: a line's region is a
-        // whole number of blocks, so ceil(w / region) is both.
-        let bw = w.div_ceil(cw).next_power_of_two();
-        let bh = h.div_ceil(ch).next_power_of_two();
+        let (bw, bh) = line_grid(w, h, format);
         let (pw_log2, ph_log2) = (bw.trailing_zeros(), bh.trailing_zeros());
         let block_count = u64::from(bw) * u64::from(bh);
         let alpha = if with_alpha {
@@ -376,5 +415,46 @@ mod tests {
             TextureSet::new(&texs[..1]).textures()[0].levels[0].block_count,
             256
         );
+    }
+
+    #[test]
+    fn the_decoded_map_finds_every_texels_stored_line() {
+        let texs = [
+            tex("a", 64, 64, true),
+            tex("b", 100, 20, false),
+            tex("c", 12, 36, true),
+        ];
+        let decoded = TextureSet::new(&texs);
+        for format in TextureFormat::ALL {
+            // Mixed formats too: the etc2 rule gives RGB and RGBA in one set.
+            let formats = [format, TextureFormat::Etc2Rgba, format];
+            let uses: Vec<TextureUse> = formats
+                .iter()
+                .map(|&format| TextureUse {
+                    format,
+                    ..TextureUse::default()
+                })
+                .collect();
+            let stored = TextureSet::with_threads(&texs, 1, &uses);
+            let map = decoded.decoded_map(&formats);
+            let levels: usize = decoded.textures().iter().map(|t| t.levels.len()).sum();
+            assert_eq!(map.levels().len(), levels);
+            for (d, s) in decoded.textures().iter().zip(stored.textures()) {
+                for (dl, sl) in d.levels.iter().zip(&s.levels) {
+                    for y in 0..dl.height {
+                        for x in 0..dl.width {
+                            assert_eq!(
+                                map.stored(dl.block_of(x, y)),
+                                Some(sl.block_of(x, y)),
+                                "{format} {} {}x{} ({x},{y})",
+                                d.name,
+                                dl.width,
+                                dl.height
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 }

@@ -57,6 +57,7 @@
 //! what the trace lists.
 
 use super::{Filter, TexSample, Texture};
+use crate::trace::{MapLevel, TextureMap};
 use std::borrow::Cow;
 
 mod filter;

@@ -196,3 +196,47 @@ impl std::str::FromStr for IssueOrder {
             .ok_or_else(|| format!("unknown issue order {s:?}: expected lrr or gto"))
     }
 }
+
+/// What the texture caches (L0 and L1) hold of a compressed texture
+/// (`memory.texture_cache`); the sources disagree (docs/textures.md, "What
+/// the texture cache holds"), so both are modelled (wasp: `compressed` by
+/// default, the model before the option existed).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TextureCache {
+    /// Every level (L0, L1, L2) and DRAM hold the stored (compressed)
+    /// lines the trace lists; the texture unit decompresses after the L0.
+    #[default]
+    Compressed,
+    /// The L0 and L1 hold decoded RGBA8 lines (the trace lists them and
+    /// maps them, `texture-lines decoded`); an L1 miss asks the L2 for the
+    /// compressed line holding its texels, so the L2 and DRAM hold and
+    /// move compressed lines.
+    Decompressed,
+}
+
+impl TextureCache {
+    /// Every choice.
+    pub const ALL: [TextureCache; 2] = [TextureCache::Compressed, TextureCache::Decompressed];
+}
+
+impl std::fmt::Display for TextureCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            TextureCache::Compressed => "compressed",
+            TextureCache::Decompressed => "decompressed",
+        })
+    }
+}
+
+impl std::str::FromStr for TextureCache {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        TextureCache::ALL
+            .into_iter()
+            .find(|o| o.to_string() == s)
+            .ok_or_else(|| {
+                format!("unknown texture cache {s:?}: expected compressed or decompressed")
+            })
+    }
+}

@@ -2,7 +2,7 @@
 //! its description, its bound and its type (see [`crate::param`]). The
 //! shipped files (`configs/*.toml`) give every value with its source.
 
-use super::choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming, IssueOrder};
+use super::choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming, IssueOrder, TextureCache};
 use super::core_map::CoreMap;
 use crate::param::section;
 use limits::*;
@@ -188,11 +188,19 @@ section! {
 }
 
 section! {
-    /// Main memory and the ideal-memory switch.
+    /// Main memory and the ideal-memory switch; what the texture caches
+    /// hold.
     #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
     pub struct MemoryConfig {
         /// Zero-latency main memory (the paper's motivation figure).
         pub ideal: bool,
+        /// What the L0 and L1 texture caches hold of a compressed texture:
+        /// `compressed` (its stored lines, as every level below) or
+        /// `decompressed` (decoded RGBA8 lines; the L2 and DRAM keep the
+        /// compressed ones): see [`TextureCache`]. A file without the key
+        /// has `compressed`, the model before the key existed.
+        #[serde(default)]
+        pub texture_cache: TextureCache,
     }
 }
 

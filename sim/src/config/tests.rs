@@ -353,6 +353,36 @@ fn blocked_on_is_inherited_and_checked() {
 }
 
 #[test]
+fn texture_cache_is_checked_and_defaults_to_compressed() {
+    let line = "texture_cache = \"compressed\"";
+    assert!(PAPER_TOML.contains(line) && PAPER_WIDTH2_TOML.contains(line));
+    assert_eq!(
+        MachineConfig::paper().memory.texture_cache,
+        TextureCache::Compressed
+    );
+    let c = with(|s| s.replacen(line, "texture_cache = \"decompressed\"", 1)).unwrap();
+    assert_eq!(c.memory.texture_cache, TextureCache::Decompressed);
+    let again = MachineConfig::parse(&c.to_toml(), "again").unwrap();
+    assert_eq!(again, c, "written back, it reads back");
+    // A file without the key (one written before it existed) is compressed.
+    let c = with(|s| s.replacen(line, "", 1)).unwrap();
+    assert_eq!(c, MachineConfig::paper());
+    let e = with(|s| s.replacen(line, "texture_cache = \"decoded\"", 1)).unwrap_err();
+    assert!(
+        e.message.starts_with("memory.texture_cache:")
+            && e.message.contains("decoded")
+            && e.message.contains("compressed")
+            && e.message.contains("decompressed"),
+        "{e}"
+    );
+    assert_eq!(e.source, format!("test.toml:{}", line_of(PAPER_TOML, line)));
+    assert!("x"
+        .parse::<TextureCache>()
+        .unwrap_err()
+        .contains("compressed or decompressed"));
+}
+
+#[test]
 fn issue_order_is_checked_and_defaults_to_lrr() {
     assert_eq!(MachineConfig::paper().core.issue, IssueOrder::Lrr);
     assert_eq!(MachineConfig::paper_width2().core.issue, IssueOrder::Lrr);

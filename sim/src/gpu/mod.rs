@@ -44,12 +44,12 @@ pub use self::core_model::CoreModel;
 pub use self::raster::{RasterStats, SharedRaster};
 pub use self::tiles::{LeadBin, LeadStats, TileRecord, TileTimingStats, TileTracker};
 
-use crate::config::MachineConfig;
+use crate::config::{MachineConfig, TextureCache};
 use crate::mem::prefetch::{self, Prefetcher};
 use crate::mem::MemStats;
 use crate::mem::MemorySystem;
 use crate::timeline::{Timeline, TimelineSample};
-use crate::trace::Trace;
+use crate::trace::{TextureMap, Trace};
 use std::fmt;
 use wasp_rtl::RegisterFault;
 use wasp_waves::{CycleSink, NullTracer, Tracer};
@@ -193,6 +193,35 @@ fn feed_prefetcher(
     }
 }
 
+/// The map the memory system needs for `cfg.memory.texture_cache`, or the
+/// error when the trace lists lines the machine's texture caches do not
+/// hold: a decompressed-texel cache needs the decoded lines of a
+/// `texture-lines decoded` trace (an RGBA8 trace's lines are both), a
+/// compressed-block cache the stored lines of any other trace.
+fn texture_map<'a>(
+    cfg: &MachineConfig,
+    trace: &'a Trace,
+) -> Result<Option<&'a TextureMap>, SimError> {
+    let h = trace.header();
+    let stored = h.texture_format.as_deref().filter(|f| *f != "rgba8");
+    match (cfg.memory.texture_cache, &h.texture_map, stored) {
+        (TextureCache::Decompressed, Some(map), _) => Ok(Some(map)),
+        (TextureCache::Decompressed, None, Some(f)) => Err(SimError::Config(format!(
+            "memory.texture_cache = \"decompressed\" needs a trace that lists the decoded (RGBA8) \
+             lines of its textures (`texture-lines decoded`), but this trace lists the stored lines \
+             of its `texture-format {f}` textures: render it with `--texture-cache decompressed`, \
+             or run it with memory.texture_cache = \"compressed\""
+        ))),
+        (TextureCache::Compressed, Some(_), _) => Err(SimError::Config(
+            "the trace lists the decoded (RGBA8) lines of compressed textures (`texture-lines \
+             decoded`), which only memory.texture_cache = \"decompressed\" runs: set it, or render \
+             the trace without `--texture-cache decompressed` for compressed lines in every cache"
+                .to_string(),
+        )),
+        _ => Ok(None),
+    }
+}
+
 impl<'t> Gpu<'t> {
     /// Build the GPU for `cfg` (already validated) and `trace`.
     pub fn new(cfg: &MachineConfig, trace: &'t Trace) -> Result<Self, SimError> {
@@ -224,8 +253,11 @@ impl<'t, C: CoreModel> Gpu<'t, C> {
                 C::build(id, &params, wiring.as_ref(), sched.launch_rule, subset)
             })
             .collect();
-        let mem =
+        let mut mem =
             MemorySystem::new(&cfg.mem_config()).map_err(|e| SimError::Config(e.to_string()))?;
+        if let Some(map) = texture_map(cfg, trace)? {
+            mem.map_texture_lines(map.clone());
+        }
         let (dispatch, trackers) = if params.external_raster {
             let raster = SharedRaster::new(
                 cfg.raster.quads_per_cycle,

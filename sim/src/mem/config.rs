@@ -271,7 +271,9 @@ impl MemConfig {
     ///   FreeMSHR-10 heuristic and WaSP thresholds to be meaningful.
     /// - Merging: 16 secondary misses per L0/L1 entry, 8 per L2 entry (an L2
     ///   entry's targets are L1s, at most one pending request per L1 and block,
-    ///   so 8 never binds with 4 cores).
+    ///   so 8 never binds with 4 cores; with decompressed texels in the L1s,
+    ///   `memory.texture_cache`, up to 16 L1 lines of a core share one L2
+    ///   line, and it can).
     /// - Ports: L0 2 (paper), L1 1 (the paper adds the two-port L0 because
     ///   the L1 cannot feed a width-4 pipeline), L2 4 (one request per core
     ///   per cycle, so L2 bandwidth is not what limits the L0/L1 MSHRs).

@@ -8,6 +8,7 @@ use super::dram::Dram;
 use super::prefetch::{PrefetchQueue, PrefetchQueues, PrefetchStats};
 use super::ring::Ring;
 use super::stats::{CacheStats, CoreMemStats, MemStats};
+use crate::trace::TextureMap;
 use wasp_waves::Tracer;
 
 #[cfg(test)]
@@ -248,6 +249,23 @@ fn hand_over(from: &mut Vec<u32>, out: &mut Vec<u32>) {
     }
 }
 
+/// The L2 target of L1 entry `entry` of core `core` when the L1s hold
+/// decoded lines (one L2 line then serves several L1 entries of a core).
+#[inline]
+fn l2_target(core: u32, entry: u32, l1_mshrs: u32) -> u32 {
+    core * l1_mshrs + entry
+}
+
+/// The stored line and L2 target of core `core`'s L1 request `r` when the
+/// L1s hold decoded lines (`map`).
+#[inline(never)]
+fn l2_request(map: &TextureMap, r: Request, core: u32, l1_mshrs: u32) -> (u64, u32) {
+    (
+        map.stored(r.block).unwrap_or(r.block),
+        l2_target(core, r.entry, l1_mshrs),
+    )
+}
+
 /// L2 reply to the L1 of a core.
 #[derive(Debug, Clone, Copy, Default)]
 struct L2Reply {
@@ -288,6 +306,11 @@ pub struct MemorySystem {
     /// round-robin order (tick scratch, `cores` long at most).
     l2_order: Vec<u32>,
     dram: Dram,
+    /// With L0/L1 texture caches holding decoded lines
+    /// ([`map_texture_lines`](Self::map_texture_lines)): the map from a
+    /// decoded (RGBA8) line to the stored line the L2 holds. `None`: every
+    /// level holds the lines the trace lists.
+    texmap: Option<TextureMap>,
     /// Last cycle seen.
     now: u64,
     /// Calls of `tick` so far (the `cycles` of every cache's stats).
@@ -347,6 +370,7 @@ impl MemorySystem {
             to_l1: Ring::with_capacity(n_cores * cfg.l1.mshrs as usize),
             l2_order: Vec::with_capacity(n_cores),
             dram: Dram::new(&cfg.dram, cfg.ideal_memory, cfg.l2.mshrs),
+            texmap: None,
             now: 0,
             ticks: 0,
             ticked_until: 0,
@@ -356,6 +380,21 @@ impl MemorySystem {
     /// The configuration.
     pub fn config(&self) -> &MemConfig {
         &self.cfg
+    }
+
+    /// Make the L0s and L1s hold decoded texture lines (the blocks the
+    /// cores present) and the L2 and DRAM the stored (compressed) lines
+    /// `map` gives for them (`memory.texture_cache = "decompressed"`): an
+    /// L1 miss asks the L2 for the stored line holding its texels, so
+    /// several L1 lines share one L2 line. An L1 miss whose stored line is
+    /// already pending in the L2 merges into its entry as any secondary
+    /// miss does (up to `l2.max_merged` targets, then the request waits),
+    /// and the L2's reply fills each waiting L1 entry with its own line.
+    /// A block the map does not cover goes to the L2 unchanged (the trace
+    /// reader refuses such blocks in a decoded-lines trace). Call before
+    /// the first access.
+    pub fn map_texture_lines(&mut self, map: TextureMap) {
+        self.texmap = Some(map);
     }
 
     /// Number of cores.
@@ -575,6 +614,10 @@ impl MemorySystem {
     /// ports are used or no head can go. A core leaves the rounds when the
     /// L2 refuses its head (MSHRs full or merge full) or its next head is
     /// not ready.
+    ///
+    /// When the L1s hold decoded lines ([`map_texture_lines`](Self::
+    /// map_texture_lines)) the L2 is asked for the stored line and its
+    /// target names the L1 entry to fill ([`l2_request`]).
     #[inline(always)]
     fn requests_to_l2(&mut self, now: u64) {
         let report = self.report_misses;
@@ -587,14 +630,20 @@ impl MemorySystem {
                 let Some(&r) = c.to_l2.front() else {
                     unreachable!("an L2 candidate has a request")
                 };
-                match self.l2.access_entry_unmarked(now, r.block, core) {
+                // With decoded lines in the L1s the L2 sees the stored line,
+                // and its target names the L1 entry to fill.
+                let (block, target) = match &self.texmap {
+                    None => (r.block, core),
+                    Some(map) => l2_request(map, r, core, self.cfg.l1.mshrs),
+                };
+                match self.l2.access_entry_unmarked(now, block, target) {
                     (Lookup::Hit, _) => self.to_l1.push_back(L2Reply {
                         at: l2_reply,
                         core,
                         block: r.block,
                     }),
                     (Lookup::Miss, entry) => {
-                        self.dram.request(now, r.block, entry);
+                        self.dram.request(now, block, entry);
                         if report {
                             c.misses.push(MissEvent::L2 { l1: r.entry });
                         }
@@ -624,6 +673,10 @@ impl MemorySystem {
         let l2_reply = now + u64::from(self.l2.config().hit_latency) - 1;
         self.dram.accept(now);
         while let Some(entry) = self.dram.pop_reply(now) {
+            if self.texmap.is_some() {
+                self.fill_l2_decoded(now, entry, l2_reply);
+                continue;
+            }
             let block = self.l2.pending_block(entry);
             for &core in self.l2.fill_entry_unmarked(now, entry) {
                 self.to_l1.push_back(L2Reply {
@@ -635,6 +688,22 @@ impl MemorySystem {
         }
         // Keep the L2's MSHR occupancy current for its readers.
         self.l2.release(now);
+    }
+
+    /// Step 3's fill of L2 entry `entry` when the L1s hold decoded lines:
+    /// each target is an L1 entry ([`l2_target`]) waiting for its own
+    /// decoded line, which the reply carries up.
+    #[inline(never)]
+    fn fill_l2_decoded(&mut self, now: u64, entry: u32, l2_reply: u64) {
+        let l1_mshrs = self.cfg.l1.mshrs;
+        for &t in self.l2.fill_entry_unmarked(now, entry) {
+            let (core, e) = (t / l1_mshrs, t % l1_mshrs);
+            self.to_l1.push_back(L2Reply {
+                at: l2_reply,
+                core,
+                block: self.cores[core as usize].l1.pending_block(e),
+            });
+        }
     }
 
     /// Step 4: L2 replies due at `now` fill the L1s; their targets go on to

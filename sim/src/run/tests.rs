@@ -716,3 +716,39 @@ fn watchdog_reports_the_stuck_state() {
     let msg = e.to_string();
     assert!(msg.contains("watchdog") && msg.contains("core 0"), "{msg}");
 }
+
+#[test]
+fn the_texture_cache_choice_must_match_the_lines_the_trace_lists() {
+    use crate::config::TextureCache;
+    // One 16x16-texel level: 4x4 RGBA8 lines at 0, stored as ETC2 RGB in
+    // 1x2 lines at 0x1000; warps read lines 0, 1 and 8.
+    let decoded = "wasp-trace 4\nworkload w\ntexture-format etc2\ntexture-lines decoded\n\
+                   texture-level 0 4 4 1000 1 2 4 2\nframe 8 8 tile 8\ntile 0 0\n\
+                   q 0 0 t0,1 a2\nq 1 0 t8 a1\nend\n";
+    let t = Trace::parse(decoded, "d").unwrap();
+    let mut cfg = cfg_for(&t);
+    let e = simulate(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap_err();
+    assert!(e.to_string().contains("texture-lines decoded"), "{e}");
+    cfg.memory.texture_cache = TextureCache::Decompressed;
+    let s = simulate(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
+    assert_eq!(s.warps, 2);
+    assert_eq!(s.texture_cache, "decompressed");
+    // Three decoded lines in the L1, two stored lines below it.
+    assert_eq!((s.l1.misses, s.dram.requests), (3, 2));
+    // A trace of stored compressed lines needs compressed caches; an
+    // RGBA8 trace runs under both (its lines are decoded and stored).
+    let stored = decoded.replace(
+        "texture-lines decoded\ntexture-level 0 4 4 1000 1 2 4 2\n",
+        "",
+    );
+    let t = Trace::parse(&stored, "s").unwrap();
+    let e = simulate(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap_err();
+    assert!(
+        e.to_string().contains("--texture-cache decompressed"),
+        "{e}"
+    );
+    let rgba8 = stored.replace("texture-format etc2\n", "");
+    let t = Trace::parse(&rgba8, "r").unwrap();
+    let s = simulate(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
+    assert_eq!((s.l1.misses, s.dram.requests), (3, 3));
+}

@@ -1,6 +1,6 @@
 //! The statistics as a readable table.
 
-use super::{is_default_issue, LevelStats, RunStats};
+use super::{is_default_issue, is_default_texture_cache, LevelStats, RunStats};
 use std::fmt::Write as _;
 
 impl RunStats {
@@ -31,6 +31,9 @@ impl RunStats {
         );
         if !is_default_issue(&self.issue) {
             let _ = write!(s, "  issue {}", self.issue);
+        }
+        if !is_default_texture_cache(&self.texture_cache) {
+            let _ = write!(s, "  texture cache {}", self.texture_cache);
         }
         s.push('\n');
         let _ = writeln!(

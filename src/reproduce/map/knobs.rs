@@ -37,7 +37,9 @@ pub struct Knob {
     /// machine field): its values are draw orders and `sets` is unused.
     pub draw_order: bool,
     /// Whether the knob is the scenes' texture format (the front end's):
-    /// its values are [`FormatChoice`]s and `sets` is unused.
+    /// its values are [`FormatChoice`]s, each alone (the texture caches
+    /// hold what memory holds) or followed by [`DECOMPRESSED`] (the L0/L1
+    /// hold decoded texels), and `sets` is unused.
     pub texture_format: bool,
 }
 
@@ -45,7 +47,9 @@ impl Knob {
     /// The overrides of `value` (none for the shipped value, so that the
     /// shipped point is the shipped machine, spelled the same way).
     pub fn overrides(&self, value: &str) -> Vec<String> {
-        if value == self.shipped || self.draw_order || self.texture_format {
+        if self.texture_format && value.ends_with(DECOMPRESSED) {
+            vec!["memory.texture_cache=\"decompressed\"".to_string()]
+        } else if value == self.shipped || self.draw_order || self.texture_format {
             Vec::new()
         } else {
             (self.sets)(value)
@@ -63,8 +67,9 @@ impl Knob {
     /// The texture format of `value` for a texture-format knob (None for
     /// the shipped value, so that the shipped point keeps the scene's own).
     pub fn format(&self, value: &str) -> Option<FormatChoice> {
+        let format = value.strip_suffix(DECOMPRESSED).unwrap_or(value);
         (self.texture_format && value != self.shipped)
-            .then(|| value.parse().ok())
+            .then(|| format.parse().ok())
             .flatten()
     }
 
@@ -81,6 +86,20 @@ impl Knob {
         } else {
             self.values
         }
+    }
+}
+
+/// The suffix of a texture-format knob value whose L0/L1 texture caches
+/// hold decompressed texels (`memory.texture_cache = "decompressed"`;
+/// docs/textures.md): `etc2+decompressed`.
+pub const DECOMPRESSED: &str = "+decompressed";
+
+/// A texture-format value as a label: `textures etc2`, or `textures etc2,
+/// decompressed in L0/L1`.
+fn texture_unit(v: &str) -> String {
+    match v.strip_suffix(DECOMPRESSED) {
+        Some(f) => format!("textures {f}, decompressed in L0/L1"),
+        None => format!("textures {v}"),
     }
 }
 
@@ -306,10 +325,10 @@ pub fn all() -> Vec<Knob> {
             field: "texture_format (scene)",
             label: "texture format",
             shipped: "rgba8",
-            values: &["rgba8", "etc2", "astc-8x8"],
+            values: &["rgba8", "etc2", "etc2+decompressed", "astc-8x8"],
             quick: &["rgba8", "etc2"],
             sets: |_| Vec::new(),
-            unit: |v| format!("textures {v}"),
+            unit: texture_unit,
             draw_order: false,
             texture_format: true,
         },
@@ -381,8 +400,26 @@ mod tests {
                 for v in k.values {
                     let f = k.format(v);
                     assert_eq!(f.is_none(), *v == k.shipped, "{v}");
-                    assert!(k.overrides(v).is_empty(), "{v}");
+                    // Only the decompressed-texel values set the machine.
+                    let sets = k.overrides(v);
+                    assert_eq!(sets.is_empty(), !v.ends_with(DECOMPRESSED), "{v}");
+                    let c = wasp_sim::overrides::apply(&paper, &sets).unwrap();
+                    let decompressed = wasp_sim::config::TextureCache::Decompressed;
+                    assert_eq!(
+                        c.memory.texture_cache == decompressed,
+                        v.ends_with(DECOMPRESSED),
+                        "{v}"
+                    );
                 }
+                assert_eq!(
+                    k.format("etc2+decompressed"),
+                    Some(FormatChoice::Etc2),
+                    "the same format under both cache choices"
+                );
+                assert_eq!(
+                    (k.unit)("etc2+decompressed"),
+                    "textures etc2, decompressed in L0/L1"
+                );
             }
             // The shipped value spelled as an override is the shipped
             // machine: the knob's range really passes through it.

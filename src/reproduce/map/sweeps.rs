@@ -8,9 +8,10 @@
 //! policies: `map-policies.toml` (every knob value under the baseline,
 //! Fullpriority and WaSP), `map-bounds.toml` (every knob value with the
 //! raster prefetcher, the oracle and ideal memory, under the baseline) and
-//! `map-deep-queue.toml` (the warp series with a deep input queue). The
-//! texture-format knob's points are in no file (a sweep file names no
-//! texture format): `wasp reproduce` runs them with the grid.
+//! `map-deep-queue.toml` (the warp series with a deep input queue); the
+//! scene knobs' values have files of their own (`map-draw-order*.toml`
+//! with `draw_orders`, `map-texture-format*.toml` with `texture_formats`,
+//! one pair per cache choice of the texture caches).
 
 use super::knobs::{Knob, Variant};
 use super::plan::{MapPlan, DEEP_QUEUE};
@@ -28,14 +29,15 @@ fn toml_list(v: &[String]) -> String {
     format!("[{}]", q.join(", "))
 }
 
-/// A sweep file's text; `orders` are its `draw_orders` (none: the
-/// scenes' own).
+/// A sweep file's text; `orders` are its `draw_orders` and `formats` its
+/// `texture_formats` (none: the scenes' own).
 fn file(
     comment: &str,
     scenes: &[String],
     policies: &[PolicySpec],
     configs: &[Entry],
     orders: &[&str],
+    formats: &[&str],
 ) -> String {
     let mut s = String::new();
     for line in comment.lines() {
@@ -48,6 +50,10 @@ fn file(
     if !orders.is_empty() {
         let o: Vec<String> = orders.iter().map(|o| o.to_string()).collect();
         let _ = writeln!(s, "draw_orders = {}", toml_list(&o));
+    }
+    if !formats.is_empty() {
+        let f: Vec<String> = formats.iter().map(|f| f.to_string()).collect();
+        let _ = writeln!(s, "texture_formats = {}", toml_list(&f));
     }
     for (name, set) in configs {
         let _ = writeln!(
@@ -149,6 +155,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 &policies,
                 &knobs,
                 &[],
+                &[],
             ),
         ),
         (
@@ -161,6 +168,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 scenes,
                 &[PolicySpec::Baseline],
                 &bounds,
+                &[],
                 &[],
             ),
         ),
@@ -175,6 +183,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 scenes,
                 &[PolicySpec::Baseline, map.wasp],
                 &deep,
+                &[],
                 &[],
             ),
         ),
@@ -191,6 +200,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 &policies,
                 &shipped,
                 &orders,
+                &[],
             ),
         ));
         out.push((
@@ -204,6 +214,74 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 &[PolicySpec::Baseline],
                 &with_bounds(&shipped),
                 &orders,
+                &[],
+            ),
+        ));
+    }
+    out.extend(texture_format_files(map, scenes, head));
+    out
+}
+
+/// The texture-format knob's values besides the shipped one, grouped by
+/// the machine they run on: (the entry's name suffix, its overrides, the
+/// formats).
+fn other_formats(map: &MapPlan) -> Vec<(String, Vec<String>, Vec<String>)> {
+    let mut groups: Vec<(String, Vec<String>, Vec<String>)> = Vec::new();
+    for k in map.knobs.iter().filter(|k| k.texture_format) {
+        for v in k.values_for(map.quick).iter().filter(|v| **v != k.shipped) {
+            let Some(f) = k.format(v) else { continue };
+            let sets = k.overrides(v);
+            let suffix = v.strip_prefix(f.name()).unwrap_or("").to_string();
+            match groups.iter_mut().find(|g| g.1 == sets) {
+                Some(g) => g.2.push(f.name().to_string()),
+                None => groups.push((suffix, sets, vec![f.name().to_string()])),
+            }
+        }
+    }
+    groups
+}
+
+/// The texture-format knob's files: per machine its formats under the
+/// baseline, Fullpriority and WaSP, and with the bounds.
+fn texture_format_files(map: &MapPlan, scenes: &[String], head: &str) -> Vec<(String, String)> {
+    let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
+    let mut out = Vec::new();
+    for (suffix, sets, formats) in other_formats(map) {
+        let tag = suffix.trim_start_matches('+');
+        let (file_tag, what) = match tag {
+            "" => (String::new(), String::new()),
+            t => (format!("-{t}"), format!(" (texture caches: {t})")),
+        };
+        let entry = vec![(format!("shipped{suffix}"), sets)];
+        let formats: Vec<&str> = formats.iter().map(String::as_str).collect();
+        out.push((
+            format!("map-texture-format{file_tag}.toml"),
+            file(
+                &format!(
+                    "{head}
+The shipped machine{what} with the scenes' textures stored in \
+                     other formats, under the baseline, Fullpriority and WaSP."
+                ),
+                scenes,
+                &policies,
+                &entry,
+                &[],
+                &formats,
+            ),
+        ));
+        out.push((
+            format!("map-texture-format{file_tag}-bounds.toml"),
+            file(
+                &format!(
+                    "{head}
+The same formats{what} with the raster prefetcher, the oracle \
+                     and ideal memory, under the baseline."
+                ),
+                scenes,
+                &[PolicySpec::Baseline],
+                &with_bounds(&entry),
+                &[],
+                &formats,
             ),
         ));
     }
@@ -236,23 +314,32 @@ mod tests {
             std::fs::write(&path, text).unwrap();
             let sweep = Sweep::load(&path).unwrap();
             for p in sweep.points().unwrap() {
-                swept.insert((toml::to_string(&*p.machine).unwrap(), p.point.draw_order));
+                swept.insert((
+                    toml::to_string(&*p.machine).unwrap(),
+                    p.point.draw_order,
+                    p.point.texture_format,
+                ));
             }
         }
         std::fs::remove_dir_all(&dir).ok();
         // Every machine of the map's one-at-a-time points is in a file,
-        // but the texture-format knob's (sweep files name no texture
-        // format: `wasp reproduce` runs those points itself).
+        // the scene knobs' (draw orders, texture formats under both cache
+        // choices) included.
+        let mut formats = 0;
         for t in map.tasks(&scenes) {
             let crate::study::runner::Task::Run(p) = t else {
                 continue;
             };
-            if p.texture_format.is_some() {
-                continue;
-            }
+            formats += usize::from(p.texture_format.is_some());
             let cfg = r.config(&p).unwrap();
-            let key = (toml::to_string(&cfg).unwrap(), p.draw_order);
+            let key = (
+                toml::to_string(&cfg).unwrap(),
+                p.draw_order,
+                p.texture_format,
+            );
             assert!(swept.contains(&key), "{} is in no sweep file", p.describe());
         }
+        // etc2, etc2 with decompressed texels and astc-8x8, six variants.
+        assert_eq!(formats, 3 * 6, "the texture-format points are checked");
     }
 }

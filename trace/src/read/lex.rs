@@ -165,7 +165,7 @@ pub(super) fn dec_u32(tok: &str, what: &'static str, max: u64) -> Result<u32, Pr
 
 /// A block number: 1 to 16 hex digits.
 #[inline]
-fn hex(tok: &str) -> Result<u64, Problem> {
+pub(super) fn hex(tok: &str) -> Result<u64, Problem> {
     if tok.is_empty() || tok.len() > 16 || !tok.bytes().all(|c| c.is_ascii_hexdigit()) {
         return Err(Problem::BadHex {
             found: tok.to_string(),

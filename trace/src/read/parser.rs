@@ -1,10 +1,12 @@
 //! The line-by-line parser: the header lines, then each directive, fed to
 //! a [`TraceBuilder`] that enforces the format's rules.
 
-use super::lex::{check_line, check_magic, dec_u32, instr_token, lines, tokens, Tok};
+use super::lex::{
+    check_line, check_magic, dec_u32, hex as hex_u64, instr_token, lines, tokens, Tok,
+};
 use crate::{
-    Problem, Trace, TraceBuilder, TraceHeader, FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_3,
-    FORMAT_VERSION_FRAMES, FRAME_MARKER, MAX_QUAD_INSTRS,
+    MapLevel, Problem, TextureMap, Trace, TraceBuilder, TraceHeader, FORMAT_VERSION,
+    FORMAT_VERSION_1, FORMAT_VERSION_3, FORMAT_VERSION_FRAMES, FRAME_MARKER, MAX_QUAD_INSTRS,
 };
 
 /// Checks line 1 (the magic line) and returns a parser for the rest of
@@ -31,6 +33,8 @@ pub(super) struct Parser<'a> {
     workload: Option<String>,
     /// The `texture-format` line's name, if read.
     texture_format: Option<String>,
+    /// The map of a `texture-lines decoded` trace, once that line is read.
+    texture_map: Option<TextureMap>,
     /// Present once the `frame` line has been read.
     pub(super) builder: Option<TraceBuilder>,
     /// A version-1 file: quads in strictly increasing scanline order.
@@ -56,6 +60,7 @@ impl<'a> Parser<'a> {
             notes: Vec::new(),
             workload: None,
             texture_format: None,
+            texture_map: None,
             builder,
             scanline_order: version == FORMAT_VERSION_1,
             version,
@@ -138,6 +143,8 @@ impl<'a> Parser<'a> {
             }
             "workload" => self.workload_line(trimmed),
             "texture-format" => self.texture_format_line(fields),
+            "texture-lines" => self.texture_lines_line(fields),
+            "texture-level" => self.texture_level_line(fields),
             "frame" => self.frame_line(fields),
             "tile" => {
                 let b = self.body(directive)?;
@@ -225,6 +232,56 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// `texture-lines decoded`: after `workload`, before `frame`, at most
+    /// once.
+    fn texture_lines_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
+        let word = fields.get(1..).unwrap_or_default().join(" ");
+        if word != "decoded"
+            || self.texture_map.is_some()
+            || self.builder.is_some()
+            || self.workload.is_none()
+        {
+            return Err(Problem::BadTextureLines(word));
+        }
+        self.texture_map = Some(TextureMap::new());
+        Ok(())
+    }
+
+    /// `texture-level R0 RW RH S0 SW SH RX RY`: after `texture-lines
+    /// decoded`, before `frame`.
+    fn texture_level_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
+        let bad = |why: &str| Problem::BadTextureLevel(why.to_string());
+        let Some(map) = self.texture_map.as_mut().filter(|_| self.builder.is_none()) else {
+            return Err(bad("not after `texture-lines decoded` and before `frame`"));
+        };
+        if fields.len() != 9 {
+            return Err(Problem::WrongFieldCount {
+                directive: "texture-level",
+                found: fields.len(),
+                usage: "texture-level R0 RW RH S0 SW SH RX RY",
+            });
+        }
+        let grid = u64::from(crate::MAX_GRID);
+        let per = u64::from(crate::MAX_LINES_PER_LINE);
+        let level = MapLevel {
+            first: hex_u64(fields[1])?,
+            grid: (
+                dec_u32(fields[2], "RGBA8 grid width", grid)?,
+                dec_u32(fields[3], "RGBA8 grid height", grid)?,
+            ),
+            stored_first: hex_u64(fields[4])?,
+            stored_grid: (
+                dec_u32(fields[5], "stored grid width", grid)?,
+                dec_u32(fields[6], "stored grid height", grid)?,
+            ),
+            per_line: (
+                dec_u32(fields[7], "RGBA8 lines per stored line along x", per)?,
+                dec_u32(fields[8], "RGBA8 lines per stored line along y", per)?,
+            ),
+        };
+        map.push(level)
+    }
+
     fn frame_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
         if self.builder.is_some() {
             return Err(Problem::MisplacedHeader("frame"));
@@ -248,6 +305,7 @@ impl<'a> Parser<'a> {
         let mut header = TraceHeader::new(workload, w, h, t);
         header.notes = self.notes.clone();
         header.texture_format = self.texture_format.clone();
+        header.texture_map = self.texture_map.clone();
         let mut builder = TraceBuilder::new(header)?;
         if self.scanline_order {
             builder.require_scanline_order();

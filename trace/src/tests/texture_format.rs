@@ -73,13 +73,7 @@ fn a_misplaced_or_bad_texture_format_is_reported_with_its_line() {
             "texture-format NAME",
         ),
     ];
-    for (text, line, says) in cases {
-        let e = Trace::parse(&text, "f.trace").unwrap_err();
-        assert_eq!(e.line(), Some(line), "{e}");
-        let m = e.to_string();
-        assert!(m.starts_with(&format!("f.trace:{line}: ")), "{m}");
-        assert!(m.contains(says), "{m}");
-    }
+    crate::testkit::reported_at(&cases);
     assert!(matches!(
         Trace::parse(&WITH.replace("etc2", "a b"), "x")
             .unwrap_err()

@@ -277,6 +277,67 @@ fn misses_of_two_cores_merge_at_the_l2() {
     assert_eq!(s.l1.cycles, 2 * s.l2.cycles);
 }
 
+/// A map of one 16x16-texel level: 4x4 RGBA8 lines from block 0, stored
+/// as ETC2 RGB (16x8 texels a line) in 1x2 lines from block 0x1000.
+fn etc2_map() -> TextureMap {
+    let mut map = TextureMap::new();
+    map.push(crate::trace::MapLevel {
+        first: 0,
+        grid: (4, 4),
+        stored_first: 0x1000,
+        stored_grid: (1, 2),
+        per_line: (4, 2),
+    })
+    .unwrap();
+    map
+}
+
+#[test]
+fn decoded_lines_in_the_l1s_share_their_stored_line_in_the_l2() {
+    let mut cfg = MemConfig::paper(false);
+    cfg.cores = 2;
+    // Lines 0 and 1 (core 0) and 2 (core 1) lie in the top half of the
+    // level: stored line 0x1000. Line 8 is in the bottom half: 0x1001.
+    let run = |mapped: bool| {
+        let mut mem = MemorySystem::new(&cfg).unwrap();
+        if mapped {
+            mem.map_texture_lines(etc2_map());
+        }
+        assert_eq!(mem.access(0, 0, 0, 1), Access::Miss);
+        assert_eq!(mem.access(0, 1, 2, 3), Access::Miss);
+        mem.tick(0);
+        assert_eq!(mem.access(1, 0, 1, 2), Access::Miss);
+        assert_eq!(mem.access(1, 1, 8, 4), Access::Miss);
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        let mut now = 1;
+        while a.len() + b.len() < 4 {
+            mem.tick(now);
+            mem.take_completions(0, &mut a);
+            mem.take_completions(1, &mut b);
+            now += 1;
+            assert!(now < 10_000, "no progress");
+        }
+        a.sort_unstable();
+        b.sort_unstable();
+        assert_eq!((a, b), (vec![1, 2], vec![3, 4]));
+        // Each L1 holds its own decoded lines.
+        settle(&mut mem, now);
+        assert_eq!(mem.access(now + 2, 0, 1, 5), Access::Hit);
+        assert_eq!(mem.access(now + 2, 1, 8, 6), Access::Hit);
+        mem.stats()
+    };
+    let s = run(true);
+    assert_eq!(s.l1.misses, 4);
+    assert_eq!(
+        (s.l2.misses, s.l2.secondary_misses, s.dram.requests),
+        (2, 2, 2),
+        "three L1 lines share one stored line, merged at the L2"
+    );
+    // Without the map every L1 line is an L2 line of its own.
+    let s = run(false);
+    assert_eq!((s.l2.misses, s.dram.requests), (4, 4));
+}
+
 #[test]
 fn new_refuses_impossible_configurations() {
     let mut cfg = MemConfig::paper(true);
