@@ -8,7 +8,7 @@ mod common;
 use common::{ok, scratch, stderr, stdout, wasp};
 
 /// Every subcommand, as typed.
-const COMMANDS: [&[&str]; 14] = [
+const COMMANDS: [&[&str]; 16] = [
     &["example"],
     &["run"],
     &["compare"],
@@ -20,6 +20,7 @@ const COMMANDS: [&[&str]; 14] = [
     &["scenes", "fetch"],
     &["scenes", "capture"],
     &["render"],
+    &["import-gl"],
     &["characterize"],
     &["reproduce"],
     &["sweep"],
