@@ -7,7 +7,7 @@
 //! * A 64-byte memory block (one cache line) holds a 4x4 block of RGBA8
 //!   texels (16 texels x 4 bytes), or, for a texture in a compressed
 //!   format, the texel region its compressed blocks fill (for example
-//!   16x8 texels of ETC2 RGB, 16x16 of ASTC 8x8): the module [`format`]
+//!   16x8 texels of ETC2 RGB, 16x16 of ASTC 8x8): the module [`mod@format`]
 //!   gives every format's region and where a texel's bytes lie in it.
 //!   Below, "block" is the 64-byte memory block and "cell" its region.
 //! * Each texture gets a full mip chain, box-filtered (2x2 average) from
