@@ -7,6 +7,7 @@
 //! DIR/agreement.json, the disagreement maps to DIR/*.png
 //! (docs/scenes.md, "Checked against Mesa").
 
+use crate::capture::tools::find_program;
 use crate::CliError;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -151,17 +152,12 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     std::fs::write(path, bytes).map_err(|e| CliError::failed(format!("{}: {e}", path.display())))
 }
 
-fn on_path(tool: &str) -> bool {
-    std::env::var_os("PATH")
-        .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(tool).is_file()))
-}
-
 /// An error naming the packages unless glretrace, xvfb-run and xauth are
 /// installed (checked before anything is imported or written).
 pub fn require_tools() -> Result<(), CliError> {
     let missing: Vec<&str> = ["glretrace", "xvfb-run", "xauth"]
         .into_iter()
-        .filter(|t| !on_path(t))
+        .filter(|t| find_program(t).is_none())
         .collect();
     if missing.is_empty() {
         return Ok(());

@@ -91,6 +91,7 @@ fn import_frame(
 ) -> Result<(gl::Imported, Frame), CliError> {
     let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
     let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;
+    capture.require_gl().map_err(|e| failed(&e))?;
     let opts = ImportOptions {
         frame,
         skip_unsupported: args.skip_unsupported,
@@ -121,13 +122,10 @@ pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
     }
     let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
     let clock = std::time::Instant::now();
-    let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;
-    capture.require_gl().map_err(|e| failed(&e))?;
     let (earlier, last) = match args.frames {
         Some(r) => (r.first..r.last, Some(r.last)),
         None => (0..0, args.frame),
     };
-    drop(capture);
     // The last frame first: a range past the capture's end fails at once.
     let (imported, frame) = import_frame(args, last, args.png.is_some())?;
     let read = clock.elapsed().as_secs_f64() - frame.timings.total();
@@ -162,7 +160,7 @@ pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
     } else {
         let mut frames = traces.into_iter();
         let first = frames.next().expect("a range has an earlier frame");
-        let rest = frames.chain(std::iter::once(frame.trace.clone()));
+        let rest = frames.chain(std::iter::once(frame.trace));
         let joined = Trace::concat(first, rest).map_err(|e| failed(&e))?;
         crate::scene_cmd::write_trace(&args.trace_out, &joined, args.quiet)?;
     }

@@ -15,7 +15,7 @@
 
 mod openarena;
 mod teeworlds;
-mod tools;
+pub mod tools;
 
 use crate::scenes_dir::ScenesDir;
 use crate::CliError;
