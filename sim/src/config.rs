@@ -127,12 +127,10 @@ impl MachineConfig {
         self.gpu.tile_size / 2
     }
 
-    /// The cache whose MSHRs the scheduler watches, with its section name.
+    /// The cache whose MSHRs the scheduler watches, with its section name
+    /// ([`first_level`](crate::mem::first_level)).
     pub fn scheduler_cache(&self) -> (&'static str, &CacheConfig) {
-        match &self.l0 {
-            Some(l0) => ("l0", l0),
-            None => ("l1", &self.l1),
-        }
+        crate::mem::first_level(self.l0.as_ref(), &self.l1)
     }
 
     /// The memory-system part of the configuration.

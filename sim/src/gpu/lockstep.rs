@@ -198,10 +198,7 @@ impl Knobs {
         } else {
             FilterTiming::Serial
         };
-        let first = match c.l0.as_mut() {
-            Some(l0) => l0,
-            None => &mut c.l1,
-        };
+        let (_, first) = crate::mem::first_level(c.l0.as_mut(), &mut c.l1);
         first.mshrs = self.mshrs;
         first.max_merged = self.merged;
         c.l2.hit_latency = 2;

@@ -10,6 +10,19 @@ use std::fmt;
 /// number (byte address / 64), and every cache line is one block.
 pub const BLOCK_BYTES: u32 = 64;
 
+/// The first level of a core's texture caches, with its section name: the
+/// L0 when the core has one, else the L1. Core requests enter it, a
+/// `first-level` miss is a miss in it, and the scheduler's free-MSHR register
+/// watches its MSHRs. The one place this rule is written: every caller passes
+/// its own view of the two levels (configurations, caches, MSHR counts).
+#[inline(always)]
+pub fn first_level<T>(l0: Option<T>, l1: T) -> (&'static str, T) {
+    match l0 {
+        Some(l0) => ("l0", l0),
+        None => ("l1", l1),
+    }
+}
+
 /// Upper bound on `mshrs * (1 + max_merged)` for one cache, so that an absurd
 /// configuration is refused instead of allocating gigabytes.
 const MAX_TARGET_SLOTS: u64 = 1 << 22;
@@ -319,9 +332,9 @@ impl MemConfig {
         }
     }
 
-    /// The cache the warp scheduler watches: L0 when present, else L1.
+    /// The cache the warp scheduler watches ([`first_level`]).
     pub fn scheduler_level(&self) -> &CacheConfig {
-        self.l0.as_ref().unwrap_or(&self.l1)
+        first_level(self.l0.as_ref(), &self.l1).1
     }
 
     /// Structural checks: every value the memory system cannot model is
@@ -345,7 +358,7 @@ impl MemConfig {
                  (ports x hit_latency of the {} cache), more than the budget of {} MiB",
                 self.cores,
                 bytes >> 20,
-                if self.l0.is_some() { "l0" } else { "l1" },
+                first_level(self.l0.as_ref(), &self.l1).0,
                 HOST_BYTES_BUDGET >> 20
             )));
         }

@@ -120,7 +120,7 @@ struct CoreMem {
 impl CoreMem {
     #[inline]
     fn first_level(&self) -> &Cache {
-        self.l0.as_ref().unwrap_or(&self.l1)
+        super::config::first_level(self.l0.as_ref(), &self.l1).1
     }
 
     /// No MSHR entry occupied and nothing queued or completing, queued

@@ -118,7 +118,9 @@ mod ring;
 pub mod stats;
 
 pub use cache::{Cache, Lookup};
-pub use config::{CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES};
+pub use config::{
+    first_level, CacheConfig, DramConfig, DramModel, MemConfig, MemConfigError, BLOCK_BYTES,
+};
 pub use hierarchy::{Access, MemorySystem, MissEvent, MshrFileView, SchedCacheMshrs};
 pub use mshr::MSHR_HOLD_CYCLES;
 pub use prefetch::{PrefetchConfig, PrefetchKind, PrefetchStats};

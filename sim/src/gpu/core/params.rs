@@ -46,7 +46,7 @@ impl CoreParams {
 
     /// The core's rule of which miss blocks a warp.
     pub(super) fn blocked_rule(&self) -> super::blocked::BlockedRule {
-        let first = self.l0_mshrs.unwrap_or(self.l1_mshrs);
+        let (_, first) = crate::mem::first_level(self.l0_mshrs, self.l1_mshrs);
         super::blocked::BlockedRule::new(
             self.blocked_on,
             self.l0_mshrs.is_some(),
