@@ -30,7 +30,7 @@ pub use sections::{
 };
 
 /// The paper's machine, as shipped in `configs/paper.toml`.
-pub const PAPER_TOML: &str = include_str!("../../configs/paper.toml");
+pub const PAPER_TOML: &str = crate::param::PAPER_TOML;
 /// The width-2 machine, as shipped in `configs/paper-width2.toml`.
 pub const PAPER_WIDTH2_TOML: &str = include_str!("../../configs/paper-width2.toml");
 

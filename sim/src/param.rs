@@ -16,6 +16,10 @@
 
 use std::fmt::Display;
 
+/// The paper's machine, `configs/paper.toml`: every parameter with its
+/// default value and the value's source.
+pub const PAPER_TOML: &str = include_str!("../../configs/paper.toml");
+
 /// `field = v: must be in lo..=hi` (with `why` appended) when `v` is out of
 /// range: the style of every bound check of the machine configuration.
 pub fn check_range(field: &str, v: u64, lo: u64, hi: u64, why: &str) -> Result<(), String> {

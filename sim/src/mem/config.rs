@@ -1,10 +1,19 @@
 //! Configuration of the memory hierarchy, its defaults (the paper's Table II
 //! plus wasp's stated choices) and the structural checks that
 //! [`MemorySystem::new`](super::MemorySystem::new) applies.
+//!
+//! The defaults have one source, `configs/paper.toml` (embedded as
+//! [`PAPER_TOML`](crate::param::PAPER_TOML)): [`MemConfig::paper`],
+//! [`DramConfig::default`] and [`PrefetchConfig::default`] read its
+//! sections. The file, not a default written beside each field, because it
+//! is what users read and copy, it gives every value with its source (paper
+//! or wasp), and one struct has a different default in each section it
+//! serves (`[l0]`, `[l1]` and `[l2]` are all [`CacheConfig`]s).
 
-use crate::param::{check_range, section};
+use crate::param::{check_range, section, PAPER_TOML};
 use serde::{Deserialize, Serialize};
 use std::fmt;
+use std::sync::OnceLock;
 
 /// Bytes in one memory block. Every address in the memory system is a block
 /// number (byte address / 64), and every cache line is one block.
@@ -224,21 +233,39 @@ impl Default for DramConfig {
     fn default() -> Self {
         DramConfig {
             model: DramModel::Fixed,
-            channels: 4,
-            banks: 8,
-            row_bytes: 2048,
-            row_hit_latency: 50,
-            row_miss_latency: 100,
-            requests_per_cycle: 1,
-            t_rcd: 11,
-            t_rp: 11,
-            t_ras: 26,
-            t_cl: 11,
-            t_burst: 6,
-            controller_latency: 33,
-            scheduler_window: 16,
+            ..paper_memory().dram
         }
     }
+}
+
+/// The memory system's sections of `configs/paper.toml`.
+#[derive(Deserialize)]
+struct PaperMemory {
+    gpu: PaperGpu,
+    l0: CacheConfig,
+    l1: CacheConfig,
+    l2: CacheConfig,
+    dram: DramConfig,
+    memory: PaperIdeal,
+    prefetch: PrefetchConfig,
+}
+
+/// The keys of `[gpu]` and `[memory]` the memory system reads.
+#[derive(Deserialize)]
+struct PaperGpu {
+    cores: u32,
+}
+
+/// `memory.ideal`.
+#[derive(Deserialize)]
+struct PaperIdeal {
+    ideal: bool,
+}
+
+/// The memory sections of the shipped machine, read once.
+fn paper_memory() -> &'static PaperMemory {
+    static PAPER: OnceLock<PaperMemory> = OnceLock::new();
+    PAPER.get_or_init(|| toml::from_str(PAPER_TOML).expect("configs/paper.toml is valid"))
 }
 
 /// The whole memory hierarchy.
@@ -270,65 +297,23 @@ pub struct MemConfig {
 }
 
 impl MemConfig {
-    /// Defaults from the paper's Table II, with wasp's own choices where the
-    /// paper is silent. Paper values: 4 texture caches (one per core) of 64 KiB,
-    /// 4-way, 64-byte lines, 1 cycle; L2 1 MiB, 8-way, 64-byte lines, 18 cycles;
-    /// main memory latency 50-100 cycles; at pipeline width 4 a 0.5 KiB L0
-    /// with two ports per core.
-    ///
-    /// wasp's choices (not the paper's):
-    /// - L0: fully associative (8 ways = 8 lines), 1-cycle latency.
-    /// - MSHRs: L0 16, L1 16, L2 64. The scheduler-level cache (L0 at width 4,
-    ///   L1 at width 2) must fit the 5-bit free-MSHR register, so at most
-    ///   [`FREE_MSHR_MAX`](wasp_rtl::free_mshr::FREE_MSHR_MAX) (31); 16 leaves room for the paper's
-    ///   FreeMSHR-10 heuristic and WaSP thresholds to be meaningful.
-    /// - Merging: 16 secondary misses per L0/L1 entry, 8 per L2 entry (an L2
-    ///   entry's targets are L1s, at most one pending request per L1 and block,
-    ///   so 8 never binds with 4 cores; with decompressed texels in the L1s,
-    ///   `memory.texture_cache`, up to 16 L1 lines of a core share one L2
-    ///   line, and it can).
-    /// - Ports: L0 2 (paper), L1 1 (the paper adds the two-port L0 because
-    ///   the L1 cannot feed a width-4 pipeline), L2 4 (one request per core
-    ///   per cycle, so L2 bandwidth is not what limits the L0/L1 MSHRs).
-    /// - DRAM: [`DramConfig::default`]: the fixed model (8 banks, 2 KiB rows,
-    ///   row hit 50 cycles, row miss 100 cycles, the two ends of the paper's
-    ///   50-100 range, one request accepted per cycle), unlike
-    ///   `configs/paper.toml`, which selects the banked model.
+    /// The memory system of `configs/paper.toml` (the paper's Table II,
+    /// with wasp's choices where the paper is silent; the file gives each
+    /// value's source): 4 cores, each with a 64 KiB 4-way L1 and, when
+    /// `width4`, a 0.5 KiB two-port L0; a 1 MiB 8-way L2 of 18 cycles.
+    /// Unlike the file, the DRAM runs the fixed model
+    /// ([`DramConfig::default`]), and miss events are recorded.
     pub fn paper(width4: bool) -> Self {
-        let l0 = CacheConfig {
-            size_bytes: 512,
-            ways: 8,
-            line_bytes: BLOCK_BYTES,
-            hit_latency: 1,
-            mshrs: 16,
-            max_merged: 16,
-            ports: 2,
-        };
+        let p = paper_memory();
         MemConfig {
-            cores: 4,
-            l0: width4.then_some(l0),
-            l1: CacheConfig {
-                size_bytes: 64 * 1024,
-                ways: 4,
-                line_bytes: BLOCK_BYTES,
-                hit_latency: 1,
-                mshrs: 16,
-                max_merged: 16,
-                ports: 1,
-            },
-            l2: CacheConfig {
-                size_bytes: 1024 * 1024,
-                ways: 8,
-                line_bytes: BLOCK_BYTES,
-                hit_latency: 18,
-                mshrs: 64,
-                max_merged: 8,
-                ports: 4,
-            },
+            cores: p.gpu.cores,
+            l0: width4.then_some(p.l0),
+            l1: p.l1,
+            l2: p.l2,
             dram: DramConfig::default(),
-            ideal_memory: false,
+            ideal_memory: p.memory.ideal,
             report_misses: true,
-            prefetch: PrefetchConfig::default(),
+            prefetch: p.prefetch,
         }
     }
 
@@ -562,15 +547,10 @@ section! {
 }
 
 impl Default for PrefetchConfig {
-    /// `none`, with the shipped limits (`configs/paper.toml` says why):
-    /// a 32-entry filtered queue, 4 L1 MSHRs reserved for demand.
+    /// The `[prefetch]` section of `configs/paper.toml` (which says why):
+    /// `none`, with the shipped limits.
     fn default() -> Self {
-        PrefetchConfig {
-            kind: PrefetchKind::None,
-            queue: 32,
-            queue_filter: true,
-            l1_reserve: 4,
-        }
+        paper_memory().prefetch
     }
 }
 
