@@ -21,6 +21,7 @@ use wasp_rtl::nonblocked::NONBLOCKED_BITS;
 mod choice;
 mod core_map;
 pub mod file;
+pub mod params;
 mod sections;
 pub use choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming, IssueOrder, TextureCache};
 pub use core_map::{CoreMap, CoreMapTable};
@@ -163,9 +164,11 @@ impl MachineConfig {
         self.energy.check_bounds("energy")?;
         self.sim.check_bounds("sim")?;
         let ts = self.gpu.tile_size;
-        if !(4..=64).contains(&ts) || !ts.is_power_of_two() {
+        let (lo, hi) = (limits::MIN_TILE_SIZE, limits::MAX_TILE_SIZE);
+        if !(lo..=hi).contains(&ts) || !ts.is_power_of_two() {
             return Err(format!(
-                "gpu.tile_size = {ts}: must be a power of two in 4..=64 (in-tile quad coordinates are 5-bit: at most 32 quads per side)"
+                "gpu.tile_size = {ts}: must be a power of two in {lo}..={hi} (in-tile quad coordinates are 5-bit: at most {} quads per side)",
+                hi / 2
             ));
         }
         if self.raster.dispatch == Dispatch::PerCoreTile

@@ -74,12 +74,78 @@ impl Bounded for f64 {
     }
 }
 
+/// The upper end of a declared range: a number, or one that depends on the
+/// section the struct serves (the caches' capacities: `[l0]`, `[l1]` and
+/// `[l2]` are one struct).
+pub trait Limit<T> {
+    /// The bound in section `section`.
+    fn at(&self, section: &str) -> T;
+    /// Text the range's error appends after the declared note.
+    fn note(&self, _section: &str) -> String {
+        String::new()
+    }
+}
+
+impl<T: Bounded> Limit<T> for T {
+    fn at(&self, _section: &str) -> T {
+        *self
+    }
+}
+
+/// One field of a section as [`section!`] declares it, in a given section
+/// and with a given value: the facts the bounds tests, the check of
+/// `configs/paper.toml` and docs/machine.md's parameter table are made of.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    /// `section.key`.
+    pub path: String,
+    /// The Rust type the model receives, as written (`u32`, `PolicySpec`).
+    pub ty: &'static str,
+    /// The value (the paper's machine's: the default).
+    pub value: toml::Value,
+    /// The declared range, if the field is a bounded number.
+    pub range: Option<Range>,
+    /// The description: the field's doc comment, one line per line.
+    pub doc: &'static str,
+}
+
+/// A declared range, its ends as the configuration file writes them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Range {
+    /// Lowest accepted value.
+    pub lo: String,
+    /// Highest accepted value.
+    pub hi: String,
+    /// What the error appends (`#[range]`), or the further rule that its
+    /// own check applies (`#[bound]`).
+    pub note: String,
+    /// Checked by `check_bounds` (`#[range]`) rather than by a rule of
+    /// its own that also names this range (`#[bound]`).
+    pub generic: bool,
+}
+
+impl Range {
+    /// A range from its ends.
+    pub fn new<T: Display>(lo: T, hi: T, note: String, generic: bool) -> Self {
+        Range {
+            lo: lo.to_string(),
+            hi: hi.to_string(),
+            note,
+            generic,
+        }
+    }
+}
+
 /// Declare a section of the configuration: a struct whose fields are the
 /// section's keys, each with its description (the doc comment), its bound
-/// (`#[range(lo..=hi)]` or `#[range(lo..=hi, " why")]`, for numbers) and
-/// its type; `serde` attributes pass through. Unknown keys are errors. The
-/// struct gets `check_bounds(section)`, which checks every declared range
-/// and names the field (`core.max_warps = 0: must be in 1..=128`).
+/// and its type; `serde` attributes pass through. Unknown keys are errors.
+/// A bound is `#[range(lo..=hi)]` or `#[range(lo..=hi, " why")]` (`hi` a
+/// number or a [`Limit`]), which `check_bounds(section)` checks, naming
+/// the field (`core.max_warps = 0: must be in 1..=128`); or
+/// `#[bound(lo..=hi, "rule")]`, a range within which a check of its own
+/// applies a further rule (a power of two, a limit set by another field)
+/// and whose error names the range itself. The struct also gets
+/// `params(section)`, each field's [`Param`].
 ///
 /// ```ignore
 /// section! {
@@ -99,6 +165,7 @@ macro_rules! section {
             $(
                 $(#[doc = $doc:expr])*
                 $(#[range($lo:tt ..= $hi:expr $(, $why:literal)?)])?
+                $(#[bound($blo:tt ..= $bhi:expr, $rule:literal)])?
                 $(#[serde($($serde:tt)*)])*
                 pub $field:ident : $ty:ty,
             )*
@@ -119,17 +186,56 @@ macro_rules! section {
             /// names the section in the error.
             pub fn check_bounds(&self, section: &str) -> Result<(), String> {
                 $($(
+                    let hi = &$hi;
                     $crate::param::Bounded::check_in(
                         self.$field,
                         section,
                         stringify!($field),
                         $lo,
-                        $hi,
-                        concat!("" $(, $why)?),
+                        $crate::param::Limit::<$ty>::at(hi, section),
+                        &format!(
+                            "{}{}",
+                            concat!("" $(, $why)?),
+                            $crate::param::Limit::<$ty>::note(hi, section)
+                        ),
                     )?;
                 )?)*
                 let _ = section;
                 Ok(())
+            }
+
+            /// Every field's [`Param`]($crate::param::Param) in section
+            /// `section`, with this struct's values, in declaration order.
+            pub fn params(&self, section: &str) -> Vec<$crate::param::Param> {
+                vec![$(
+                    $crate::param::Param {
+                        path: format!("{section}.{}", stringify!($field)),
+                        ty: stringify!($ty),
+                        value: toml::Value::try_from(&self.$field)
+                            .expect("a parameter serializes"),
+                        range: None
+                            $(.or({
+                                let hi = &$hi;
+                                Some($crate::param::Range::new::<$ty>(
+                                    $lo,
+                                    $crate::param::Limit::<$ty>::at(hi, section),
+                                    format!(
+                                        "{}{}",
+                                        concat!("" $(, $why)?),
+                                        $crate::param::Limit::<$ty>::note(hi, section)
+                                    ),
+                                    true,
+                                ))
+                            }))?
+                            $(.or(Some($crate::param::Range::new::<$ty>(
+                                $blo,
+                                $bhi,
+                                $rule.to_string(),
+                                false,
+                            ))))?,
+                        doc: concat!($($doc, "\n",)* ""),
+                    },
+                )*]
             }
         }
     };
@@ -138,6 +244,7 @@ pub(crate) use section;
 
 #[cfg(test)]
 mod tests {
+    use super::Range;
     use serde::{Deserialize, Serialize};
 
     section! {
@@ -156,6 +263,10 @@ mod tests {
             /// Not bounded, with a default.
             #[serde(default)]
             pub d: bool,
+            /// Bounded by a rule of its own.
+            #[bound(2..=6, "even")]
+            #[serde(default)]
+            pub e: u32,
         }
     }
 
@@ -166,6 +277,7 @@ mod tests {
             b: 0,
             c: 2.5,
             d: false,
+            e: 0,
         };
         assert_eq!(ok.check_bounds("demo"), Ok(()));
         let e = Demo { a: 9, ..ok.clone() }.check_bounds("demo");
@@ -180,6 +292,29 @@ mod tests {
             let e = Demo { c, ..ok.clone() }.check_bounds("demo").unwrap_err();
             assert!(e.contains("must be a finite number in 0..=2.5"), "{e}");
         }
+    }
+
+    #[test]
+    fn params_are_the_declared_facts() {
+        let d = Demo {
+            a: 8,
+            b: 0,
+            c: 2.5,
+            d: true,
+            e: 9,
+        };
+        assert_eq!(d.check_bounds("demo"), Ok(()), "e's rule is its own");
+        let p = d.params("demo");
+        let paths: Vec<&str> = p.iter().map(|p| p.path.as_str()).collect();
+        assert_eq!(paths, ["demo.a", "demo.b", "demo.c", "demo.d", "demo.e"]);
+        assert_eq!(p[1].range, Some(Range::new(0, 100, " cycles".into(), true)));
+        assert_eq!(p[2].range, Some(Range::new(0.0, 2.5, String::new(), true)));
+        assert_eq!(p[2].range.as_ref().map(|r| &r.lo[..]), Some("0"));
+        assert_eq!((p[3].ty, p[3].range.clone()), ("bool", None));
+        assert_eq!(p[4].range, Some(Range::new(2, 6, "even".into(), false)));
+        assert_eq!(p[0].value, toml::Value::Integer(8));
+        assert_eq!(p[3].value, toml::Value::Boolean(true));
+        assert_eq!(p[0].doc, " Bounded, no note.\n");
     }
 
     #[test]

@@ -16,6 +16,10 @@ use wasp_rtl::subset::SubsetSpec;
 /// "Configuration bounds", lists them all; the memory system's are in
 /// [`crate::mem::config::bounds`]).
 pub mod limits {
+    /// Smallest tile side, pixels.
+    pub const MIN_TILE_SIZE: u32 = 4;
+    /// Largest tile side, pixels: in-tile quad coordinates are 5-bit.
+    pub const MAX_TILE_SIZE: u32 = 64;
     /// Largest pipeline width.
     pub const MAX_WIDTH: u32 = 16;
     /// Largest warp-slot count (the paper's sweep goes to 128).
@@ -61,6 +65,7 @@ section! {
         /// Tile side in pixels; quads per tile side = tile_size / 2. A
         /// power of two in 4..=64 (in-tile quad coordinates are 5-bit),
         /// checked by [`MachineConfig::validate`](super::MachineConfig::validate).
+        #[bound(MIN_TILE_SIZE..=MAX_TILE_SIZE, "a power of two")]
         pub tile_size: u32,
     }
 }

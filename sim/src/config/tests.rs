@@ -1,6 +1,6 @@
 //! The machine configuration: the shipped machines, parsing and round
 //! trips, errors that name the key, line and range, the register limits,
-//! and the bounds table (every field at and just above its bound).
+//! and the declared bounds (every field at and just above its bound).
 
 use super::*;
 use crate::config::BlockedOn;
@@ -408,175 +408,62 @@ fn issue_order_is_checked_and_defaults_to_lrr() {
     assert_eq!(e.source, format!("test.toml:{}", line_of(PAPER_TOML, line)));
 }
 
-/// Every numeric field of the machine configuration with its bound: the
-/// dotted path, the largest accepted value, the smallest refused one
-/// above it, the range the error must name, and the other fields that
-/// must change for the bound itself to pass the rest of the validation.
-/// Not here: `sim.seed` (every u64 is a seed), the numbers inside the
-/// `scheduler.policy`, `scheduler.subset` and `raster.core_map` strings
-/// (checked by their parsers, see `values_out_of_range_name_the_field`)
-/// and the `line_bytes` fields (64 exactly).
-const BOUNDS: &[(&str, &str, &str, &str, &[&str])] = &[
-    ("gpu.cores", "64", "65", "1..=64", &[]),
-    ("gpu.frequency_mhz", "10000", "10001", "1..=10000", &[]),
-    // A power of two: the next one above the bound is 128.
-    ("gpu.tile_size", "64", "128", "4..=64", &[]),
-    ("raster.quads_per_cycle", "256", "257", "1..=256", &[]),
-    ("raster.rejected_per_slot", "1024", "1025", "1..=1024", &[]),
-    ("core.pipeline_width", "16", "17", "1..=16", &[]),
-    ("core.max_warps", "128", "129", "1..=128", &[]),
-    ("core.input_queue", "4096", "4097", "1..=4096", &[]),
-    ("core.alu_latency", "10000", "10001", "1..=10000", &[]),
-    ("core.texture_latency", "10000", "10001", "0..=10000", &[]),
-    (
-        "core.filter_cycles_bilinear",
-        "1000",
-        "1001",
-        "0..=1000",
-        &[],
-    ),
-    (
-        "core.filter_cycles_trilinear",
-        "1000",
-        "1001",
-        "0..=1000",
-        &[],
-    ),
-    ("core.ldst_queue", "1024", "1025", "1..=1024", &[]),
-    ("core.registers_per_thread", "1024", "1025", "1..=1024", &[]),
-    ("l0.size_bytes", "1048576", "1048577", "64..=1048576", &[]),
+/// The other fields that must change for a field at its bound to pass the
+/// rest of the validation.
+const SETUP: &[(&str, &[&str])] = &[
     // 64 ways need at least 64 lines: a 4 KiB L0.
-    ("l0.ways", "64", "65", "1..=64", &["l0.size_bytes=4096"]),
-    ("l0.hit_latency", "10000", "10001", "1..=10000", &[]),
+    ("l0.ways", &["l0.size_bytes=4096"]),
     // More than 31 MSHRs at the scheduler's level only for a policy
     // that does not read the 5-bit free-MSHR register.
-    (
-        "l0.mshrs",
-        "4096",
-        "4097",
-        "1..=4096",
-        &["scheduler.policy=fullpriority"],
-    ),
-    ("l0.max_merged", "1024", "1025", "0..=1024", &[]),
-    ("l0.ports", "64", "65", "1..=64", &[]),
-    (
-        "l1.size_bytes",
-        "16777216",
-        "16777217",
-        "64..=16777216",
-        &[],
-    ),
-    ("l1.ways", "64", "65", "1..=64", &[]),
-    ("l1.hit_latency", "10000", "10001", "1..=10000", &[]),
-    ("l1.mshrs", "4096", "4097", "1..=4096", &[]),
-    ("l1.max_merged", "1024", "1025", "0..=1024", &[]),
-    ("l1.ports", "64", "65", "1..=64", &[]),
-    (
-        "l2.size_bytes",
-        "268435456",
-        "268435457",
-        "64..=268435456",
-        &[],
-    ),
-    ("l2.ways", "64", "65", "1..=64", &[]),
-    ("l2.hit_latency", "10000", "10001", "1..=10000", &[]),
-    ("l2.mshrs", "4096", "4097", "1..=4096", &[]),
-    ("l2.max_merged", "1024", "1025", "0..=1024", &[]),
-    ("l2.ports", "64", "65", "1..=64", &[]),
-    ("dram.channels", "16", "17", "1..=16", &[]),
-    ("dram.banks", "64", "65", "1..=64", &[]),
-    ("dram.row_bytes", "65536", "65537", "64..=65536", &[]),
-    ("dram.row_hit_latency", "10000", "10001", "1..=10000", &[]),
-    ("dram.row_miss_latency", "10000", "10001", "1..=10000", &[]),
-    ("dram.requests_per_cycle", "64", "65", "1..=64", &[]),
-    ("dram.t_rcd", "1000", "1001", "1..=1000", &[]),
-    ("dram.t_rp", "1000", "1001", "1..=1000", &[]),
-    ("dram.t_ras", "1000", "1001", "0..=1000", &[]),
-    ("dram.t_cl", "1000", "1001", "1..=1000", &[]),
-    ("dram.t_burst", "1000", "1001", "1..=1000", &[]),
-    (
-        "dram.controller_latency",
-        "10000",
-        "10001",
-        "0..=10000",
-        &[],
-    ),
-    ("dram.scheduler_window", "256", "257", "1..=256", &[]),
-    ("prefetch.queue", "1024", "1025", "1..=1024", &[]),
-    // Off, any reserve below the MSHR bound; on, below l1.mshrs (see
-    // `prefetch_fields_are_checked`).
-    ("prefetch.l1_reserve", "4095", "4096", "0..=4095", &[]),
-    (
-        "energy.alu_instruction_pj",
-        "1000000.0",
-        "1000000.5",
-        "0..=1000000",
-        &[],
-    ),
-    (
-        "energy.texture_instruction_pj",
-        "1000000.0",
-        "1000000.5",
-        "0..=1000000",
-        &[],
-    ),
-    (
-        "energy.l0_access_pj",
-        "1000000.0",
-        "1000000.5",
-        "0..=1000000",
-        &[],
-    ),
-    (
-        "energy.l1_access_pj",
-        "1000000.0",
-        "1000000.5",
-        "0..=1000000",
-        &[],
-    ),
-    (
-        "energy.l2_access_pj",
-        "1000000.0",
-        "1000000.5",
-        "0..=1000000",
-        &[],
-    ),
-    (
-        "energy.dram_row_hit_pj",
-        "1000000.0",
-        "1000000.5",
-        "0..=1000000",
-        &[],
-    ),
-    (
-        "energy.dram_row_miss_pj",
-        "1000000.0",
-        "1000000.5",
-        "0..=1000000",
-        &[],
-    ),
-    (
-        "energy.core_static_mw",
-        "100000.0",
-        "100000.5",
-        "0..=100000",
-        &[],
-    ),
-    (
-        "energy.uncore_static_mw",
-        "100000.0",
-        "100000.5",
-        "0..=100000",
-        &[],
-    ),
-    (
-        "sim.watchdog_cycles",
-        "1000000000",
-        "1000000001",
-        "1..=1000000000",
-        &[],
-    ),
+    ("l0.mshrs", &["scheduler.policy=fullpriority"]),
 ];
+
+/// One field's bound as the tests try it: the largest accepted value, the
+/// smallest refused one above it, the range the error names (when its
+/// check is `check_bounds`'s; a rule of its own names the field) and the
+/// fields [`SETUP`] changes first.
+struct Bound {
+    field: String,
+    at: String,
+    above: String,
+    range: Option<String>,
+    extra: &'static [&'static str],
+}
+
+/// Every declared range of the machine configuration (`section!`'s
+/// facts). Not here: `sim.seed` (every u64 is a seed) and the numbers
+/// inside the `scheduler.policy`, `scheduler.subset` and
+/// `raster.core_map` strings (checked by their parsers, see
+/// `values_out_of_range_name_the_field`).
+fn bounds() -> Vec<Bound> {
+    let params = MachineConfig::paper().params();
+    let bounds: Vec<Bound> = params
+        .into_iter()
+        .filter_map(|p| {
+            let r = p.range?;
+            let (at, above) = if p.ty == "f64" {
+                (format!("{}.0", r.hi), format!("{}.5", r.hi))
+            } else {
+                let hi: u64 = r.hi.parse().unwrap();
+                (r.hi.clone(), (hi + 1).to_string())
+            };
+            let extra = SETUP
+                .iter()
+                .find(|s| s.0 == p.path)
+                .map_or(&[][..], |s| s.1);
+            Some(Bound {
+                range: r.generic.then(|| format!("{}..={}", r.lo, r.hi)),
+                field: p.path,
+                at,
+                above,
+                extra,
+            })
+        })
+        .collect();
+    // 60 declared ranges when the facts were first generated.
+    assert!(bounds.len() >= 60, "{} bounds", bounds.len());
+    bounds
+}
 
 fn set(extra: &[&str], field: &str, value: &str) -> Result<MachineConfig, ConfigError> {
     let mut sets: Vec<String> = extra.iter().map(|s| s.to_string()).collect();
@@ -585,9 +472,10 @@ fn set(extra: &[&str], field: &str, value: &str) -> Result<MachineConfig, Config
 }
 
 #[test]
-fn every_numeric_field_is_in_the_bounds_table() {
+fn every_numeric_field_has_a_declared_range() {
     // A field added to the config without a bound fails here.
     let root = toml::Value::try_from(MachineConfig::paper()).unwrap();
+    let bounds = bounds();
     let mut numeric = Vec::new();
     for (section, table) in root.as_table().unwrap() {
         let Some(table) = table.as_table() else {
@@ -600,24 +488,33 @@ fn every_numeric_field_is_in_the_bounds_table() {
         }
     }
     for path in &numeric {
-        let exempt = path == "sim.seed" || path.ends_with(".line_bytes");
         assert!(
-            exempt || BOUNDS.iter().any(|b| b.0 == path),
-            "{path} has no bound in the table"
+            path == "sim.seed" || bounds.iter().any(|b| &b.field == path),
+            "{path} has no declared range"
         );
     }
-    assert_eq!(numeric.len(), BOUNDS.len() + 1 + 3, "{numeric:?}");
+    assert_eq!(numeric.len(), bounds.len() + 1, "{numeric:?}");
 }
 
 #[test]
 fn each_field_just_above_its_bound_is_refused_naming_field_and_range() {
-    for (field, _, above, range, extra) in BOUNDS {
-        let e = set(extra, field, above).expect_err(field);
-        assert!(
-            e.message.contains(&format!("{field} = {above}")),
-            "{field}={above}: {e}"
-        );
-        assert!(e.message.contains(range), "{field}={above}: {e}");
+    for Bound {
+        field,
+        above,
+        range,
+        extra,
+        ..
+    } in bounds()
+    {
+        let e = set(extra, &field, &above).expect_err(&field);
+        let key = field.split_once('.').unwrap().1;
+        let named = match &range {
+            Some(range) => {
+                e.message.contains(&format!("{field} = {above}")) && e.message.contains(range)
+            }
+            None => e.message.contains(key),
+        };
+        assert!(named, "{field}={above}: {e}");
         // The same text from a file.
         let mut doc = toml::Value::try_from(MachineConfig::paper()).unwrap();
         for kv in extra
@@ -633,18 +530,22 @@ fn each_field_just_above_its_bound_is_refused_naming_field_and_range() {
             doc[sec][key] = v;
         }
         let e =
-            MachineConfig::parse(&toml::to_string(&doc).unwrap(), "bounds.toml").expect_err(field);
-        assert!(e.message.contains(range), "{field}={above} in a file: {e}");
+            MachineConfig::parse(&toml::to_string(&doc).unwrap(), "bounds.toml").expect_err(&field);
+        let named = range.as_ref().map_or(key, |r| r.as_str());
+        assert!(e.message.contains(named), "{field}={above} in a file: {e}");
     }
 }
 
 #[test]
 fn each_field_at_its_bound_is_accepted() {
-    for (field, at, _, _, extra) in BOUNDS {
-        let c = set(extra, field, at).unwrap_or_else(|e| panic!("{field}={at}: {e}"));
+    for Bound {
+        field, at, extra, ..
+    } in bounds()
+    {
+        let c = set(extra, &field, &at).unwrap_or_else(|e| panic!("{field}={at}: {e}"));
         let doc = toml::Value::try_from(&c).unwrap();
         let (sec, key) = field.split_once('.').unwrap();
-        assert_eq!(doc[sec][key].to_string(), *at, "{field}");
+        assert_eq!(doc[sec][key].to_string(), at, "{field}");
     }
 }
 

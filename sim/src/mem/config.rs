@@ -76,6 +76,8 @@ pub mod bounds {
     /// MSHR target lists and completion queues, over all cores: 1 GiB
     /// (estimated by [`MemConfig::host_bytes`](super::MemConfig::host_bytes)).
     pub const HOST_BYTES_BUDGET: u64 = 1 << 30;
+    /// Largest `prefetch.l1_reserve`: below the most MSHRs an L1 can have.
+    pub const MAX_L1_RESERVE: u32 = MAX_MSHRS - 1;
     /// The largest `size_bytes` of the cache level `name` (`l0`, `l1`,
     /// otherwise the L2's).
     pub fn max_size_bytes(name: &str) -> u32 {
@@ -83,6 +85,21 @@ pub mod bounds {
             "l0" => L0_MAX_BYTES,
             "l1" => L1_MAX_BYTES,
             _ => L2_MAX_BYTES,
+        }
+    }
+
+    /// The bound of `size_bytes` in the section it is read for
+    /// ([`max_size_bytes`]), whose error also gives it in MiB.
+    pub struct LevelBytes;
+
+    impl crate::param::Limit<u32> for LevelBytes {
+        fn at(&self, section: &str) -> u32 {
+            max_size_bytes(section)
+        }
+
+        fn note(&self, section: &str) -> String {
+            let max = max_size_bytes(section);
+            format!(" ({} MiB at most)", max as f64 / (1u32 << 20) as f64)
         }
     }
 }
@@ -95,14 +112,15 @@ section! {
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
     pub struct CacheConfig {
         /// Capacity in bytes; must be a multiple of `line_bytes * ways`. Its
-        /// bound depends on the level ([`bounds::max_size_bytes`]), so
-        /// [`CacheConfig::check`] checks it.
+        /// bound depends on the level ([`bounds::max_size_bytes`]).
+        #[range(BLOCK_BYTES..=LevelBytes)]
         pub size_bytes: u32,
         /// Associativity. `ways == size_bytes / line_bytes` is fully
         /// associative. The number of sets must be a power of two.
         #[range(1..=MAX_WAYS)]
         pub ways: u32,
         /// Line size in bytes; must be [`BLOCK_BYTES`] (64).
+        #[bound(BLOCK_BYTES..=BLOCK_BYTES, "the memory system's block")]
         pub line_bytes: u32,
         /// Latency in cycles, at least 1. A hit accepted in cycle `t`
         /// completes in cycle `t + hit_latency - 1` (a 1-cycle cache answers
@@ -390,15 +408,6 @@ impl CacheConfig {
                 self.line_bytes
             ));
         }
-        let max_size = max_size_bytes(name);
-        crate::param::check_range(
-            &format!("{name}.size_bytes"),
-            self.size_bytes.into(),
-            BLOCK_BYTES.into(),
-            max_size.into(),
-            &format!(" ({} MiB at most)", max_size as f64 / (1u32 << 20) as f64),
-        )
-        .map_err(MemConfigError)?;
         self.check_bounds(name).map_err(MemConfigError)?;
         if !self.size_bytes.is_multiple_of(self.line_bytes) {
             return err(format!(
@@ -542,6 +551,7 @@ section! {
         /// L1 MSHRs kept free for demand misses: a prefetch is looked up
         /// only while more than this many are free. Below `l1.mshrs` when a
         /// prefetcher is on ([`PrefetchConfig::check`]).
+        #[bound(0..=MAX_L1_RESERVE, "below l1.mshrs with a prefetcher")]
         pub l1_reserve: u32,
     }
 }
@@ -582,7 +592,7 @@ impl PrefetchConfig {
                 "prefetch.l1_reserve",
                 self.l1_reserve.into(),
                 0,
-                u64::from(MAX_MSHRS) - 1,
+                MAX_L1_RESERVE.into(),
                 "",
             )
         }
