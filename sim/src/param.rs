@@ -92,7 +92,7 @@ impl<T: Bounded> Limit<T> for T {
     }
 }
 
-/// One field of a section as [`section!`] declares it, in a given section
+/// One field of a section as `section!` declares it, in a given section
 /// and with a given value: the facts the bounds tests, the check of
 /// `configs/paper.toml` and docs/machine.md's parameter table are made of.
 #[derive(Clone, Debug, PartialEq)]

@@ -3,7 +3,7 @@
 //! [`MemorySystem::new`](super::MemorySystem::new) applies.
 //!
 //! The defaults have one source, `configs/paper.toml` (embedded as
-//! [`PAPER_TOML`](crate::param::PAPER_TOML)): [`MemConfig::paper`],
+//! [`PAPER_TOML`]): [`MemConfig::paper`],
 //! [`DramConfig::default`] and [`PrefetchConfig::default`] read its
 //! sections. The file, not a default written beside each field, because it
 //! is what users read and copy, it gives every value with its source (paper
