@@ -13,6 +13,12 @@
 //! no part of the model parses a string. Checks that involve several
 //! fields (a power-of-two tile, the scheduler's registers) stay in
 //! [`MachineConfig::validate`](crate::config::MachineConfig::validate).
+//!
+//! The declarations are also facts ([`Param`]: path, type, value, range,
+//! description) that [`crate::config::params`] lists for the whole machine:
+//! the bounds tests, the check of `configs/paper.toml` ([`PAPER_TOML`],
+//! the source of every default) and docs/machine.md's parameter table are
+//! generated from them.
 
 use std::fmt::Display;
 

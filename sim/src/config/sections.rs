@@ -63,8 +63,9 @@ section! {
         #[range(1..=MAX_FREQUENCY_MHZ)]
         pub frequency_mhz: u32,
         /// Tile side in pixels; quads per tile side = tile_size / 2. A
-        /// power of two in 4..=64 (in-tile quad coordinates are 5-bit),
-        /// checked by [`MachineConfig::validate`](super::MachineConfig::validate).
+        /// power of two in [`MIN_TILE_SIZE`]..=[`MAX_TILE_SIZE`] (in-tile
+        /// quad coordinates are 5-bit), checked by
+        /// [`MachineConfig::validate`](super::MachineConfig::validate).
         #[bound(MIN_TILE_SIZE..=MAX_TILE_SIZE, "a power of two")]
         pub tile_size: u32,
     }
