@@ -10,7 +10,7 @@
 //! height = 768
 //! description = "Lighthouse track, behind the first start position"
 //! draw_order = "as-loaded"      # optional: as-loaded (default) | front-to-back-object | front-to-back-draw
-//! texture_format = "rgba8"      # optional: rgba8 (default) | etc2 | etc2-rgb | etc2-rgba | astc-4x4 | astc-6x6 | astc-8x8
+//! texture_format = "etc2"       # optional: etc2 (default) | rgba8 | etc2-rgb | etc2-rgba | astc-4x4 | astc-6x6 | astc-8x8
 //! route = "loader"              # optional: loader (default) | engine (OpenArena, Teeworlds)
 //! ```
 //!
@@ -18,6 +18,11 @@
 //! default) re-reads the game's data with wasp's loader; `engine` runs the
 //! game's own engine headless under apitrace (`wasp scenes capture`), for
 //! the games whose engines are fixed-function GL (OpenArena, Teeworlds).
+//!
+//! A loader scene's textures are stored by the `etc2` rule unless it names
+//! a format (docs/textures.md: what a mobile port ships); an engine
+//! scene's are RGBA8, the only layout `import-gl` gives, and naming another
+//! format for it is an error.
 //! [`all`] lists the loader-route scenes (what `render`, `characterize`,
 //! `reproduce` and `sweep` draw); [`every`] lists both routes.
 
@@ -147,9 +152,9 @@ pub struct SceneDef {
     /// default, `front-to-back-object` or `front-to-back-draw`).
     #[serde(default)]
     pub draw_order: DrawOrder,
-    /// How the scene's textures are stored ([`FormatChoice`]: `rgba8`, the
-    /// default, the `etc2` rule, or one format for all; see
-    /// docs/textures.md).
+    /// How the scene's textures are stored ([`FormatChoice`]: the `etc2`
+    /// rule, the default, `rgba8`, or one format for all; see
+    /// docs/textures.md). An engine scene's are `rgba8`.
     #[serde(default)]
     pub texture_format: FormatChoice,
     /// Where the draw calls come from ([`Route`]: `loader`, the default,
@@ -178,6 +183,10 @@ impl SceneDef {
                 format!("name {:?}: must be non-empty, without spaces", d.name),
             ));
         }
+        let mut d = d;
+        if d.route == Route::Engine {
+            d.texture_format = engine_texture_format(text, &d, source)?;
+        }
         if d.route == Route::Engine && !Route::ENGINE_GAMES.contains(&d.game) {
             let games: Vec<&str> = Route::ENGINE_GAMES.iter().map(|g| g.name()).collect();
             return Err(SceneError::in_file(
@@ -199,6 +208,31 @@ impl SceneDef {
             .map_err(|e| SceneError::in_file(path, format!("cannot read: {e}")))?;
         Self::parse(&text, path)
     }
+}
+
+/// The texture format of engine scene `d` (parsed from `text`): RGBA8,
+/// the layout `import-gl` gives every texture; naming another format is an
+/// error.
+fn engine_texture_format(
+    text: &str,
+    d: &SceneDef,
+    source: &Path,
+) -> Result<FormatChoice, SceneError> {
+    let named = text
+        .parse::<toml::Table>()
+        .is_ok_and(|t| t.contains_key("texture_format"));
+    if named && d.texture_format != FormatChoice::Rgba8 {
+        return Err(SceneError::in_file(
+            source,
+            format!(
+                "texture_format = \"{}\" with route = \"engine\": an engine scene's textures \
+                 are imported as rgba8 (the only format `import-gl` stores); remove the field \
+                 or use route = \"loader\"",
+                d.texture_format
+            ),
+        ));
+    }
+    Ok(FormatChoice::Rgba8)
 }
 
 /// A folder of extra scene definitions set by the front end
@@ -389,7 +423,7 @@ mod tests {
     fn the_texture_format_is_optional_and_checked() {
         let ok = "name = \"x\"\ngame = \"supertuxkart\"\nmap = \"m\"\ncamera = \"start:0\"\nwidth = 64\nheight = 32\n";
         let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
-        assert_eq!(d.texture_format, FormatChoice::Rgba8);
+        assert_eq!(d.texture_format, FormatChoice::Etc2, "a mobile port's");
         for c in FormatChoice::all() {
             let text = format!("{ok}texture_format = \"{c}\"\n");
             let d = SceneDef::parse(&text, Path::new("x.toml")).unwrap();
@@ -434,6 +468,34 @@ mod tests {
                 && e.contains("openarena and teeworlds"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn an_engine_scenes_textures_are_rgba8() {
+        let ok = "name = \"x\"\ngame = \"openarena\"\nmap = \"oa_dm1\"\ncamera = \"spawn:0\"\nwidth = 64\nheight = 32\nroute = \"engine\"\n";
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        assert_eq!(d.texture_format, FormatChoice::Rgba8);
+        let named = format!("{ok}texture_format = \"rgba8\"\n");
+        let d = SceneDef::parse(&named, Path::new("x.toml")).unwrap();
+        assert_eq!(d.texture_format, FormatChoice::Rgba8);
+        let e = SceneDef::parse(
+            &format!("{ok}texture_format = \"etc2\"\n"),
+            Path::new("e.toml"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.starts_with("e.toml: ")
+                && e.contains("texture_format = \"etc2\"")
+                && e.contains("import-gl"),
+            "{e}"
+        );
+        for d in every().unwrap().iter().filter(|d| d.route == Route::Engine) {
+            assert_eq!(d.texture_format, FormatChoice::Rgba8, "{}", d.name);
+        }
+        for d in all().unwrap() {
+            assert_eq!(d.texture_format, FormatChoice::Etc2, "{}", d.name);
+        }
     }
 
     #[test]

@@ -169,13 +169,16 @@ impl fmt::Display for TextureFormat {
 
 /// The format of every texture of a scene: one format for all, or the
 /// `etc2` rule (ETC2 RGB, or ETC2 RGBA where the texture's alpha is
-/// needed).
+/// needed). The default is the `etc2` rule: a scene whose definition names
+/// no format stores its textures as a mobile port ships them
+/// (docs/textures.md). The rasterizer's own default
+/// ([`RasterOptions`](crate::raster::RasterOptions)) stays RGBA8.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum FormatChoice {
     /// Every texture in this format.
-    #[default]
     Rgba8,
-    /// The `etc2` rule, per texture.
+    /// The `etc2` rule, per texture (the default).
+    #[default]
     Etc2,
     /// Every texture in one format (not RGBA8, which is [`FormatChoice::Rgba8`]).
     All(TextureFormat),
