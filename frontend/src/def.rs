@@ -183,10 +183,6 @@ impl SceneDef {
                 format!("name {:?}: must be non-empty, without spaces", d.name),
             ));
         }
-        let mut d = d;
-        if d.route == Route::Engine {
-            d.texture_format = engine_texture_format(text, &d, source)?;
-        }
         if d.route == Route::Engine && !Route::ENGINE_GAMES.contains(&d.game) {
             let games: Vec<&str> = Route::ENGINE_GAMES.iter().map(|g| g.name()).collect();
             return Err(SceneError::in_file(
@@ -208,31 +204,6 @@ impl SceneDef {
             .map_err(|e| SceneError::in_file(path, format!("cannot read: {e}")))?;
         Self::parse(&text, path)
     }
-}
-
-/// The texture format of engine scene `d` (parsed from `text`): RGBA8,
-/// the layout `import-gl` gives every texture; naming another format is an
-/// error.
-fn engine_texture_format(
-    text: &str,
-    d: &SceneDef,
-    source: &Path,
-) -> Result<FormatChoice, SceneError> {
-    let named = text
-        .parse::<toml::Table>()
-        .is_ok_and(|t| t.contains_key("texture_format"));
-    if named && d.texture_format != FormatChoice::Rgba8 {
-        return Err(SceneError::in_file(
-            source,
-            format!(
-                "texture_format = \"{}\" with route = \"engine\": an engine scene's textures \
-                 are imported as rgba8 (the only format `import-gl` stores); remove the field \
-                 or use route = \"loader\"",
-                d.texture_format
-            ),
-        ));
-    }
-    Ok(FormatChoice::Rgba8)
 }
 
 /// A folder of extra scene definitions set by the front end
@@ -471,29 +442,14 @@ mod tests {
     }
 
     #[test]
-    fn an_engine_scenes_textures_are_rgba8() {
+    fn an_engine_scene_takes_the_texture_format_rule_too() {
         let ok = "name = \"x\"\ngame = \"openarena\"\nmap = \"oa_dm1\"\ncamera = \"spawn:0\"\nwidth = 64\nheight = 32\nroute = \"engine\"\n";
         let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
-        assert_eq!(d.texture_format, FormatChoice::Rgba8);
+        assert_eq!(d.texture_format, FormatChoice::Etc2);
         let named = format!("{ok}texture_format = \"rgba8\"\n");
         let d = SceneDef::parse(&named, Path::new("x.toml")).unwrap();
         assert_eq!(d.texture_format, FormatChoice::Rgba8);
-        let e = SceneDef::parse(
-            &format!("{ok}texture_format = \"etc2\"\n"),
-            Path::new("e.toml"),
-        )
-        .unwrap_err()
-        .to_string();
-        assert!(
-            e.starts_with("e.toml: ")
-                && e.contains("texture_format = \"etc2\"")
-                && e.contains("import-gl"),
-            "{e}"
-        );
-        for d in every().unwrap().iter().filter(|d| d.route == Route::Engine) {
-            assert_eq!(d.texture_format, FormatChoice::Rgba8, "{}", d.name);
-        }
-        for d in all().unwrap() {
+        for d in every().unwrap() {
             assert_eq!(d.texture_format, FormatChoice::Etc2, "{}", d.name);
         }
     }
