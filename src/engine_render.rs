@@ -26,7 +26,6 @@ fn loader_only_options(args: &RenderArgs) -> Vec<&'static str> {
         (args.crop.is_some(), "--crop"),
         (args.depth_prepass, "--depth-prepass"),
         (args.draw_order.is_some(), "--draw-order"),
-        (args.texture_format.is_some(), "--texture-format"),
         (args.timings, "--timings"),
     ];
     given.iter().filter(|g| g.0).map(|g| g.1).collect()
@@ -62,6 +61,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         json: None,
         skip_unsupported: false,
         check_mesa: None,
+        texture_format: args.texture_format.unwrap_or(def.texture_format),
         quiet: args.quiet,
     })
 }

@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use wasp_frontend::gl::{self, ImportOptions, Summary};
 use wasp_frontend::raster::{rasterize, Frame, RasterOptions};
 use wasp_frontend::render;
+use wasp_frontend::texture::FormatChoice;
 use wasp_sim::trace::Trace;
 
 /// Tile edge of the imported frame (the paper's 64).
@@ -53,6 +54,13 @@ pub struct ImportGlArgs {
     /// DIR (agreement.json and disagreement maps, docs/scenes.md).
     #[arg(long, value_name = "DIR")]
     pub check_mesa: Option<PathBuf>,
+    /// How the textures are stored (docs/textures.md): `rgba8` (the
+    /// default: the texels as the program uploaded them), `etc2` (the rule
+    /// a mobile port follows: opaque textures ETC2 RGB, those whose alpha a
+    /// draw reads ETC2 RGBA), or one format for every texture. An engine
+    /// scene's frame takes its scene's `texture_format`.
+    #[arg(long, value_name = "FORMAT", default_value_t = FormatChoice::Rgba8)]
+    pub texture_format: FormatChoice,
     /// No progress output on stderr; results, warnings and errors still
     /// print.
     #[arg(long, short)]
@@ -100,6 +108,7 @@ fn import_frame(
     let raster = RasterOptions {
         tile: TILE,
         colour,
+        texture_format: args.texture_format,
         ..RasterOptions::default()
     };
     let frame = rasterize(&imported.scene, imported.width, imported.height, &raster)

@@ -157,7 +157,7 @@ pub struct RenderArgs {
     /// How the textures are stored: rgba8, etc2 (per texture: ETC2 RGB,
     /// or ETC2 RGBA where its alpha is used), etc2-rgb, etc2-rgba,
     /// astc-4x4, astc-6x6 or astc-8x8 (default: the scene definition's
-    /// `texture_format`, rgba8 for every shipped scene; see
+    /// `texture_format`, etc2 for every shipped scene; see
     /// docs/textures.md). It moves the blocks the trace lists, not the
     /// picture.
     #[arg(long, value_name = "FORMAT")]

@@ -10,7 +10,7 @@
 //! height = 768
 //! description = "Lighthouse track, behind the first start position"
 //! draw_order = "as-loaded"      # optional: as-loaded (default) | front-to-back-object | front-to-back-draw
-//! texture_format = "rgba8"      # optional: rgba8 (default) | etc2 | etc2-rgb | etc2-rgba | astc-4x4 | astc-6x6 | astc-8x8
+//! texture_format = "etc2"       # optional: etc2 (default) | rgba8 | etc2-rgb | etc2-rgba | astc-4x4 | astc-6x6 | astc-8x8
 //! route = "loader"              # optional: loader (default) | engine (OpenArena, Teeworlds)
 //! ```
 //!
@@ -18,6 +18,11 @@
 //! default) re-reads the game's data with wasp's loader; `engine` runs the
 //! game's own engine headless under apitrace (`wasp scenes capture`), for
 //! the games whose engines are fixed-function GL (OpenArena, Teeworlds).
+//!
+//! A loader scene's textures are stored by the `etc2` rule unless it names
+//! a format (docs/textures.md: what a mobile port ships); an engine
+//! scene's are RGBA8, the only layout `import-gl` gives, and naming another
+//! format for it is an error.
 //! [`all`] lists the loader-route scenes (what `render`, `characterize`,
 //! `reproduce` and `sweep` draw); [`every`] lists both routes.
 
@@ -147,9 +152,9 @@ pub struct SceneDef {
     /// default, `front-to-back-object` or `front-to-back-draw`).
     #[serde(default)]
     pub draw_order: DrawOrder,
-    /// How the scene's textures are stored ([`FormatChoice`]: `rgba8`, the
-    /// default, the `etc2` rule, or one format for all; see
-    /// docs/textures.md).
+    /// How the scene's textures are stored ([`FormatChoice`]: the `etc2`
+    /// rule, the default, `rgba8`, or one format for all; see
+    /// docs/textures.md). An engine scene's are `rgba8`.
     #[serde(default)]
     pub texture_format: FormatChoice,
     /// Where the draw calls come from ([`Route`]: `loader`, the default,
@@ -389,7 +394,7 @@ mod tests {
     fn the_texture_format_is_optional_and_checked() {
         let ok = "name = \"x\"\ngame = \"supertuxkart\"\nmap = \"m\"\ncamera = \"start:0\"\nwidth = 64\nheight = 32\n";
         let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
-        assert_eq!(d.texture_format, FormatChoice::Rgba8);
+        assert_eq!(d.texture_format, FormatChoice::Etc2, "a mobile port's");
         for c in FormatChoice::all() {
             let text = format!("{ok}texture_format = \"{c}\"\n");
             let d = SceneDef::parse(&text, Path::new("x.toml")).unwrap();
@@ -434,6 +439,19 @@ mod tests {
                 && e.contains("openarena and teeworlds"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn an_engine_scene_takes_the_texture_format_rule_too() {
+        let ok = "name = \"x\"\ngame = \"openarena\"\nmap = \"oa_dm1\"\ncamera = \"spawn:0\"\nwidth = 64\nheight = 32\nroute = \"engine\"\n";
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        assert_eq!(d.texture_format, FormatChoice::Etc2);
+        let named = format!("{ok}texture_format = \"rgba8\"\n");
+        let d = SceneDef::parse(&named, Path::new("x.toml")).unwrap();
+        assert_eq!(d.texture_format, FormatChoice::Rgba8);
+        for d in every().unwrap() {
+            assert_eq!(d.texture_format, FormatChoice::Etc2, "{}", d.name);
+        }
     }
 
     #[test]

@@ -6,6 +6,7 @@ use super::figures::{Figure, Figures};
 use super::paper;
 use super::plan::{Group, Plan, Width};
 use super::prose::pct;
+use super::rgba8;
 use crate::study::runner::Outcome;
 use crate::study::table::csv;
 use std::fmt::Write as _;
@@ -22,21 +23,7 @@ pub struct Row {
     pub ours: Vec<[String; 4]>,
 }
 
-/// The group means of a figure's series: games, 3D, 2D, procedural.
-pub fn group_values(f: &Figure, series: usize) -> [Option<f64>; 4] {
-    let at = |label: &str| {
-        f.categories
-            .iter()
-            .position(|c| c == label)
-            .and_then(|i| f.series.get(series).and_then(|s| s.values[i]))
-    };
-    [
-        at("mean games"),
-        at("mean 3D"),
-        at("mean 2D"),
-        at("mean procedural"),
-    ]
-}
+pub use super::figures::group_values;
 
 /// The group means of a figure's series as text: changes with their sign,
 /// shares without, other numbers with two decimals.
@@ -59,13 +46,37 @@ pub fn series_index(f: &Figure, name: &str) -> usize {
 
 /// The rows of the table.
 pub fn headline(plan: &Plan, out: &Outcome, machines: &[(Dispatch, Figures)]) -> Vec<Row> {
+    let textures = Textures::of(plan, out);
     let mut rows = Vec::new();
-    policy_rows(&mut rows, plan, machines);
+    policy_rows(&mut rows, plan, machines, &textures);
     for w in &plan.widths {
         sensitivity_rows(&mut rows, plan, machines, w);
     }
-    workload_rows(&mut rows, plan, out, machines);
+    workload_rows(&mut rows, plan, out, machines, &textures);
     rows
+}
+
+/// The run with every texture in RGBA8 ([`rgba8::view`]) and the labels
+/// that tell its rows from those of the scenes' own textures (none when
+/// the run has no RGBA8 measurements: the rows keep their plain names).
+struct Textures {
+    view: Outcome,
+    own: String,
+    rgba8: String,
+}
+
+impl Textures {
+    fn of(plan: &Plan, out: &Outcome) -> Textures {
+        let view = rgba8::view(plan, out);
+        let compared = !view.scenes.is_empty() || !view.points.is_empty();
+        let (own, rgba8) = if compared {
+            let own = rgba8::own_format(plan, out);
+            (rgba8::suffix(own.as_deref()), rgba8::rgba8_suffix())
+        } else {
+            (String::new(), String::new())
+        };
+        Textures { view, own, rgba8 }
+    }
 }
 
 type PerMachine<'a> = &'a dyn Fn(Dispatch, &Figures) -> [String; 4];
@@ -79,8 +90,13 @@ fn row(claim: &str, paper: String, machines: &[(Dispatch, Figures)], f: PerMachi
 }
 
 /// The policies' speedups and what WaSP changes (latency, energy, misses),
-/// and ideal memory.
-fn policy_rows(rows: &mut Vec<Row>, plan: &Plan, machines: &[(Dispatch, Figures)]) {
+/// and ideal memory (with the scenes' textures and with RGBA8's).
+fn policy_rows(
+    rows: &mut Vec<Row>,
+    plan: &Plan,
+    machines: &[(Dispatch, Figures)],
+    textures: &Textures,
+) {
     let p = |c: paper::Claim| pct(Some(c.value));
     heuristic_rows(rows, plan, machines);
     rows.push(row(
@@ -109,12 +125,26 @@ fn policy_rows(rows: &mut Vec<Row>, plan: &Plan, machines: &[(Dispatch, Figures)
             group_means(&x.misses(d), series)
         }));
     }
+    let ideal_paper = "Figure 1 (no number)";
     rows.push(row(
-        "Ideal-memory speedup",
-        "Figure 1 (no number)".into(),
+        &format!("Ideal-memory speedup{}", textures.own),
+        ideal_paper.into(),
         machines,
         &|d, x| group_means(&x.motivation(d), 0),
     ));
+    if !textures.view.points.is_empty() {
+        rows.push(row(
+            &format!("Ideal-memory speedup{}", textures.rgba8),
+            ideal_paper.into(),
+            machines,
+            &|d, _| {
+                rgba8::ideal(plan, &textures.view, d).map_or_else(
+                    || ["-".into(), "-".into(), "-".into(), "-".into()],
+                    |f| group_means(&f, 0),
+                )
+            },
+        ));
+    }
 }
 
 /// The three heuristics' speedups, printed with as many decimals as keep
@@ -260,50 +290,57 @@ fn sensitivity_rows(rows: &mut Vec<Row>, plan: &Plan, machines: &[(Dispatch, Fig
     ));
 }
 
-/// The workload figures: the same on every machine.
+/// The workload figures: the same on every machine. The footprint ratios
+/// and CF are given with the scenes' textures and, where the run measured
+/// them, with RGBA8's, each right after the other.
 fn workload_rows(
     rows: &mut Vec<Row>,
     plan: &Plan,
     out: &Outcome,
     machines: &[(Dispatch, Figures)],
+    textures: &Textures,
 ) {
     let sf = super::figures::scene_figures(plan, out);
-    let same = |claim: String, paper: String, v: [String; 4]| Row {
-        claim,
-        paper,
-        ours: machines.iter().map(|_| v.clone()).collect(),
+    let sf8 = (!textures.view.scenes.is_empty())
+        .then(|| super::figures::scene_figures(plan, &textures.view));
+    // The row of series `i` of figure `fig` of `sf`, and its RGBA8 twin.
+    let both = |rows: &mut Vec<Row>, claim: &str, paper: String, fig: usize, i: usize| {
+        let same = |suffix: &str, figs: &[Figure]| Row {
+            claim: format!("{claim}{suffix}"),
+            paper: paper.clone(),
+            ours: machines
+                .iter()
+                .map(|_| group_means(&figs[fig], i))
+                .collect(),
+        };
+        rows.push(same(&textures.own, &sf));
+        if let Some(sf8) = &sf8 {
+            rows.push(same(&textures.rgba8, sf8));
+        }
     };
-    let fp = &sf[2];
-    for (i, s) in fp.series.iter().enumerate() {
+    for (i, s) in sf[2].series.iter().enumerate() {
         let pv = paper::footprint(&s.name).map_or("-".into(), |v| format!("{v}"));
-        rows.push(same(
-            format!("Footprint ratio, {}", s.name),
-            pv,
-            group_means(fp, i),
-        ));
+        both(rows, &format!("Footprint ratio, {}", s.name), pv, 2, i);
     }
-    let mesh = &sf[3];
-    if let Some(i) = mesh
+    if let Some(i) = sf[3]
         .series
         .iter()
         .position(|s| s.name.starts_with("Mesh2 "))
     {
-        rows.push(same(
-            "Footprint ratio, Mesh2 (size ratio 0.25)".into(),
+        both(
+            rows,
+            "Footprint ratio, Mesh2 (size ratio 0.25)",
             format!("{}", paper::MESH2_FOOTPRINT.value),
-            group_means(mesh, i),
-        ));
+            3,
+            i,
+        );
     }
-    for (fig, series, claim, c) in [
-        (&sf[0], 0, "Min_Estimate1", paper::MIN_ESTIMATE1),
-        (&sf[1], 0, "CF", paper::CF),
-    ] {
-        rows.push(same(
-            claim.into(),
-            format!("{}", c.value),
-            group_means(fig, series),
-        ));
-    }
+    rows.push(Row {
+        claim: "Min_Estimate1".into(),
+        paper: format!("{}", paper::MIN_ESTIMATE1.value),
+        ours: machines.iter().map(|_| group_means(&sf[0], 0)).collect(),
+    });
+    both(rows, "CF", format!("{}", paper::CF.value), 1, 0);
 }
 
 /// The table in REPORT.md.
@@ -329,6 +366,18 @@ pub fn headline_md(md: &mut String, rows: &[Row], plan: &Plan) {
          baseline - 1`, averaged arithmetically; sensitivity rows are means over games. \
          `data/headline.csv` holds this table."
     );
+    let rgba8 = rgba8::rgba8_suffix();
+    if rows.iter().any(|r| r.claim.ends_with(&rgba8)) {
+        let _ = writeln!(
+            md,
+            "\nRows ending `{}` store every texture of every scene as RGBA8, the layout before \
+             compressed formats; the rows above each of them store the scenes' textures as \
+             their definitions say (shipped scenes: the `etc2` rule of docs/textures.md). The \
+             RGBA8 ideal-memory row is measured on the {} machine only.",
+            rgba8.trim_start_matches(", "),
+            rgba8::machine(plan).map_or("first".into(), |d| d.to_string())
+        );
+    }
 }
 
 /// The table as CSV.

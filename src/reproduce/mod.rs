@@ -11,7 +11,9 @@
 //! - [`headline`]: its side-by-side table of the paper's numbers and ours
 //!   (printed with [`digits`]; sweeps' edges flagged by [`edges`]);
 //! - [`why`]: its bullets on why they differ, worded from the data by
-//!   [`prose`].
+//!   [`prose`];
+//! - [`rgba8`]: the scenes with every texture in RGBA8, beside their own
+//!   (`etc2`) textures in the headline table and the bullets.
 
 pub mod answer;
 #[cfg(test)]
@@ -26,6 +28,7 @@ pub mod paper;
 pub mod plan;
 pub mod prose;
 pub mod report;
+pub mod rgba8;
 pub mod why;
 
 use crate::study::cache::Cache;
@@ -146,6 +149,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     std::fs::create_dir_all(&figures)
         .map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
     let mut tasks = plan.tasks(&figures);
+    tasks.extend(rgba8::tasks(&plan));
     tasks.extend(map::tasks(&plan, &map));
     if !args.quiet {
         eprintln!(

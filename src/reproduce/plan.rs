@@ -289,6 +289,7 @@ impl Plan {
             t.push(Task::Characterize {
                 scene: s.name.clone(),
                 config: "paper".into(),
+                format: None,
             });
         }
         for &d in &self.dispatches {

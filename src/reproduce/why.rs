@@ -135,6 +135,7 @@ pub fn why(md: &mut String, plan: &Plan, out: &Outcome, machines: &[(Dispatch, F
     misses_note(md, &n);
     footprint_note(md, &n);
     cf_note(md, &n);
+    super::rgba8::note(md, plan, out);
     for w in &plan.widths {
         sensitivity_note(md, &n, w);
     }

@@ -37,6 +37,10 @@ pub enum Task {
         scene: String,
         /// Base configuration name (its `gpu.tile_size` is the tile).
         config: String,
+        /// The textures' format (`None`: the scene definition's); a
+        /// characterisation in a named format goes to
+        /// [`Outcome::scenes_as`].
+        format: Option<FormatChoice>,
     },
     /// Draw the timeline of cycles `from..=to` of a point to `out` (.png
     /// or .svg); skipped if `out` exists and `out.key` names the point's
@@ -84,8 +88,11 @@ pub struct RunnerOptions {
 pub struct Outcome {
     /// Every point's result (cached or run).
     pub points: HashMap<Point, PointRecord>,
-    /// Every characterised scene.
+    /// Every characterised scene (in its definition's texture format).
     pub scenes: BTreeMap<String, Characterization>,
+    /// Every scene characterised with its textures in a named format
+    /// (`Task::Characterize` with a `format`).
+    pub scenes_as: BTreeMap<(String, FormatChoice), Characterization>,
     /// Tasks that failed, with why.
     pub failures: Vec<String>,
     /// Tasks run now.
@@ -103,6 +110,14 @@ impl Outcome {
     /// The result of `p`, if it ran.
     pub fn get(&self, p: &Point) -> Option<&PointRecord> {
         self.points.get(p)
+    }
+
+    /// Keep characterisation `c` of a task characterising in `format`.
+    fn put_scene(&mut self, format: Option<FormatChoice>, c: Characterization) {
+        match format {
+            Some(f) => self.scenes_as.insert((c.scene.clone(), f), c),
+            None => self.scenes.insert(c.scene.clone(), c),
+        };
     }
 
     /// The closing line: tasks, wall time and points per second.
@@ -218,7 +233,9 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
                 }
             }
             Ok(Done::Scene(c)) => {
-                out.scenes.insert(c.scene.clone(), *c);
+                if let Task::Characterize { format, .. } = &todo[i].task {
+                    out.put_scene(*format, *c);
+                }
             }
             Ok(Done::Drawn) => {}
             Err(e) => out
@@ -270,7 +287,10 @@ fn resolve(
         let d = scenes.def(t.scene())?.clone();
         let d = match t {
             Task::Run(p) | Task::Timeline { point: p, .. } => p.scene_def(&d),
-            Task::Characterize { .. } => d,
+            Task::Characterize { format, .. } => SceneDef {
+                texture_format: format.unwrap_or(d.texture_format),
+                ..d
+            },
         };
         let id = ids
             .entry((d.name.clone(), d.draw_order, d.texture_format))
@@ -278,11 +298,13 @@ fn resolve(
             .clone();
         let (key, cfg) = task_key(t, &d, &id, &mut resolver)?;
         // A task on the same machine as an earlier one (the same key and
-        // kind) shares its result.
+        // kind) shares its result; a characterisation in a named format
+        // runs apart from the scene's own (the same work when the scene's
+        // format is that one), so that each finds its place in the outcome.
         let id = match t {
             Task::Timeline { out, .. } => format!("timeline {key} {}", out.display()),
             Task::Run(_) => format!("run {key}"),
-            Task::Characterize { .. } => format!("scene {key}"),
+            Task::Characterize { format, .. } => format!("scene {key} {format:?}"),
         };
         if !seen.insert(id) {
             out.same += 1;
@@ -353,9 +375,9 @@ fn take_stored(t: &Task, key: &str, cache: &Cache, out: &mut Outcome) -> bool {
             }
             None => false,
         },
-        Task::Characterize { scene, .. } => match cache.load_scene(scene, key) {
+        Task::Characterize { scene, format, .. } => match cache.load_scene(scene, key) {
             Some(c) => {
-                out.scenes.insert(scene.clone(), c);
+                out.put_scene(*format, c);
                 true
             }
             None => false,
@@ -474,7 +496,14 @@ fn share_results(out: &mut Outcome) {
 fn describe(t: &Task) -> String {
     match t {
         Task::Run(p) => p.describe(),
-        Task::Characterize { scene, config } => format!("characterising {scene} ({config})"),
+        Task::Characterize {
+            scene,
+            config,
+            format,
+        } => match format {
+            Some(f) => format!("characterising {scene} ({config}, textures {f})"),
+            None => format!("characterising {scene} ({config})"),
+        },
         Task::Timeline { point, out, .. } => {
             format!("timeline {} of {}", out.display(), point.describe())
         }
@@ -671,8 +700,9 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("wasp-runner-texcache-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         let (cache, _, opts) = small_plane(&dir);
-        let rgba8 = Point::new("test-small-plane", "paper", &[]);
-        let etc2 = rgba8.stored(FormatChoice::Etc2);
+        // The scene's own format is the etc2 rule.
+        let etc2 = Point::new("test-small-plane", "paper", &[]);
+        let rgba8 = etc2.stored(FormatChoice::Rgba8);
         let decoded = etc2.with("memory.texture_cache=\"decompressed\"");
         let tasks = [
             Task::Run(rgba8.clone()),

@@ -47,6 +47,7 @@
 //! a texture is an error naming the texture and the formats it can take.
 
 use super::super::{Blend, Scene, SceneError, ShaderOp};
+use crate::draw_state::BlendFactor;
 use std::fmt;
 use std::str::FromStr;
 
@@ -169,13 +170,16 @@ impl fmt::Display for TextureFormat {
 
 /// The format of every texture of a scene: one format for all, or the
 /// `etc2` rule (ETC2 RGB, or ETC2 RGBA where the texture's alpha is
-/// needed).
+/// needed). The default is the `etc2` rule: a scene whose definition names
+/// no format stores its textures as a mobile port ships them
+/// (docs/textures.md). The rasterizer's own default
+/// ([`RasterOptions`](crate::raster::RasterOptions)) stays RGBA8.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum FormatChoice {
     /// Every texture in this format.
-    #[default]
     Rgba8,
-    /// The `etc2` rule, per texture.
+    /// The `etc2` rule, per texture (the default).
+    #[default]
     Etc2,
     /// Every texture in one format (not RGBA8, which is [`FormatChoice::Rgba8`]).
     All(TextureFormat),
@@ -263,7 +267,7 @@ impl FormatChoice {
 pub fn alpha_needed(scene: &Scene) -> Vec<bool> {
     let mut read = vec![false; scene.textures.len()];
     for m in &scene.materials {
-        if m.blend == Blend::Opaque {
+        if !reads_alpha(m) {
             continue;
         }
         let first = m.shader.iter().find_map(|op| match op {
@@ -280,6 +284,19 @@ pub fn alpha_needed(scene: &Scene) -> Vec<bool> {
         .zip(read)
         .map(|(t, r)| r && t.rgba.chunks_exact(4).any(|p| p[3] < 255))
         .collect()
+}
+
+/// Whether material `m` reads its first texture's alpha: a loader's
+/// alpha-tested or alpha-blended material; a material with a draw state (the
+/// GL importer's) when the alpha test is on or a blend factor is the source
+/// alpha (additive `GL_ONE, GL_ONE` blending never reads it).
+fn reads_alpha(m: &crate::Material) -> bool {
+    let Some(s) = &m.state else {
+        return m.blend != Blend::Opaque;
+    };
+    let src_alpha =
+        |f: &BlendFactor| matches!(f, BlendFactor::SrcAlpha | BlendFactor::OneMinusSrcAlpha);
+    s.alpha_test.is_some() || s.blend.is_some_and(|(a, b)| src_alpha(&a) || src_alpha(&b))
 }
 
 impl fmt::Display for FormatChoice {
@@ -376,5 +393,58 @@ mod tests {
         assert_eq!(rgb.format_for(false), Some(TextureFormat::Etc2Rgb));
         let astc = FormatChoice::All(TextureFormat::Astc8x8);
         assert_eq!(astc.format_for(true), Some(TextureFormat::Astc8x8));
+    }
+
+    #[test]
+    fn a_draw_state_reads_alpha_through_the_alpha_test_or_a_source_alpha_factor() {
+        use crate::draw_state::{Compare, DrawState};
+        use crate::{Camera, Material, TexSample, Texture};
+        let tex = |name: &str| Texture {
+            name: name.into(),
+            width: 4,
+            height: 4,
+            rgba: [[9, 9, 9, 100]; 16].concat(),
+            repeat: true,
+        };
+        let mat = |t: usize, state: DrawState| Material {
+            name: format!("m{t}"),
+            blend: Blend::AlphaBlend,
+            shader: vec![ShaderOp::Tex(TexSample {
+                texture: t,
+                uv_set: 0,
+                filter: crate::Filter::Bilinear,
+            })],
+            state: Some(state),
+        };
+        let opaque = DrawState::for_blend(Blend::Opaque);
+        let additive = DrawState {
+            blend: Some((BlendFactor::One, BlendFactor::One)),
+            ..opaque
+        };
+        let over = DrawState {
+            blend: Some((BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha)),
+            ..opaque
+        };
+        let tested = DrawState {
+            alpha_test: Some((Compare::Greater, 0.0)),
+            ..opaque
+        };
+        let scene = Scene {
+            name: "s".into(),
+            source: String::new(),
+            meshes: vec![],
+            materials: vec![
+                mat(0, additive),
+                mat(1, over),
+                mat(2, tested),
+                mat(3, opaque),
+            ],
+            textures: vec![tex("a"), tex("b"), tex("c"), tex("d")],
+            camera: Camera::Clip,
+        };
+        assert_eq!(alpha_needed(&scene), [false, true, true, false]);
+        let f = FormatChoice::Etc2.formats(&scene).unwrap();
+        assert_eq!(f[0], TextureFormat::Etc2Rgb);
+        assert_eq!(f[1], TextureFormat::Etc2Rgba);
     }
 }

@@ -73,3 +73,19 @@ pub struct Figure {
     /// What the figure shows, for the report.
     pub caption: String,
 }
+
+/// The group means of a figure's series: games, 3D, 2D, procedural.
+pub fn group_values(f: &Figure, series: usize) -> [Option<f64>; 4] {
+    let at = |label: &str| {
+        f.categories
+            .iter()
+            .position(|c| c == label)
+            .and_then(|i| f.series.get(series).and_then(|s| s.values[i]))
+    };
+    [
+        at("mean games"),
+        at("mean 3D"),
+        at("mean 2D"),
+        at("mean procedural"),
+    ]
+}

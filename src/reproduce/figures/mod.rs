@@ -25,7 +25,7 @@ mod speedups;
 mod warps;
 
 pub use axis::{mean, Axis};
-pub use figure::{Figure, Kind, PaperValue};
+pub use figure::{group_values, Figure, Kind, PaperValue};
 pub use scenes::scene_figures;
 
 use super::paper::Claim;

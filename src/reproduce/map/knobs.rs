@@ -324,7 +324,7 @@ pub fn all() -> Vec<Knob> {
             id: "texture-format",
             field: "texture_format (scene)",
             label: "texture format",
-            shipped: "rgba8",
+            shipped: "etc2",
             values: &["rgba8", "etc2", "etc2+decompressed", "astc-8x8"],
             quick: &["rgba8", "etc2"],
             sets: |_| Vec::new(),

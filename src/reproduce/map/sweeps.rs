@@ -339,7 +339,8 @@ mod tests {
             );
             assert!(swept.contains(&key), "{} is in no sweep file", p.describe());
         }
-        // etc2, etc2 with decompressed texels and astc-8x8, six variants.
+        // rgba8, etc2 with decompressed texels and astc-8x8 (etc2 is the
+        // shipped point), six variants.
         assert_eq!(formats, 3 * 6, "the texture-format points are checked");
     }
 }
