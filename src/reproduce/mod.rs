@@ -10,6 +10,9 @@
 //! - [`answer`]: its opening "The answer", generated from the run;
 //! - [`headline`]: its side-by-side table of the paper's numbers and ours
 //!   (printed with [`digits`]; sweeps' edges flagged by [`edges`]);
+//! - [`routes`]: which twin of a loader and engine pair counts, and
+//!   [`routes_report`]: the routes in the report and "The loaders against
+//!   the engine";
 //! - [`why`]: its bullets on why they differ, worded from the data by
 //!   [`prose`].
 
@@ -26,6 +29,8 @@ pub mod paper;
 pub mod plan;
 pub mod prose;
 pub mod report;
+pub mod routes;
+pub mod routes_report;
 pub mod why;
 
 use crate::study::cache::Cache;
@@ -91,6 +96,15 @@ pub struct ReproduceArgs {
     /// always run) or all. The paper's experiments run on every scene.
     #[arg(long, value_name = "WHICH", default_value = "budget")]
     pub map_scenes: map::plan::SceneChoice,
+
+    /// Where a camera has a loader scene and an engine twin (the game's own
+    /// draw calls, `route = "engine"`), which counts in the study and its
+    /// group means: engine (the twin; the loader scene is reported beside),
+    /// loader (the reverse) or both. Both twins run the comparison "The
+    /// loaders against the engine"; an engine scene that cannot be
+    /// captured or imported is left out and the report says why.
+    #[arg(long, value_name = "WHICH", default_value = "engine")]
+    pub routes: routes::RouteChoice,
 }
 
 /// Which machines a reproduction runs.
@@ -133,7 +147,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         crate::output::folder("--sweep-files", d, "one sweep file per group")?;
     }
     let defs = chosen_scenes(args.scenes.as_deref())?;
-    let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
+    let plan = Plan::with_routes(&defs, args.quick, args.machines.dispatches(), args.routes);
     // The map "What decides WaSP's gain" runs on the shared-tile machine
     // beside the paper's experiments.
     let map =
@@ -142,6 +156,27 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         return write_sweep_files(dir, &map, &plan, args.quiet);
     }
     let cache = Cache::open(&args.out).map_err(CliError::failed)?;
+    let opts = RunnerOptions {
+        jobs,
+        quiet: args.quiet,
+        fetch: true,
+        label: "reproducing".into(),
+        scenes: defs.clone(),
+    };
+    // The engine scenes first: one that cannot be captured or imported is
+    // left out (and the report says why) before the plan is made.
+    let left_out = engine_scenes_left_out(&plan, &cache, &opts)?;
+    let plan = if left_out.is_empty() {
+        plan
+    } else {
+        let defs: Vec<SceneDef> = defs
+            .into_iter()
+            .filter(|d| !left_out.iter().any(|l| l.name == d.name))
+            .collect();
+        let mut p = Plan::with_routes(&defs, args.quick, args.machines.dispatches(), args.routes);
+        p.left_out = left_out;
+        p
+    };
     let figures = args.out.join("figures");
     std::fs::create_dir_all(&figures)
         .map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
@@ -160,17 +195,14 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         );
         eprintln!(
             "wasp: including {}",
-            map::report::plan_text(&map, &map::scene_names(&plan, &map), plan.scenes.len())
+            map::report::plan_text(
+                &map,
+                &map::scene_names(&plan, &map),
+                map::eligible(&plan).len()
+            )
         );
     }
     crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
-    let opts = RunnerOptions {
-        jobs,
-        quiet: args.quiet,
-        fetch: true,
-        label: "reproducing".into(),
-        scenes: defs.clone(),
-    };
     let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
     let cells =
         map::run_grid(&plan, &map, &mut outcome, &cache, &opts).map_err(CliError::failed)?;
@@ -198,10 +230,60 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The engine scenes of `plan` that cannot be captured or imported, with
+/// why: each is characterised (which captures it when the scene cache
+/// lacks it and imports its frame; the result is stored, so the study's
+/// own characterisation finds it done).
+fn engine_scenes_left_out(
+    plan: &Plan,
+    cache: &Cache,
+    opts: &RunnerOptions,
+) -> Result<Vec<routes::LeftOut>, CliError> {
+    let engine: Vec<&plan::SceneInfo> = plan
+        .every
+        .iter()
+        .filter(|s| s.route == def::Route::Engine)
+        .collect();
+    if engine.is_empty() {
+        return Ok(Vec::new());
+    }
+    let tasks: Vec<runner::Task> = engine
+        .iter()
+        .map(|s| runner::Task::Characterize {
+            scene: s.name.clone(),
+            config: "paper".into(),
+        })
+        .collect();
+    let opts = RunnerOptions {
+        label: "engine scenes".into(),
+        ..opts.clone()
+    };
+    let out = runner::run(&tasks, cache, &opts).map_err(CliError::failed)?;
+    let mut left = Vec::new();
+    for s in engine.iter().filter(|s| !out.scenes.contains_key(&s.name)) {
+        let reason = out
+            .failures
+            .iter()
+            .find(|f| f.starts_with(&format!("characterising {} ", s.name)))
+            .and_then(|f| f.split_once("): ").map(|x| x.1.to_string()))
+            .unwrap_or_else(|| "its characterisation did not finish".into());
+        eprintln!(
+            "wasp: warning: leaving out the engine scene {}: {reason}",
+            s.name
+        );
+        left.push(routes::LeftOut {
+            name: s.name.clone(),
+            route: s.route,
+            reason,
+        });
+    }
+    Ok(left)
+}
+
 /// The scenes of `--scenes` (names of `wasp scenes list` or definition
-/// files), else every listed scene.
+/// files), else every listed scene of both routes.
 fn chosen_scenes(names: Option<&[String]>) -> Result<Vec<SceneDef>, CliError> {
-    let all = def::all().map_err(|e| CliError::failed(e.to_string()))?;
+    let all = def::every().map_err(|e| CliError::failed(e.to_string()))?;
     let Some(names) = names else {
         return Ok(all);
     };
@@ -253,6 +335,9 @@ pub fn command(args: &ReproduceArgs, scenes_dir: Option<&Path>) -> report::Comma
             .expect("no skipped value");
         line.push_str(&format!(" --map-scenes {}", m.get_name()));
     }
+    if args.routes != routes::RouteChoice::default() {
+        line.push_str(&format!(" --routes {}", args.routes.name()));
+    }
     if let Some(s) = &args.scenes {
         line.push_str(&format!(" --scenes {}", s.join(",")));
     }
@@ -302,11 +387,13 @@ mod tests {
             quiet: true,
             sweep_files: None,
             map_scenes: map::plan::SceneChoice::All,
+            routes: routes::RouteChoice::Both,
         };
         let c = command(&args, None);
         assert_eq!(
             c.line,
-            "wasp reproduce --quick --machines per-core-tile --map-scenes all --scenes a,b.toml"
+            "wasp reproduce --quick --machines per-core-tile --map-scenes all --routes both \
+             --scenes a,b.toml"
         );
         assert!(c.subset);
         // A folder of scene definitions may replace shipped scenes.
@@ -322,6 +409,7 @@ mod tests {
             machines: Machines::Both,
             scenes: None,
             map_scenes: map::plan::SceneChoice::Budget,
+            routes: routes::RouteChoice::Engine,
             ..args
         };
         assert_eq!(command(&all, None).line, "wasp reproduce");
