@@ -105,6 +105,14 @@ pub struct ReproduceArgs {
     /// captured or imported is left out and the report says why.
     #[arg(long, value_name = "WHICH", default_value = "engine")]
     pub routes: routes::RouteChoice,
+
+    /// Print the plan's counts and run nothing: scenes by route, tasks
+    /// before the 2-D grid (whose tasks depend on the results), the
+    /// simulations among them that are distinct, and those already done in
+    /// --out. Engine scenes count as if they draw; a run leaves out those
+    /// that cannot be captured or imported.
+    #[arg(long, conflicts_with = "sweep_files")]
+    pub dry_run: bool,
 }
 
 /// Which machines a reproduction runs.
@@ -154,6 +162,9 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         map::plan::MapPlan::new(plan.wasp, plan.quick).on(args.map_scenes, args.scenes.is_some());
     if let Some(dir) = &args.sweep_files {
         return write_sweep_files(dir, &map, &plan, args.quiet);
+    }
+    if args.dry_run {
+        return dry_run(args, &plan, &map, defs);
     }
     let cache = Cache::open(&args.out).map_err(CliError::failed)?;
     let opts = RunnerOptions {
@@ -226,6 +237,75 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
             outcome.failures.len(),
             tasks.len()
         )));
+    }
+    Ok(())
+}
+
+/// `--dry-run`: the plan's counts on standard output.
+fn dry_run(
+    args: &ReproduceArgs,
+    plan: &Plan,
+    map: &map::plan::MapPlan,
+    defs: Vec<SceneDef>,
+) -> Result<(), CliError> {
+    let opts = RunnerOptions {
+        jobs: 1,
+        quiet: true,
+        fetch: false,
+        label: "counting".into(),
+        scenes: defs.clone(),
+    };
+    let cache = crate::study::cache::Cache::read_only(&args.out);
+    let count = |plan: &Plan| -> Result<[runner::Counts; 2], CliError> {
+        let mut tasks = plan.tasks(&args.out.join("figures"));
+        let paper = tasks.len();
+        tasks.extend(map::tasks(plan, map));
+        let c = |t: &[runner::Task]| runner::count(t, &cache, &opts).map_err(CliError::failed);
+        Ok([c(&tasks[..paper])?, c(&tasks)?])
+    };
+    let [paper_counts, all] = count(plan)?;
+    // The same run without the engine scenes, for comparison.
+    let loader: Vec<SceneDef> = defs
+        .into_iter()
+        .filter(|d| d.route == def::Route::Loader)
+        .collect();
+    let without = Plan::with_routes(&loader, args.quick, args.machines.dispatches(), args.routes);
+    let [paper_without, all_without] = count(&without)?;
+    let route = |r: def::Route| plan.every.iter().filter(|s| s.route == r).count();
+    println!(
+        "scenes: {} in the study and its means, {} beside them ({} loader, {} engine)",
+        plan.scenes.len(),
+        plan.beside.len(),
+        route(def::Route::Loader),
+        route(def::Route::Engine)
+    );
+    println!("twin pairs: {}", plan.twins.len());
+    for (what, c) in [
+        ("the paper's experiments", paper_counts),
+        ("with the map, before its 2-D grid", all),
+        (
+            "without the engine scenes: the paper's experiments",
+            paper_without,
+        ),
+        (
+            "without the engine scenes: with the map, before its grid",
+            all_without,
+        ),
+    ] {
+        println!(
+            "{what}: {} tasks, {} distinct ({} to run, {} already done), {} the same as \
+             another{}",
+            c.tasks,
+            c.to_run + c.done,
+            c.to_run,
+            c.done,
+            c.same,
+            if c.failing > 0 {
+                format!(", {} on engine scenes without a capture", c.failing)
+            } else {
+                String::new()
+            }
+        );
     }
     Ok(())
 }
@@ -388,6 +468,7 @@ mod tests {
             sweep_files: None,
             map_scenes: map::plan::SceneChoice::All,
             routes: routes::RouteChoice::Both,
+            dry_run: false,
         };
         let c = command(&args, None);
         assert_eq!(
