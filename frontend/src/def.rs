@@ -18,8 +18,9 @@
 //! default) re-reads the game's data with wasp's loader; `engine` runs the
 //! game's own engine headless under apitrace (`wasp scenes capture`), for
 //! the games whose engines are fixed-function GL (OpenArena, Teeworlds).
-//! [`all`] lists the loader-route scenes (what `render`, `characterize`,
-//! `reproduce` and `sweep` draw); [`every`] lists both routes.
+//! [`all`] lists the loader-route scenes (what `sweep` draws); [`every`]
+//! lists both routes (what `scenes list`, `characterize` and `reproduce`
+//! take).
 
 use super::raster::DrawOrder;
 use super::texture::FormatChoice;
@@ -222,8 +223,8 @@ pub fn scenes_dir() -> Option<PathBuf> {
     })
 }
 
-/// Every loader-route scene definition of [`every`]: the scenes `render`,
-/// `characterize`, `reproduce` and `sweep` draw, sorted by name.
+/// Every loader-route scene definition of [`every`]: the scenes `sweep`
+/// draws, sorted by name.
 pub fn all() -> Result<Vec<SceneDef>, SceneError> {
     let mut defs = every()?;
     defs.retain(|d| d.route == Route::Loader);

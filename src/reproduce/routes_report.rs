@@ -214,7 +214,7 @@ pub fn section(md: &mut String, plan: &Plan, rows: &[RouteRow]) {
         md,
         "Each camera with both routes in this run: wasp's loader scene against its engine \
          twin, the frame the game's own engine drew (captured with apitrace and imported as \
-         `wasp import-gl` does), on the {} machine. The {} counts in the group means above \
+         `wasp import-gl` does), on the {} machine. The {} counts in the run's group means \
          (`--routes {}`).{left} Cycles are followed by the speedup over the baseline; the \
          raster prefetcher and the oracle tile prefetcher run on the baseline scheduler. \
          (data: `data/routes.csv`)\n",
@@ -392,7 +392,7 @@ mod tests {
         section(&mut md, &plan, &rows);
         for said in [
             "## The loaders against the engine",
-            "The engine twin counts in the group means above (`--routes engine`)",
+            "The engine twin counts in the run's group means (`--routes engine`)",
             "| cam | engine | 1500 | 150 | 1.50 | 100.0 | 3.25 | 0.500 | 200 | 250 (-20.0%) | \
              160 (+25.0%) | 100 (+100.0%) |",
             "the engine (cam-engine) shades 1.50x the loader's quads (1500 against 1000)",
