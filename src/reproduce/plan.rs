@@ -191,7 +191,8 @@ impl Plan {
         Self::with_routes(defs, quick, dispatches, RouteChoice::default())
     }
 
-    /// [`Plan::new`] with the twin of route `routes` counting in the study
+    /// The plan over `defs` as `Plan::new` makes it, with the twin of route
+    /// `routes` counting in the study
     /// (the quick look takes a camera of each game with both its routes).
     pub fn with_routes(
         defs: &[SceneDef],

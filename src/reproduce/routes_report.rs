@@ -176,6 +176,19 @@ fn dec(v: Option<f64>, places: usize) -> String {
     v.map_or("-".into(), |x| format!("{x:.places$}"))
 }
 
+/// The workload's figures of a row as the table and the sentences print
+/// them: quads, rejects, warps per position, blocks per tile, CF, Mesh4.
+fn shown(r: &RouteRow) -> [String; 6] {
+    [
+        int(r.quads),
+        int(r.rejects),
+        dec(r.warps_per_position, 2),
+        dec(r.blocks_per_tile, 1),
+        dec(r.cf, 2),
+        dec(r.mesh4, 3),
+    ]
+}
+
 /// Cycles with the speedup over the baseline (`123456 (+3.2%)`).
 fn cycles_cell(r: &RouteRow, i: usize) -> String {
     match (r.cycles[i], i) {
@@ -233,22 +246,11 @@ pub fn section(md: &mut String, plan: &Plan, rows: &[RouteRow]) {
          oracle |\n|---|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for r in rows {
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            r.camera,
-            r.route,
-            int(r.quads),
-            int(r.rejects),
-            dec(r.warps_per_position, 2),
-            dec(r.blocks_per_tile, 1),
-            dec(r.cf, 2),
-            dec(r.mesh4, 3),
-            cycles_cell(r, 0),
-            cycles_cell(r, 1),
-            cycles_cell(r, 2),
-            cycles_cell(r, 3)
-        );
+        let cells: Vec<String> = shown(r)
+            .into_iter()
+            .chain((0..4).map(|i| cycles_cell(r, i)))
+            .collect();
+        let _ = writeln!(md, "| {} | {} | {} |", r.camera, r.route, cells.join(" | "));
     }
     let _ = writeln!(md);
     for pair in rows.chunks(2) {
@@ -281,6 +283,7 @@ fn ranking(r: &RouteRow) -> Option<Vec<&'static str>> {
 /// The sentence of one camera: the engine's figures against the loader's
 /// and the speedups through each route.
 fn pair_sentence(l: &RouteRow, e: &RouteRow) -> String {
+    let (es, ls) = (shown(e), shown(l));
     let mut s = format!(
         "**{}**: the engine ({}) shades {} the loader's quads ({} against {}), Early-Z \
          rejects {} as many ({} against {}); {} warps per position against {}, {} blocks \
@@ -289,19 +292,19 @@ fn pair_sentence(l: &RouteRow, e: &RouteRow) -> String {
         l.camera,
         e.scene,
         ratio(e.quads, l.quads),
-        int(e.quads),
-        int(l.quads),
+        es[0],
+        ls[0],
         ratio(e.rejects, l.rejects),
-        int(e.rejects),
-        int(l.rejects),
-        dec(e.warps_per_position, 2),
-        dec(l.warps_per_position, 2),
-        dec(e.blocks_per_tile, 1),
-        dec(l.blocks_per_tile, 1),
-        dec(e.cf, 2),
-        dec(l.cf, 2),
-        dec(e.mesh4, 3),
-        dec(l.mesh4, 3)
+        es[1],
+        ls[1],
+        es[2],
+        ls[2],
+        es[3],
+        ls[3],
+        es[4],
+        ls[4],
+        es[5],
+        ls[5]
     );
     let _ = write!(
         s,
