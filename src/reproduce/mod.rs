@@ -195,10 +195,15 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     tasks.extend(map::tasks(&plan, &map));
     if !args.quiet {
         eprintln!(
-            "wasp: reproducing the paper{}: {} scenes, {} machine(s), {} tasks before the 2-D \
+            "wasp: reproducing the paper{}: {} scenes{}, {} machine(s), {} tasks before the 2-D \
              grid (its tasks follow once these choose its knobs), {} at once, into {}",
             if args.quick { " (quick look)" } else { "" },
             plan.scenes.len(),
+            if plan.beside.is_empty() {
+                String::new()
+            } else {
+                format!(" and {} beside the means (--routes)", plan.beside.len())
+            },
             plan.dispatches.len(),
             tasks.len(),
             jobs,
