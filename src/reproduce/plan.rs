@@ -2,7 +2,8 @@
 //!
 //! The scenes come through two routes (wasp's loaders and the games' own
 //! engines, [`super::routes`]): where a camera has both, the route choice
-//! (`--routes`, default the engine) says which twin the study and its
+//! (`--routes`; (wasp) default the engine, whose draw calls are the
+//! game's own, as the paper's are) says which twin the study and its
 //! group means count ([`Plan::scenes`]) and which is reported beside them
 //! ([`Plan::beside`]), and both twins run the comparison points of "The
 //! loaders against the engine" ([`Plan::route_points`]).
