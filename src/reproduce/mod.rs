@@ -21,6 +21,7 @@ pub mod answer;
 mod contrary;
 pub mod digits;
 pub mod draw;
+pub mod dry_run;
 pub mod edges;
 pub mod figures;
 pub mod headline;
@@ -164,7 +165,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         return write_sweep_files(dir, &map, &plan, args.quiet);
     }
     if args.dry_run {
-        return dry_run(args, &plan, &map, defs);
+        return dry_run::print(args, &plan, &map, defs);
     }
     let cache = Cache::open(&args.out).map_err(CliError::failed)?;
     let opts = RunnerOptions {
@@ -174,49 +175,14 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         label: "reproducing".into(),
         scenes: defs.clone(),
     };
-    // The engine scenes first: one that cannot be captured or imported is
-    // left out (and the report says why) before the plan is made.
-    let left_out = engine_scenes_left_out(&plan, &cache, &opts)?;
-    let plan = if left_out.is_empty() {
-        plan
-    } else {
-        let defs: Vec<SceneDef> = defs
-            .into_iter()
-            .filter(|d| !left_out.iter().any(|l| l.name == d.name))
-            .collect();
-        let mut p = Plan::with_routes(&defs, args.quick, args.machines.dispatches(), args.routes);
-        p.left_out = left_out;
-        p
-    };
+    let plan = without_left_out(args, plan, defs, &cache, &opts)?;
     let figures = args.out.join("figures");
     std::fs::create_dir_all(&figures)
         .map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
     let mut tasks = plan.tasks(&figures);
     tasks.extend(map::tasks(&plan, &map));
     if !args.quiet {
-        eprintln!(
-            "wasp: reproducing the paper{}: {} scenes{}, {} machine(s), {} tasks before the 2-D \
-             grid (its tasks follow once these choose its knobs), {} at once, into {}",
-            if args.quick { " (quick look)" } else { "" },
-            plan.scenes.len(),
-            if plan.beside.is_empty() {
-                String::new()
-            } else {
-                format!(" and {} beside the means (--routes)", plan.beside.len())
-            },
-            plan.dispatches.len(),
-            tasks.len(),
-            jobs,
-            args.out.display()
-        );
-        eprintln!(
-            "wasp: including {}",
-            map::report::plan_text(
-                &map,
-                &map::scene_names(&plan, &map),
-                map::eligible(&plan).len()
-            )
-        );
+        say_plan(args, &plan, &map, tasks.len(), jobs);
     }
     crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
     let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
@@ -246,123 +212,55 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// `--dry-run`: the plan's counts on standard output.
-fn dry_run(
+/// The engine scenes first: the plan again without those of its engine
+/// scenes that cannot be captured or imported (the report says why).
+fn without_left_out(
+    args: &ReproduceArgs,
+    plan: Plan,
+    defs: Vec<SceneDef>,
+    cache: &Cache,
+    opts: &RunnerOptions,
+) -> Result<Plan, CliError> {
+    let left_out = routes::left_out(&plan, cache, opts).map_err(CliError::failed)?;
+    if left_out.is_empty() {
+        return Ok(plan);
+    }
+    let defs: Vec<SceneDef> = defs
+        .into_iter()
+        .filter(|d| !left_out.iter().any(|l| l.name == d.name))
+        .collect();
+    let mut p = Plan::with_routes(&defs, args.quick, args.machines.dispatches(), args.routes);
+    p.left_out = left_out;
+    Ok(p)
+}
+
+/// The plan in words on stderr, before the run.
+fn say_plan(
     args: &ReproduceArgs,
     plan: &Plan,
     map: &map::plan::MapPlan,
-    defs: Vec<SceneDef>,
-) -> Result<(), CliError> {
-    let opts = RunnerOptions {
-        jobs: 1,
-        quiet: true,
-        fetch: false,
-        label: "counting".into(),
-        scenes: defs.clone(),
-    };
-    let cache = crate::study::cache::Cache::read_only(&args.out);
-    let count = |plan: &Plan| -> Result<[runner::Counts; 2], CliError> {
-        let mut tasks = plan.tasks(&args.out.join("figures"));
-        let paper = tasks.len();
-        tasks.extend(map::tasks(plan, map));
-        let c = |t: &[runner::Task]| runner::count(t, &cache, &opts).map_err(CliError::failed);
-        Ok([c(&tasks[..paper])?, c(&tasks)?])
-    };
-    let [paper_counts, all] = count(plan)?;
-    // The same run without the engine scenes, for comparison.
-    let loader: Vec<SceneDef> = defs
-        .into_iter()
-        .filter(|d| d.route == def::Route::Loader)
-        .collect();
-    let without = Plan::with_routes(&loader, args.quick, args.machines.dispatches(), args.routes);
-    let [paper_without, all_without] = count(&without)?;
-    let route = |r: def::Route| plan.every.iter().filter(|s| s.route == r).count();
-    println!(
-        "scenes: {} in the study and its means, {} beside them ({} loader, {} engine)",
+    tasks: usize,
+    jobs: usize,
+) {
+    eprintln!(
+        "wasp: reproducing the paper{}: {} scenes{}, {} machine(s), {} tasks before the 2-D \
+         grid (its tasks follow once these choose its knobs), {} at once, into {}",
+        if args.quick { " (quick look)" } else { "" },
         plan.scenes.len(),
-        plan.beside.len(),
-        route(def::Route::Loader),
-        route(def::Route::Engine)
+        if plan.beside.is_empty() {
+            String::new()
+        } else {
+            format!(" and {} beside the means (--routes)", plan.beside.len())
+        },
+        plan.dispatches.len(),
+        tasks,
+        jobs,
+        args.out.display()
     );
-    println!("twin pairs: {}", plan.twins.len());
-    for (what, c) in [
-        ("the paper's experiments", paper_counts),
-        ("with the map, before its 2-D grid", all),
-        (
-            "without the engine scenes: the paper's experiments",
-            paper_without,
-        ),
-        (
-            "without the engine scenes: with the map, before its grid",
-            all_without,
-        ),
-    ] {
-        println!(
-            "{what}: {} tasks, {} distinct ({} to run, {} already done), {} the same as \
-             another{}",
-            c.tasks,
-            c.to_run + c.done,
-            c.to_run,
-            c.done,
-            c.same,
-            if c.failing > 0 {
-                format!(", {} on engine scenes without a capture", c.failing)
-            } else {
-                String::new()
-            }
-        );
-    }
-    Ok(())
-}
-
-/// The engine scenes of `plan` that cannot be captured or imported, with
-/// why: each is characterised (which captures it when the scene cache
-/// lacks it and imports its frame; the result is stored, so the study's
-/// own characterisation finds it done).
-fn engine_scenes_left_out(
-    plan: &Plan,
-    cache: &Cache,
-    opts: &RunnerOptions,
-) -> Result<Vec<routes::LeftOut>, CliError> {
-    let engine: Vec<&plan::SceneInfo> = plan
-        .every
-        .iter()
-        .filter(|s| s.route == def::Route::Engine)
-        .collect();
-    if engine.is_empty() {
-        return Ok(Vec::new());
-    }
-    let tasks: Vec<runner::Task> = engine
-        .iter()
-        .map(|s| runner::Task::Characterize {
-            scene: s.name.clone(),
-            config: "paper".into(),
-        })
-        .collect();
-    let opts = RunnerOptions {
-        label: "engine scenes".into(),
-        ..opts.clone()
-    };
-    let out = runner::run(&tasks, cache, &opts).map_err(CliError::failed)?;
-    let mut left = Vec::new();
-    for s in engine.iter().filter(|s| !out.scenes.contains_key(&s.name)) {
-        let reason = out
-            .failures
-            .iter()
-            .find(|f| f.starts_with(&format!("characterising {} ", s.name)))
-            .and_then(|f| f.split_once("): ").map(|x| x.1.to_string()))
-            .unwrap_or_else(|| "its characterisation did not finish".into());
-        eprintln!(
-            "wasp: warning: leaving out the engine scene {}: {reason}",
-            s.name
-        );
-        left.push(routes::LeftOut {
-            name: s.name.clone(),
-            route: s.route,
-            reason,
-        });
-    }
-    Ok(left)
+    eprintln!(
+        "wasp: including {}",
+        map::report::plan_text(map, &map::scene_names(plan, map), map::eligible(plan).len())
+    );
 }
 
 /// The scenes of `--scenes` (names of `wasp scenes list` or definition

@@ -135,7 +135,7 @@ impl Outcome {
 
 /// A task ready to run: its key, effective configuration and the scene
 /// as it renders it (its draw order applied).
-struct Ready {
+pub(super) struct Ready {
     task: Task,
     key: String,
     cfg: MachineConfig,
@@ -234,42 +234,6 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     Ok(out)
 }
 
-/// What a run of some tasks would do, counted without running them.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Counts {
-    /// Tasks.
-    pub tasks: usize,
-    /// Tasks to run (distinct and not stored).
-    pub to_run: usize,
-    /// Tasks whose result is stored already.
-    pub done: usize,
-    /// Tasks on the same machine as an earlier task (sharing its result).
-    pub same: usize,
-    /// Tasks that would fail at once (an engine scene without a capture).
-    pub failing: usize,
-}
-
-/// Count what [`run`] would do with `tasks` and `cache`, running, fetching
-/// and capturing nothing. A loader scene whose game data is not fetched
-/// has another identity once fetched (its package versions), so its
-/// stored results count as done only with the data in the scene cache.
-pub fn count(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Counts, String> {
-    let mut scenes = Scenes::with(&opts.scenes);
-    let offline = RunnerOptions {
-        fetch: false,
-        ..opts.clone()
-    };
-    let uncaptured = capture_engines(tasks, &mut scenes, &offline)?;
-    let (out, todo) = resolve(tasks, cache, &mut scenes, &uncaptured)?;
-    Ok(Counts {
-        tasks: tasks.len(),
-        to_run: todo.len(),
-        done: out.cached,
-        same: out.same,
-        failing: out.failures.len(),
-    })
-}
-
 /// Fetch the data of every game the tasks' scenes need and the cache
 /// lacks (or, without `opts.fetch`, name the command that fetches it).
 fn fetch_games(tasks: &[Task], scenes: &mut Scenes, opts: &RunnerOptions) -> Result<(), String> {
@@ -298,7 +262,7 @@ fn fetch_games(tasks: &[Task], scenes: &mut Scenes, opts: &RunnerOptions) -> Res
 /// The capture of every engine scene the tasks name, made now where the
 /// scene cache lacks it (unless `opts.fetch` is off): the scenes that have
 /// none, with why. Their tasks fail; the others run.
-fn capture_engines(
+pub(super) fn capture_engines(
     tasks: &[Task],
     scenes: &mut Scenes,
     opts: &RunnerOptions,
@@ -324,7 +288,7 @@ fn capture_engines(
 /// take the stored results: the outcome so far and the tasks left to run.
 /// A task on a scene of `uncaptured` (an engine scene without a capture)
 /// fails with its reason.
-fn resolve(
+pub(super) fn resolve(
     tasks: &[Task],
     cache: &Cache,
     scenes: &mut Scenes,
