@@ -10,6 +10,9 @@
 //! - [`answer`]: its opening "The answer", generated from the run;
 //! - [`headline`]: its side-by-side table of the paper's numbers and ours
 //!   (printed with [`digits`]; sweeps' edges flagged by [`edges`]);
+//! - [`engine_check`]: the engine scenes checked (and those that cannot
+//!   be drawn left out) before the plan is made; [`dry_run`]: the plan's
+//!   counts without a run;
 //! - [`routes`]: which twin of a loader and engine pair counts, and
 //!   [`routes_report`]: the routes in the report and "The loaders against
 //!   the engine";
@@ -23,6 +26,7 @@ pub mod digits;
 pub mod draw;
 pub mod dry_run;
 pub mod edges;
+pub mod engine_check;
 pub mod figures;
 pub mod headline;
 pub mod map;
@@ -221,7 +225,7 @@ fn without_left_out(
     cache: &Cache,
     opts: &RunnerOptions,
 ) -> Result<Plan, CliError> {
-    let left_out = routes::left_out(&plan, cache, opts).map_err(CliError::failed)?;
+    let left_out = engine_check::left_out(&plan, cache, opts).map_err(CliError::failed)?;
     if left_out.is_empty() {
         return Ok(plan);
     }
