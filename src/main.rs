@@ -7,6 +7,7 @@ mod check_mesa;
 mod compare_cmd;
 mod compare_variants;
 mod cost_cmd;
+mod engine_frame;
 mod engine_render;
 mod example_cmd;
 mod fonts;

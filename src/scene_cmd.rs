@@ -193,8 +193,10 @@ pub struct RenderArgs {
 /// Options of `wasp characterize`.
 #[derive(Args, Debug, Clone)]
 pub struct CharacterizeArgs {
-    /// Scenes (names or definition files); default: every scene whose data
-    /// is in the cache, the procedural ones included.
+    /// Scenes (names or definition files) of either route; default: every
+    /// scene whose data (a loader scene) or capture (an engine scene) is in
+    /// the cache, the procedural ones included. A named engine scene is
+    /// captured when the cache lacks its capture.
     #[arg(value_name = "SCENE")]
     pub scenes: Vec<String>,
     #[command(flatten)]
@@ -253,7 +255,25 @@ fn scene_err(e: impl std::fmt::Display) -> CliError {
     CliError::failed(e.to_string())
 }
 
+/// The loader-route scene `name` (a name of `wasp scenes list` or a
+/// definition file); an engine scene is refused with the commands that
+/// draw it.
 fn find_def(name: &str) -> Result<SceneDef, CliError> {
+    let d = find_any_def(name)?;
+    if d.route == Route::Engine {
+        return Err(CliError::usage(format!(
+            "scene {} takes the engine route (route = \"engine\"): its frame comes from the \
+             game's engine, not a loader; run `wasp scenes capture {}`, then import the capture \
+             with `wasp import-gl`",
+            d.name, d.name
+        )));
+    }
+    Ok(d)
+}
+
+/// The scene `name` of either route (a name of `wasp scenes list` or a
+/// definition file).
+fn find_any_def(name: &str) -> Result<SceneDef, CliError> {
     // A name that is a path on disk but no definition file: say what it is,
     // rather than that no scene has that name.
     let p = std::path::Path::new(name);
@@ -272,16 +292,7 @@ fn find_def(name: &str) -> Result<SceneDef, CliError> {
     if is_toml && !p.exists() {
         return Err(CliError::usage(format!("{name}: no such scene file")));
     }
-    let d = def::lookup(name).map_err(|e| CliError::usage(e.to_string()))?;
-    if d.route == Route::Engine {
-        return Err(CliError::usage(format!(
-            "scene {} takes the engine route (route = \"engine\"): its frame comes from the \
-             game's engine, not a loader; run `wasp scenes capture {}`, then import the capture \
-             with `wasp import-gl`",
-            d.name, d.name
-        )));
-    }
-    Ok(d)
+    def::lookup(name).map_err(|e| CliError::usage(e.to_string()))
 }
 
 /// Run `wasp scenes`.
@@ -808,18 +819,29 @@ fn crop(img: &[u8], w: u32, r: Rect) -> (Vec<u8>, u32, u32) {
     (out, r.w, r.h)
 }
 
+/// Whether the frame of `d` can be drawn without a download or a
+/// capture: a loader scene's game data, an engine scene's capture, is in
+/// the scene cache.
+fn in_cache(d: &SceneDef) -> bool {
+    match d.route {
+        Route::Loader => fetch::is_fetched(d.game),
+        Route::Engine => crate::capture::capture_paths(&d.name).0.is_file(),
+    }
+}
+
 /// The scenes `wasp characterize` takes, each in every draw order asked
-/// for: the named ones (their games' data fetched if missing), else every
-/// scene whose data is in the cache.
+/// for: the named ones (their games' data fetched, their engines
+/// captured, if missing), else every scene whose data or capture is in
+/// the cache.
 fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError> {
     let defs: Vec<SceneDef> = if args.scenes.is_empty() {
-        let all = def::all().map_err(scene_err)?;
-        let (have, missing): (Vec<_>, Vec<_>) =
-            all.into_iter().partition(|d| fetch::is_fetched(d.game));
+        let all = def::every().map_err(scene_err)?;
+        let (have, missing): (Vec<_>, Vec<_>) = all.into_iter().partition(in_cache);
         if !missing.is_empty() {
             let names: Vec<&str> = missing.iter().map(|d| d.name.as_str()).collect();
             eprintln!(
-                "wasp: skipping scenes without fetched data ({}); see `wasp scenes list`",
+                "wasp: skipping scenes without fetched data or a capture ({}); see `wasp \
+                 scenes list`",
                 names.join(", ")
             );
         }
@@ -828,9 +850,13 @@ fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError>
         let named: Vec<SceneDef> = args
             .scenes
             .iter()
-            .map(|s| find_def(s))
+            .map(|s| find_any_def(s))
             .collect::<Result<_, _>>()?;
-        let games: Vec<Game> = named.iter().map(|d| d.game).collect();
+        let games: Vec<Game> = named
+            .iter()
+            .filter(|d| d.route == Route::Loader)
+            .map(|d| d.game)
+            .collect();
         crate::game_data::fetch_missing(&games, args.quiet).map_err(CliError::failed)?;
         named
     };
@@ -857,6 +883,27 @@ fn characterize_defs(args: &CharacterizeArgs) -> Result<Vec<SceneDef>, CliError>
             })
         })
         .collect())
+}
+
+/// The characterisation of `d`: a loader scene through its loader, an
+/// engine scene from its capture (made now when missing).
+fn characterize_one(d: &SceneDef, args: &CharacterizeArgs) -> Result<Characterization, String> {
+    if d.route == Route::Loader {
+        return characterize::characterize_def(d, args.depth_prepass).map_err(|e| e.to_string());
+    }
+    if args.depth_prepass {
+        return Err(format!(
+            "--depth-prepass applies to loader scenes: {} is the engine's own draw calls",
+            d.name
+        ));
+    }
+    crate::engine_frame::capture(d, true, args.quiet)?;
+    let opts = wasp_frontend::raster::RasterOptions {
+        colour: false,
+        ..Default::default()
+    };
+    let (frame, secs) = crate::engine_frame::frame(d, &opts)?;
+    Ok(characterize::characterize(&d.name, &frame, secs))
 }
 
 /// Run `wasp characterize`.
@@ -891,7 +938,7 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<(), CliError> {
                 defs.len()
             );
         }
-        match characterize::characterize_def(d, args.depth_prepass) {
+        match characterize_one(d, args) {
             Ok(c) => {
                 if let Some(n) = painter_note(&d.name, d.draw_order, c.draw_order) {
                     if !args.quiet {

@@ -99,8 +99,35 @@ fn an_engine_scene_is_rendered_from_its_capture_only() {
         "{e}"
     );
     assert!(!t.exists());
-    let o = wasp(&["characterize", "tw-dm1-spawn0-engine"]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn characterize_captures_an_engine_scene_or_says_why_not() {
+    let d = scratch("capture", "characterize-engine");
+    let empty = d.join("empty-bin");
+    std::fs::create_dir_all(&empty).unwrap();
+    // No capture in this cache and no tools on this PATH: the capture
+    // stops with the apt-get line and nothing is characterised.
+    let o = wasp_env(
+        &["characterize", "oa-dm1-spawn0-engine"],
+        &d.join("cache"),
+        empty.to_str().unwrap(),
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("apt-get install"), "{e}");
+    assert!(e.contains("no scene could be characterised"), "{e}");
+    // The loader's depth pre-pass is refused by name for an engine scene.
+    let o = wasp_env(
+        &["characterize", "oa-dm1-spawn0-engine", "--depth-prepass"],
+        &d.join("cache"),
+        empty.to_str().unwrap(),
+    );
+    let e = stderr(&o);
+    assert!(
+        e.contains("--depth-prepass applies to loader scenes"),
+        "{e}"
+    );
 }
 
 #[test]

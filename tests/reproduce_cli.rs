@@ -167,6 +167,7 @@ fn bad_requests_are_refused_before_any_run() {
             "named twice",
         ),
         (vec!["--machines", "sideways"], "sideways"),
+        (vec!["--routes", "neither"], "neither"),
     ] {
         let mut a = vec!["reproduce", "--out", o, "-q"];
         a.extend(args);
@@ -179,5 +180,46 @@ fn bad_requests_are_refused_before_any_run() {
             std::fs::read_dir(dir.join("out/points")).unwrap().count() == 0
         }
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_dry_run_counts_the_plan_with_its_engine_twins_and_writes_nothing() {
+    let dir = scratch("reproduce", "dry-run");
+    let out = dir.join("out");
+    let o = out.to_str().unwrap();
+    let counts = |routes: &str| {
+        let r = wasp(&[
+            "reproduce",
+            "--quick",
+            "--dry-run",
+            "--routes",
+            routes,
+            "--out",
+            o,
+        ]);
+        ok(&r);
+        String::from_utf8(r.stdout).unwrap()
+    };
+    // The quick look's cameras bring their engine twins: two pairs, one
+    // scene of each beside the means; each pair adds a characterisation
+    // and four points for the scene beside and the two prefetchers for
+    // the one that counts (7 tasks).
+    let engine = counts("engine");
+    for said in [
+        "scenes: 5 in the study and its means, 2 beside them (5 loader, 2 engine)",
+        "twin pairs: 2",
+        "the paper's experiments: 135 tasks,",
+        "without the engine scenes: the paper's experiments: 121 tasks,",
+    ] {
+        assert!(engine.contains(said), "lacks {said:?}:\n{engine}");
+    }
+    // Both twins counting: each engine twin runs the whole quick study.
+    let both = counts("both");
+    assert!(
+        both.contains("scenes: 7 in the study and its means, 0 beside them"),
+        "{both}"
+    );
+    assert!(!out.exists(), "a dry run writes nothing");
     let _ = std::fs::remove_dir_all(&dir);
 }

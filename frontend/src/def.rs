@@ -19,12 +19,12 @@
 //! game's own engine headless under apitrace (`wasp scenes capture`), for
 //! the games whose engines are fixed-function GL (OpenArena, Teeworlds).
 //!
-//! A loader scene's textures are stored by the `etc2` rule unless it names
-//! a format (docs/textures.md: what a mobile port ships); an engine
-//! scene's are RGBA8, the only layout `import-gl` gives, and naming another
-//! format for it is an error.
-//! [`all`] lists the loader-route scenes (what `render`, `characterize`,
-//! `reproduce` and `sweep` draw); [`every`] lists both routes.
+//! A scene's textures are stored by the `etc2` rule unless it names a
+//! format (docs/textures.md: what a mobile port ships); an engine scene's
+//! follow the rule from the draw state the engine set.
+//! [`all`] lists the loader-route scenes (what `sweep` draws); [`every`]
+//! lists both routes (what `scenes list`, `characterize` and `reproduce`
+//! take).
 
 use super::raster::DrawOrder;
 use super::texture::FormatChoice;
@@ -227,8 +227,8 @@ pub fn scenes_dir() -> Option<PathBuf> {
     })
 }
 
-/// Every loader-route scene definition of [`every`]: the scenes `render`,
-/// `characterize`, `reproduce` and `sweep` draw, sorted by name.
+/// Every loader-route scene definition of [`every`]: the scenes `sweep`
+/// draws, sorted by name.
 pub fn all() -> Result<Vec<SceneDef>, SceneError> {
     let mut defs = every()?;
     defs.retain(|d| d.route == Route::Loader);

@@ -164,10 +164,11 @@ fn what_ran(plan: &Plan) -> String {
         .collect();
     let machines: Vec<String> = plan.dispatches.iter().map(|d| d.to_string()).collect();
     format!(
-        "This run measured {} scenes ({}) on the {} machine{}{}; every number below is a \
-         group's mean over its scenes in this run.",
+        "This run measured {} scenes ({}; {}) on the {} machine{}{}; every number below is \
+         a group's mean over its scenes in this run.",
         plan.scenes.len(),
         groups.join(", "),
+        super::routes_report::route_counts(plan),
         machines.join(" and the "),
         if machines.len() > 1 { "s" } else { "" },
         if plan.quick { " (a quick look)" } else { "" }

@@ -10,6 +10,12 @@
 //! - [`answer`]: its opening "The answer", generated from the run;
 //! - [`headline`]: its side-by-side table of the paper's numbers and ours
 //!   (printed with [`digits`]; sweeps' edges flagged by [`edges`]);
+//! - [`engine_check`]: the engine scenes checked (and those that cannot
+//!   be drawn left out) before the plan is made; [`dry_run`]: the plan's
+//!   counts without a run;
+//! - [`routes`]: which twin of a loader and engine pair counts, and
+//!   [`routes_report`]: the routes in the report and "The loaders against
+//!   the engine";
 //! - [`why`]: its bullets on why they differ, worded from the data by
 //!   [`prose`];
 //! - [`rgba8`]: the scenes with every texture in RGBA8, beside their own
@@ -20,7 +26,9 @@ pub mod answer;
 mod contrary;
 pub mod digits;
 pub mod draw;
+pub mod dry_run;
 pub mod edges;
+pub mod engine_check;
 pub mod figures;
 pub mod headline;
 pub mod map;
@@ -29,6 +37,8 @@ pub mod plan;
 pub mod prose;
 pub mod report;
 pub mod rgba8;
+pub mod routes;
+pub mod routes_report;
 pub mod why;
 
 use crate::study::cache::Cache;
@@ -94,6 +104,23 @@ pub struct ReproduceArgs {
     /// always run) or all. The paper's experiments run on every scene.
     #[arg(long, value_name = "WHICH", default_value = "budget")]
     pub map_scenes: map::plan::SceneChoice,
+
+    /// Where a camera has a loader scene and an engine twin (the game's own
+    /// draw calls, `route = "engine"`), which counts in the study and its
+    /// group means: engine (the twin; the loader scene is reported beside),
+    /// loader (the reverse) or both. Both twins run the comparison "The
+    /// loaders against the engine"; an engine scene that cannot be
+    /// captured or imported is left out and the report says why.
+    #[arg(long, value_name = "WHICH", default_value = "engine")]
+    pub routes: routes::RouteChoice,
+
+    /// Print the plan's counts and run nothing: scenes by route, tasks
+    /// before the 2-D grid (whose tasks depend on the results), the
+    /// simulations among them that are distinct, and those already done in
+    /// --out. Engine scenes count as if they draw; a run leaves out those
+    /// that cannot be captured or imported.
+    #[arg(long, conflicts_with = "sweep_files")]
+    pub dry_run: bool,
 }
 
 /// Which machines a reproduction runs.
@@ -136,7 +163,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         crate::output::folder("--sweep-files", d, "one sweep file per group")?;
     }
     let defs = chosen_scenes(args.scenes.as_deref())?;
-    let plan = Plan::new(&defs, args.quick, args.machines.dispatches());
+    let plan = Plan::with_routes(&defs, args.quick, args.machines.dispatches(), args.routes);
     // The map "What decides WaSP's gain" runs on the shared-tile machine
     // beside the paper's experiments.
     let map =
@@ -144,30 +171,10 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     if let Some(dir) = &args.sweep_files {
         return write_sweep_files(dir, &map, &plan, args.quiet);
     }
-    let cache = Cache::open(&args.out).map_err(CliError::failed)?;
-    let figures = args.out.join("figures");
-    std::fs::create_dir_all(&figures)
-        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
-    let mut tasks = plan.tasks(&figures);
-    tasks.extend(rgba8::tasks(&plan));
-    tasks.extend(map::tasks(&plan, &map));
-    if !args.quiet {
-        eprintln!(
-            "wasp: reproducing the paper{}: {} scenes, {} machine(s), {} tasks before the 2-D \
-             grid (its tasks follow once these choose its knobs), {} at once, into {}",
-            if args.quick { " (quick look)" } else { "" },
-            plan.scenes.len(),
-            plan.dispatches.len(),
-            tasks.len(),
-            jobs,
-            args.out.display()
-        );
-        eprintln!(
-            "wasp: including {}",
-            map::report::plan_text(&map, &map::scene_names(&plan, &map), plan.scenes.len())
-        );
+    if args.dry_run {
+        return dry_run::print(args, &plan, &map, defs);
     }
-    crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
+    let cache = Cache::open(&args.out).map_err(CliError::failed)?;
     let opts = RunnerOptions {
         jobs,
         quiet: args.quiet,
@@ -175,6 +182,17 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         label: "reproducing".into(),
         scenes: defs.clone(),
     };
+    let plan = without_left_out(args, plan, defs, &cache, &opts)?;
+    let figures = args.out.join("figures");
+    std::fs::create_dir_all(&figures)
+        .map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
+    let mut tasks = plan.tasks(&figures);
+    tasks.extend(rgba8::tasks(&plan));
+    tasks.extend(map::tasks(&plan, &map));
+    if !args.quiet {
+        say_plan(args, &plan, &map, tasks.len(), jobs);
+    }
+    crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
     let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
     let cells =
         map::run_grid(&plan, &map, &mut outcome, &cache, &opts).map_err(CliError::failed)?;
@@ -202,10 +220,61 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The engine scenes first: the plan again without those of its engine
+/// scenes that cannot be captured or imported (the report says why).
+fn without_left_out(
+    args: &ReproduceArgs,
+    plan: Plan,
+    defs: Vec<SceneDef>,
+    cache: &Cache,
+    opts: &RunnerOptions,
+) -> Result<Plan, CliError> {
+    let left_out = engine_check::left_out(&plan, cache, opts).map_err(CliError::failed)?;
+    if left_out.is_empty() {
+        return Ok(plan);
+    }
+    let defs: Vec<SceneDef> = defs
+        .into_iter()
+        .filter(|d| !left_out.iter().any(|l| l.name == d.name))
+        .collect();
+    let mut p = Plan::with_routes(&defs, args.quick, args.machines.dispatches(), args.routes);
+    p.left_out = left_out;
+    Ok(p)
+}
+
+/// The plan in words on stderr, before the run.
+fn say_plan(
+    args: &ReproduceArgs,
+    plan: &Plan,
+    map: &map::plan::MapPlan,
+    tasks: usize,
+    jobs: usize,
+) {
+    eprintln!(
+        "wasp: reproducing the paper{}: {} scenes{}, {} machine(s), {} tasks before the 2-D \
+         grid (its tasks follow once these choose its knobs), {} at once, into {}",
+        if args.quick { " (quick look)" } else { "" },
+        plan.scenes.len(),
+        if plan.beside.is_empty() {
+            String::new()
+        } else {
+            format!(" and {} beside the means (--routes)", plan.beside.len())
+        },
+        plan.dispatches.len(),
+        tasks,
+        jobs,
+        args.out.display()
+    );
+    eprintln!(
+        "wasp: including {}",
+        map::report::plan_text(map, &map::scene_names(plan, map), map::eligible(plan).len())
+    );
+}
+
 /// The scenes of `--scenes` (names of `wasp scenes list` or definition
-/// files), else every listed scene.
+/// files), else every listed scene of both routes.
 fn chosen_scenes(names: Option<&[String]>) -> Result<Vec<SceneDef>, CliError> {
-    let all = def::all().map_err(|e| CliError::failed(e.to_string()))?;
+    let all = def::every().map_err(|e| CliError::failed(e.to_string()))?;
     let Some(names) = names else {
         return Ok(all);
     };
@@ -257,6 +326,9 @@ pub fn command(args: &ReproduceArgs, scenes_dir: Option<&Path>) -> report::Comma
             .expect("no skipped value");
         line.push_str(&format!(" --map-scenes {}", m.get_name()));
     }
+    if args.routes != routes::RouteChoice::default() {
+        line.push_str(&format!(" --routes {}", args.routes.name()));
+    }
     if let Some(s) = &args.scenes {
         line.push_str(&format!(" --scenes {}", s.join(",")));
     }
@@ -306,11 +378,14 @@ mod tests {
             quiet: true,
             sweep_files: None,
             map_scenes: map::plan::SceneChoice::All,
+            routes: routes::RouteChoice::Both,
+            dry_run: false,
         };
         let c = command(&args, None);
         assert_eq!(
             c.line,
-            "wasp reproduce --quick --machines per-core-tile --map-scenes all --scenes a,b.toml"
+            "wasp reproduce --quick --machines per-core-tile --map-scenes all --routes both \
+             --scenes a,b.toml"
         );
         assert!(c.subset);
         // A folder of scene definitions may replace shipped scenes.
@@ -326,6 +401,7 @@ mod tests {
             machines: Machines::Both,
             scenes: None,
             map_scenes: map::plan::SceneChoice::Budget,
+            routes: routes::RouteChoice::Engine,
             ..args
         };
         assert_eq!(command(&all, None).line, "wasp reproduce");

@@ -1,14 +1,23 @@
 //! The experiments of the paper's Sections III and V as study points.
 //!
+//! The scenes come through two routes (wasp's loaders and the games' own
+//! engines, [`super::routes`]): where a camera has both, the route choice
+//! (`--routes`; (wasp) default the engine, whose draw calls are the
+//! game's own, as the paper's are) says which twin the study and its
+//! group means count ([`Plan::scenes`]) and which is reported beside them
+//! ([`Plan::beside`]), and both twins run the comparison points of "The
+//! loaders against the engine" ([`Plan::route_points`]).
+//!
 //! Every point is the shipped configuration (configs/paper.toml, or
 //! configs/paper-width2.toml for the width-2 sensitivity) with overrides;
 //! nothing is chosen per scene. Each experiment runs under every dispatch
 //! mode of the plan (the paper's shared-tile machine first).
 
+use super::routes::{self, LeftOut, RouteChoice, Twin};
 use crate::study::point::Point;
 use crate::study::runner::Task;
 use std::path::Path;
-use wasp_frontend::def::{Game, SceneDef};
+use wasp_frontend::def::{Game, Route, SceneDef};
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
 
@@ -64,6 +73,8 @@ pub struct SceneInfo {
     pub name: String,
     /// Its group.
     pub group: Group,
+    /// Where its draw calls come from (wasp's loader or the game's engine).
+    pub route: Route,
 }
 
 /// A pipeline width of the sensitivity study and its base configuration.
@@ -80,8 +91,22 @@ pub struct Width {
 /// Everything `wasp reproduce` runs.
 #[derive(Clone, Debug)]
 pub struct Plan {
-    /// Scenes, in `wasp scenes list` order.
+    /// The scenes of the study and its group means, in `wasp scenes list`
+    /// order.
     pub scenes: Vec<SceneInfo>,
+    /// The scenes reported beside the means: the twins of the route not
+    /// chosen ([`super::routes`]); they run the comparison points only.
+    pub beside: Vec<SceneInfo>,
+    /// Every scene of the run (the study's and those beside), in `wasp
+    /// scenes list` order.
+    pub every: Vec<SceneInfo>,
+    /// The loader and engine twin pairs of the run.
+    pub twins: Vec<Twin>,
+    /// Which twin counts (`--routes`).
+    pub routes: RouteChoice,
+    /// Scenes named for the run but left out of it (an engine scene whose
+    /// capture or import failed), with why; set by the caller.
+    pub left_out: Vec<LeftOut>,
     /// Machines (shared-tile first).
     pub dispatches: Vec<Dispatch>,
     /// The shipped WaSP policy (configs/paper.toml).
@@ -111,11 +136,17 @@ pub struct Plan {
 
 /// One scene per game, in `Game::ALL` order: for the timelines the first
 /// by name, for the quick look the one of [`QUICK_SCENES`] (else the
-/// first).
-fn one_per_game(defs: &[SceneDef], quick: bool) -> Vec<&SceneDef> {
+/// first), a loader scene where the game has one.
+fn one_per_game<'a>(defs: &[&'a SceneDef], quick: bool) -> Vec<&'a SceneDef> {
     let mut per_game: Vec<&SceneDef> = Vec::new();
     for g in Game::ALL {
-        let of: Vec<&SceneDef> = defs.iter().filter(|d| d.game == g).collect();
+        let all: Vec<&SceneDef> = defs.iter().copied().filter(|d| d.game == g).collect();
+        let loader: Vec<&SceneDef> = all
+            .iter()
+            .copied()
+            .filter(|d| d.route == Route::Loader)
+            .collect();
+        let of = if loader.is_empty() { all } else { loader };
         let listed = of.iter().find(|d| QUICK_SCENES.contains(&d.name.as_str()));
         let pick = if quick {
             listed.or(of.first())
@@ -154,8 +185,22 @@ impl Plan {
     /// The plan over `defs`: the full reproduction or, `quick`, the first
     /// look (one scene of each game, [`QUICK_SCENES`], the heuristics, ideal memory,
     /// the meshes, four thresholds, width 4 at 32/48/64 warps, one timeline,
-    /// the shared-tile machine only).
+    /// the shared-tile machine only); engine twins count (wasp's default
+    /// route choice).
+    #[cfg(test)]
     pub fn new(defs: &[SceneDef], quick: bool, dispatches: Vec<Dispatch>) -> Plan {
+        Self::with_routes(defs, quick, dispatches, RouteChoice::default())
+    }
+
+    /// The plan over `defs` as `Plan::new` makes it, with the twin of route
+    /// `routes` counting in the study
+    /// (the quick look takes a camera of each game with both its routes).
+    pub fn with_routes(
+        defs: &[SceneDef],
+        quick: bool,
+        dispatches: Vec<Dispatch>,
+        routes: RouteChoice,
+    ) -> Plan {
         let paper = MachineConfig::paper();
         let wasp = paper.scheduler.policy;
         let threshold = match wasp {
@@ -163,17 +208,23 @@ impl Plan {
             _ => 0,
         };
         let l0 = paper.l0.as_ref().map_or(paper.l1.mshrs, |c| c.mshrs);
-        let per_game = one_per_game(defs, quick);
-        let mut scenes: Vec<SceneInfo> = defs
-            .iter()
-            .map(|d| SceneInfo {
-                name: d.name.clone(),
-                group: Group::of(d.game),
-            })
-            .collect();
+        let mut kept: Vec<&SceneDef> = defs.iter().collect();
         if quick {
-            scenes.retain(|s| per_game.iter().any(|d| d.name == s.name));
+            let picks = one_per_game(&kept, true);
+            kept.retain(|d| {
+                picks
+                    .iter()
+                    .any(|p| p.name == d.name || routes::are_twins(p, d))
+            });
         }
+        let info = |d: &SceneDef| SceneInfo {
+            name: d.name.clone(),
+            group: Group::of(d.game),
+            route: d.route,
+        };
+        let (counted, beside): (Vec<&SceneDef>, Vec<&SceneDef>) =
+            kept.iter().partition(|d| routes::counts(d, &kept, routes));
+        let per_game = one_per_game(&counted, quick);
         let timeline_scenes: Vec<String> = if quick {
             per_game.iter().take(1).map(|d| d.name.clone()).collect()
         } else {
@@ -181,7 +232,12 @@ impl Plan {
         };
         let step = if quick { 4 } else { 2 };
         Plan {
-            scenes,
+            scenes: counted.iter().map(|d| info(d)).collect(),
+            beside: beside.iter().map(|d| info(d)).collect(),
+            every: kept.iter().map(|d| info(d)).collect(),
+            twins: routes::twins(&kept),
+            routes,
+            left_out: Vec::new(),
             dispatches: if quick {
                 dispatches.into_iter().take(1).collect()
             } else {
@@ -282,6 +338,58 @@ impl Plan {
         format!("timeline.{scene}.{d}.{p}.png")
     }
 
+    /// The machine of "The loaders against the engine": the plan's first
+    /// (the paper's shared-tile machine unless `--machines` leaves it out).
+    pub fn route_dispatch(&self) -> Dispatch {
+        self.dispatches[0]
+    }
+
+    /// The points each scene of a twin pair runs for "The loaders against
+    /// the engine", on [`Plan::route_dispatch`], with their labels: the
+    /// baseline, WaSP, the raster prefetcher and the oracle tile
+    /// prefetcher (both on the baseline scheduler, as the map runs them).
+    pub fn route_points(&self, scene: &str) -> [(&'static str, Point); 4] {
+        let d = self.route_dispatch();
+        let base = self.policy_point(scene, d, PolicySpec::Baseline);
+        [
+            ("baseline", base.clone()),
+            ("WaSP", self.policy_point(scene, d, self.wasp)),
+            ("raster prefetcher", base.with("prefetch.kind=\"raster\"")),
+            ("oracle", base.with("prefetch.kind=\"oracle-tile\"")),
+        ]
+    }
+
+    /// Whether `scene` is one of the study's (counted in the means).
+    pub fn counts(&self, scene: &str) -> bool {
+        self.scenes.iter().any(|s| s.name == scene)
+    }
+
+    /// The tasks of "The loaders against the engine" the study does not
+    /// run already: the characterisation of the scenes beside, and the
+    /// comparison points of both twins.
+    fn route_tasks(&self) -> Vec<Task> {
+        let mut t = Vec::new();
+        for tw in &self.twins {
+            for name in [&tw.loader, &tw.engine] {
+                // The study characterises its scenes and runs the baseline
+                // and WaSP on every machine.
+                let counted = self.counts(name);
+                if !counted {
+                    t.push(Task::Characterize {
+                        scene: name.clone(),
+                        config: "paper".into(),
+                        format: None,
+                    });
+                }
+                let skip = if counted { 2 } else { 0 };
+                for (_, p) in self.route_points(name).into_iter().skip(skip) {
+                    t.push(Task::Run(p));
+                }
+            }
+        }
+        t
+    }
+
     /// Every task, in a fixed order.
     pub fn tasks(&self, figures: &Path) -> Vec<Task> {
         let mut t = Vec::new();
@@ -329,6 +437,7 @@ impl Plan {
                 }
             }
         }
+        t.extend(self.route_tasks());
         t
     }
 }
@@ -392,5 +501,91 @@ mod tests {
         let mut got = names.clone();
         got.sort();
         assert_eq!(got, listed);
+    }
+
+    fn count_runs(tasks: &[Task]) -> usize {
+        tasks.iter().filter(|t| matches!(t, Task::Run(_))).count()
+    }
+
+    #[test]
+    fn engine_scenes_join_their_games_group_and_the_route_choice_picks_who_counts() {
+        let every = def::every().unwrap();
+        let loader = defs();
+        let d = [Dispatch::SharedTile, Dispatch::PerCoreTile];
+        let p = Plan::with_routes(&every, false, d.to_vec(), RouteChoice::Engine);
+        let twins = every.len() - loader.len();
+        assert_eq!(p.twins.len(), twins);
+        assert_eq!(p.every.len(), every.len());
+        // Every engine twin counts, in its game's group; its loader scene
+        // is beside the means.
+        for tw in &p.twins {
+            let e = p.scenes.iter().find(|s| s.name == tw.engine).unwrap();
+            let game = every.iter().find(|x| x.name == tw.engine).unwrap().game;
+            assert_eq!((e.group, e.route), (Group::of(game), Route::Engine));
+            assert!(p.beside.iter().any(|s| s.name == tw.loader));
+            assert!(!p.counts(&tw.loader));
+        }
+        assert_eq!(p.scenes.len(), loader.len());
+        assert!(p
+            .timeline_scenes
+            .contains(&"oa-dm1-spawn0-engine".to_string()));
+        // The study's tasks are those of as many scenes as before; the
+        // comparison adds, per pair, the scene beside (a characterisation
+        // and four points) and the prefetchers on the twin that counts.
+        let base = Plan::with_routes(&loader, false, d.to_vec(), RouteChoice::Loader);
+        let (t, tb) = (p.tasks(Path::new("f")), base.tasks(Path::new("f")));
+        assert_eq!(count_runs(&t), count_runs(&tb) + twins * (4 + 2));
+        assert_eq!(t.len(), tb.len() + twins * (1 + 4 + 2));
+        // The reverse: the loader scenes count, the engine twins beside.
+        let l = Plan::with_routes(&every, false, d.to_vec(), RouteChoice::Loader);
+        let names = |v: &[SceneInfo]| v.iter().map(|s| s.name.clone()).collect::<Vec<_>>();
+        assert_eq!(names(&l.scenes), names(&base.scenes));
+        assert!(l.beside.iter().all(|s| s.route == Route::Engine));
+        assert_eq!(l.timeline_scenes, base.timeline_scenes);
+        // Both: every scene counts, nothing beside.
+        let b = Plan::with_routes(&every, false, d.to_vec(), RouteChoice::Both);
+        assert_eq!((b.scenes.len(), b.beside.len()), (every.len(), 0));
+        // The comparison's points are the heuristics' baseline and WaSP and
+        // the map's prefetchers on the first machine.
+        let pts = p.route_points("x");
+        assert_eq!(
+            pts[0].1,
+            p.policy_point("x", Dispatch::SharedTile, PolicySpec::Baseline)
+        );
+        assert_eq!(pts[1].1, p.policy_point("x", Dispatch::SharedTile, p.wasp));
+        assert!(pts[3].1.sets.last().unwrap().contains("oracle-tile"));
+    }
+
+    #[test]
+    fn the_quick_look_takes_a_camera_with_both_its_routes() {
+        let every = def::every().unwrap();
+        let p = Plan::with_routes(
+            &every,
+            true,
+            vec![Dispatch::SharedTile],
+            RouteChoice::Engine,
+        );
+        let mut all: Vec<&str> = p.every.iter().map(|s| s.name.as_str()).collect();
+        all.sort();
+        let mut want: Vec<String> = QUICK_SCENES.iter().map(|s| s.to_string()).collect();
+        want.extend(["oa-wrackdm17-spawn2-engine", "tw-dm1-spawn0-engine"].map(String::from));
+        want.sort();
+        assert_eq!(all, want);
+        assert_eq!(p.twins.len(), 2);
+        assert_eq!(p.timeline_scenes, ["stk-lighthouse-start"]);
+        // A left-out twin (dropped from the definitions) leaves its loader
+        // scene counting.
+        let without: Vec<SceneDef> = every
+            .into_iter()
+            .filter(|d| d.name != "tw-dm1-spawn0-engine")
+            .collect();
+        let q = Plan::with_routes(
+            &without,
+            true,
+            vec![Dispatch::SharedTile],
+            RouteChoice::Engine,
+        );
+        assert!(q.counts("tw-dm1-spawn0") && q.counts("oa-wrackdm17-spawn2-engine"));
+        assert_eq!(q.twins.len(), 1);
     }
 }

@@ -9,7 +9,8 @@
 //!   timelines (`timeline.SCENE.MACHINE.POLICY.png`);
 //! - `data/ID.csv`: each figure's numbers (category, one column a series);
 //!   `data/points.csv` and `data/points.json`: every point's statistics;
-//!   `data/headline.csv`: the side-by-side table.
+//!   `data/headline.csv`: the side-by-side table; `data/routes.csv`: the
+//!   loader scenes against their engine twins ([`super::routes_report`]).
 //!
 //! The report holds results only (no wall times), so the same binary and
 //! scenes give the same bytes.
@@ -74,6 +75,12 @@ pub fn write(
     for f in scene_figures(plan, out) {
         figure(&mut md, &f, &data, &figs)?;
     }
+    let route_rows = super::routes_report::rows(plan, out);
+    write_atomic(
+        &data.join("routes.csv"),
+        &super::routes_report::routes_csv(&route_rows),
+    )?;
+    super::routes_report::section(&mut md, plan, &route_rows);
     machine_sections(&mut md, plan, &machines, &data, &figs)?;
     map_section(&mut md, plan, map, out, cells, &data, &figs)?;
     footer(&mut md, plan);
@@ -207,11 +214,12 @@ fn header(md: &mut String, plan: &Plan, with_map: bool, command: &Command) {
             "**A subset of the scenes** (`--scenes`): the means are over these scenes only.\n"
         );
     }
-    let mut by: Vec<(Group, Vec<&str>)> = Vec::new();
+    let mut by: Vec<(Group, Vec<String>)> = Vec::new();
     for s in &plan.scenes {
+        let name = super::routes_report::named(s);
         match by.iter_mut().find(|x| x.0 == s.group) {
-            Some(x) => x.1.push(&s.name),
-            None => by.push((s.group, vec![&s.name])),
+            Some(x) => x.1.push(name),
+            None => by.push((s.group, vec![name])),
         }
     }
     by.sort();
@@ -225,6 +233,7 @@ fn header(md: &mut String, plan: &Plan, with_map: bool, command: &Command) {
             names.join(", ")
         );
     }
+    super::routes_report::scene_list_notes(md, plan);
     let _ = writeln!(
         md,
         "\nThe paper measures twelve Android games on its TEAPOT simulator; ours are scenes of \

@@ -78,6 +78,14 @@ impl Cache {
         })
     }
 
+    /// The folder `dir` read as it is, creating nothing (a folder that
+    /// does not exist holds no results): for counting without a run.
+    pub fn read_only(dir: &Path) -> Cache {
+        Cache {
+            dir: dir.to_path_buf(),
+        }
+    }
+
     fn point_path(&self, scene: &str, key: &str) -> PathBuf {
         self.dir.join("points").join(format!("{scene}.{key}.json"))
     }

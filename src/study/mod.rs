@@ -5,6 +5,7 @@
 //!   the key its result is stored under;
 //! - [`cache`]: the study folder of finished points and scenes;
 //! - [`runner`]: runs tasks with shared traces, progress and timing;
+//! - [`count`]: what a run would do, counted without running;
 //! - [`table`]: point records as CSV;
 //! - [`sweep`]: a user's grid of scenes, machines, dispatches and policies;
 //! - [`jobs`]: a sweep's points as cluster jobs;
@@ -14,6 +15,7 @@
 //! own grid) are both built on it; `wasp merge` reads its folders.
 
 pub mod cache;
+pub mod count;
 pub mod jobs;
 pub mod merge;
 pub mod point;

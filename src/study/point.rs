@@ -22,7 +22,7 @@ use std::collections::HashMap;
 use std::hash::Hasher;
 use std::path::Path;
 use std::sync::OnceLock;
-use wasp_frontend::def::SceneDef;
+use wasp_frontend::def::{Route, SceneDef};
 use wasp_frontend::fetch;
 use wasp_frontend::raster::DrawOrder;
 use wasp_frontend::texture::FormatChoice;
@@ -178,10 +178,15 @@ pub fn binary_id() -> &'static str {
 }
 
 /// The identity of a scene: its definition (the draw order included: see
-/// [`Point::scene_def`]) and, for a game, the versions of the packages its
-/// data came from.
+/// [`Point::scene_def`]) and, for a loader scene of a game, the versions
+/// of the packages its data came from; for an engine scene, its capture's
+/// sidecar ([`crate::engine_frame::capture_identity`]).
 pub fn scene_identity(def: &SceneDef) -> String {
     let mut s = format!("{def:?}");
+    if def.route == Route::Engine {
+        s.push_str(&crate::engine_frame::capture_identity(def));
+        return s;
+    }
     if let Some(v) = fetch::fetched_versions(def.game) {
         for (p, ver) in v {
             s.push_str(&format!(" {p}={ver}"));

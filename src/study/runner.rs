@@ -18,7 +18,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 use wasp_frontend::characterize::{characterize, Characterization};
-use wasp_frontend::def::{self, SceneDef};
+use wasp_frontend::def::{self, Route, SceneDef};
 use wasp_frontend::raster::{rasterize_timed, DrawOrder, Frame, RasterOptions};
 use wasp_frontend::texture::FormatChoice;
 use wasp_frontend::{fetch, load};
@@ -150,7 +150,7 @@ impl Outcome {
 
 /// A task ready to run: its key, effective configuration and the scene
 /// as it renders it (its draw order applied).
-struct Ready {
+pub(super) struct Ready {
     task: Task,
     key: String,
     cfg: MachineConfig,
@@ -197,9 +197,11 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
     let start = Instant::now();
     let mut scenes = Scenes::with(&opts.scenes);
     // The games' data first: a scene's identity (and so every key) holds
-    // the versions of the packages its data came from, known once fetched.
+    // the versions of the packages its data came from, known once fetched;
+    // likewise an engine scene's capture.
     fetch_games(tasks, &mut scenes, opts)?;
-    let (mut out, mut todo) = resolve(tasks, cache, &mut scenes)?;
+    let uncaptured = capture_engines(tasks, &mut scenes, opts)?;
+    let (mut out, mut todo) = resolve(tasks, cache, &mut scenes, &uncaptured)?;
     if !opts.quiet {
         // The counts the progress and the closing line use, tied together.
         eprintln!(
@@ -252,10 +254,14 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
 /// Fetch the data of every game the tasks' scenes need and the cache
 /// lacks (or, without `opts.fetch`, name the command that fetches it).
 fn fetch_games(tasks: &[Task], scenes: &mut Scenes, opts: &RunnerOptions) -> Result<(), String> {
-    let mut games: Vec<_> = tasks
-        .iter()
-        .map(|t| scenes.def(t.scene()).map(|d| d.game))
-        .collect::<Result<_, _>>()?;
+    let mut games = Vec::new();
+    for t in tasks {
+        let d = scenes.def(t.scene())?;
+        // An engine scene's frame comes from its capture, not the data.
+        if d.route == Route::Loader {
+            games.push(d.game);
+        }
+    }
     games.sort_by_key(|g| g.name());
     games.dedup();
     games.retain(|g| !fetch::is_fetched(*g));
@@ -270,13 +276,40 @@ fn fetch_games(tasks: &[Task], scenes: &mut Scenes, opts: &RunnerOptions) -> Res
         .map_err(|e| format!("{e} (its scenes need it; name the other scenes to leave them out)"))
 }
 
+/// The capture of every engine scene the tasks name, made now where the
+/// scene cache lacks it (unless `opts.fetch` is off): the scenes that have
+/// none, with why. Their tasks fail; the others run.
+pub(super) fn capture_engines(
+    tasks: &[Task],
+    scenes: &mut Scenes,
+    opts: &RunnerOptions,
+) -> Result<HashMap<String, String>, String> {
+    let mut why = HashMap::new();
+    let mut seen = std::collections::HashSet::new();
+    for t in tasks {
+        if !seen.insert(t.scene().to_string()) {
+            continue;
+        }
+        let d = scenes.def(t.scene())?;
+        if d.route == Route::Engine {
+            if let Err(e) = crate::engine_frame::capture(d, opts.fetch, opts.quiet) {
+                why.insert(d.name.clone(), e);
+            }
+        }
+    }
+    Ok(why)
+}
+
 /// Resolve every task to its key, effective configuration and scene as it
 /// renders it (bad scenes and overrides fail here, before any run) and
 /// take the stored results: the outcome so far and the tasks left to run.
-fn resolve(
+/// A task on a scene of `uncaptured` (an engine scene without a capture)
+/// fails with its reason.
+pub(super) fn resolve(
     tasks: &[Task],
     cache: &Cache,
     scenes: &mut Scenes,
+    uncaptured: &HashMap<String, String>,
 ) -> Result<(Outcome, Vec<Ready>), String> {
     let mut out = Outcome::default();
     let mut resolver = Resolver::default();
@@ -284,6 +317,10 @@ fn resolve(
     let mut todo: Vec<Ready> = Vec::new();
     let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
     for t in tasks {
+        if let Some(e) = uncaptured.get(t.scene()) {
+            out.failures.push(format!("{}: {e}", describe(t)));
+            continue;
+        }
         let d = scenes.def(t.scene())?.clone();
         let d = match t {
             Task::Run(p) | Task::Timeline { point: p, .. } => p.scene_def(&d),
@@ -538,8 +575,10 @@ fn frame_of(g: &Group) -> Result<Arc<Frame>, String> {
 /// definition's draw order and texture format, listing decoded texture
 /// lines when `decoded` (`--texture-cache decompressed`; the trace does
 /// not depend on the colour pass, which is skipped).
+///
+/// An engine-route scene's frame is its capture's last complete frame,
+/// imported as `wasp import-gl` imports it ([`crate::engine_frame`]).
 pub fn render(d: &SceneDef, tile: u32, decoded: bool) -> Result<Frame, String> {
-    let scene = load::load_scene(d).map_err(|e| e.to_string())?;
     let opts = RasterOptions {
         tile,
         colour: false,
@@ -549,6 +588,10 @@ pub fn render(d: &SceneDef, tile: u32, decoded: bool) -> Result<Frame, String> {
         decoded_lines: decoded,
         ..RasterOptions::default()
     };
+    if d.route == Route::Engine {
+        return crate::engine_frame::frame(d, &opts).map(|(f, _)| f);
+    }
+    let scene = load::load_scene(d).map_err(|e| e.to_string())?;
     rasterize_timed(&scene, d.width, d.height, &opts)
         .map(|(f, _)| f)
         .map_err(|e| e.to_string())
@@ -718,6 +761,36 @@ mod tests {
         assert_eq!(get(&decoded, "warps"), get(&rgba8, "warps"));
         assert!(get(&etc2, "cf") < get(&rgba8, "cf"));
         assert!(get(&decoded, "dram.requests") < get(&rgba8, "dram.requests"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn an_engine_scene_without_a_capture_fails_its_tasks_alone() {
+        let dir = std::env::temp_dir().join(format!("wasp-runner-engine-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let (cache, _, mut opts) = small_plane(&dir);
+        let mut engine = def::lookup("oa-dm1-spawn0-engine").unwrap();
+        engine.name = format!("test-uncaptured-{}-engine", std::process::id());
+        opts.scenes.push(engine.clone());
+        let plane = Point::new("test-small-plane", "paper", &[]);
+        let tasks = [
+            Task::Characterize {
+                scene: engine.name.clone(),
+                config: "paper".into(),
+            },
+            Task::Run(Point::new(&engine.name, "paper", &[])),
+            Task::Run(plane.clone()),
+        ];
+        // No capture and no capturing (`fetch` off): the engine scene's two
+        // tasks fail, naming the command; the loader scene's point runs.
+        let out = run(&tasks, &cache, &opts).unwrap();
+        assert_eq!(out.failures.len(), 2, "{:?}", out.failures);
+        for f in &out.failures {
+            assert!(f.contains(&engine.name), "{f}");
+            assert!(f.contains("wasp scenes capture"), "{f}");
+        }
+        assert!(out.points.contains_key(&plane));
+        assert!(out.scenes.is_empty());
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

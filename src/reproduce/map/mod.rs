@@ -31,19 +31,33 @@ pub mod sweeps;
 pub mod table;
 pub mod textures;
 
-use super::plan::Plan;
+use super::plan::{Plan, SceneInfo};
 use crate::study::cache::Cache;
 use crate::study::runner::{self, Outcome, RunnerOptions};
 use data::MapScenes;
 use plan::{Cell, MapPlan};
 use table::MapTable;
+use wasp_frontend::def::Route;
 
-/// The scenes of `plan` the map runs on, with their groups.
+/// The scenes of `plan` the map may run on: its loader-route scenes
+/// (counted in the study or beside it), or its engine scenes in a run
+/// without loader scenes. (wasp) Engine twins stay out of the map so that
+/// its scene set, and so the study's time, is the same whichever route the
+/// means count.
+pub fn eligible(plan: &Plan) -> Vec<&SceneInfo> {
+    let loader = plan.every.iter().any(|s| s.route == Route::Loader);
+    plan.every
+        .iter()
+        .filter(|s| s.route == Route::Loader || !loader)
+        .collect()
+}
+
+/// The scenes of `plan` the map runs on, with their groups: those of
+/// [`eligible`] that the map keeps.
 pub fn scenes<'a>(plan: &'a Plan, map: &MapPlan) -> MapScenes<'a> {
     MapScenes {
-        scenes: plan
-            .scenes
-            .iter()
+        scenes: eligible(plan)
+            .into_iter()
             .filter(|s| map.keeps(&s.name))
             .map(|s| (s.name.as_str(), s.group))
             .collect(),

@@ -322,23 +322,38 @@ pub fn to_csv(t: &MapTable) -> String {
 /// Which of the reproduction's scenes the map runs on, when not all.
 fn scenes_note(md: &mut String, plan: &Plan, map: &MapPlan) {
     let kept = super::scene_names(plan, map);
-    let left: Vec<&str> = plan
-        .scenes
+    let eligible = super::eligible(plan);
+    let left: Vec<&str> = eligible
         .iter()
         .map(|s| s.name.as_str())
         .filter(|n| !map.keeps(n))
         .collect();
+    let engine: Vec<String> = plan
+        .every
+        .iter()
+        .filter(|s| !eligible.iter().any(|e| e.name == s.name))
+        .map(|s| format!("`{}`", s.name))
+        .collect();
+    if !engine.is_empty() {
+        let _ = writeln!(
+            md,
+            "The map runs on the loader route: it leaves out the engine scenes ({}), so that \
+             its scenes are the same whichever route the means count (`--routes`).\n",
+            engine.join(", ")
+        );
+    }
     if left.is_empty() {
         return;
     }
     let _ = writeln!(
         md,
-        "The map runs on {} of the reproduction's {} scenes. It leaves out {}, the 3D scenes \
+        "The map runs on {} of the reproduction's {} {}scenes. It leaves out {}, the 3D scenes \
          with the most cycles, which would double its time (`--map-scenes all` runs it on \
          every scene); every game keeps at least two scenes, and the paper's experiments \
          above run on all {}.\n",
         kept.len(),
-        plan.scenes.len(),
+        eligible.len(),
+        if engine.is_empty() { "" } else { "loader " },
         left.iter()
             .map(|n| format!("`{n}`"))
             .collect::<Vec<_>>()
