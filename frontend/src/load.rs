@@ -63,6 +63,9 @@ mod tests {
             draw_order: Default::default(),
             texture_format: Default::default(),
             route: Default::default(),
+            fov: None,
+            picmip: None,
+            sky: None,
         };
         assert_eq!(load_scene(&def).unwrap().name, "procedural:sprites");
     }

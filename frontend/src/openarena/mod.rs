@@ -90,7 +90,7 @@
 //! default `cg_fov 90` horizontal at 4:3), near [`NEAR`], far [`FAR`].
 
 use super::bytes::Bytes;
-use super::def::SceneDef;
+use super::def::{OaFov, OaSky, SceneDef};
 use super::vec3::{cross, dot, sub};
 
 mod bsp;
@@ -100,6 +100,7 @@ mod materials;
 mod pk3;
 mod text;
 mod tga;
+mod upload;
 
 use super::{
     shader, Blend, Camera, Draw, Filter, Material, Mesh, Scene, SceneError, Texture, Vec2, Vec3,
@@ -115,6 +116,7 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 pub use text::*;
 pub use tga::*;
+pub use upload::*;
 
 /// Where the data root may be, relative to `$WASP_SCENES`: the three
 /// packages unpacked into `openarena/` (`wasp scenes fetch`), or each into
@@ -130,8 +132,10 @@ pub const PACKAGES: [&str; 3] = [
     "openarena-081-maps",
     "openarena-081-textures",
 ];
-/// Vertical field of view: 90 degrees horizontal at 4:3.
-pub const FOV_Y_DEG: f32 = 73.739_8;
+/// (wasp) The loader's vertical field of view before it followed the
+/// engine, kept for scenes with `fov = "4:3"`: 90 degrees across at 4:3
+/// ([`fov_y_deg`]`(640, 480)`), whatever the frame's aspect.
+pub const FOV_Y_4_3_DEG: f32 = 73.739_8;
 /// Near plane (Quake units).
 pub const NEAR: f32 = 4.0;
 /// Far plane (Quake units).
@@ -269,14 +273,20 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
         lightmap_ids: HashMap::new(),
         map: def.map.clone(),
         missing_names: Vec::new(),
+        picmip: def.oa_picmip(),
     };
     add_faces(&mut b, &bsp)?;
-    // Order: opaque and alpha-tested, then alpha-blended.
+    // Order: sky (unless `sky = "as-loaded"`), opaque and alpha-tested,
+    // then alpha-blended.
     let mut meshes = std::mem::take(&mut b.meshes);
     meshes.retain(|m| !m.indices.is_empty());
-    let (blended, mut all): (Vec<Mesh>, Vec<Mesh>) = meshes
+    let (blended, solid): (Vec<Mesh>, Vec<Mesh>) = meshes
         .into_iter()
         .partition(|m| b.materials[m.material].blend == Blend::AlphaBlend);
+    let sky_first = def.oa_sky() == OaSky::First;
+    let (mut all, solid): (Vec<Mesh>, Vec<Mesh>) =
+        solid.into_iter().partition(|m| sky_first && m.sky);
+    all.extend(solid);
     all.extend(blended);
     let tris: usize = all.iter().map(|m| m.indices.len() / 3).sum();
     let mut missing = std::mem::take(&mut b.missing_names);
@@ -301,7 +311,7 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
             eye,
             target: [eye[0] + c, eye[1] + s, eye[2]],
             up: [0.0, 0.0, 1.0],
-            fov_y_deg: FOV_Y_DEG,
+            fov_y_deg: scene_fov_y_deg(def),
             near: NEAR,
             far: FAR,
         },

@@ -595,6 +595,9 @@ mod tests {
                 draw_order: Default::default(),
                 texture_format: Default::default(),
                 route: Default::default(),
+                fov: None,
+                picmip: None,
+                sky: None,
             };
             let scene = procedural::load(&def).unwrap();
             for depth_prepass in [false, true] {
