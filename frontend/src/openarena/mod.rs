@@ -64,8 +64,11 @@
 //! names; TGA is read by [`decode_tga`] (uncompressed and RLE, true-colour
 //! and grey). A texture found in no archive is replaced by one shared
 //! 64x64 checkerboard named `missing` (Quake 3 draws its default image
-//! there too). Textures wider or taller than [`MAX_TEXTURE_SIDE`] are
-//! downscaled to it.
+//! there too). Each image is brought to the size the engine uploads it
+//! at ([`upload_size`]: sides rounded down to a power of two, then halved
+//! `picmip` times, 1 by default as the engine's `r_picmip`; not for
+//! shaders with `nopicmip` or `nomipmaps`, nor lightmaps); textures wider
+//! or taller than [`MAX_TEXTURE_SIDE`] after that are downscaled to it.
 //!
 //! # Draw calls and objects
 //!
@@ -75,9 +78,11 @@
 //! brush model for the faces of doors and platforms), see
 //! [`Bsp::face_objects`]. `surfaceparm sky` surfaces are [`Mesh::sky`].
 //! The game's renderer sorts its draw surfaces by shader, not by depth
-//! (`docs/scenes.md`), so the shipped scenes keep the order loaded: one
-//! mesh per (shader, lightmap) in order of first use by the faces, faces
-//! in lump order, the alpha-blended meshes last.
+//! (`docs/scenes.md`), so the shipped scenes keep the order loaded: the
+//! sky meshes first (its sky shaders sort before the opaque ones; the
+//! scene's `sky = "as-loaded"` keeps them in place), then one mesh per
+//! (shader, lightmap) in order of first use by the faces, faces in lump
+//! order, the alpha-blended meshes last.
 //!
 //! # Coordinates and camera
 //!
@@ -86,8 +91,10 @@
 //! `info_player_start`, then CTF team spawns) in entity order: eye
 //! [`EYE_HEIGHT`] (26) above its origin, i.e. 50 above the floor the
 //! origin floats 24 units over, looking along its `angle` (degrees about
-//! Z, 0 = +X). Vertical field of view [`FOV_Y_DEG`] (Quake 3's
-//! default `cg_fov 90` horizontal at 4:3), near [`NEAR`], far [`FAR`].
+//! Z, 0 = +X). Vertical field of view the engine's at the scene's width
+//! and height ([`fov_y_deg`]: its default `cg_fov 90` across the frame;
+//! [`FOV_Y_4_3_DEG`] with the scene's `fov = "4:3"`), near [`NEAR`], far
+//! [`FAR`].
 
 use super::bytes::Bytes;
 use super::def::{OaFov, OaSky, SceneDef};

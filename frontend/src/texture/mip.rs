@@ -29,7 +29,7 @@ fn downsample(w: u32, h: u32, src: &[u8]) -> (u32, u32, Vec<u8>) {
     downsample_clamped(w, h, src)
 }
 
-/// One level down a chain, as [`mip_chain`] makes it: half the size per
+/// One level down a mip chain, as the texture path builds it: half the size per
 /// side (at least 1), each texel the mean of its 2x2 source texels. A
 /// loader uses it to upload a texture from a smaller level, as an engine
 /// does at `r_picmip` above 0.
