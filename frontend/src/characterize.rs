@@ -495,6 +495,7 @@ mod tests {
             fov: None,
             picmip: None,
             sky: None,
+            vis: None,
         };
         let c = characterize_def(&def, false).unwrap();
         assert_eq!(c.footprints.len(), SubsetSpec::all().len());

@@ -15,19 +15,22 @@
 //! fov = "engine"                # optional, OpenArena loader only: engine (default) | 4:3
 //! picmip = 1                    # optional, OpenArena loader only: 0..=16 (default 1)
 //! sky = "first"                 # optional, OpenArena loader only: first (default) | as-loaded
+//! vis = "pvs"                   # optional, OpenArena loader only: pvs (default) | all
 //! ```
 //!
 //! `fov` and `picmip` make the OpenArena loader see what the game's engine
 //! sees (docs/scenes.md, "The loaders against the engine"): by default its
 //! camera has the engine's field of view at the scene's width and height
 //! (`cg_fov 90` across the frame) and its textures the engine's upload
-//! sizes at `r_picmip 1`, and it draws the sky before the rest, as the
-//! engine does. `fov = "4:3"` (wasp) keeps the loader's earlier camera,
-//! 73.74 degrees up whatever the aspect (90 across at 4:3), `picmip = 0`
-//! (wasp) the images at their stored sizes (all of the shipped scenes'
-//! images have power-of-two sides) and `sky = "as-loaded"` (wasp) the sky
-//! in the order of first use, so that results measured before the loader
-//! followed the engine can be drawn again.
+//! sizes at `r_picmip 1`, it draws the sky before the rest and only the
+//! faces in the eye's potentially visible set, as the engine does.
+//! `fov = "4:3"` (wasp) keeps the loader's earlier camera, 73.74 degrees
+//! up whatever the aspect (90 across at 4:3), `picmip = 0` (wasp) the
+//! images at their stored sizes (all of the shipped scenes' images have
+//! power-of-two sides), `sky = "as-loaded"` (wasp) the sky in the order
+//! of first use and `vis = "all"` (wasp) every face of the map, so that
+//! results measured before the loader followed the engine can be drawn
+//! again.
 //!
 //! The route says where the scene's draw calls come from: `loader` (the
 //! default) re-reads the game's data with wasp's loader; `engine` runs the
@@ -160,6 +163,20 @@ pub enum OaSky {
     AsLoaded,
 }
 
+/// Which faces the OpenArena loader draws (`vis` in scene files).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OaVis {
+    /// The faces of the leaves in the potentially visible set of the
+    /// eye's cluster, as the engine draws them (the default; see
+    /// `frontend/src/openarena/vis.rs`).
+    #[default]
+    Pvs,
+    /// (wasp) Every face of the map: the loader before it followed the
+    /// engine.
+    All,
+}
+
 /// The largest `picmip` a scene file may name: the engine's range for
 /// `r_picmip` (0 to 16).
 pub const MAX_PICMIP: u32 = 16;
@@ -218,6 +235,10 @@ pub struct SceneDef {
     /// first, as the engine draws it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sky: Option<OaSky>,
+    /// OpenArena loader only: which faces are drawn ([`OaVis`]; `None`:
+    /// the potentially visible set, as the engine draws them).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vis: Option<OaVis>,
 }
 
 impl SceneDef {
@@ -256,7 +277,7 @@ impl SceneDef {
         Ok(d)
     }
 
-    /// `fov`, `picmip` and `sky` are options of the OpenArena loader: an error
+    /// `fov`, `picmip`, `sky` and `vis` are options of the OpenArena loader: an error
     /// naming the file and the field on another game, on an engine scene
     /// (whose camera and textures are the engine's own), or past the
     /// engine's `r_picmip` range.
@@ -265,6 +286,7 @@ impl SceneDef {
             ("fov", self.fov.is_some()),
             ("picmip", self.picmip.is_some()),
             ("sky", self.sky.is_some()),
+            ("vis", self.vis.is_some()),
         ]
         .iter()
         .filter(|(_, set)| *set)
@@ -315,6 +337,12 @@ impl SceneDef {
     /// unless `sky` says otherwise).
     pub fn oa_sky(&self) -> OaSky {
         self.sky.unwrap_or_default()
+    }
+
+    /// Which faces the OpenArena loader draws (the potentially visible
+    /// set, as the engine does, unless `vis` says otherwise).
+    pub fn oa_vis(&self) -> OaVis {
+        self.vis.unwrap_or_default()
     }
 
     /// Read a definition file.
@@ -449,6 +477,7 @@ pub(crate) fn test_def(game: Game, map: &str, camera: &str, width: u32, height: 
         fov: None,
         picmip: None,
         sky: None,
+        vis: None,
     }
 }
 
@@ -567,7 +596,18 @@ mod tests {
     fn the_openarena_options_are_optional_and_checked() {
         let ok = "name = \"x\"\ngame = \"openarena\"\nmap = \"oa_dm1\"\ncamera = \"spawn:0\"\nwidth = 64\nheight = 32\n";
         let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
-        assert_eq!((d.fov, d.picmip, d.sky), (None, None, None));
+        assert_eq!((d.fov, d.picmip, d.sky, d.vis), (None, None, None, None));
+        assert_eq!(d.oa_vis(), OaVis::Pvs);
+        let d = SceneDef::parse(&format!("{ok}vis = \"all\"\n"), Path::new("x.toml")).unwrap();
+        assert_eq!(d.oa_vis(), OaVis::All);
+        let e = SceneDef::parse(&format!("{ok}vis = \"some\"\n"), Path::new("d/x.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`some`") && e.contains("`pvs`") && e.contains("`all`"),
+            "{e}"
+        );
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
         assert_eq!(
             (d.oa_fov(), d.oa_picmip(), d.oa_sky()),
             (OaFov::Engine, 1, OaSky::First)

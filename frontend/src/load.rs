@@ -66,6 +66,7 @@ mod tests {
             fov: None,
             picmip: None,
             sky: None,
+            vis: None,
         };
         assert_eq!(load_scene(&def).unwrap().name, "procedural:sprites");
     }

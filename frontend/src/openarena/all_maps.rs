@@ -30,6 +30,7 @@ fn every_map_loads() {
             fov: None,
             picmip: None,
             sky: None,
+            vis: None,
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {

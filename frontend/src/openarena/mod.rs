@@ -30,7 +30,9 @@
 //!
 //! Header `"IBSP"`, version 46, 17 lumps (offset, length). Used: 0
 //! entities (text), 1 shaders (64-byte name, surface flags, contents: 72
-//! bytes), 10 vertices (position, surface uv, lightmap uv, normal, RGBA:
+//! bytes), 2 planes, 3 nodes, 4 leaves, 5 leaf faces and 16 visibility
+//! data (the faces drawn from the eye: [`Vis`]; the scene's `vis = "all"`
+//! draws every face), 10 vertices (position, surface uv, lightmap uv, normal, RGBA:
 //! 44 bytes; a non-finite position is an error, other non-finite
 //! attributes become 0: q3map2 left NaN lightmap coordinates on a few
 //! vertices of six shipped maps), 11 mesh vertices (i32), 13 faces (104 bytes: shader, fog,
@@ -97,7 +99,7 @@
 //! [`FAR`].
 
 use super::bytes::Bytes;
-use super::def::{OaFov, OaSky, SceneDef};
+use super::def::{OaFov, OaSky, OaVis, SceneDef};
 use super::vec3::{cross, dot, sub};
 
 mod bsp;
@@ -108,6 +110,7 @@ mod pk3;
 mod text;
 mod tga;
 mod upload;
+mod vis;
 
 use super::{
     shader, Blend, Camera, Draw, Filter, Material, Mesh, Scene, SceneError, Texture, Vec2, Vec3,
@@ -124,6 +127,7 @@ use std::path::{Path, PathBuf};
 pub use text::*;
 pub use tga::*;
 pub use upload::*;
+pub use vis::*;
 
 /// Where the data root may be, relative to `$WASP_SCENES`: the three
 /// packages unpacked into `openarena/` (`wasp scenes fetch`), or each into
@@ -189,9 +193,13 @@ fn shader_scripts(paks: &mut Paks) -> Result<HashMap<String, ShaderDef>, SceneEr
 }
 
 /// Add every drawn face of `bsp` to the mesh of its (shader, lightmap),
-/// one draw call each, of the face's object.
-fn add_faces(b: &mut Builder, bsp: &Bsp) -> Result<(), SceneError> {
+/// one draw call each, of the face's object; with `visible`, only the
+/// faces it marks.
+fn add_faces(b: &mut Builder, bsp: &Bsp, visible: Option<&[bool]>) -> Result<(), SceneError> {
     for (fi, f) in bsp.faces.iter().enumerate() {
+        if visible.is_some_and(|v| !v[fi]) {
+            continue;
+        }
         let Some(mi) = b.mesh(bsp, f.shader, f.lightmap)? else {
             continue;
         };
@@ -282,7 +290,12 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
         missing_names: Vec::new(),
         picmip: def.oa_picmip(),
     };
-    add_faces(&mut b, &bsp)?;
+    let eye = [origin[0], origin[1], origin[2] + EYE_HEIGHT];
+    let visible = match def.oa_vis() {
+        OaVis::Pvs => bsp.vis.visible_faces(eye, bsp.faces.len()),
+        OaVis::All => None,
+    };
+    add_faces(&mut b, &bsp, visible.as_deref())?;
     // Order: sky (unless `sky = "as-loaded"`), opaque and alpha-tested,
     // then alpha-blended.
     let mut meshes = std::mem::take(&mut b.meshes);
@@ -300,7 +313,6 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
     missing.sort();
     missing.dedup();
     let (s, c) = yaw.to_radians().sin_cos();
-    let eye = [origin[0], origin[1], origin[2] + EYE_HEIGHT];
     Ok(Scene {
         name: format!("openarena:{}:{}", def.map, def.camera.replace(':', "")),
         source: format!(

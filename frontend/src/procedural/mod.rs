@@ -137,6 +137,7 @@ mod tests {
             fov: None,
             picmip: None,
             sky: None,
+            vis: None,
         }
     }
 

@@ -598,6 +598,7 @@ mod tests {
                 fov: None,
                 picmip: None,
                 sky: None,
+                vis: None,
             };
             let scene = procedural::load(&def).unwrap();
             for depth_prepass in [false, true] {

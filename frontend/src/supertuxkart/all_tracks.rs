@@ -29,6 +29,7 @@ fn every_track_loads() {
             fov: None,
             picmip: None,
             sky: None,
+            vis: None,
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {
