@@ -226,7 +226,11 @@ fn real_polygons_wind_with_their_normals_and_spawns_float_24_above_the_floor() {
         }
     }
     assert!(agree > 100 * disagree, "{agree} {disagree}");
-    let s = load(&root, &def("oa_dm1", "spawn:0")).unwrap();
+    // Every face (not only those visible from spawn 0), so that the floor
+    // under every spawn point is loaded.
+    let mut every_face = def("oa_dm1", "spawn:0");
+    every_face.vis = Some(crate::def::OaVis::All);
+    let s = load(&root, &every_face).unwrap();
     check_real(&s, 5_000);
     let ents = parse_entities(&bsp.entities, Path::new("x"), 0).unwrap();
     for (o, _) in spawn_points(&ents) {
