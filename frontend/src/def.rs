@@ -228,7 +228,8 @@ pub struct SceneDef {
     pub fov: Option<OaFov>,
     /// OpenArena loader only: the engine's `r_picmip` the textures are
     /// sized by, 0 to [`MAX_PICMIP`] (`None`: the engine's default, 1; 0
-    /// keeps the images as stored).
+    /// keeps the stored size of every image whose sides are powers of
+    /// two).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub picmip: Option<u32>,
     /// OpenArena loader only: where the sky is drawn ([`OaSky`]; `None`:
