@@ -492,6 +492,10 @@ mod tests {
             draw_order: Default::default(),
             texture_format: Default::default(),
             route: Default::default(),
+            fov: None,
+            picmip: None,
+            sky: None,
+            vis: None,
         };
         let c = characterize_def(&def, false).unwrap();
         assert_eq!(c.footprints.len(), SubsetSpec::all().len());

@@ -12,7 +12,25 @@
 //! draw_order = "as-loaded"      # optional: as-loaded (default) | front-to-back-object | front-to-back-draw
 //! texture_format = "etc2"       # optional: etc2 (default) | rgba8 | etc2-rgb | etc2-rgba | astc-4x4 | astc-6x6 | astc-8x8
 //! route = "loader"              # optional: loader (default) | engine (OpenArena, Teeworlds)
+//! fov = "engine"                # optional, OpenArena loader only: engine (default) | 4:3
+//! picmip = 1                    # optional, OpenArena loader only: 0..=16 (default 1)
+//! sky = "first"                 # optional, OpenArena loader only: first (default) | as-loaded
+//! vis = "pvs"                   # optional, OpenArena loader only: pvs (default) | all
 //! ```
+//!
+//! `fov` and `picmip` make the OpenArena loader see what the game's engine
+//! sees (docs/scenes.md, "The loaders against the engine"): by default its
+//! camera has the engine's field of view at the scene's width and height
+//! (`cg_fov 90` across the frame) and its textures the engine's upload
+//! sizes at `r_picmip 1`, it draws the sky before the rest and only the
+//! faces in the eye's potentially visible set, as the engine does.
+//! `fov = "4:3"` (wasp) keeps the loader's earlier camera, 73.74 degrees
+//! up whatever the aspect (90 across at 4:3), `picmip = 0` (wasp) the
+//! images at their stored sizes (all of the shipped scenes' images have
+//! power-of-two sides), `sky = "as-loaded"` (wasp) the sky in the order
+//! of first use and `vis = "all"` (wasp) every face of the map, so that
+//! results measured before the loader followed the engine can be drawn
+//! again.
 //!
 //! The route says where the scene's draw calls come from: `loader` (the
 //! default) re-reads the game's data with wasp's loader; `engine` runs the
@@ -120,6 +138,54 @@ impl Route {
     pub const ENGINE_GAMES: [Game; 2] = [Game::Openarena, Game::Teeworlds];
 }
 
+/// The OpenArena loader's field of view (`fov` in scene files).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum OaFov {
+    /// The engine's: its default `cg_fov 90` across the frame's width, the
+    /// vertical angle from the aspect
+    /// ([`super::openarena::fov_y_deg`]; the default).
+    #[default]
+    #[serde(rename = "engine")]
+    Engine,
+    /// (wasp) The loader's camera before it followed the engine: 73.74
+    /// degrees up ([`super::openarena::FOV_Y_4_3_DEG`], 90 across at 4:3)
+    /// at any aspect.
+    #[serde(rename = "4:3")]
+    FourThree,
+}
+
+/// Where the OpenArena loader puts the sky in its draw order (`sky` in
+/// scene files).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OaSky {
+    /// Before everything else, as the engine draws it (its sky shaders sort
+    /// before the opaque ones; the default).
+    #[default]
+    First,
+    /// (wasp) Where its shader is first used among the opaque meshes: the
+    /// loader's order before it followed the engine.
+    AsLoaded,
+}
+
+/// Which faces the OpenArena loader draws (`vis` in scene files).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OaVis {
+    /// The faces of the leaves in the potentially visible set of the
+    /// eye's cluster, as the engine draws them (the default; see
+    /// `frontend/src/openarena/vis.rs`).
+    #[default]
+    Pvs,
+    /// (wasp) Every face of the map: the loader before it followed the
+    /// engine.
+    All,
+}
+
+/// The largest `picmip` a scene file may name: the engine's range for
+/// `r_picmip` (0 to 16).
+pub const MAX_PICMIP: u32 = 16;
+
 impl fmt::Display for Route {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -161,6 +227,24 @@ pub struct SceneDef {
     /// or `engine`).
     #[serde(default)]
     pub route: Route,
+    /// OpenArena loader only: its field of view ([`OaFov`]; `None`: the
+    /// engine's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fov: Option<OaFov>,
+    /// OpenArena loader only: the engine's `r_picmip` the textures are
+    /// sized by, 0 to [`MAX_PICMIP`] (`None`: the engine's default, 1; 0
+    /// keeps the stored size of every image whose sides are powers of
+    /// two).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub picmip: Option<u32>,
+    /// OpenArena loader only: where the sky is drawn ([`OaSky`]; `None`:
+    /// first, as the engine draws it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sky: Option<OaSky>,
+    /// OpenArena loader only: which faces are drawn ([`OaVis`]; `None`:
+    /// the potentially visible set, as the engine draws them).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vis: Option<OaVis>,
 }
 
 impl SceneDef {
@@ -195,7 +279,76 @@ impl SceneDef {
                 ),
             ));
         }
+        d.check_openarena_options(source)?;
         Ok(d)
+    }
+
+    /// `fov`, `picmip`, `sky` and `vis` are options of the OpenArena loader: an error
+    /// naming the file and the field on another game, on an engine scene
+    /// (whose camera and textures are the engine's own), or past the
+    /// engine's `r_picmip` range.
+    fn check_openarena_options(&self, source: &Path) -> Result<(), SceneError> {
+        let named: Vec<&str> = [
+            ("fov", self.fov.is_some()),
+            ("picmip", self.picmip.is_some()),
+            ("sky", self.sky.is_some()),
+            ("vis", self.vis.is_some()),
+        ]
+        .iter()
+        .filter(|(_, set)| *set)
+        .map(|(n, _)| *n)
+        .collect();
+        if let Some(field) = named.first() {
+            if self.game != Game::Openarena {
+                return Err(SceneError::in_file(
+                    source,
+                    format!(
+                        "{field} with game = \"{}\": {field} is an option of the openarena loader only",
+                        self.game
+                    ),
+                ));
+            }
+            if self.route == Route::Engine {
+                return Err(SceneError::in_file(
+                    source,
+                    format!(
+                        "{field} with route = \"engine\": the engine's capture has its own camera and \
+                         textures; {field} is an option of the loader route only"
+                    ),
+                ));
+            }
+        }
+        match self.picmip {
+            Some(p) if p > MAX_PICMIP => Err(SceneError::in_file(
+                source,
+                format!("picmip = {p}: must be in 0..={MAX_PICMIP} (the engine's r_picmip range)"),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// The OpenArena loader's field of view (the engine's unless `fov`
+    /// says otherwise).
+    pub fn oa_fov(&self) -> OaFov {
+        self.fov.unwrap_or_default()
+    }
+
+    /// The `r_picmip` the OpenArena loader sizes textures by (the engine's
+    /// default, 1, unless `picmip` says otherwise).
+    pub fn oa_picmip(&self) -> u32 {
+        self.picmip.unwrap_or(1)
+    }
+
+    /// Where the OpenArena loader draws the sky (first, as the engine does,
+    /// unless `sky` says otherwise).
+    pub fn oa_sky(&self) -> OaSky {
+        self.sky.unwrap_or_default()
+    }
+
+    /// Which faces the OpenArena loader draws (the potentially visible
+    /// set, as the engine does, unless `vis` says otherwise).
+    pub fn oa_vis(&self) -> OaVis {
+        self.vis.unwrap_or_default()
     }
 
     /// Read a definition file.
@@ -327,6 +480,10 @@ pub(crate) fn test_def(game: Game, map: &str, camera: &str, width: u32, height: 
         draw_order: Default::default(),
         texture_format: Default::default(),
         route: Route::Loader,
+        fov: None,
+        picmip: None,
+        sky: None,
+        vis: None,
     }
 }
 
@@ -455,7 +612,84 @@ mod tests {
     }
 
     #[test]
+    fn the_openarena_options_are_optional_and_checked() {
+        let ok = "name = \"x\"\ngame = \"openarena\"\nmap = \"oa_dm1\"\ncamera = \"spawn:0\"\nwidth = 64\nheight = 32\n";
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        assert_eq!((d.fov, d.picmip, d.sky, d.vis), (None, None, None, None));
+        assert_eq!(d.oa_vis(), OaVis::Pvs);
+        let d = SceneDef::parse(&format!("{ok}vis = \"all\"\n"), Path::new("x.toml")).unwrap();
+        assert_eq!(d.oa_vis(), OaVis::All);
+        let e = SceneDef::parse(&format!("{ok}vis = \"some\"\n"), Path::new("d/x.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`some`") && e.contains("`pvs`") && e.contains("`all`"),
+            "{e}"
+        );
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        assert_eq!(
+            (d.oa_fov(), d.oa_picmip(), d.oa_sky()),
+            (OaFov::Engine, 1, OaSky::First)
+        );
+        let text = format!("{ok}fov = \"4:3\"\npicmip = 0\nsky = \"as-loaded\"\n");
+        let d = SceneDef::parse(&text, Path::new("x.toml")).unwrap();
+        assert_eq!(
+            (d.oa_fov(), d.oa_picmip(), d.oa_sky()),
+            (OaFov::FourThree, 0, OaSky::AsLoaded)
+        );
+        let d = SceneDef::parse(
+            &format!("{ok}fov = \"engine\"\npicmip = 16\nsky = \"first\"\n"),
+            Path::new("x.toml"),
+        )
+        .unwrap();
+        assert_eq!(
+            (d.oa_fov(), d.oa_picmip(), d.oa_sky()),
+            (OaFov::Engine, 16, OaSky::First)
+        );
+        let err = |extra: &str, base: &str| {
+            SceneDef::parse(&format!("{base}{extra}"), Path::new("d/x.toml"))
+                .unwrap_err()
+                .to_string()
+        };
+        let e = err("fov = \"wide\"\n", ok);
+        assert!(
+            e.starts_with("d/x.toml: ") && e.contains("line 7") && e.contains("`wide`"),
+            "{e}"
+        );
+        assert!(e.contains("`engine`") && e.contains("`4:3`"), "{e}");
+        let e = err("picmip = 17\n", ok);
+        assert!(
+            e.starts_with("d/x.toml: ") && e.contains("picmip = 17") && e.contains("0..=16"),
+            "{e}"
+        );
+        let e = err("picmip = -1\n", ok);
+        assert!(
+            e.starts_with("d/x.toml: ") && e.contains("line 7") && e.contains("picmip"),
+            "{e}"
+        );
+        let e = err("sky = \"last\"\n", ok);
+        assert!(
+            e.contains("`last`") && e.contains("`first`") && e.contains("`as-loaded`"),
+            "{e}"
+        );
+        let stk = ok.replace("openarena", "supertuxkart");
+        let e = err("picmip = 0\n", &stk);
+        assert!(
+            e.starts_with("d/x.toml: ") && e.contains("picmip") && e.contains("supertuxkart"),
+            "{e}"
+        );
+        let e = err("route = \"engine\"\nfov = \"4:3\"\n", ok);
+        assert!(e.contains("fov with route = \"engine\""), "{e}");
+        // Scenes that name none serialize as before.
+        let d = SceneDef::parse(ok, Path::new("x.toml")).unwrap();
+        let json = serde_json::to_string(&d).unwrap();
+        assert!(
+            !json.contains("fov") && !json.contains("picmip") && !json.contains("sky"),
+            "{json}"
+        );
+    }
 
+    #[test]
     fn engine_scenes_are_listed_but_not_drawn() {
         let every = every().unwrap();
         let all = all().unwrap();

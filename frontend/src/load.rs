@@ -63,6 +63,10 @@ mod tests {
             draw_order: Default::default(),
             texture_format: Default::default(),
             route: Default::default(),
+            fov: None,
+            picmip: None,
+            sky: None,
+            vis: None,
         };
         assert_eq!(load_scene(&def).unwrap().name, "procedural:sprites");
     }

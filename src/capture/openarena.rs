@@ -38,7 +38,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 use wasp_frontend::def::{Game, SceneDef};
-use wasp_frontend::openarena::{scene_spawn, EYE_HEIGHT};
+use wasp_frontend::openarena::{self, scene_spawn, EYE_HEIGHT};
 
 /// The engine binary of Debian's `openarena` package.
 pub const ENGINE: &str = "/usr/lib/ioquake3/ioquake3";
@@ -264,17 +264,11 @@ pub fn capture(
             "spawn_yaw_deg": yaw,
             "eye": eye,
             "engine_viewpos": view,
-            "fov_x_deg": 90.0,
-            "fov_y_deg": fov_y_deg(def.width, def.height),
+            "fov_x_deg": openarena::CG_FOV_X_DEG,
+            "fov_y_deg": openarena::fov_y_deg(def.width, def.height),
             "frame_ms": FRAME_MS,
         }),
     })
-}
-
-/// The engine's vertical field of view at `w` x `h` for its default
-/// `cg_fov 90`, which it applies horizontally: atan(h / w) x 2.
-pub fn fov_y_deg(w: u32, h: u32) -> f64 {
-    2.0 * (h as f64 / w as f64).atan().to_degrees()
 }
 
 #[cfg(test)]
@@ -327,16 +321,6 @@ mod tests {
         assert!(e.contains("blocked"), "{e}");
         let e = check_view(&v[..1], [280.0, 1416.0, -94.0], 180.0).unwrap_err();
         assert!(e.contains("1 of the 2"), "{e}");
-    }
-
-    #[test]
-    fn the_engine_is_narrower_than_the_loader() {
-        // cg_fov 90 across 1960 pixels: 42.79 degrees up the 768 rows.
-        assert!((fov_y_deg(1960, 768) - 42.79).abs() < 0.01);
-        assert!(
-            (fov_y_deg(640, 480) - 73.74).abs() < 0.01,
-            "the loader's 73.74 at 4:3"
-        );
     }
 
     #[test]

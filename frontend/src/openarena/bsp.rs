@@ -75,6 +75,8 @@ pub struct Bsp {
     /// leaves + the brush model (lump 7) holding it (doors, platforms),
     /// else leaves + models + the face's own index.
     pub face_objects: Vec<u32>,
+    /// The visibility structures (lumps 2, 3, 4, 5, 16).
+    pub vis: Vis,
 }
 
 /// Lump `i` of the directory, of `rec`-byte records: (offset, record
@@ -184,6 +186,17 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         lump(7, 40, "models")?,
         faces.len(),
     )?;
+    let vis = Vis::read(
+        &r,
+        [
+            lump(2, 16, "planes")?,
+            lump(3, 36, "nodes")?,
+            lump(4, 48, "leaves")?,
+            lump(5, 4, "leaf faces")?,
+            lump(16, 1, "visibility")?,
+        ],
+        faces.len(),
+    )?;
     let lm_bytes = LIGHTMAP_SIDE * LIGHTMAP_SIDE * 3;
     let (loff, ln) = lump(14, lm_bytes, "lightmaps")?;
     let lightmaps = (0..ln)
@@ -198,6 +211,7 @@ pub fn parse_bsp(bytes: &[u8], file: &Path) -> Result<Bsp, SceneError> {
         faces,
         lightmaps,
         face_objects,
+        vis,
     })
 }
 

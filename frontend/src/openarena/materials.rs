@@ -1,7 +1,8 @@
 //! The scene's materials, textures and meshes: images found in the pk3s
-//! (TGA, JPEG, PNG; downscaled), the shared checkerboard for missing
-//! ones, lightmaps, and one material and mesh per (shader, lightmap) as
-//! the shader scripts and surface flags say.
+//! (TGA, JPEG, PNG; at the engine's upload size, see [`super::upload`];
+//! downscaled past [`MAX_TEXTURE_SIDE`]), the shared checkerboard for
+//! missing ones, lightmaps, and one material and mesh per (shader,
+//! lightmap) as the shader scripts and surface flags say.
 
 use super::*;
 
@@ -9,7 +10,7 @@ pub(super) struct Builder<'a> {
     pub(super) paks: &'a mut Paks,
     pub(super) shaders: HashMap<String, ShaderDef>,
     pub(super) textures: Vec<Texture>,
-    pub(super) tex_ids: HashMap<(String, bool), usize>,
+    pub(super) tex_ids: HashMap<(String, bool, u32), usize>,
     pub(super) missing: Option<usize>,
     pub(super) materials: Vec<Material>,
     pub(super) meshes: Vec<Mesh>,
@@ -17,6 +18,9 @@ pub(super) struct Builder<'a> {
     pub(super) lightmap_ids: HashMap<i32, Option<usize>>,
     pub(super) map: String,
     pub(super) missing_names: Vec<String>,
+    /// The engine's `r_picmip` the textures are uploaded at (the scene's
+    /// `picmip`).
+    pub(super) picmip: u32,
 }
 
 impl Builder<'_> {
@@ -37,7 +41,14 @@ impl Builder<'_> {
             .map(str::to_string)
     }
 
-    fn decode(&mut self, entry: &str) -> Result<(u32, u32, Vec<u8>), SceneError> {
+    /// Decode image `entry`; with `picmip`, at the engine's upload size for
+    /// that `r_picmip` ([`upload`]), else as stored; downscaled past
+    /// [`MAX_TEXTURE_SIDE`].
+    fn decode(
+        &mut self,
+        entry: &str,
+        picmip: Option<u32>,
+    ) -> Result<(u32, u32, Vec<u8>), SceneError> {
         let bytes = self.paks.read(entry)?;
         let path = self.paks.path_of(entry);
         let (w, h, rgba) = if entry.to_ascii_lowercase().ends_with(".tga") {
@@ -48,6 +59,10 @@ impl Builder<'_> {
             let im = img.to_rgba8();
             let (w, h) = im.dimensions();
             (w, h, im.into_raw())
+        };
+        let (w, h, rgba) = match picmip {
+            Some(p) => upload(w, h, rgba, p, &path)?,
+            None => (w, h, rgba),
         };
         if w.max(h) > MAX_TEXTURE_SIDE {
             let s = MAX_TEXTURE_SIDE as f64 / w.max(h) as f64;
@@ -61,17 +76,20 @@ impl Builder<'_> {
         Ok((w, h, rgba))
     }
 
-    /// A texture by image name; the shared checkerboard if it is missing.
-    fn texture(&mut self, name: &str, repeat: bool) -> Result<usize, SceneError> {
+    /// A texture by image name, uploaded as the engine does at the scene's
+    /// `r_picmip` if `picmip` (the shader allows it), else at `r_picmip`
+    /// 0; the shared checkerboard if it is missing.
+    fn texture(&mut self, name: &str, repeat: bool, picmip: bool) -> Result<usize, SceneError> {
         let Some(entry) = self.find_image(name) else {
             self.missing_names.push(name.to_string());
             return Ok(self.missing_texture());
         };
-        let key = (entry.to_ascii_lowercase(), repeat);
+        let levels = if picmip { self.picmip } else { 0 };
+        let key = (entry.to_ascii_lowercase(), repeat, levels);
         if let Some(&i) = self.tex_ids.get(&key) {
             return Ok(i);
         }
-        let (width, height, rgba) = self.decode(&entry)?;
+        let (width, height, rgba) = self.decode(&entry, Some(levels))?;
         self.textures.push(Texture {
             name: entry,
             width,
@@ -134,7 +152,7 @@ impl Builder<'_> {
         } else {
             let entry = format!("maps/{}/lm_{l:04}.tga", self.map);
             if self.paks.contains(&entry) {
-                let (width, height, rgba) = self.decode(&entry)?;
+                let (width, height, rgba) = self.decode(&entry, None)?;
                 self.textures.push(Texture {
                     name: entry,
                     width,
@@ -172,14 +190,16 @@ impl Builder<'_> {
         let result = if nodraw || s.name.eq_ignore_ascii_case("noshader") {
             None
         } else if sky {
+            // A stage's image follows the shader's nopicmip; the sky box
+            // of skyParms is picmipped always.
             let image = def.as_ref().and_then(|d| {
                 d.base()
-                    .map(|(m, _)| m.to_string())
-                    .or_else(|| d.farbox.as_ref().map(|f| format!("{f}_ft.tga")))
+                    .map(|(m, _)| (m.to_string(), !d.nopicmip))
+                    .or_else(|| d.farbox.as_ref().map(|f| (format!("{f}_ft.tga"), true)))
             });
             match image {
-                Some(img) => {
-                    let t = self.texture(&img, true)?;
+                Some((img, picmip)) => {
+                    let t = self.texture(&img, true, picmip)?;
                     self.materials.push(Material {
                         state: None,
                         name: s.name.clone(),
@@ -201,7 +221,8 @@ impl Builder<'_> {
                 },
                 None => (s.name.clone(), false, Blend::Opaque, true),
             };
-            let t = self.texture(&image, !clamp)?;
+            let picmip = !def.as_ref().is_some_and(|d| d.nopicmip);
+            let t = self.texture(&image, !clamp, picmip)?;
             let lmt = if wants_lm {
                 self.lightmap(bsp, lm)?
             } else {

@@ -30,7 +30,9 @@
 //!
 //! Header `"IBSP"`, version 46, 17 lumps (offset, length). Used: 0
 //! entities (text), 1 shaders (64-byte name, surface flags, contents: 72
-//! bytes), 10 vertices (position, surface uv, lightmap uv, normal, RGBA:
+//! bytes), 2 planes, 3 nodes, 4 leaves, 5 leaf faces and 16 visibility
+//! data (the faces drawn from the eye: [`Vis`]; the scene's `vis = "all"`
+//! draws every face), 10 vertices (position, surface uv, lightmap uv, normal, RGBA:
 //! 44 bytes; a non-finite position is an error, other non-finite
 //! attributes become 0: q3map2 left NaN lightmap coordinates on a few
 //! vertices of six shipped maps), 11 mesh vertices (i32), 13 faces (104 bytes: shader, fog,
@@ -64,8 +66,11 @@
 //! names; TGA is read by [`decode_tga`] (uncompressed and RLE, true-colour
 //! and grey). A texture found in no archive is replaced by one shared
 //! 64x64 checkerboard named `missing` (Quake 3 draws its default image
-//! there too). Textures wider or taller than [`MAX_TEXTURE_SIDE`] are
-//! downscaled to it.
+//! there too). Each image is brought to the size the engine uploads it
+//! at ([`upload_size`]: sides rounded down to a power of two, then halved
+//! `picmip` times, 1 by default as the engine's `r_picmip`; not for
+//! shaders with `nopicmip` or `nomipmaps`, nor lightmaps); textures wider
+//! or taller than [`MAX_TEXTURE_SIDE`] after that are downscaled to it.
 //!
 //! # Draw calls and objects
 //!
@@ -75,9 +80,11 @@
 //! brush model for the faces of doors and platforms), see
 //! [`Bsp::face_objects`]. `surfaceparm sky` surfaces are [`Mesh::sky`].
 //! The game's renderer sorts its draw surfaces by shader, not by depth
-//! (`docs/scenes.md`), so the shipped scenes keep the order loaded: one
-//! mesh per (shader, lightmap) in order of first use by the faces, faces
-//! in lump order, the alpha-blended meshes last.
+//! (`docs/scenes.md`), so the shipped scenes keep the order loaded: the
+//! sky meshes first (its sky shaders sort before the opaque ones; the
+//! scene's `sky = "as-loaded"` keeps them in place), then one mesh per
+//! (shader, lightmap) in order of first use by the faces, faces in lump
+//! order, the alpha-blended meshes last.
 //!
 //! # Coordinates and camera
 //!
@@ -86,11 +93,13 @@
 //! `info_player_start`, then CTF team spawns) in entity order: eye
 //! [`EYE_HEIGHT`] (26) above its origin, i.e. 50 above the floor the
 //! origin floats 24 units over, looking along its `angle` (degrees about
-//! Z, 0 = +X). Vertical field of view [`FOV_Y_DEG`] (Quake 3's
-//! default `cg_fov 90` horizontal at 4:3), near [`NEAR`], far [`FAR`].
+//! Z, 0 = +X). Vertical field of view the engine's at the scene's width
+//! and height ([`fov_y_deg`]: its default `cg_fov 90` across the frame;
+//! [`FOV_Y_4_3_DEG`] with the scene's `fov = "4:3"`), near [`NEAR`], far
+//! [`FAR`].
 
 use super::bytes::Bytes;
-use super::def::SceneDef;
+use super::def::{OaFov, OaSky, OaVis, SceneDef};
 use super::vec3::{cross, dot, sub};
 
 mod bsp;
@@ -100,6 +109,8 @@ mod materials;
 mod pk3;
 mod text;
 mod tga;
+mod upload;
+mod vis;
 
 use super::{
     shader, Blend, Camera, Draw, Filter, Material, Mesh, Scene, SceneError, Texture, Vec2, Vec3,
@@ -115,6 +126,8 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 pub use text::*;
 pub use tga::*;
+pub use upload::*;
+pub use vis::*;
 
 /// Where the data root may be, relative to `$WASP_SCENES`: the three
 /// packages unpacked into `openarena/` (`wasp scenes fetch`), or each into
@@ -130,8 +143,10 @@ pub const PACKAGES: [&str; 3] = [
     "openarena-081-maps",
     "openarena-081-textures",
 ];
-/// Vertical field of view: 90 degrees horizontal at 4:3.
-pub const FOV_Y_DEG: f32 = 73.739_8;
+/// (wasp) The loader's vertical field of view before it followed the
+/// engine, kept for scenes with `fov = "4:3"`: 90 degrees across at 4:3
+/// ([`fov_y_deg`]`(640, 480)`), whatever the frame's aspect.
+pub const FOV_Y_4_3_DEG: f32 = 73.739_8;
 /// Near plane (Quake units).
 pub const NEAR: f32 = 4.0;
 /// Far plane (Quake units).
@@ -178,9 +193,13 @@ fn shader_scripts(paks: &mut Paks) -> Result<HashMap<String, ShaderDef>, SceneEr
 }
 
 /// Add every drawn face of `bsp` to the mesh of its (shader, lightmap),
-/// one draw call each, of the face's object.
-fn add_faces(b: &mut Builder, bsp: &Bsp) -> Result<(), SceneError> {
+/// one draw call each, of the face's object; with `visible`, only the
+/// faces it marks.
+fn add_faces(b: &mut Builder, bsp: &Bsp, visible: Option<&[bool]>) -> Result<(), SceneError> {
     for (fi, f) in bsp.faces.iter().enumerate() {
+        if visible.is_some_and(|v| !v[fi]) {
+            continue;
+        }
         let Some(mi) = b.mesh(bsp, f.shader, f.lightmap)? else {
             continue;
         };
@@ -269,21 +288,31 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
         lightmap_ids: HashMap::new(),
         map: def.map.clone(),
         missing_names: Vec::new(),
+        picmip: def.oa_picmip(),
     };
-    add_faces(&mut b, &bsp)?;
-    // Order: opaque and alpha-tested, then alpha-blended.
+    let eye = [origin[0], origin[1], origin[2] + EYE_HEIGHT];
+    let visible = match def.oa_vis() {
+        OaVis::Pvs => bsp.vis.visible_faces(eye, bsp.faces.len()),
+        OaVis::All => None,
+    };
+    add_faces(&mut b, &bsp, visible.as_deref())?;
+    // Order: sky (unless `sky = "as-loaded"`), opaque and alpha-tested,
+    // then alpha-blended.
     let mut meshes = std::mem::take(&mut b.meshes);
     meshes.retain(|m| !m.indices.is_empty());
-    let (blended, mut all): (Vec<Mesh>, Vec<Mesh>) = meshes
+    let (blended, solid): (Vec<Mesh>, Vec<Mesh>) = meshes
         .into_iter()
         .partition(|m| b.materials[m.material].blend == Blend::AlphaBlend);
+    let sky_first = def.oa_sky() == OaSky::First;
+    let (mut all, solid): (Vec<Mesh>, Vec<Mesh>) =
+        solid.into_iter().partition(|m| sky_first && m.sky);
+    all.extend(solid);
     all.extend(blended);
     let tris: usize = all.iter().map(|m| m.indices.len() / 3).sum();
     let mut missing = std::mem::take(&mut b.missing_names);
     missing.sort();
     missing.dedup();
     let (s, c) = yaw.to_radians().sin_cos();
-    let eye = [origin[0], origin[1], origin[2] + EYE_HEIGHT];
     Ok(Scene {
         name: format!("openarena:{}:{}", def.map, def.camera.replace(':', "")),
         source: format!(
@@ -301,7 +330,7 @@ pub fn load(data_root: &Path, def: &SceneDef) -> Result<Scene, SceneError> {
             eye,
             target: [eye[0] + c, eye[1] + s, eye[2]],
             up: [0.0, 0.0, 1.0],
-            fov_y_deg: FOV_Y_DEG,
+            fov_y_deg: scene_fov_y_deg(def),
             near: NEAR,
             far: FAR,
         },

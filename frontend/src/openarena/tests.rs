@@ -72,15 +72,28 @@ fn loads_a_synthetic_map() {
     // The script's .tga wins over the JPEG of the same stem; the later
     // pk3's mixed-case entry matches case-insensitively.
     assert_eq!(s.textures[0].name, "Textures/T/Floor.tga");
-    assert_eq!((s.textures[0].width, s.textures[0].height), (3, 2));
+    // Uploaded as the engine does at r_picmip 1: 3x2 rounded down to 2x2,
+    // then halved; at picmip 0, only rounded down. Lightmaps keep 128.
+    assert_eq!((s.textures[0].width, s.textures[0].height), (1, 1));
+    let mut d0 = def("mini", "spawn:0");
+    d0.picmip = Some(0);
+    let s0 = load(&root, &d0).unwrap();
+    assert_eq!((s0.textures[0].width, s0.textures[0].height), (2, 2));
+    assert_eq!(s0.textures[1].width, LIGHTMAP_SIDE as u32);
     assert_eq!(s.textures[1].width, LIGHTMAP_SIDE as u32);
     assert_eq!(&s.textures[1].rgba[0..4], &[0, 1, 2, 255]);
     let Camera::Perspective {
-        eye, target, up, ..
+        eye,
+        target,
+        up,
+        fov_y_deg,
+        ..
     } = s.camera
     else {
         panic!()
     };
+    // The engine's cg_fov 90 across 1960 pixels.
+    assert!((fov_y_deg - 42.79).abs() < 0.01, "{fov_y_deg}");
     assert_eq!(eye, [16.0, 32.0, 24.0 + EYE_HEIGHT]);
     assert!((target[1] - eye[1] - 1.0).abs() < 1e-6 && (target[0] - eye[0]).abs() < 1e-6);
     assert_eq!(up, [0.0, 0.0, 1.0]);
@@ -213,7 +226,11 @@ fn real_polygons_wind_with_their_normals_and_spawns_float_24_above_the_floor() {
         }
     }
     assert!(agree > 100 * disagree, "{agree} {disagree}");
-    let s = load(&root, &def("oa_dm1", "spawn:0")).unwrap();
+    // Every face (not only those visible from spawn 0), so that the floor
+    // under every spawn point is loaded.
+    let mut every_face = def("oa_dm1", "spawn:0");
+    every_face.vis = Some(crate::def::OaVis::All);
+    let s = load(&root, &every_face).unwrap();
     check_real(&s, 5_000);
     let ents = parse_entities(&bsp.entities, Path::new("x"), 0).unwrap();
     for (o, _) in spawn_points(&ents) {

@@ -124,6 +124,9 @@ pub struct ShaderDef {
     pub farbox: Option<String>,
     /// Stages in order.
     pub stages: Vec<Stage>,
+    /// `nopicmip` or `nomipmaps`: the engine uploads the stages' images at
+    /// their size whatever `r_picmip` is (see [`super::upload`]).
+    pub nopicmip: bool,
 }
 
 impl ShaderDef {
@@ -218,9 +221,9 @@ pub fn parse_shaders(text: &str, file: &Path) -> Result<Vec<ShaderDef>, SceneErr
 
 /// Apply one keyword of a shader (`keyword`, lower case; `arg(k)` its
 /// k-th argument) to the shader `def` or, inside a stage, to `stage`:
-/// `surfaceparm` and `skyParms` outside stages; a stage's first `map`,
-/// `clampMap` or `animMap` image, `blendFunc` and `alphaFunc`. Other
-/// keywords are ignored.
+/// `surfaceparm`, `skyParms`, `nopicmip` and `nomipmaps` outside stages; a
+/// stage's first `map`, `clampMap` or `animMap` image, `blendFunc` and
+/// `alphaFunc`. Other keywords are ignored.
 fn apply_keyword(
     def: &mut ShaderDef,
     stage: &mut Option<Stage>,
@@ -237,6 +240,7 @@ fn apply_keyword(
                 def.farbox = Some(fb);
             }
         }
+        "nopicmip" | "nomipmaps" if stage.is_none() => def.nopicmip = true,
         "map" | "clampmap" => {
             if let Some(s) = stage.as_mut() {
                 if s.map.is_none() {
@@ -297,9 +301,13 @@ textures/a/grate
 }
 textures/a/sky { surfaceparm sky surfaceparm noimpact skyparms env/red - - }
 textures/a/anim { { animMap 5 textures/a/f1.tga textures/a/f2.tga } }
+textures/a/hud { nopicmip { map textures/a/h.tga } }
+textures/a/flat { NoMipMaps { map textures/a/f.tga } }
 "#;
         let s = parse_shaders(text, Path::new("x.shader")).unwrap();
-        assert_eq!(s.len(), 5);
+        assert_eq!(s.len(), 7);
+        assert!(s[5].nopicmip && s[6].nopicmip);
+        assert!(s[..5].iter().all(|d| !d.nopicmip));
         assert_eq!(s[0].name, "textures/a/lit");
         assert_eq!(s[0].base(), Some(("textures/a/base.tga", false)));
         assert!(s[0].uses_lightmap());

@@ -595,6 +595,10 @@ mod tests {
                 draw_order: Default::default(),
                 texture_format: Default::default(),
                 route: Default::default(),
+                fov: None,
+                picmip: None,
+                sky: None,
+                vis: None,
             };
             let scene = procedural::load(&def).unwrap();
             for depth_prepass in [false, true] {

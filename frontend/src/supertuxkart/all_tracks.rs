@@ -26,6 +26,10 @@ fn every_track_loads() {
             draw_order: Default::default(),
             texture_format: Default::default(),
             route: Default::default(),
+            fov: None,
+            picmip: None,
+            sky: None,
+            vis: None,
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {

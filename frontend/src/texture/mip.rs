@@ -29,6 +29,14 @@ fn downsample(w: u32, h: u32, src: &[u8]) -> (u32, u32, Vec<u8>) {
     downsample_clamped(w, h, src)
 }
 
+/// One level down a mip chain, as the texture path builds it: half the size per
+/// side (at least 1), each texel the mean of its 2x2 source texels. A
+/// loader uses it to upload a texture from a smaller level, as an engine
+/// does at `r_picmip` above 0.
+pub fn halve(w: u32, h: u32, rgba: &[u8]) -> (u32, u32, Vec<u8>) {
+    downsample(w, h, rgba)
+}
+
 /// [`downsample`] for any size: source coordinates clamped to the edge (a
 /// 1-texel edge stays 1).
 fn downsample_clamped(w: u32, h: u32, src: &[u8]) -> (u32, u32, Vec<u8>) {

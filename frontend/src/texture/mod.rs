@@ -72,6 +72,7 @@ pub use footprint::*;
 use format::morton2;
 pub use format::{alpha_needed, FormatChoice, TextureFormat};
 pub use heap::*;
+pub use mip::halve;
 use mip::*;
 
 /// Bytes of one memory block (cache line).
