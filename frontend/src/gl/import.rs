@@ -6,12 +6,11 @@
 
 use super::args::CallError;
 use super::draw::{self, DrawRec};
-use super::enums as gl;
+use super::scene;
 use super::tracker::{Context, Effect};
-use crate::{Blend, Camera, Material, Mesh, Scene, ShaderOp, TexSample, Texture};
+use crate::Scene;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use wasp_gltrace::{Call, CaptureError};
 
 /// What to import.
@@ -62,6 +61,9 @@ pub struct TextureInfo {
     pub height: u32,
     /// Level 0's internal format, pixel format and type.
     pub format: String,
+    /// A 3D texture's depth (slices).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub depth: Option<u32>,
     /// The levels the engine uploaded.
     pub levels: Vec<u32>,
     /// Why its texels are the placeholder, if they are.
@@ -92,6 +94,14 @@ pub struct Imported {
     /// Calls up to the frame's end the model does not use, by name.
     pub unmodelled: BTreeMap<String, u64>,
     pub textures: Vec<TextureInfo>,
+    /// The GL name of each of the scene's textures (a 3D texture's slices
+    /// share theirs).
+    pub texture_ids: Vec<u32>,
+    /// The draw (index in issue order) of each of the scene's materials:
+    /// material `i` is draw `i` for the draws, and the materials after
+    /// them are of the draws that read several choices of 3D slices
+    /// ([`super::scene`]).
+    pub material_draws: Vec<usize>,
 }
 
 /// A frame read to its swap: its recording, the unmodelled calls and the
@@ -164,10 +174,10 @@ pub fn import(
             format!("frame {index} has no viewport (glViewport)"),
         )
     })?;
-    let (scene, textures) = scene_of(&build.draws, width, height, file, index)
+    let built = scene::scene_of(&build.draws, width, height, file, index)
         .map_err(|e| ImportError::Call(file.into(), e))?;
     Ok(Imported {
-        scene,
+        scene: built.scene,
         width,
         height,
         frame: index,
@@ -179,7 +189,9 @@ pub fn import(
         unsupported: build.unsupported,
         unsupported_in_earlier_frames: earlier,
         unmodelled,
-        textures,
+        textures: built.infos,
+        texture_ids: built.texture_ids,
+        material_draws: built.material_draws,
     })
 }
 
@@ -261,138 +273,10 @@ fn frame_size(draws: &[DrawRec], ctx: &Context) -> Option<(u32, u32)> {
     (w > 0 && h > 0 && w <= 16384 && h <= 16384).then_some((w as u32, h as u32))
 }
 
-/// ALU instructions of a texture environment mode (wasp).
-fn env_alu(mode: i64) -> u32 {
-    match mode {
-        gl::REPLACE => 0,
-        gl::DECAL | gl::BLEND_ENV | gl::COMBINE => 2,
-        _ => 1,
-    }
-}
-
-/// The scene of a frame's draws in a `w` x `h` frame, and its textures'
-/// summary.
-fn scene_of(
-    draws: &[DrawRec],
-    w: u32,
-    h: u32,
-    file: &Path,
-    frame: u64,
-) -> Result<(Scene, Vec<TextureInfo>), CallError> {
-    let mut textures: Vec<Texture> = Vec::new();
-    let mut infos: Vec<TextureInfo> = Vec::new();
-    let mut seen: Vec<*const super::textures::TexObject> = Vec::new();
-    let (mut meshes, mut materials) = (Vec::new(), Vec::new());
-    for d in draws {
-        let state = d.fixed.draw_state(w, h).map_err(|m| CallError {
-            call: d.call,
-            name: "draw".into(),
-            message: m,
-        })?;
-        // (wasp) program: a2, then per sampled unit T(unit) and its
-        // environment's ALU, an ALU for the alpha test, a1 to write.
-        let mut shader = vec![ShaderOp::Alu(2)];
-        for s in &d.sampled {
-            let p = Arc::as_ptr(&s.texture);
-            let index = seen.iter().position(|&q| q == p).unwrap_or_else(|| {
-                seen.push(p);
-                textures.push(s.texture.texture());
-                infos.push(info(&s.texture));
-                seen.len() - 1
-            });
-            shader.push(ShaderOp::Tex(TexSample {
-                texture: index,
-                uv_set: s.unit as u8,
-                filter: s.texture.filter(),
-            }));
-            shader.push(ShaderOp::Alu(env_alu(s.env_mode)));
-        }
-        shader.push(ShaderOp::Alu(1 + u32::from(state.alpha_test.is_some())));
-        shader.retain(|op| *op != ShaderOp::Alu(0));
-        let blend = if state.blend.is_some() {
-            Blend::AlphaBlend
-        } else if state.alpha_test.is_some() {
-            Blend::AlphaTest
-        } else {
-            Blend::Opaque
-        };
-        materials.push(Material {
-            name: format!("call {}", d.call),
-            blend,
-            shader,
-            state: Some(state),
-        });
-        meshes.push(mesh_of(d, &d.fixed.viewport, w, h, materials.len() - 1));
-    }
-    let scene = Scene {
-        name: format!("gl:{}:frame{frame}", file.display()),
-        source: format!("apitrace capture {}, frame {frame}", file.display()),
-        meshes,
-        materials,
-        textures,
-        camera: Camera::Clip,
-    };
-    Ok((scene, infos))
-}
-
-/// A draw's mesh: clip-space positions with the viewport folded in
-/// (linear in clip space: the viewport's rectangle of a `w` x `h` frame
-/// becomes its place in the frame's normalized device coordinates).
-fn mesh_of(d: &DrawRec, vp: &[i64; 4], w: u32, h: u32, material: usize) -> Mesh {
-    let (wf, hf) = (f64::from(w), f64::from(h));
-    let (vx, vy, vw, vh) = (vp[0] as f64, vp[1] as f64, vp[2] as f64, vp[3] as f64);
-    let (sx, ox) = (vw / wf, (2.0 * vx + vw) / wf - 1.0);
-    let (sy, oy) = (vh / hf, (2.0 * vy + vh) / hf - 1.0);
-    let positions = d
-        .clip
-        .iter()
-        .map(|p| {
-            [
-                (p[0] * sx + p[3] * ox) as f32,
-                (p[1] * sy + p[3] * oy) as f32,
-                p[2] as f32,
-            ]
-        })
-        .collect();
-    Mesh {
-        positions,
-        uv: d.uv[0].clone(),
-        uv2: d
-            .sampled
-            .iter()
-            .any(|s| s.unit == 1)
-            .then(|| d.uv[1].clone()),
-        indices: d.indices.clone(),
-        material,
-        clip_w: Some(d.clip.iter().map(|p| p[3] as f32).collect()),
-        ..Default::default()
-    }
-}
-
-fn info(t: &super::textures::TexObject) -> TextureInfo {
-    let l0 = &t.levels[&0];
-    TextureInfo {
-        id: t.id,
-        width: l0.width,
-        height: l0.height,
-        format: if l0.compressed {
-            format!("{} (compressed)", gl::name(l0.internal))
-        } else {
-            format!(
-                "{} from {}/{}",
-                gl::name(l0.internal),
-                gl::name(l0.format),
-                gl::name(l0.ty)
-            )
-        },
-        levels: t.levels.keys().copied().collect(),
-        placeholder: t.placeholder.clone(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::args::test_calls::*;
+    use super::super::enums as gl;
     use super::*;
     use crate::raster::{rasterize, RasterOptions};
     use wasp_gltrace::Value;

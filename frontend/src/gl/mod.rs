@@ -16,10 +16,12 @@ pub mod draw;
 pub mod enums;
 pub mod import;
 pub mod matrices;
+pub mod scene;
 pub mod state;
 pub mod summary;
 pub mod textures;
 pub mod tracker;
+pub mod volume;
 
 pub use import::{import, ImportError, ImportOptions, Imported, TextureInfo};
 pub use summary::{DrawSummary, Summary};

@@ -1,0 +1,294 @@
+//! A frame's draws placed in the frame as a clip-space [`Scene`]: one
+//! material per draw carrying the engine's pipeline state and a shader of
+//! its texture units (wasp), meshes in issue order, and the textures the
+//! draws sample (a 3D texture as the stack of its slices,
+//! [`super::volume`]).
+//!
+//! A draw is one mesh, unless it samples a 3D texture whose triangles read
+//! different slices: then each run of consecutive triangles that read the
+//! same slices is a mesh of its own (so the triangles keep their order),
+//! and each distinct choice of slices after the draw's first has a
+//! material of its own, appended after the draws' materials, with the
+//! draw's state.
+
+use super::args::CallError;
+use super::draw::DrawRec;
+use super::enums as gl;
+use super::import::TextureInfo;
+use super::textures::TexObject;
+use super::volume::Slices;
+use crate::{Blend, Camera, Material, Mesh, Scene, SecondSlice, ShaderOp, TexSample, Texture};
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// A frame's scene and what the summary and the Mesa check need of it.
+pub struct Built {
+    pub scene: Scene,
+    /// The textures the frame samples, one per GL texture object.
+    pub infos: Vec<TextureInfo>,
+    /// The GL name of each of the scene's textures.
+    pub texture_ids: Vec<u32>,
+    /// The draw (its index) each of the scene's materials belongs to.
+    pub material_draws: Vec<usize>,
+}
+
+/// The slices a triangle reads on each of the draw's sampled units (`None`
+/// for a 2D texture): triangles with equal keys share a material.
+type Key = [Option<Slices>; super::draw::UV_SETS];
+
+/// The textures of the scene being built: each GL object's first scene
+/// texture (a 3D texture's slices follow one another). The versions of
+/// one object that differ only in state the layout does not hold (a
+/// filter, a wrap mode set again to its value: a draw keeps the version it
+/// sampled) are one texture; versions with other texels or another repeat
+/// mode are textures of their own (wasp).
+#[derive(Default)]
+struct Textures {
+    textures: Vec<Texture>,
+    infos: Vec<TextureInfo>,
+    ids: Vec<u32>,
+    seen: HashMap<*const TexObject, usize>,
+    /// By (GL name, 3D, repeat): the versions placed and their index.
+    versions: HashMap<(u32, bool, bool), Vec<(Arc<TexObject>, usize)>>,
+}
+
+impl Textures {
+    /// The scene index of `t` (of its slice 0 for a 3D texture), added
+    /// on first use.
+    fn index(&mut self, t: &Arc<TexObject>) -> usize {
+        if let Some(&at) = self.seen.get(&Arc::as_ptr(t)) {
+            return at;
+        }
+        let repeat = t.wrap[..2].contains(&gl::REPEAT);
+        let versions = self.versions.entry((t.id, t.is_3d, repeat)).or_default();
+        let same = |v: &Arc<TexObject>| v.levels.get(&0) == t.levels.get(&0) && v.rgba == t.rgba;
+        let at = match versions.iter().find(|(v, _)| same(v)) {
+            Some(&(_, at)) => at,
+            None => {
+                let at = self.textures.len();
+                versions.push((t.clone(), at));
+                self.infos.push(info(t));
+                if t.is_3d {
+                    self.textures
+                        .extend((0..t.depth()).map(|k| t.slice_texture(k)));
+                } else {
+                    self.textures.push(t.texture());
+                }
+                self.ids.resize(self.textures.len(), t.id);
+                at
+            }
+        };
+        self.seen.insert(Arc::as_ptr(t), at);
+        at
+    }
+}
+
+/// ALU instructions of a texture environment mode (wasp).
+fn env_alu(mode: i64) -> u32 {
+    match mode {
+        gl::REPLACE => 0,
+        gl::DECAL | gl::BLEND_ENV | gl::COMBINE => 2,
+        _ => 1,
+    }
+}
+
+/// The shader of draw `d` when its 3D units read the slices of `key`
+/// (wasp): a2, then per sampled unit T(unit) and its environment's ALU,
+/// an ALU for the alpha test, a1 to write.
+fn shader_of(d: &DrawRec, key: &Key, alpha_test: bool, tex: &mut Textures) -> Vec<ShaderOp> {
+    let mut shader = vec![ShaderOp::Alu(2)];
+    for (k, s) in d.sampled.iter().enumerate() {
+        let base = tex.index(&s.texture);
+        let (texture, second) = match key[k] {
+            Some(sl) => (
+                base + sl.first as usize,
+                sl.second.map(|(b, weight)| SecondSlice {
+                    texture: base + b as usize,
+                    weight,
+                }),
+            ),
+            None => (base, None),
+        };
+        shader.push(ShaderOp::Tex(TexSample {
+            texture,
+            uv_set: s.unit as u8,
+            filter: s.texture.filter(),
+            mipmapped: s.texture.mipmapped(),
+            second,
+        }));
+        shader.push(ShaderOp::Alu(env_alu(s.env_mode)));
+    }
+    shader.push(ShaderOp::Alu(1 + u32::from(alpha_test)));
+    shader.retain(|op| *op != ShaderOp::Alu(0));
+    shader
+}
+
+/// Each triangle's key, and the runs of consecutive triangles with equal
+/// keys (first triangle, end).
+fn runs(d: &DrawRec) -> Vec<(Key, usize, usize)> {
+    let n = d.indices.len() / 3;
+    let key = |t: usize| -> Key {
+        let mut k: Key = [None; super::draw::UV_SETS];
+        for (j, s) in d.sampled.iter().enumerate() {
+            k[j] = s.slices.get(t).copied();
+        }
+        k
+    };
+    let mut out: Vec<(Key, usize, usize)> = Vec::new();
+    for t in 0..n {
+        let k = key(t);
+        match out.last_mut() {
+            Some(last) if last.0 == k => last.2 = t + 1,
+            _ => out.push((k, t, t + 1)),
+        }
+    }
+    if out.is_empty() {
+        out.push((key(0), 0, 0));
+    }
+    out
+}
+
+/// The scene of a frame's draws in a `w` x `h` frame.
+pub fn scene_of(
+    draws: &[DrawRec],
+    w: u32,
+    h: u32,
+    file: &Path,
+    frame: u64,
+) -> Result<Built, CallError> {
+    let mut tex = Textures::default();
+    let (mut meshes, mut materials) = (Vec::new(), Vec::new());
+    let mut extra: Vec<Material> = Vec::new();
+    let mut material_draws: Vec<usize> = (0..draws.len()).collect();
+    for (i, d) in draws.iter().enumerate() {
+        let state = d.fixed.draw_state(w, h).map_err(|m| CallError {
+            call: d.call,
+            name: "draw".into(),
+            message: m,
+        })?;
+        let blend = if state.blend.is_some() {
+            Blend::AlphaBlend
+        } else if state.alpha_test.is_some() {
+            Blend::AlphaTest
+        } else {
+            Blend::Opaque
+        };
+        let alpha = state.alpha_test.is_some();
+        let material = |shader| Material {
+            name: format!("call {}", d.call),
+            blend,
+            shader,
+            state: Some(state),
+        };
+        let runs = runs(d);
+        let mut keys: HashMap<Key, usize> = HashMap::new();
+        keys.insert(runs[0].0, i);
+        materials.push(material(shader_of(d, &runs[0].0, alpha, &mut tex)));
+        if runs.len() == 1 {
+            meshes.push(mesh_of(d, None, w, h, i));
+            continue;
+        }
+        for (key, a, b) in runs {
+            let m = *keys.entry(key).or_insert_with(|| {
+                extra.push(material(shader_of(d, &key, alpha, &mut tex)));
+                material_draws.push(i);
+                draws.len() + extra.len() - 1
+            });
+            meshes.push(mesh_of(d, Some((a, b)), w, h, m));
+        }
+    }
+    materials.extend(extra);
+    let scene = Scene {
+        name: format!("gl:{}:frame{frame}", file.display()),
+        source: format!("apitrace capture {}, frame {frame}", file.display()),
+        meshes,
+        materials,
+        textures: tex.textures,
+        camera: Camera::Clip,
+    };
+    Ok(Built {
+        scene,
+        infos: tex.infos,
+        texture_ids: tex.ids,
+        material_draws,
+    })
+}
+
+/// A draw's mesh (of its triangles `tris`, first and end, when given):
+/// clip-space positions with the viewport folded in (linear in clip
+/// space: the viewport's rectangle of a `w` x `h` frame becomes its place
+/// in the frame's normalized device coordinates).
+fn mesh_of(d: &DrawRec, tris: Option<(usize, usize)>, w: u32, h: u32, material: usize) -> Mesh {
+    let vp = &d.fixed.viewport;
+    let (wf, hf) = (f64::from(w), f64::from(h));
+    let (vx, vy, vw, vh) = (vp[0] as f64, vp[1] as f64, vp[2] as f64, vp[3] as f64);
+    let (sx, ox) = (vw / wf, (2.0 * vx + vw) / wf - 1.0);
+    let (sy, oy) = (vh / hf, (2.0 * vy + vh) / hf - 1.0);
+    // The vertices the triangles use, in order of first use.
+    let (used, indices): (Vec<usize>, Vec<u32>) = match tris {
+        None => ((0..d.clip.len()).collect(), d.indices.clone()),
+        Some((a, b)) => {
+            let mut map: HashMap<u32, u32> = HashMap::new();
+            let mut used = Vec::new();
+            let indices = d.indices[3 * a..3 * b]
+                .iter()
+                .map(|&v| {
+                    *map.entry(v).or_insert_with(|| {
+                        used.push(v as usize);
+                        used.len() as u32 - 1
+                    })
+                })
+                .collect();
+            (used, indices)
+        }
+    };
+    let positions = used
+        .iter()
+        .map(|&v| {
+            let p = d.clip[v];
+            [
+                (p[0] * sx + p[3] * ox) as f32,
+                (p[1] * sy + p[3] * oy) as f32,
+                p[2] as f32,
+            ]
+        })
+        .collect();
+    let pick = |uv: &Vec<[f32; 2]>| used.iter().map(|&v| uv[v]).collect::<Vec<_>>();
+    Mesh {
+        positions,
+        uv: pick(&d.uv[0]),
+        uv2: d
+            .sampled
+            .iter()
+            .any(|s| s.unit == 1)
+            .then(|| pick(&d.uv[1])),
+        indices,
+        material,
+        clip_w: Some(used.iter().map(|&v| d.clip[v][3] as f32).collect()),
+        ..Default::default()
+    }
+}
+
+/// The summary's entry of a texture.
+fn info(t: &TexObject) -> TextureInfo {
+    let l0 = &t.levels[&0];
+    TextureInfo {
+        id: t.id,
+        width: l0.width,
+        height: l0.height,
+        depth: t.is_3d.then_some(l0.depth),
+        format: if l0.compressed {
+            format!("{} (compressed)", gl::name(l0.internal))
+        } else {
+            format!(
+                "{} from {}/{}",
+                gl::name(l0.internal),
+                gl::name(l0.format),
+                gl::name(l0.ty)
+            )
+        },
+        levels: t.levels.keys().copied().collect(),
+        placeholder: t.placeholder.clone(),
+    }
+}
