@@ -120,15 +120,23 @@ struct FrameBuild {
     first_call: u64,
     draws: Vec<DrawRec>,
     unsupported: BTreeMap<String, u64>,
+    /// Of those, the draws the tracker refused without recording
+    /// (immediate mode, display lists...).
+    refused: BTreeMap<String, u64>,
     first_unsupported: Option<CallError>,
     error: Option<CallError>,
 }
 
 impl FrameBuild {
-    fn unsupported(&mut self, call: &Call, feature: String) {
+    /// A draw that needs `feature`; `refused` by the tracker (else found
+    /// out recording it).
+    fn unsupported(&mut self, call: &Call, feature: String, refused: bool) {
         self.first_unsupported.get_or_insert_with(|| {
             CallError::at(call, format!("needs {feature}, which is not modelled"))
         });
+        if refused {
+            *self.refused.entry(feature.clone()).or_default() += 1;
+        }
         *self.unsupported.entry(feature).or_default() += 1;
     }
 }
@@ -139,122 +147,188 @@ pub fn import(
     file: &Path,
     opts: ImportOptions,
 ) -> Result<Imported, ImportError> {
-    let (ctx, done, frames_read) = read(calls, file, opts)?;
-    let Some(Finished {
-        index,
-        build,
-        unmodelled,
-        earlier,
-        last_call,
-    }) = done.filter(|d| opts.frame.is_none_or(|n| n == d.index))
-    else {
-        return Err(ImportError::Frame(
-            file.into(),
-            match opts.frame {
-                Some(n) => format!(
-                    "frame {n} is past the end: the capture has {frames_read} complete frames \
-                     (0 to {})",
-                    frames_read.saturating_sub(1)
-                ),
-                None => "the capture has no complete frame (no buffer swap)".into(),
-            },
-        ));
-    };
-    if let Some(e) = build.error {
-        return Err(ImportError::Call(file.into(), e));
+    let mut reader = Reader::new(calls, file, opts.skip_unsupported);
+    if let Some(n) = opts.frame {
+        return reader.frame(n);
     }
-    if let (Some(e), false) = (&build.first_unsupported, opts.skip_unsupported) {
-        let mut e = e.clone();
-        e.message += " (--skip-unsupported counts such draws and goes on)";
-        return Err(ImportError::Call(file.into(), e));
+    // The last complete frame: every frame recorded (its unsupported
+    // draws then count among the earlier frames' of the next), the
+    // capture read to its end.
+    let mut last = None;
+    while let Some(done) = reader.next_frame(true, true)? {
+        last = Some(done);
     }
-    let (width, height) = frame_size(&build.draws, &ctx).ok_or_else(|| {
-        ImportError::Frame(
+    match last {
+        Some(done) => reader.finish(done),
+        None => Err(ImportError::Frame(
             file.into(),
-            format!("frame {index} has no viewport (glViewport)"),
-        )
-    })?;
-    let built = scene::scene_of(&build.draws, width, height, file, index)
-        .map_err(|e| ImportError::Call(file.into(), e))?;
-    Ok(Imported {
-        scene: built.scene,
-        width,
-        height,
-        frame: index,
-        calls: (build.first_call, last_call),
-        frames_read,
-        draw_calls: build.draws.len() as u64,
-        draw_call_numbers: build.draws.iter().map(|d| d.call).collect(),
-        triangles: build.draws.iter().map(|d| d.triangles).sum(),
-        unsupported: build.unsupported,
-        unsupported_in_earlier_frames: earlier,
-        unmodelled,
-        textures: built.infos,
-        texture_ids: built.texture_ids,
-        material_draws: built.material_draws,
-    })
+            "the capture has no complete frame (no buffer swap)".into(),
+        )),
+    }
 }
 
-/// Read the calls from the first to the swap of the frame asked for (to
-/// the end without one), tracking the state and recording the draws of
-/// the frames that may be imported: the context, the last frame finished
-/// and the complete frames read.
-fn read(
-    calls: impl IntoIterator<Item = Result<Call, CaptureError>>,
-    file: &Path,
-    opts: ImportOptions,
-) -> Result<(Context, Option<Finished>, u64), ImportError> {
-    let mut ctx = Context::default();
-    let mut frame = 0u64;
-    let mut cur = FrameBuild::default();
-    let mut unmodelled: BTreeMap<String, u64> = BTreeMap::new();
-    // Unsupported draws (immediate mode, display lists) of the frames
-    // before the current one, by feature.
-    let mut earlier: BTreeMap<String, u64> = BTreeMap::new();
-    let mut done: Option<Finished> = None;
-    for call in calls {
-        let call = call?;
-        let build = opts.frame.is_none_or(|n| n == frame);
-        match ctx
-            .apply(&call)
-            .map_err(|e| ImportError::Call(file.into(), e))?
-        {
-            Effect::Modelled => {}
-            Effect::Unmodelled(n) => *unmodelled.entry(n).or_default() += 1,
-            Effect::Draw if build => match draw::record(&ctx, &call) {
-                Ok(Ok(rec)) => cur.draws.push(rec),
-                Ok(Err(feature)) => cur.unsupported(&call, feature),
-                Err(e) => {
-                    cur.error.get_or_insert(e);
-                }
-            },
-            Effect::UnsupportedDraw(f) => cur.unsupported(&call, f),
-            Effect::Draw => {}
-            Effect::FrameEnd => {
-                let next = FrameBuild {
-                    first_call: call.no + 1,
-                    ..Default::default()
-                };
-                let build = std::mem::replace(&mut cur, next);
-                let before = earlier.clone();
-                for (f, n) in &build.unsupported {
-                    *earlier.entry(f.clone()).or_default() += n;
-                }
-                done = Some(Finished {
-                    index: frame,
-                    build,
-                    unmodelled: unmodelled.clone(),
-                    earlier: before,
-                    last_call: call.no,
-                });
-                frame += 1;
-                if opts.frame.is_some_and(|n| n + 1 == frame) {
-                    break;
+/// A streaming import: the calls read once, from the first, the GL state
+/// carried from frame to frame, and frames imported in order as they are
+/// asked for ([`Reader::frame`]).
+pub struct Reader<I> {
+    calls: I,
+    file: PathBuf,
+    skip_unsupported: bool,
+    ctx: Context,
+    /// The frame being read (the complete frames read so far).
+    frame: u64,
+    cur: FrameBuild,
+    /// Calls not modelled so far, by name.
+    unmodelled: BTreeMap<String, u64>,
+    /// Unsupported draws (immediate mode, display lists) of the frames
+    /// before the current one, by feature.
+    earlier: BTreeMap<String, u64>,
+}
+
+impl<I: Iterator<Item = Result<Call, CaptureError>>> Reader<I> {
+    /// A reader of `calls` (read from `file`).
+    pub fn new(
+        calls: impl IntoIterator<IntoIter = I, Item = Result<Call, CaptureError>>,
+        file: &Path,
+        skip_unsupported: bool,
+    ) -> Self {
+        Reader {
+            calls: calls.into_iter(),
+            file: file.into(),
+            skip_unsupported,
+            ctx: Context::default(),
+            frame: 0,
+            cur: FrameBuild::default(),
+            unmodelled: BTreeMap::new(),
+            earlier: BTreeMap::new(),
+        }
+    }
+
+    /// Import frame `n`, reading on to its swap (the frames between are
+    /// read, their state tracked, their draws not recorded). `n` must not
+    /// be a frame already read.
+    pub fn frame(&mut self, n: u64) -> Result<Imported, ImportError> {
+        assert!(n >= self.frame, "frame {n} was read already");
+        loop {
+            let here = self.frame;
+            match self.next_frame(here == n, false)? {
+                Some(done) if here == n => return self.finish(done),
+                Some(_) => {}
+                None => {
+                    let read = self.frame;
+                    return Err(ImportError::Frame(
+                        self.file.clone(),
+                        format!(
+                            "frame {n} is past the end: the capture has {read} complete frames \
+                             (0 to {})",
+                            read.saturating_sub(1)
+                        ),
+                    ));
                 }
             }
         }
     }
-    Ok((ctx, done, frame))
+
+    /// Read the calls to the next swap, tracking the state and, if
+    /// `record`, recording the frame's draws: the frame finished, `None`
+    /// at the capture's end. The frame's unsupported draws count among
+    /// the earlier frames' of the next: all of them if `all`, else those
+    /// the tracker refuses without recording (immediate mode, display
+    /// lists), as when the frames before one imported are not recorded.
+    fn next_frame(&mut self, record: bool, all: bool) -> Result<Option<Finished>, ImportError> {
+        for call in self.calls.by_ref() {
+            let call = call?;
+            let cur = &mut self.cur;
+            match self
+                .ctx
+                .apply(&call)
+                .map_err(|e| ImportError::Call(self.file.clone(), e))?
+            {
+                Effect::Modelled => {}
+                Effect::Unmodelled(n) => *self.unmodelled.entry(n).or_default() += 1,
+                Effect::Draw if record => match draw::record(&self.ctx, &call) {
+                    Ok(Ok(rec)) => cur.draws.push(rec),
+                    Ok(Err(feature)) => cur.unsupported(&call, feature, false),
+                    Err(e) => {
+                        cur.error.get_or_insert(e);
+                    }
+                },
+                Effect::UnsupportedDraw(f) => cur.unsupported(&call, f, true),
+                Effect::Draw => {}
+                Effect::FrameEnd => {
+                    let next = FrameBuild {
+                        first_call: call.no + 1,
+                        ..Default::default()
+                    };
+                    let build = std::mem::replace(&mut self.cur, next);
+                    let before = self.earlier.clone();
+                    let counted = if all {
+                        &build.unsupported
+                    } else {
+                        &build.refused
+                    };
+                    for (f, n) in counted {
+                        *self.earlier.entry(f.clone()).or_default() += n;
+                    }
+                    let done = Finished {
+                        index: self.frame,
+                        build,
+                        unmodelled: self.unmodelled.clone(),
+                        earlier: before,
+                        last_call: call.no,
+                    };
+                    self.frame += 1;
+                    return Ok(Some(done));
+                }
+            }
+        }
+        Ok(None)
+    }
+
+    /// A frame finished: its errors, or its scene placed in the frame.
+    fn finish(&self, done: Finished) -> Result<Imported, ImportError> {
+        let file = self.file.as_path();
+        let Finished {
+            index,
+            build,
+            unmodelled,
+            earlier,
+            last_call,
+        } = done;
+        if let Some(e) = build.error {
+            return Err(ImportError::Call(file.into(), e));
+        }
+        if let (Some(e), false) = (&build.first_unsupported, self.skip_unsupported) {
+            let mut e = e.clone();
+            e.message += " (--skip-unsupported counts such draws and goes on)";
+            return Err(ImportError::Call(file.into(), e));
+        }
+        let (width, height) = frame_size(&build.draws, &self.ctx).ok_or_else(|| {
+            ImportError::Frame(
+                file.into(),
+                format!("frame {index} has no viewport (glViewport)"),
+            )
+        })?;
+        let built = scene::scene_of(&build.draws, width, height, file, index)
+            .map_err(|e| ImportError::Call(file.into(), e))?;
+        Ok(Imported {
+            scene: built.scene,
+            width,
+            height,
+            frame: index,
+            calls: (build.first_call, last_call),
+            frames_read: self.frame,
+            draw_calls: build.draws.len() as u64,
+            draw_call_numbers: build.draws.iter().map(|d| d.call).collect(),
+            triangles: build.draws.iter().map(|d| d.triangles).sum(),
+            unsupported: build.unsupported,
+            unsupported_in_earlier_frames: earlier,
+            unmodelled,
+            textures: built.infos,
+            texture_ids: built.texture_ids,
+            material_draws: built.material_draws,
+        })
+    }
 }
 
 /// The frame's size: the extent of its draws' viewports (the current one
@@ -437,6 +511,42 @@ mod tests {
         let want = [("immediate mode (glBegin/glEnd)".to_string(), 1)];
         assert_eq!(next.unsupported_in_earlier_frames, want.into());
         assert_eq!(ok.unmodelled.get("glXMakeCurrent"), Some(&1));
+    }
+
+    #[test]
+    fn a_reader_imports_frames_in_order_as_single_imports_do() {
+        // Three frames: 1, 2 and 1 squares; the third past the range read.
+        let mut calls = frame(None, &[[0.0, 0.0, 8.0, 8.0, 0.0]]);
+        calls.extend(frame(
+            None,
+            &[[0.0, 0.0, 8.0, 8.0, 0.0], [8.0, 8.0, 16.0, 16.0, 0.0]],
+        ));
+        calls.extend(frame(None, &[[0.0, 0.0, 4.0, 4.0, 0.0]]));
+        for (n, k) in calls.iter_mut().enumerate() {
+            k.no = n as u64;
+        }
+        let path = Path::new("t.trace");
+        let mut reader = Reader::new(calls.clone().into_iter().map(Ok), path, false);
+        for n in [1, 2] {
+            let one = import(
+                calls.clone().into_iter().map(Ok),
+                path,
+                ImportOptions {
+                    frame: Some(n),
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            let got = reader.frame(n).unwrap();
+            assert_eq!(
+                (got.frame, got.calls, got.frames_read, got.draw_calls),
+                (one.frame, one.calls, one.frames_read, one.draw_calls)
+            );
+            assert_eq!(got.scene, one.scene);
+            assert_eq!(got.unmodelled, one.unmodelled);
+        }
+        let msg = reader.frame(3).unwrap_err().to_string();
+        assert!(msg.contains("3 complete frames (0 to 2)"), "{msg}");
     }
 
     #[test]

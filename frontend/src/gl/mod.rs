@@ -23,5 +23,5 @@ pub mod textures;
 pub mod tracker;
 pub mod volume;
 
-pub use import::{import, ImportError, ImportOptions, Imported, TextureInfo};
+pub use import::{import, ImportError, ImportOptions, Imported, Reader, TextureInfo};
 pub use summary::{DrawSummary, Summary};

@@ -292,3 +292,174 @@ fn info(t: &TexObject) -> TextureInfo {
         placeholder: t.placeholder.clone(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::args::test_calls::*;
+    use super::super::import::{import, ImportOptions};
+    use super::*;
+    use crate::raster::{rasterize, RasterOptions};
+    use wasp_gltrace::{Call, Value};
+
+    /// A 64x64 window (glOrtho 0..64), one texture on unit 0 uploaded by
+    /// `upload` with GL_TEXTURE_MIN_FILTER `min`, enabled as `target`,
+    /// then one GL_QUADS draw of the squares (x0, x1, r): x0..x1 by 0..h
+    /// pixels, s and t 0..1 and the third coordinate r; one swap.
+    fn frame(target: i64, upload: Call, min: i64, h: f32, squares: &[[f32; 3]]) -> Vec<Call> {
+        let i = Value::SInt;
+        let (mut v, mut tc) = (Vec::new(), Vec::new());
+        for &[x0, x1, r] in squares {
+            v.extend([x0, 0.0, x1, 0.0, x1, h, x0, h]);
+            tc.extend([0.0, 0.0, r, 1.0, 0.0, r, 1.0, 1.0, r, 0.0, 1.0, r]);
+        }
+        let n = 4 * squares.len() as i64;
+        let mut c = vec![
+            call(0, "glViewport", vec![i(0), i(0), i(64), i(64)]),
+            call(0, "glMatrixMode", vec![e(gl::PROJECTION)]),
+            call(
+                0,
+                "glOrtho",
+                vec![f(0.0), f(64.0), f(0.0), f(64.0), f(-1.0), f(1.0)],
+            ),
+            call(0, "glBindTexture", vec![e(target), i(7)]),
+            upload,
+            call(
+                0,
+                "glTexParameteri",
+                vec![e(target), e(gl::TEXTURE_MIN_FILTER), e(min)],
+            ),
+            call(0, "glEnable", vec![e(target)]),
+            call(0, "glEnableClientState", vec![e(gl::VERTEX_ARRAY)]),
+            call(0, "glEnableClientState", vec![e(gl::TEXTURE_COORD_ARRAY)]),
+            call(
+                0,
+                "glVertexPointer",
+                vec![i(2), e(gl::FLOAT), i(0), floats(&v)],
+            ),
+            call(
+                0,
+                "glTexCoordPointer",
+                vec![i(3), e(gl::FLOAT), i(0), floats(&tc)],
+            ),
+            call(0, "glDrawArrays", vec![e(gl::QUADS), i(0), i(n)]),
+            call(0, "glXSwapBuffers", vec![]),
+        ];
+        for (n, k) in c.iter_mut().enumerate() {
+            k.no = n as u64;
+        }
+        c
+    }
+
+    /// glTexImage3D of a `w` x `w` x `d` GL_RGBA texture.
+    fn image_3d(w: i64, d: i64) -> Call {
+        let i = Value::SInt;
+        let px = Value::Blob(vec![200; (w * w * d * 4) as usize]);
+        let a = vec![e(gl::TEXTURE_3D), i(0), e(gl::RGBA), i(w), i(w), i(d), i(0)];
+        let b = vec![e(gl::RGBA), e(gl::UNSIGNED_BYTE), px];
+        call(0, "glTexImage3D", [a, b].concat())
+    }
+
+    fn run(calls: Vec<Call>) -> (super::super::Imported, crate::raster::Frame) {
+        let imp = import(
+            calls.into_iter().map(Ok),
+            Path::new("t.trace"),
+            ImportOptions::default(),
+        )
+        .unwrap();
+        let opts = RasterOptions {
+            threads: 1,
+            ..Default::default()
+        };
+        let f = rasterize(&imp.scene, imp.width, imp.height, &opts).unwrap();
+        (imp, f)
+    }
+
+    fn sample(m: &Material) -> TexSample {
+        m.shader
+            .iter()
+            .find_map(|op| match op {
+                ShaderOp::Tex(t) => Some(*t),
+                _ => None,
+            })
+            .unwrap()
+    }
+
+    #[test]
+    fn a_3d_texture_is_its_slices_and_r_picks_them_per_triangle() {
+        // 4x4x4, nearest: the left square reads slice 1, the right one
+        // slice 2: one draw, two materials, the second appended.
+        let squares = [[0.0, 32.0, 1.5 / 4.0], [32.0, 64.0, 2.5 / 4.0]];
+        let calls = frame(gl::TEXTURE_3D, image_3d(4, 4), gl::NEAREST, 64.0, &squares);
+        let (imp, f) = run(calls);
+        assert_eq!(imp.scene.textures.len(), 4, "the stack of slices");
+        assert_eq!(imp.texture_ids, [7; 4]);
+        assert_eq!(imp.textures.len(), 1);
+        assert_eq!(imp.textures[0].depth, Some(4));
+        assert_eq!(imp.material_draws, [0, 0]);
+        assert_eq!(imp.scene.meshes.len(), 2);
+        let (a, b) = (
+            sample(&imp.scene.materials[0]),
+            sample(&imp.scene.materials[1]),
+        );
+        assert_eq!((a.texture, a.second, a.mipmapped), (1, None, false));
+        assert_eq!((b.texture, b.second), (2, None));
+        // Each slice is one 4x4-texel block: two blocks in the frame.
+        assert_eq!(f.trace.stats().frame_unique_blocks, 2);
+        assert_eq!(f.stats.positions, 32 * 32);
+        // Linear in r at slice 1's centre: slices 1 and 2 (weight 0), one
+        // texture instruction of two passes.
+        let one = [[0.0, 64.0, 1.5 / 4.0]];
+        let calls = frame(gl::TEXTURE_3D, image_3d(4, 4), gl::LINEAR, 64.0, &one);
+        let (imp, f) = run(calls);
+        let s = sample(&imp.scene.materials[0]);
+        let second = Some(crate::SecondSlice {
+            texture: 2,
+            weight: 0,
+        });
+        assert_eq!((s.texture, s.second), (1, second));
+        assert_eq!(f.trace.stats().frame_unique_blocks, 2);
+        // Every texture instruction filters twice.
+        assert_eq!(f.trace.trilinear_count(), f.trace.tex_count());
+        assert!(f.trace.tex_count() > 0);
+        // r varying across a triangle is not modelled: counted, or an error.
+        let mut calls = frame(gl::TEXTURE_3D, image_3d(4, 4), gl::LINEAR, 64.0, &one);
+        let tc = floats(&[0.0, 0.0, 0.1, 1.0, 0.0, 0.9, 1.0, 1.0, 0.9, 0.0, 1.0, 0.1]);
+        calls[10].args[3] = tc;
+        let err = import(
+            calls.into_iter().map(Ok),
+            Path::new("t"),
+            ImportOptions::default(),
+        );
+        let msg = err.unwrap_err().to_string();
+        assert!(msg.contains("different slices across a triangle"), "{msg}");
+    }
+
+    #[test]
+    fn a_texture_without_a_mipmap_filter_reads_level_zero_when_minified() {
+        // A 64x64 texture on an 8x8-pixel square: lambda 3. GL_LINEAR
+        // reads level 0 (each pixel's 2x2 texels straddle two 4x4-texel
+        // cells each way: all 16x16 blocks); a mipmap filter reads level 3
+        // (8x8 texels: 2x2 blocks).
+        let i = Value::SInt;
+        let up = |_| {
+            let a = vec![e(gl::TEXTURE_2D), i(0), e(gl::RGBA), i(64), i(64), i(0)];
+            let px = Value::Blob(vec![9; 64 * 64 * 4]);
+            call(
+                0,
+                "glTexImage2D",
+                [a, vec![e(gl::RGBA), e(gl::UNSIGNED_BYTE), px]].concat(),
+            )
+        };
+        let sq = [[0.0, 8.0, 0.0]];
+        let blocks = |min| {
+            let (imp, f) = run(frame(gl::TEXTURE_2D, up(()), min, 8.0, &sq));
+            (
+                sample(&imp.scene.materials[0]).mipmapped,
+                f.trace.stats().frame_unique_blocks,
+            )
+        };
+        assert_eq!(blocks(gl::LINEAR), (false, 256));
+        assert_eq!(blocks(gl::NEAREST).0, false);
+        assert_eq!(blocks(gl::LINEAR_MIPMAP_NEAREST), (true, 4));
+    }
+}
