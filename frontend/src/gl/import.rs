@@ -6,7 +6,7 @@
 
 use super::args::CallError;
 use super::draw::{self, DrawRec};
-use super::scene;
+use super::scene::{self, TextureInfo};
 use super::tracker::{Context, Effect};
 use crate::Scene;
 use std::collections::BTreeMap;
@@ -50,24 +50,6 @@ impl From<CaptureError> for ImportError {
     fn from(e: CaptureError) -> Self {
         ImportError::Capture(e)
     }
-}
-
-/// A texture the frame samples, for the summary.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
-pub struct TextureInfo {
-    /// The GL name.
-    pub id: u32,
-    pub width: u32,
-    pub height: u32,
-    /// Level 0's internal format, pixel format and type.
-    pub format: String,
-    /// A 3D texture's depth (slices).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub depth: Option<u32>,
-    /// The levels the engine uploaded.
-    pub levels: Vec<u32>,
-    /// Why its texels are the placeholder, if they are.
-    pub placeholder: Option<String>,
 }
 
 /// One frame imported: the scene to rasterize and what the import saw.

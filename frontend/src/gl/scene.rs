@@ -14,13 +14,30 @@
 use super::args::CallError;
 use super::draw::DrawRec;
 use super::enums as gl;
-use super::import::TextureInfo;
 use super::textures::TexObject;
 use super::volume::Slices;
 use crate::{Blend, Camera, Material, Mesh, Scene, SecondSlice, ShaderOp, TexSample, Texture};
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
+
+/// A texture the frame samples, for the summary.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct TextureInfo {
+    /// The GL name.
+    pub id: u32,
+    pub width: u32,
+    pub height: u32,
+    /// Level 0's internal format, pixel format and type.
+    pub format: String,
+    /// A 3D texture's depth (slices).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub depth: Option<u32>,
+    /// The levels the engine uploaded.
+    pub levels: Vec<u32>,
+    /// Why its texels are the placeholder, if they are.
+    pub placeholder: Option<String>,
+}
 
 /// A frame's scene and what the summary and the Mesa check need of it.
 pub struct Built {
@@ -37,6 +54,9 @@ pub struct Built {
 /// for a 2D texture): triangles with equal keys share a material.
 type Key = [Option<Slices>; super::draw::UV_SETS];
 
+/// A version of a texture object placed in the scene, and its index.
+type Placed = (Arc<TexObject>, usize);
+
 /// The textures of the scene being built: each GL object's first scene
 /// texture (a 3D texture's slices follow one another). The versions of
 /// one object that differ only in state the layout does not hold (a
@@ -50,7 +70,7 @@ struct Textures {
     ids: Vec<u32>,
     seen: HashMap<*const TexObject, usize>,
     /// By (GL name, 3D, repeat): the versions placed and their index.
-    versions: HashMap<(u32, bool, bool), Vec<(Arc<TexObject>, usize)>>,
+    versions: HashMap<(u32, bool, bool), Vec<Placed>>,
 }
 
 impl Textures {
@@ -459,7 +479,7 @@ mod tests {
             )
         };
         assert_eq!(blocks(gl::LINEAR), (false, 256));
-        assert_eq!(blocks(gl::NEAREST).0, false);
+        assert!(!blocks(gl::NEAREST).0);
         assert_eq!(blocks(gl::LINEAR_MIPMAP_NEAREST), (true, 4));
     }
 }

@@ -1,7 +1,8 @@
 //! The import's summary: what was read and what the front end made of
 //! it, printed (one line reads exactly `draw calls: N`) and as JSON.
 
-use super::import::{Imported, TextureInfo};
+use super::import::Imported;
+use super::scene::TextureInfo;
 use crate::raster::Frame;
 use serde::Serialize;
 use std::collections::BTreeMap;

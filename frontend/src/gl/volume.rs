@@ -159,7 +159,7 @@ impl Textures {
         let n = width as usize * height as usize * depth as usize;
         // Slices one after another: as rows of one image `depth` times as
         // tall (GL's unpack rules go on from slice to slice).
-        let all = height.checked_mul(depth).unwrap_or(u32::MAX);
+        let all = height.saturating_mul(depth);
         (t.rgba, t.placeholder) = match pixels {
             None => (vec![0; n * 4], None),
             Some(p) => match to_rgba(&p, width, all, format, ty, align, row_len) {
@@ -281,7 +281,7 @@ mod tests {
         let o = t.objects_3d[&4].clone();
         assert_eq!((o.depth(), o.rgba.len()), (3, 2 * 3 * 4));
         assert_eq!(o.slice_texture(2).rgba, [20, 20, 20, 255, 21, 21, 21, 255]);
-        assert!(t.objects.get(&4).is_none(), "the 2D name is another object");
+        assert!(!t.objects.contains_key(&4), "the 2D name is another object");
         // Slice 1, texel 1: 99.
         let sub = vec![e(gl::TEXTURE_3D), i(0), i(1), i(0), i(1), i(1), i(1), i(1)];
         let fmt = vec![
