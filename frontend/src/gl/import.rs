@@ -330,7 +330,7 @@ fn frame_size(draws: &[DrawRec], ctx: &Context) -> Option<(u32, u32)> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::super::args::test_calls::*;
     use super::super::enums as gl;
     use super::*;
@@ -375,7 +375,8 @@ mod tests {
         c
     }
 
-    fn run(calls: Vec<Call>) -> (Imported, crate::raster::Frame) {
+    /// Import `calls`' last frame and rasterize it on one thread.
+    pub(crate) fn run(calls: Vec<Call>) -> (Imported, crate::raster::Frame) {
         let imp = import(
             calls.into_iter().map(Ok),
             Path::new("t.trace"),

@@ -316,9 +316,9 @@ fn info(t: &TexObject) -> TextureInfo {
 #[cfg(test)]
 mod tests {
     use super::super::args::test_calls::*;
+    use super::super::import::tests::run;
     use super::super::import::{import, ImportOptions};
     use super::*;
-    use crate::raster::{rasterize, RasterOptions};
     use wasp_gltrace::{Call, Value};
 
     /// A 64x64 window (glOrtho 0..64), one texture on unit 0 uploaded by
@@ -377,21 +377,6 @@ mod tests {
         let a = vec![e(gl::TEXTURE_3D), i(0), e(gl::RGBA), i(w), i(w), i(d), i(0)];
         let b = vec![e(gl::RGBA), e(gl::UNSIGNED_BYTE), px];
         call(0, "glTexImage3D", [a, b].concat())
-    }
-
-    fn run(calls: Vec<Call>) -> (super::super::Imported, crate::raster::Frame) {
-        let imp = import(
-            calls.into_iter().map(Ok),
-            Path::new("t.trace"),
-            ImportOptions::default(),
-        )
-        .unwrap();
-        let opts = RasterOptions {
-            threads: 1,
-            ..Default::default()
-        };
-        let f = rasterize(&imp.scene, imp.width, imp.height, &opts).unwrap();
-        (imp, f)
     }
 
     fn sample(m: &Material) -> TexSample {
