@@ -141,7 +141,7 @@ fn material_textures(imported: &Imported) -> Vec<Option<u32>> {
         .iter()
         .map(|m| {
             m.shader.iter().find_map(|op| match op {
-                ShaderOp::Tex(t) => imported.textures.get(t.texture).map(|i| i.id),
+                ShaderOp::Tex(t) => imported.texture_ids.get(t.texture).copied(),
                 _ => None,
             })
         })

@@ -90,30 +90,57 @@ fn parse_frames(s: &str) -> Result<FrameRange, String> {
     Ok(FrameRange { first, last })
 }
 
-/// Import frame `frame` (`None`: the last complete one) of the capture
-/// and rasterize it (with its picture when `colour`).
-fn import_frame(
-    args: &ImportGlArgs,
-    frame: Option<u64>,
-    colour: bool,
-) -> Result<(gl::Imported, Frame), CliError> {
-    let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
-    let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;
-    capture.require_gl().map_err(|e| failed(&e))?;
-    let opts = ImportOptions {
-        frame,
-        skip_unsupported: args.skip_unsupported,
-    };
-    let imported = gl::import(capture, &args.capture, opts).map_err(|e| failed(&e))?;
+/// Rasterize an imported frame (with its picture when `colour`).
+fn rasterize_frame(imported: &gl::Imported, colour: bool) -> Result<Frame, CliError> {
     let raster = RasterOptions {
         tile: TILE,
         colour,
         texture_format: args.texture_format,
         ..RasterOptions::default()
     };
-    let frame = rasterize(&imported.scene, imported.width, imported.height, &raster)
-        .map_err(|e| failed(&e))?;
-    Ok((imported, frame))
+    rasterize(&imported.scene, imported.width, imported.height, &raster)
+        .map_err(|e| CliError::failed(e.to_string()))
+}
+
+/// Import frames `first` to `last` (`None`: the last complete frame
+/// alone) in one pass over the capture, each rasterized as it comes (the
+/// last with its picture when `colour`): the earlier frames' traces, and
+/// the last frame imported and rasterized.
+fn import_frames(
+    args: &ImportGlArgs,
+    range: Option<(u64, u64)>,
+    colour: bool,
+) -> Result<(Vec<Trace>, gl::Imported, Frame), CliError> {
+    let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
+    let capture = wasp_gltrace::Capture::open(&args.capture).map_err(|e| failed(&e))?;
+    capture.require_gl().map_err(|e| failed(&e))?;
+    let Some((first, last)) = range else {
+        let opts = ImportOptions {
+            frame: None,
+            skip_unsupported: args.skip_unsupported,
+        };
+        let imported = gl::import(capture, &args.capture, opts).map_err(|e| failed(&e))?;
+        let frame = rasterize_frame(&imported, colour)?;
+        return Ok((Vec::new(), imported, frame));
+    };
+    let mut reader = gl::Reader::new(capture, &args.capture, args.skip_unsupported);
+    let mut traces = Vec::new();
+    for f in first..last {
+        let imported = reader.frame(f).map_err(|e| failed(&e))?;
+        let frame = rasterize_frame(&imported, false)?;
+        if !args.quiet {
+            eprintln!(
+                "wasp: imported frame {} ({} draw calls, {} quads shaded)",
+                imported.frame,
+                imported.draw_calls,
+                frame.trace.quad_count()
+            );
+        }
+        traces.push(frame.trace);
+    }
+    let imported = reader.frame(last).map_err(|e| failed(&e))?;
+    let frame = rasterize_frame(&imported, colour)?;
+    Ok((traces, imported, frame))
 }
 
 /// Run `wasp import-gl`.
@@ -131,29 +158,15 @@ pub fn run(args: &ImportGlArgs) -> Result<(), CliError> {
     }
     let failed = |e: &dyn std::fmt::Display| CliError::failed(e.to_string());
     let clock = std::time::Instant::now();
-    let (earlier, last) = match args.frames {
-        Some(r) => (r.first..r.last, Some(r.last)),
-        None => (0..0, args.frame),
+    let range = match (args.frames, args.frame) {
+        (Some(r), _) => Some((r.first, r.last)),
+        (None, Some(n)) => Some((n, n)),
+        (None, None) => None,
     };
-    // The last frame first: a range past the capture's end fails at once.
-    let (imported, frame) = import_frame(args, last, args.png.is_some())?;
+    // One pass over the capture: the frames of a range in order, the GL
+    // state carried from one to the next.
+    let (traces, imported, frame) = import_frames(args, range, args.png.is_some())?;
     let read = clock.elapsed().as_secs_f64() - frame.timings.total();
-    // Earlier frames of a range: each imported on its own (the state is
-    // tracked from the capture's start every time) and rasterized without
-    // a picture.
-    let mut traces = Vec::new();
-    for f in earlier {
-        let (imported, frame) = import_frame(args, Some(f), false)?;
-        if !args.quiet {
-            eprintln!(
-                "wasp: imported frame {} ({} draw calls, {} quads shaded)",
-                imported.frame,
-                imported.draw_calls,
-                frame.trace.quad_count()
-            );
-        }
-        traces.push(frame.trace);
-    }
     if !args.quiet {
         eprintln!(
             "wasp: imported frame {} of {} ({} draw calls) in {read:.2} s, rasterized in {:.2} s",

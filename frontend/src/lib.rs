@@ -104,6 +104,38 @@ pub struct TexSample {
     pub uv_set: u8,
     /// Filtering.
     pub filter: Filter,
+    /// Whether the level of detail picks the mip levels read (every
+    /// loader), or level 0 alone is read (`false`: GL's `GL_NEAREST` and
+    /// `GL_LINEAR` minification filters, from the GL importer).
+    pub mipmapped: bool,
+    /// A second texture the instruction filters with the first, at the
+    /// same UVs and level 0 of both (the GL importer's 3D textures: the
+    /// two slices a linear filter in r reads): one texture instruction of
+    /// two filter passes, like a trilinear one.
+    pub second: Option<SecondSlice>,
+}
+
+impl TexSample {
+    /// A mipmapped sample of one texture (the loaders' kind).
+    pub fn new(texture: usize, uv_set: u8, filter: Filter) -> Self {
+        Self {
+            texture,
+            uv_set,
+            filter,
+            mipmapped: true,
+            second: None,
+        }
+    }
+}
+
+/// The second texture of a [`TexSample`] and its weight.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SecondSlice {
+    /// Index into [`Scene::textures`].
+    pub texture: usize,
+    /// Its weight in the filtered colour, in 1/65536 (the first texture
+    /// has the rest).
+    pub weight: u16,
 }
 
 /// The instruction mix of a material's fragment shader, in program order:

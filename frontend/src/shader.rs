@@ -22,11 +22,7 @@ pub const TEMPLATES: [&str; 4] = ["standard", "lightmapped", "sprite", "unlit"];
 pub fn standard(base: usize, filter: Filter) -> Vec<ShaderOp> {
     vec![
         ShaderOp::Alu(4),
-        ShaderOp::Tex(TexSample {
-            texture: base,
-            uv_set: 0,
-            filter,
-        }),
+        ShaderOp::Tex(TexSample::new(base, 0, filter)),
         ShaderOp::Alu(6),
     ]
 }
@@ -36,17 +32,9 @@ pub fn standard(base: usize, filter: Filter) -> Vec<ShaderOp> {
 pub fn lightmapped(base: usize, lightmap: usize, filter: Filter) -> Vec<ShaderOp> {
     vec![
         ShaderOp::Alu(4),
-        ShaderOp::Tex(TexSample {
-            texture: base,
-            uv_set: 0,
-            filter,
-        }),
+        ShaderOp::Tex(TexSample::new(base, 0, filter)),
         ShaderOp::Alu(2),
-        ShaderOp::Tex(TexSample {
-            texture: lightmap,
-            uv_set: 1,
-            filter: Filter::Bilinear,
-        }),
+        ShaderOp::Tex(TexSample::new(lightmap, 1, Filter::Bilinear)),
         ShaderOp::Alu(6),
     ]
 }
@@ -55,11 +43,7 @@ pub fn lightmapped(base: usize, lightmap: usize, filter: Filter) -> Vec<ShaderOp
 pub fn sprite(tex: usize, filter: Filter) -> Vec<ShaderOp> {
     vec![
         ShaderOp::Alu(2),
-        ShaderOp::Tex(TexSample {
-            texture: tex,
-            uv_set: 0,
-            filter,
-        }),
+        ShaderOp::Tex(TexSample::new(tex, 0, filter)),
         ShaderOp::Alu(3),
     ]
 }
@@ -68,11 +52,7 @@ pub fn sprite(tex: usize, filter: Filter) -> Vec<ShaderOp> {
 pub fn unlit(base: usize, filter: Filter) -> Vec<ShaderOp> {
     vec![
         ShaderOp::Alu(2),
-        ShaderOp::Tex(TexSample {
-            texture: base,
-            uv_set: 0,
-            filter,
-        }),
+        ShaderOp::Tex(TexSample::new(base, 0, filter)),
         ShaderOp::Alu(2),
     ]
 }

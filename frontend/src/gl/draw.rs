@@ -11,6 +11,7 @@ use super::enums as gl;
 use super::state::FixedState;
 use super::textures::TexObject;
 use super::tracker::Context;
+use super::volume::{self, Slices};
 use std::sync::Arc;
 use wasp_gltrace::Call;
 
@@ -18,12 +19,15 @@ use wasp_gltrace::Call;
 pub const UV_SETS: usize = 2;
 
 /// A texture unit a draw samples: its number, its texture as it was at the
-/// draw, and its environment mode.
+/// draw, its environment mode, and for a 3D texture each vertex's r.
 #[derive(Clone, Debug)]
 pub struct Sampled {
     pub unit: usize,
     pub texture: Arc<TexObject>,
     pub env_mode: i64,
+    /// The slices of a 3D texture each triangle reads (the draw's
+    /// triangles in order); empty for a 2D texture.
+    pub slices: Vec<Slices>,
 }
 
 /// One draw, transformed to clip space.
@@ -106,7 +110,7 @@ fn unsupported(ctx: &Context) -> Option<String> {
         if let Some(&cap) = unit.enabled_other.first() {
             return Some(format!("{} enabled on texture unit {u}", gl::name(cap)));
         }
-        if unit.enabled_2d && u >= UV_SETS {
+        if (unit.enabled_2d || unit.enabled_3d) && u >= UV_SETS {
             return Some(format!(
                 "texturing on unit {u} (the front end has {UV_SETS} UV sets)"
             ));
@@ -190,19 +194,43 @@ pub fn record(ctx: &Context, call: &Call) -> Result<Result<DrawRec, String>, Cal
     let mut uv: [Vec<[f32; 2]>; UV_SETS] = [vec![[0.0; 2]; used.len()], vec![[0.0; 2]; used.len()]];
     for (u, out) in uv.iter_mut().enumerate() {
         let unit = &ctx.textures.units[u];
-        let Some(tex) = ctx.textures.objects.get(&unit.bound) else {
+        // GL_TEXTURE_3D takes precedence over GL_TEXTURE_2D; an incomplete
+        // texture of the enabled target turns the unit off.
+        let tex = if unit.enabled_3d {
+            ctx.textures.objects_3d.get(&unit.bound_3d)
+        } else if unit.enabled_2d {
+            ctx.textures.objects.get(&unit.bound)
+        } else {
+            None
+        };
+        let Some(tex) = tex.filter(|t| t.complete()) else {
             continue;
         };
-        if !unit.enabled_2d || !tex.complete() {
-            continue;
+        if unit.enabled_3d && tex.mipmapped() {
+            return Ok(Err(format!(
+                "a mipmapped 3D texture (texture {}, GL_TEXTURE_MIN_FILTER {})",
+                tex.id,
+                gl::name(tex.min_filter)
+            )));
         }
+        let mut r = Vec::new();
+        let want_r = unit.enabled_3d.then_some(&mut r);
+        texcoords(ctx, u, ctx.arrays.texcoord[u].as_ref(), &used, out, want_r)
+            .map_err(|m| fail(format!("texture coordinates of unit {u}: {m}")))?;
+        let slices = if unit.enabled_3d {
+            match volume::triangle_slices(tex, &r, &indices) {
+                Ok(s) => s,
+                Err(feature) => return Ok(Err(feature)),
+            }
+        } else {
+            Vec::new()
+        };
         sampled.push(Sampled {
             unit: u,
             texture: tex.clone(),
             env_mode: unit.env_mode,
+            slices,
         });
-        texcoords(ctx, u, ctx.arrays.texcoord[u].as_ref(), &used, out)
-            .map_err(|m| fail(format!("texture coordinates of unit {u}: {m}")))?;
     }
     Ok(Ok(DrawRec {
         call: call.no,
@@ -234,15 +262,16 @@ fn renumber(tris: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
 }
 
 /// Unit `u`'s coordinates of the vertices `used` through its texture
-/// matrix, divided by q; without an enabled array, (0, 0, 0, 1) (GL's
-/// initial current texture coordinate, (wasp): glTexCoord is not
-/// modelled).
+/// matrix, divided by q (r too, into `r` when asked for); without an
+/// enabled array, (0, 0, 0, 1) (GL's initial current texture coordinate,
+/// (wasp): glTexCoord is not modelled).
 fn texcoords(
     ctx: &Context,
     u: usize,
     array: Option<&Array>,
     used: &[u32],
     out: &mut [[f32; 2]],
+    mut r: Option<&mut Vec<f64>>,
 ) -> Result<(), String> {
     let m = ctx.matrices.texture[u].top();
     let bytes = match array {
@@ -257,6 +286,9 @@ fn texcoords(
         let t = m.apply(tc);
         let q = if t[3] != 0.0 { t[3] } else { 1.0 };
         *o = [(t[0] / q) as f32, (t[1] / q) as f32];
+        if let Some(r) = r.as_deref_mut() {
+            r.push(t[2] / q);
+        }
     }
     Ok(())
 }

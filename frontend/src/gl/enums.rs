@@ -82,6 +82,8 @@ pub const TEXTURE_MAG_FILTER: i64 = 0x2800;
 pub const TEXTURE_MIN_FILTER: i64 = 0x2801;
 pub const TEXTURE_WRAP_S: i64 = 0x2802;
 pub const TEXTURE_WRAP_T: i64 = 0x2803;
+pub const TEXTURE_WRAP_R: i64 = 0x8072;
+pub const MIRRORED_REPEAT: i64 = 0x8370;
 pub const REPEAT: i64 = 0x2901;
 
 pub const TEXTURE_ENV: i64 = 0x2300;

@@ -6,12 +6,11 @@
 
 use super::args::CallError;
 use super::draw::{self, DrawRec};
-use super::enums as gl;
+use super::scene::{self, TextureInfo};
 use super::tracker::{Context, Effect};
-use crate::{Blend, Camera, Material, Mesh, Scene, ShaderOp, TexSample, Texture};
+use crate::Scene;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use wasp_gltrace::{Call, CaptureError};
 
 /// What to import.
@@ -53,21 +52,6 @@ impl From<CaptureError> for ImportError {
     }
 }
 
-/// A texture the frame samples, for the summary.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
-pub struct TextureInfo {
-    /// The GL name.
-    pub id: u32,
-    pub width: u32,
-    pub height: u32,
-    /// Level 0's internal format, pixel format and type.
-    pub format: String,
-    /// The levels the engine uploaded.
-    pub levels: Vec<u32>,
-    /// Why its texels are the placeholder, if they are.
-    pub placeholder: Option<String>,
-}
-
 /// One frame imported: the scene to rasterize and what the import saw.
 #[derive(Clone, Debug)]
 pub struct Imported {
@@ -92,6 +76,14 @@ pub struct Imported {
     /// Calls up to the frame's end the model does not use, by name.
     pub unmodelled: BTreeMap<String, u64>,
     pub textures: Vec<TextureInfo>,
+    /// The GL name of each of the scene's textures (a 3D texture's slices
+    /// share theirs).
+    pub texture_ids: Vec<u32>,
+    /// The draw (index in issue order) of each of the scene's materials:
+    /// material `i` is draw `i` for the draws, and the materials after
+    /// them are of the draws that read several choices of 3D slices
+    /// ([`super::scene`]).
+    pub material_draws: Vec<usize>,
 }
 
 /// A frame read to its swap: its recording, the unmodelled calls and the
@@ -110,15 +102,23 @@ struct FrameBuild {
     first_call: u64,
     draws: Vec<DrawRec>,
     unsupported: BTreeMap<String, u64>,
+    /// Of those, the draws the tracker refused without recording
+    /// (immediate mode, display lists...).
+    refused: BTreeMap<String, u64>,
     first_unsupported: Option<CallError>,
     error: Option<CallError>,
 }
 
 impl FrameBuild {
-    fn unsupported(&mut self, call: &Call, feature: String) {
+    /// A draw that needs `feature`; `refused` by the tracker (else found
+    /// out recording it).
+    fn unsupported(&mut self, call: &Call, feature: String, refused: bool) {
         self.first_unsupported.get_or_insert_with(|| {
             CallError::at(call, format!("needs {feature}, which is not modelled"))
         });
+        if refused {
+            *self.refused.entry(feature.clone()).or_default() += 1;
+        }
         *self.unsupported.entry(feature).or_default() += 1;
     }
 }
@@ -129,120 +129,188 @@ pub fn import(
     file: &Path,
     opts: ImportOptions,
 ) -> Result<Imported, ImportError> {
-    let (ctx, done, frames_read) = read(calls, file, opts)?;
-    let Some(Finished {
-        index,
-        build,
-        unmodelled,
-        earlier,
-        last_call,
-    }) = done.filter(|d| opts.frame.is_none_or(|n| n == d.index))
-    else {
-        return Err(ImportError::Frame(
-            file.into(),
-            match opts.frame {
-                Some(n) => format!(
-                    "frame {n} is past the end: the capture has {frames_read} complete frames \
-                     (0 to {})",
-                    frames_read.saturating_sub(1)
-                ),
-                None => "the capture has no complete frame (no buffer swap)".into(),
-            },
-        ));
-    };
-    if let Some(e) = build.error {
-        return Err(ImportError::Call(file.into(), e));
+    let mut reader = Reader::new(calls, file, opts.skip_unsupported);
+    if let Some(n) = opts.frame {
+        return reader.frame(n);
     }
-    if let (Some(e), false) = (&build.first_unsupported, opts.skip_unsupported) {
-        let mut e = e.clone();
-        e.message += " (--skip-unsupported counts such draws and goes on)";
-        return Err(ImportError::Call(file.into(), e));
+    // The last complete frame: every frame recorded (its unsupported
+    // draws then count among the earlier frames' of the next), the
+    // capture read to its end.
+    let mut last = None;
+    while let Some(done) = reader.next_frame(true, true)? {
+        last = Some(done);
     }
-    let (width, height) = frame_size(&build.draws, &ctx).ok_or_else(|| {
-        ImportError::Frame(
+    match last {
+        Some(done) => reader.finish(done),
+        None => Err(ImportError::Frame(
             file.into(),
-            format!("frame {index} has no viewport (glViewport)"),
-        )
-    })?;
-    let (scene, textures) = scene_of(&build.draws, width, height, file, index)
-        .map_err(|e| ImportError::Call(file.into(), e))?;
-    Ok(Imported {
-        scene,
-        width,
-        height,
-        frame: index,
-        calls: (build.first_call, last_call),
-        frames_read,
-        draw_calls: build.draws.len() as u64,
-        draw_call_numbers: build.draws.iter().map(|d| d.call).collect(),
-        triangles: build.draws.iter().map(|d| d.triangles).sum(),
-        unsupported: build.unsupported,
-        unsupported_in_earlier_frames: earlier,
-        unmodelled,
-        textures,
-    })
+            "the capture has no complete frame (no buffer swap)".into(),
+        )),
+    }
 }
 
-/// Read the calls from the first to the swap of the frame asked for (to
-/// the end without one), tracking the state and recording the draws of
-/// the frames that may be imported: the context, the last frame finished
-/// and the complete frames read.
-fn read(
-    calls: impl IntoIterator<Item = Result<Call, CaptureError>>,
-    file: &Path,
-    opts: ImportOptions,
-) -> Result<(Context, Option<Finished>, u64), ImportError> {
-    let mut ctx = Context::default();
-    let mut frame = 0u64;
-    let mut cur = FrameBuild::default();
-    let mut unmodelled: BTreeMap<String, u64> = BTreeMap::new();
-    // Unsupported draws (immediate mode, display lists) of the frames
-    // before the current one, by feature.
-    let mut earlier: BTreeMap<String, u64> = BTreeMap::new();
-    let mut done: Option<Finished> = None;
-    for call in calls {
-        let call = call?;
-        let build = opts.frame.is_none_or(|n| n == frame);
-        match ctx
-            .apply(&call)
-            .map_err(|e| ImportError::Call(file.into(), e))?
-        {
-            Effect::Modelled => {}
-            Effect::Unmodelled(n) => *unmodelled.entry(n).or_default() += 1,
-            Effect::Draw if build => match draw::record(&ctx, &call) {
-                Ok(Ok(rec)) => cur.draws.push(rec),
-                Ok(Err(feature)) => cur.unsupported(&call, feature),
-                Err(e) => {
-                    cur.error.get_or_insert(e);
-                }
-            },
-            Effect::UnsupportedDraw(f) => cur.unsupported(&call, f),
-            Effect::Draw => {}
-            Effect::FrameEnd => {
-                let next = FrameBuild {
-                    first_call: call.no + 1,
-                    ..Default::default()
-                };
-                let build = std::mem::replace(&mut cur, next);
-                let before = earlier.clone();
-                for (f, n) in &build.unsupported {
-                    *earlier.entry(f.clone()).or_default() += n;
-                }
-                done = Some(Finished {
-                    index: frame,
-                    build,
-                    unmodelled: unmodelled.clone(),
-                    earlier: before,
-                    last_call: call.no,
-                });
-                frame += 1;
-                if opts.frame.is_some_and(|n| n + 1 == frame) {
-                    break;
+/// A streaming import: the calls read once, from the first, the GL state
+/// carried from frame to frame, and frames imported in order as they are
+/// asked for ([`Reader::frame`]).
+pub struct Reader<I> {
+    calls: I,
+    file: PathBuf,
+    skip_unsupported: bool,
+    ctx: Context,
+    /// The frame being read (the complete frames read so far).
+    frame: u64,
+    cur: FrameBuild,
+    /// Calls not modelled so far, by name.
+    unmodelled: BTreeMap<String, u64>,
+    /// Unsupported draws (immediate mode, display lists) of the frames
+    /// before the current one, by feature.
+    earlier: BTreeMap<String, u64>,
+}
+
+impl<I: Iterator<Item = Result<Call, CaptureError>>> Reader<I> {
+    /// A reader of `calls` (read from `file`).
+    pub fn new(
+        calls: impl IntoIterator<IntoIter = I, Item = Result<Call, CaptureError>>,
+        file: &Path,
+        skip_unsupported: bool,
+    ) -> Self {
+        Reader {
+            calls: calls.into_iter(),
+            file: file.into(),
+            skip_unsupported,
+            ctx: Context::default(),
+            frame: 0,
+            cur: FrameBuild::default(),
+            unmodelled: BTreeMap::new(),
+            earlier: BTreeMap::new(),
+        }
+    }
+
+    /// Import frame `n`, reading on to its swap (the frames between are
+    /// read, their state tracked, their draws not recorded). `n` must not
+    /// be a frame already read.
+    pub fn frame(&mut self, n: u64) -> Result<Imported, ImportError> {
+        assert!(n >= self.frame, "frame {n} was read already");
+        loop {
+            let here = self.frame;
+            match self.next_frame(here == n, false)? {
+                Some(done) if here == n => return self.finish(done),
+                Some(_) => {}
+                None => {
+                    let read = self.frame;
+                    return Err(ImportError::Frame(
+                        self.file.clone(),
+                        format!(
+                            "frame {n} is past the end: the capture has {read} complete frames \
+                             (0 to {})",
+                            read.saturating_sub(1)
+                        ),
+                    ));
                 }
             }
         }
     }
-    Ok((ctx, done, frame))
+
+    /// Read the calls to the next swap, tracking the state and, if
+    /// `record`, recording the frame's draws: the frame finished, `None`
+    /// at the capture's end. The frame's unsupported draws count among
+    /// the earlier frames' of the next: all of them if `all`, else those
+    /// the tracker refuses without recording (immediate mode, display
+    /// lists), as when the frames before one imported are not recorded.
+    fn next_frame(&mut self, record: bool, all: bool) -> Result<Option<Finished>, ImportError> {
+        for call in self.calls.by_ref() {
+            let call = call?;
+            let cur = &mut self.cur;
+            match self
+                .ctx
+                .apply(&call)
+                .map_err(|e| ImportError::Call(self.file.clone(), e))?
+            {
+                Effect::Modelled => {}
+                Effect::Unmodelled(n) => *self.unmodelled.entry(n).or_default() += 1,
+                Effect::Draw if record => match draw::record(&self.ctx, &call) {
+                    Ok(Ok(rec)) => cur.draws.push(rec),
+                    Ok(Err(feature)) => cur.unsupported(&call, feature, false),
+                    Err(e) => {
+                        cur.error.get_or_insert(e);
+                    }
+                },
+                Effect::UnsupportedDraw(f) => cur.unsupported(&call, f, true),
+                Effect::Draw => {}
+                Effect::FrameEnd => {
+                    let next = FrameBuild {
+                        first_call: call.no + 1,
+                        ..Default::default()
+                    };
+                    let build = std::mem::replace(&mut self.cur, next);
+                    let before = self.earlier.clone();
+                    let counted = if all {
+                        &build.unsupported
+                    } else {
+                        &build.refused
+                    };
+                    for (f, n) in counted {
+                        *self.earlier.entry(f.clone()).or_default() += n;
+                    }
+                    let done = Finished {
+                        index: self.frame,
+                        build,
+                        unmodelled: self.unmodelled.clone(),
+                        earlier: before,
+                        last_call: call.no,
+                    };
+                    self.frame += 1;
+                    return Ok(Some(done));
+                }
+            }
+        }
+        Ok(None)
+    }
+
+    /// A frame finished: its errors, or its scene placed in the frame.
+    fn finish(&self, done: Finished) -> Result<Imported, ImportError> {
+        let file = self.file.as_path();
+        let Finished {
+            index,
+            build,
+            unmodelled,
+            earlier,
+            last_call,
+        } = done;
+        if let Some(e) = build.error {
+            return Err(ImportError::Call(file.into(), e));
+        }
+        if let (Some(e), false) = (&build.first_unsupported, self.skip_unsupported) {
+            let mut e = e.clone();
+            e.message += " (--skip-unsupported counts such draws and goes on)";
+            return Err(ImportError::Call(file.into(), e));
+        }
+        let (width, height) = frame_size(&build.draws, &self.ctx).ok_or_else(|| {
+            ImportError::Frame(
+                file.into(),
+                format!("frame {index} has no viewport (glViewport)"),
+            )
+        })?;
+        let built = scene::scene_of(&build.draws, width, height, file, index)
+            .map_err(|e| ImportError::Call(file.into(), e))?;
+        Ok(Imported {
+            scene: built.scene,
+            width,
+            height,
+            frame: index,
+            calls: (build.first_call, last_call),
+            frames_read: self.frame,
+            draw_calls: build.draws.len() as u64,
+            draw_call_numbers: build.draws.iter().map(|d| d.call).collect(),
+            triangles: build.draws.iter().map(|d| d.triangles).sum(),
+            unsupported: build.unsupported,
+            unsupported_in_earlier_frames: earlier,
+            unmodelled,
+            textures: built.infos,
+            texture_ids: built.texture_ids,
+            material_draws: built.material_draws,
+        })
+    }
 }
 
 /// The frame's size: the extent of its draws' viewports (the current one
@@ -261,138 +329,10 @@ fn frame_size(draws: &[DrawRec], ctx: &Context) -> Option<(u32, u32)> {
     (w > 0 && h > 0 && w <= 16384 && h <= 16384).then_some((w as u32, h as u32))
 }
 
-/// ALU instructions of a texture environment mode (wasp).
-fn env_alu(mode: i64) -> u32 {
-    match mode {
-        gl::REPLACE => 0,
-        gl::DECAL | gl::BLEND_ENV | gl::COMBINE => 2,
-        _ => 1,
-    }
-}
-
-/// The scene of a frame's draws in a `w` x `h` frame, and its textures'
-/// summary.
-fn scene_of(
-    draws: &[DrawRec],
-    w: u32,
-    h: u32,
-    file: &Path,
-    frame: u64,
-) -> Result<(Scene, Vec<TextureInfo>), CallError> {
-    let mut textures: Vec<Texture> = Vec::new();
-    let mut infos: Vec<TextureInfo> = Vec::new();
-    let mut seen: Vec<*const super::textures::TexObject> = Vec::new();
-    let (mut meshes, mut materials) = (Vec::new(), Vec::new());
-    for d in draws {
-        let state = d.fixed.draw_state(w, h).map_err(|m| CallError {
-            call: d.call,
-            name: "draw".into(),
-            message: m,
-        })?;
-        // (wasp) program: a2, then per sampled unit T(unit) and its
-        // environment's ALU, an ALU for the alpha test, a1 to write.
-        let mut shader = vec![ShaderOp::Alu(2)];
-        for s in &d.sampled {
-            let p = Arc::as_ptr(&s.texture);
-            let index = seen.iter().position(|&q| q == p).unwrap_or_else(|| {
-                seen.push(p);
-                textures.push(s.texture.texture());
-                infos.push(info(&s.texture));
-                seen.len() - 1
-            });
-            shader.push(ShaderOp::Tex(TexSample {
-                texture: index,
-                uv_set: s.unit as u8,
-                filter: s.texture.filter(),
-            }));
-            shader.push(ShaderOp::Alu(env_alu(s.env_mode)));
-        }
-        shader.push(ShaderOp::Alu(1 + u32::from(state.alpha_test.is_some())));
-        shader.retain(|op| *op != ShaderOp::Alu(0));
-        let blend = if state.blend.is_some() {
-            Blend::AlphaBlend
-        } else if state.alpha_test.is_some() {
-            Blend::AlphaTest
-        } else {
-            Blend::Opaque
-        };
-        materials.push(Material {
-            name: format!("call {}", d.call),
-            blend,
-            shader,
-            state: Some(state),
-        });
-        meshes.push(mesh_of(d, &d.fixed.viewport, w, h, materials.len() - 1));
-    }
-    let scene = Scene {
-        name: format!("gl:{}:frame{frame}", file.display()),
-        source: format!("apitrace capture {}, frame {frame}", file.display()),
-        meshes,
-        materials,
-        textures,
-        camera: Camera::Clip,
-    };
-    Ok((scene, infos))
-}
-
-/// A draw's mesh: clip-space positions with the viewport folded in
-/// (linear in clip space: the viewport's rectangle of a `w` x `h` frame
-/// becomes its place in the frame's normalized device coordinates).
-fn mesh_of(d: &DrawRec, vp: &[i64; 4], w: u32, h: u32, material: usize) -> Mesh {
-    let (wf, hf) = (f64::from(w), f64::from(h));
-    let (vx, vy, vw, vh) = (vp[0] as f64, vp[1] as f64, vp[2] as f64, vp[3] as f64);
-    let (sx, ox) = (vw / wf, (2.0 * vx + vw) / wf - 1.0);
-    let (sy, oy) = (vh / hf, (2.0 * vy + vh) / hf - 1.0);
-    let positions = d
-        .clip
-        .iter()
-        .map(|p| {
-            [
-                (p[0] * sx + p[3] * ox) as f32,
-                (p[1] * sy + p[3] * oy) as f32,
-                p[2] as f32,
-            ]
-        })
-        .collect();
-    Mesh {
-        positions,
-        uv: d.uv[0].clone(),
-        uv2: d
-            .sampled
-            .iter()
-            .any(|s| s.unit == 1)
-            .then(|| d.uv[1].clone()),
-        indices: d.indices.clone(),
-        material,
-        clip_w: Some(d.clip.iter().map(|p| p[3] as f32).collect()),
-        ..Default::default()
-    }
-}
-
-fn info(t: &super::textures::TexObject) -> TextureInfo {
-    let l0 = &t.levels[&0];
-    TextureInfo {
-        id: t.id,
-        width: l0.width,
-        height: l0.height,
-        format: if l0.compressed {
-            format!("{} (compressed)", gl::name(l0.internal))
-        } else {
-            format!(
-                "{} from {}/{}",
-                gl::name(l0.internal),
-                gl::name(l0.format),
-                gl::name(l0.ty)
-            )
-        },
-        levels: t.levels.keys().copied().collect(),
-        placeholder: t.placeholder.clone(),
-    }
-}
-
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::super::args::test_calls::*;
+    use super::super::enums as gl;
     use super::*;
     use crate::raster::{rasterize, RasterOptions};
     use wasp_gltrace::Value;
@@ -435,7 +375,8 @@ mod tests {
         c
     }
 
-    fn run(calls: Vec<Call>) -> (Imported, crate::raster::Frame) {
+    /// Import `calls`' last frame and rasterize it on one thread.
+    pub(crate) fn run(calls: Vec<Call>) -> (Imported, crate::raster::Frame) {
         let imp = import(
             calls.into_iter().map(Ok),
             Path::new("t.trace"),
@@ -553,6 +494,42 @@ mod tests {
         let want = [("immediate mode (glBegin/glEnd)".to_string(), 1)];
         assert_eq!(next.unsupported_in_earlier_frames, want.into());
         assert_eq!(ok.unmodelled.get("glXMakeCurrent"), Some(&1));
+    }
+
+    #[test]
+    fn a_reader_imports_frames_in_order_as_single_imports_do() {
+        // Three frames: 1, 2 and 1 squares; the third past the range read.
+        let mut calls = frame(None, &[[0.0, 0.0, 8.0, 8.0, 0.0]]);
+        calls.extend(frame(
+            None,
+            &[[0.0, 0.0, 8.0, 8.0, 0.0], [8.0, 8.0, 16.0, 16.0, 0.0]],
+        ));
+        calls.extend(frame(None, &[[0.0, 0.0, 4.0, 4.0, 0.0]]));
+        for (n, k) in calls.iter_mut().enumerate() {
+            k.no = n as u64;
+        }
+        let path = Path::new("t.trace");
+        let mut reader = Reader::new(calls.clone().into_iter().map(Ok), path, false);
+        for n in [1, 2] {
+            let one = import(
+                calls.clone().into_iter().map(Ok),
+                path,
+                ImportOptions {
+                    frame: Some(n),
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            let got = reader.frame(n).unwrap();
+            assert_eq!(
+                (got.frame, got.calls, got.frames_read, got.draw_calls),
+                (one.frame, one.calls, one.frames_read, one.draw_calls)
+            );
+            assert_eq!(got.scene, one.scene);
+            assert_eq!(got.unmodelled, one.unmodelled);
+        }
+        let msg = reader.frame(3).unwrap_err().to_string();
+        assert!(msg.contains("3 complete frames (0 to 2)"), "{msg}");
     }
 
     #[test]

@@ -8,7 +8,8 @@
 //! arrays and buffers, textures, the fixed-function state), records the
 //! selected frame's draws in clip space ([`draw`]) and places them in the
 //! frame with one material per draw carrying the engine's pipeline state
-//! ([`mod@import`]); [`summary`] reports what it saw.
+//! ([`scene`]; 3D textures as stacks of slices, [`volume`]); frames are
+//! read in one pass ([`mod@import`]), and [`summary`] reports what it saw.
 
 pub mod args;
 pub mod arrays;
@@ -16,10 +17,13 @@ pub mod draw;
 pub mod enums;
 pub mod import;
 pub mod matrices;
+pub mod scene;
 pub mod state;
 pub mod summary;
 pub mod textures;
 pub mod tracker;
+pub mod volume;
 
-pub use import::{import, ImportError, ImportOptions, Imported, TextureInfo};
+pub use import::{import, ImportError, ImportOptions, Imported, Reader};
+pub use scene::TextureInfo;
 pub use summary::{DrawSummary, Summary};

@@ -1,7 +1,8 @@
 //! The import's summary: what was read and what the front end made of
 //! it, printed (one line reads exactly `draw calls: N`) and as JSON.
 
-use super::import::{Imported, TextureInfo};
+use super::import::Imported;
+use super::scene::TextureInfo;
 use crate::raster::Frame;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -68,6 +69,30 @@ pub struct DrawSummary {
     pub pixels: u64,
 }
 
+/// Per draw, its materials' statistics summed (a draw has more than one
+/// when it reads several choices of 3D slices).
+fn draws(imp: &Imported, frame: &Frame) -> Vec<DrawSummary> {
+    let mut out: Vec<DrawSummary> = imp
+        .draw_call_numbers
+        .iter()
+        .map(|&call| DrawSummary {
+            call,
+            triangles: 0,
+            quads_shaded: 0,
+            quads_rejected_early_z: 0,
+            pixels: 0,
+        })
+        .collect();
+    for (st, &d) in frame.stats.materials.iter().zip(&imp.material_draws) {
+        let o = &mut out[d];
+        o.triangles += st.triangles;
+        o.quads_shaded += st.warps;
+        o.quads_rejected_early_z += st.quads_rejected_early_z;
+        o.pixels += st.pixels;
+    }
+    out
+}
+
 impl Summary {
     /// The summary of `imp` rasterized into `frame`.
     pub fn new(capture: &str, imp: &Imported, frame: &Frame) -> Summary {
@@ -99,18 +124,7 @@ impl Summary {
             unsupported_draws_skipped: imp.unsupported.values().sum(),
             unsupported: imp.unsupported.clone(),
             unsupported_in_earlier_frames: imp.unsupported_in_earlier_frames.clone(),
-            draws: imp
-                .draw_call_numbers
-                .iter()
-                .zip(&frame.stats.materials)
-                .map(|(&call, st)| DrawSummary {
-                    call,
-                    triangles: st.triangles,
-                    quads_shaded: st.warps,
-                    quads_rejected_early_z: st.quads_rejected_early_z,
-                    pixels: st.pixels,
-                })
-                .collect(),
+            draws: draws(imp, frame),
         }
     }
 

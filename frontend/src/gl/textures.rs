@@ -1,6 +1,8 @@
 //! Texture objects and texture units: glGenTextures / glBindTexture per
-//! unit (glActiveTexture), the uploads (glTexImage2D, glTexSubImage2D,
-//! glCompressedTexImage2D) with their sizes, formats and mip levels, the
+//! unit (glActiveTexture) and target (`GL_TEXTURE_2D`, `GL_TEXTURE_3D`),
+//! the 2D uploads (glTexImage2D, glTexSubImage2D, glCompressedTexImage2D;
+//! the 3D ones are [`super::volume`]'s) with their sizes, formats and mip
+//! levels, the
 //! unpack alignment (glPixelStorei), filters and wrap modes
 //! (glTexParameter) and each unit's texture environment (glTexEnv).
 //!
@@ -30,6 +32,8 @@ pub struct Level {
     pub width: u32,
     /// Height in texels.
     pub height: u32,
+    /// Depth in texels (slices): 1 for a 2D texture.
+    pub depth: u32,
     /// Internal format (a GL enum).
     pub internal: i64,
     /// Pixel format and type of the upload (compressed: the internal
@@ -47,28 +51,40 @@ pub struct TexObject {
     pub id: u32,
     /// The uploaded levels by level number.
     pub levels: BTreeMap<u32, Level>,
-    /// Level 0 as RGBA8, row by row as uploaded (GL's t = 0 first).
+    /// Level 0 as RGBA8, row by row as uploaded (GL's t = 0 first), slice
+    /// after slice for a 3D texture.
     pub rgba: Vec<u8>,
     /// Level 0's texels are the placeholder (why, for the summary).
     pub placeholder: Option<String>,
     /// GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER.
     pub min_filter: i64,
     pub mag_filter: i64,
-    /// GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T.
-    pub wrap: [i64; 2],
+    /// GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R.
+    pub wrap: [i64; 3],
+    /// Bound to GL_TEXTURE_3D (its level 0 is slices, [`super::volume`]).
+    pub is_3d: bool,
 }
 
 impl TexObject {
-    fn new(id: u32) -> Self {
+    fn new(id: u32, is_3d: bool) -> Self {
         Self {
             id,
+            is_3d,
             levels: BTreeMap::new(),
             rgba: Vec::new(),
             placeholder: None,
             min_filter: gl::NEAREST_MIPMAP_LINEAR,
             mag_filter: gl::LINEAR,
-            wrap: [gl::REPEAT; 2],
+            wrap: [gl::REPEAT; 3],
         }
+    }
+
+    /// Whether GL_TEXTURE_MIN_FILTER reads the mip chain (a
+    /// `*_MIPMAP_*` filter); `GL_NEAREST` and `GL_LINEAR` read level 0
+    /// alone (OpenGL 1.2 specification, 3.8.7: "level zero" when the
+    /// minification filter is NEAREST or LINEAR).
+    pub fn mipmapped(&self) -> bool {
+        !matches!(self.min_filter, gl::NEAREST | gl::LINEAR)
     }
 
     /// The texture instruction's filter from GL_TEXTURE_MIN_FILTER
@@ -87,6 +103,11 @@ impl TexObject {
         self.levels.contains_key(&0) && !self.rgba.is_empty()
     }
 
+    /// Level 0's depth (1 for a 2D texture).
+    pub fn depth(&self) -> u32 {
+        self.levels.get(&0).map_or(1, |l| l.depth)
+    }
+
     /// Level 0 as the front end's texture: repeat if either wrap mode is
     /// GL_REPEAT (wasp: the texture path has one wrap mode for both axes).
     pub fn texture(&self) -> Texture {
@@ -96,22 +117,26 @@ impl TexObject {
             width: l0.width,
             height: l0.height,
             rgba: self.rgba.clone(),
-            repeat: self.wrap.contains(&gl::REPEAT),
+            repeat: self.wrap[..2].contains(&gl::REPEAT),
         }
     }
 }
 
-/// A texture unit: its 2D binding, whether GL_TEXTURE_2D and other
-/// targets are enabled, and its environment mode.
+/// A texture unit: its 2D and 3D bindings, which targets are enabled,
+/// and its environment mode.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unit {
     /// The texture bound to GL_TEXTURE_2D (0: the default texture).
     pub bound: u32,
+    /// The texture bound to GL_TEXTURE_3D (0: the default texture).
+    pub bound_3d: u32,
     /// glEnable(GL_TEXTURE_2D).
     pub enabled_2d: bool,
+    /// glEnable(GL_TEXTURE_3D) (it takes precedence over 2D, as in GL).
+    pub enabled_3d: bool,
     /// A texture target the model does not draw with is enabled
-    /// (GL_TEXTURE_1D, 3D, cube map), or texture coordinate generation:
-    /// its name.
+    /// (GL_TEXTURE_1D, cube map), or texture coordinate generation: its
+    /// name.
     pub enabled_other: Vec<i64>,
     /// GL_TEXTURE_ENV_MODE.
     pub env_mode: i64,
@@ -123,6 +148,9 @@ pub struct Textures {
     /// Objects by name (copied on write: a frame keeps the objects its
     /// draws used as they were).
     pub objects: HashMap<u32, Arc<TexObject>>,
+    /// The objects bound to GL_TEXTURE_3D, by name (a name is bound to
+    /// one target; each target has its own default texture 0).
+    pub objects_3d: HashMap<u32, Arc<TexObject>>,
     /// Texture units.
     pub units: Vec<Unit>,
     /// glActiveTexture's unit.
@@ -138,10 +166,13 @@ impl Textures {
     pub fn new(units: usize) -> Self {
         Self {
             objects: HashMap::new(),
+            objects_3d: HashMap::new(),
             units: vec![
                 Unit {
                     bound: 0,
+                    bound_3d: 0,
                     enabled_2d: false,
+                    enabled_3d: false,
                     enabled_other: Vec::new(),
                     env_mode: gl::MODULATE,
                 };
@@ -153,34 +184,50 @@ impl Textures {
         }
     }
 
-    /// The object bound to the active unit (created on first use, as GL
-    /// creates a texture object at its first bind).
-    fn bound_mut(&mut self) -> &mut TexObject {
-        let id = self.units[self.active].bound;
+    /// The object bound to `target` (GL_TEXTURE_2D or GL_TEXTURE_3D) on
+    /// the active unit (created on first use, as GL creates a texture
+    /// object at its first bind).
+    pub(super) fn bound_mut(&mut self, target: i64) -> &mut TexObject {
+        let unit = &self.units[self.active];
+        let is_3d = target == gl::TEXTURE_3D;
+        let (id, objects) = if is_3d {
+            (unit.bound_3d, &mut self.objects_3d)
+        } else {
+            (unit.bound, &mut self.objects)
+        };
         Arc::make_mut(
-            self.objects
+            objects
                 .entry(id)
-                .or_insert_with(|| Arc::new(TexObject::new(id))),
+                .or_insert_with(|| Arc::new(TexObject::new(id, is_3d))),
         )
     }
 
-    /// glBindTexture(GL_TEXTURE_2D, id) on the active unit.
-    pub fn bind(&mut self, id: u32) {
-        self.units[self.active].bound = id;
-        self.objects
+    /// glBindTexture(target, id) on the active unit, `target`
+    /// GL_TEXTURE_2D or GL_TEXTURE_3D.
+    pub fn bind(&mut self, target: i64, id: u32) {
+        let unit = &mut self.units[self.active];
+        let objects = if target == gl::TEXTURE_3D {
+            unit.bound_3d = id;
+            &mut self.objects_3d
+        } else {
+            unit.bound = id;
+            &mut self.objects
+        };
+        objects
             .entry(id)
-            .or_insert_with(|| Arc::new(TexObject::new(id)));
+            .or_insert_with(|| Arc::new(TexObject::new(id, target == gl::TEXTURE_3D)));
     }
 
-    /// glTexParameteri/f(GL_TEXTURE_2D, pname, param); `Err` names a
-    /// parameter the model does not use.
-    pub fn parameter(&mut self, pname: i64, param: i64) -> Result<(), String> {
-        let t = self.bound_mut();
+    /// glTexParameteri/f(target, pname, param); `Err` names a parameter
+    /// the model does not use.
+    pub fn parameter(&mut self, target: i64, pname: i64, param: i64) -> Result<(), String> {
+        let t = self.bound_mut(target);
         match pname {
             gl::TEXTURE_MIN_FILTER => t.min_filter = param,
             gl::TEXTURE_MAG_FILTER => t.mag_filter = param,
             gl::TEXTURE_WRAP_S => t.wrap[0] = param,
             gl::TEXTURE_WRAP_T => t.wrap[1] = param,
+            gl::TEXTURE_WRAP_R => t.wrap[2] = param,
             _ => return Err(gl::name(pname)),
         }
         Ok(())
@@ -204,7 +251,7 @@ impl Textures {
         let (width, height, format, ty) = (l.width, l.height, l.format, l.ty);
         let pixels = call.arg(8).as_bytes().map(<[u8]>::to_vec);
         let (align, row_len) = (self.unpack_alignment, self.unpack_row_length);
-        let t = self.bound_mut();
+        let t = self.bound_mut(gl::TEXTURE_2D);
         t.levels.insert(level, l);
         if level == 0 {
             let n = width as usize * height as usize;
@@ -241,7 +288,7 @@ impl Textures {
             .as_bytes()
             .map(<[u8]>::to_vec)
             .unwrap_or_default();
-        let t = self.bound_mut();
+        let t = self.bound_mut(gl::TEXTURE_2D);
         let Some(l) = t.levels.get(&level) else {
             return Err(CallError::at(
                 call,
@@ -277,7 +324,7 @@ impl Textures {
     pub fn compressed_image(&mut self, call: &Call) -> Result<(), CallError> {
         let (level, l) = read_level(call, true)?;
         let (width, height, internal) = (l.width, l.height, l.internal);
-        let t = self.bound_mut();
+        let t = self.bound_mut(gl::TEXTURE_2D);
         t.levels.insert(level, l);
         if level == 0 {
             t.rgba = PLACEHOLDER.repeat(width as usize * height as usize);
@@ -302,6 +349,7 @@ fn read_level(call: &Call, compressed: bool) -> Result<(u32, Level), CallError> 
     let l = Level {
         width,
         height,
+        depth: 1,
         internal,
         format,
         ty,
@@ -310,7 +358,7 @@ fn read_level(call: &Call, compressed: bool) -> Result<(u32, Level), CallError> 
     Ok((level, l))
 }
 
-fn level_of(call: &Call, i: usize) -> Result<u32, CallError> {
+pub(super) fn level_of(call: &Call, i: usize) -> Result<u32, CallError> {
     let l = args::count(call, i)?;
     u32::try_from(l)
         .ok()
@@ -318,7 +366,7 @@ fn level_of(call: &Call, i: usize) -> Result<u32, CallError> {
         .ok_or_else(|| CallError::at(call, format!("level {l}: expected 0 to 15")))
 }
 
-fn size_of(call: &Call, i: usize) -> Result<(u32, u32), CallError> {
+pub(super) fn size_of(call: &Call, i: usize) -> Result<(u32, u32), CallError> {
     let (w, h) = (args::count(call, i)?, args::count(call, i + 1)?);
     if w == 0 || h == 0 || w > 16384 || h > 16384 {
         return Err(CallError::at(
@@ -413,7 +461,7 @@ mod tests {
     fn uploads_keep_levels_formats_and_level_zero_as_rgba() {
         let mut t = Textures::new(2);
         t.active = 1;
-        t.bind(5);
+        t.bind(gl::TEXTURE_2D, 5);
         // RGB 3x2, alignment 4: rows of 9 bytes padded to 12.
         let mut px = Vec::new();
         for y in 0..2u8 {
@@ -443,16 +491,23 @@ mod tests {
         t.pixel_store(gl::UNPACK_ALIGNMENT, 1).unwrap();
         t.sub_image(&sub_alpha(3, [2, 1, 1, 1], vec![33])).unwrap();
         assert_eq!(&t.objects[&5].rgba[5 * 4..6 * 4], &[255, 255, 255, 33]);
-        t.parameter(gl::TEXTURE_MIN_FILTER, gl::LINEAR_MIPMAP_LINEAR)
-            .unwrap();
+        t.parameter(
+            gl::TEXTURE_2D,
+            gl::TEXTURE_MIN_FILTER,
+            gl::LINEAR_MIPMAP_LINEAR,
+        )
+        .unwrap();
         assert_eq!(t.objects[&5].filter(), Filter::Trilinear);
-        t.parameter(gl::TEXTURE_MIN_FILTER, gl::NEAREST).unwrap();
+        t.parameter(gl::TEXTURE_2D, gl::TEXTURE_MIN_FILTER, gl::NEAREST)
+            .unwrap();
         assert_eq!(t.objects[&5].filter(), Filter::Nearest);
-        t.parameter(gl::TEXTURE_WRAP_S, 0x812F).unwrap();
-        t.parameter(gl::TEXTURE_WRAP_T, 0x812F).unwrap();
+        t.parameter(gl::TEXTURE_2D, gl::TEXTURE_WRAP_S, 0x812F)
+            .unwrap();
+        t.parameter(gl::TEXTURE_2D, gl::TEXTURE_WRAP_T, 0x812F)
+            .unwrap();
         assert!(!t.objects[&5].texture().repeat);
         assert!(
-            t.parameter(0x8191, 1).is_err(),
+            t.parameter(gl::TEXTURE_2D, 0x8191, 1).is_err(),
             "GL_GENERATE_MIPMAP is counted"
         );
         let bad = t.sub_image(&sub_alpha(4, [2, 1, 5, 1], vec![0; 5]));
@@ -462,7 +517,7 @@ mod tests {
     #[test]
     fn unreadable_texels_are_the_placeholder_and_say_why() {
         let mut t = Textures::new(1);
-        t.bind(2);
+        t.bind(gl::TEXTURE_2D, 2);
         t.image(&tex_image(1, 0, 2, 1, gl::RGBA, 0x8033, vec![0; 4]))
             .unwrap();
         assert_eq!(&t.objects[&2].rgba[..4], &PLACEHOLDER);

@@ -165,11 +165,29 @@ impl Context {
             "glGenTextures" | "glDeleteTextures" => {}
             "glBindTexture" | "glBindTextureEXT" => {
                 let target = args::int(call, 0)?;
-                if target != gl::TEXTURE_2D {
+                if target != gl::TEXTURE_2D && target != gl::TEXTURE_3D {
                     return Ok(Some(with(call, gl::name(target))));
                 }
                 let id = u32::try_from(args::int(call, 1)?).map_err(|e| err(e.to_string()))?;
-                t.bind(id);
+                t.bind(target, id);
+            }
+            "glTexImage3D" | "glTexImage3DEXT" | "glTexSubImage3D" | "glTexSubImage3DEXT" => {
+                let target = args::int(call, 0)?;
+                if target != gl::TEXTURE_3D {
+                    return Ok(Some(with(call, gl::name(target))));
+                }
+                if name.starts_with("glTexImage") {
+                    t.image_3d(call)?;
+                } else {
+                    t.sub_image_3d(call)?;
+                }
+            }
+            "glTexParameteri" | "glTexParameterf" if args::int(call, 0)? == gl::TEXTURE_3D => {
+                let pname = args::int(call, 1)?;
+                let v = args::num(call, 2)? as i64;
+                if let Err(p) = t.parameter(gl::TEXTURE_3D, pname, v) {
+                    return Ok(Some(with(call, p)));
+                }
             }
             "glTexImage2D"
             | "glTexSubImage2D"
@@ -187,7 +205,7 @@ impl Context {
                     "glTexParameteri" | "glTexParameterf" => {
                         let pname = args::int(call, 1)?;
                         let v = args::num(call, 2)? as i64;
-                        if let Err(p) = t.parameter(pname, v) {
+                        if let Err(p) = t.parameter(gl::TEXTURE_2D, pname, v) {
                             return Ok(Some(with(call, p)));
                         }
                     }
@@ -263,8 +281,8 @@ impl Context {
                     let u = &mut self.textures.units[self.textures.active];
                     match cap {
                         gl::TEXTURE_2D => u.enabled_2d = on,
+                        gl::TEXTURE_3D => u.enabled_3d = on,
                         gl::TEXTURE_1D
-                        | gl::TEXTURE_3D
                         | gl::TEXTURE_CUBE_MAP
                         | gl::TEXTURE_GEN_S..=gl::TEXTURE_GEN_Q => {
                             u.enabled_other.retain(|&c| c != cap);
@@ -349,6 +367,13 @@ mod tests {
         );
         run(&mut c, "glEnable", vec![e(gl::TEXTURE_2D)]);
         run(&mut c, "glBindTexture", vec![e(gl::TEXTURE_2D), i(3)]);
+        run(&mut c, "glBindTexture", vec![e(gl::TEXTURE_3D), i(4)]);
+        run(&mut c, "glEnable", vec![e(gl::TEXTURE_3D)]);
+        let wrap_r = vec![e(gl::TEXTURE_3D), e(gl::TEXTURE_WRAP_R), e(0x812F)];
+        run(&mut c, "glTexParameteri", wrap_r);
+        assert_eq!(c.textures.objects_3d[&4].wrap[2], 0x812F);
+        assert!(c.textures.units[1].enabled_3d && c.textures.units[1].bound_3d == 4);
+        assert!(c.textures.units[1].enabled_other.is_empty());
         assert!(c.textures.units[1].enabled_2d && c.textures.units[1].bound == 3);
         assert!(!c.textures.units[0].enabled_2d);
         run(&mut c, "glMatrixMode", vec![e(gl::TEXTURE)]);

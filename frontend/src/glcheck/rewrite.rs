@@ -5,7 +5,7 @@
 //! culling, polygon offset, the alpha test and the texture alpha it
 //! reads):
 //!
-//! - [`Mode::Id`]: every 2D texture upload's RGB is the texture's id
+//! - [`Mode::Id`]: every 2D and 3D texture upload's RGB is the texture's id
 //!   colour ([`id_colour`]; its alpha kept, so the alpha test discards the
 //!   same fragments), texture unit 0 replaces the fragment's colour
 //!   (`GL_REPLACE`), the other units are off, vertex colours are one
@@ -119,6 +119,8 @@ struct Rewriter {
     unit: u32,
     /// The 2D texture bound per unit.
     bound: HashMap<u32, u32>,
+    /// The 3D texture bound per unit.
+    bound_3d: HashMap<u32, u32>,
     /// Level 0's internal format per texture name (for sub-images).
     internal: HashMap<u32, i64>,
     unpack: Unpack,
@@ -144,23 +146,7 @@ pub fn rewrite(
     let io = |e: std::io::Error| RewriteError(format!("{}: {e}", out.display()));
     let mut w =
         CaptureWriter::create(out, capture.semantic_version, &capture.properties).map_err(io)?;
-    let mut r = Rewriter {
-        mode,
-        size,
-        unit: 0,
-        bound: HashMap::new(),
-        internal: HashMap::new(),
-        unpack: Unpack {
-            align: 4,
-            row_length: 0,
-        },
-        unpack_skip: false,
-        context: false,
-        swapped: false,
-        clear_pending: false,
-        vertex_alpha: VertexAlpha::default(),
-        out: Rewritten::default(),
-    };
+    let mut r = Rewriter::new(mode, size);
     let mut swap = None;
     for call in capture {
         let call = call.map_err(|e| RewriteError(e.to_string()))?;
@@ -243,6 +229,27 @@ fn cap(like: &Call, enable: bool, what: i64) -> Call {
 }
 
 impl Rewriter {
+    fn new(mode: Mode, size: (u32, u32)) -> Rewriter {
+        Rewriter {
+            mode,
+            size,
+            unit: 0,
+            bound: HashMap::new(),
+            bound_3d: HashMap::new(),
+            internal: HashMap::new(),
+            unpack: Unpack {
+                align: 4,
+                row_length: 0,
+            },
+            unpack_skip: false,
+            context: false,
+            swapped: false,
+            clear_pending: false,
+            vertex_alpha: VertexAlpha::default(),
+            out: Rewritten::default(),
+        }
+    }
+
     /// The colour of vertices and untextured fragments, and the RGB of
     /// every texel of texture `name`.
     fn rgb(&self, name: Option<u32>) -> [u8; 3] {
@@ -341,6 +348,9 @@ impl Rewriter {
             "glBindTexture" | "glBindTextureEXT" if int(0) == Some(gl::TEXTURE_2D) => {
                 self.bound.insert(self.unit, int(1).unwrap_or(0) as u32);
             }
+            "glBindTexture" | "glBindTextureEXT" if int(0) == Some(gl::TEXTURE_3D) => {
+                self.bound_3d.insert(self.unit, int(1).unwrap_or(0) as u32);
+            }
             "glEnable" | "glDisable" => {
                 if let Some(c) = int(0).and_then(|v| self.capability(v, name == "glEnable")) {
                     call = cap(&call, c.0, c.1);
@@ -374,6 +384,8 @@ impl Rewriter {
                 self.image(&mut call)
             }
             "glTexSubImage2D" | "glTexSubImage2DEXT" => self.sub_image(&mut call),
+            "glTexImage3D" | "glTexImage3DEXT" => self.image_3d(&mut call),
+            "glTexSubImage3D" | "glTexSubImage3DEXT" => self.sub_image_3d(&mut call),
             "glCopyTexImage2D" | "glCopyTexSubImage2D" | "glInterleavedArrays" => {
                 self.note(format!("{name} (left as it is)"))
             }
@@ -404,8 +416,8 @@ impl Rewriter {
     /// `None` to keep it.
     fn capability(&mut self, v: i64, enable: bool) -> Option<(bool, i64)> {
         match v {
-            gl::TEXTURE_2D if self.unit > 0 => Some((false, v)),
-            gl::TEXTURE_1D | gl::TEXTURE_3D | gl::TEXTURE_CUBE_MAP => {
+            gl::TEXTURE_2D | gl::TEXTURE_3D if self.unit > 0 => Some((false, v)),
+            gl::TEXTURE_1D | gl::TEXTURE_CUBE_MAP => {
                 if enable {
                     self.note(format!("texture target {} (disabled)", gl::name(v)));
                 }
@@ -509,6 +521,47 @@ impl Rewriter {
         }
     }
 
+    /// glTexImage3D of a 3D texture: its slices' texels rewritten as one
+    /// image of their rows.
+    fn image_3d(&mut self, call: &mut Call) {
+        if call.arg(0).as_i64() != Some(gl::TEXTURE_3D) {
+            self.note(format!("{} of another target (left as it is)", call.name));
+            return;
+        }
+        let internal = call.arg(2).as_i64().unwrap_or(0);
+        let (w, h, d) = (arg_u32(call, 3), arg_u32(call, 4), arg_u32(call, 5));
+        let name = self.bound_3d.get(&self.unit).copied().unwrap_or(0);
+        if call.arg(1).as_i64() == Some(0) {
+            self.internal.insert(name, internal);
+        }
+        let rgb = self.rgb(Some(name));
+        if let Some(blob) = self.texels_at(call, 7, (w, h.saturating_mul(d)), internal, rgb) {
+            call.args[2] = Value::Enum(RGBA8);
+            call.args[7] = Value::Enum(gl::RGBA);
+            call.args[8] = Value::Enum(gl::UNSIGNED_BYTE);
+            call.args[9] = Value::Blob(blob);
+            self.out.uploads += 1;
+        }
+    }
+
+    /// glTexSubImage3D of a 3D texture.
+    fn sub_image_3d(&mut self, call: &mut Call) {
+        if call.arg(0).as_i64() != Some(gl::TEXTURE_3D) {
+            self.note(format!("{} of another target (left as it is)", call.name));
+            return;
+        }
+        let (w, h, d) = (arg_u32(call, 5), arg_u32(call, 6), arg_u32(call, 7));
+        let name = self.bound_3d.get(&self.unit).copied().unwrap_or(0);
+        let internal = self.internal.get(&name).copied().unwrap_or(gl::RGBA);
+        let rgb = self.rgb(Some(name));
+        if let Some(blob) = self.texels_at(call, 8, (w, h.saturating_mul(d)), internal, rgb) {
+            call.args[8] = Value::Enum(gl::RGBA);
+            call.args[9] = Value::Enum(gl::UNSIGNED_BYTE);
+            call.args[10] = Value::Blob(blob);
+            self.out.uploads += 1;
+        }
+    }
+
     /// The rewritten texels of an upload whose format and type are
     /// arguments 6 and 7 and pixels argument 8 (`None`: no client pixels).
     fn texels(
@@ -518,12 +571,25 @@ impl Rewriter {
         internal: i64,
         rgb: [u8; 3],
     ) -> Option<Vec<u8>> {
+        self.texels_at(call, 6, size, internal, rgb)
+    }
+
+    /// [`Rewriter::texels`] of an upload whose format, type and pixels are
+    /// arguments `at`, `at + 1` and `at + 2`.
+    fn texels_at(
+        &mut self,
+        call: &Call,
+        at: usize,
+        size: (u32, u32),
+        internal: i64,
+        rgb: [u8; 3],
+    ) -> Option<Vec<u8>> {
         let (format, ty) = (
-            call.arg(6).as_i64().unwrap_or(0),
-            call.arg(7).as_i64().unwrap_or(0),
+            call.arg(at).as_i64().unwrap_or(0),
+            call.arg(at + 1).as_i64().unwrap_or(0),
         );
-        let pixels = call.arg(8).as_bytes();
-        if pixels.is_none() && !call.arg(8).is_null() {
+        let pixels = call.arg(at + 2).as_bytes();
+        if pixels.is_none() && !call.arg(at + 2).is_null() {
             self.note(format!(
                 "{} from a buffer object (left as it is)",
                 call.name
@@ -601,6 +667,33 @@ mod tests {
 
     fn named<'a>(calls: &'a [Call], name: &'a str) -> impl Iterator<Item = &'a Call> + 'a {
         calls.iter().filter(move |c| &*c.name == name)
+    }
+
+    #[test]
+    fn a_3d_texture_is_named_by_its_id_colour_and_stays_enabled_on_unit_0() {
+        use crate::gl::args::test_calls::{call, e};
+        let mut r = Rewriter::new(Mode::Id, (8, 8));
+        let mut out = Vec::new();
+        let i = Value::SInt;
+        r.call(
+            call(1, "glBindTexture", vec![e(gl::TEXTURE_3D), i(5)]),
+            &mut out,
+        );
+        // 1x1x2 GL_RGBA: alphas 10 and 20.
+        let px = Value::Blob(vec![1, 2, 3, 10, 4, 5, 6, 20]);
+        let a = vec![e(gl::TEXTURE_3D), i(0), e(gl::RGBA), i(1), i(1), i(2), i(0)];
+        let up = [a, vec![e(gl::RGBA), e(gl::UNSIGNED_BYTE), px]].concat();
+        r.call(call(2, "glTexImage3D", up), &mut out);
+        r.call(call(3, "glEnable", vec![e(gl::TEXTURE_3D)]), &mut out);
+        let texels = out[1].arg(9).as_bytes().unwrap();
+        let [x, y, z] = id_colour(5);
+        assert_eq!(texels, [x, y, z, 10, x, y, z, 20]);
+        assert_eq!(r.out.uploads, 1);
+        let enable = &out[2];
+        assert_eq!(
+            (&*enable.name, enable.arg(0).as_i64()),
+            ("glEnable", Some(gl::TEXTURE_3D))
+        );
     }
 
     #[test]

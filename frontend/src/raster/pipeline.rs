@@ -176,9 +176,11 @@ fn texture_uses(scene: &Scene, setups: &[Setup], formats: &[TextureFormat]) -> V
         let mut first = true;
         for op in &m.shader {
             if let ShaderOp::Tex(s) = op {
-                uses[s.texture].sampled = true;
                 let state = m.state.unwrap_or(DrawState::for_blend(m.blend));
-                uses[s.texture].alpha_tested |= first && state.alpha_test.is_some();
+                for t in std::iter::once(s.texture).chain(s.second.map(|x| x.texture)) {
+                    uses[t].sampled = true;
+                    uses[t].alpha_tested |= first && state.alpha_test.is_some();
+                }
                 first = false;
             }
         }

@@ -781,11 +781,7 @@ mod tests {
         scene.meshes[0].indices.push(9);
         assert!(rasterize(&scene, 8, 8, &RasterOptions::default()).is_err());
         scene.meshes[0].indices.truncate(6);
-        scene.materials[0].shader = vec![ShaderOp::Tex(TexSample {
-            texture: 3,
-            uv_set: 0,
-            filter: Filter::Nearest,
-        })];
+        scene.materials[0].shader = vec![ShaderOp::Tex(TexSample::new(3, 0, Filter::Nearest))];
         let e = rasterize(&scene, 8, 8, &RasterOptions::default()).unwrap_err();
         assert!(e.message.contains("texture 3"), "{e}");
     }

@@ -535,7 +535,7 @@ fn shade(
     for (k, smp) in mat.tex.iter().enumerate() {
         let at = if smp.uv_set == 1 { uv2 } else { uv };
         let lambda = lambdas.get(k).copied().unwrap_or(0.0);
-        let s = textures.sample_rgba(smp.texture, smp.filter, *at, lambda);
+        let s = textures.sample_rgba_of(smp, *at, lambda);
         c[0] *= s[0];
         c[1] *= s[1];
         c[2] *= s[2];

@@ -40,13 +40,14 @@ fn validate_material(scene: &Scene, i: usize, m: &Material) -> Result<(), String
     }
     for op in &m.shader {
         if let ShaderOp::Tex(s) = op {
-            if s.texture >= scene.textures.len() {
-                return Err(format!(
-                    "material {i} ({}) samples texture {} of {}",
-                    m.name,
-                    s.texture,
-                    scene.textures.len()
-                ));
+            for t in std::iter::once(s.texture).chain(s.second.map(|x| x.texture)) {
+                if t >= scene.textures.len() {
+                    return Err(format!(
+                        "material {i} ({}) samples texture {t} of {}",
+                        m.name,
+                        scene.textures.len()
+                    ));
+                }
             }
             if s.uv_set > 1 {
                 return Err(format!(

@@ -52,18 +52,21 @@ impl TextureSet<'_> {
     /// [`TextureSet::quad_blocks_texels`] kept in `q`: the same value as
     /// `sample_alpha` of that pixel's UV with the quad's lambda.
     pub fn quad_alpha(&self, q: &QuadTexels, pixel: usize) -> f32 {
-        let levels = &self.textures[q.texture].levels;
-        let (la, lb, t) = q.levels;
-        let a = footprint_alpha(&levels[la], q.filter, &q.px[0][pixel]);
-        if lb == la || t <= 0.0 {
-            return a;
+        let level = |(t, l): (usize, usize)| &self.textures[t].levels[l];
+        let r = &q.reads;
+        let a = footprint_alpha(level(r.first), q.filter, &q.px[0][pixel]);
+        match r.second {
+            Some(second) if r.weight > 0.0 => {
+                let b = footprint_alpha(level(second), q.filter, &q.px[1][pixel]);
+                a + (b - a) * r.weight
+            }
+            _ => a,
         }
-        let b = footprint_alpha(&levels[lb], q.filter, &q.px[1][pixel]);
-        a + (b - a) * t
     }
 
-    /// The filtered colour (RGBA in 0..=1) of `texture` at `uv` with this
-    /// filter and the quad's `lambda` (from [`TextureSet::quad_lambda`]).
+    /// The filtered colour (RGBA in 0..=1) of a mipmapped sample of
+    /// `texture` at `uv` with this filter and the quad's `lambda` (from
+    /// [`TextureSet::quad_lambda`]).
     pub fn sample_rgba(
         &self,
         texture: usize,
@@ -71,34 +74,44 @@ impl TextureSet<'_> {
         uv: [f32; 2],
         lambda: f32,
     ) -> [f32; 4] {
-        let tex = &self.textures[texture];
-        let (la, lb, t) = self.levels_for(texture, filter, lambda);
-        let one = |level: &MipLevel| match filter {
-            Filter::Nearest => {
-                let (x, y) = nearest(level, tex.repeat, uv);
-                level.texel(x, y)
-            }
-            Filter::Bilinear | Filter::Trilinear => {
-                let (x0, x1, y0, y1, fx, fy) = bilinear(level, tex.repeat, uv);
-                let (a, b) = (level.texel(x0, y0), level.texel(x1, y0));
-                let (c, d) = (level.texel(x0, y1), level.texel(x1, y1));
-                let mut o = [0.0f32; 4];
-                for i in 0..4 {
-                    let top = a[i] + (b[i] - a[i]) * fx;
-                    let bot = c[i] + (d[i] - c[i]) * fx;
-                    o[i] = top + (bot - top) * fy;
+        self.sample_rgba_of(&TexSample::new(texture, 0, filter), uv, lambda)
+    }
+
+    /// The filtered colour (RGBA in 0..=1) of `sample` at `uv` with the
+    /// quad's `lambda`: what it reads ([`TextureSet::reads`]) filtered.
+    pub fn sample_rgba_of(&self, sample: &TexSample, uv: [f32; 2], lambda: f32) -> [f32; 4] {
+        let filter = sample.filter;
+        let r = self.reads(sample, lambda);
+        let one = |(t, l): (usize, usize)| {
+            let tex = &self.textures[t];
+            let level = &tex.levels[l];
+            match filter {
+                Filter::Nearest => {
+                    let (x, y) = nearest(level, tex.repeat, uv);
+                    level.texel(x, y)
                 }
-                o
+                Filter::Bilinear | Filter::Trilinear => {
+                    let (x0, x1, y0, y1, fx, fy) = bilinear(level, tex.repeat, uv);
+                    let (a, b) = (level.texel(x0, y0), level.texel(x1, y0));
+                    let (c, d) = (level.texel(x0, y1), level.texel(x1, y1));
+                    let mut o = [0.0f32; 4];
+                    for i in 0..4 {
+                        let top = a[i] + (b[i] - a[i]) * fx;
+                        let bot = c[i] + (d[i] - c[i]) * fx;
+                        o[i] = top + (bot - top) * fy;
+                    }
+                    o
+                }
             }
         };
-        let a = one(&tex.levels[la]);
-        if lb == la || t <= 0.0 {
+        let a = one(r.first);
+        let Some(second) = r.second.filter(|_| r.weight > 0.0) else {
             return a;
-        }
-        let b = one(&tex.levels[lb]);
+        };
+        let b = one(second);
         let mut o = [0.0f32; 4];
         for i in 0..4 {
-            o[i] = a[i] + (b[i] - a[i]) * t;
+            o[i] = a[i] + (b[i] - a[i]) * r.weight;
         }
         o
     }
@@ -224,11 +237,7 @@ mod tests {
         let mut q = QuadTexels::default();
         for texture in 0..texs.len() {
             for filter in [Filter::Nearest, Filter::Bilinear, Filter::Trilinear] {
-                let smp = TexSample {
-                    texture,
-                    uv_set: 0,
-                    filter,
-                };
+                let smp = TexSample::new(texture, 0, filter);
                 for (origin, step) in [([0.3, 0.7], 0.4), ([1.37, -0.2], 3.1), ([0.99, 0.01], 11.0)]
                 {
                     let uvs = quad_uvs(origin, step, 64.0);

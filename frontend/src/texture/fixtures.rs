@@ -20,11 +20,7 @@ pub(super) fn tex(name: &str, w: u32, h: u32, repeat: bool) -> Texture {
 }
 
 pub(super) fn sample(filter: Filter) -> TexSample {
-    TexSample {
-        texture: 0,
-        uv_set: 0,
-        filter,
-    }
+    TexSample::new(0, 0, filter)
 }
 
 /// UVs of a quad at `origin` whose pixels step `step` texels in u (x) and

@@ -45,23 +45,36 @@ pub struct Footprint {
 /// ([`TextureSet::quad_blocks_texels`]), for [`TextureSet::quad_alpha`].
 #[derive(Clone, Copy, Debug)]
 pub struct QuadTexels {
-    pub(super) texture: usize,
     pub(super) filter: Filter,
-    /// The levels and the second one's weight ([`TextureSet::levels_for`]).
-    pub(super) levels: (usize, usize, f32),
-    /// Per level read (first, second), per pixel.
+    /// The (texture, level) pairs read and the second one's weight
+    /// ([`TextureSet::reads`]).
+    pub(super) reads: Reads,
+    /// Per pass (first, second), per pixel.
     pub(super) px: [[Footprint; 4]; 2],
 }
 
 impl Default for QuadTexels {
     fn default() -> Self {
         QuadTexels {
-            texture: 0,
             filter: Filter::Nearest,
-            levels: (0, 0, 0.0),
+            reads: Reads {
+                first: (0, 0),
+                second: None,
+                weight: 0.0,
+            },
             px: [[Footprint::default(); 4]; 2],
         }
     }
+}
+
+/// What a texture instruction reads: the (texture, level) of its first
+/// filter pass, that of its second if it has one, and the second's weight
+/// in the result.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reads {
+    pub first: (usize, usize),
+    pub second: Option<(usize, usize)>,
+    pub weight: f32,
 }
 
 /// The texels a sample with `filter` at `uv` reads in `level`.
@@ -175,8 +188,33 @@ impl TextureSet<'_> {
     /// other one (nearest, bilinear, or trilinear reading one level) is
     /// one bilinear filter pass (`t`).
     pub fn reads_two_levels(&self, sample: &TexSample, lambda: f32) -> bool {
-        let (a, b, _) = self.levels_for(sample.texture, sample.filter, lambda);
-        a != b
+        self.reads(sample, lambda).second.is_some()
+    }
+
+    /// The (texture, level) pairs `sample` reads at this level of detail:
+    /// the levels [`TextureSet::levels_for`] gives for a mipmapped sample,
+    /// level 0 alone for one that is not; a sample with a
+    /// [`crate::SecondSlice`] reads level 0 of its texture and of the
+    /// second, with the second's weight.
+    #[inline]
+    pub fn reads(&self, sample: &TexSample, lambda: f32) -> Reads {
+        if let Some(s) = sample.second {
+            return Reads {
+                first: (sample.texture, 0),
+                second: Some((s.texture, 0)),
+                weight: f32::from(s.weight) / 65536.0,
+            };
+        }
+        let (la, lb, weight) = if sample.mipmapped {
+            self.levels_for(sample.texture, sample.filter, lambda)
+        } else {
+            (0, 0, 0.0)
+        };
+        Reads {
+            first: (sample.texture, la),
+            second: (lb != la).then_some((sample.texture, lb)),
+            weight,
+        }
     }
 
     /// The distinct blocks (block numbers = byte address / 64, sorted) that
@@ -218,15 +256,15 @@ impl TextureSet<'_> {
         mut texels: Option<&mut QuadTexels>,
     ) -> f32 {
         out.clear();
-        let tex = &self.textures[sample.texture];
         let lambda = self.quad_lambda(sample.texture, &uvs);
-        let levels = self.levels_for(sample.texture, sample.filter, lambda);
-        let (la, lb, _) = levels;
+        let reads = self.reads(sample, lambda);
         // A block holds the texels of one cell of its level (4x4 texels in
         // RGBA8, the format's line region otherwise), so the distinct cells
         // the texels fall in (few: at most 16 per level) give the distinct
         // blocks; levels never share a block.
-        let mut push_level = |level: &MipLevel, slot: usize| {
+        let mut push_level = |(t, l): (usize, usize), slot: usize| {
+            let tex = &self.textures[t];
+            let level = &tex.levels[l];
             let mut cells = [0u64; 16];
             let mut n = 0;
             // By cell: (cx, cy) as a key.
@@ -264,14 +302,13 @@ impl TextureSet<'_> {
                     .map(|&k| level.block_of_cell(k as u32, (k >> 32) as u32)),
             );
         };
-        push_level(&tex.levels[la], 0);
-        if lb != la {
-            push_level(&tex.levels[lb], 1);
+        push_level(reads.first, 0);
+        if let Some(second) = reads.second {
+            push_level(second, 1);
         }
         if let Some(q) = texels {
-            q.texture = sample.texture;
             q.filter = sample.filter;
-            q.levels = levels;
+            q.reads = reads;
         }
         out.sort_unstable();
         lambda
@@ -346,11 +383,7 @@ mod tests {
         let set = TextureSet::new(&texs);
         let mut out = Vec::new();
         let uvs = [[0.999, 0.5], [1.001, 0.5], [0.999, 0.51], [1.001, 0.51]];
-        let rep = TexSample {
-            texture: 0,
-            uv_set: 0,
-            filter: Filter::Bilinear,
-        };
+        let rep = TexSample::new(0, 0, Filter::Bilinear);
         set.quad_blocks(&rep, uvs, &mut out);
         // Repeat reaches column 0's blocks.
         let l0 = &set.textures()[0].levels[0];
