@@ -411,15 +411,24 @@ mod tests {
         // Each slice is one 4x4-texel block: two blocks in the frame.
         assert_eq!(f.trace.stats().frame_unique_blocks, 2);
         assert_eq!(f.stats.positions, 32 * 32);
-        // Linear in r at slice 1's centre: slices 1 and 2 (weight 0), one
-        // texture instruction of two passes.
+        // Linear in r at slice 1's centre: slice 2's weight is 0, so slice 1
+        // alone is read (an array of 2D layers), one pass.
         let one = [[0.0, 64.0, 1.5 / 4.0]];
         let calls = frame(gl::TEXTURE_3D, image_3d(4, 4), gl::LINEAR, 64.0, &one);
         let (imp, f) = run(calls);
         let s = sample(&imp.scene.materials[0]);
+        assert_eq!((s.texture, s.second), (1, None));
+        assert_eq!(f.trace.stats().frame_unique_blocks, 1);
+        assert_eq!(f.trace.trilinear_count(), 0);
+        // A quarter of the way to slice 2's centre: slices 1 and 2, one
+        // texture instruction of two passes.
+        let between = [[0.0, 64.0, 1.75 / 4.0]];
+        let calls = frame(gl::TEXTURE_3D, image_3d(4, 4), gl::LINEAR, 64.0, &between);
+        let (imp, f) = run(calls);
+        let s = sample(&imp.scene.materials[0]);
         let second = Some(crate::SecondSlice {
             texture: 2,
-            weight: 0,
+            weight: 16384,
         });
         assert_eq!((s.texture, s.second), (1, second));
         assert_eq!(f.trace.stats().frame_unique_blocks, 2);

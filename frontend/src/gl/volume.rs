@@ -10,11 +10,14 @@
 //!
 //! * `GL_NEAREST` in r reads slice `k = wrap(floor(w))`;
 //! * `GL_LINEAR` reads slices `k0 = wrap(floor(w - 1/2))` and
-//!   `k1 = wrap(k0 + 1)`, weighted `1 - g` and `g`, `g = frac(w - 1/2)`:
-//!   both are read, even when `g` is 0, as the 2x2 texels of a bilinear
-//!   sample are (a slice centre, where the Teeworlds client puts its r,
-//!   has `g = 0`). When `k0` and `k1` wrap to the same slice (an edge
-//!   under clamping, or one slice), it is read once.
+//!   `k1 = wrap(k0 + 1)`, weighted `1 - g` and `g`, `g = frac(w - 1/2)`.
+//!   (wasp) When `g` is 0 (r on a slice centre, where the Teeworlds client
+//!   puts its r to pick one tile per slice) only `k0` is read: such a
+//!   texture is an array of 2D layers, which a mobile port stores as an
+//!   OpenGL ES 3.0 `GL_TEXTURE_2D_ARRAY`, whose layer is never filtered;
+//!   reading the weightless slice would double the tiles' texture blocks.
+//!   When `k0` and `k1` wrap to the same slice (an edge under clamping, or
+//!   one slice), it is read once.
 //!
 //! `wrap` follows GL_TEXTURE_WRAP_R: `GL_REPEAT` is `k mod depth`,
 //! `GL_MIRRORED_REPEAT` mirrors every other period, every other mode
@@ -69,7 +72,9 @@ pub fn slices_at(r: f64, depth: u32, mode: i64, linear: bool) -> Slices {
     );
     Slices {
         first: a,
-        second: (a != b).then(|| (b, (g * 65536.0).round().min(65535.0) as u16)),
+        second: (a != b)
+            .then(|| (b, (g * 65536.0).round().min(65535.0) as u16))
+            .filter(|&(_, weight)| weight != 0),
     }
 }
 
@@ -222,7 +227,7 @@ mod tests {
     #[test]
     fn slices_follow_the_filter_and_the_wrap_mode() {
         // 256 slices, r at slice 7's centre: nearest reads 7; linear reads
-        // 7 and 8, 8 with weight 0.
+        // 7 and 8, 8 with weight 0: slice 7 alone.
         let r = 7.5 / 256.0;
         let near = slices_at(r, 256, gl::REPEAT, false);
         assert_eq!(
@@ -237,7 +242,7 @@ mod tests {
             lin,
             Slices {
                 first: 7,
-                second: Some((8, 0))
+                second: None
             }
         );
         // A quarter of the way from slice 2's centre to slice 3's.

@@ -413,6 +413,8 @@ mod tests {
                 texture: t,
                 uv_set: 0,
                 filter: crate::Filter::Bilinear,
+                mipmapped: true,
+                second: None,
             })],
             state: Some(state),
         };
