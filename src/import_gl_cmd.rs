@@ -90,12 +90,17 @@ fn parse_frames(s: &str) -> Result<FrameRange, String> {
     Ok(FrameRange { first, last })
 }
 
-/// Rasterize an imported frame (with its picture when `colour`).
-fn rasterize_frame(imported: &gl::Imported, colour: bool) -> Result<Frame, CliError> {
+/// Rasterize an imported frame (with its picture when `colour`), its
+/// textures stored in `format`.
+fn rasterize_frame(
+    imported: &gl::Imported,
+    colour: bool,
+    format: FormatChoice,
+) -> Result<Frame, CliError> {
     let raster = RasterOptions {
         tile: TILE,
         colour,
-        texture_format: args.texture_format,
+        texture_format: format,
         ..RasterOptions::default()
     };
     rasterize(&imported.scene, imported.width, imported.height, &raster)
@@ -120,14 +125,14 @@ fn import_frames(
             skip_unsupported: args.skip_unsupported,
         };
         let imported = gl::import(capture, &args.capture, opts).map_err(|e| failed(&e))?;
-        let frame = rasterize_frame(&imported, colour)?;
+        let frame = rasterize_frame(&imported, colour, args.texture_format)?;
         return Ok((Vec::new(), imported, frame));
     };
     let mut reader = gl::Reader::new(capture, &args.capture, args.skip_unsupported);
     let mut traces = Vec::new();
     for f in first..last {
         let imported = reader.frame(f).map_err(|e| failed(&e))?;
-        let frame = rasterize_frame(&imported, false)?;
+        let frame = rasterize_frame(&imported, false, args.texture_format)?;
         if !args.quiet {
             eprintln!(
                 "wasp: imported frame {} ({} draw calls, {} quads shaded)",
@@ -139,7 +144,7 @@ fn import_frames(
         traces.push(frame.trace);
     }
     let imported = reader.frame(last).map_err(|e| failed(&e))?;
-    let frame = rasterize_frame(&imported, colour)?;
+    let frame = rasterize_frame(&imported, colour, args.texture_format)?;
     Ok((traces, imported, frame))
 }
 
