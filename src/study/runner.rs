@@ -777,6 +777,7 @@ mod tests {
             Task::Characterize {
                 scene: engine.name.clone(),
                 config: "paper".into(),
+                format: None,
             },
             Task::Run(Point::new(&engine.name, "paper", &[])),
             Task::Run(plane.clone()),
