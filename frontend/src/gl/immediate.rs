@@ -479,6 +479,21 @@ mod tests {
     }
 
     #[test]
+    fn an_array_draw_without_coordinates_uses_the_current_ones() {
+        let mut calls = frame(false, &[(gl::QUADS, square(0.0, 0.0, 8.0, 8.0, 0.0))]);
+        calls.retain(|c| c.args.first() != Some(&e(gl::TEXTURE_COORD_ARRAY)));
+        let tc = call(
+            0,
+            "glMultiTexCoord2f",
+            vec![e(gl::TEXTURE0), f(0.5), f(0.25)],
+        );
+        calls.insert(1, tc);
+        let (imp, _) = run(calls).unwrap();
+        // Through the texture matrix (x2).
+        assert!(imp.scene.meshes[0].uv.iter().all(|&t| t == [1.0, 0.5]));
+    }
+
+    #[test]
     fn lines_and_points_are_refused_as_array_draws_are() {
         let l = square(0.0, 0.0, 8.0, 8.0, 0.0);
         for mode in [gl::LINES, gl::LINE_STRIP, gl::LINE_LOOP, gl::POINTS] {

@@ -196,7 +196,7 @@ fn read(
     let mut frame = 0u64;
     let mut cur = FrameBuild::default();
     let mut unmodelled: BTreeMap<String, u64> = BTreeMap::new();
-    // Unsupported draws (immediate mode, display lists) of the frames
+    // Unsupported draws (display lists, shader programs) of the frames
     // before the current one, by feature.
     let mut earlier: BTreeMap<String, u64> = BTreeMap::new();
     let mut done: Option<Finished> = None;
