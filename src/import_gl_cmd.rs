@@ -43,9 +43,8 @@ pub struct ImportGlArgs {
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
     /// Count the draws that need what is not modelled (a shader program,
-    /// immediate mode, display lists, texture coordinate generation, a
-    /// primitive other than triangles and quads) instead of stopping at
-    /// the first.
+    /// display lists, texture coordinate generation, a primitive other
+    /// than triangles and quads) instead of stopping at the first.
     #[arg(long)]
     pub skip_unsupported: bool,
     /// Check the frame against Mesa: glretrace replays of rewritten

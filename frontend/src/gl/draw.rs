@@ -6,7 +6,7 @@
 //! which places it on screen ([`mod@super::import`]).
 
 use super::args::{self, CallError, Pointer};
-use super::arrays::{self, Array};
+use super::arrays::{self, Arrays};
 use super::enums as gl;
 use super::state::FixedState;
 use super::textures::TexObject;
@@ -163,13 +163,35 @@ pub fn record(ctx: &Context, call: &Call) -> Result<Result<DrawRec, String>, Cal
     if let Some(f) = unsupported(ctx) {
         return Ok(Err(f));
     }
+    if let ("glEnd", Some(b)) = (&*call.name, &ctx.immediate.ended) {
+        // Immediate mode: the block as glDrawArrays(mode, 0, n) over
+        // arrays of its vertices, numbered by its glBegin.
+        if let Some(f) = &b.unsupported {
+            return Ok(Err(format!("{f} between glBegin and glEnd")));
+        }
+        let list: Vec<u32> = (0..b.vertices.len() as u32).collect();
+        let rec = record_list(ctx, &b.arrays(), call, b.mode, &list)?;
+        return Ok(rec.map(|r| DrawRec { call: b.begin, ..r }));
+    }
     let (mode, list) = vertex_list(ctx, call)?;
-    let tris = match triangles(mode, &list) {
+    record_list(ctx, &ctx.arrays, call, mode, &list)
+}
+
+/// Records draw `call` of the vertices `list` of `arrays` as primitive
+/// `mode` in the current state.
+pub fn record_list(
+    ctx: &Context,
+    arrays: &Arrays,
+    call: &Call,
+    mode: i64,
+    list: &[u32],
+) -> Result<Result<DrawRec, String>, CallError> {
+    let tris = match triangles(mode, list) {
         Ok(t) => t,
         Err(f) => return Ok(Err(f)),
     };
     let fail = |m: String| CallError::at(call, m);
-    let vertex = match &ctx.arrays.vertex {
+    let vertex = match &arrays.vertex {
         Some(a) if a.enabled => a,
         _ => {
             return Err(fail(
@@ -181,8 +203,7 @@ pub fn record(ctx: &Context, call: &Call) -> Result<Result<DrawRec, String>, Cal
     };
     let (used, indices) = renumber(&tris);
     let mvp = ctx.matrices.mvp();
-    let bytes = ctx
-        .arrays
+    let bytes = arrays
         .bytes(&vertex.source)
         .map_err(|m| fail(format!("vertex array: {m}")))?;
     let clip = used
@@ -215,7 +236,7 @@ pub fn record(ctx: &Context, call: &Call) -> Result<Result<DrawRec, String>, Cal
         }
         let mut r = Vec::new();
         let want_r = unit.enabled_3d.then_some(&mut r);
-        texcoords(ctx, u, ctx.arrays.texcoord[u].as_ref(), &used, out, want_r)
+        texcoords(ctx, arrays, u, &used, out, want_r)
             .map_err(|m| fail(format!("texture coordinates of unit {u}: {m}")))?;
         let slices = if unit.enabled_3d {
             match volume::triangle_slices(tex, &r, &indices) {
@@ -263,25 +284,25 @@ fn renumber(tris: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
 
 /// Unit `u`'s coordinates of the vertices `used` through its texture
 /// matrix, divided by q (r too, into `r` when asked for); without an
-/// enabled array, (0, 0, 0, 1) (GL's initial current texture coordinate,
-/// (wasp): glTexCoord is not modelled).
+/// enabled array, the unit's current texture coordinates (glTexCoord,
+/// glMultiTexCoord).
 fn texcoords(
     ctx: &Context,
+    arrays: &Arrays,
     u: usize,
-    array: Option<&Array>,
     used: &[u32],
     out: &mut [[f32; 2]],
     mut r: Option<&mut Vec<f64>>,
 ) -> Result<(), String> {
     let m = ctx.matrices.texture[u].top();
-    let bytes = match array {
-        Some(a) if a.enabled => Some((a, ctx.arrays.bytes(&a.source)?)),
+    let bytes = match &arrays.texcoord[u] {
+        Some(a) if a.enabled => Some((a, arrays.bytes(&a.source)?)),
         _ => None,
     };
     for (o, &i) in out.iter_mut().zip(used) {
         let tc = match bytes {
             Some((a, b)) => a.element(b, i as usize)?,
-            None => [0.0, 0.0, 0.0, 1.0],
+            None => ctx.immediate.texcoord[u],
         };
         let t = m.apply(tc);
         let q = if t[3] != 0.0 { t[3] } else { 1.0 };

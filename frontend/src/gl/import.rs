@@ -162,7 +162,7 @@ pub struct Reader<I> {
     cur: FrameBuild,
     /// Calls not modelled so far, by name.
     unmodelled: BTreeMap<String, u64>,
-    /// Unsupported draws (immediate mode, display lists) of the frames
+    /// Unsupported draws (display lists, shader programs) of the frames
     /// before the current one, by feature.
     earlier: BTreeMap<String, u64>,
 }
@@ -471,15 +471,15 @@ pub(crate) mod tests {
             err.to_string().contains("glDrawArrays): no vertex array"),
             "{err}"
         );
-        // Immediate mode: an error, or with skip_unsupported a count.
+        // A display list: an error, or with skip_unsupported a count.
         let mut imm = one;
-        imm.insert(7, call(7, "glBegin", vec![e(gl::TRIANGLES)]));
+        imm.insert(7, call(7, "glCallList", vec![Value::UInt(1)]));
         let err = import(
             imm.clone().into_iter().map(Ok),
             path,
             ImportOptions::default(),
         );
-        assert!(err.unwrap_err().to_string().contains("immediate mode"));
+        assert!(err.unwrap_err().to_string().contains("display list"));
         let opts = ImportOptions {
             skip_unsupported: true,
             ..Default::default()
@@ -491,7 +491,7 @@ pub(crate) mod tests {
         later.extend(frame(None, &[[0.0, 0.0, 8.0, 8.0, 0.0]]));
         let next = import(later.into_iter().map(Ok), path, ImportOptions::default()).unwrap();
         assert!(next.unsupported.is_empty());
-        let want = [("immediate mode (glBegin/glEnd)".to_string(), 1)];
+        let want = [("a display list".to_string(), 1)];
         assert_eq!(next.unsupported_in_earlier_frames, want.into());
         assert_eq!(ok.unmodelled.get("glXMakeCurrent"), Some(&1));
     }

@@ -15,6 +15,7 @@ pub mod args;
 pub mod arrays;
 pub mod draw;
 pub mod enums;
+pub mod immediate;
 pub mod import;
 pub mod matrices;
 pub mod scene;

@@ -5,6 +5,7 @@
 use super::args::{self, CallError};
 use super::arrays::Arrays;
 use super::enums as gl;
+use super::immediate::{Immediate, Step};
 use super::matrices::{Mat4, Matrices};
 use super::state::{self, FixedState};
 use super::textures::Textures;
@@ -23,7 +24,7 @@ pub enum Effect {
     /// The model does not use it: counted under this name.
     Unmodelled(String),
     /// A draw call of the subset (glDrawArrays, glDrawElements,
-    /// glDrawRangeElements).
+    /// glDrawRangeElements, glEnd of an immediate-mode block).
     Draw,
     /// A draw outside the subset: what it needs.
     UnsupportedDraw(String),
@@ -38,6 +39,8 @@ pub struct Context {
     pub arrays: Arrays,
     pub textures: Textures,
     pub state: FixedState,
+    /// Immediate mode: current attributes, glBegin .. glEnd blocks.
+    pub immediate: Immediate,
     /// Inside glNewList .. glEndList: calls are compiled into a display
     /// list, not executed.
     pub in_list: bool,
@@ -53,6 +56,7 @@ impl Default for Context {
             arrays: Arrays::new(UNITS),
             textures: Textures::new(UNITS),
             state: FixedState::default(),
+            immediate: Immediate::new(UNITS),
             in_list: false,
             drawn: false,
         }
@@ -82,6 +86,15 @@ impl Context {
             }
             return Ok(Effect::Unmodelled(format!("{name} (in a display list)")));
         }
+        match self.immediate.apply(call)? {
+            Step::Other => {}
+            Step::Modelled => return Ok(Effect::Modelled),
+            Step::Unmodelled(n) => return Ok(Effect::Unmodelled(n)),
+            Step::End => {
+                self.drawn = true;
+                return Ok(Effect::Draw);
+            }
+        }
         let err = |m: String| CallError::at(call, m);
         if let Some(e) = self.apply_matrix(call, name)? {
             return Ok(e);
@@ -104,7 +117,6 @@ impl Context {
                 self.drawn = true;
                 Effect::Draw
             }
-            "glBegin" => Effect::UnsupportedDraw("immediate mode (glBegin/glEnd)".into()),
             "glCallList" | "glCallLists" => Effect::UnsupportedDraw("a display list".into()),
             "glNewList" => {
                 self.in_list = true;
@@ -391,12 +403,8 @@ mod tests {
             Effect::Unmodelled("glEnable(GL_FOG)".into())
         );
         assert_eq!(
-            run(&mut c, "glColor4f", vec![]),
-            Effect::Unmodelled("glColor4f".into())
-        );
-        assert_eq!(
-            run(&mut c, "glBegin", vec![e(4)]),
-            Effect::UnsupportedDraw("immediate mode (glBegin/glEnd)".into())
+            run(&mut c, "glHint", vec![]),
+            Effect::Unmodelled("glHint".into())
         );
         run(&mut c, "glEnable", vec![e(gl::TEXTURE_GEN_S)]);
         assert_eq!(c.textures.units[1].enabled_other, [gl::TEXTURE_GEN_S]);
@@ -412,6 +420,9 @@ mod tests {
         assert_eq!(c.state.depth_epoch, 1);
         assert_eq!(run(&mut c, "glXSwapBuffers", vec![]), Effect::FrameEnd);
         assert_eq!(c.state.depth_epoch, 0);
+        // An immediate-mode block draws at its glEnd.
+        assert_eq!(run(&mut c, "glBegin", vec![e(4)]), Effect::Modelled);
+        assert_eq!(run(&mut c, "glEnd", vec![]), Effect::Draw);
         // Display lists compile, not execute.
         run(&mut c, "glNewList", vec![i(1), e(0x1300)]);
         run(&mut c, "glViewport", vec![i(0), i(0), i(8), i(8)]);

@@ -169,7 +169,11 @@ pub fn rewrite(
         }
         r.swapped |= wasp_gltrace::is_frame_end(&call.name);
         r.vertex_alpha.follow(&call);
-        if call.no >= frame.0 && is_draw(&call.name) && r.vertex_alpha.draw_reads_vertex_alpha() {
+        let reads_vertex_alpha = match &*call.name {
+            "glEnd" => r.vertex_alpha.block_reads_vertex_alpha(),
+            n => is_draw(n) && r.vertex_alpha.draw_reads_vertex_alpha(),
+        };
+        if call.no >= frame.0 && reads_vertex_alpha {
             r.note(
                 "alpha-tested draw of the frame whose vertex alpha is below 1 (replayed with 1)"
                     .into(),

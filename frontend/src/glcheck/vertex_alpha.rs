@@ -19,6 +19,10 @@ pub(super) struct VertexAlpha {
     array_below_one: Option<bool>,
     /// Whether the current colour's alpha is below 1.
     current_below_one: bool,
+    /// Inside glBegin .. glEnd: whether a vertex so far had it.
+    block_below_one: Option<bool>,
+    /// Whether a vertex of the last block ended had it.
+    last_block_below_one: bool,
 }
 
 impl VertexAlpha {
@@ -41,8 +45,21 @@ impl VertexAlpha {
             "glColor3f" | "glColor3ub" | "glColor3fv" | "glColor3ubv" => {
                 self.current_below_one = false;
             }
+            "glBegin" => self.block_below_one = Some(false),
+            "glEnd" => self.last_block_below_one = self.block_below_one.take() == Some(true),
+            n if is_vertex(n) => {
+                if let Some(b) = &mut self.block_below_one {
+                    *b |= self.current_below_one;
+                }
+            }
             _ => {}
         }
+    }
+
+    /// Whether the immediate-mode block a glEnd just ended is alpha-tested
+    /// with a vertex alpha below 1.
+    pub(super) fn block_reads_vertex_alpha(&self) -> bool {
+        self.alpha_test && self.last_block_below_one
     }
 
     /// Whether a draw now is alpha-tested with a vertex alpha that may be
@@ -55,6 +72,13 @@ impl VertexAlpha {
                 self.current_below_one
             }
     }
+}
+
+/// glVertex2f, glVertex3fv...: a vertex of an immediate-mode block (not
+/// glVertexPointer, glVertexAttrib*).
+fn is_vertex(name: &str) -> bool {
+    name.strip_prefix("glVertex")
+        .is_some_and(|r| r.starts_with(|c: char| c.is_ascii_digit()))
 }
 
 /// Whether a colour array's recorded data has an alpha below 1:
@@ -150,7 +174,25 @@ mod tests {
         assert!(!v.draw_reads_vertex_alpha());
         v.follow(&ptr(254));
         assert!(v.draw_reads_vertex_alpha());
+        // Immediate mode: a block one of whose vertices had alpha 0.5.
+        v.follow(&call(
+            "glDisableClientState",
+            vec![Value::Enum(gl::COLOR_ARRAY)],
+        ));
+        let half = call("glColor4f", vec![Value::Float(0.5); 4]);
+        let one = call("glColor4f", vec![Value::Float(1.0); 4]);
+        let vertex = call("glVertex2f", vec![Value::Float(0.0); 2]);
+        for (colours, below) in [([&one, &one], false), ([&half, &one], true)] {
+            v.follow(&call("glBegin", vec![Value::Enum(gl::TRIANGLES)]));
+            for c in colours {
+                v.follow(c);
+                v.follow(&vertex);
+            }
+            v.follow(&call("glVertexPointer", vec![]));
+            v.follow(&call("glEnd", vec![]));
+            assert_eq!(v.block_reads_vertex_alpha(), below);
+        }
         v.follow(&call("glDisable", vec![Value::Enum(ALPHA_TEST)]));
-        assert!(!v.draw_reads_vertex_alpha());
+        assert!(!v.draw_reads_vertex_alpha() && !v.block_reads_vertex_alpha());
     }
 }
