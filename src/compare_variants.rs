@@ -3,7 +3,7 @@
 //! machine options (a prefetcher, ideal memory) and launch policies stand in
 //! one table of speedups against one reference row.
 
-use crate::CliError;
+use crate::cli_error::CliError;
 use serde::Serialize;
 use std::fmt::Write as _;
 use wasp_sim::config::MachineConfig;

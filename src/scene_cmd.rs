@@ -1,9 +1,9 @@
 //! `wasp scenes`, `wasp render` and `wasp characterize`: real-game and
 //! procedural scenes through the TBR front end.
 
+use crate::cli_error::CliError;
 use crate::output::{self, emit, Output};
 use crate::scenes_dir::ScenesDir;
-use crate::CliError;
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
