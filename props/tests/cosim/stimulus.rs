@@ -4,6 +4,7 @@
 //! cycle's inputs and outputs recorded.
 
 use std::fmt::Write as _;
+use std::hash::Hasher;
 use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
@@ -381,9 +382,11 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
     };
     let k = cfg.mesh_k;
     for seed in 0..seeds {
-        let name_hash = cfg.name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-            (h ^ b as u64).wrapping_mul(0x1000_0000_01b3)
-        });
+        let name_hash = {
+            let mut h = fnv::FnvHasher::default();
+            h.write(cfg.name.as_bytes());
+            h.finish()
+        };
         let mut rng = Rng::new(name_hash ^ seed.wrapping_mul(0x9e37_79b9_7f4a_7c15));
         // The misses of priority warps (read by wasp-m's meter) come from
         // a stream of their own, so that the other inputs are those of
