@@ -15,8 +15,8 @@
 //! between points smaller than their spread is noise, and a warning says
 //! so when a spread passes 10%.
 
+use crate::cli_error::CliError;
 use crate::output::{self, emit, Output};
-use crate::CliError;
 use clap::builder::RangedU64ValueParser;
 use clap::Args;
 use std::path::PathBuf;

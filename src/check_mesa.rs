@@ -8,7 +8,7 @@
 //! (docs/scenes.md, "Checked against Mesa").
 
 use crate::capture::tools::find_program;
-use crate::CliError;
+use crate::cli_error::CliError;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -2,10 +2,10 @@
 //! speedups against the first; with `--variant`, on machine variants too
 //! ([`crate::compare_variants`]), against one reference row.
 
+use crate::cli_error::CliError;
 use crate::compare_variants::{self as variants, Row, Variant};
 use crate::output::{self, emit, Output};
 use crate::run_cmd::{load_config, load_trace, progress_bar, run_tiles, sim_err, Inputs};
-use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;

@@ -3,11 +3,11 @@
 //! machine options (a prefetcher, ideal memory) and launch policies stand in
 //! one table of speedups against one reference row.
 
-use crate::CliError;
+use crate::cli_error::CliError;
 use serde::Serialize;
 use std::fmt::Write as _;
 use wasp_sim::config::MachineConfig;
-use wasp_sim::stats::{csv_table, RunStats};
+use wasp_sim::stats::{csv_records, csv_text, RunStats};
 
 /// One `--variant`: a name and the overrides it applies on top of the
 /// machine as configured.
@@ -104,24 +104,24 @@ pub fn json(rows: &[Row]) -> Result<String, CliError> {
 /// every statistic's column as in `wasp compare --csv`.
 pub fn csv(rows: &[Row]) -> String {
     let runs: Vec<RunStats> = rows.iter().map(|r| r.stats.clone()).collect();
-    let table = csv_table(&runs);
-    let mut s = String::new();
-    for (i, line) in table.lines().enumerate() {
-        if i == 0 {
-            let _ = writeln!(s, "row,variant,reference,speedup_percent,{line}");
-        } else {
-            let r = &rows[i - 1];
-            let _ = writeln!(
-                s,
-                "{},{},{},{:.4},{line}",
-                r.row,
-                r.variant.unwrap_or(""),
-                r.reference,
-                r.speedup_percent
-            );
-        }
-    }
-    s
+    let table = csv_records(&runs);
+    let lead = ["row", "variant", "reference", "speedup_percent"].map(String::from);
+    let records = table.into_iter().enumerate().map(|(i, fields)| {
+        let first = match i {
+            0 => lead.clone(),
+            _ => {
+                let r = &rows[i - 1];
+                [
+                    r.row.to_string(),
+                    r.variant.unwrap_or("").to_string(),
+                    r.reference.to_string(),
+                    format!("{:.4}", r.speedup_percent),
+                ]
+            }
+        };
+        first.into_iter().chain(fields).collect::<Vec<String>>()
+    });
+    csv_text(records)
 }
 
 /// The lines naming each variant's machine, for the table's header.

@@ -1,7 +1,7 @@
 //! `wasp cost`: the hardware-overhead report.
 
+use crate::cli_error::CliError;
 use crate::output::{self, emit, Output};
-use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use wasp_rtl::cost::GateRules;

@@ -4,9 +4,9 @@
 //! imported as `wasp import-gl` imports it (docs/import-gl.md).
 
 use crate::capture::{engine_scene, ensure_capture};
+use crate::cli_error::CliError;
 use crate::import_gl_cmd::{self, ImportGlArgs};
 use crate::scene_cmd::RenderArgs;
-use crate::CliError;
 use wasp_frontend::def::{self, Route};
 
 /// Whether `name` names an engine-route scene (a name or a definition file

@@ -1,8 +1,8 @@
 //! `wasp example`: the paper's worked example.
 
+use crate::cli_error::CliError;
 use crate::output::{self, emit, Output};
 use crate::run_cmd::gtkw_path;
-use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use wasp_rtl::policy::LaunchRule;

@@ -2,8 +2,8 @@
 //! OpenGL 1.x program, drawn by wasp's own raster front end into a trace
 //! (and a picture), with the import's summary (docs/import-gl.md).
 
+use crate::cli_error::CliError;
 use crate::output::{self, Input, Output};
-use crate::CliError;
 use clap::Args;
 use std::path::PathBuf;
 use wasp_frontend::gl::{self, ImportOptions, Summary};

@@ -4,6 +4,7 @@ mod bench_cmd;
 mod capture;
 mod charts;
 mod check_mesa;
+mod cli_error;
 mod compare_cmd;
 mod compare_variants;
 mod cost_cmd;
@@ -29,6 +30,7 @@ mod timeline_plot;
 mod trace_cat_cmd;
 
 use clap::{Parser, Subcommand};
+use cli_error::CliError;
 use std::process::ExitCode;
 
 /// wasp: a cycle model of a tile-based-rendering mobile GPU shader core with
@@ -237,45 +239,5 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
             quiet: cli.quiet,
             ..example_cmd::ExampleArgs::default()
         }),
-    }
-}
-
-/// An error the CLI reports: a message and an exit code (2 for bad input,
-/// 1 for failures while running).
-#[derive(Debug)]
-pub struct CliError {
-    message: String,
-    usage: bool,
-}
-
-impl CliError {
-    /// Bad input from the user (exit code 2).
-    pub fn usage(message: impl Into<String>) -> Self {
-        Self {
-            message: message.into(),
-            usage: true,
-        }
-    }
-
-    /// A failure while running (exit code 1).
-    pub fn failed(message: impl Into<String>) -> Self {
-        Self {
-            message: message.into(),
-            usage: false,
-        }
-    }
-
-    fn exit_code(&self) -> u8 {
-        if self.usage {
-            2
-        } else {
-            1
-        }
-    }
-}
-
-impl std::fmt::Display for CliError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.message)
     }
 }

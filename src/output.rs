@@ -7,7 +7,7 @@
 //! temporary file in its folder and renamed into place ([`AtomicFile`]), so
 //! a failed or interrupted run leaves the old file whole.
 
-use crate::CliError;
+use crate::cli_error::CliError;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};

@@ -1,8 +1,8 @@
 //! `wasp run`: the GPU model on a trace; the inputs it shares with
 //! `wasp compare` ([`Inputs`]).
 
+use crate::cli_error::CliError;
 use crate::output::{self, emit, Output};
-use crate::CliError;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;

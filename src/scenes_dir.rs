@@ -2,7 +2,7 @@
 //! definitions (`scenes list`, `scenes capture`, `render`, `characterize`,
 //! `reproduce`, `sweep`, `merge --sweep`) and by no other.
 
-use crate::CliError;
+use crate::cli_error::CliError;
 use clap::Args;
 use std::path::PathBuf;
 

@@ -2,6 +2,7 @@
 //! (docs/sweep.md), run here in parallel or as one cluster job per point,
 //! and its results combined from any number of study folders.
 
+use crate::cli_error::CliError;
 use crate::output::{self, emit, Output};
 use crate::scenes_dir::ScenesDir;
 use crate::study::cache::{read_points, write_atomic, Cache, PointRecord};
@@ -9,7 +10,6 @@ use crate::study::jobs;
 use crate::study::merge;
 use crate::study::runner::{self, RunnerOptions, Task};
 use crate::study::sweep::{self, Sweep, SweepPoint};
-use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use wasp_frontend::{def, fetch};

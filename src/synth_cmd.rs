@@ -1,7 +1,7 @@
 //! `wasp synth`: write a synthetic workload trace.
 
+use crate::cli_error::CliError;
 use crate::output::{self, Output};
-use crate::CliError;
 use clap::Args;
 use std::path::PathBuf;
 use wasp_sim::synth::{generate, GenParams, GenReport};

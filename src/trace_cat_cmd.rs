@@ -1,8 +1,8 @@
 //! `wasp trace-cat`: join traces into one trace of several frames, the
 //! frames of each file after those of the one before.
 
+use crate::cli_error::CliError;
 use crate::output::{self, emit, Input, Output};
-use crate::CliError;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use wasp_sim::trace::Trace;

@@ -647,4 +647,4 @@ impl RunStats {
 
 mod csv;
 mod table;
-pub use csv::{csv_table, flatten};
+pub use csv::{csv_field, csv_records, csv_table, csv_text, flatten};

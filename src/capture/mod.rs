@@ -17,8 +17,8 @@ mod openarena;
 mod teeworlds;
 pub mod tools;
 
+use crate::cli_error::CliError;
 use crate::scenes_dir::ScenesDir;
-use crate::CliError;
 use clap::Args;
 use serde::Serialize;
 use std::path::{Path, PathBuf};

@@ -41,9 +41,9 @@ pub mod routes;
 pub mod routes_report;
 pub mod why;
 
+use crate::cli_error::CliError;
 use crate::study::cache::Cache;
 use crate::study::runner::{self, RunnerOptions};
-use crate::CliError;
 use clap::{Args, ValueEnum};
 use plan::Plan;
 use std::path::{Path, PathBuf};

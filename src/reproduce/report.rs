@@ -22,10 +22,11 @@ use super::prose::{pct, share};
 use super::why::why;
 use crate::study::cache::{write_atomic, PointRecord};
 use crate::study::runner::Outcome;
-use crate::study::table::{csv, points_csv};
+use crate::study::table::points_csv;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use wasp_sim::config::Dispatch;
+use wasp_sim::stats::csv_text;
 
 /// The command a report comes from.
 #[derive(Clone, Debug)]
@@ -296,24 +297,21 @@ fn figure(md: &mut String, f: &Figure, data: &Path, figs: &Path) -> Result<(), S
 
 /// A figure's numbers: category, then one column a series.
 pub fn figure_csv(f: &Figure) -> String {
-    let mut s = "category".to_string();
-    for x in &f.series {
-        let _ = write!(s, ",{}", csv(&x.name));
-    }
-    s.push('\n');
-    for (i, c) in f.categories.iter().enumerate() {
-        s.push_str(&csv(c));
-        for x in &f.series {
-            match x.values.get(i).copied().flatten() {
-                Some(v) => {
-                    let _ = write!(s, ",{v}");
-                }
-                None => s.push(','),
-            }
-        }
-        s.push('\n');
-    }
-    s
+    let header = std::iter::once("category".to_string())
+        .chain(f.series.iter().map(|x| x.name.clone()))
+        .collect::<Vec<String>>();
+    let rows = f.categories.iter().enumerate().map(|(i, c)| {
+        std::iter::once(c.clone())
+            .chain(f.series.iter().map(|x| {
+                x.values
+                    .get(i)
+                    .copied()
+                    .flatten()
+                    .map_or(String::new(), |v| format!("{v}"))
+            }))
+            .collect::<Vec<String>>()
+    });
+    csv_text(std::iter::once(header).chain(rows))
 }
 
 fn timelines(md: &mut String, plan: &Plan, d: Dispatch) {

@@ -11,11 +11,11 @@ use super::cache::PointRecord;
 use super::point::{binary_id, point_key, scene_identity, Point};
 use super::runner::Scenes;
 use super::sweep::SweepPoint;
-use super::table::csv;
 use std::collections::{BTreeSet, HashMap, HashSet};
 use std::fmt::Write as _;
 use wasp_frontend::raster::DrawOrder;
 use wasp_frontend::texture::FormatChoice;
+use wasp_sim::stats::csv_text;
 
 /// `records` without repeats: records of the same key and point count once,
 /// and records of the same key must hold the same statistics.
@@ -166,40 +166,35 @@ pub fn results_csv(rows: &[(&SweepPoint, &PointRecord)]) -> String {
         }
     }
     let formats = names_formats(rows);
-    let mut s = SWEEP_COLUMNS.join(",");
+    let mut header: Vec<String> = SWEEP_COLUMNS.iter().map(|c| c.to_string()).collect();
     if formats {
-        s.push_str(",texture_format");
+        header.push("texture_format".into());
     }
-    for n in &names {
-        let n = if SWEEP_COLUMNS.contains(n) {
-            format!("stats.{n}")
-        } else {
-            n.to_string()
-        };
-        let _ = write!(s, ",{}", csv(&n));
-    }
-    s.push('\n');
-    for ((p, _), row) in rows.iter().zip(&flat) {
-        let _ = write!(
-            s,
-            "{},{},{},{},{},{}",
-            p.index,
-            csv(&p.config),
-            csv(&p.dispatch),
-            csv(&p.policy),
-            csv(&p.scene),
-            p.draw_order
-        );
+    header.extend(names.iter().map(|n| match SWEEP_COLUMNS.contains(n) {
+        true => format!("stats.{n}"),
+        false => n.to_string(),
+    }));
+    let records = rows.iter().zip(&flat).map(|((p, _), row)| {
+        let mut r = vec![
+            p.index.to_string(),
+            p.config.clone(),
+            p.dispatch.clone(),
+            p.policy.clone(),
+            p.scene.clone(),
+            p.draw_order.to_string(),
+        ];
         if formats {
-            let _ = write!(s, ",{}", p.texture_format);
+            r.push(p.texture_format.to_string());
         }
         let row: HashMap<&str, &str> = row.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
-        for n in &names {
-            let _ = write!(s, ",{}", row.get(n).copied().unwrap_or(""));
-        }
-        s.push('\n');
-    }
-    s
+        r.extend(
+            names
+                .iter()
+                .map(|n| row.get(n).copied().unwrap_or("").to_string()),
+        );
+        r
+    });
+    csv_text(std::iter::once(header).chain(records))
 }
 
 /// The sweep's results as a JSON array: per point its labels, the point

@@ -3,50 +3,44 @@
 
 use super::cache::PointRecord;
 use std::collections::HashMap;
-use std::fmt::Write as _;
+use wasp_sim::stats::csv_text;
 
-/// A CSV field, quoted when it holds a comma, quote or newline.
-pub fn csv(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
-}
+/// A CSV field, quoted only where it must be (for a line put together by
+/// hand; whole tables go through [`csv_text`]).
+pub use wasp_sim::stats::csv_field as csv;
 
 /// Every point as CSV: scene, base configuration, overrides, then the
 /// flattened statistics (the columns of the first record).
 pub fn points_csv(records: &[&PointRecord]) -> String {
-    let mut s = String::new();
     let Some(first) = records.iter().find(|r| !r.stats.is_null()) else {
         return "scene,config,sets,key\n".into();
     };
     let mut cols = Vec::new();
     wasp_sim::stats::flatten("", &first.stats, &mut cols);
     let names: Vec<String> = cols.into_iter().map(|(k, _)| k).collect();
-    let _ = write!(s, "scene,config,sets,key");
-    for n in &names {
-        let _ = write!(s, ",{}", csv(n));
-    }
-    s.push('\n');
-    for r in records {
-        let _ = write!(
-            s,
-            "{},{},{},{}",
-            csv(&r.point.scene),
-            csv(&r.point.config),
-            csv(&r.point.sets.join(" ")),
-            r.key
-        );
+    let header = ["scene", "config", "sets", "key"]
+        .into_iter()
+        .map(String::from)
+        .chain(names.iter().cloned());
+    let rows = records.iter().map(|r| {
         let mut row = Vec::new();
         wasp_sim::stats::flatten("", &r.stats, &mut row);
         let row: HashMap<String, String> = row.into_iter().collect();
-        for n in &names {
-            let _ = write!(s, ",{}", row.get(n).map_or("", |v| v.as_str()));
-        }
-        s.push('\n');
-    }
-    s
+        [
+            r.point.scene.clone(),
+            r.point.config.clone(),
+            r.point.sets.join(" "),
+            r.key.clone(),
+        ]
+        .into_iter()
+        .chain(
+            names
+                .iter()
+                .map(|n| row.get(n).cloned().unwrap_or_default()),
+        )
+        .collect::<Vec<String>>()
+    });
+    csv_text(std::iter::once(header.collect::<Vec<String>>()).chain(rows))
 }
 
 #[cfg(test)]

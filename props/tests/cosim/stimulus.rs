@@ -4,6 +4,7 @@
 //! cycle's inputs and outputs recorded.
 
 use std::fmt::Write as _;
+use std::hash::Hasher;
 use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
@@ -11,23 +12,20 @@ use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::queue::QueueClass;
 use wasp_rtl::scheduler::{launch_code, EdgeEvents, LaunchScheduler};
 use wasp_rtl::subset::Mesh;
+use wasp_splitmix::SplitMix64;
 
 /// The most priority warps a core may hold (the 7-bit counter's maximum).
 pub(crate) const MAX_WARPS: i64 = 127;
 
-/// SplitMix64: a small, seedable generator (no dependency needed).
-pub(crate) struct Rng(u64);
+/// SplitMix64 (`wasp-splitmix`) on a seed mixed with a constant.
+pub(crate) struct Rng(SplitMix64);
 
 impl Rng {
     pub(crate) fn new(seed: u64) -> Self {
-        Rng(seed ^ 0x5851_f42d_4c95_7f2d)
+        Rng(SplitMix64::new(seed ^ 0x5851_f42d_4c95_7f2d))
     }
     pub(crate) fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
     /// Uniform in `0..=max`.
     pub(crate) fn upto(&mut self, max: i64) -> i64 {
@@ -384,9 +382,11 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
     };
     let k = cfg.mesh_k;
     for seed in 0..seeds {
-        let name_hash = cfg.name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-            (h ^ b as u64).wrapping_mul(0x1000_0000_01b3)
-        });
+        let name_hash = {
+            let mut h = fnv::FnvHasher::default();
+            h.write(cfg.name.as_bytes());
+            h.finish()
+        };
         let mut rng = Rng::new(name_hash ^ seed.wrapping_mul(0x9e37_79b9_7f4a_7c15));
         // The misses of priority warps (read by wasp-m's meter) come from
         // a stream of their own, so that the other inputs are those of

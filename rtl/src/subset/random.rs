@@ -7,6 +7,7 @@
 
 use super::PrioritySubset;
 use bitvec::prelude::*;
+use wasp_splitmix::splitmix64;
 
 /// A fixed random bitmap of priority quads.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -14,14 +15,6 @@ pub struct Random {
     side: u32,
     seed: u64,
     map: BitVec<u64, Lsb0>,
-}
-
-fn splitmix64(state: &mut u64) -> u64 {
-    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
 }
 
 impl Random {

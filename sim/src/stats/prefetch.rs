@@ -3,12 +3,17 @@
 //! prefetcher, so that the shipped machine's output is unchanged).
 
 use crate::config::MachineConfig;
+use crate::mem::prefetch::QueueCounts;
 use crate::mem::PrefetchStats;
-use serde::Serialize;
+use serde::ser::{Serialize, SerializeStruct, Serializer};
 use std::fmt::Write as _;
 
 /// A run's prefetches, summed over the cores.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+///
+/// Its JSON is flat, in the order the fields are listed here, with the
+/// queues' counts in place of `counts` (but `max_len`, which comes last as
+/// `longest_queue`).
+#[derive(Clone, Debug, PartialEq)]
 pub struct PrefetchReport {
     /// `oracle-tile` or `raster`.
     pub kind: String,
@@ -18,24 +23,12 @@ pub struct PrefetchReport {
     pub queue_filter: bool,
     /// L1 MSHRs kept free for demand.
     pub l1_reserve: u32,
-    /// Requests generated.
-    pub generated: u64,
-    /// Skipped: the block was already queued.
-    pub duplicates: u64,
-    /// Dropped: the queue was full.
-    pub dropped: u64,
-    /// Discarded unissued when the core's next tile opened (the oracle).
-    pub cancelled: u64,
-    /// Looked up in the L1.
-    pub issued: u64,
-    /// Of them, the line was present (dropped at the L1).
-    pub hits: u64,
-    /// Of them, a miss was already pending (dropped at the L1).
-    pub pending: u64,
-    /// Of them, missed and went to the L2 (an L1 MSHR each).
-    pub misses: u64,
-    /// Cycles a queue's head waited for L1 MSHRs above the reserve.
-    pub reserve_waits: u64,
+    /// What the queues did: requests generated, skipped as duplicates,
+    /// dropped (queue full), cancelled (the oracle's next tile), looked up
+    /// in the L1 and what the L1 found, reserve waits, and the most
+    /// requests one core's queue held at once (for the oracle: its longest
+    /// list).
+    pub counts: QueueCounts,
     /// Prefetch misses a demand access used (hit the line or merged into
     /// the entry), each once.
     pub useful: u64,
@@ -49,9 +42,38 @@ pub struct PrefetchReport {
     pub accuracy: f64,
     /// late / useful.
     pub late_share: f64,
-    /// Most requests one core's queue held at once (for the oracle: its
-    /// longest list).
-    pub longest_queue: u64,
+}
+
+impl Serialize for PrefetchReport {
+    fn serialize<S: Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        let q = &self.counts;
+        let mut m = ser.serialize_struct("PrefetchReport", 20)?;
+        m.serialize_field("kind", &self.kind)?;
+        m.serialize_field("queue", &self.queue)?;
+        m.serialize_field("queue_filter", &self.queue_filter)?;
+        m.serialize_field("l1_reserve", &self.l1_reserve)?;
+        for (name, v) in [
+            ("generated", q.generated),
+            ("duplicates", q.duplicates),
+            ("dropped", q.dropped),
+            ("cancelled", q.cancelled),
+            ("issued", q.issued),
+            ("hits", q.hits),
+            ("pending", q.pending),
+            ("misses", q.misses),
+            ("reserve_waits", q.reserve_waits),
+            ("useful", self.useful),
+            ("late", self.late),
+            ("useless", self.useless),
+            ("unused_at_end", self.unused_at_end),
+        ] {
+            m.serialize_field(name, &v)?;
+        }
+        m.serialize_field("accuracy", &self.accuracy)?;
+        m.serialize_field("late_share", &self.late_share)?;
+        m.serialize_field("longest_queue", &q.max_len)?;
+        m.end()
+    }
 }
 
 impl PrefetchReport {
@@ -60,7 +82,6 @@ impl PrefetchReport {
         if !cfg.prefetch.enabled() {
             return None;
         }
-        let q = &s.queue;
         let l = &s.lines;
         let ratio = |a: u64, b: u64| if b == 0 { 0.0 } else { a as f64 / b as f64 };
         Some(PrefetchReport {
@@ -68,22 +89,13 @@ impl PrefetchReport {
             queue: cfg.prefetch.queue,
             queue_filter: cfg.prefetch.queue_filter,
             l1_reserve: cfg.prefetch.l1_reserve,
-            generated: q.generated,
-            duplicates: q.duplicates,
-            dropped: q.dropped,
-            cancelled: q.cancelled,
-            issued: q.issued,
-            hits: q.hits,
-            pending: q.pending,
-            misses: q.misses,
-            reserve_waits: q.reserve_waits,
+            counts: s.queue,
             useful: l.useful,
             late: l.late,
             useless: l.useless,
             unused_at_end: s.unused_at_end,
-            accuracy: ratio(l.useful, q.misses),
+            accuracy: ratio(l.useful, s.queue.misses),
             late_share: ratio(l.late, l.useful),
-            longest_queue: q.max_len,
         })
     }
 
@@ -96,20 +108,20 @@ impl PrefetchReport {
             self.queue,
             if self.queue_filter { " filtered" } else { "" },
             self.l1_reserve,
-            self.generated,
-            self.duplicates,
-            self.dropped,
-            self.cancelled,
-            self.longest_queue
+            self.counts.generated,
+            self.counts.duplicates,
+            self.counts.dropped,
+            self.counts.cancelled,
+            self.counts.max_len
         );
         let _ = writeln!(
             s,
             "prefetch L1 lookups {}: {} hits, {} pending, {} misses ({} reserve waits); useful {} ({:.1}% of misses, {} late), useless {}, unused at end {}",
-            self.issued,
-            self.hits,
-            self.pending,
-            self.misses,
-            self.reserve_waits,
+            self.counts.issued,
+            self.counts.hits,
+            self.counts.pending,
+            self.counts.misses,
+            self.counts.reserve_waits,
             self.useful,
             100.0 * self.accuracy,
             self.late,
@@ -140,5 +152,23 @@ mod tests {
         r.table_lines(&mut t);
         assert!(t.contains("prefetch raster (queue 32 filtered, L1 reserve 4)"));
         assert!(t.contains("useful 6 (75.0% of misses, 3 late)"));
+    }
+
+    #[test]
+    fn json_is_flat_with_the_longest_queue_last() {
+        let mut cfg = MachineConfig::paper();
+        cfg.prefetch.kind = PrefetchKind::Raster;
+        let mut s = PrefetchStats::default();
+        s.queue.generated = 9;
+        s.queue.max_len = 5;
+        let r = PrefetchReport::of(&cfg, &s).unwrap();
+        assert_eq!(
+            serde_json::to_string(&r).unwrap(),
+            "{\"kind\":\"raster\",\"queue\":32,\"queue_filter\":true,\"l1_reserve\":4,\
+             \"generated\":9,\"duplicates\":0,\"dropped\":0,\"cancelled\":0,\"issued\":0,\
+             \"hits\":0,\"pending\":0,\"misses\":0,\"reserve_waits\":0,\"useful\":0,\
+             \"late\":0,\"useless\":0,\"unused_at_end\":0,\"accuracy\":0.0,\
+             \"late_share\":0.0,\"longest_queue\":5}"
+        );
     }
 }

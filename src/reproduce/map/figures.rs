@@ -160,6 +160,9 @@ pub fn warps(t: &MapTable, figs: &Path, data: &Path) -> Result<Option<Drawn>, St
 }
 
 fn xy_csv(c: &XyChart) -> String {
+    // Written by hand, the series name as it is: the names of the map's
+    // x-y charts hold a comma ("WaSP, 3D scenes"), which the csv crate
+    // would quote, changing the bytes of data/map-*.csv.
     let mut s = "series,x,y\n".to_string();
     for x in &c.series {
         for p in &x.points {

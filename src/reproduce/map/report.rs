@@ -13,9 +13,9 @@ use super::table::{movement, MapTable, Row};
 use crate::reproduce::plan::{Group, Plan};
 use crate::study::cache::write_atomic;
 use crate::study::runner::Outcome;
-use crate::study::table::csv;
 use std::fmt::Write as _;
 use std::path::Path;
+use wasp_sim::stats::csv_text;
 
 /// Percent with one decimal, or `-`.
 pub(super) fn pct(v: Option<f64>) -> String {
@@ -280,9 +280,8 @@ fn grid(md: &mut String, map: &MapPlan, t: &MapTable, groups: &[Group]) {
 
 /// Every row of the map as CSV: machine, group, then the numbers.
 pub fn to_csv(t: &MapTable) -> String {
-    let mut s = "knob,value,label,group,baseline_cycles_vs_shipped,wasp,fullpriority,\
-                 raster,oracle,ideal,gate_closed,lead,drain,cf,blocks_per_tile\n"
-        .to_string();
+    let header = "knob,value,label,group,baseline_cycles_vs_shipped,wasp,fullpriority,raster,\
+                  oracle,ideal,gate_closed,lead,drain,cf,blocks_per_tile";
     let mut rows: Vec<&Row> = vec![&t.shipped];
     for k in &t.knobs {
         rows.extend(&k.rows);
@@ -292,31 +291,35 @@ pub fn to_csv(t: &MapTable) -> String {
     }
     rows.extend(&t.deep_queue);
     let f = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x}"));
-    for r in rows {
-        for g in GROUPS {
+    let records = rows.into_iter().flat_map(|r| {
+        GROUPS.into_iter().map(move |g| {
             let m = r.of(g);
-            let _ = writeln!(
-                s,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                csv(&r.knob),
-                csv(&r.value),
-                csv(&r.label),
-                g.label(),
-                f(m.baseline_cycles),
-                f(m.wasp),
-                f(m.fullpriority),
-                f(m.raster),
-                f(m.oracle),
-                f(m.ideal),
-                f(m.gate_closed),
-                f(m.lead),
-                f(m.drain),
-                f(m.cf),
-                f(m.blocks_per_tile)
-            );
-        }
-    }
-    s
+            let numbers = [
+                m.baseline_cycles,
+                m.wasp,
+                m.fullpriority,
+                m.raster,
+                m.oracle,
+                m.ideal,
+                m.gate_closed,
+                m.lead,
+                m.drain,
+                m.cf,
+                m.blocks_per_tile,
+            ];
+            [
+                r.knob.clone(),
+                r.value.clone(),
+                r.label.clone(),
+                g.label().to_string(),
+            ]
+            .into_iter()
+            .chain(numbers.into_iter().map(f))
+            .collect::<Vec<String>>()
+        })
+    });
+    let header: Vec<String> = header.split(',').map(String::from).collect();
+    csv_text(std::iter::once(header).chain(records))
 }
 
 /// Which of the reproduction's scenes the map runs on, when not all.
