@@ -24,6 +24,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::cost::RfParams;
+use wasp_sim::stats::csv_text;
 
 /// A drawn figure: its id and title, for the report.
 pub struct Drawn {
@@ -160,16 +161,12 @@ pub fn warps(t: &MapTable, figs: &Path, data: &Path) -> Result<Option<Drawn>, St
 }
 
 fn xy_csv(c: &XyChart) -> String {
-    // Written by hand, the series name as it is: the names of the map's
-    // x-y charts hold a comma ("WaSP, 3D scenes"), which the csv crate
-    // would quote, changing the bytes of data/map-*.csv.
-    let mut s = "series,x,y\n".to_string();
-    for x in &c.series {
-        for p in &x.points {
-            let _ = writeln!(s, "{},{},{}", x.name, p.0, p.1);
-        }
-    }
-    s
+    let rows = c.series.iter().flat_map(|x| {
+        x.points
+            .iter()
+            .map(|p| [x.name.clone(), p.0.to_string(), p.1.to_string()])
+    });
+    csv_text(std::iter::once(["series", "x", "y"].map(String::from)).chain(rows))
 }
 
 /// The grid of the two knobs that move WaSP most, one heat map per group.
