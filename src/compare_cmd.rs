@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use wasp_rtl::policy::{PolicyName, PolicySpec};
 use wasp_sim::config::MachineConfig;
-use wasp_sim::run::{simulate, RunOptions, SimError};
+use wasp_sim::run::{simulate, RunOptions};
 use wasp_sim::stats::{csv_table, RunStats};
 use wasp_sim::trace::Trace;
 
@@ -249,35 +249,17 @@ fn run_jobs(
     let tiles = jobs.first().map_or(0, |j| run_tiles(trace, &j.opts));
     let pb = progress_bar(quiet, tiles * jobs.len(), "comparing");
     let done_tiles = Mutex::new(vec![0usize; jobs.len()]);
-    let next = Mutex::new(0usize);
-    let results: Mutex<Vec<Option<Result<RunStats, SimError>>>> =
-        Mutex::new((0..jobs.len()).map(|_| None).collect());
-    std::thread::scope(|s| {
-        for _ in 0..threads {
-            s.spawn(|| loop {
-                let i = {
-                    let mut n = next.lock().expect("lock");
-                    let i = *n;
-                    *n += 1;
-                    i
-                };
-                if i >= jobs.len() {
-                    break;
-                }
-                let mut progress = |d: usize, _t: usize| {
-                    let mut v = done_tiles.lock().expect("lock");
-                    v[i] = d;
-                    pb.set_position(v.iter().sum::<usize>() as u64);
-                };
-                let r = simulate(&jobs[i].cfg, trace, &jobs[i].opts, &mut progress);
-                results.lock().expect("lock")[i] = Some(r);
-            });
-        }
+    let results = crate::pool::run_indexed(jobs.len(), threads, |i| {
+        let mut progress = |d: usize, _t: usize| {
+            let mut v = done_tiles.lock().expect("lock");
+            v[i] = d;
+            pb.set_position(v.iter().sum::<usize>() as u64);
+        };
+        simulate(&jobs[i].cfg, trace, &jobs[i].opts, &mut progress)
     });
     pb.finish_and_clear();
     let mut runs = Vec::with_capacity(jobs.len());
-    for (j, r) in jobs.iter().zip(results.into_inner().expect("lock")) {
-        let r = r.expect("every job ran");
+    for (j, r) in jobs.iter().zip(results) {
         runs.push(r.map_err(|e| CliError::failed(format!("{}: {}", j.label, sim_err(e))))?);
     }
     Ok(runs)

@@ -19,6 +19,7 @@ mod interrupt;
 mod output;
 mod palette;
 mod picture;
+mod pool;
 mod reproduce;
 mod run_cmd;
 mod scene_cmd;

@@ -473,34 +473,23 @@ fn execute(
     opts: &RunnerOptions,
 ) -> Vec<(usize, Result<Done, String>)> {
     let pb = progress(opts, todo.len());
-    let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<(usize, Result<Done, String>)>> = Mutex::new(Vec::new());
-    let threads = opts.jobs.clamp(1, todo.len().max(1));
-    std::thread::scope(|s| {
-        for _ in 0..threads {
-            s.spawn(|| loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                if i >= todo.len() {
-                    break;
-                }
-                let g = &groups[group_of[i]];
-                pb.set_message(g.def.name.clone());
-                let frame = frame_of(g);
-                let r = frame.and_then(|f| perform(&todo[i], &f, cache));
-                if g.remaining.fetch_sub(1, Ordering::AcqRel) == 1 {
-                    *g.frame.lock().expect("lock") = None;
-                }
-                let mut v = results.lock().expect("lock");
-                v.push((i, r));
-                pb.set_position(v.len() as u64);
-                pb.tick_line(v.len(), todo.len());
-            });
+    let done = Mutex::new(0usize);
+    let results = crate::pool::run_indexed(todo.len(), opts.jobs, |i| {
+        let g = &groups[group_of[i]];
+        pb.set_message(g.def.name.clone());
+        let frame = frame_of(g);
+        let r = frame.and_then(|f| perform(&todo[i], &f, cache));
+        if g.remaining.fetch_sub(1, Ordering::AcqRel) == 1 {
+            *g.frame.lock().expect("lock") = None;
         }
+        let mut d = done.lock().expect("lock");
+        *d += 1;
+        pb.set_position(*d as u64);
+        pb.tick_line(*d, todo.len());
+        r
     });
     pb.finish();
-    let mut results = results.into_inner().expect("lock");
-    results.sort_by_key(|(i, _)| *i);
-    results
+    results.into_iter().enumerate().collect()
 }
 
 /// Fill in the points that named a machine another point ran under
