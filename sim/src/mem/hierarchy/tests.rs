@@ -6,7 +6,9 @@
 use super::*;
 use crate::mem::config::{CacheConfig, DramConfig};
 use crate::mem::prefetch::{PrefetchConfig, PrefetchKind};
+use crate::mem::stats::MemStats;
 use proptest::prelude::*;
+use wasp_waves::Tracer;
 
 fn small_cache(size: u32, ways: u32, hit: u32, mshrs: u32, merged: u32, ports: u32) -> CacheConfig {
     CacheConfig {
