@@ -482,20 +482,7 @@ mod tests {
     fn table_and_csv_of_a_procedural_scene() {
         let def = SceneDef {
             name: "procedural-sprites".into(),
-            game: Game::Procedural,
-            map: "sprites".into(),
-            camera: "full".into(),
-            width: 256,
-            height: 128,
-            description: String::new(),
-            shader: None,
-            draw_order: Default::default(),
-            texture_format: Default::default(),
-            route: Default::default(),
-            fov: None,
-            picmip: None,
-            sky: None,
-            vis: None,
+            ..crate::def::test_def(Game::Procedural, "sprites", "full", 256, 128)
         };
         let c = characterize_def(&def, false).unwrap();
         assert_eq!(c.footprints.len(), SubsetSpec::all().len());

@@ -53,20 +53,7 @@ mod tests {
     fn procedural_scenes_load_without_data() {
         let def = SceneDef {
             name: "procedural-sprites".into(),
-            game: Game::Procedural,
-            map: "sprites".into(),
-            camera: "full".into(),
-            width: 128,
-            height: 64,
-            description: String::new(),
-            shader: None,
-            draw_order: Default::default(),
-            texture_format: Default::default(),
-            route: Default::default(),
-            fov: None,
-            picmip: None,
-            sky: None,
-            vis: None,
+            ..crate::def::test_def(Game::Procedural, "sprites", "full", 128, 64)
         };
         assert_eq!(load_scene(&def).unwrap().name, "procedural:sprites");
     }

@@ -17,20 +17,7 @@ fn every_map_loads() {
     for m in &all {
         let d = SceneDef {
             name: m.clone(),
-            game: Game::Openarena,
-            map: m.clone(),
-            camera: "spawn:0".into(),
-            width: 1960,
-            height: 768,
-            description: String::new(),
-            shader: None,
-            draw_order: Default::default(),
-            texture_format: Default::default(),
-            route: Default::default(),
-            fov: None,
-            picmip: None,
-            sky: None,
-            vis: None,
+            ..crate::def::test_def(Game::Openarena, m, "spawn:0", 1960, 768)
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {

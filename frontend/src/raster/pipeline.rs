@@ -587,20 +587,13 @@ mod tests {
         for map in procedural::MAPS {
             let def = SceneDef {
                 name: format!("procedural-{map}"),
-                game: Game::Procedural,
-                map: map.into(),
-                camera: if map == "plane" { "ground" } else { "full" }.into(),
-                width: w,
-                height: h,
-                description: String::new(),
-                shader: None,
-                draw_order: Default::default(),
-                texture_format: Default::default(),
-                route: Default::default(),
-                fov: None,
-                picmip: None,
-                sky: None,
-                vis: None,
+                ..crate::def::test_def(
+                    Game::Procedural,
+                    map,
+                    if map == "plane" { "ground" } else { "full" },
+                    w,
+                    h,
+                )
             };
             let scene = procedural::load(&def).unwrap();
             for depth_prepass in [false, true] {

@@ -16,20 +16,7 @@ fn every_track_loads() {
     for m in &tracks(&root).unwrap() {
         let d = SceneDef {
             name: m.clone(),
-            game: Game::Supertuxkart,
-            map: m.clone(),
-            camera: "start:0".into(),
-            width: 1960,
-            height: 768,
-            description: String::new(),
-            shader: None,
-            draw_order: Default::default(),
-            texture_format: Default::default(),
-            route: Default::default(),
-            fov: None,
-            picmip: None,
-            sky: None,
-            vis: None,
+            ..crate::def::test_def(Game::Supertuxkart, m, "start:0", 1960, 768)
         };
         let t = std::time::Instant::now();
         match load(&root, &d) {
