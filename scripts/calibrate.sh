@@ -40,32 +40,12 @@ THRESHOLD_STEP=${THRESHOLD_STEP:-2}
 KNEE=${KNEE:-0.01}
 export KNEE
 
-# The suite is the study's (docs/reproduce.md): every scene, but a loader
-# scene with an engine twin (NAME-engine) counts through its twin.
-scenes=${SCENES:-$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6 {print $1}' \
-  | awk '{ s[NR] = $1; have[$1] = 1 } END { for (i = 1; i <= NR; i++) if (!((s[i] "-engine") in have)) print s[i] }')}
-# The trace format the front end writes (FORMAT_VERSION in trace/src/limits.rs):
-# a cached trace of another version is rendered again.
-version=$(sed -n 's/^pub const FORMAT_VERSION: u32 = \([0-9][0-9]*\);$/\1/p' trace/src/limits.rs)
-[ -n "$version" ] || { echo "calibrate.sh: no FORMAT_VERSION in trace/src/limits.rs" >&2; exit 1; }
-# A trace of another build may come from another loader: the cache holds
-# the traces of one build of wasp (its hash in .wasp-binary).
-stamp=$repo/target/machines/traces/.wasp-binary
-build_id=$(sha256sum "$W" | cut -c1-16)
-if [ "$(cat "$stamp" 2>/dev/null)" != "$build_id" ]; then
-  rm -f "$repo"/target/machines/traces/*.trace
-  echo "$build_id" > "$stamp"
-fi
-for s in $scenes; do
-  t=$repo/target/machines/traces/$s.trace
-  if [ -s "$t" ] && [ "$(head -n 1 "$t")" != "wasp-trace $version" ]; then
-    rm -f "$t"
-  fi
-  if [ ! -s "$t" ]; then
-    echo "== render $s" >&2
-    "$W" render "$s" --trace-out "$t.tmp" -q && mv "$t.tmp" "$t"
-  fi
-done
+# The suite is the study's (docs/reproduce.md); its traces are cached by
+# scripts/study-traces.sh.
+. "$repo/scripts/study-traces.sh"
+scenes=${SCENES:-$(study_scenes "$W")}
+# shellcheck disable=SC2086
+study_traces "$W" "$repo" $scenes > /dev/null
 
 # run NAME POLICIES SET...: every scene, one JSON per scene, cached.
 run() {

@@ -20,27 +20,20 @@ mkdir -p "$repo/target/machines/traces" "$out/json"
 cd "$repo"
 cargo build --release --locked -q
 W=$repo/target/release/wasp
-# The study's scenes (docs/reproduce.md): a loader scene with an engine twin
-# (NAME-engine) counts through its twin.
-scenes=$("$W" scenes list | awk 'NR > 1 && $1 != "scene" && NF >= 6 {print $1}' \
-  | awk '{ s[NR] = $1; have[$1] = 1 } END { for (i = 1; i <= NR; i++) if (!((s[i] "-engine") in have)) print s[i] }')
+# The study's scenes (docs/reproduce.md) and their traces
+# (scripts/study-traces.sh).
+. "$repo/scripts/study-traces.sh"
+scenes=$(study_scenes "$W")
 "$W" scenes fetch supertuxkart openarena teeworlds frozen-bubble >&2
-# The trace format the front end writes (FORMAT_VERSION in trace/src/limits.rs).
-version=$(sed -n 's/^pub const FORMAT_VERSION: u32 = \([0-9][0-9]*\);$/\1/p' trace/src/limits.rs)
-[ -n "$version" ] || { echo "machines.sh: no FORMAT_VERSION in trace/src/limits.rs" >&2; exit 1; }
 start=$(date +%s)
+# A trace rendered again (a new trace format or a new build of wasp) has
+# its runs redone.
+# shellcheck disable=SC2086
+for s in $(study_traces "$W" "$repo" $scenes); do
+  rm -f "$out/json/$s".*.json
+done
 for s in $scenes; do
   t=$repo/target/machines/traces/$s.trace
-  # A trace cached in an older format (before wasp-trace 3: no Early-Z-
-  # rejected quads; before wasp-trace 4: no trilinear marks) is rendered
-  # again, and the runs on it redone.
-  if [ -s "$t" ] && [ "$(head -n 1 "$t")" != "wasp-trace $version" ]; then
-    rm -f "$t" "$out/json/$s".*.json
-  fi
-  if [ ! -s "$t" ]; then
-    echo "== render $s" >&2
-    "$W" render "$s" --trace-out "$t.tmp" -q && mv "$t.tmp" "$t"
-  fi
   for d in shared-tile per-core-tile; do
     j=$out/json/$s.$d.json
     if [ ! -s "$j" ]; then
