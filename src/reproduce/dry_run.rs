@@ -5,10 +5,10 @@
 use super::map;
 use super::plan::Plan;
 use super::ReproduceArgs;
+use crate::cli_error::CliError;
 use crate::study::cache::Cache;
 use crate::study::count::{count, Counts};
 use crate::study::runner::{RunnerOptions, Task};
-use crate::CliError;
 use wasp_frontend::def::{self, SceneDef};
 
 /// `--dry-run`: the counts of `plan` (and of its map before the grid) on
@@ -28,10 +28,7 @@ pub fn print(
     };
     let cache = Cache::read_only(&args.out);
     let count = |plan: &Plan| -> Result<[Counts; 2], CliError> {
-        let mut tasks = plan.tasks(&args.out.join("figures"));
-        tasks.extend(super::rgba8::tasks(plan));
-        let paper = tasks.len();
-        tasks.extend(map::tasks(plan, map));
+        let (tasks, paper) = super::study_tasks(plan, map, &args.out.join("figures"));
         let c = |t: &[Task]| count(t, &cache, &opts).map_err(CliError::failed);
         Ok([c(&tasks[..paper])?, c(&tasks)?])
     };

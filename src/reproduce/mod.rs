@@ -186,9 +186,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     let figures = args.out.join("figures");
     std::fs::create_dir_all(&figures)
         .map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
-    let mut tasks = plan.tasks(&figures);
-    tasks.extend(rgba8::tasks(&plan));
-    tasks.extend(map::tasks(&plan, &map));
+    let (tasks, _) = study_tasks(&plan, &map, &figures);
     if !args.quiet {
         say_plan(args, &plan, &map, tasks.len(), jobs);
     }
@@ -218,6 +216,21 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+/// The tasks before the map's grid, drawing figures into `figures`: the
+/// paper's experiments (with the RGBA8 rows), then the map's one-at-a-time
+/// points; and how many of them are the paper's experiments.
+fn study_tasks(
+    plan: &Plan,
+    map: &map::plan::MapPlan,
+    figures: &Path,
+) -> (Vec<runner::Task>, usize) {
+    let mut tasks = plan.tasks(figures);
+    tasks.extend(rgba8::tasks(plan));
+    let paper = tasks.len();
+    tasks.extend(map::tasks(plan, map));
+    (tasks, paper)
 }
 
 /// The engine scenes first: the plan again without those of its engine
