@@ -1,61 +1,55 @@
-//! What an interrupted study says: `wasp reproduce` and `wasp sweep` store
-//! every finished point as it ends (atomically), so Ctrl-C loses only the
-//! points being run, and the same command run again resumes from the
-//! rest. The handler says so and ends the process as SIGINT would.
+//! Ctrl-C: the one handler of the process (through `ctrlc`, for SIGINT,
+//! SIGTERM and SIGHUP), which runs the action the command registered last
+//! and ends with status 130; and what an interrupted study says: `wasp
+//! reproduce` and `wasp sweep` store every finished point as it ends
+//! (atomically), so Ctrl-C loses only the points being run, and the same
+//! command run again resumes from the rest.
 
 use std::path::Path;
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock, PoisonError};
 
-/// The message, composed before the handler is installed (a signal handler
-/// may only call async-signal-safe functions: it writes these bytes).
-static MESSAGE: OnceLock<Vec<u8>> = OnceLock::new();
+/// What the handler does before it ends the process: the action the
+/// running command registered last (a study's message, a capture's
+/// clean-up).
+type Action = Box<dyn Fn() + Send>;
 
-/// On SIGINT, say that the finished points in `dir` are kept and that
+/// The action registered last, if any.
+static ACTION: Mutex<Option<Action>> = Mutex::new(None);
+
+/// On Ctrl-C (SIGINT, and SIGTERM or SIGHUP too), run `action` and end
+/// with the conventional status 130. The handler is installed once,
+/// through `ctrlc`, and runs on a thread of its own, so `action` may do
+/// anything; a later call replaces the action.
+pub fn on_interrupt(action: impl Fn() + Send + 'static) {
+    static INSTALLED: OnceLock<()> = OnceLock::new();
+    *ACTION.lock().unwrap_or_else(PoisonError::into_inner) = Some(Box::new(action));
+    INSTALLED.get_or_init(|| {
+        if let Err(e) = ctrlc::set_handler(run_action) {
+            eprintln!("wasp: cannot catch Ctrl-C: {e}");
+        }
+    });
+}
+
+/// The handler: the registered action, then exit status 130.
+fn run_action() {
+    if let Some(action) = ACTION
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .as_ref()
+    {
+        action();
+    }
+    std::process::exit(130)
+}
+
+/// On Ctrl-C, say that the finished points in `dir` are kept and that
 /// `again` (the command, as the user would retype it) resumes, then end
-/// with the conventional status 130.
+/// with status 130.
 pub fn say_resume_on_interrupt(dir: &Path, again: &str) {
     let text = format!(
         "\nwasp: interrupted: the finished points are kept in {}; run `{again}` again to \
          resume (only the unfinished points run)\n",
         dir.display()
     );
-    if MESSAGE.set(text.into_bytes()).is_err() {
-        return;
-    }
-    #[cfg(unix)]
-    // SAFETY: installs a handler that only calls write(2) and _exit(2),
-    // both async-signal-safe, on a message set once before installation.
-    unsafe {
-        libc::signal(
-            libc::SIGINT,
-            on_interrupt as extern "C" fn(libc::c_int) as libc::sighandler_t,
-        );
-    }
-}
-
-#[cfg(unix)]
-extern "C" fn on_interrupt(_: libc::c_int) {
-    if let Some(m) = MESSAGE.get() {
-        // SAFETY: write(2) of a static buffer to standard error.
-        unsafe {
-            libc::write(2, m.as_ptr().cast(), m.len());
-        }
-    }
-    // SAFETY: _exit(2) ends the process without running anything else.
-    unsafe { libc::_exit(130) }
-}
-
-/// The command line that started this process, quoted for a shell.
-pub fn command_line() -> String {
-    std::env::args()
-        .enumerate()
-        .map(|(i, a)| {
-            if i == 0 {
-                "wasp".to_string()
-            } else {
-                crate::study::jobs::shell_quote(&a)
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
+    on_interrupt(move || eprint!("{text}"));
 }

@@ -131,7 +131,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         )?;
     }
     if args.point.is_none() {
-        crate::interrupt::say_resume_on_interrupt(&out, &crate::interrupt::command_line());
+        crate::interrupt::say_resume_on_interrupt(&out, &crate::study::jobs::command_line());
     }
     let tasks: Vec<Task> = chosen.iter().map(|p| Task::Run(p.point.clone())).collect();
     let opts = RunnerOptions {

@@ -271,9 +271,13 @@ fn render_fetches_missing_game_data() {
 }
 
 /// Start wasp with `args`, wait for its first finished point in
-/// `points`, send SIGINT and return its exit code and standard error.
+/// `points`, send `signal` and return its exit code and standard error.
 #[cfg(unix)]
-fn interrupt_after_the_first_point(args: &[&str], points: &std::path::Path) -> (i32, String) {
+fn interrupt_after_the_first_point(
+    args: &[&str],
+    points: &std::path::Path,
+    signal: libc::c_int,
+) -> (i32, String) {
     let child = std::process::Command::new(env!("CARGO_BIN_EXE_wasp"))
         .args(args)
         .stdout(std::process::Stdio::null())
@@ -285,9 +289,9 @@ fn interrupt_after_the_first_point(args: &[&str], points: &std::path::Path) -> (
         assert!(start.elapsed().as_secs() < 600, "no point finished");
         std::thread::sleep(std::time::Duration::from_millis(50));
     }
-    // SAFETY: sends SIGINT to the child this test spawned.
+    // SAFETY: sends `signal` to the child this test spawned.
     unsafe {
-        libc::kill(child.id() as libc::pid_t, libc::SIGINT);
+        libc::kill(child.id() as libc::pid_t, signal);
     }
     let o = child.wait_with_output().unwrap();
     let code = o.status.code().unwrap_or(-1);
@@ -313,8 +317,11 @@ fn an_interrupted_sweep_says_a_rerun_resumes() {
     std::fs::write(&sweep, file).unwrap();
     let (o, s) = (out.to_str().unwrap(), sweep.to_str().unwrap());
     let points = out.join("points");
-    let (code, e) =
-        interrupt_after_the_first_point(&["sweep", "--jobs", "1", "--out", o, s], &points);
+    let (code, e) = interrupt_after_the_first_point(
+        &["sweep", "--jobs", "1", "--out", o, s],
+        &points,
+        libc::SIGINT,
+    );
     assert_eq!(code, 130, "{e}");
     assert!(
         e.contains("wasp: interrupted: the finished points are kept in")
@@ -326,8 +333,8 @@ fn an_interrupted_sweep_says_a_rerun_resumes() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Ctrl-C during `reproduce` says the same: a rerun of the same command
-/// resumes.
+/// SIGTERM (a batch system's stop) during `reproduce` is taken as Ctrl-C
+/// is: the same message, a rerun of the same command resumes.
 #[cfg(unix)]
 #[test]
 fn an_interrupted_reproduction_says_a_rerun_resumes() {
@@ -344,7 +351,7 @@ fn an_interrupted_reproduction_says_a_rerun_resumes() {
         "--out",
         o,
     ];
-    let (code, e) = interrupt_after_the_first_point(&args, &out.join("points"));
+    let (code, e) = interrupt_after_the_first_point(&args, &out.join("points"), libc::SIGTERM);
     assert_eq!(code, 130, "{e}");
     assert!(
         e.contains(&format!(

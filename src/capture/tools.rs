@@ -5,62 +5,41 @@
 //! group of their own that is always stopped (TERM, then KILL) when the
 //! run ends, fails or passes its deadline.
 
-use std::ffi::CString;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::sync::atomic::{AtomicI32, Ordering};
-use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 /// The process group running now (0: none), for the interrupt handler.
 static RUNNING: AtomicI32 = AtomicI32::new(0);
-/// The partial capture the interrupt handler removes.
-static PARTIAL: OnceLock<CString> = OnceLock::new();
 
-/// On SIGINT, SIGTERM or SIGHUP, stop the running process group (TERM,
-/// then KILL a second later),
-/// remove the partial capture `partial` and end with status 130: the
-/// engine, Xvfb and a game server never outlive wasp.
+/// On Ctrl-C, SIGTERM or SIGHUP (one handler, through `ctrlc`), stop the
+/// running process group (TERM, then KILL a second later), remove the
+/// partial capture `partial` and end with status 130: the engine, Xvfb
+/// and a game server never outlive wasp.
 pub fn stop_groups_on_interrupt(partial: &Path) {
-    use std::os::unix::ffi::OsStrExt;
-    let Ok(c) = CString::new(partial.as_os_str().as_bytes()) else {
-        return;
-    };
-    if PARTIAL.set(c).is_err() {
-        return;
-    }
-    for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
-        // SAFETY: installs a handler that only calls kill(2), sleep(3),
-        // unlink(2), write(2) and _exit(2), all async-signal-safe, on data
-        // set before.
-        unsafe {
-            libc::signal(
-                sig,
-                on_interrupt as extern "C" fn(libc::c_int) as libc::sighandler_t,
-            );
-        }
-    }
-}
-
-extern "C" fn on_interrupt(_: libc::c_int) {
-    let pg = RUNNING.load(Ordering::SeqCst);
-    let msg = b"\nwasp: capture interrupted: the engine is stopped, nothing is kept\n";
-    // SAFETY: async-signal-safe calls only (see stop_groups_on_interrupt).
-    unsafe {
+    let partial = partial.to_path_buf();
+    crate::interrupt::on_interrupt(move || {
+        let pg = RUNNING.load(Ordering::SeqCst);
         if pg > 0 {
             // TERM first, so that Xvfb removes its display's lock file,
             // then KILL whatever is left a second later.
-            libc::kill(-pg, libc::SIGTERM);
-            libc::sleep(1);
-            libc::kill(-pg, libc::SIGKILL);
+            signal_group(pg, libc::SIGTERM);
+            std::thread::sleep(Duration::from_secs(1));
+            signal_group(pg, libc::SIGKILL);
         }
-        if let Some(p) = PARTIAL.get() {
-            libc::unlink(p.as_ptr());
-        }
-        libc::write(2, msg.as_ptr().cast(), msg.len());
-        libc::_exit(130)
-    }
+        let _ = std::fs::remove_file(&partial);
+        eprint!("\nwasp: capture interrupted: the engine is stopped, nothing is kept\n");
+    });
+}
+
+/// Send `sig` to every process of group `pg`; whether the group exists.
+/// Signals sent, not caught, so `libc` rather than `ctrlc`.
+fn signal_group(pg: libc::pid_t, sig: libc::c_int) -> bool {
+    // SAFETY: kill(2) with a negative pid signals the process group we
+    // created (its id is the leader's pid); no memory is involved.
+    unsafe { libc::kill(-pg, sig) == 0 }
 }
 
 /// A program a capture runs and the Debian package that ships it.
@@ -197,11 +176,7 @@ impl Group {
 
     /// Send `sig` to every process of the group.
     pub fn signal(&self, sig: libc::c_int) {
-        // SAFETY: kill(2) with a negative pid signals the process group we
-        // created (its id is the leader's pid); no memory is involved.
-        unsafe {
-            libc::kill(-(self.child.id() as libc::pid_t), sig);
-        }
+        signal_group(self.child.id() as libc::pid_t, sig);
     }
 
     /// The leader's exit status, if it has ended.
@@ -259,8 +234,8 @@ impl Group {
 
     /// Whether any process of the group is still there.
     fn group_alive(&self) -> bool {
-        // SAFETY: signal 0 only checks that the group exists.
-        unsafe { libc::kill(-(self.child.id() as libc::pid_t), 0) == 0 }
+        // Signal 0 only checks that the group exists.
+        signal_group(self.child.id() as libc::pid_t, 0)
     }
 }
 

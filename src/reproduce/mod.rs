@@ -190,7 +190,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     if !args.quiet {
         say_plan(args, &plan, &map, tasks.len(), jobs);
     }
-    crate::interrupt::say_resume_on_interrupt(&args.out, &crate::interrupt::command_line());
+    crate::interrupt::say_resume_on_interrupt(&args.out, &crate::study::jobs::command_line());
     let mut outcome = runner::run(&tasks, &cache, &opts).map_err(CliError::failed)?;
     let cells =
         map::run_grid(&plan, &map, &mut outcome, &cache, &opts).map_err(CliError::failed)?;

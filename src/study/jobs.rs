@@ -15,6 +15,21 @@ pub fn shell_quote(s: &str) -> String {
     }
 }
 
+/// The command line that started this process, quoted for a shell.
+pub fn command_line() -> String {
+    std::env::args()
+        .enumerate()
+        .map(|(i, a)| {
+            if i == 0 {
+                "wasp".to_string()
+            } else {
+                shell_quote(&a)
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// The shell command that runs point `n` of the sweep `file` into `out`
 /// with the `wasp` executable `exe` (all paths as given: pass absolute
 /// ones).
