@@ -8,10 +8,10 @@ use super::plan::{Group, Plan, Width};
 use super::prose::pct;
 use super::rgba8;
 use crate::study::runner::Outcome;
-use crate::study::table::csv;
 use std::fmt::Write as _;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::Dispatch;
+use wasp_sim::stats::csv_text;
 
 /// One row of the side-by-side table.
 pub struct Row {
@@ -382,21 +382,18 @@ pub fn headline_md(md: &mut String, rows: &[Row], plan: &Plan) {
 
 /// The table as CSV.
 pub fn headline_csv(rows: &[Row], plan: &Plan) -> String {
-    let mut s = "claim,paper".to_string();
-    for d in &plan.dispatches {
-        for g in ["games", "3D", "2D", "procedural"] {
-            let _ = write!(s, ",{d} {g}");
-        }
-    }
-    s.push('\n');
-    for r in rows {
-        let _ = write!(s, "{},{}", csv(&r.claim), csv(&r.paper));
-        for o in &r.ours {
-            for v in o {
-                let _ = write!(s, ",{}", csv(v));
-            }
-        }
-        s.push('\n');
-    }
-    s
+    let header = ["claim".to_string(), "paper".to_string()]
+        .into_iter()
+        .chain(
+            plan.dispatches
+                .iter()
+                .flat_map(|d| ["games", "3D", "2D", "procedural"].map(|g| format!("{d} {g}"))),
+        );
+    let records = rows.iter().map(|r| {
+        [r.claim.clone(), r.paper.clone()]
+            .into_iter()
+            .chain(r.ours.iter().flatten().cloned())
+            .collect::<Vec<String>>()
+    });
+    csv_text(std::iter::once(header.collect::<Vec<String>>()).chain(records))
 }

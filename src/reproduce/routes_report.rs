@@ -11,9 +11,9 @@ use super::plan::{Plan, SceneInfo};
 use super::prose::pct;
 use super::routes::Twin;
 use crate::study::runner::Outcome;
-use crate::study::table::csv;
 use std::fmt::Write as _;
 use wasp_frontend::def::Route;
+use wasp_sim::stats::csv_text;
 
 /// A scene's name with its route, as scene lists print it.
 pub fn named(s: &SceneInfo) -> String {
@@ -152,20 +152,14 @@ fn values(r: &RouteRow) -> [Option<f64>; 10] {
 
 /// `data/routes.csv`: a row per scene of a twin pair (empty: not run).
 pub fn routes_csv(rows: &[RouteRow]) -> String {
-    let mut s = format!("camera,route,scene,{}\n", COLUMNS.join(","));
-    for r in rows {
-        let _ = write!(s, "{},{},{}", csv(&r.camera), r.route, csv(&r.scene));
-        for v in values(r) {
-            match v {
-                Some(x) => {
-                    let _ = write!(s, ",{x}");
-                }
-                None => s.push(','),
-            }
-        }
-        s.push('\n');
-    }
-    s
+    let header = ["camera", "route", "scene"].into_iter().chain(COLUMNS);
+    let records = rows.iter().map(|r| {
+        [r.camera.clone(), r.route.to_string(), r.scene.clone()]
+            .into_iter()
+            .chain(values(r).map(|v| v.map_or(String::new(), |x| x.to_string())))
+            .collect::<Vec<String>>()
+    });
+    csv_text(std::iter::once(header.map(String::from).collect::<Vec<String>>()).chain(records))
 }
 
 fn int(v: Option<f64>) -> String {

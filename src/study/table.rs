@@ -5,10 +5,6 @@ use super::cache::PointRecord;
 use std::collections::HashMap;
 use wasp_sim::stats::csv_text;
 
-/// A CSV field, quoted only where it must be (for a line put together by
-/// hand; whole tables go through [`csv_text`]).
-pub use wasp_sim::stats::csv_field as csv;
-
 /// Every point as CSV: scene, base configuration, overrides, then the
 /// flattened statistics (the columns of the first record).
 pub fn points_csv(records: &[&PointRecord]) -> String {
@@ -66,6 +62,5 @@ mod tests {
         );
         assert!(lines[2].starts_with("s2,paper,"), "{}", lines[2]);
         assert_eq!(points_csv(&[]), "scene,config,sets,key\n");
-        assert_eq!(csv("x"), "x");
     }
 }
