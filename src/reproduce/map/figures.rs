@@ -20,7 +20,6 @@ use crate::reproduce::figures::mean;
 use crate::reproduce::plan::{Group, Plan, Width};
 use crate::study::cache::write_atomic;
 use crate::study::runner::Outcome;
-use std::fmt::Write as _;
 use std::path::Path;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::cost::RfParams;
@@ -87,23 +86,21 @@ pub fn tornado(t: &MapTable, figs: &Path, data: &Path) -> Result<Option<Drawn>, 
     };
     let id = "map-tornado";
     both(id, figs, |p| draw_tornado(&chart, p))?;
-    let mut csv = "knob,group,low,low_at,high,high_at\n".to_string();
-    for r in &rows {
-        for (g, s) in groups.iter().zip(&r.spans) {
-            if let Some(s) = s {
-                let _ = writeln!(
-                    csv,
-                    "{},{},{},{},{},{}",
-                    r.parameter,
-                    g.label(),
-                    s.low.0,
-                    s.low.1,
-                    s.high.0,
-                    s.high.1
-                );
-            }
-        }
-    }
+    let header = ["knob", "group", "low", "low_at", "high", "high_at"].map(String::from);
+    let records = rows.iter().flat_map(|r| {
+        groups.iter().zip(&r.spans).filter_map(|(g, s)| {
+            let s = s.as_ref()?;
+            Some([
+                r.parameter.clone(),
+                g.label().to_string(),
+                s.low.0.to_string(),
+                s.low.1.clone(),
+                s.high.0.to_string(),
+                s.high.1.clone(),
+            ])
+        })
+    });
+    let csv = csv_text(std::iter::once(header).chain(records));
     write_atomic(&data.join(format!("{id}.csv")), &csv)?;
     Ok(Some(Drawn {
         id: id.into(),
