@@ -418,59 +418,92 @@ fn layout(rows: &[Characterization], lines: &[(String, Vec<String>, String)]) ->
 
 /// CSV: one line per scene.
 pub fn csv(rows: &[Characterization]) -> String {
-    let mut out = String::from(
-        "scene,workload,width,height,tiles,warps,warps_per_tile,positions,warps_per_position,\
-         rejected_early_z,mem_instr_ratio,reuse,cf,blocks_per_tex_instr,min_estimate1,\
-         min_estimate2,draw_order,warps_per_position_p50,warps_per_position_p90,\
-         warps_per_position_p99,rejected_early_z_share,texture_format,blocks_per_tile",
-    );
-    if let Some(r) = rows.first() {
-        for f in &r.footprints {
-            let _ = write!(out, ",footprint_{}", f.subset.replace(':', "_"));
-        }
-        for f in &r.footprints {
-            let _ = write!(out, ",warp_ratio_{}", f.subset.replace(':', "_"));
-        }
-    }
-    out.push('\n');
+    let mut w = ::csv::WriterBuilder::new()
+        .flexible(true)
+        .from_writer(Vec::new());
+    let subsets = rows.first().map_or(&[][..], |r| &r.footprints[..]);
+    let names = |prefix: &'static str| {
+        subsets
+            .iter()
+            .map(move |f| format!("{prefix}{}", f.subset.replace(':', "_")))
+    };
+    let header = CSV_COLUMNS
+        .iter()
+        .map(|c| c.to_string())
+        .chain(names("footprint_"))
+        .chain(names("warp_ratio_"));
+    w.write_record(header.collect::<Vec<String>>())
+        .expect("CSV into memory: no I/O error");
     for c in rows {
-        let _ = write!(
-            out,
-            "{},\"{}\",{},{},{},{},{:.3},{},{:.4},{},{:.5},{:.4},{:.4},{:.4},{:.5},{:.5},{},{:.4},\
-             {:.4},{:.4},{:.5},{},{:.2}",
-            c.scene,
-            c.workload.replace('"', "'"),
-            c.width,
-            c.height,
-            c.tiles,
-            c.warps,
-            c.warps_per_tile,
-            c.positions,
-            c.warps_per_position,
-            c.rejected_early_z,
-            c.mem_instr_ratio,
-            c.reuse,
-            c.cf,
-            c.blocks_per_tex_instr,
-            c.min_estimate1,
-            c.min_estimate2,
-            c.draw_order,
-            c.warps_per_position_p50,
-            c.warps_per_position_p90,
-            c.warps_per_position_p99,
-            c.rejected_early_z_share,
-            c.texture_format,
-            c.blocks_per_tile
-        );
-        for f in &c.footprints {
-            let _ = write!(out, ",{:.5}", f.footprint_ratio);
-        }
-        for f in &c.footprints {
-            let _ = write!(out, ",{:.5}", f.warp_ratio);
-        }
-        out.push('\n');
+        w.write_record(csv_record(c))
+            .expect("CSV into memory: no I/O error");
     }
-    out
+    let bytes = w.into_inner().expect("CSV into memory: no I/O error");
+    String::from_utf8(bytes).expect("CSV of UTF-8 fields is UTF-8")
+}
+
+/// The CSV's columns before the footprint and warp ratio of each subset.
+const CSV_COLUMNS: [&str; 23] = [
+    "scene",
+    "workload",
+    "width",
+    "height",
+    "tiles",
+    "warps",
+    "warps_per_tile",
+    "positions",
+    "warps_per_position",
+    "rejected_early_z",
+    "mem_instr_ratio",
+    "reuse",
+    "cf",
+    "blocks_per_tex_instr",
+    "min_estimate1",
+    "min_estimate2",
+    "draw_order",
+    "warps_per_position_p50",
+    "warps_per_position_p90",
+    "warps_per_position_p99",
+    "rejected_early_z_share",
+    "texture_format",
+    "blocks_per_tile",
+];
+
+/// A scene's CSV record, in the order of [`CSV_COLUMNS`] then the
+/// footprint and warp ratio of each subset.
+fn csv_record(c: &Characterization) -> Vec<String> {
+    let fields = [
+        c.scene.clone(),
+        c.workload.clone(),
+        c.width.to_string(),
+        c.height.to_string(),
+        c.tiles.to_string(),
+        c.warps.to_string(),
+        format!("{:.3}", c.warps_per_tile),
+        c.positions.to_string(),
+        format!("{:.4}", c.warps_per_position),
+        c.rejected_early_z.to_string(),
+        format!("{:.5}", c.mem_instr_ratio),
+        format!("{:.4}", c.reuse),
+        format!("{:.4}", c.cf),
+        format!("{:.4}", c.blocks_per_tex_instr),
+        format!("{:.5}", c.min_estimate1),
+        format!("{:.5}", c.min_estimate2),
+        c.draw_order.to_string(),
+        format!("{:.4}", c.warps_per_position_p50),
+        format!("{:.4}", c.warps_per_position_p90),
+        format!("{:.4}", c.warps_per_position_p99),
+        format!("{:.5}", c.rejected_early_z_share),
+        c.texture_format.to_string(),
+        format!("{:.2}", c.blocks_per_tile),
+    ];
+    let ratios =
+        |f: fn(&SubsetFootprint) -> f64| c.footprints.iter().map(move |x| format!("{:.5}", f(x)));
+    fields
+        .into_iter()
+        .chain(ratios(|f| f.footprint_ratio))
+        .chain(ratios(|f| f.warp_ratio))
+        .collect()
 }
 
 #[cfg(test)]
@@ -512,6 +545,18 @@ mod tests {
         assert_eq!(c.rejected_early_z_share, 0.0, "sprites reject nothing");
         assert_eq!(c.draw_order, DrawOrder::AsLoaded);
         assert!(v.lines().next().unwrap().contains(",draw_order,"));
+        assert!(
+            v.contains("\nprocedural-sprites,procedural:sprites,256,128,"),
+            "{v}"
+        );
+        let odd = Characterization {
+            workload: "a, \"b\"".into(),
+            ..c.clone()
+        };
+        assert!(
+            csv(&[odd]).contains(",\"a, \"\"b\"\"\",256,"),
+            "quoted as it must be"
+        );
         for f in &c.footprints {
             assert!(f.warp_ratio > 0.0 && f.warp_ratio < 1.0, "{f:?}");
         }
