@@ -105,94 +105,112 @@ impl<'a> Parser<'a> {
         };
         let after_z = std::mem::replace(&mut self.after_z, directive == "z");
         match directive {
-            "z" => {
-                if self.version < FORMAT_VERSION_3 {
-                    return Err(Problem::RejectedInOldVersion(self.version));
-                }
-                let b = self.body(directive)?;
-                if fields.len() != 2 {
-                    return Err(Problem::WrongFieldCount {
-                        directive: "z",
-                        found: fields.len(),
-                        usage: "z N",
-                    });
-                }
-                if after_z {
-                    return Err(Problem::AdjacentRejected);
-                }
-                let n = dec_u32(
-                    fields[1],
-                    "rejected quads",
-                    u64::from(crate::MAX_REJECTED_RUN),
-                )?;
-                b.rejected(n)
-            }
-            FRAME_MARKER => {
-                if self.version < FORMAT_VERSION_FRAMES {
-                    return Err(Problem::FrameMarkerInOldVersion(self.version));
-                }
-                let b = self.body(directive)?;
-                if fields.len() != 1 {
-                    return Err(Problem::WrongFieldCount {
-                        directive: FRAME_MARKER,
-                        found: fields.len(),
-                        usage: FRAME_MARKER,
-                    });
-                }
-                b.next_frame()
-            }
+            "z" => self.rejected_line(fields, after_z),
+            FRAME_MARKER => self.frame_marker_line(fields),
             "workload" => self.workload_line(trimmed),
             "texture-format" => self.texture_format_line(fields),
             "texture-lines" => self.texture_lines_line(fields),
             "texture-level" => self.texture_level_line(fields),
             "frame" => self.frame_line(fields),
-            "tile" => {
-                let b = self.body(directive)?;
-                if fields.len() != 3 {
-                    return Err(Problem::WrongFieldCount {
-                        directive: "tile",
-                        found: fields.len(),
-                        usage: TILE_USAGE,
-                    });
-                }
-                let tx = dec_u32(fields[1], "tile x", u64::from(u32::MAX))?;
-                let ty = dec_u32(fields[2], "tile y", u64::from(u32::MAX))?;
-                b.begin_tile(tx, ty)
-            }
-            "q" => {
-                let version = self.version;
-                let mut instrs = std::mem::take(&mut self.instrs);
-                let mut blocks = std::mem::take(&mut self.blocks);
-                let r = self
-                    .body(directive)
-                    .and_then(|b| quad_line(b, fields, version, &mut instrs, &mut blocks));
-                self.instrs = instrs;
-                self.blocks = blocks;
-                r
-            }
-            "end" => {
-                let b = self.body(directive)?;
-                if fields.len() != 1 {
-                    return Err(Problem::WrongFieldCount {
-                        directive: "end",
-                        found: fields.len(),
-                        usage: "end",
-                    });
-                }
-                b.end_tile()
-            }
-            other => Err(Problem::UnknownDirective {
-                found: other.to_string(),
-                expected: match &self.builder {
-                    None if self.workload.is_none() => "`workload NAME`",
-                    None => "`frame W H tile T`",
-                    Some(b) if b.open_tile().is_some() => "`q X Y ...`, `z N` or `end`",
-                    Some(_) if self.version >= FORMAT_VERSION_FRAMES => {
-                        "`tile TX TY` or `next-frame`"
-                    }
-                    Some(_) => "`tile TX TY`",
-                },
-            }),
+            "tile" => self.tile_line(fields),
+            "q" => self.q_line(fields),
+            "end" => self.end_line(fields),
+            other => Err(self.unknown_directive(other)),
+        }
+    }
+
+    /// `z N`: `N` rejected quads (`after_z`: the line before was one too).
+    fn rejected_line(&mut self, fields: &[&str], after_z: bool) -> Result<(), Problem> {
+        if self.version < FORMAT_VERSION_3 {
+            return Err(Problem::RejectedInOldVersion(self.version));
+        }
+        let b = self.body("z")?;
+        if fields.len() != 2 {
+            return Err(Problem::WrongFieldCount {
+                directive: "z",
+                found: fields.len(),
+                usage: "z N",
+            });
+        }
+        if after_z {
+            return Err(Problem::AdjacentRejected);
+        }
+        let n = dec_u32(
+            fields[1],
+            "rejected quads",
+            u64::from(crate::MAX_REJECTED_RUN),
+        )?;
+        b.rejected(n)
+    }
+
+    /// The line between two frames.
+    fn frame_marker_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
+        if self.version < FORMAT_VERSION_FRAMES {
+            return Err(Problem::FrameMarkerInOldVersion(self.version));
+        }
+        let b = self.body(FRAME_MARKER)?;
+        if fields.len() != 1 {
+            return Err(Problem::WrongFieldCount {
+                directive: FRAME_MARKER,
+                found: fields.len(),
+                usage: FRAME_MARKER,
+            });
+        }
+        b.next_frame()
+    }
+
+    /// `tile TX TY`: a tile begins.
+    fn tile_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
+        let b = self.body("tile")?;
+        if fields.len() != 3 {
+            return Err(Problem::WrongFieldCount {
+                directive: "tile",
+                found: fields.len(),
+                usage: TILE_USAGE,
+            });
+        }
+        let tx = dec_u32(fields[1], "tile x", u64::from(u32::MAX))?;
+        let ty = dec_u32(fields[2], "tile y", u64::from(u32::MAX))?;
+        b.begin_tile(tx, ty)
+    }
+
+    /// `q X Y ...`: a quad and its program, parsed into the reused buffers.
+    fn q_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
+        let version = self.version;
+        let mut instrs = std::mem::take(&mut self.instrs);
+        let mut blocks = std::mem::take(&mut self.blocks);
+        let r = self
+            .body("q")
+            .and_then(|b| quad_line(b, fields, version, &mut instrs, &mut blocks));
+        self.instrs = instrs;
+        self.blocks = blocks;
+        r
+    }
+
+    /// `end`: the open tile ends.
+    fn end_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
+        let b = self.body("end")?;
+        if fields.len() != 1 {
+            return Err(Problem::WrongFieldCount {
+                directive: "end",
+                found: fields.len(),
+                usage: "end",
+            });
+        }
+        b.end_tile()
+    }
+
+    /// The error for directive `other`, naming what may come here.
+    fn unknown_directive(&self, other: &str) -> Problem {
+        Problem::UnknownDirective {
+            found: other.to_string(),
+            expected: match &self.builder {
+                None if self.workload.is_none() => "`workload NAME`",
+                None => "`frame W H tile T`",
+                Some(b) if b.open_tile().is_some() => "`q X Y ...`, `z N` or `end`",
+                Some(_) if self.version >= FORMAT_VERSION_FRAMES => "`tile TX TY` or `next-frame`",
+                Some(_) => "`tile TX TY`",
+            },
         }
     }
 
