@@ -214,44 +214,11 @@ pub fn record_list(
     let mut sampled = Vec::new();
     let mut uv: [Vec<[f32; 2]>; UV_SETS] = [vec![[0.0; 2]; used.len()], vec![[0.0; 2]; used.len()]];
     for (u, out) in uv.iter_mut().enumerate() {
-        let unit = &ctx.textures.units[u];
-        // GL_TEXTURE_3D takes precedence over GL_TEXTURE_2D; an incomplete
-        // texture of the enabled target turns the unit off.
-        let tex = if unit.enabled_3d {
-            ctx.textures.objects_3d.get(&unit.bound_3d)
-        } else if unit.enabled_2d {
-            ctx.textures.objects.get(&unit.bound)
-        } else {
-            None
-        };
-        let Some(tex) = tex.filter(|t| t.complete()) else {
-            continue;
-        };
-        if unit.enabled_3d && tex.mipmapped() {
-            return Ok(Err(format!(
-                "a mipmapped 3D texture (texture {}, GL_TEXTURE_MIN_FILTER {})",
-                tex.id,
-                gl::name(tex.min_filter)
-            )));
+        match sample_unit(ctx, arrays, call, u, &used, &indices, out)? {
+            Ok(Some(x)) => sampled.push(x),
+            Ok(None) => {}
+            Err(feature) => return Ok(Err(feature)),
         }
-        let mut r = Vec::new();
-        let want_r = unit.enabled_3d.then_some(&mut r);
-        texcoords(ctx, arrays, u, &used, out, want_r)
-            .map_err(|m| fail(format!("texture coordinates of unit {u}: {m}")))?;
-        let slices = if unit.enabled_3d {
-            match volume::triangle_slices(tex, &r, &indices) {
-                Ok(s) => s,
-                Err(feature) => return Ok(Err(feature)),
-            }
-        } else {
-            Vec::new()
-        };
-        sampled.push(Sampled {
-            unit: u,
-            texture: tex.clone(),
-            env_mode: unit.env_mode,
-            slices,
-        });
     }
     Ok(Ok(DrawRec {
         call: call.no,
@@ -262,6 +229,58 @@ pub fn record_list(
         fixed: ctx.state.clone(),
         sampled,
     }))
+}
+
+/// Texture unit `u` of a draw whose vertices `used` make triangles
+/// `indices`: their texture coordinates into `out`, and what the unit
+/// samples (`None`: it is off). `Err` inside: a feature not modelled.
+fn sample_unit(
+    ctx: &Context,
+    arrays: &Arrays,
+    call: &Call,
+    u: usize,
+    used: &[u32],
+    indices: &[u32],
+    out: &mut [[f32; 2]],
+) -> Result<Result<Option<Sampled>, String>, CallError> {
+    let unit = &ctx.textures.units[u];
+    // GL_TEXTURE_3D takes precedence over GL_TEXTURE_2D; an incomplete
+    // texture of the enabled target turns the unit off.
+    let tex = if unit.enabled_3d {
+        ctx.textures.objects_3d.get(&unit.bound_3d)
+    } else if unit.enabled_2d {
+        ctx.textures.objects.get(&unit.bound)
+    } else {
+        None
+    };
+    let Some(tex) = tex.filter(|t| t.complete()) else {
+        return Ok(Ok(None));
+    };
+    if unit.enabled_3d && tex.mipmapped() {
+        return Ok(Err(format!(
+            "a mipmapped 3D texture (texture {}, GL_TEXTURE_MIN_FILTER {})",
+            tex.id,
+            gl::name(tex.min_filter)
+        )));
+    }
+    let mut r = Vec::new();
+    let want_r = unit.enabled_3d.then_some(&mut r);
+    texcoords(ctx, arrays, u, used, out, want_r)
+        .map_err(|m| CallError::at(call, format!("texture coordinates of unit {u}: {m}")))?;
+    let slices = if unit.enabled_3d {
+        match volume::triangle_slices(tex, &r, indices) {
+            Ok(s) => s,
+            Err(feature) => return Ok(Err(feature)),
+        }
+    } else {
+        Vec::new()
+    };
+    Ok(Ok(Some(Sampled {
+        unit: u,
+        texture: tex.clone(),
+        env_mode: unit.env_mode,
+        slices,
+    })))
 }
 
 /// The vertices triangles `tris` use, in order of first use, and the

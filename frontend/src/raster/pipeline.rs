@@ -31,26 +31,12 @@ pub(super) fn rasterize_frame(
     let mut stats = initial_stats(scene, opts);
     let clock = std::time::Instant::now();
     let mut timings = RasterTimings::default();
-    let threads = match opts.threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
-    }
-    .clamp(1, 64);
+    let threads = worker_threads(opts);
     let (runs, order_note) = runs(scene, opts.draw_order);
     let setups = geometry(scene, &runs, width, height, opts, &mut stats)?;
     timings.geometry = clock.elapsed().as_secs_f64();
     let tex_clock = std::time::Instant::now();
-    let formats = texture_formats(scene, opts.texture_format)?;
-    // Decoded lines: the textures laid out as RGBA8, mapped to their
-    // stored lines.
-    let decoded = opts.decoded_lines && opts.texture_format != FormatChoice::Rgba8;
-    let laid_out = match decoded {
-        true => vec![TextureFormat::Rgba8; formats.len()],
-        false => formats.clone(),
-    };
-    let uses = texture_uses(scene, &setups, &laid_out);
-    let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
-    let map = decoded.then(|| textures.decoded_map(&formats));
+    let (formats, textures, map) = lay_out_textures(scene, &setups, opts, threads)?;
     timings.textures = tex_clock.elapsed().as_secs_f64();
     let mats = material_infos(scene);
     let lists = bin(&setups, opts.tile, width, height, &mut stats);
@@ -105,6 +91,44 @@ pub(super) fn rasterize_frame(
         timings,
     };
     Ok((frame, maps))
+}
+
+/// The threads that rasterize tiles and lay out textures: `opts.threads`,
+/// 0 for as many as the host has, 1 to 64.
+fn worker_threads(opts: &RasterOptions) -> usize {
+    match opts.threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n,
+    }
+    .clamp(1, 64)
+}
+
+/// The scene's textures in the formats `opts` asks for, laid out for the
+/// blocks `setups` sample; with decoded lines, laid out as RGBA8 and
+/// mapped to their stored lines.
+fn lay_out_textures<'s>(
+    scene: &'s Scene,
+    setups: &[Setup],
+    opts: &RasterOptions,
+    threads: usize,
+) -> Result<
+    (
+        Vec<TextureFormat>,
+        TextureSet<'s>,
+        Option<crate::trace::TextureMap>,
+    ),
+    SceneError,
+> {
+    let formats = texture_formats(scene, opts.texture_format)?;
+    let decoded = opts.decoded_lines && opts.texture_format != FormatChoice::Rgba8;
+    let laid_out = match decoded {
+        true => vec![TextureFormat::Rgba8; formats.len()],
+        false => formats.clone(),
+    };
+    let uses = texture_uses(scene, setups, &laid_out);
+    let textures = TextureSet::with_threads(&scene.textures, threads, &uses);
+    let map = decoded.then(|| textures.decoded_map(&formats));
+    Ok((formats, textures, map))
 }
 
 /// Check the frame size, the tile size and the scene.
