@@ -407,30 +407,10 @@ pub fn report(
         yosys_meter: None,
         yosys: None,
     };
-    let (ys, note) = if yosys {
-        let params = [
-            ("CAPACITY", cfg.watched_mshrs() as i64),
-            ("QUEUE_CAP", cfg.core.input_queue as i64),
-            ("CF_Q", dp.cf.quarters() as i64),
-            ("THRESHOLD", threshold as i64),
-        ];
-        match run_yosys_on_twin(&params, "wasp_sched") {
-            Ok(s) => {
-                // The same machine under wasp-m (POLICY 4), and its meter.
-                let mut measured = params.to_vec();
-                measured.push(("POLICY", 4));
-                variant.yosys = run_yosys_on_twin(&measured, "wasp_sched").ok();
-                variant.yosys_meter = run_yosys_on_twin(&[], "wasp_cf_meter").ok();
-                (Some(s), None)
-            }
-            Err(e) => (None, Some(e)),
-        }
-    } else {
-        (None, Some("not run (--no-yosys)".into()))
+    let (ys, note) = match yosys {
+        true => yosys_stats(cfg, &dp, threshold, &mut variant),
+        false => (None, Some("not run (--no-yosys)".into())),
     };
-    let rf_bits =
-        rf.threads_per_warp as u64 * rf.registers_per_thread as u64 * rf.register_bits as u64;
-    let saved_warps = rf.baseline_warps.saturating_sub(rf.wasp_warps) as u64;
     Ok(CostReport {
         machine: cfg.name.clone(),
         cores: cfg.gpu.cores,
@@ -446,20 +426,57 @@ pub fn report(
         per_core,
         yosys: ys,
         yosys_note: note,
-        savings: Savings {
-            wasp_warps: rf.wasp_warps,
-            baseline_warps: rf.baseline_warps,
-            source: rf.source.clone(),
-            caveat: rf.caveat.clone(),
-            rf_bits_per_warp: rf_bits,
-            rf_bits_saved_per_core: rf_bits * saved_warps,
-            ge_per_rf_bit: rf.ge_per_bit,
-            ge_saved_per_core: (rf_bits * saved_warps) as f64 * rf.ge_per_bit,
-        },
+        savings: savings(rf),
         measured_cf_variant: variant,
         issue_order: issue_order_cost(cfg, &rules),
         prefetchers: prefetcher_costs(cfg, &rules),
     })
+}
+
+/// Yosys's statistics of the scheduler twin on `cfg`'s machine (with the
+/// measured-CF variant's, and its meter's, into `variant`), or why there
+/// are none.
+fn yosys_stats(
+    cfg: &MachineConfig,
+    dp: &WaspDatapath,
+    threshold: u32,
+    variant: &mut VariantCost,
+) -> (Option<YosysStat>, Option<String>) {
+    let params = [
+        ("CAPACITY", cfg.watched_mshrs() as i64),
+        ("QUEUE_CAP", cfg.core.input_queue as i64),
+        ("CF_Q", dp.cf.quarters() as i64),
+        ("THRESHOLD", threshold as i64),
+    ];
+    match run_yosys_on_twin(&params, "wasp_sched") {
+        Ok(s) => {
+            // The same machine under wasp-m (POLICY 4), and its meter.
+            let mut measured = params.to_vec();
+            measured.push(("POLICY", 4));
+            variant.yosys = run_yosys_on_twin(&measured, "wasp_sched").ok();
+            variant.yosys_meter = run_yosys_on_twin(&[], "wasp_cf_meter").ok();
+            (Some(s), None)
+        }
+        Err(e) => (None, Some(e)),
+    }
+}
+
+/// The register-file side of the ledger: what the warps WaSP runs without
+/// save, per `rf`.
+fn savings(rf: &RfParams) -> Savings {
+    let rf_bits =
+        rf.threads_per_warp as u64 * rf.registers_per_thread as u64 * rf.register_bits as u64;
+    let saved_warps = rf.baseline_warps.saturating_sub(rf.wasp_warps) as u64;
+    Savings {
+        wasp_warps: rf.wasp_warps,
+        baseline_warps: rf.baseline_warps,
+        source: rf.source.clone(),
+        caveat: rf.caveat.clone(),
+        rf_bits_per_warp: rf_bits,
+        rf_bits_saved_per_core: rf_bits * saved_warps,
+        ge_per_rf_bit: rf.ge_per_bit,
+        ge_saved_per_core: (rf_bits * saved_warps) as f64 * rf.ge_per_bit,
+    }
 }
 
 fn costed(items: Vec<Item>, rules: &GateRules) -> Vec<CostedItem> {
