@@ -274,9 +274,8 @@ pub fn compare_table(labels: &[String], runs: &[RunStats]) -> String {
 /// speedups against the run `reference`.
 pub fn compare_table_against(labels: &[String], runs: &[RunStats], reference: usize) -> String {
     use std::fmt::Write as _;
-    let mut s = String::new();
     let Some(base) = runs.first() else {
-        return s;
+        return String::new();
     };
     let against = &runs[reference];
     // Wide enough for every label (26 columns, as always, when they fit).
@@ -286,39 +285,7 @@ pub fn compare_table_against(labels: &[String], runs: &[RunStats], reference: us
         .max()
         .unwrap_or(0)
         .max(26);
-    let _ = write!(
-        s,
-        "machine {}  |  dispatch {}  |  workload {}  |  subset {}  |  launch rule {}",
-        base.machine, base.dispatch, base.workload, base.subset.subset, base.launch_rule
-    );
-    // Options off by default are named only when set, so the shipped
-    // machine's header stays as it is.
-    if base.issue != "lrr" {
-        let _ = write!(s, "  |  issue {}", base.issue);
-    }
-    if let Some(p) = &base.prefetch {
-        let _ = write!(s, "  |  prefetch {}", p.kind);
-    }
-    if let Some(last) = base.frames.last() {
-        let _ = write!(
-            s,
-            "  |  frame {} after {} earlier",
-            last.frame,
-            base.frames.len() - 1
-        );
-    }
-    if base.ideal_memory {
-        let _ = write!(s, "  |  ideal memory");
-    }
-    if base.texture_cache != "compressed" {
-        let _ = write!(s, "  |  texture cache {}", base.texture_cache);
-    }
-    let _ = write!(
-        s,
-        "\nwarps per core {}  input queue {} entries",
-        base.occupancy.max_warps, base.input_queue
-    );
-    s.push('\n');
+    let mut s = machine_header(base);
     let _ = writeln!(
         s,
         "{:<w$}{:>12}{:>8}{:>9}{:>9}{:>10}{:>10}{:>10}{:>11}{:>7}{:>8}{:>10}",
@@ -364,5 +331,46 @@ pub fn compare_table_against(labels: &[String], runs: &[RunStats], reference: us
         "speedup = {} cycles / policy cycles - 1; stall% = scheduler-level cache (L0, else L1) stalled; latency = mean memory latency per warp in cycles; occ = mean warps resident per core; lead = mean raster position minus launch rank of priority warps; held = hold idle core-cycles (a free slot, a priority warp waiting, nothing launched)",
         labels[reference]
     );
+    s
+}
+
+/// The table's first two lines: run `base`'s machine, and the options
+/// set on it.
+fn machine_header(base: &RunStats) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "machine {}  |  dispatch {}  |  workload {}  |  subset {}  |  launch rule {}",
+        base.machine, base.dispatch, base.workload, base.subset.subset, base.launch_rule
+    );
+    // Options off by default are named only when set, so the shipped
+    // machine's header stays as it is.
+    if base.issue != "lrr" {
+        let _ = write!(s, "  |  issue {}", base.issue);
+    }
+    if let Some(p) = &base.prefetch {
+        let _ = write!(s, "  |  prefetch {}", p.kind);
+    }
+    if let Some(last) = base.frames.last() {
+        let _ = write!(
+            s,
+            "  |  frame {} after {} earlier",
+            last.frame,
+            base.frames.len() - 1
+        );
+    }
+    if base.ideal_memory {
+        let _ = write!(s, "  |  ideal memory");
+    }
+    if base.texture_cache != "compressed" {
+        let _ = write!(s, "  |  texture cache {}", base.texture_cache);
+    }
+    let _ = write!(
+        s,
+        "\nwarps per core {}  input queue {} entries",
+        base.occupancy.max_warps, base.input_queue
+    );
+    s.push('\n');
     s
 }

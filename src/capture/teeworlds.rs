@@ -114,6 +114,36 @@ pub fn capture(
     check_camera(def)?;
     let home = work.0.join("home");
     std::fs::create_dir_all(&home).map_err(|e| format!("{}: {e}", home.display()))?;
+    let mut cmd = unshare_command(def, out, work, &home);
+    let command = tools::command_line(&cmd);
+    progress.say(&format!(
+        "Teeworlds {}: server on 127.0.0.1:{PORT} and client {}x{} in a network namespace \
+         of their own",
+        def.map, def.width, def.height
+    ));
+    let log = work.0.join("unshare.log");
+    let client_log = work.0.join("client.log");
+    let mut g = Group::spawn(&mut cmd, &log)?;
+    wait_for_join(&mut g, work)?;
+    progress.say(&format!(
+        "the player entered the game; drawing {HOLD_S} s more"
+    ));
+    std::thread::sleep(Duration::from_secs(HOLD_S));
+    g.stop();
+    let seconds = g.started.elapsed().as_secs_f64();
+    drop(g);
+    if !out.is_file() {
+        return Err(format!(
+            "apitrace wrote no capture: {}",
+            tools::tail(&tools::read_log(&client_log), 4)
+        ));
+    }
+    Ok(engine_run(def, command, seconds))
+}
+
+/// The server and the client of scene `def`, run by [`SCRIPT`] in a
+/// network namespace of their own, writing the capture to `out`.
+fn unshare_command(def: &SceneDef, out: &Path, work: &WorkDir, home: &Path) -> Command {
     let mut cmd = Command::new("unshare");
     cmd.args([
         "--user",
@@ -129,23 +159,23 @@ pub fn capture(
     .arg(format!("{}x{}", def.width, def.height))
     .arg(server_commands(&def.map))
     .arg(client_commands(def))
-    .env("HOME", &home)
+    .env("HOME", home)
     .env("SERVER", SERVER)
     .env("CLIENT", CLIENT);
-    let command = tools::command_line(&cmd);
-    progress.say(&format!(
-        "Teeworlds {}: server on 127.0.0.1:{PORT} and client {}x{} in a network namespace \
-         of their own",
-        def.map, def.width, def.height
-    ));
+    cmd
+}
+
+/// Wait until the server's log says the player entered the game; an
+/// error if the group ends first or [`JOIN_DEADLINE_S`] passes (then the
+/// group is stopped).
+fn wait_for_join(g: &mut Group, work: &WorkDir) -> Result<(), String> {
     let log = work.0.join("unshare.log");
     let server_log = work.0.join("server.log");
     let client_log = work.0.join("client.log");
-    let mut g = Group::spawn(&mut cmd, &log)?;
     let deadline = Instant::now() + Duration::from_secs(JOIN_DEADLINE_S);
     loop {
         if tools::read_log(&server_log).contains("player has entered the game") {
-            break;
+            return Ok(());
         }
         if let Some(s) = g.try_wait()? {
             return Err(format!(
@@ -167,20 +197,11 @@ pub fn capture(
         }
         std::thread::sleep(Duration::from_millis(200));
     }
-    progress.say(&format!(
-        "the player entered the game; drawing {HOLD_S} s more"
-    ));
-    std::thread::sleep(Duration::from_secs(HOLD_S));
-    g.stop();
-    let seconds = g.started.elapsed().as_secs_f64();
-    drop(g);
-    if !out.is_file() {
-        return Err(format!(
-            "apitrace wrote no capture: {}",
-            tools::tail(&tools::read_log(&client_log), 4)
-        ));
-    }
-    Ok(EngineRun {
+}
+
+/// What the capture of scene `def` records of its run.
+fn engine_run(def: &SceneDef, command: Vec<String>, seconds: f64) -> EngineRun {
+    EngineRun {
         engine: "Teeworlds 0.7 client (Debian teeworlds) with teeworlds-server on 127.0.0.1".into(),
         command,
         script: Some(SCRIPT.to_string()),
@@ -194,7 +215,7 @@ pub fn capture(
             "client": client_commands(def),
             "seconds_after_join": HOLD_S,
         }),
-    })
+    }
 }
 
 #[cfg(test)]

@@ -137,43 +137,7 @@ impl Figures<'_> {
                 values: p.warps.iter().map(|&k| rel(k, p.wasp)).collect(),
             },
         ];
-        let at = |k: u32| p.warps.iter().position(|&x| x == k);
-        let mut marks = Vec::new();
-        if w.width == 2 {
-            if let Some(i) = at(32) {
-                marks.push(PaperValue {
-                    series: Some(1),
-                    category: Some(i),
-                    value: paper::WIDTH2_WASP32_OVER_BEST.value,
-                    label: "WaSP@32 matches the baseline@48".into(),
-                });
-            }
-            if let Some(i) = at(paper::WIDTH2_BEST_WARPS) {
-                marks.push(PaperValue {
-                    series: Some(1),
-                    category: Some(i),
-                    value: paper::WIDTH2_WASP_GAIN.value,
-                    label: "WaSP about +2% at 48".into(),
-                });
-            }
-        } else if w.width == 4 {
-            if let Some(i) = at(64) {
-                marks.push(PaperValue {
-                    series: Some(1),
-                    category: Some(i),
-                    value: paper::WIDTH4_WASP_GAIN.value,
-                    label: "WaSP +4% at 64".into(),
-                });
-            }
-            if let Some(i) = at(48) {
-                marks.push(PaperValue {
-                    series: Some(1),
-                    category: Some(i),
-                    value: paper::WIDTH4_WASP48_OVER_BEST.value,
-                    label: "WaSP@48 +2% over the baseline@64".into(),
-                });
-            }
-        }
+        let marks = paper_marks(w.width, &p.warps);
         Some(Figure {
             id: format!("sensitivity-width{}.{d}", w.width),
             title: format!("Sensitivity at pipeline width {}", w.width),
@@ -202,5 +166,79 @@ impl Figures<'_> {
                 w.width, w.config
             ),
         })
+    }
+}
+
+/// The paper's marks on the sensitivity figure of pipeline width `width`
+/// (on WaSP's series), at those of its warp counts that `warps` has.
+fn paper_marks(width: u32, warps: &[u32]) -> Vec<PaperValue> {
+    let marks = match width {
+        2 => vec![
+            (
+                32,
+                paper::WIDTH2_WASP32_OVER_BEST.value,
+                "WaSP@32 matches the baseline@48",
+            ),
+            (
+                paper::WIDTH2_BEST_WARPS,
+                paper::WIDTH2_WASP_GAIN.value,
+                "WaSP about +2% at 48",
+            ),
+        ],
+        4 => vec![
+            (64, paper::WIDTH4_WASP_GAIN.value, "WaSP +4% at 64"),
+            (
+                48,
+                paper::WIDTH4_WASP48_OVER_BEST.value,
+                "WaSP@48 +2% over the baseline@64",
+            ),
+        ],
+        _ => Vec::new(),
+    };
+    marks
+        .into_iter()
+        .filter_map(|(k, value, label)| {
+            Some(PaperValue {
+                series: Some(1),
+                category: Some(warps.iter().position(|&x| x == k)?),
+                value,
+                label: label.into(),
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_paper_marks_sit_on_the_warp_counts_run() {
+        let at = |width, warps: &[u32]| {
+            paper_marks(width, warps)
+                .into_iter()
+                .map(|m| (m.series, m.category, m.label))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(
+            at(2, &[16, 32, 48, 64]),
+            [
+                (Some(1), Some(1), "WaSP@32 matches the baseline@48".into()),
+                (Some(1), Some(2), "WaSP about +2% at 48".into()),
+            ]
+        );
+        assert_eq!(
+            at(4, &[32, 48, 64]),
+            [
+                (Some(1), Some(2), "WaSP +4% at 64".into()),
+                (Some(1), Some(1), "WaSP@48 +2% over the baseline@64".into()),
+            ]
+        );
+        assert_eq!(at(4, &[32, 64]).len(), 1, "48 not run: no mark there");
+        assert!(at(3, &[32, 48, 64]).is_empty());
+        assert_eq!(
+            paper_marks(2, &[32])[0].value,
+            paper::WIDTH2_WASP32_OVER_BEST.value
+        );
     }
 }
