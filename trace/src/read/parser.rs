@@ -125,13 +125,7 @@ impl<'a> Parser<'a> {
             return Err(Problem::RejectedInOldVersion(self.version));
         }
         let b = self.body("z")?;
-        if fields.len() != 2 {
-            return Err(Problem::WrongFieldCount {
-                directive: "z",
-                found: fields.len(),
-                usage: "z N",
-            });
-        }
+        field_count(fields, 2, "z", "z N")?;
         if after_z {
             return Err(Problem::AdjacentRejected);
         }
@@ -149,26 +143,14 @@ impl<'a> Parser<'a> {
             return Err(Problem::FrameMarkerInOldVersion(self.version));
         }
         let b = self.body(FRAME_MARKER)?;
-        if fields.len() != 1 {
-            return Err(Problem::WrongFieldCount {
-                directive: FRAME_MARKER,
-                found: fields.len(),
-                usage: FRAME_MARKER,
-            });
-        }
+        field_count(fields, 1, FRAME_MARKER, FRAME_MARKER)?;
         b.next_frame()
     }
 
     /// `tile TX TY`: a tile begins.
     fn tile_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
         let b = self.body("tile")?;
-        if fields.len() != 3 {
-            return Err(Problem::WrongFieldCount {
-                directive: "tile",
-                found: fields.len(),
-                usage: TILE_USAGE,
-            });
-        }
+        field_count(fields, 3, "tile", TILE_USAGE)?;
         let tx = dec_u32(fields[1], "tile x", u64::from(u32::MAX))?;
         let ty = dec_u32(fields[2], "tile y", u64::from(u32::MAX))?;
         b.begin_tile(tx, ty)
@@ -190,13 +172,7 @@ impl<'a> Parser<'a> {
     /// `end`: the open tile ends.
     fn end_line(&mut self, fields: &[&str]) -> Result<(), Problem> {
         let b = self.body("end")?;
-        if fields.len() != 1 {
-            return Err(Problem::WrongFieldCount {
-                directive: "end",
-                found: fields.len(),
-                usage: "end",
-            });
-        }
+        field_count(fields, 1, "end", "end")?;
         b.end_tile()
     }
 
@@ -238,13 +214,7 @@ impl<'a> Parser<'a> {
                 found: "texture-format".to_string(),
             });
         }
-        if fields.len() != 2 {
-            return Err(Problem::WrongFieldCount {
-                directive: "texture-format",
-                found: fields.len(),
-                usage: "texture-format NAME",
-            });
-        }
+        field_count(fields, 2, "texture-format", "texture-format NAME")?;
         crate::header::check_format_name(fields[1])?;
         self.texture_format = Some(fields[1].to_string());
         Ok(())
@@ -272,13 +242,12 @@ impl<'a> Parser<'a> {
         let Some(map) = self.texture_map.as_mut().filter(|_| self.builder.is_none()) else {
             return Err(bad("not after `texture-lines decoded` and before `frame`"));
         };
-        if fields.len() != 9 {
-            return Err(Problem::WrongFieldCount {
-                directive: "texture-level",
-                found: fields.len(),
-                usage: "texture-level R0 RW RH S0 SW SH RX RY",
-            });
-        }
+        field_count(
+            fields,
+            9,
+            "texture-level",
+            "texture-level R0 RW RH S0 SW SH RX RY",
+        )?;
         let grid = u64::from(crate::MAX_GRID);
         let per = u64::from(crate::MAX_LINES_PER_LINE);
         let level = MapLevel {
@@ -430,4 +399,21 @@ fn quad_line(
         }
     }
     Ok(())
+}
+/// Whether a `directive` line has its `n` fields, else the error that
+/// shows its `usage`.
+fn field_count(
+    fields: &[&str],
+    n: usize,
+    directive: &'static str,
+    usage: &'static str,
+) -> Result<(), Problem> {
+    if fields.len() == n {
+        return Ok(());
+    }
+    Err(Problem::WrongFieldCount {
+        directive,
+        found: fields.len(),
+        usage,
+    })
 }
