@@ -253,6 +253,21 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn a_stored_record_reads_back_and_writes_the_same_file() {
+        // A record the build before typed statistics wrote (with a
+        // prefetcher, a texture format and a subset the baseline leaves
+        // unused).
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/golden/text/point-record.json"
+        );
+        let text = std::fs::read_to_string(path).unwrap();
+        let r: PointRecord = serde_json::from_str(&text).unwrap();
+        assert!(r.stats.prefetch.is_some() && !r.stats.subset.subset.used);
+        assert_eq!(serde_json::to_string_pretty(&r).unwrap() + "\n", text);
+    }
+
+    #[test]
     fn read_points_takes_study_folders_and_points_folders() {
         let d = temp("read");
         let c = Cache::open(&d).unwrap();
