@@ -234,7 +234,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
         match r {
             Ok(Done::Point(rec)) => {
                 if let Task::Run(p) = &todo[i].task {
-                    out.points.insert(p.clone(), rec);
+                    out.points.insert(p.clone(), *rec);
                 }
             }
             Ok(Done::Scene(c)) => {
@@ -539,7 +539,7 @@ fn key_file(picture: &std::path::Path) -> PathBuf {
 
 /// What a task produced.
 enum Done {
-    Point(PointRecord),
+    Point(Box<PointRecord>),
     Scene(Box<Characterization>),
     Drawn,
 }
@@ -586,7 +586,7 @@ fn perform(r: &Ready, frame: &Frame, cache: &Cache) -> Result<Done, String> {
                 .map_err(|e| e.to_string())?;
             let rec = PointRecord::new(r.key.clone(), p.clone(), &stats);
             cache.store_point(&rec)?;
-            Ok(Done::Point(rec))
+            Ok(Done::Point(Box::new(rec)))
         }
         Task::Characterize { scene, .. } => {
             let c = characterize(scene, frame, 0.0);
