@@ -389,19 +389,8 @@ mod tests {
         let lines: Vec<&str> = csv.lines().collect();
         let head: Vec<&str> = lines[0].split(',').collect();
         let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
-        assert_eq!(
-            head[..8],
-            [
-                "point",
-                "config",
-                "dispatch",
-                "policy",
-                "scene",
-                "draw_order",
-                "avg_warps_per_core",
-                "block_reuse"
-            ]
-        );
+        assert_eq!(head[..6], SWEEP_COLUMNS);
+        assert_eq!(head[6..8], ["avg_warps_per_core", "block_reuse"]);
         assert!(col("cycles") < col("l0.misses") && col("l0.misses") < col("stats.policy"));
         assert!(lines[1].starts_with("1,a,shared-tile,baseline,procedural-plane,as-loaded,"));
         // The workload is the last column; only the second row's is quoted.

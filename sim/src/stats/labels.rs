@@ -10,6 +10,27 @@ use std::fmt;
 use std::str::FromStr;
 use wasp_rtl::subset::SubsetSpec;
 
+/// Serde through a label's text: `TryFrom<String>` by its `FromStr`,
+/// `Into<String>` by its `Display`.
+macro_rules! through_text {
+    ($($t:ty),*) => {$(
+        impl TryFrom<String> for $t {
+            type Error = String;
+            fn try_from(s: String) -> Result<Self, String> {
+                s.parse()
+            }
+        }
+
+        impl From<$t> for String {
+            fn from(l: $t) -> String {
+                l.to_string()
+            }
+        }
+    )*};
+}
+
+through_text!(DramModelLabel, SubsetLabel);
+
 /// The main-memory model and the timing that sets its speed, as the
 /// statistics name it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -110,19 +131,6 @@ impl FromStr for DramModelLabel {
     }
 }
 
-impl TryFrom<String> for DramModelLabel {
-    type Error = String;
-    fn try_from(s: String) -> Result<Self, String> {
-        s.parse()
-    }
-}
-
-impl From<DramModelLabel> for String {
-    fn from(l: DramModelLabel) -> String {
-        l.to_string()
-    }
-}
-
 /// The priority subset and whether the run's policy launches priority
 /// warps at all (the baseline does not).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -158,19 +166,6 @@ impl FromStr for SubsetLabel {
             spec: name.parse()?,
             used,
         })
-    }
-}
-
-impl TryFrom<String> for SubsetLabel {
-    type Error = String;
-    fn try_from(s: String) -> Result<Self, String> {
-        s.parse()
-    }
-}
-
-impl From<SubsetLabel> for String {
-    fn from(l: SubsetLabel) -> String {
-        l.to_string()
     }
 }
 
