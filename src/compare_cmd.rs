@@ -10,7 +10,7 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use wasp_rtl::policy::{PolicyName, PolicySpec};
-use wasp_sim::config::MachineConfig;
+use wasp_sim::config::{IssueOrder, MachineConfig, TextureCache};
 use wasp_sim::run::{simulate, RunOptions};
 use wasp_sim::stats::{csv_table, RunStats};
 use wasp_sim::trace::Trace;
@@ -346,7 +346,7 @@ fn machine_header(base: &RunStats) -> String {
     );
     // Options off by default are named only when set, so the shipped
     // machine's header stays as it is.
-    if base.issue != "lrr" {
+    if base.issue != IssueOrder::default() {
         let _ = write!(s, "  |  issue {}", base.issue);
     }
     if let Some(p) = &base.prefetch {
@@ -363,7 +363,7 @@ fn machine_header(base: &RunStats) -> String {
     if base.ideal_memory {
         let _ = write!(s, "  |  ideal memory");
     }
-    if base.texture_cache != "compressed" {
+    if base.texture_cache != TextureCache::default() {
         let _ = write!(s, "  |  texture cache {}", base.texture_cache);
     }
     let _ = write!(

@@ -7,19 +7,24 @@
 //! footprint ratio and size ratio, Min_Estimate1, CF, Min_Estimate2 and the
 //! energy of the event-energy model.
 
-use crate::config::MachineConfig;
+use crate::config::{
+    BlockedOn, ColorFlush, CoreMap, Dispatch, FilterTiming, IssueOrder, MachineConfig, TextureCache,
+};
 use crate::gpu::{CoreStats, LeadStats, RasterStats, RunCounters, TileRecord, TileTimingStats};
 use crate::mem::{CacheStats, MemStats};
 use crate::trace::{mean_footprint_ratio_of, Trace};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+use wasp_rtl::policy::{LaunchRule, PolicySpec};
 
 mod frames;
+mod labels;
 mod prefetch;
 pub use frames::{FrameLevel, FrameRecord};
+pub use labels::{DramModelLabel, SubsetLabel};
 pub use prefetch::PrefetchReport;
 
 /// One cache level's counters, summed over cores.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LevelStats {
     /// Accesses accepted.
     pub accesses: u64,
@@ -58,7 +63,7 @@ impl LevelStats {
 }
 
 /// Main-memory counters.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DramSummary {
     /// Requests served.
     pub requests: u64,
@@ -114,7 +119,7 @@ impl DramSummary {
 /// Average memory latency per warp: the mean over warps of each warp's mean
 /// texture-instruction latency (cycles from entering the LDST queue to the
 /// last block's arrival).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LatencyStats {
     /// All warps with at least one texture instruction.
     pub all: f64,
@@ -144,7 +149,7 @@ impl LatencyStats {
 
 /// Blocked episodes: texture instructions whose warp became blocked (the
 /// paper's long-latency state) under the run's `blocked_on` rule.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BlockedStats {
     /// Episodes, all warps.
     pub episodes: u64,
@@ -174,10 +179,11 @@ impl BlockedStats {
 }
 
 /// The priority subset and what it covers.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SubsetStats {
-    /// Subset name.
-    pub subset: String,
+    /// The subset, and whether the policy uses it (written
+    /// `mesh4 (unused by the baseline)` when it does not).
+    pub subset: SubsetLabel,
     /// Fraction of a full tile's quads the subset selects.
     pub subset_size_ratio: f64,
     /// Mean over tiles of (blocks the subset's warps touch / blocks the tile
@@ -192,12 +198,10 @@ impl SubsetStats {
         let spec = &cfg.scheduler.subset;
         let side = cfg.quads_per_side();
         let subset = spec.build(side);
-        let uses_priority = cfg.scheduler.policy != wasp_rtl::policy::PolicySpec::Baseline;
         SubsetStats {
-            subset: if uses_priority {
-                spec.to_string()
-            } else {
-                format!("{spec} (unused by the baseline)")
+            subset: SubsetLabel {
+                spec: spec.clone(),
+                used: cfg.scheduler.policy != PolicySpec::Baseline,
             },
             subset_size_ratio: subset.size_ratio(side),
             texture_footprint_ratio: mean_footprint_ratio_of(trace.frame_tiles(frame), |x, y| {
@@ -209,7 +213,7 @@ impl SubsetStats {
 }
 
 /// Energy by the event-energy model, in nanojoules.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EnergyStats {
     /// ALU instructions.
     pub alu_nj: f64,
@@ -278,7 +282,7 @@ impl EnergyStats {
 }
 
 /// Occupancy: warps resident per core per cycle.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct OccupancyStats {
     /// Warp slots per core.
     pub max_warps: u32,
@@ -349,7 +353,7 @@ impl OccupancyStats {
 
 /// The texture filter unit: its configuration (`core.filter_*`) and what
 /// it did, summed over the cores.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FilterStats {
     /// Filter cycles per bilinear (or nearest) quad-sample.
     pub cycles_bilinear: u32,
@@ -357,7 +361,7 @@ pub struct FilterStats {
     pub cycles_trilinear: u32,
     /// How the filter pass and `texture_latency` add up (`overlap` or
     /// `serial`).
-    pub timing: String,
+    pub timing: FilterTiming,
     /// Trilinear texture instructions run.
     pub trilinear_instructions: u64,
     /// Trilinear / all texture instructions.
@@ -382,7 +386,7 @@ impl FilterStats {
         FilterStats {
             cycles_bilinear: cfg.core.filter_cycles_bilinear,
             cycles_trilinear: cfg.core.filter_cycles_trilinear,
-            timing: cfg.core.filter_timing.to_string(),
+            timing: cfg.core.filter_timing,
             trilinear_instructions: tri,
             trilinear_share: mean(tri as f64, tex),
             busy_cycles: busy,
@@ -395,7 +399,7 @@ impl FilterStats {
 
 /// How the launch policy's gate chose between the two FIFOs, over the
 /// launches made while warps waited in both (summed over cores).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GateStats {
     /// Launches with warps waiting in the priority and the regular FIFO.
     pub both_waiting: u64,
@@ -421,45 +425,45 @@ impl GateStats {
 }
 
 /// Everything a run reports.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunStats {
     /// Machine name.
     pub machine: String,
     /// Input FIFO entries per core (`core.input_queue`), for the table's
-    /// header; not in the JSON or CSV, whose fields predate it.
+    /// header; not in the JSON or CSV, whose fields predate it (so read
+    /// back from JSON as 0).
     #[serde(skip)]
     pub input_queue: u32,
     /// Workload (from the trace; synthetic workloads say so).
     pub workload: String,
     /// Launch policy.
-    pub policy: String,
+    pub policy: PolicySpec,
     /// Launch rule for a closed gate (`hold` or `launch`,
     /// `scheduler.launch_rule`).
-    pub launch_rule: String,
+    pub launch_rule: LaunchRule,
     /// Dispatch mode (`shared-tile` or `per-core-tile`).
-    pub dispatch: String,
+    pub dispatch: Dispatch,
     /// Quad-to-core map (shared-tile).
-    pub core_map: String,
+    pub core_map: CoreMap,
     /// Colour-buffer flush.
-    pub color_flush: String,
-    /// Main-memory model ([`DramConfig::describe`](crate::mem::DramConfig::describe)).
-    #[serde(default)]
-    pub dram_model: String,
+    pub color_flush: ColorFlush,
+    /// Main-memory model and its timing.
+    pub dram_model: DramModelLabel,
     /// Zero-latency main memory.
     pub ideal_memory: bool,
     /// Which miss blocks a warp (`scheduler.blocked_on`).
-    pub blocked_on: String,
+    pub blocked_on: BlockedOn,
     /// The issue order (`core.issue`). Left out of the JSON and the table
     /// under the default, `lrr`, so that their outputs are those of the
     /// model before the option existed; a run that names no issue order
     /// ran `lrr`.
-    #[serde(skip_serializing_if = "is_default_issue")]
-    pub issue: String,
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub issue: IssueOrder,
     /// What the texture caches hold (`memory.texture_cache`). Left out of
     /// the JSON and the table under the default, `compressed`, so that
     /// their outputs are those of the model before the option existed.
-    #[serde(skip_serializing_if = "is_default_texture_cache")]
-    pub texture_cache: String,
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub texture_cache: TextureCache,
     /// GPU cycles until every tile is rendered and memory is idle.
     pub cycles: u64,
     /// Warp instructions per GPU cycle.
@@ -527,22 +531,20 @@ pub struct RunStats {
     pub prefetch: Option<PrefetchReport>,
     /// Every tile: start, end, fill, drain, peak occupancy, primary misses.
     /// (Of a trace of several frames, the last frame's tiles, their
-    /// cycles counted from the run's start.)
+    /// cycles counted from the run's start.) Study records leave it out
+    /// (and read it back empty).
+    #[serde(default)]
     pub per_tile: Vec<TileRecord>,
     /// Of a trace of several frames, one record per frame run, in order;
     /// everything else in the report is the last frame's. Empty (and left
     /// out of the JSON) for a one-frame trace.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub frames: Vec<FrameRecord>,
 }
 
-fn is_default_issue(issue: &str) -> bool {
-    issue == crate::config::IssueOrder::default().to_string()
-}
-
-/// Whether `cache` names the default `memory.texture_cache`.
-fn is_default_texture_cache(cache: &str) -> bool {
-    cache == crate::config::TextureCache::default().to_string()
+/// Whether `x` is its type's default (left out of the JSON).
+fn is_default<T: Default + PartialEq>(x: &T) -> bool {
+    *x == T::default()
 }
 
 /// A counter summed over the cores.
@@ -591,16 +593,16 @@ impl RunStats {
             machine: cfg.name.clone(),
             input_queue: cfg.core.input_queue,
             workload: trace.header().workload.clone(),
-            policy: sched.policy.to_string(),
-            launch_rule: sched.launch_rule.to_string(),
-            dispatch: cfg.raster.dispatch.to_string(),
-            core_map: cfg.raster.core_map.to_string(),
-            color_flush: cfg.raster.color_flush.to_string(),
-            dram_model: cfg.dram.describe(),
+            policy: sched.policy,
+            launch_rule: sched.launch_rule,
+            dispatch: cfg.raster.dispatch,
+            core_map: cfg.raster.core_map,
+            color_flush: cfg.raster.color_flush,
+            dram_model: DramModelLabel::of(&cfg.dram),
             ideal_memory: cfg.memory.ideal,
-            blocked_on: sched.blocked_on.to_string(),
-            issue: cfg.core.issue.to_string(),
-            texture_cache: cfg.memory.texture_cache.to_string(),
+            blocked_on: sched.blocked_on,
+            issue: cfg.core.issue,
+            texture_cache: cfg.memory.texture_cache,
             cycles,
             ipc: instructions as f64 / cycles.max(1) as f64,
             warps: sum(|c| c.warps_finished),
@@ -648,3 +650,84 @@ impl RunStats {
 mod csv;
 mod table;
 pub use csv::{csv_field, csv_records, csv_table, csv_text, flatten};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mem::{DramModel, PrefetchKind};
+    use crate::run::{simulate, RunOptions};
+
+    /// The statistics of the tiny trace on `cfg`.
+    fn tiny(mut cfg: MachineConfig) -> RunStats {
+        let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/traces/tiny.trace");
+        let t = Trace::read(p).unwrap();
+        cfg.gpu.tile_size = t.header().tile;
+        simulate(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap()
+    }
+
+    #[test]
+    fn statistics_read_back_from_their_json() {
+        let shipped = tiny(MachineConfig::paper());
+        let mut cfg = MachineConfig::paper();
+        cfg.scheduler.policy = PolicySpec::WaspMeasured { threshold: 0 };
+        cfg.scheduler.launch_rule = LaunchRule::Launch;
+        cfg.scheduler.blocked_on = BlockedOn::FirstLevel;
+        cfg.core.issue = IssueOrder::Gto;
+        cfg.core.filter_timing = FilterTiming::Serial;
+        cfg.prefetch.kind = PrefetchKind::Raster;
+        cfg.dram.model = DramModel::Fixed;
+        cfg.raster.core_map = CoreMap::RowMajor { block: 2 };
+        let mut other = tiny(cfg);
+        // Fields the tiny trace cannot set: several frames, decoded lines.
+        other.frames = vec![
+            FrameRecord::of(0, 0, &other),
+            FrameRecord::of(1, other.cycles, &other),
+        ];
+        other.texture_cache = TextureCache::Decompressed;
+        let mut baseline = MachineConfig::paper();
+        baseline.scheduler.policy = PolicySpec::Baseline;
+        baseline.raster.dispatch = Dispatch::PerCoreTile;
+        baseline.raster.color_flush = ColorFlush::Blocking;
+        baseline.memory.ideal = true;
+        for s in [shipped, other, tiny(baseline)] {
+            let text = s.to_json();
+            let back: RunStats = serde_json::from_str(&text).unwrap();
+            // All but the input queue, which the JSON leaves out.
+            assert_eq!(
+                back,
+                RunStats {
+                    input_queue: 0,
+                    ..s.clone()
+                }
+            );
+            assert_eq!(back.to_json(), text);
+        }
+    }
+
+    #[test]
+    fn descriptive_fields_are_written_as_their_names() {
+        let mut s = tiny(MachineConfig::paper());
+        s.policy = PolicySpec::Baseline;
+        s.subset.subset.used = false;
+        s.issue = IssueOrder::Gto;
+        let v = serde_json::to_value(&s).unwrap();
+        assert_eq!(v["policy"], "baseline");
+        assert_eq!(v["launch_rule"], "hold");
+        assert_eq!(v["dispatch"], "shared-tile");
+        assert_eq!(v["core_map"], "latin:8");
+        assert_eq!(v["color_flush"], "overlap");
+        assert_eq!(v["blocked_on"], "l1-miss");
+        assert_eq!(v["issue"], "gto");
+        assert_eq!(v["filter"]["timing"], "overlap");
+        assert_eq!(v["subset"]["subset"], "mesh4 (unused by the baseline)");
+        assert!(v["dram_model"].as_str().unwrap().starts_with("banked: "));
+        // The defaults of options added later are left out.
+        assert!(v.get("texture_cache").is_none());
+        s.issue = IssueOrder::Lrr;
+        assert!(serde_json::to_value(&s).unwrap().get("issue").is_none());
+        // A name the model does not know is an error naming it.
+        let text = s.to_json().replace("\"l1-miss\"", "\"l3-miss\"");
+        let e = serde_json::from_str::<RunStats>(&text).unwrap_err();
+        assert!(e.to_string().contains("l3-miss"), "{e}");
+    }
+}

@@ -4,6 +4,7 @@
 //! found.
 
 use super::plan::{Group, Plan};
+use crate::study::cache::tests::sample_stats;
 use crate::study::cache::PointRecord;
 use crate::study::point::Point;
 use crate::study::runner::{Outcome, Task};
@@ -11,6 +12,7 @@ use serde_json::json;
 use wasp_frontend::characterize::Characterization;
 use wasp_frontend::def::{self, SceneDef};
 use wasp_sim::config::Dispatch;
+use wasp_sim::stats::{LatencyStats, RunStats};
 
 /// The value of the override `key=` of a point, if set.
 fn set<'a>(p: &'a Point, key: &str) -> Option<&'a str> {
@@ -25,7 +27,7 @@ fn set<'a>(p: &'a Point, key: &str) -> Option<&'a str> {
 /// less than the baseline and WaSP more, latency, energy and misses rising
 /// under WaSP, WaSP@48 slower than the baseline@64, priority warps behind
 /// their raster order and waiting less than regular ones.
-pub fn point_stats(p: &Point) -> serde_json::Value {
+pub fn point_stats(p: &Point) -> RunStats {
     let policy = set(p, "scheduler.policy").unwrap_or("\"baseline\"");
     let wasp = policy.starts_with("\"wasp");
     let fullpriority = policy == "\"fullpriority\"";
@@ -48,22 +50,27 @@ pub fn point_stats(p: &Point) -> serde_json::Value {
         0.10
     };
     let more = if wasp { 1.1 } else { 1.0 };
-    json!({
-        "cycles": cycles,
-        "l0": {"stall_fraction": stall},
-        "occupancy": {"mean": 40.0},
-        "priority_lead": {"mean": -3.0},
-        "gate": {"closed_share": 0.5},
-        "memory_latency": {"all": 100.0 * more, "priority": 90.0, "regular": 100.0},
-        "energy": {"total_nj": 1000.0 * more, "static_nj": 500.0 * more},
-        "l1": {"misses": 1000.0 * more},
-        "l2": {"misses": 100.0},
-        "raster": {
-            "quads_rasterized": 100.0,
-            "quads_rejected": 10.0,
-            "backpressure_cycles": 100.0
-        }
-    })
+    let mut s = sample_stats();
+    s.cycles = cycles.round() as u64;
+    if let Some(l0) = &mut s.l0 {
+        l0.stall_fraction = stall;
+    }
+    s.occupancy.mean = 40.0;
+    s.priority_lead.mean = -3.0;
+    s.gate.closed_share = 0.5;
+    s.memory_latency = LatencyStats {
+        all: 100.0 * more,
+        priority: 90.0,
+        regular: 100.0,
+    };
+    s.energy.total_nj = 1000.0 * more;
+    s.energy.static_nj = 500.0 * more;
+    s.l1.misses = (1000.0 * more).round() as u64;
+    s.l2.misses = 100;
+    s.raster.quads_rasterized = 100;
+    s.raster.quads_rejected = 10;
+    s.raster.backpressure_cycles = 100;
+    s
 }
 
 /// A workload characterisation against the paper's: the subsets' footprint

@@ -169,7 +169,7 @@ mod tests {
     /// The contrary quick look with RGBA8 results: every RGBA8
     /// characterisation has CF `cf` and every RGBA8 ideal run is
     /// `ideal_cycles`.
-    fn with_rgba8(cf: f64, ideal_cycles: f64) -> (Plan, Outcome) {
+    fn with_rgba8(cf: f64, ideal_cycles: u64) -> (Plan, Outcome) {
         let (plan, mut out) = contrary::outcome(vec![Dispatch::SharedTile]);
         for c in out.scenes.values_mut() {
             c.texture_format = "etc2".into();
@@ -190,7 +190,7 @@ mod tests {
                     };
                     let mut r = out.points[&plain].clone();
                     if ideal {
-                        r.stats["cycles"] = serde_json::json!(ideal_cycles);
+                        r.stats.cycles = ideal_cycles;
                     }
                     out.points.insert(p, r);
                 }
@@ -230,7 +230,7 @@ mod tests {
 
     #[test]
     fn the_view_reads_the_rgba8_results_under_the_plans_points() {
-        let (plan, out) = with_rgba8(4.0, 500.0);
+        let (plan, out) = with_rgba8(4.0, 500);
         assert_eq!(own_format(&plan, &out).as_deref(), Some("etc2"));
         let v = view(&plan, &out);
         assert_eq!(v.scenes.len(), plan.scenes.len());
@@ -247,7 +247,7 @@ mod tests {
     fn the_note_says_which_format_comes_closer_to_the_papers_cf() {
         // The contrary run's own CF: 1.50 on its 3D scenes, 4.00 on its 2D
         // ones, 2.75 on games.
-        let (plan, out) = with_rgba8(4.0, 500.0);
+        let (plan, out) = with_rgba8(4.0, 500);
         let mut md = String::new();
         note(&mut md, &plan, &out);
         assert!(md.contains("the scenes store theirs as etc2"), "{md}");
@@ -261,7 +261,7 @@ mod tests {
             md.contains("etc2 textures bring the games' CF closer"),
             "{md}"
         );
-        let (plan, out) = with_rgba8(2.5, 500.0);
+        let (plan, out) = with_rgba8(2.5, 500);
         let mut md = String::new();
         note(&mut md, &plan, &out);
         assert!(
@@ -280,7 +280,7 @@ mod tests {
     #[test]
     fn the_headline_gives_each_texture_row_beside_its_rgba8_twin() {
         use crate::reproduce::headline::{headline, headline_md};
-        let (plan, out) = with_rgba8(4.0, 500.0);
+        let (plan, out) = with_rgba8(4.0, 500);
         let machines = vec![(Dispatch::SharedTile, Figures::new(&plan, &out))];
         let rows = headline(&plan, &out, &machines);
         let claims: Vec<&str> = rows.iter().map(|r| r.claim.as_str()).collect();

@@ -20,6 +20,7 @@ use crate::study::runner::Outcome;
 use std::fmt::Write as _;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
+use wasp_sim::stats::EnergyStats;
 
 /// A statistic of a point record.
 type Stat<'a> = &'a dyn Fn(&PointRecord) -> Option<f64>;
@@ -77,24 +78,37 @@ impl Notes<'_> {
 /// The rasterizer's share of cycles busy: the quads it produced (Early-Z
 /// rejected ones included) over quads_per_cycle x cycles.
 fn raster_busy(r: &PointRecord) -> Option<f64> {
-    let q = r.get("raster.quads_rasterized")?;
+    let q = r.stats.raster.quads_rasterized as f64;
     let qpc = f64::from(MachineConfig::paper().raster.quads_per_cycle);
     Some(q / (qpc * r.cycles()))
 }
 
-fn ratio(a: &'static str, b: &'static str) -> impl Fn(&PointRecord) -> Option<f64> {
-    move |r: &PointRecord| {
-        let (x, y) = (r.get(a)?, r.get(b)?);
-        (y > 0.0).then(|| x / y)
-    }
+/// The share of the quads rasterized that Early-Z rejected.
+fn rejected_share(r: &PointRecord) -> Option<f64> {
+    let raster = &r.stats.raster;
+    let (x, y) = (raster.quads_rejected as f64, raster.quads_rasterized as f64);
+    (y > 0.0).then(|| x / y)
 }
 
-fn per_cycle(a: &'static str) -> impl Fn(&PointRecord) -> Option<f64> {
-    move |r: &PointRecord| Some(r.get(a)? / r.cycles())
+/// The share of the cycles a full core queue held the rasterizer back.
+fn backpressure(r: &PointRecord) -> Option<f64> {
+    Some(r.stats.raster.backpressure_cycles as f64 / r.cycles())
 }
 
-fn stat(path: &'static str) -> impl Fn(&PointRecord) -> Option<f64> {
-    move |r: &PointRecord| r.get(path)
+fn occupancy(r: &PointRecord) -> Option<f64> {
+    Some(r.stats.occupancy.mean)
+}
+
+fn lead(r: &PointRecord) -> Option<f64> {
+    Some(r.stats.priority_lead.mean)
+}
+
+fn gate_closed(r: &PointRecord) -> Option<f64> {
+    Some(r.stats.gate.closed_share)
+}
+
+fn l0_stalled(r: &PointRecord) -> Option<f64> {
+    Some(r.stats.l0.as_ref()?.stall_fraction)
 }
 
 /// The section: its bullets for the first machine of the run.
@@ -204,17 +218,14 @@ fn group_note(md: &mut String, n: &Notes, g: Group) {
          the launches where both FIFOs wait; the L0 is stalled {} of the time under the \
          baseline and {} under WaSP.",
         g.label(),
-        num(st(&base, &stat("occupancy.mean"))),
+        num(st(&base, &occupancy)),
         share(st(&base, &raster_busy)),
-        share(st(
-            &base,
-            &ratio("raster.quads_rejected", "raster.quads_rasterized")
-        )),
-        share(st(&base, &per_cycle("raster.backpressure_cycles"))),
-        lead_text(st(&wasp, &stat("priority_lead.mean"))),
-        share(st(&wasp, &stat("gate.closed_share"))),
-        share(st(&base, &stat("l0.stall_fraction"))),
-        share(st(&wasp, &stat("l0.stall_fraction")))
+        share(st(&base, &rejected_share)),
+        share(st(&base, &backpressure)),
+        lead_text(st(&wasp, &lead)),
+        share(st(&wasp, &gate_closed)),
+        share(st(&base, &l0_stalled)),
+        share(st(&wasp, &l0_stalled))
     );
 }
 
@@ -248,12 +259,12 @@ fn early_z_note(md: &mut String, n: &Notes) {
          on 2D ({}); its priority warps launch {} their raster order. The rate at which Early-Z \
          rejects quads is a wasp choice (`raster.rejected_per_slot`, docs/machine.md): {moved}.",
         faster_or_slower(base_gain),
-        num(n.group_stat(Group::ThreeD, &fast_base, &stat("occupancy.mean"))),
+        num(n.group_stat(Group::ThreeD, &fast_base, &occupancy)),
         pct(fast[1]),
         pct(shipped[1]),
         pct(fast[2]),
         pct(shipped[2]),
-        lead_text(n.group_stat(Group::ThreeD, &fast_wasp, &stat("priority_lead.mean")))
+        lead_text(n.group_stat(Group::ThreeD, &fast_wasp, &lead))
     );
 }
 
@@ -289,7 +300,7 @@ fn other_machine_note(md: &mut String, n: &Notes, od: Dispatch, ox: &Figures) {
         figures: ox,
         machine: od,
     };
-    let occ = |notes: &Notes| notes.games_stat(&|s| notes.base(s), &stat("occupancy.mean"));
+    let occ = |notes: &Notes| notes.games_stat(&|s| notes.base(s), &occupancy);
     let (here, there) = (occ(n), occ(&other));
     let (gain_here, gain_there) = (n.wasp_gain(), other.wasp_gain());
     let reading = match (here, there, gain_here[1], gain_there[1]) {
@@ -338,12 +349,8 @@ fn fullpriority_note(md: &mut String, n: &Notes) {
     let verdict = full_gain[0].map_or("no measurement".into(), |v| {
         speedup_against_paper(v, paper::FULLPRIORITY_SPEEDUP.value)
     });
-    let stalls = |pol: PolicySpec| {
-        n.games_stat(
-            &|s| n.plan.policy_point(s, n.machine, pol),
-            &stat("l0.stall_fraction"),
-        )
-    };
+    let stalls =
+        |pol: PolicySpec| n.games_stat(&|s| n.plan.policy_point(s, n.machine, pol), &l0_stalled);
     let (f, b, w) = (
         stalls(PolicySpec::FullPriority),
         stalls(PolicySpec::Baseline),
@@ -440,7 +447,7 @@ fn latency_note(md: &mut String, n: &Notes) {
 /// The energy's change, split into static and dynamic energy.
 fn energy_note(md: &mut String, n: &Notes) {
     let energy = group_values(&n.figures.energy(n.machine), 0)[0];
-    let part = |path: &'static str| {
+    let part = |energy: fn(&EnergyStats) -> f64| {
         let v: Vec<f64> = n
             .figures
             .axis
@@ -453,11 +460,7 @@ fn energy_note(md: &mut String, n: &Notes) {
                     n.figures.out.get(&n.base(s))?,
                     n.figures.out.get(&n.wasp(s))?,
                 );
-                let get = |r: &PointRecord| match path {
-                    "dynamic" => Some(r.get("energy.total_nj")? - r.get("energy.static_nj")?),
-                    p => r.get(p),
-                };
-                Some(get(w)? / get(b)? - 1.0)
+                Some(energy(&w.stats.energy) / energy(&b.stats.energy) - 1.0)
             })
             .collect();
         pct(mean(v.into_iter()))
@@ -471,8 +474,8 @@ fn energy_note(md: &mut String, n: &Notes) {
          on games) and dynamic energy the accesses ({}).",
         pct(energy),
         pct(Some(paper::ENERGY_CHANGE.value)),
-        part("energy.static_nj"),
-        part("dynamic")
+        part(|e| e.static_nj),
+        part(|e| e.total_nj - e.static_nj)
     );
 }
 
@@ -671,8 +674,7 @@ fn slots_reading(n: &Notes, w: &Width, lo: u32, hi: u32) -> String {
         };
         n.games_stat(&point, f)
     };
-    let pressure = per_cycle("raster.backpressure_cycles");
-    let (p_lo, p_hi) = (games(lo, &pressure), games(hi, &pressure));
+    let (p_lo, p_hi) = (games(lo, &backpressure), games(hi, &backpressure));
     let reading = match (p_lo, p_hi) {
         (Some(a), Some(b)) => match relation(a, b, 0.02) {
             Relation::Above => {
@@ -699,8 +701,8 @@ fn slots_reading(n: &Notes, w: &Width, lo: u32, hi: u32) -> String {
         " From {lo} to {hi} warps (input queue as deep as the warp slots) the baseline's \
          cores hold {} and {} warps on average, and a full core queue holds {raster} back in \
          {} and {} of the cycles (mean of the 3D and 2D means){reading}.",
-        num(games(lo, &stat("occupancy.mean"))),
-        num(games(hi, &stat("occupancy.mean"))),
+        num(games(lo, &occupancy)),
+        num(games(hi, &occupancy)),
         pc(p_lo),
         pc(p_hi)
     )

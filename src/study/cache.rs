@@ -24,39 +24,60 @@ pub struct PointRecord {
     /// The `wasp` binary that ran it ([`super::point::binary_id`]).
     #[serde(default)]
     pub binary: String,
-    /// The run's statistics (`wasp run --json`) without `per_tile`.
-    pub stats: serde_json::Value,
+    /// The run's statistics (`wasp run --json`) as the file holds them:
+    /// without `per_tile` (empty here) and the input queue (0 here), which
+    /// the file leaves out.
+    #[serde(serialize_with = "serialize_stored")]
+    pub stats: RunStats,
 }
 
 impl PointRecord {
     /// The record of `point` run to `stats`.
     pub fn new(key: String, point: Point, stats: &RunStats) -> PointRecord {
-        let mut v = serde_json::to_value(stats).expect("statistics serialize");
-        if let Some(m) = v.as_object_mut() {
-            m.remove("per_tile");
-        }
         PointRecord {
             key,
             point,
             binary: super::point::binary_id().to_string(),
-            stats: v,
+            stats: RunStats {
+                per_tile: Vec::new(),
+                input_queue: 0,
+                ..stats.clone()
+            },
         }
-    }
-
-    /// The number at a dotted path of the statistics (`cycles`,
-    /// `l0.stall_fraction`, `memory_latency.priority`), if there is one.
-    pub fn get(&self, path: &str) -> Option<f64> {
-        let mut v = &self.stats;
-        for part in path.split('.') {
-            v = v.get(part)?;
-        }
-        v.as_f64()
     }
 
     /// Simulated cycles.
     pub fn cycles(&self) -> f64 {
-        self.get("cycles").unwrap_or(f64::NAN)
+        self.stats.cycles as f64
     }
+
+    /// The statistics as the record's file writes them: the JSON of
+    /// `wasp run --json`, its keys in alphabetical order, without
+    /// `per_tile`. For output only (results files, CSV columns).
+    pub fn stats_json(&self) -> serde_json::Value {
+        stored_json(&self.stats)
+    }
+
+    /// The statistics flattened to `wasp run --csv`'s column names and
+    /// values, in the order of [`stats_json`](Self::stats_json).
+    pub fn flat_stats(&self) -> Vec<(String, String)> {
+        let mut v = Vec::new();
+        wasp_sim::stats::flatten("", &self.stats_json(), &mut v);
+        v
+    }
+}
+
+/// `stats` as a stored record holds it (see [`PointRecord::stats_json`]).
+fn stored_json(stats: &RunStats) -> serde_json::Value {
+    let mut v = serde_json::to_value(stats).expect("statistics serialize");
+    if let Some(m) = v.as_object_mut() {
+        m.remove("per_tile");
+    }
+    v
+}
+
+fn serialize_stored<S: serde::Serializer>(stats: &RunStats, ser: S) -> Result<S::Ok, S::Error> {
+    stored_json(stats).serialize(ser)
 }
 
 /// A study's folder of finished points and characterised scenes.
@@ -160,8 +181,36 @@ pub fn write_atomic(path: &Path, text: &str) -> Result<(), String> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+    use std::sync::OnceLock;
+
+    /// The statistics of the tiny trace on the shipped machine (run once),
+    /// for tests that need a whole [`RunStats`] to change a few fields of.
+    pub(crate) fn sample_stats() -> RunStats {
+        static STATS: OnceLock<RunStats> = OnceLock::new();
+        STATS
+            .get_or_init(|| {
+                let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/traces/tiny.trace");
+                let trace = wasp_sim::trace::Trace::read(path).unwrap();
+                let mut cfg = wasp_sim::config::MachineConfig::paper();
+                cfg.gpu.tile_size = trace.header().tile;
+                let opts = wasp_sim::run::RunOptions::default();
+                wasp_sim::run::simulate(&cfg, &trace, &opts, &mut |_, _| {}).unwrap()
+            })
+            .clone()
+    }
+
+    /// [`sample_stats`] as a record holds them, with `cycles`.
+    pub(crate) fn stats_of(cycles: u64) -> RunStats {
+        let s = PointRecord::new(
+            String::new(),
+            Point::new("s", "paper", &[]),
+            &sample_stats(),
+        )
+        .stats;
+        RunStats { cycles, ..s }
+    }
 
     fn temp(name: &str) -> PathBuf {
         let d = std::env::temp_dir().join(format!("wasp-cache-{name}-{}", std::process::id()));
@@ -177,21 +226,45 @@ mod tests {
             key: "00000000000000aa".into(),
             point: Point::new("sc", "paper", &["l0.mshrs=8"]),
             binary: "b".into(),
-            stats: serde_json::json!({"cycles": 1234, "l0": {"stall_fraction": 0.25}}),
+            stats: stats_of(1234),
         };
         assert_eq!(c.load_point("sc", &r.key), None);
         c.store_point(&r).unwrap();
         let back = c.load_point("sc", &r.key).unwrap();
         assert_eq!(back, r);
         assert_eq!(back.cycles(), 1234.0);
-        assert_eq!(back.get("l0.stall_fraction"), Some(0.25));
-        assert_eq!(back.get("l0.missing"), None);
+        // The file holds the statistics without the tiles, keys sorted.
+        let text = std::fs::read_to_string(c.point_path("sc", &r.key)).unwrap();
+        assert!(!text.contains("per_tile"));
+        let at = |k: &str| text.find(&format!("\"{k}\": ")).unwrap();
+        assert!(at("avg_warps_per_core") < at("cycles") && at("cycles") < at("workload"));
+        // So does a record made from a run's statistics.
+        let full = sample_stats();
+        assert!(!full.per_tile.is_empty());
+        let made = PointRecord::new(r.key.clone(), r.point.clone(), &full);
+        assert!(made.stats.per_tile.is_empty());
+        assert_eq!(made.stats_json(), stored_json(&full));
         // A truncated file (as from another program) is not a result.
         std::fs::write(c.point_path("sc", &r.key), "{\"key\":").unwrap();
         assert_eq!(c.load_point("sc", &r.key), None);
         let e = read_points(std::slice::from_ref(&d)).unwrap_err();
         assert!(e.contains("not a point record"), "{e}");
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn a_stored_record_reads_back_and_writes_the_same_file() {
+        // A record the build before typed statistics wrote (with a
+        // prefetcher, a texture format and a subset the baseline leaves
+        // unused).
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/golden/text/point-record.json"
+        );
+        let text = std::fs::read_to_string(path).unwrap();
+        let r: PointRecord = serde_json::from_str(&text).unwrap();
+        assert!(r.stats.prefetch.is_some() && !r.stats.subset.subset.used);
+        assert_eq!(serde_json::to_string_pretty(&r).unwrap() + "\n", text);
     }
 
     #[test]
@@ -203,7 +276,7 @@ mod tests {
                 key: key.into(),
                 point: Point::new(scene, "paper", &[]),
                 binary: "b".into(),
-                stats: serde_json::json!({"cycles": 1}),
+                stats: stats_of(1),
             })
             .unwrap();
         }

@@ -150,14 +150,7 @@ fn names_formats(rows: &[(&SweepPoint, &PointRecord)]) -> bool {
 /// the order they first appear in the rows; a statistic named like a sweep
 /// column, e.g. the simulator's `policy`, is `stats.NAME`).
 pub fn results_csv(rows: &[(&SweepPoint, &PointRecord)]) -> String {
-    let flat: Vec<Vec<(String, String)>> = rows
-        .iter()
-        .map(|(_, r)| {
-            let mut v = Vec::new();
-            wasp_sim::stats::flatten("", &r.stats, &mut v);
-            v
-        })
-        .collect();
+    let flat: Vec<Vec<(String, String)>> = rows.iter().map(|(_, r)| r.flat_stats()).collect();
     let mut names: Vec<&str> = Vec::new();
     let mut seen: BTreeSet<&str> = BTreeSet::new();
     for (k, _) in flat.iter().flatten() {
@@ -214,7 +207,7 @@ pub fn results_json(rows: &[(&SweepPoint, &PointRecord)]) -> String {
                 "sets": p.point.sets,
                 "key": r.key,
                 "binary": r.binary,
-                "stats": r.stats,
+                "stats": r.stats_json(),
             });
             // Only a point that names a texture format shows it: the
             // results of other sweeps stay as they were.
@@ -308,6 +301,7 @@ pub fn results_table(rows: &[(&SweepPoint, &PointRecord)], first_policy: &str) -
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::study::cache::tests::stats_of;
     use crate::study::sweep::Sweep;
     use std::path::Path;
 
@@ -329,7 +323,7 @@ mod tests {
             key: key.into(),
             point: p.clone(),
             binary: binary.into(),
-            stats: serde_json::json!({"cycles": cycles, "l0": {"misses": 3}, "policy": "x,y"}),
+            stats: stats_of(cycles),
         }
     }
 
@@ -387,17 +381,27 @@ mod tests {
         let pts = sweep_points();
         let r0 = record(&pts[0].point, "k0", "b", 200);
         let mut r2 = record(&pts[2].point, "k2", "b", 160);
-        r2.stats["extra"] = serde_json::json!(1.5);
+        r2.stats.prefetch = None;
+        r2.stats.measured_cf_mean = Some(1.5);
+        r2.stats.workload = "x,y".into();
         let rows = vec![(&pts[0], &r0), (&pts[2], &r2)];
         let csv = results_csv(&rows);
         let lines: Vec<&str> = csv.lines().collect();
+        let head: Vec<&str> = lines[0].split(',').collect();
+        let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
+        assert_eq!(head[..6], SWEEP_COLUMNS);
+        assert_eq!(head[6..8], ["avg_warps_per_core", "block_reuse"]);
+        assert!(col("cycles") < col("l0.misses") && col("l0.misses") < col("stats.policy"));
+        assert!(lines[1].starts_with("1,a,shared-tile,baseline,procedural-plane,as-loaded,"));
+        // The workload is the last column; only the second row's is quoted.
+        assert!(lines[2].ends_with(",\"x,y\""), "{}", lines[2]);
+        let (a, b): (Vec<&str>, Vec<&str>) =
+            (lines[1].split(',').collect(), lines[2].split(',').collect());
+        assert_eq!((a[col("cycles")], b[col("cycles")]), ("200", "160"));
+        assert_eq!(a[col("stats.policy")], "wasp:0:3");
         assert_eq!(
-            lines,
-            [
-                "point,config,dispatch,policy,scene,draw_order,cycles,l0.misses,stats.policy,extra",
-                "1,a,shared-tile,baseline,procedural-plane,as-loaded,200,3,\"x,y\",",
-                "3,a,shared-tile,wasp:0:3,procedural-plane,as-loaded,160,3,\"x,y\",1.5",
-            ]
+            (a[col("measured_cf_mean")], b[col("measured_cf_mean")]),
+            ("", "1.5")
         );
         let json: serde_json::Value = serde_json::from_str(&results_json(&rows)).unwrap();
         assert_eq!(json[1]["point"], 3);
@@ -418,7 +422,7 @@ mod tests {
     fn a_stored_record_reads_back_the_same() {
         let pts = sweep_points();
         let mut r = record(&pts[0].point, "k", "b", 1);
-        r.stats["ratio"] = serde_json::json!(0.1 + 0.2);
+        r.stats.cf = 0.1 + 0.2;
         let s = as_stored(&r);
         assert_eq!(as_stored(&s), s);
         assert_eq!(s.key, "k");

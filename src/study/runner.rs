@@ -104,6 +104,9 @@ pub struct Outcome {
     pub same: usize,
     /// Wall seconds.
     pub seconds: f64,
+    /// Points on the same machine as an earlier point of the run, with the
+    /// key whose result they take when the run is over.
+    sharing: Vec<(Point, String)>,
 }
 
 impl Outcome {
@@ -231,7 +234,7 @@ pub fn run(tasks: &[Task], cache: &Cache, opts: &RunnerOptions) -> Result<Outcom
         match r {
             Ok(Done::Point(rec)) => {
                 if let Task::Run(p) = &todo[i].task {
-                    out.points.insert(p.clone(), rec);
+                    out.points.insert(p.clone(), *rec);
                 }
             }
             Ok(Done::Scene(c)) => {
@@ -347,12 +350,7 @@ pub(super) fn resolve(
             out.same += 1;
             if let Task::Run(p) = t {
                 // Filled in from the first one's result at the end.
-                out.points.entry(p.clone()).or_insert_with(|| PointRecord {
-                    key: key.clone(),
-                    point: p.clone(),
-                    binary: String::new(),
-                    stats: serde_json::Value::Null,
-                });
+                out.sharing.push((p.clone(), key.clone()));
             }
             continue;
         }
@@ -498,25 +496,20 @@ fn share_results(out: &mut Outcome) {
     let by_key: HashMap<String, PointRecord> = out
         .points
         .values()
-        .filter(|r| !r.stats.is_null())
         .map(|r| (r.key.clone(), r.clone()))
         .collect();
-    out.points.retain(|p, r| {
-        if r.stats.is_null() {
-            match by_key.get(&r.key) {
-                Some(x) => {
-                    *r = PointRecord {
-                        point: p.clone(),
-                        ..x.clone()
-                    };
-                    true
-                }
-                None => false,
-            }
-        } else {
-            true
+    for (p, key) in std::mem::take(&mut out.sharing) {
+        if out.points.contains_key(&p) {
+            continue;
         }
-    });
+        if let Some(x) = by_key.get(&key) {
+            let r = PointRecord {
+                point: p.clone(),
+                ..x.clone()
+            };
+            out.points.insert(p, r);
+        }
+    }
 }
 
 fn describe(t: &Task) -> String {
@@ -546,7 +539,7 @@ fn key_file(picture: &std::path::Path) -> PathBuf {
 
 /// What a task produced.
 enum Done {
-    Point(PointRecord),
+    Point(Box<PointRecord>),
     Scene(Box<Characterization>),
     Drawn,
 }
@@ -593,7 +586,7 @@ fn perform(r: &Ready, frame: &Frame, cache: &Cache) -> Result<Done, String> {
                 .map_err(|e| e.to_string())?;
             let rec = PointRecord::new(r.key.clone(), p.clone(), &stats);
             cache.store_point(&rec)?;
-            Ok(Done::Point(rec))
+            Ok(Done::Point(Box::new(rec)))
         }
         Task::Characterize { scene, .. } => {
             let c = characterize(scene, frame, 0.0);
@@ -714,7 +707,7 @@ mod tests {
         assert_eq!(a.key, c.key, "the scene's own order is the same scene");
         // The sorted trace shades fewer warps (the ground is drawn after
         // the blocks on it): the run saw another trace.
-        let warps = |r: &PointRecord| r.get("warps").unwrap();
+        let warps = |r: &PointRecord| r.stats.warps as f64;
         assert!(warps(b) < warps(a), "{} vs {}", warps(b), warps(a));
         // Its frame is the one `render` makes in that order.
         let f = render(&sorted.scene_def(&plane), 64, false).unwrap();
@@ -744,12 +737,12 @@ mod tests {
         let out = run(&tasks, &cache, &opts).unwrap();
         assert!(out.failures.is_empty(), "{:?}", out.failures);
         assert_eq!(out.ran, 3);
-        let get = |p: &Point, s: &str| out.points[p].get(s).unwrap();
+        let get = |p: &Point| &out.points[p].stats;
         // The L1s see the RGBA8 lines; the DRAM sees the compressed ones.
-        assert_eq!(get(&decoded, "cf"), get(&rgba8, "cf"));
-        assert_eq!(get(&decoded, "warps"), get(&rgba8, "warps"));
-        assert!(get(&etc2, "cf") < get(&rgba8, "cf"));
-        assert!(get(&decoded, "dram.requests") < get(&rgba8, "dram.requests"));
+        assert_eq!(get(&decoded).cf, get(&rgba8).cf);
+        assert_eq!(get(&decoded).warps, get(&rgba8).warps);
+        assert!(get(&etc2).cf < get(&rgba8).cf);
+        assert!(get(&decoded).dram.requests < get(&rgba8).dram.requests);
         let _ = std::fs::remove_dir_all(&dir);
     }
 

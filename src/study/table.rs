@@ -8,20 +8,16 @@ use wasp_sim::stats::csv_text;
 /// Every point as CSV: scene, base configuration, overrides, then the
 /// flattened statistics (the columns of the first record).
 pub fn points_csv(records: &[&PointRecord]) -> String {
-    let Some(first) = records.iter().find(|r| !r.stats.is_null()) else {
+    let Some(first) = records.first() else {
         return "scene,config,sets,key\n".into();
     };
-    let mut cols = Vec::new();
-    wasp_sim::stats::flatten("", &first.stats, &mut cols);
-    let names: Vec<String> = cols.into_iter().map(|(k, _)| k).collect();
+    let names: Vec<String> = first.flat_stats().into_iter().map(|(k, _)| k).collect();
     let header = ["scene", "config", "sets", "key"]
         .into_iter()
         .map(String::from)
         .chain(names.iter().cloned());
     let rows = records.iter().map(|r| {
-        let mut row = Vec::new();
-        wasp_sim::stats::flatten("", &r.stats, &mut row);
-        let row: HashMap<String, String> = row.into_iter().collect();
+        let row: HashMap<String, String> = r.flat_stats().into_iter().collect();
         [
             r.point.scene.clone(),
             r.point.config.clone(),
@@ -42,6 +38,7 @@ pub fn points_csv(records: &[&PointRecord]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::study::cache::tests::stats_of;
     use crate::study::point::Point;
 
     #[test]
@@ -50,16 +47,27 @@ mod tests {
             key: format!("k{c}"),
             point: Point::new(scene, "paper", &["l0.mshrs=8", "scheduler.policy=\"wasp\""]),
             binary: String::new(),
-            stats: serde_json::json!({"cycles": c, "l0": {"misses": 3}, "policy": "a,b"}),
+            stats: wasp_sim::stats::RunStats {
+                workload: "a,b".into(),
+                ..stats_of(c)
+            },
         };
         let (a, b) = (r("s1", 10), r("s2", 20));
         let t = points_csv(&[&a, &b]);
         let lines: Vec<&str> = t.lines().collect();
-        assert_eq!(lines[0], "scene,config,sets,key,cycles,l0.misses,policy");
-        assert_eq!(
-            lines[1],
-            "s1,paper,\"l0.mshrs=8 scheduler.policy=\"\"wasp\"\"\",k10,10,3,\"a,b\""
+        assert!(
+            lines[0].starts_with("scene,config,sets,key,avg_warps_per_core,block_reuse,"),
+            "{}",
+            lines[0]
         );
+        assert!(lines[0].ends_with(",tiles,warps,workload"), "{}", lines[0]);
+        assert!(lines[0].contains(",cycles,") && lines[0].contains(",l0.misses,"));
+        assert!(
+            lines[1].starts_with("s1,paper,\"l0.mshrs=8 scheduler.policy=\"\"wasp\"\"\",k10,"),
+            "{}",
+            lines[1]
+        );
+        assert!(lines[1].ends_with(",\"a,b\""), "{}", lines[1]);
         assert!(lines[2].starts_with("s2,paper,"), "{}", lines[2]);
         assert_eq!(points_csv(&[]), "scene,config,sets,key\n");
     }

@@ -36,7 +36,7 @@ use super::raster_cursor::RasterCursor;
 use crate::config::{ColorFlush, CoreMapTable};
 use crate::mem::MemorySystem;
 use crate::trace::{Tile, Trace};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 use wasp_waves::{Traceable, Tracer};
 
@@ -45,7 +45,7 @@ use wasp_waves::{Traceable, Tracer};
 const FRAME_BUFFER_BLOCK: u64 = 1 << 36;
 
 /// Counters of the raster pipeline.
-#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct RasterStats {
     /// Quads rasterized, Early-Z-rejected ones included.
     pub quads_rasterized: u64,

@@ -20,7 +20,7 @@
 //!   launched after some regular warp of its own 4x4-quad subtile (Mesh4's
 //!   subtile): a neighbour then started without its prefetch.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Lower edges of the lead histogram's bins (the last bin is open above).
 pub const LEAD_BIN_EDGES: [i64; 14] = [
@@ -41,7 +41,7 @@ pub const LEAD_BIN_EDGES: [i64; 14] = [
 ];
 
 /// One finished tile.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct TileRecord {
     /// Index of the tile in the trace.
     pub tile: u32,
@@ -67,7 +67,7 @@ pub struct TileRecord {
 }
 
 /// One bin of the lead histogram: leads in `from..=to`.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct LeadBin {
     /// Smallest lead of the bin (`None`: unbounded below).
     pub from: Option<i64>,
@@ -78,7 +78,7 @@ pub struct LeadBin {
 }
 
 /// The lead of priority warps over a run.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LeadStats {
     /// Priority warps launched.
     pub priority_warps: u64,
@@ -95,7 +95,7 @@ pub struct LeadStats {
 }
 
 /// Means over the tiles of a run.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TileTimingStats {
     /// Tiles rendered.
     pub tiles: u64,

@@ -450,22 +450,6 @@ impl CacheConfig {
 }
 
 impl DramConfig {
-    /// One-line summary of the model, as run statistics record it:
-    /// `banked: 4 channels x 8 banks / 6 cycles a line` or
-    /// `fixed: row hit 50 / row miss 100 cycles` (no comma: CSV-safe).
-    pub fn describe(&self) -> String {
-        match self.model {
-            DramModel::Banked => format!(
-                "banked: {} channels x {} banks / {} cycles a line",
-                self.channels, self.banks, self.t_burst
-            ),
-            DramModel::Fixed => format!(
-                "fixed: row hit {} / row miss {} cycles",
-                self.row_hit_latency, self.row_miss_latency
-            ),
-        }
-    }
-
     /// The declared bounds and the structural checks, each error naming
     /// the field (`dram.banks = 0: must be in 1..=64`).
     pub fn check(&self) -> Result<(), MemConfigError> {

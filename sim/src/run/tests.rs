@@ -161,8 +161,8 @@ fn launch_rule_hold_idles_and_launch_does_not() {
     let hold = go("wasp:14", LaunchRule::Hold);
     let launch = go("wasp:14", LaunchRule::Launch);
     assert_eq!(
-        (hold.launch_rule.as_str(), launch.launch_rule.as_str()),
-        ("hold", "launch")
+        (hold.launch_rule, launch.launch_rule),
+        (LaunchRule::Hold, LaunchRule::Launch)
     );
     assert!(hold.held_cycles > 0, "{}", hold.held_cycles);
     assert_eq!(
@@ -196,7 +196,7 @@ fn the_measured_cf_variant_runs_and_reports_its_cf() {
     };
     let m = go("wasp-m:4");
     let w = go("wasp:4");
-    assert_eq!(m.policy, "wasp-m:4");
+    assert_eq!(m.policy, PolicySpec::WaspMeasured { threshold: 4 });
     assert_eq!(m.warps, t.quad_count() as u64);
     assert_eq!(w.measured_cf_mean, None);
     let cf = m.measured_cf_mean.expect("wasp-m reports its CF");
@@ -249,8 +249,8 @@ fn l1_miss_blocks_fewer_warps_than_first_level_and_dram_fewer_still() {
     let cfg = MachineConfig::paper();
     let [first, l1, dram] = BlockedOn::ALL.map(|r| run_blocked(&cfg, &t, "wasp:4", r));
     assert_eq!(
-        [&first.blocked_on, &l1.blocked_on, &dram.blocked_on],
-        ["first-level", "l1-miss", "dram"]
+        [first.blocked_on, l1.blocked_on, dram.blocked_on],
+        BlockedOn::ALL
     );
     // Every L0 miss blocks under first-level; only those the L1 misses
     // under l1-miss; only L2 misses under dram.
@@ -605,7 +605,7 @@ fn shared_tile_dispatch_renders_one_tile_at_a_time() {
     let cfg = MachineConfig::paper();
     let (stats, recs) =
         simulate_recording(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
-    assert_eq!(stats.dispatch, "shared-tile");
+    assert_eq!(stats.dispatch, Dispatch::SharedTile);
     assert_eq!(stats.tiles, t.tiles().len() as u64);
     assert_eq!(stats.per_tile.len(), t.tiles().len());
     // Every core shades part of every tile (the map spreads the tile).
@@ -663,7 +663,7 @@ fn a_blocking_flush_delays_the_next_tile() {
 fn per_core_dispatch_is_still_available() {
     let t = small_synth(17);
     let s = run_dispatch(&t, Dispatch::PerCoreTile, ColorFlush::Overlap);
-    assert_eq!(s.dispatch, "per-core-tile");
+    assert_eq!(s.dispatch, Dispatch::PerCoreTile);
     assert_eq!(s.warps, t.quad_count() as u64);
     assert_eq!(s.per_tile.len(), t.tiles().len());
     assert!(s.per_tile.iter().all(|r| r.core.is_some()));
@@ -732,7 +732,7 @@ fn the_texture_cache_choice_must_match_the_lines_the_trace_lists() {
     cfg.memory.texture_cache = TextureCache::Decompressed;
     let s = simulate(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
     assert_eq!(s.warps, 2);
-    assert_eq!(s.texture_cache, "decompressed");
+    assert_eq!(s.texture_cache, crate::config::TextureCache::Decompressed);
     // Three decoded lines in the L1, two stored lines below it.
     assert_eq!((s.l1.misses, s.dram.requests), (3, 2));
     // A trace of stored compressed lines needs compressed caches; an

@@ -4,11 +4,11 @@
 //! one record per frame in [`RunStats::frames`](super::RunStats::frames).
 
 use super::{LatencyStats, LevelStats, RunStats};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 
 /// One cache level's counters in one frame, summed over its instances.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FrameLevel {
     /// Accesses accepted.
     pub accesses: u64,
@@ -35,7 +35,7 @@ impl FrameLevel {
 /// frame ended (every tile flushed, memory idle) to its own end; its
 /// counters are its own, the caches' and DRAM's contents those the frames
 /// before left.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FrameRecord {
     /// The frame's index in the trace (from 0).
     pub frame: usize,

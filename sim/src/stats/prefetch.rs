@@ -4,8 +4,9 @@
 
 use crate::config::MachineConfig;
 use crate::mem::prefetch::QueueCounts;
+use crate::mem::PrefetchKind;
 use crate::mem::PrefetchStats;
-use serde::ser::{Serialize, SerializeStruct, Serializer};
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 
 /// A run's prefetches, summed over the cores.
@@ -13,10 +14,11 @@ use std::fmt::Write as _;
 /// Its JSON is flat, in the order the fields are listed here, with the
 /// queues' counts in place of `counts` (but `max_len`, which comes last as
 /// `longest_queue`).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(into = "FlatReport", from = "FlatReport")]
 pub struct PrefetchReport {
     /// `oracle-tile` or `raster`.
-    pub kind: String,
+    pub kind: PrefetchKind,
     /// Entries of the raster prefetcher's queue per core.
     pub queue: u32,
     /// The queue skips blocks already queued.
@@ -44,35 +46,86 @@ pub struct PrefetchReport {
     pub late_share: f64,
 }
 
-impl Serialize for PrefetchReport {
-    fn serialize<S: Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
-        let q = &self.counts;
-        let mut m = ser.serialize_struct("PrefetchReport", 20)?;
-        m.serialize_field("kind", &self.kind)?;
-        m.serialize_field("queue", &self.queue)?;
-        m.serialize_field("queue_filter", &self.queue_filter)?;
-        m.serialize_field("l1_reserve", &self.l1_reserve)?;
-        for (name, v) in [
-            ("generated", q.generated),
-            ("duplicates", q.duplicates),
-            ("dropped", q.dropped),
-            ("cancelled", q.cancelled),
-            ("issued", q.issued),
-            ("hits", q.hits),
-            ("pending", q.pending),
-            ("misses", q.misses),
-            ("reserve_waits", q.reserve_waits),
-            ("useful", self.useful),
-            ("late", self.late),
-            ("useless", self.useless),
-            ("unused_at_end", self.unused_at_end),
-        ] {
-            m.serialize_field(name, &v)?;
+/// [`PrefetchReport`] as its JSON writes it: flat, the queues' counts in
+/// place of `counts`, the longest queue last.
+#[derive(Serialize, Deserialize)]
+struct FlatReport {
+    kind: PrefetchKind,
+    queue: u32,
+    queue_filter: bool,
+    l1_reserve: u32,
+    generated: u64,
+    duplicates: u64,
+    dropped: u64,
+    cancelled: u64,
+    issued: u64,
+    hits: u64,
+    pending: u64,
+    misses: u64,
+    reserve_waits: u64,
+    useful: u64,
+    late: u64,
+    useless: u64,
+    unused_at_end: u64,
+    accuracy: f64,
+    late_share: f64,
+    longest_queue: u64,
+}
+
+impl From<PrefetchReport> for FlatReport {
+    fn from(r: PrefetchReport) -> Self {
+        let q = r.counts;
+        FlatReport {
+            kind: r.kind,
+            queue: r.queue,
+            queue_filter: r.queue_filter,
+            l1_reserve: r.l1_reserve,
+            generated: q.generated,
+            duplicates: q.duplicates,
+            dropped: q.dropped,
+            cancelled: q.cancelled,
+            issued: q.issued,
+            hits: q.hits,
+            pending: q.pending,
+            misses: q.misses,
+            reserve_waits: q.reserve_waits,
+            useful: r.useful,
+            late: r.late,
+            useless: r.useless,
+            unused_at_end: r.unused_at_end,
+            accuracy: r.accuracy,
+            late_share: r.late_share,
+            longest_queue: q.max_len,
         }
-        m.serialize_field("accuracy", &self.accuracy)?;
-        m.serialize_field("late_share", &self.late_share)?;
-        m.serialize_field("longest_queue", &q.max_len)?;
-        m.end()
+    }
+}
+
+impl From<FlatReport> for PrefetchReport {
+    fn from(f: FlatReport) -> Self {
+        PrefetchReport {
+            kind: f.kind,
+            queue: f.queue,
+            queue_filter: f.queue_filter,
+            l1_reserve: f.l1_reserve,
+            counts: QueueCounts {
+                generated: f.generated,
+                duplicates: f.duplicates,
+                dropped: f.dropped,
+                cancelled: f.cancelled,
+                issued: f.issued,
+                hits: f.hits,
+                pending: f.pending,
+                misses: f.misses,
+                reserve_waits: f.reserve_waits,
+                max_len: f.longest_queue,
+            },
+            useful: f.useful,
+            late: f.late,
+            useless: f.useless,
+            unused_at_end: f.unused_at_end,
+            accuracy: f.accuracy,
+            late_share: f.late_share,
+        }
     }
 }
 
@@ -85,7 +138,7 @@ impl PrefetchReport {
         let l = &s.lines;
         let ratio = |a: u64, b: u64| if b == 0 { 0.0 } else { a as f64 / b as f64 };
         Some(PrefetchReport {
-            kind: cfg.prefetch.kind.to_string(),
+            kind: cfg.prefetch.kind,
             queue: cfg.prefetch.queue,
             queue_filter: cfg.prefetch.queue_filter,
             l1_reserve: cfg.prefetch.l1_reserve,
@@ -146,7 +199,7 @@ mod tests {
         s.lines.useful = 6;
         s.lines.late = 3;
         let r = PrefetchReport::of(&cfg, &s).unwrap();
-        assert_eq!(r.kind, "raster");
+        assert_eq!(r.kind, PrefetchKind::Raster);
         assert_eq!((r.accuracy, r.late_share), (0.75, 0.5));
         let mut t = String::new();
         r.table_lines(&mut t);
@@ -170,5 +223,7 @@ mod tests {
              \"late\":0,\"useless\":0,\"unused_at_end\":0,\"accuracy\":0.0,\
              \"late_share\":0.0,\"longest_queue\":5}"
         );
+        let text = serde_json::to_string(&r).unwrap();
+        assert_eq!(serde_json::from_str::<PrefetchReport>(&text).unwrap(), r);
     }
 }

@@ -1,6 +1,6 @@
 //! The statistics as a readable table.
 
-use super::{is_default_issue, is_default_texture_cache, LevelStats, RunStats};
+use super::{is_default, LevelStats, RunStats};
 use std::fmt::Write as _;
 
 impl RunStats {
@@ -29,10 +29,10 @@ impl RunStats {
             "policy {}  launch rule {}  subset {}  ideal memory {}",
             self.policy, self.launch_rule, self.subset.subset, self.ideal_memory
         );
-        if !is_default_issue(&self.issue) {
+        if !is_default(&self.issue) {
             let _ = write!(s, "  issue {}", self.issue);
         }
-        if !is_default_texture_cache(&self.texture_cache) {
+        if !is_default(&self.texture_cache) {
             let _ = write!(s, "  texture cache {}", self.texture_cache);
         }
         s.push('\n');

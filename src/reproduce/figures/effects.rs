@@ -9,6 +9,7 @@ use crate::reproduce::paper;
 use crate::study::point::Point;
 use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::Dispatch;
+use wasp_sim::stats::{LatencyStats, RunStats};
 
 impl Figures<'_> {
     /// Percentage of time the L0 is stalled (Figure 10).
@@ -32,7 +33,7 @@ impl Figures<'_> {
                 name: pol.to_string(),
                 values: self.single(
                     |s| p.policy_point(s, d, pol),
-                    |r| r.get("l0.stall_fraction"),
+                    |r| Some(r.stats.l0.as_ref()?.stall_fraction),
                 ),
             });
         }
@@ -52,13 +53,15 @@ impl Figures<'_> {
             format!("{d} machine, {} over the baseline", p.wasp),
             "change in misses",
         );
-        for (name, path) in [("L1 misses", "l1.misses"), ("L2 misses", "l2.misses")] {
+        let l1: fn(&RunStats) -> f64 = |s| s.l1.misses as f64;
+        let l2: fn(&RunStats) -> f64 = |s| s.l2.misses as f64;
+        for (name, stat) in [("L1 misses", l1), ("L2 misses", l2)] {
             f.series.push(SeriesData {
                 name: name.into(),
                 values: self.pair(
                     |s| p.policy_point(s, d, PolicySpec::Baseline),
                     |s| p.policy_point(s, d, p.wasp),
-                    |b, x| change(b, x, path),
+                    |b, x| change(b, x, stat),
                 ),
             });
         }
@@ -83,19 +86,18 @@ impl Figures<'_> {
         f.reference = None;
         let base = |s: &str| p.policy_point(s, d, PolicySpec::Baseline);
         let wasp = |s: &str| p.policy_point(s, d, p.wasp);
-        for (name, point, path) in [
-            (
-                "baseline, all",
-                &base as &dyn Fn(&str) -> Point,
-                "memory_latency.all",
-            ),
-            ("WaSP, all", &wasp, "memory_latency.all"),
-            ("WaSP, priority warps", &wasp, "memory_latency.priority"),
-            ("WaSP, regular warps", &wasp, "memory_latency.regular"),
+        let all: fn(&LatencyStats) -> f64 = |l| l.all;
+        let priority: fn(&LatencyStats) -> f64 = |l| l.priority;
+        let regular: fn(&LatencyStats) -> f64 = |l| l.regular;
+        for (name, point, stat) in [
+            ("baseline, all", &base as &dyn Fn(&str) -> Point, all),
+            ("WaSP, all", &wasp, all),
+            ("WaSP, priority warps", &wasp, priority),
+            ("WaSP, regular warps", &wasp, regular),
         ] {
             f.series.push(SeriesData {
                 name: name.into(),
-                values: self.single(point, |r| r.get(path)),
+                values: self.single(point, |r| Some(stat(&r.stats.memory_latency))),
             });
         }
         f.caption = "Mean cycles a warp's texture accesses wait for memory. The paper: \"The \
@@ -119,7 +121,7 @@ impl Figures<'_> {
             values: self.pair(
                 |s| p.policy_point(s, d, PolicySpec::Baseline),
                 |s| p.policy_point(s, d, p.wasp),
-                |b, x| change(b, x, "memory_latency.all"),
+                |b, x| change(b, x, |s| s.memory_latency.all),
             ),
         });
         f.paper
@@ -144,7 +146,7 @@ impl Figures<'_> {
             values: self.pair(
                 |s| p.policy_point(s, d, PolicySpec::Baseline),
                 |s| p.policy_point(s, d, p.wasp),
-                |b, x| change(b, x, "energy.total_nj"),
+                |b, x| change(b, x, |s| s.energy.total_nj),
             ),
         });
         f.paper

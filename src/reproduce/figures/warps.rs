@@ -21,7 +21,7 @@ impl Figures<'_> {
                 name: pol.to_string(),
                 values: self.single(
                     |s| p.policy_point(s, d, pol),
-                    |r| r.get("priority_lead.mean"),
+                    |r| Some(r.stats.priority_lead.mean),
                 ),
             });
         }
@@ -38,7 +38,7 @@ impl Figures<'_> {
         let slots = self
             .single(
                 |s| p.policy_point(s, d, p.policies[0]),
-                |r| r.get("occupancy.max_warps"),
+                |r| Some(f64::from(r.stats.occupancy.max_warps)),
             )
             .into_iter()
             .flatten()
@@ -55,7 +55,10 @@ impl Figures<'_> {
         for &pol in &p.policies {
             f.series.push(SeriesData {
                 name: pol.to_string(),
-                values: self.single(|s| p.policy_point(s, d, pol), |r| r.get("occupancy.mean")),
+                values: self.single(
+                    |s| p.policy_point(s, d, pol),
+                    |r| Some(r.stats.occupancy.mean),
+                ),
             });
         }
         f.caption = format!(

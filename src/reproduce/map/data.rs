@@ -13,6 +13,7 @@ use crate::study::cache::PointRecord;
 use crate::study::point::Point;
 use crate::study::runner::Outcome;
 use serde::Serialize;
+use wasp_sim::stats::RunStats;
 
 /// The groups a map row is given for, in table order.
 pub const GROUPS: [Group; 3] = [Group::ThreeD, Group::TwoD, Group::Procedural];
@@ -122,7 +123,15 @@ pub fn metrics(
             Some(speedup(b, x))
         })
     };
-    let stat = |v: Variant, path: &'static str| per_scene(&|s: &str| rec(s, v)?.get(path));
+    let stat =
+        |v: Variant, f: fn(&RunStats) -> Option<f64>| per_scene(&|s: &str| f(&rec(s, v)?.stats));
+    // A statistic of the baseline per warp.
+    let per_warp = |f: fn(&RunStats) -> u64| {
+        per_scene(&|s: &str| {
+            let r = &rec(s, Variant::Baseline)?.stats;
+            Some(f(r) as f64 / r.warps as f64)
+        })
+    };
     Metrics {
         baseline_cycles: per_scene(&|s: &str| {
             let (b, x) = (out.get(&shipped(s))?, rec(s, Variant::Baseline)?);
@@ -133,53 +142,35 @@ pub fn metrics(
         raster: gain(Variant::Raster),
         oracle: gain(Variant::Oracle),
         ideal: gain(Variant::Ideal),
-        gate_closed: stat(Variant::Wasp, "gate.closed_share"),
-        lead: stat(Variant::Wasp, "priority_lead.mean"),
-        drain: stat(Variant::Baseline, "tile_timing.drain_share"),
-        backpressure: per_scene(&|s: &str| {
-            let r = rec(s, Variant::Baseline)?;
-            Some(r.get("raster.backpressure_cycles")? / r.cycles())
+        gate_closed: stat(Variant::Wasp, |r| Some(r.gate.closed_share)),
+        lead: stat(Variant::Wasp, |r| Some(r.priority_lead.mean)),
+        drain: stat(Variant::Baseline, |r| Some(r.tile_timing.drain_share)),
+        backpressure: stat(Variant::Baseline, |r| {
+            Some(r.raster.backpressure_cycles as f64 / r.cycles as f64)
         }),
-        occupancy: stat(Variant::Baseline, "occupancy.mean"),
-        l0_misses_per_warp: per_scene(&|s: &str| {
-            let r = rec(s, Variant::Baseline)?;
-            let first = r.get("l0.misses").or_else(|| r.get("l1.misses"))?;
-            Some(first / r.get("warps")?)
+        occupancy: stat(Variant::Baseline, |r| Some(r.occupancy.mean)),
+        l0_misses_per_warp: per_warp(|r| r.l0.as_ref().unwrap_or(&r.l1).misses),
+        row_conflicts: stat(Variant::Baseline, |r| {
+            Some(r.dram.row_conflicts as f64 / r.dram.requests as f64)
         }),
-        row_conflicts: per_scene(&|s: &str| {
-            let r = rec(s, Variant::Baseline)?;
-            Some(r.get("dram.row_conflicts")? / r.get("dram.requests")?)
+        lower_misses_per_warp: (per_warp(|r| r.l1.misses), per_warp(|r| r.l2.misses)),
+        oracle_late: stat(Variant::Oracle, |r| Some(r.prefetch.as_ref()?.late_share)),
+        oracle_useless: stat(Variant::Oracle, |r| {
+            let p = r.prefetch.as_ref()?;
+            (p.counts.misses > 0).then(|| p.useless as f64 / p.counts.misses as f64)
         }),
-        lower_misses_per_warp: (
-            per_scene(&|s: &str| {
-                let r = rec(s, Variant::Baseline)?;
-                Some(r.get("l1.misses")? / r.get("warps")?)
-            }),
-            per_scene(&|s: &str| {
-                let r = rec(s, Variant::Baseline)?;
-                Some(r.get("l2.misses")? / r.get("warps")?)
-            }),
-        ),
-        oracle_late: stat(Variant::Oracle, "prefetch.late_share"),
-        oracle_useless: per_scene(&|s: &str| {
-            let r = rec(s, Variant::Oracle)?;
-            let misses = r.get("prefetch.misses")?;
-            (misses > 0.0).then(|| r.get("prefetch.useless").unwrap_or(0.0) / misses)
-        }),
-        oracle_reserve_wait: per_scene(&|s: &str| {
-            let r = rec(s, Variant::Oracle)?;
-            let cores = r.stats.get("held_cycles_per_core")?.as_array()?.len() as f64;
-            Some(r.get("prefetch.reserve_waits")? / (r.cycles() * cores))
+        oracle_reserve_wait: stat(Variant::Oracle, |r| {
+            let cores = r.held_cycles_per_core.len() as f64;
+            let waits = r.prefetch.as_ref()?.counts.reserve_waits as f64;
+            Some(waits / (r.cycles as f64 * cores))
         }),
         dram_wait: (
-            stat(Variant::Oracle, "dram.avg_queue_wait"),
-            stat(Variant::Wasp, "dram.avg_queue_wait"),
+            stat(Variant::Oracle, |r| Some(r.dram.avg_queue_wait)),
+            stat(Variant::Wasp, |r| Some(r.dram.avg_queue_wait)),
         ),
-        cf: stat(Variant::Baseline, "cf"),
-        blocks_per_tile: per_scene(&|s: &str| {
-            let r = rec(s, Variant::Baseline)?;
-            let (tiles, warps) = (r.get("tiles")?, r.get("warps")?);
-            (tiles > 0.0).then(|| r.get("min_estimate1").unwrap_or(0.0) * warps / tiles)
+        cf: stat(Variant::Baseline, |r| Some(r.cf)),
+        blocks_per_tile: stat(Variant::Baseline, |r| {
+            (r.tiles > 0).then(|| r.min_estimate1 * r.warps as f64 / r.tiles as f64)
         }),
     }
 }
@@ -187,13 +178,16 @@ pub fn metrics(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::study::cache::tests::stats_of;
 
     fn rec(p: &Point, cycles: u64, closed: f64) -> PointRecord {
+        let mut stats = stats_of(cycles);
+        stats.gate.closed_share = closed;
         PointRecord {
             key: String::new(),
             point: p.clone(),
             binary: String::new(),
-            stats: serde_json::json!({"cycles": cycles, "gate": {"closed_share": closed}}),
+            stats,
         }
     }
 

@@ -146,7 +146,7 @@ mod tests {
             (s.filter.cycles_bilinear, s.filter.cycles_trilinear),
             (1, 7)
         );
-        assert_eq!(s.filter.timing, "overlap");
+        assert_eq!(s.filter.timing, FilterTiming::Overlap);
     }
 
     /// Quads of one core whose one block arrives in the same cycle (the
