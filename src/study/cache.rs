@@ -175,7 +175,11 @@ mod tests {
         let c = Cache::open(&d).unwrap();
         let r = PointRecord {
             key: "00000000000000aa".into(),
-            point: Point::new("sc", "paper", &["l0.mshrs=8"]),
+            point: Point::new(
+                "sc",
+                "paper",
+                &[wasp_sim::config::Override::new("l0.mshrs", &8)],
+            ),
             binary: "b".into(),
             stats: serde_json::json!({"cycles": 1234, "l0": {"stall_fraction": 0.25}}),
         };

@@ -2,16 +2,19 @@
 //! over a range a real mobile GPU could have, and the runs made at every
 //! value.
 //!
-//! Every knob is a set of `--set` overrides on the shipped machine
+//! Every knob is a set of typed overrides on the shipped machine
 //! (configs/paper.toml, shared-tile dispatch). The ranges and their sources
 //! are in docs/machine.md ("What decides WaSP's gain"); the shipped value is
 //! always one of the values, so every knob's range passes through the
 //! shipped machine.
 
+use serde::Serialize;
+use std::str::FromStr;
 use wasp_frontend::raster::DrawOrder;
 use wasp_frontend::texture::FormatChoice;
 use wasp_rtl::policy::PolicySpec;
-use wasp_sim::config::MachineConfig;
+use wasp_sim::config::{CoreMap, IssueOrder, MachineConfig, Override, TextureCache};
+use wasp_sim::mem::PrefetchKind;
 
 /// One unstated choice of the machine and the values the map gives it.
 #[derive(Clone, Debug)]
@@ -30,7 +33,7 @@ pub struct Knob {
     /// The values of the quick look (the shipped one included).
     pub quick: &'static [&'static str],
     /// The overrides that give the knob a value.
-    pub sets: fn(&str) -> Vec<String>,
+    pub sets: fn(&str) -> Vec<Override>,
     /// A value as a label ("32 warps").
     pub unit: fn(&str) -> String,
     /// Whether the knob is the scene's draw order (the front end's, not a
@@ -46,9 +49,12 @@ pub struct Knob {
 impl Knob {
     /// The overrides of `value` (none for the shipped value, so that the
     /// shipped point is the shipped machine, spelled the same way).
-    pub fn overrides(&self, value: &str) -> Vec<String> {
+    pub fn overrides(&self, value: &str) -> Vec<Override> {
         if self.texture_format && value.ends_with(DECOMPRESSED) {
-            vec!["memory.texture_cache=\"decompressed\"".to_string()]
+            vec![Override::new(
+                "memory.texture_cache",
+                &TextureCache::Decompressed,
+            )]
         } else if value == self.shipped || self.draw_order || self.texture_format {
             Vec::new()
         } else {
@@ -103,51 +109,51 @@ fn texture_unit(v: &str) -> String {
     }
 }
 
-fn one(path: &'static str, quoted: bool) -> impl Fn(&str) -> Vec<String> {
-    move |v| {
-        if quoted {
-            vec![format!("{path}=\"{v}\"")]
-        } else {
-            vec![format!("{path}={v}")]
-        }
+/// Field `path` set to the value `v` of a knob, as type `T` (a value
+/// that is not one is kept as text, which applying it refuses, naming the
+/// field and what it holds).
+fn typed<T: FromStr + Serialize>(path: &str, v: &str) -> Override {
+    match v.parse::<T>() {
+        Ok(t) => Override::new(path, &t),
+        Err(_) => Override::new(path, v),
     }
 }
 
-fn warps(v: &str) -> Vec<String> {
-    one("core.max_warps", false)(v)
+fn warps(v: &str) -> Vec<Override> {
+    vec![typed::<u32>("core.max_warps", v)]
 }
-fn l0_mshrs(v: &str) -> Vec<String> {
-    one("l0.mshrs", false)(v)
+fn l0_mshrs(v: &str) -> Vec<Override> {
+    vec![typed::<u32>("l0.mshrs", v)]
 }
-fn l1_mshrs(v: &str) -> Vec<String> {
-    one("l1.mshrs", false)(v)
+fn l1_mshrs(v: &str) -> Vec<Override> {
+    vec![typed::<u32>("l1.mshrs", v)]
 }
-fn input_queue(v: &str) -> Vec<String> {
-    one("core.input_queue", false)(v)
+fn input_queue(v: &str) -> Vec<Override> {
+    vec![typed::<u32>("core.input_queue", v)]
 }
-fn raster_rate(v: &str) -> Vec<String> {
-    one("raster.quads_per_cycle", false)(v)
+fn raster_rate(v: &str) -> Vec<Override> {
+    vec![typed::<u32>("raster.quads_per_cycle", v)]
 }
-fn early_z(v: &str) -> Vec<String> {
-    one("raster.rejected_per_slot", false)(v)
+fn early_z(v: &str) -> Vec<Override> {
+    vec![typed::<u32>("raster.rejected_per_slot", v)]
 }
-fn texture_latency(v: &str) -> Vec<String> {
-    one("core.texture_latency", false)(v)
+fn texture_latency(v: &str) -> Vec<Override> {
+    vec![typed::<u32>("core.texture_latency", v)]
 }
-fn issue(v: &str) -> Vec<String> {
-    one("core.issue", true)(v)
+fn issue(v: &str) -> Vec<Override> {
+    vec![typed::<IssueOrder>("core.issue", v)]
 }
-fn core_map(v: &str) -> Vec<String> {
-    one("raster.core_map", true)(v)
+fn core_map(v: &str) -> Vec<Override> {
+    vec![typed::<CoreMap>("raster.core_map", v)]
 }
 
 /// The filter rate: cycles a bilinear quad-sample holds the filter unit;
 /// trilinear takes two passes, as on the shipped machine.
-fn filter(v: &str) -> Vec<String> {
+fn filter(v: &str) -> Vec<Override> {
     let n: u32 = v.parse().unwrap_or(1);
     vec![
-        format!("core.filter_cycles_bilinear={n}"),
-        format!("core.filter_cycles_trilinear={}", 2 * n),
+        Override::new("core.filter_cycles_bilinear", &n),
+        Override::new("core.filter_cycles_trilinear", &(2 * n)),
     ]
 }
 
@@ -155,13 +161,13 @@ fn filter(v: &str) -> Vec<String> {
 /// model's row hit costs `t_cl + t_burst + controller_latency`, so the
 /// knob sets the controller latency that gives it (the paper: "Latency
 /// 50-100 cycles").
-fn dram_latency(v: &str) -> Vec<String> {
+fn dram_latency(v: &str) -> Vec<Override> {
     let d = MachineConfig::paper().dram;
     let hit: u32 = v.parse().unwrap_or(50);
     let fixed = d.t_cl + d.t_burst;
-    vec![format!(
-        "dram.controller_latency={}",
-        hit.saturating_sub(fixed)
+    vec![Override::new(
+        "dram.controller_latency",
+        &hit.saturating_sub(fixed),
     )]
 }
 
@@ -364,23 +370,31 @@ impl Variant {
         Variant::Ideal,
     ];
 
-    /// The overrides of the variant, `wasp` being the shipped WaSP.
-    pub fn overrides(self, wasp: PolicySpec) -> Vec<String> {
-        let policy = |p: PolicySpec| format!("scheduler.policy=\"{p}\"");
+    /// The policy the variant runs, `wasp` being the shipped WaSP.
+    pub fn policy(self, wasp: PolicySpec) -> PolicySpec {
         match self {
-            Variant::Baseline => vec![policy(PolicySpec::Baseline)],
-            Variant::Wasp => vec![policy(wasp)],
-            Variant::FullPriority => vec![policy(PolicySpec::FullPriority)],
-            Variant::Raster => vec![
-                policy(PolicySpec::Baseline),
-                "prefetch.kind=\"raster\"".into(),
-            ],
-            Variant::Oracle => vec![
-                policy(PolicySpec::Baseline),
-                "prefetch.kind=\"oracle-tile\"".into(),
-            ],
-            Variant::Ideal => vec![policy(PolicySpec::Baseline), "memory.ideal=true".into()],
+            Variant::Wasp => wasp,
+            Variant::FullPriority => PolicySpec::FullPriority,
+            _ => PolicySpec::Baseline,
         }
+    }
+
+    /// What the variant adds to the machine beside its policy: a
+    /// prefetcher or ideal memory (the bounds).
+    pub fn machine(self) -> Vec<Override> {
+        match self {
+            Variant::Raster => vec![Override::new("prefetch.kind", &PrefetchKind::Raster)],
+            Variant::Oracle => vec![Override::new("prefetch.kind", &PrefetchKind::OracleTile)],
+            Variant::Ideal => vec![Override::new("memory.ideal", &true)],
+            _ => Vec::new(),
+        }
+    }
+
+    /// The overrides of the variant: its policy, then its machine.
+    pub fn overrides(self, wasp: PolicySpec) -> Vec<Override> {
+        let mut v = vec![Override::new("scheduler.policy", &self.policy(wasp))];
+        v.extend(self.machine());
+        v
     }
 }
 
@@ -403,7 +417,7 @@ mod tests {
                     // Only the decompressed-texel values set the machine.
                     let sets = k.overrides(v);
                     assert_eq!(sets.is_empty(), !v.ends_with(DECOMPRESSED), "{v}");
-                    let c = wasp_sim::overrides::apply(&paper, &sets).unwrap();
+                    let c = paper.with_overrides(&sets).unwrap();
                     let decompressed = wasp_sim::config::TextureCache::Decompressed;
                     assert_eq!(
                         c.memory.texture_cache == decompressed,
@@ -423,7 +437,7 @@ mod tests {
             }
             // The shipped value spelled as an override is the shipped
             // machine: the knob's range really passes through it.
-            let same = wasp_sim::overrides::apply(&paper, &(k.sets)(k.shipped)).unwrap();
+            let same = paper.with_overrides(&(k.sets)(k.shipped)).unwrap();
             assert_eq!(same, paper, "{}", k.id);
         }
     }
@@ -433,9 +447,10 @@ mod tests {
         let paper = MachineConfig::paper();
         let d = &paper.dram;
         assert_eq!(d.t_cl + d.t_burst + d.controller_latency, 50);
-        assert_eq!(dram_latency("100"), ["dram.controller_latency=83"]);
+        let texts = |v: Vec<Override>| -> Vec<String> { v.iter().map(|o| o.to_string()).collect() };
+        assert_eq!(texts(dram_latency("100")), ["dram.controller_latency=83"]);
         assert_eq!(
-            filter("4"),
+            texts(filter("4")),
             [
                 "core.filter_cycles_bilinear=4",
                 "core.filter_cycles_trilinear=8"
