@@ -360,6 +360,11 @@ mod tests {
             e.contains("prefetch.l1_reserve = -3: must be in 0..="),
             "{e}"
         );
+        // The range is the field's declared one, whatever its type.
+        let e = apply(&base, &["gpu.tile_size=-4"]).unwrap_err().to_string();
+        assert!(e.ends_with("gpu.tile_size = -4: must be in 4..=64"), "{e}");
+        let e = apply(&base, &["sim.seed=-1"]).unwrap_err().to_string();
+        assert!(e.ends_with(&format!("must be in 0..={}", u64::MAX)), "{e}");
     }
 
     #[test]

@@ -443,6 +443,23 @@ mod tests {
     }
 
     #[test]
+    fn every_override_names_a_parameter_and_applies() {
+        let paper = MachineConfig::paper();
+        let params: Vec<String> = paper.params().into_iter().map(|p| p.path).collect();
+        let variants = Variant::ALL.map(|v| v.overrides(PolicySpec::SHIPPED_WASP));
+        let knobs = all().into_iter().flat_map(|k| {
+            let values = k.values.iter().map(move |v| k.overrides(v));
+            values.collect::<Vec<_>>()
+        });
+        for sets in knobs.chain(variants) {
+            for o in &sets {
+                assert!(params.iter().any(|p| p == o.path()), "{o}");
+            }
+            assert!(paper.with_overrides(&sets).is_ok(), "{sets:?}");
+        }
+    }
+
+    #[test]
     fn the_dram_knob_sets_the_row_hit_latency() {
         let paper = MachineConfig::paper();
         let d = &paper.dram;
