@@ -27,8 +27,7 @@ use std::str::FromStr;
 use wasp_rtl::policy::{PolicyName, PolicySpec};
 
 /// One field of the machine set to a value.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-#[serde(try_from = "String", into = "String")]
+#[derive(Clone, Debug)]
 pub struct Override {
     /// The field's dotted path (`core.max_warps`).
     path: String,
@@ -99,16 +98,18 @@ impl FromStr for Override {
     }
 }
 
-impl TryFrom<String> for Override {
-    type Error = String;
-    fn try_from(s: String) -> Result<Override, String> {
-        s.parse()
+/// Serialized as its text.
+impl Serialize for Override {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
     }
 }
 
-impl From<Override> for String {
-    fn from(o: Override) -> String {
-        o.to_string()
+impl<'de> Deserialize<'de> for Override {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Override, D::Error> {
+        String::deserialize(d)?
+            .parse()
+            .map_err(serde::de::Error::custom)
     }
 }
 

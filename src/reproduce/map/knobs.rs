@@ -119,34 +119,6 @@ fn typed<T: FromStr + Serialize>(path: &str, v: &str) -> Override {
     }
 }
 
-fn warps(v: &str) -> Vec<Override> {
-    vec![typed::<u32>("core.max_warps", v)]
-}
-fn l0_mshrs(v: &str) -> Vec<Override> {
-    vec![typed::<u32>("l0.mshrs", v)]
-}
-fn l1_mshrs(v: &str) -> Vec<Override> {
-    vec![typed::<u32>("l1.mshrs", v)]
-}
-fn input_queue(v: &str) -> Vec<Override> {
-    vec![typed::<u32>("core.input_queue", v)]
-}
-fn raster_rate(v: &str) -> Vec<Override> {
-    vec![typed::<u32>("raster.quads_per_cycle", v)]
-}
-fn early_z(v: &str) -> Vec<Override> {
-    vec![typed::<u32>("raster.rejected_per_slot", v)]
-}
-fn texture_latency(v: &str) -> Vec<Override> {
-    vec![typed::<u32>("core.texture_latency", v)]
-}
-fn issue(v: &str) -> Vec<Override> {
-    vec![typed::<IssueOrder>("core.issue", v)]
-}
-fn core_map(v: &str) -> Vec<Override> {
-    vec![typed::<CoreMap>("raster.core_map", v)]
-}
-
 /// The filter rate: cycles a bilinear quad-sample holds the filter unit;
 /// trilinear takes two passes, as on the shipped machine.
 fn filter(v: &str) -> Vec<Override> {
@@ -189,7 +161,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "64",
             values: &["32", "48", "64", "96", "128"],
             quick: &["32", "64", "128"],
-            sets: warps,
+            sets: |v| vec![typed::<u32>("core.max_warps", v)],
             unit: |v| format!("{v} warps"),
             draw_order: false,
             texture_format: false,
@@ -201,7 +173,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "16",
             values: &["4", "8", "16", "31"],
             quick: &["16", "31"],
-            sets: l0_mshrs,
+            sets: |v| vec![typed::<u32>("l0.mshrs", v)],
             unit: |v| format!("{v} L0 MSHRs"),
             draw_order: false,
             texture_format: false,
@@ -213,7 +185,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "16",
             values: &["8", "16", "32"],
             quick: &["16"],
-            sets: l1_mshrs,
+            sets: |v| vec![typed::<u32>("l1.mshrs", v)],
             unit: |v| format!("{v} L1 MSHRs"),
             draw_order: false,
             texture_format: false,
@@ -237,7 +209,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "64",
             values: &["16", "32", "64", "128", "256"],
             quick: &["64"],
-            sets: input_queue,
+            sets: |v| vec![typed::<u32>("core.input_queue", v)],
             unit: |v| format!("{v}-entry queue"),
             draw_order: false,
             texture_format: false,
@@ -249,7 +221,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "4",
             values: &["1", "2", "4", "8"],
             quick: &["4"],
-            sets: raster_rate,
+            sets: |v| vec![typed::<u32>("raster.quads_per_cycle", v)],
             unit: |v| format!("{v} quads/cycle"),
             draw_order: false,
             texture_format: false,
@@ -261,7 +233,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "1",
             values: &["1", "4", "16"],
             quick: &["1"],
-            sets: early_z,
+            sets: |v| vec![typed::<u32>("raster.rejected_per_slot", v)],
             unit: |v| format!("{v} rejected/slot"),
             draw_order: false,
             texture_format: false,
@@ -273,7 +245,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "4",
             values: &["1", "4", "16", "32"],
             quick: &["4"],
-            sets: texture_latency,
+            sets: |v| vec![typed::<u32>("core.texture_latency", v)],
             unit: |v| format!("{v}-cycle texture"),
             draw_order: false,
             texture_format: false,
@@ -297,7 +269,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "lrr",
             values: &["lrr", "gto"],
             quick: &["lrr"],
-            sets: issue,
+            sets: |v| vec![typed::<IssueOrder>("core.issue", v)],
             unit: plain,
             draw_order: false,
             texture_format: false,
@@ -309,7 +281,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "latin:8",
             values: &["latin:4", "latin:8", "latin:16", "rowmajor:16"],
             quick: &["latin:8"],
-            sets: core_map,
+            sets: |v| vec![typed::<CoreMap>("raster.core_map", v)],
             unit: plain,
             draw_order: false,
             texture_format: false,
