@@ -5,7 +5,9 @@
 use crate::cli_error::CliError;
 use crate::compare_variants::{self as variants, Row, Variant};
 use crate::output::{self, emit, Output};
-use crate::run_cmd::{load_config, load_trace, progress_bar, run_tiles, sim_err, Inputs};
+use crate::run_cmd::{
+    configure, load_config, load_trace, progress_bar, run_tiles, sim_err, Inputs, MachineFlags,
+};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -69,7 +71,11 @@ struct Job {
     label: String,
     /// The variant's name, `None` on the machine as configured.
     variant: Option<String>,
+    /// The machine (as configured, or the variant's); after
+    /// [`compare`]'s check, with the job's policy and memory.
     cfg: MachineConfig,
+    /// The job's policy (and ideal memory): its own flags.
+    flags: MachineFlags,
     opts: RunOptions,
 }
 
@@ -101,7 +107,7 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
         ],
         &args.inputs.files(),
     )?;
-    let cfg = load_config(&args.inputs)?;
+    let cfg = load_config(&args.inputs, None)?;
     let trace = load_trace(&args.inputs, &cfg)?;
     let policies = match &args.policies {
         Some(p) => p.iter().map(|p| p.resolve(cfg.scheduler.policy)).collect(),
@@ -111,11 +117,11 @@ pub fn compare(args: &CompareArgs) -> Result<(), CliError> {
         return Err(CliError::usage("--policies: name at least one policy"));
     }
     let machines = variants::machines(&cfg, &args.variants)?;
-    let jobs = comparison_jobs(args, &policies, &cfg, &machines);
+    let mut jobs = comparison_jobs(args, &policies, &cfg, &machines);
     let reference = reference_index(args, &jobs)?;
     // Check every configuration before spending time on any run.
-    for j in &jobs {
-        j.opts.apply(&j.cfg).map_err(sim_err)?;
+    for j in &mut jobs {
+        j.cfg = configure(&j.cfg, &[], &j.flags)?;
     }
     let threads = args
         .jobs
@@ -200,15 +206,14 @@ fn comparison_jobs(
     cfg: &MachineConfig,
     machines: &[(Variant, MachineConfig)],
 ) -> Vec<Job> {
-    let i = &args.inputs;
-    let opts = |policy: PolicySpec, ideal: Option<bool>| RunOptions {
-        policy: Some(policy),
-        launch_rule: i.launch_rule,
-        subset: i.subset.clone(),
-        ideal_memory: ideal,
-        dispatch: i.dispatch,
-        warm: i.warm,
+    let opts = RunOptions {
+        warm: args.inputs.warm,
         ..RunOptions::default()
+    };
+    let flags = |policy: &PolicySpec, ideal: bool| {
+        MachineFlags::default()
+            .with("scheduler.policy", Some(policy))
+            .with("memory.ideal", ideal.then_some(true))
     };
     let mut jobs: Vec<Job> = policies
         .iter()
@@ -216,7 +221,8 @@ fn comparison_jobs(
             label: p.to_string(),
             variant: None,
             cfg: cfg.clone(),
-            opts: opts(*p, i.ideal_memory.then_some(true)),
+            flags: flags(p, false),
+            opts: opts.clone(),
         })
         .collect();
     if args.with_ideal {
@@ -224,7 +230,8 @@ fn comparison_jobs(
             label: format!("{} +ideal memory", policies[0]),
             variant: None,
             cfg: cfg.clone(),
-            opts: opts(policies[0], Some(true)),
+            flags: flags(&policies[0], true),
+            opts: opts.clone(),
         });
     }
     for (v, vcfg) in machines {
@@ -232,7 +239,8 @@ fn comparison_jobs(
             label: format!("{}/{p}", v.name),
             variant: Some(v.name.clone()),
             cfg: vcfg.clone(),
-            opts: opts(*p, i.ideal_memory.then_some(true)),
+            flags: flags(p, false),
+            opts: opts.clone(),
         }));
     }
     jobs

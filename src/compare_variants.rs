@@ -6,7 +6,7 @@
 use crate::cli_error::CliError;
 use serde::Serialize;
 use std::fmt::Write as _;
-use wasp_sim::config::MachineConfig;
+use wasp_sim::config::{MachineConfig, Override};
 use wasp_sim::stats::{csv_records, csv_text, RunStats};
 
 /// One `--variant`: a name and the overrides it applies on top of the
@@ -15,8 +15,8 @@ use wasp_sim::stats::{csv_records, csv_text, RunStats};
 pub struct Variant {
     /// The name its rows carry (`raster` in `raster/baseline`).
     pub name: String,
-    /// `KEY=VALUE` overrides, in order.
-    pub sets: Vec<String>,
+    /// Its overrides, in order.
+    pub sets: Vec<Override>,
 }
 
 impl std::str::FromStr for Variant {
@@ -38,12 +38,17 @@ impl std::str::FromStr for Variant {
                 "`{s}`: the name `{name}` must be letters, digits, `-` or `_`"
             ));
         }
-        let sets: Vec<String> = sets.split(',').map(|x| x.trim().to_string()).collect();
-        if let Some(bad) = sets.iter().find(|x| !x.contains('=')) {
-            return Err(format!(
-                "`{s}`: `{bad}` is not KEY=VALUE (e.g. prefetch.kind=raster)"
-            ));
-        }
+        let sets = sets
+            .split(',')
+            .map(|x| {
+                x.trim().parse().map_err(|_| {
+                    format!(
+                        "`{s}`: `{}` is not KEY=VALUE (e.g. prefetch.kind=raster)",
+                        x.trim()
+                    )
+                })
+            })
+            .collect::<Result<Vec<Override>, String>>()?;
         Ok(Variant {
             name: name.to_string(),
             sets,
@@ -65,9 +70,10 @@ pub fn machines(
                 v.name
             )));
         }
-        let mut cfg = wasp_sim::overrides::apply(base, &v.sets)
+        let mut cfg = base
+            .with_overrides(&v.sets)
             .map_err(|e| CliError::usage(format!("--variant {}: {e}", v.name)))?;
-        cfg.name = wasp_sim::overrides::describe(&cfg.name, &v.sets);
+        cfg.name = cfg.named_with(&v.sets);
         out.push((v.clone(), cfg));
     }
     Ok(out)
@@ -141,7 +147,8 @@ mod tests {
     fn variants_parse_and_refuse_bad_forms() {
         let v: Variant = "raster:prefetch.kind=raster, l0.mshrs=8".parse().unwrap();
         assert_eq!(v.name, "raster");
-        assert_eq!(v.sets, vec!["prefetch.kind=raster", "l0.mshrs=8"]);
+        let texts: Vec<String> = v.sets.iter().map(Override::to_string).collect();
+        assert_eq!(texts, ["prefetch.kind=raster", "l0.mshrs=8"]);
         assert!("raster"
             .parse::<Variant>()
             .unwrap_err()

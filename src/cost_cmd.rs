@@ -52,7 +52,8 @@ pub fn run(args: &CostArgs) -> Result<(), CliError> {
         &[Output::new("--json", args.json.as_deref())],
         &[output::Input::file("--config", args.config.as_deref())],
     )?;
-    let cfg = crate::run_cmd::machine(args.config.as_deref(), &args.set)?;
+    let sets = crate::run_cmd::parse_sets(&args.set)?;
+    let cfg = crate::run_cmd::machine(args.config.as_deref(), &sets)?;
     let mut rf = RfParams::for_config(&cfg);
     if let Some(r) = args.registers_per_thread {
         rf.registers_per_thread = r;

@@ -5,12 +5,12 @@ use crate::cli_error::CliError;
 use crate::output::{self, emit, Output};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde::Serialize;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use wasp_rtl::policy::{LaunchRule, PolicyName};
 use wasp_rtl::subset::SubsetSpec;
-use wasp_sim::config::BlockedOn;
-use wasp_sim::config::{Dispatch, MachineConfig};
+use wasp_sim::config::{BlockedOn, Dispatch, MachineConfig, Override};
 use wasp_sim::run::{simulate, simulate_timeline, simulate_traced, RunOptions, SimError};
 use wasp_sim::stats::RunStats;
 use wasp_sim::synth::{generate, GenParams};
@@ -182,42 +182,111 @@ pub fn read_config(path: &Path) -> Result<MachineConfig, CliError> {
     MachineConfig::load(path).map_err(|e| CliError::usage(e.to_string()))
 }
 
-/// The machine of `--config FILE` (else the embedded paper.toml) with the
-/// `--set` overrides applied, named as run: its name (a file that does not
-/// set `name` is its base's name `+ FILE`) followed by every override
-/// ([`wasp_sim::overrides::describe`]).
-pub fn machine(config: Option<&Path>, sets: &[String]) -> Result<MachineConfig, CliError> {
-    let cfg = match config {
-        Some(p) => {
-            let mut c = read_config(p)?;
-            // A file that patches a base without naming itself is named as
-            // the base plus the file, not as the base alone.
-            let named = std::fs::read_to_string(p)
-                .ok()
-                .and_then(|t| t.parse::<toml::Table>().ok())
-                .is_some_and(|t| t.contains_key("name"));
-            if !named {
-                c.name = format!("{} + {}", c.name, p.display());
-            }
-            c
-        }
-        None => MachineConfig::paper(),
+/// The machine of `--config FILE`, else the embedded paper.toml: a file
+/// that patches a base without naming itself is named as the base plus the
+/// file, not as the base alone.
+fn base_machine(config: Option<&Path>) -> Result<MachineConfig, CliError> {
+    let Some(p) = config else {
+        return Ok(MachineConfig::paper());
     };
-    let mut out =
-        wasp_sim::overrides::apply(&cfg, sets).map_err(|e| CliError::usage(e.to_string()))?;
-    out.name = wasp_sim::overrides::describe(&out.name, sets);
+    let mut c = read_config(p)?;
+    let named = std::fs::read_to_string(p)
+        .ok()
+        .and_then(|t| t.parse::<toml::Table>().ok())
+        .is_some_and(|t| t.contains_key("name"));
+    if !named {
+        c.name = format!("{} + {}", c.name, p.display());
+    }
+    Ok(c)
+}
+
+/// The `--set` texts as overrides, in order.
+pub fn parse_sets(sets: &[String]) -> Result<Vec<Override>, CliError> {
+    Override::parse_sets(sets).map_err(|e| CliError::usage(e.to_string()))
+}
+
+/// The machine of `--config FILE` (else the embedded paper.toml) with the
+/// `--set` overrides applied, named as run: its name followed by every
+/// override ([`MachineConfig::named_with`]).
+pub fn machine(config: Option<&Path>, sets: &[Override]) -> Result<MachineConfig, CliError> {
+    configure(&base_machine(config)?, sets, &MachineFlags::default())
+}
+
+/// The flags that change the machine, typed; applied after `--set`.
+#[derive(Clone, Debug, Default)]
+pub struct MachineFlags {
+    /// `--blocked-on`: named in the machine's name when it changes it.
+    pub blocked_on: Option<BlockedOn>,
+    /// The other flags (`--subset`, `--launch-rule`, `--ideal-memory`,
+    /// `--dispatch`, `--policy`), in that order: the machine's name does
+    /// not show them (the report names policy, subset, rule, memory and
+    /// dispatch on lines of their own).
+    pub unnamed: Vec<Override>,
+}
+
+impl MachineFlags {
+    /// These flags and, when given, field `path` set to `value` (unnamed).
+    pub fn with<T: Serialize>(mut self, path: &str, value: Option<T>) -> MachineFlags {
+        if let Some(v) = value {
+            self.unnamed.push(Override::new(path, &v));
+        }
+        self
+    }
+}
+
+impl Inputs {
+    /// The machine flags of the inputs, with `policy` (`wasp run
+    /// --policy`; a bare family takes the machine's constants, as
+    /// [`MachineConfig::with_overrides`] resolves it) as typed overrides.
+    pub fn flags(&self, policy: Option<PolicyName>) -> MachineFlags {
+        MachineFlags {
+            blocked_on: self.blocked_on,
+            unnamed: Vec::new(),
+        }
+        .with("scheduler.subset", self.subset.as_ref())
+        .with("scheduler.launch_rule", self.launch_rule)
+        .with("memory.ideal", self.ideal_memory.then_some(true))
+        .with("raster.dispatch", self.dispatch)
+        .with("scheduler.policy", policy.map(|p| p.to_string()))
+    }
+}
+
+/// `base` with every override applied, once each, in order: `sets`
+/// (named in the machine's name), then the flags; validated. An error
+/// of a flag is the rule it breaks (a flag names no field as written).
+pub fn configure(
+    base: &MachineConfig,
+    sets: &[Override],
+    flags: &MachineFlags,
+) -> Result<MachineConfig, CliError> {
+    let mut cfg = base
+        .with_overrides(sets)
+        .map_err(|e| CliError::usage(e.to_string()))?;
+    cfg.name = cfg.named_with(sets);
+    let named: Vec<Override> = flags
+        .blocked_on
+        .filter(|b| *b != cfg.scheduler.blocked_on)
+        .map(|b| Override::bare("scheduler.blocked_on", &b))
+        .into_iter()
+        .collect();
+    let all = [&named[..], &flags.unnamed[..]].concat();
+    let mut out = cfg
+        .with_overrides(&all)
+        .map_err(|e| CliError::usage(e.message))?;
+    out.name = cfg.named_with(&named);
     Ok(out)
 }
 
-/// Load the configuration named by the inputs; `--blocked-on` is named
-/// with the overrides when it changes the machine.
-pub fn load_config(inputs: &Inputs) -> Result<MachineConfig, CliError> {
-    let mut cfg = machine(inputs.config.as_deref(), &inputs.set)?;
-    if let Some(b) = inputs.blocked_on.filter(|b| *b != cfg.scheduler.blocked_on) {
-        cfg.scheduler.blocked_on = b;
-        cfg.name = format!("{} + scheduler.blocked_on={b}", cfg.name);
-    }
-    Ok(cfg)
+/// Load the configuration named by the inputs, with `policy` (`wasp run
+/// --policy`): the one place where the inputs' overrides and flags
+/// become the machine ([`configure`]).
+pub fn load_config(inputs: &Inputs, policy: Option<PolicyName>) -> Result<MachineConfig, CliError> {
+    let sets = parse_sets(&inputs.set)?;
+    configure(
+        &base_machine(inputs.config.as_deref())?,
+        &sets,
+        &inputs.flags(policy),
+    )
 }
 
 /// Load (or generate) the trace named by the inputs, and check that it
@@ -375,14 +444,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     )?;
     let window = vcd_window(args)?;
     let timeline = timeline_window(args)?;
-    let cfg = load_config(&args.inputs)?;
+    let cfg = load_config(&args.inputs, args.policy)?;
     let trace = load_trace(&args.inputs, &cfg)?;
     let opts = RunOptions {
-        policy: args.policy.map(|p| p.resolve(cfg.scheduler.policy)),
-        launch_rule: args.inputs.launch_rule,
-        subset: args.inputs.subset.clone(),
-        ideal_memory: args.inputs.ideal_memory.then_some(true),
-        dispatch: args.inputs.dispatch,
         vcd_window: window,
         timeline,
         record_warps: false,

@@ -21,10 +21,12 @@ use wasp_rtl::nonblocked::NONBLOCKED_BITS;
 mod choice;
 mod core_map;
 pub mod file;
+mod overrides;
 pub mod params;
 mod sections;
 pub use choice::{BlockedOn, ColorFlush, Dispatch, FilterTiming, IssueOrder, TextureCache};
 pub use core_map::{CoreMap, CoreMapTable};
+pub use overrides::Override;
 pub use sections::{
     limits, CoreConfig, EnergyConfig, GpuConfig, MemoryConfig, RasterConfig, SchedulerConfig,
     SimConfig,

@@ -7,7 +7,6 @@ pub mod cost;
 pub mod example;
 pub mod gpu;
 pub mod mem;
-pub mod overrides;
 pub mod param;
 /// The deterministic generator (in `wasp-trace`), under its old path.
 pub use wasp_trace::rng;

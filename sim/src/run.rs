@@ -9,34 +9,23 @@
 //! ([`RunStats::frames`]). [`RunOptions::warm`] runs only the last frame
 //! and the K frames before it.
 
-use crate::config::{Dispatch, MachineConfig};
+use crate::config::MachineConfig;
 use crate::gpu::{CoreModel, Gpu, ShaderCore};
 pub use crate::gpu::{SimError, WarpRecord};
 use crate::stats::{FrameRecord, RunStats};
 use crate::timeline::Timeline;
 use crate::trace::Trace;
-use wasp_rtl::policy::{LaunchRule, PolicySpec};
-use wasp_rtl::subset::SubsetSpec;
 use wasp_waves::{CycleSink, NullTracer};
 
-/// Options of one run beyond the machine configuration: typed overrides
-/// of its fields, and what to record.
+/// What one run records beyond its statistics, and which frames of the
+/// trace it runs. (The machine is the configuration's alone: overrides
+/// are applied where it is loaded, [`crate::config::Override`].)
 #[derive(Clone, Debug, Default)]
 pub struct RunOptions {
-    /// Override `scheduler.policy`.
-    pub policy: Option<PolicySpec>,
-    /// Override `scheduler.launch_rule`.
-    pub launch_rule: Option<LaunchRule>,
-    /// Override `scheduler.subset`.
-    pub subset: Option<SubsetSpec>,
-    /// Override `memory.ideal`.
-    pub ideal_memory: Option<bool>,
     /// Sample the waveform only in `from..=to`.
     pub vcd_window: Option<(u64, u64)>,
     /// Record every warp (see [`WarpRecord`]).
     pub record_warps: bool,
-    /// Override `raster.dispatch`.
-    pub dispatch: Option<Dispatch>,
     /// Record a [`Timeline`] of the cycles `from..=to`.
     pub timeline: Option<(u64, u64)>,
     /// Of a trace of several frames, run the last frame after this many
@@ -62,28 +51,6 @@ impl RunOptions {
             ))),
         }
     }
-
-    /// The configuration with the overrides applied, validated.
-    pub fn apply(&self, cfg: &MachineConfig) -> Result<MachineConfig, SimError> {
-        let mut c = cfg.clone();
-        if let Some(p) = self.policy {
-            c.scheduler.policy = p;
-        }
-        if let Some(r) = self.launch_rule {
-            c.scheduler.launch_rule = r;
-        }
-        if let Some(s) = &self.subset {
-            c.scheduler.subset = s.clone();
-        }
-        if let Some(i) = self.ideal_memory {
-            c.memory.ideal = i;
-        }
-        if let Some(d) = self.dispatch {
-            c.raster.dispatch = d;
-        }
-        c.validate().map_err(SimError::Config)?;
-        Ok(c)
-    }
 }
 
 /// What one run produced.
@@ -98,8 +65,8 @@ pub struct Run {
     pub warps: Vec<WarpRecord>,
 }
 
-/// The run loop: run `trace` on `cfg` with the overrides and recordings of
-/// `opts` to the end, sampling the waveform into `sink` (in
+/// The run loop: run `trace` on `cfg` with the recordings of `opts` to the
+/// end, sampling the waveform into `sink` (in
 /// `opts.vcd_window`, or every cycle). `progress` is called every 4096
 /// cycles and at the end with (tiles done, tiles total).
 pub fn run<S: CycleSink>(
@@ -120,9 +87,9 @@ pub(crate) fn run_on<C: CoreModel, S: CycleSink>(
     mut sink: Option<&mut S>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Run, SimError> {
-    let cfg = opts.apply(cfg)?;
+    cfg.validate().map_err(SimError::Config)?;
     let frames = opts.frames(trace)?;
-    let mut gpu = Gpu::<C>::build(&cfg, trace)?;
+    let mut gpu = Gpu::<C>::build(cfg, trace)?;
     if opts.record_warps {
         gpu.record_warps();
     }
@@ -157,7 +124,7 @@ pub(crate) fn run_on<C: CoreModel, S: CycleSink>(
                 timeline = gpu.take_timeline();
             }
         }
-        let stats = RunStats::collect_frame(&cfg, trace, f, gpu.end_frame()?);
+        let stats = RunStats::collect_frame(cfg, trace, f, gpu.end_frame()?);
         if trace.frame_count() > 1 {
             records.push(FrameRecord::of(f, gpu.cycle() - stats.cycles, &stats));
         }

@@ -11,16 +11,9 @@ use crate::study::runner::{Outcome, Task};
 use serde_json::json;
 use wasp_frontend::characterize::Characterization;
 use wasp_frontend::def::{self, SceneDef};
+use wasp_rtl::policy::PolicySpec;
 use wasp_sim::config::Dispatch;
 use wasp_sim::stats::{LatencyStats, RunStats};
-
-/// The value of the override `key=` of a point, if set.
-fn set<'a>(p: &'a Point, key: &str) -> Option<&'a str> {
-    p.sets
-        .iter()
-        .rev()
-        .find_map(|s| s.strip_prefix(key)?.strip_prefix('='))
-}
 
 /// Statistics that contradict the paper on every claim: WaSP and
 /// Fullpriority slower than the baseline, Fullpriority stalling the L0
@@ -28,10 +21,18 @@ fn set<'a>(p: &'a Point, key: &str) -> Option<&'a str> {
 /// under WaSP, WaSP@48 slower than the baseline@64, priority warps behind
 /// their raster order and waiting less than regular ones.
 pub fn point_stats(p: &Point) -> RunStats {
-    let policy = set(p, "scheduler.policy").unwrap_or("\"baseline\"");
-    let wasp = policy.starts_with("\"wasp");
-    let fullpriority = policy == "\"fullpriority\"";
-    let warps: f64 = set(p, "core.max_warps").map_or(64.0, |w| w.parse().unwrap());
+    let policy = p
+        .value_of("scheduler.policy")
+        .and_then(|v| v.as_str()?.parse().ok());
+    let wasp = matches!(
+        policy,
+        Some(PolicySpec::Wasp { .. } | PolicySpec::WaspMeasured { .. })
+    );
+    let fullpriority = policy == Some(PolicySpec::FullPriority);
+    let warps = p
+        .value_of("core.max_warps")
+        .and_then(toml::Value::as_integer);
+    let warps = warps.map_or(64.0, |w| w as f64);
     let mut cycles = 1000.0 + 5.0 * (64.0 - warps);
     if wasp {
         cycles *= 1.10;
@@ -39,7 +40,7 @@ pub fn point_stats(p: &Point) -> RunStats {
     if fullpriority {
         cycles *= 1.02;
     }
-    if set(p, "memory.ideal").is_some() {
+    if p.value_of("memory.ideal").is_some() {
         cycles *= 0.8;
     }
     let stall = if wasp {

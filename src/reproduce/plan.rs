@@ -19,7 +19,9 @@ use crate::study::runner::Task;
 use std::path::Path;
 use wasp_frontend::def::{Game, Route, SceneDef};
 use wasp_rtl::policy::PolicySpec;
+use wasp_rtl::subset::SubsetSpec;
 use wasp_sim::config::{Dispatch, MachineConfig};
+use wasp_sim::mem::PrefetchKind;
 
 /// The scene of each game in the quick look: the one of its game that
 /// simulates fastest on the shipped machine (`wasp run` wall time on a
@@ -274,14 +276,14 @@ impl Plan {
     /// The shipped machine under dispatch `d` running `policy`.
     pub fn policy_point(&self, scene: &str, d: Dispatch, policy: PolicySpec) -> Point {
         Point::new(scene, "paper", &[])
-            .with(format!("raster.dispatch=\"{d}\""))
-            .with(format!("scheduler.policy=\"{policy}\""))
+            .set("raster.dispatch", &d)
+            .set("scheduler.policy", &policy)
     }
 
     /// The scanline baseline with zero-latency main memory.
     pub fn ideal_point(&self, scene: &str, d: Dispatch) -> Point {
         self.policy_point(scene, d, PolicySpec::Baseline)
-            .with("memory.ideal=true")
+            .set("memory.ideal", &true)
     }
 
     /// WaSP at threshold `t` (the shipped CF).
@@ -300,7 +302,7 @@ impl Plan {
         if k == 1 {
             p
         } else {
-            p.with(format!("raster.rejected_per_slot={k}"))
+            p.set("raster.rejected_per_slot", &k)
         }
     }
 
@@ -312,7 +314,7 @@ impl Plan {
     /// WaSP with the MeshN subset.
     pub fn mesh_point(&self, scene: &str, d: Dispatch, n: u32) -> Point {
         self.policy_point(scene, d, self.wasp)
-            .with(format!("scheduler.subset=\"mesh{n}\""))
+            .set("scheduler.subset", &SubsetSpec::Mesh(n))
     }
 
     /// `policy` at width `w` with `warps` warp slots (and as many input
@@ -326,10 +328,10 @@ impl Plan {
         policy: PolicySpec,
     ) -> Point {
         Point::new(scene, w.config, &[])
-            .with(format!("raster.dispatch=\"{d}\""))
-            .with(format!("scheduler.policy=\"{policy}\""))
-            .with(format!("core.max_warps={warps}"))
-            .with(format!("core.input_queue={warps}"))
+            .set("raster.dispatch", &d)
+            .set("scheduler.policy", &policy)
+            .set("core.max_warps", &warps)
+            .set("core.input_queue", &warps)
     }
 
     /// The file of a timeline picture under the figures folder.
@@ -354,8 +356,14 @@ impl Plan {
         [
             ("baseline", base.clone()),
             ("WaSP", self.policy_point(scene, d, self.wasp)),
-            ("raster prefetcher", base.with("prefetch.kind=\"raster\"")),
-            ("oracle", base.with("prefetch.kind=\"oracle-tile\"")),
+            (
+                "raster prefetcher",
+                base.set("prefetch.kind", &PrefetchKind::Raster),
+            ),
+            (
+                "oracle",
+                base.set("prefetch.kind", &PrefetchKind::OracleTile),
+            ),
         ]
     }
 
@@ -553,7 +561,8 @@ mod tests {
             p.policy_point("x", Dispatch::SharedTile, PolicySpec::Baseline)
         );
         assert_eq!(pts[1].1, p.policy_point("x", Dispatch::SharedTile, p.wasp));
-        assert!(pts[3].1.sets.last().unwrap().contains("oracle-tile"));
+        let oracle = pts[3].1.value_of("prefetch.kind");
+        assert_eq!(oracle.and_then(|v| v.as_str()), Some("oracle-tile"));
     }
 
     #[test]

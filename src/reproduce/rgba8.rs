@@ -183,7 +183,7 @@ mod tests {
                     out.scenes_as.insert((scene, RGBA8), c);
                 }
                 Task::Run(p) => {
-                    let ideal = p.sets.iter().any(|s| s == "memory.ideal=true");
+                    let ideal = p.value_of("memory.ideal") == Some(&toml::Value::Boolean(true));
                     let plain = Point {
                         texture_format: None,
                         ..p.clone()
@@ -224,7 +224,8 @@ mod tests {
         }
         // With the per-core-tile machine first, they run there.
         let Task::Run(p) = &t[1] else { panic!("a run") };
-        assert!(p.sets.iter().any(|s| s.contains("per-core-tile")), "{p:?}");
+        let dispatch = p.value_of("raster.dispatch").and_then(toml::Value::as_str);
+        assert_eq!(dispatch, Some("per-core-tile"), "{p:?}");
         assert_eq!(p.texture_format, Some(RGBA8));
     }
 

@@ -5,6 +5,7 @@ use super::defs::{find_def, painter_note, scene_err};
 use super::timings::{print_timings, PhaseTimes, Stopwatch};
 use crate::cli_error::CliError;
 use crate::output::{self, Output};
+use crate::run_cmd::MachineFlags;
 use crate::scenes_dir::ScenesDir;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -179,14 +180,11 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
         Some(c) => Some(parse_crop(c, width, height)?),
         None => None,
     };
-    let mut config = match &args.config {
+    let base = match &args.config {
         Some(p) => crate::run_cmd::read_config(p)?,
         None => MachineConfig::paper(),
     };
-    // The heat map's run holds in its texture caches what the trace lists.
-    if let Some(c) = args.texture_cache {
-        config.memory.texture_cache = c;
-    }
+    let config = crate::run_cmd::configure(&base, &[], &machine_flags(args))?;
     Ok(RenderJob {
         def,
         width,
@@ -194,6 +192,16 @@ fn render_job(args: &RenderArgs) -> Result<RenderJob, CliError> {
         crop,
         config,
     })
+}
+
+/// The flags of `wasp render` that change the machine, typed: the heat
+/// map's run holds in its texture caches what the trace lists, under its
+/// policy and subset.
+fn machine_flags(args: &RenderArgs) -> MachineFlags {
+    MachineFlags::default()
+        .with("memory.texture_cache", args.texture_cache)
+        .with("scheduler.subset", args.subset.as_ref())
+        .with("scheduler.policy", args.policy.map(|p| p.to_string()))
 }
 
 /// Run `wasp render`.
@@ -211,8 +219,6 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         decoded_lines: job.config.memory.texture_cache == TextureCache::Decompressed,
     };
     let run = RunOptions {
-        policy: args.policy.map(|p| p.resolve(job.config.scheduler.policy)),
-        subset: args.subset.clone(),
         record_warps: true,
         ..RunOptions::default()
     };

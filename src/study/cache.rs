@@ -224,7 +224,11 @@ pub(crate) mod tests {
         let c = Cache::open(&d).unwrap();
         let r = PointRecord {
             key: "00000000000000aa".into(),
-            point: Point::new("sc", "paper", &["l0.mshrs=8"]),
+            point: Point::new(
+                "sc",
+                "paper",
+                &[wasp_sim::config::Override::new("l0.mshrs", &8)],
+            ),
             binary: "b".into(),
             stats: stats_of(1234),
         };

@@ -2,7 +2,7 @@
 //! cached under.
 //!
 //! A point names a scene, a base configuration (`paper`, `paper-width2` or
-//! a TOML file) and the `--set` overrides applied to it in order, and
+//! a TOML file) and the overrides ([`Override`]) applied to it in order, and
 //! optionally the draw order the scene is rendered in and the format its
 //! textures are stored in (default: the scene definition's own). Every
 //! other knob a study varies (policy, dispatch, subset, ideal memory,
@@ -26,7 +26,7 @@ use wasp_frontend::def::{Route, SceneDef};
 use wasp_frontend::fetch;
 use wasp_frontend::raster::DrawOrder;
 use wasp_frontend::texture::FormatChoice;
-use wasp_sim::config::MachineConfig;
+use wasp_sim::config::{MachineConfig, Override};
 
 /// One scene on one machine.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -36,8 +36,9 @@ pub struct Point {
     /// Base configuration: `paper` (configs/paper.toml, embedded),
     /// `paper-width2` (configs/paper-width2.toml, embedded) or a TOML file.
     pub config: String,
-    /// `PATH=VALUE` overrides applied in order (as `--set`).
-    pub sets: Vec<String>,
+    /// Overrides applied in order (as `--set`; written `PATH=VALUE` in
+    /// records).
+    pub sets: Vec<Override>,
     /// The draw order the scene is rendered in (`None`: the scene
     /// definition's `draw_order`). Points of one scene in two orders run
     /// on two traces and have two keys.
@@ -52,11 +53,11 @@ pub struct Point {
 
 impl Point {
     /// A point on `config` with `sets`.
-    pub fn new(scene: &str, config: &str, sets: &[&str]) -> Point {
+    pub fn new(scene: &str, config: &str, sets: &[Override]) -> Point {
         Point {
             scene: scene.to_string(),
             config: config.to_string(),
-            sets: sets.iter().map(|s| s.to_string()).collect(),
+            sets: sets.to_vec(),
             draw_order: None,
             texture_format: None,
         }
@@ -90,10 +91,32 @@ impl Point {
     }
 
     /// The same point with one more override.
-    pub fn with(&self, set: impl Into<String>) -> Point {
+    pub fn with(&self, set: Override) -> Point {
         let mut p = self.clone();
-        p.sets.push(set.into());
+        p.sets.push(set);
         p
+    }
+
+    /// The same point with field `path` set to `value` (see
+    /// [`Override::new`]).
+    pub fn set<T: Serialize + ?Sized>(&self, path: &str, value: &T) -> Point {
+        self.with(Override::new(path, value))
+    }
+
+    /// The value of the last override of field `path`, if any.
+    #[cfg(test)]
+    pub fn value_of(&self, path: &str) -> Option<&toml::Value> {
+        self.sets
+            .iter()
+            .rev()
+            .find(|o| o.path() == path)
+            .map(Override::value)
+    }
+
+    /// The overrides' texts, separated by spaces.
+    pub fn sets_text(&self) -> String {
+        let texts: Vec<String> = self.sets.iter().map(Override::to_string).collect();
+        texts.join(" ")
     }
 
     /// `scene config set1 set2 ...` for messages.
@@ -106,8 +129,7 @@ impl Point {
             s.push_str(&format!(" --texture-format {f}"));
         }
         for x in &self.sets {
-            s.push_str(" --set ");
-            s.push_str(x);
+            s.push_str(&format!(" --set {x}"));
         }
         s
     }
@@ -138,7 +160,7 @@ impl Resolver {
             self.bases.insert(p.config.clone(), c);
         }
         let base = &self.bases[&p.config];
-        wasp_sim::overrides::apply(base, &p.sets).map_err(|e| e.to_string())
+        base.with_overrides(&p.sets).map_err(|e| e.to_string())
     }
 }
 
@@ -211,6 +233,11 @@ pub fn point_key(binary: &str, scene_id: &str, cfg: &MachineConfig) -> String {
 mod tests {
     use super::*;
 
+    /// A point with the `--set` texts `sets`.
+    fn point(scene: &str, config: &str, sets: &[&str]) -> Point {
+        Point::new(scene, config, &Override::parse_sets(sets).unwrap())
+    }
+
     #[test]
     fn fnv_hash_is_the_published_one() {
         // FNV-1a 64 of "a" is af63dc4c8601ec8c; with the NUL separator the
@@ -225,13 +252,13 @@ mod tests {
     #[test]
     fn equal_machines_share_a_key_and_different_ones_do_not() {
         let mut r = Resolver::default();
-        let a = Point::new("s", "paper", &["scheduler.policy=\"baseline\""]);
-        let b = Point::new(
+        let a = point("s", "paper", &["scheduler.policy=\"baseline\""]);
+        let b = point(
             "s",
             "paper",
             &["scheduler.policy=\"wasp\"", "scheduler.policy=\"baseline\""],
         );
-        let c = Point::new("s", "paper", &["scheduler.policy=\"wasp:2:3\""]);
+        let c = point("s", "paper", &["scheduler.policy=\"wasp:2:3\""]);
         let ka = point_key("bin", "scene", &r.config(&a).unwrap());
         let kb = point_key("bin", "scene", &r.config(&b).unwrap());
         let kc = point_key("bin", "scene", &r.config(&c).unwrap());
@@ -287,9 +314,7 @@ mod tests {
     #[test]
     fn bad_overrides_and_configs_are_reported() {
         let mut r = Resolver::default();
-        let e = r
-            .config(&Point::new("s", "paper", &["l0.mshrs=0"]))
-            .unwrap_err();
+        let e = r.config(&point("s", "paper", &["l0.mshrs=0"])).unwrap_err();
         assert!(e.contains("l0.mshrs"), "{e}");
         let e = r
             .config(&Point::new("s", "/nonexistent/x.toml", &[]))

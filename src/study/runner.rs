@@ -728,7 +728,10 @@ mod tests {
         // The scene's own format is the etc2 rule.
         let etc2 = Point::new("test-small-plane", "paper", &[]);
         let rgba8 = etc2.stored(FormatChoice::Rgba8);
-        let decoded = etc2.with("memory.texture_cache=\"decompressed\"");
+        let decoded = etc2.set(
+            "memory.texture_cache",
+            &wasp_sim::config::TextureCache::Decompressed,
+        );
         let tasks = [
             Task::Run(rgba8.clone()),
             Task::Run(etc2.clone()),

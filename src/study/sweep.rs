@@ -31,7 +31,7 @@ use toml::Spanned;
 use wasp_frontend::raster::DrawOrder;
 use wasp_frontend::texture::FormatChoice;
 use wasp_rtl::policy::PolicySpec;
-use wasp_sim::config::{Dispatch, MachineConfig};
+use wasp_sim::config::{Dispatch, MachineConfig, Override};
 
 /// The largest grid a sweep file may describe.
 pub const MAX_POINTS: usize = 100_000;
@@ -65,8 +65,8 @@ pub struct ConfigEntry {
     pub name: String,
     /// `paper`, `paper-width2` or the absolute path of a TOML file.
     pub base: String,
-    /// `--set` overrides, applied in order.
-    pub set: Vec<String>,
+    /// Its overrides (as `--set`), applied in order.
+    pub set: Vec<Override>,
     /// The line of the entry in the file.
     pub line: usize,
 }
@@ -269,19 +269,20 @@ impl SweepFile<'_> {
                 ));
             }
             let base = self.base(i, &c.base)?;
+            let mut set = Vec::new();
             for (k, s) in c.set.iter().enumerate() {
-                if !s.get_ref().contains('=') {
-                    return Err(format!(
+                set.push(s.get_ref().parse().map_err(|_| {
+                    format!(
                         "{}: configs[{i}].set[{k}] `{}`: expected PATH=VALUE, e.g. l0.mshrs=24",
                         self.at(s.span().start),
                         s.get_ref()
-                    ));
-                }
+                    )
+                })?);
             }
             configs.push(ConfigEntry {
                 name: name.clone(),
                 base,
-                set: c.set.iter().map(|s| s.get_ref().clone()).collect(),
+                set,
                 line: line_of(self.text, c.name.span().start),
             });
         }
@@ -421,9 +422,9 @@ impl Sweep {
                 for pol in &self.policies {
                     let mut sets = c.set.clone();
                     if let Some(d) = d {
-                        sets.push(format!("raster.dispatch=\"{d}\""));
+                        sets.push(Override::new("raster.dispatch", d));
                     }
-                    sets.push(format!("scheduler.policy=\"{pol}\""));
+                    sets.push(Override::new("scheduler.policy", pol));
                     let p = Point {
                         scene: String::new(),
                         config: c.base.clone(),
@@ -541,11 +542,12 @@ set = ["l0.mshrs=8"]
             Point::new(
                 "procedural-plane",
                 "paper",
-                &[
+                &Override::parse_sets(&[
                     "l0.mshrs=8",
                     "raster.dispatch=\"per-core-tile\"",
                     "scheduler.policy=\"wasp:0:3\""
-                ]
+                ])
+                .unwrap()
             )
         );
         assert_eq!(pts[11].machine.l0.as_ref().map(|l| l.mshrs), Some(8));

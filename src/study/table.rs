@@ -21,7 +21,7 @@ pub fn points_csv(records: &[&PointRecord]) -> String {
         [
             r.point.scene.clone(),
             r.point.config.clone(),
-            r.point.sets.join(" "),
+            r.point.sets_text(),
             r.key.clone(),
         ]
         .into_iter()
@@ -40,12 +40,14 @@ mod tests {
     use super::*;
     use crate::study::cache::tests::stats_of;
     use crate::study::point::Point;
+    use wasp_sim::config::Override;
 
     #[test]
     fn points_become_rows_with_their_overrides_and_statistics() {
+        let sets = Override::parse_sets(&["l0.mshrs=8", "scheduler.policy=\"wasp\""]).unwrap();
         let r = |scene: &str, c: u64| PointRecord {
             key: format!("k{c}"),
-            point: Point::new(scene, "paper", &["l0.mshrs=8", "scheduler.policy=\"wasp\""]),
+            point: Point::new(scene, "paper", &sets),
             binary: String::new(),
             stats: wasp_sim::stats::RunStats {
                 workload: "a,b".into(),

@@ -466,9 +466,9 @@ fn bounds() -> Vec<Bound> {
 }
 
 fn set(extra: &[&str], field: &str, value: &str) -> Result<MachineConfig, ConfigError> {
-    let mut sets: Vec<String> = extra.iter().map(|s| s.to_string()).collect();
-    sets.push(format!("{field}={value}"));
-    crate::overrides::apply(&MachineConfig::paper(), &sets)
+    let mut sets = crate::config::Override::parse_sets(extra)?;
+    sets.push(crate::config::Override::bare(field, value));
+    MachineConfig::paper().with_overrides(&sets)
 }
 
 #[test]

@@ -45,7 +45,11 @@ fn cfg() -> MachineConfig {
 }
 
 fn sim(t: &Trace, opts: &RunOptions) -> RunStats {
-    simulate(&cfg(), t, opts, &mut |_, _| {}).unwrap()
+    sim_on(&cfg(), t, opts)
+}
+
+fn sim_on(cfg: &MachineConfig, t: &Trace, opts: &RunOptions) -> RunStats {
+    simulate(cfg, t, opts, &mut |_, _| {}).unwrap()
 }
 
 /// The report as JSON without what names the trace or positions in the
@@ -105,24 +109,27 @@ fn every_counter_restarts_when_a_frame_begins() {
     // measures alone, counter for counter.
     let a = synth(5);
     let b = shifted(&synth(6), 1 << 40);
-    let opts = RunOptions {
-        ideal_memory: Some(true),
-        ..RunOptions::default()
-    };
-    let both = sim(&Trace::concat(a, [b.clone()]).unwrap(), &opts);
-    let alone = sim(&b, &opts);
+    let mut ideal = cfg();
+    ideal.memory.ideal = true;
+    let opts = RunOptions::default();
+    let both = sim_on(&ideal, &Trace::concat(a, [b.clone()]).unwrap(), &opts);
+    let alone = sim_on(&ideal, &b, &opts);
     assert_eq!(both.frames.len(), 2);
     assert!(
         figures(&both) == figures(&alone),
         "frame 1 differs from its run alone"
     );
     // Per-core-tile dispatch too.
-    let opts = RunOptions {
-        dispatch: Some(crate::config::Dispatch::PerCoreTile),
-        ..opts
-    };
-    let both = sim(&Trace::concat(synth(5), [b.clone()]).unwrap(), &opts);
-    assert!(figures(&both) == figures(&sim(&b, &opts)), "per-core-tile");
+    ideal.raster.dispatch = crate::config::Dispatch::PerCoreTile;
+    let both = sim_on(
+        &ideal,
+        &Trace::concat(synth(5), [b.clone()]).unwrap(),
+        &opts,
+    );
+    assert!(
+        figures(&both) == figures(&sim_on(&ideal, &b, &opts)),
+        "per-core-tile"
+    );
 }
 
 #[test]

@@ -35,11 +35,20 @@ pub(super) fn small_synth(seed: u64) -> Trace {
 }
 
 fn run(cfg: &MachineConfig, t: &Trace, policy: &str) -> RunStats {
-    let opts = RunOptions {
-        policy: Some(policy.parse().unwrap()),
-        ..Default::default()
-    };
-    simulate(cfg, t, &opts, &mut |_, _| {}).unwrap()
+    simulate(
+        &with_policy(cfg, policy),
+        t,
+        &RunOptions::default(),
+        &mut |_, _| {},
+    )
+    .unwrap()
+}
+
+/// `cfg` under `policy`.
+fn with_policy(cfg: &MachineConfig, policy: &str) -> MachineConfig {
+    let mut c = cfg.clone();
+    c.scheduler.policy = policy.parse().unwrap();
+    c
 }
 
 const POLICIES: [&str; 4] = ["baseline", "fullpriority", "freemshr:10", "wasp:4"];
@@ -121,17 +130,9 @@ fn ideal_memory_is_never_slower() {
     let cfg = MachineConfig::paper();
     for p in POLICIES {
         let real = run(&cfg, &t, p);
-        let ideal = simulate(
-            &cfg,
-            &t,
-            &RunOptions {
-                policy: Some(p.parse().unwrap()),
-                ideal_memory: Some(true),
-                ..Default::default()
-            },
-            &mut |_, _| {},
-        )
-        .unwrap();
+        let mut c = with_policy(&cfg, p);
+        c.memory.ideal = true;
+        let ideal = simulate(&c, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
         assert!(
             ideal.cycles <= real.cycles,
             "{p}: {} > {}",
@@ -151,12 +152,9 @@ fn launch_rule_hold_idles_and_launch_does_not() {
     let t = small_synth(3);
     let cfg = MachineConfig::paper();
     let go = |policy: &str, rule: LaunchRule| {
-        let opts = RunOptions {
-            policy: Some(policy.parse().unwrap()),
-            launch_rule: Some(rule),
-            ..Default::default()
-        };
-        simulate(&cfg, &t, &opts, &mut |_, _| {}).unwrap()
+        let mut c = with_policy(&cfg, policy);
+        c.scheduler.launch_rule = rule;
+        simulate(&c, &t, &RunOptions::default(), &mut |_, _| {}).unwrap()
     };
     let hold = go("wasp:14", LaunchRule::Hold);
     let launch = go("wasp:14", LaunchRule::Launch);
@@ -187,13 +185,7 @@ fn launch_rule_hold_idles_and_launch_does_not() {
 fn the_measured_cf_variant_runs_and_reports_its_cf() {
     let t = small_synth(3);
     let cfg = MachineConfig::paper();
-    let go = |policy: &str| {
-        let opts = RunOptions {
-            policy: Some(policy.parse().unwrap()),
-            ..Default::default()
-        };
-        simulate(&cfg, &t, &opts, &mut |_, _| {}).unwrap()
-    };
+    let go = |policy: &str| run(&cfg, &t, policy);
     let m = go("wasp-m:4");
     let w = go("wasp:4");
     assert_eq!(m.policy, PolicySpec::WaspMeasured { threshold: 4 });
@@ -525,16 +517,8 @@ fn hidden_trace(tiles: u32, rejected: u32, with_warp: bool) -> Trace {
 fn run_dispatch(t: &Trace, d: Dispatch, flush: ColorFlush) -> RunStats {
     let mut cfg = MachineConfig::paper();
     cfg.raster.color_flush = flush;
-    simulate(
-        &cfg,
-        t,
-        &RunOptions {
-            dispatch: Some(d),
-            ..Default::default()
-        },
-        &mut |_, _| {},
-    )
-    .unwrap()
+    cfg.raster.dispatch = d;
+    simulate(&cfg, t, &RunOptions::default(), &mut |_, _| {}).unwrap()
 }
 
 /// The rasterizer spends a slot on every quad Early-Z rejects: a trace
@@ -578,11 +562,8 @@ fn a_coarse_early_z_rejects_several_quads_a_slot() {
             let mut cfg = MachineConfig::paper();
             cfg.raster.color_flush = ColorFlush::None;
             cfg.raster.rejected_per_slot = k;
-            let opts = RunOptions {
-                dispatch: Some(d),
-                ..Default::default()
-            };
-            let fast = simulate(&cfg, &t, &opts, &mut |_, _| {}).unwrap();
+            cfg.raster.dispatch = d;
+            let fast = simulate(&cfg, &t, &RunOptions::default(), &mut |_, _| {}).unwrap();
             assert_eq!(
                 fast.raster.quads_rejected, one.raster.quads_rejected,
                 "{d} {k}"

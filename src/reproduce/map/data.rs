@@ -193,7 +193,8 @@ mod tests {
 
     #[test]
     fn metrics_are_means_of_per_scene_speedups() {
-        let point = |s: &str, v: Variant| Point::new(s, "paper", &[&format!("{v:?}")]);
+        let wasp = wasp_rtl::policy::PolicySpec::SHIPPED_WASP;
+        let point = |s: &str, v: Variant| Point::new(s, "paper", &v.overrides(wasp));
         let shipped = |s: &str| Point::new(s, "shipped", &[]);
         let mut out = Outcome::default();
         // Scene a: baseline 110, WaSP 100 (+10%); scene b: 200 / 250

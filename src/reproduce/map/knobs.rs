@@ -2,16 +2,19 @@
 //! over a range a real mobile GPU could have, and the runs made at every
 //! value.
 //!
-//! Every knob is a set of `--set` overrides on the shipped machine
+//! Every knob is a set of typed overrides on the shipped machine
 //! (configs/paper.toml, shared-tile dispatch). The ranges and their sources
 //! are in docs/machine.md ("What decides WaSP's gain"); the shipped value is
 //! always one of the values, so every knob's range passes through the
 //! shipped machine.
 
+use serde::Serialize;
+use std::str::FromStr;
 use wasp_frontend::raster::DrawOrder;
 use wasp_frontend::texture::FormatChoice;
 use wasp_rtl::policy::PolicySpec;
-use wasp_sim::config::MachineConfig;
+use wasp_sim::config::{CoreMap, IssueOrder, MachineConfig, Override, TextureCache};
+use wasp_sim::mem::PrefetchKind;
 
 /// One unstated choice of the machine and the values the map gives it.
 #[derive(Clone, Debug)]
@@ -30,7 +33,7 @@ pub struct Knob {
     /// The values of the quick look (the shipped one included).
     pub quick: &'static [&'static str],
     /// The overrides that give the knob a value.
-    pub sets: fn(&str) -> Vec<String>,
+    pub sets: fn(&str) -> Vec<Override>,
     /// A value as a label ("32 warps").
     pub unit: fn(&str) -> String,
     /// Whether the knob is the scene's draw order (the front end's, not a
@@ -46,9 +49,12 @@ pub struct Knob {
 impl Knob {
     /// The overrides of `value` (none for the shipped value, so that the
     /// shipped point is the shipped machine, spelled the same way).
-    pub fn overrides(&self, value: &str) -> Vec<String> {
+    pub fn overrides(&self, value: &str) -> Vec<Override> {
         if self.texture_format && value.ends_with(DECOMPRESSED) {
-            vec!["memory.texture_cache=\"decompressed\"".to_string()]
+            vec![Override::new(
+                "memory.texture_cache",
+                &TextureCache::Decompressed,
+            )]
         } else if value == self.shipped || self.draw_order || self.texture_format {
             Vec::new()
         } else {
@@ -103,51 +109,23 @@ fn texture_unit(v: &str) -> String {
     }
 }
 
-fn one(path: &'static str, quoted: bool) -> impl Fn(&str) -> Vec<String> {
-    move |v| {
-        if quoted {
-            vec![format!("{path}=\"{v}\"")]
-        } else {
-            vec![format!("{path}={v}")]
-        }
+/// Field `path` set to the value `v` of a knob, as type `T` (a value
+/// that is not one is kept as text, which applying it refuses, naming the
+/// field and what it holds).
+fn typed<T: FromStr + Serialize>(path: &str, v: &str) -> Override {
+    match v.parse::<T>() {
+        Ok(t) => Override::new(path, &t),
+        Err(_) => Override::new(path, v),
     }
-}
-
-fn warps(v: &str) -> Vec<String> {
-    one("core.max_warps", false)(v)
-}
-fn l0_mshrs(v: &str) -> Vec<String> {
-    one("l0.mshrs", false)(v)
-}
-fn l1_mshrs(v: &str) -> Vec<String> {
-    one("l1.mshrs", false)(v)
-}
-fn input_queue(v: &str) -> Vec<String> {
-    one("core.input_queue", false)(v)
-}
-fn raster_rate(v: &str) -> Vec<String> {
-    one("raster.quads_per_cycle", false)(v)
-}
-fn early_z(v: &str) -> Vec<String> {
-    one("raster.rejected_per_slot", false)(v)
-}
-fn texture_latency(v: &str) -> Vec<String> {
-    one("core.texture_latency", false)(v)
-}
-fn issue(v: &str) -> Vec<String> {
-    one("core.issue", true)(v)
-}
-fn core_map(v: &str) -> Vec<String> {
-    one("raster.core_map", true)(v)
 }
 
 /// The filter rate: cycles a bilinear quad-sample holds the filter unit;
 /// trilinear takes two passes, as on the shipped machine.
-fn filter(v: &str) -> Vec<String> {
+fn filter(v: &str) -> Vec<Override> {
     let n: u32 = v.parse().unwrap_or(1);
     vec![
-        format!("core.filter_cycles_bilinear={n}"),
-        format!("core.filter_cycles_trilinear={}", 2 * n),
+        Override::new("core.filter_cycles_bilinear", &n),
+        Override::new("core.filter_cycles_trilinear", &(2 * n)),
     ]
 }
 
@@ -155,13 +133,13 @@ fn filter(v: &str) -> Vec<String> {
 /// model's row hit costs `t_cl + t_burst + controller_latency`, so the
 /// knob sets the controller latency that gives it (the paper: "Latency
 /// 50-100 cycles").
-fn dram_latency(v: &str) -> Vec<String> {
+fn dram_latency(v: &str) -> Vec<Override> {
     let d = MachineConfig::paper().dram;
     let hit: u32 = v.parse().unwrap_or(50);
     let fixed = d.t_cl + d.t_burst;
-    vec![format!(
-        "dram.controller_latency={}",
-        hit.saturating_sub(fixed)
+    vec![Override::new(
+        "dram.controller_latency",
+        &hit.saturating_sub(fixed),
     )]
 }
 
@@ -183,7 +161,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "64",
             values: &["32", "48", "64", "96", "128"],
             quick: &["32", "64", "128"],
-            sets: warps,
+            sets: |v| vec![typed::<u32>("core.max_warps", v)],
             unit: |v| format!("{v} warps"),
             draw_order: false,
             texture_format: false,
@@ -195,7 +173,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "16",
             values: &["4", "8", "16", "31"],
             quick: &["16", "31"],
-            sets: l0_mshrs,
+            sets: |v| vec![typed::<u32>("l0.mshrs", v)],
             unit: |v| format!("{v} L0 MSHRs"),
             draw_order: false,
             texture_format: false,
@@ -207,7 +185,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "16",
             values: &["8", "16", "32"],
             quick: &["16"],
-            sets: l1_mshrs,
+            sets: |v| vec![typed::<u32>("l1.mshrs", v)],
             unit: |v| format!("{v} L1 MSHRs"),
             draw_order: false,
             texture_format: false,
@@ -231,7 +209,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "64",
             values: &["16", "32", "64", "128", "256"],
             quick: &["64"],
-            sets: input_queue,
+            sets: |v| vec![typed::<u32>("core.input_queue", v)],
             unit: |v| format!("{v}-entry queue"),
             draw_order: false,
             texture_format: false,
@@ -243,7 +221,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "4",
             values: &["1", "2", "4", "8"],
             quick: &["4"],
-            sets: raster_rate,
+            sets: |v| vec![typed::<u32>("raster.quads_per_cycle", v)],
             unit: |v| format!("{v} quads/cycle"),
             draw_order: false,
             texture_format: false,
@@ -255,7 +233,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "1",
             values: &["1", "4", "16"],
             quick: &["1"],
-            sets: early_z,
+            sets: |v| vec![typed::<u32>("raster.rejected_per_slot", v)],
             unit: |v| format!("{v} rejected/slot"),
             draw_order: false,
             texture_format: false,
@@ -267,7 +245,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "4",
             values: &["1", "4", "16", "32"],
             quick: &["4"],
-            sets: texture_latency,
+            sets: |v| vec![typed::<u32>("core.texture_latency", v)],
             unit: |v| format!("{v}-cycle texture"),
             draw_order: false,
             texture_format: false,
@@ -291,7 +269,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "lrr",
             values: &["lrr", "gto"],
             quick: &["lrr"],
-            sets: issue,
+            sets: |v| vec![typed::<IssueOrder>("core.issue", v)],
             unit: plain,
             draw_order: false,
             texture_format: false,
@@ -303,7 +281,7 @@ pub fn all() -> Vec<Knob> {
             shipped: "latin:8",
             values: &["latin:4", "latin:8", "latin:16", "rowmajor:16"],
             quick: &["latin:8"],
-            sets: core_map,
+            sets: |v| vec![typed::<CoreMap>("raster.core_map", v)],
             unit: plain,
             draw_order: false,
             texture_format: false,
@@ -364,23 +342,31 @@ impl Variant {
         Variant::Ideal,
     ];
 
-    /// The overrides of the variant, `wasp` being the shipped WaSP.
-    pub fn overrides(self, wasp: PolicySpec) -> Vec<String> {
-        let policy = |p: PolicySpec| format!("scheduler.policy=\"{p}\"");
+    /// The policy the variant runs, `wasp` being the shipped WaSP.
+    pub fn policy(self, wasp: PolicySpec) -> PolicySpec {
         match self {
-            Variant::Baseline => vec![policy(PolicySpec::Baseline)],
-            Variant::Wasp => vec![policy(wasp)],
-            Variant::FullPriority => vec![policy(PolicySpec::FullPriority)],
-            Variant::Raster => vec![
-                policy(PolicySpec::Baseline),
-                "prefetch.kind=\"raster\"".into(),
-            ],
-            Variant::Oracle => vec![
-                policy(PolicySpec::Baseline),
-                "prefetch.kind=\"oracle-tile\"".into(),
-            ],
-            Variant::Ideal => vec![policy(PolicySpec::Baseline), "memory.ideal=true".into()],
+            Variant::Wasp => wasp,
+            Variant::FullPriority => PolicySpec::FullPriority,
+            _ => PolicySpec::Baseline,
         }
+    }
+
+    /// What the variant adds to the machine beside its policy: a
+    /// prefetcher or ideal memory (the bounds).
+    pub fn machine(self) -> Vec<Override> {
+        match self {
+            Variant::Raster => vec![Override::new("prefetch.kind", &PrefetchKind::Raster)],
+            Variant::Oracle => vec![Override::new("prefetch.kind", &PrefetchKind::OracleTile)],
+            Variant::Ideal => vec![Override::new("memory.ideal", &true)],
+            _ => Vec::new(),
+        }
+    }
+
+    /// The overrides of the variant: its policy, then its machine.
+    pub fn overrides(self, wasp: PolicySpec) -> Vec<Override> {
+        let mut v = vec![Override::new("scheduler.policy", &self.policy(wasp))];
+        v.extend(self.machine());
+        v
     }
 }
 
@@ -403,7 +389,7 @@ mod tests {
                     // Only the decompressed-texel values set the machine.
                     let sets = k.overrides(v);
                     assert_eq!(sets.is_empty(), !v.ends_with(DECOMPRESSED), "{v}");
-                    let c = wasp_sim::overrides::apply(&paper, &sets).unwrap();
+                    let c = paper.with_overrides(&sets).unwrap();
                     let decompressed = wasp_sim::config::TextureCache::Decompressed;
                     assert_eq!(
                         c.memory.texture_cache == decompressed,
@@ -423,8 +409,25 @@ mod tests {
             }
             // The shipped value spelled as an override is the shipped
             // machine: the knob's range really passes through it.
-            let same = wasp_sim::overrides::apply(&paper, &(k.sets)(k.shipped)).unwrap();
+            let same = paper.with_overrides(&(k.sets)(k.shipped)).unwrap();
             assert_eq!(same, paper, "{}", k.id);
+        }
+    }
+
+    #[test]
+    fn every_override_names_a_parameter_and_applies() {
+        let paper = MachineConfig::paper();
+        let params: Vec<String> = paper.params().into_iter().map(|p| p.path).collect();
+        let variants = Variant::ALL.map(|v| v.overrides(PolicySpec::SHIPPED_WASP));
+        let knobs = all().into_iter().flat_map(|k| {
+            let values = k.values.iter().map(move |v| k.overrides(v));
+            values.collect::<Vec<_>>()
+        });
+        for sets in knobs.chain(variants) {
+            for o in &sets {
+                assert!(params.iter().any(|p| p == o.path()), "{o}");
+            }
+            assert!(paper.with_overrides(&sets).is_ok(), "{sets:?}");
         }
     }
 
@@ -433,9 +436,10 @@ mod tests {
         let paper = MachineConfig::paper();
         let d = &paper.dram;
         assert_eq!(d.t_cl + d.t_burst + d.controller_latency, 50);
-        assert_eq!(dram_latency("100"), ["dram.controller_latency=83"]);
+        let texts = |v: Vec<Override>| -> Vec<String> { v.iter().map(|o| o.to_string()).collect() };
+        assert_eq!(texts(dram_latency("100")), ["dram.controller_latency=83"]);
         assert_eq!(
-            filter("4"),
+            texts(filter("4")),
             [
                 "core.filter_cycles_bilinear=4",
                 "core.filter_cycles_trilinear=8"

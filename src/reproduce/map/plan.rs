@@ -6,11 +6,21 @@ use super::knobs::{self, Knob, Variant};
 use crate::study::point::Point;
 use crate::study::runner::Task;
 use wasp_rtl::policy::PolicySpec;
+use wasp_sim::config::{Dispatch, Override};
 
 /// Input-queue entries of the warp-slot series: deep enough that a full
 /// core queue never holds the rasterizer back on the shipped scenes, so
 /// that extra warp slots buy latency hiding only, not queue room.
 pub const DEEP_QUEUE: u32 = 1024;
+
+/// The overrides of `warps` warp slots with a [`DEEP_QUEUE`]-entry input
+/// queue.
+pub fn deep_queue(warps: u32) -> [Override; 2] {
+    [
+        Override::new("core.max_warps", &warps),
+        Override::new("core.input_queue", &DEEP_QUEUE),
+    ]
+}
 
 /// The shipped scenes the map leaves out unless `--map-scenes all`: the
 /// three 3D scenes with the most cycles on the shipped machine (the
@@ -104,12 +114,9 @@ impl MapPlan {
 
     /// The shipped machine (shared-tile dispatch) with `sets`, then the
     /// variant's overrides.
-    fn point(&self, scene: &str, sets: &[String], v: Variant) -> Point {
-        let mut p = Point::new(scene, "paper", &[]).with("raster.dispatch=\"shared-tile\"");
-        for s in sets {
-            p = p.with(s.clone());
-        }
-        for s in v.overrides(self.wasp) {
+    fn point(&self, scene: &str, sets: &[Override], v: Variant) -> Point {
+        let mut p = Point::new(scene, "paper", &[]).set("raster.dispatch", &Dispatch::SharedTile);
+        for s in sets.iter().cloned().chain(v.overrides(self.wasp)) {
             p = p.with(s);
         }
         p
@@ -135,11 +142,7 @@ impl MapPlan {
 
     /// `warps` warp slots and a [`DEEP_QUEUE`]-entry input queue.
     pub fn deep_queue_point(&self, scene: &str, warps: u32, v: Variant) -> Point {
-        let sets = [
-            format!("core.max_warps={warps}"),
-            format!("core.input_queue={DEEP_QUEUE}"),
-        ];
-        self.point(scene, &sets, v)
+        self.point(scene, &deep_queue(warps), v)
     }
 
     /// A cell of the 2-D grid.

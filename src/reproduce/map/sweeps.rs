@@ -14,17 +14,21 @@
 //! one pair per cache choice of the texture caches).
 
 use super::knobs::{Knob, Variant};
-use super::plan::{MapPlan, DEEP_QUEUE};
+use super::plan::{deep_queue, MapPlan, DEEP_QUEUE};
 use std::fmt::Write as _;
 use wasp_rtl::policy::PolicySpec;
+use wasp_sim::config::Override;
 
 /// A `[[configs]]` entry: name and overrides.
-type Entry = (String, Vec<String>);
+type Entry = (String, Vec<Override>);
 
-fn toml_list(v: &[String]) -> String {
+fn toml_list<T: ToString>(v: &[T]) -> String {
     let q: Vec<String> = v
         .iter()
-        .map(|s| format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\"")))
+        .map(|s| {
+            let s = s.to_string();
+            format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
+        })
         .collect();
     format!("[{}]", q.join(", "))
 }
@@ -83,9 +87,8 @@ fn entry_name(k: &Knob, value: &str) -> String {
 }
 
 /// The overrides a bound adds to the baseline, and its suffix.
-fn bound(v: Variant) -> (&'static str, Vec<String>) {
-    let mut sets = v.overrides(PolicySpec::Baseline);
-    sets.retain(|s| !s.starts_with("scheduler.policy"));
+fn bound(v: Variant) -> (&'static str, Vec<Override>) {
+    let sets = v.machine();
     let name = match v {
         Variant::Raster => "raster",
         Variant::Oracle => "oracle",
@@ -123,10 +126,7 @@ fn other_orders(map: &MapPlan) -> Vec<&'static str> {
 fn deep_entries(map: &MapPlan) -> Vec<Entry> {
     let mut deep = Vec::new();
     for &w in &map.deep_queue_warps {
-        let set = vec![
-            format!("core.max_warps={w}"),
-            format!("core.input_queue={DEEP_QUEUE}"),
-        ];
+        let set = deep_queue(w).to_vec();
         let mut oracle = set.clone();
         oracle.extend(bound(Variant::Oracle).1);
         deep.push((format!("warps={w}+queue={DEEP_QUEUE}"), set));
@@ -225,8 +225,8 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
 /// The texture-format knob's values besides the shipped one, grouped by
 /// the machine they run on: (the entry's name suffix, its overrides, the
 /// formats).
-fn other_formats(map: &MapPlan) -> Vec<(String, Vec<String>, Vec<String>)> {
-    let mut groups: Vec<(String, Vec<String>, Vec<String>)> = Vec::new();
+fn other_formats(map: &MapPlan) -> Vec<(String, Vec<Override>, Vec<String>)> {
+    let mut groups: Vec<(String, Vec<Override>, Vec<String>)> = Vec::new();
     for k in map.knobs.iter().filter(|k| k.texture_format) {
         for v in k.values_for(map.quick).iter().filter(|v| **v != k.shipped) {
             let Some(f) = k.format(v) else { continue };
