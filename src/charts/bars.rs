@@ -10,8 +10,9 @@
 use super::frame::{
     builder, column, edge, paper_entry, paper_lines, paper_margin, paper_point, plot_rect, px,
     range, style, style_mesh, text_size, tick_label, value_label, write, y_area, Area, Chart,
-    Drawn, Frame, Placer, Shape, Swatch, LABEL, SMALL,
+    Drawn, Frame, Placer, LABEL, SMALL,
 };
+use super::legend::{Shape, Swatch};
 use super::{check, frame, who, BarChart, CategoryGroup};
 use crate::palette::{series_colours, shade, INK};
 use plotters::coord::ranged1d::SegmentedCoord;
@@ -99,10 +100,10 @@ impl<'a> Bars<'a> {
         let rows: Vec<f64> = c.groups.iter().map(&mut row).collect();
         let two = usize::from(rows.iter().any(|&r| r > 0.0));
         let top = [10.0, 34.0, 56.0][c.groups.len().min(1) + two];
-        let colours = series_colours(&c.series.iter().map(|s| &s.name).collect::<Vec<_>>());
+        let colours = series_colours(&c.series.iter().map(|s| s.key).collect::<Vec<_>>());
         let swatch = |(s, &k): (&super::Series, _)| (s.name.clone(), Swatch::Block(k));
         let mut legend: Vec<_> = c.series.iter().zip(&colours).map(swatch).collect();
-        legend.extend(paper_entry(&c.paper, Shape::Diamond));
+        legend.extend(paper_entry(&c.paper, Shape::Circle));
         let frame = Frame::new((&c.title, &c.subtitle), legend, left, width.round());
         let pad = (left, bottom, top, right);
         Bars {
@@ -219,7 +220,7 @@ impl Bars<'_> {
             };
             let (at, colour) = (((x0 + x1) / 2.0, g.py(m.value)), colour(m.series));
             let mark = (at, (x1 - x0) / 2.0, 5.0);
-            paper_point((root, &mut *placer), mark, Shape::Diamond, colour)?;
+            paper_point((root, &mut *placer), mark, Shape::Circle, colour)?;
             let text = (m.label.as_str(), false);
             let over = column(at.0, (at.1 - 8.0, true, p.1), text, 400);
             let under = column(at.0, (at.1 + 8.0, false, p.3), text, 400);
@@ -298,15 +299,13 @@ mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::super::{PaperMark, Series};
     use super::*;
-    use crate::palette::named;
+    use crate::palette::Key;
 
     /// A series with a value for every category.
-    fn full(name: &str, values: &[f64]) -> Series {
+    fn full(key: Key, name: &str, values: &[f64]) -> Series {
         let values = values.iter().map(|&v| Some(v)).collect();
-        Series {
-            name: name.into(),
-            values,
-        }
+        let name = name.into();
+        Series { key, name, values }
     }
 
     /// A paper mark.
@@ -327,7 +326,7 @@ mod tests {
         let categories = names.chain(["mean 3D".into(), "mean all".into()]).collect();
         let wasp: Vec<f64> = (0..18).map(|i| 0.01 * f64::from(i % 7) - 0.02).collect();
         let half: Vec<f64> = wasp.iter().map(|v| v / 2.0).collect();
-        let mut fp = full("Fullpriority", &half);
+        let mut fp = full(Key::FullPriority, "Fullpriority", &half);
         fp.values[3] = None;
         let group = |label: &str, categories| CategoryGroup {
             label: label.into(),
@@ -338,7 +337,7 @@ mod tests {
             subtitle: "shared-tile machine, 16 scenes".into(),
             y_label: "speedup".into(),
             categories,
-            series: vec![full("WaSP", &wasp), fp],
+            series: vec![full(Key::Wasp, "WaSP", &wasp), fp],
             paper: vec![
                 mark(Some(0), None, 0.039, "paper 3.9%"),
                 mark(None, None, 0.05, "paper best 5.0%"),
@@ -363,8 +362,8 @@ mod tests {
         draw_bars(&speedups(), &path).expect("draw png");
         let (w, h) = image::image_dimensions(&path).expect("png");
         assert!((900..=1800).contains(&w) && (700..=1000).contains(&h));
-        let wasp = pixels(&path, named("wasp").unwrap());
-        let full = pixels(&path, named("fullpriority").unwrap());
+        let wasp = pixels(&path, Key::Wasp.colour().unwrap());
+        let full = pixels(&path, Key::FullPriority.colour().unwrap());
         assert!(wasp > 500 && full > 200, "{wasp}, {full} pixels");
         let path = out("bars", "speedup.svg");
         draw_bars(&speedups(), &path).expect("draw svg");
@@ -383,8 +382,8 @@ mod tests {
         // Min_Estimate-like values whose labels would cross the lines.
         let mut c = speedups();
         c.categories = ["a", "b", "c", "d"].map(String::from).to_vec();
-        let one = full("one", &[0.23, 0.099, 0.11, 0.068]);
-        c.series = vec![one, full("two", &[0.045, 0.053, 0.071, 0.062])];
+        let one = full(Key::Other, "one", &[0.23, 0.099, 0.11, 0.068]);
+        c.series = vec![one, full(Key::Other, "two", &[0.045, 0.053, 0.071, 0.062])];
         let p2 = mark(Some(1), None, 0.0625, "p2");
         c.paper = vec![mark(Some(0), None, 0.12, "p1"), p2];
         (c.separators, c.highlight, c.groups, c.percent) = (vec![], vec![], vec![], false);
@@ -400,7 +399,7 @@ mod tests {
                 assert!((y - l).abs() >= half + 3.0, "`{text}` at {y} on {l}");
             }
         }
-        let four = |k| full(&format!("s{k}"), &[1.2, 0.5, 2.0, 1.0]);
+        let four = |k| full(Key::Other, &format!("s{k}"), &[1.2, 0.5, 2.0, 1.0]);
         c.series = (0..4).map(four).collect();
         draw_bars(&c, &path).expect("draw svg");
         let four = texts(&path, "s3");
@@ -408,7 +407,7 @@ mod tests {
             !four.iter().any(|t| t.0 == "0.50"),
             "four series: no values"
         );
-        (c.categories, c.series) = (vec!["only".into()], vec![full("WaSP", &[-0.02])]);
+        (c.categories, c.series) = (vec!["only".into()], vec![full(Key::Wasp, "WaSP", &[-0.02])]);
         (c.paper, c.percent) = (vec![], true);
         draw_bars(&c, &path).expect("draw svg");
         texts(&path, "-2.0%|0.0%|only");

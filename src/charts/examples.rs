@@ -20,7 +20,8 @@ fn examples() {
         label: label.into(),
         categories,
     };
-    let series = |k: usize, name: &str, n: usize| Series {
+    let series = |k: usize, key, name: &str, n: usize| Series {
+        key,
         name: name.into(),
         values: (0..n).map(|i| wave(i, k)).collect(),
     };
@@ -35,7 +36,10 @@ fn examples() {
         subtitle: "shared-tile machine, 9 scenes".into(),
         y_label: "speedup".into(),
         categories,
-        series: vec![series(0, "fullpriority", 12), series(1, "wasp:0:3", 12)],
+        series: vec![
+            series(0, Key::FullPriority, "fullpriority", 12),
+            series(1, Key::Wasp, "wasp:0:3", 12),
+        ],
         paper: vec![
             mark(Some(1), None, 0.039, "paper 3.9%"),
             mark(None, Some(11), 0.03, "paper 3.0%"),
@@ -52,7 +56,10 @@ fn examples() {
         y_label: "speedup".into(),
         x: vec![0.0, 1.0, 2.0, 3.0, 4.0],
         x_ticks: Some(["32", "48", "64", "96", "128"].map(String::from).to_vec()),
-        series: vec![series(0, "baseline", 5), series(1, "wasp:0:3", 5)],
+        series: vec![
+            series(0, Key::Baseline, "baseline", 5),
+            series(1, Key::Wasp, "wasp:0:3", 5),
+        ],
         paper: vec![mark(Some(1), Some(1), 0.02, "paper: WaSP@48 +2%")],
         percent: true,
         reference: Some(0.0),

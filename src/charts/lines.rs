@@ -8,11 +8,12 @@
 //! caption over them. Labels go where they hide nothing.
 
 use super::frame::{
-    around, beside, builder, column, marker, paper_entry, paper_lines, paper_margin, paper_point,
+    around, beside, builder, column, paper_entry, paper_lines, paper_margin, paper_point,
     plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area, Chart, Drawn,
-    Frame, Placer, Rect, Shape, Swatch, LABEL,
+    Frame, Placer, Rect, LABEL,
 };
-use super::{check, finite, who, Highlight, LineChart, PaperMark};
+use super::legend::{marker, Shape, Swatch};
+use super::{check, finite, who, Highlight, Key, LineChart, PaperMark};
 use crate::palette::{series_colours, shade, INK};
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::types::RangedCoordf64;
@@ -56,10 +57,8 @@ pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
     check(&who, marks, (n, "x positions"), name_of)?;
     let point = |(&x, v): (&f64, &Option<f64>)| v.map(|y| (x, y, String::new()));
     let lines = c.series.iter().map(|s| {
-        (
-            s.name.as_str(),
-            x.iter().zip(&s.values).map(point).collect(),
-        )
+        let points = x.iter().zip(&s.values).map(point).collect();
+        (s.name.as_str(), s.key, points)
     });
     let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
     let (lines, paper) = (lines.collect(), &c.paper[..]);
@@ -85,8 +84,8 @@ pub(super) struct Plot<'a> {
     pub who: String,
     /// Title, subtitle, x label, y label.
     pub texts: [&'a str; 4],
-    /// Each series' name and points (None: a gap).
-    pub lines: Vec<(&'a str, Vec<Option<Point>>)>,
+    /// Each series' name, key and points (None: a gap).
+    pub lines: Vec<(&'a str, Key, Vec<Option<Point>>)>,
     /// The x positions of the paper's marks and of the tick labels (None:
     /// plotters' ticks).
     pub x: &'a [f64],
@@ -110,7 +109,7 @@ pub(super) struct Layout<'a> {
 
 impl<'a> Plot<'a> {
     pub fn lay_out(self) -> Layout<'a> {
-        let points = || self.lines.iter().flat_map(|l| l.1.iter().flatten());
+        let points = || self.lines.iter().flat_map(|l| l.2.iter().flatten());
         let ys = points()
             .map(|p| p.1)
             .chain(self.paper.iter().map(|m| m.value));
@@ -151,12 +150,13 @@ impl<'a> Plot<'a> {
             .enumerate()
             .filter(|(i, _)| i % every as usize != 0);
         crowded.for_each(|(_, t)| t.1.clear());
-        let colours = series_colours(&self.lines.iter().map(|l| l.0).collect::<Vec<_>>());
-        let entry = |(k, (l, &c))| (String::from(l), Swatch::Line(c, Shape::of(k)));
+        let colours = series_colours(&self.lines.iter().map(|l| l.1).collect::<Vec<_>>());
+        let swatch = |k, c: RGBColor| Swatch::Line(c.stroke_width(2), Some(Shape::of(k)));
+        let entry = |(k, (l, &c))| (String::from(l), swatch(k, c));
         let names = self.lines.iter().map(|l| l.0).zip(&colours).enumerate();
         let mut legend: Vec<_> = names.map(entry).collect();
         let first = self.paper.iter().find(|m| m.category.is_some());
-        let shape = first.map_or(Shape::Diamond, |m| paper_shape(m.series));
+        let shape = first.map_or(Shape::Circle, |m| paper_shape(m.series));
         legend.extend(paper_entry(self.paper, shape));
         let frame = Frame::new((self.texts[0], self.texts[1]), legend, left, WIDTH);
         Layout {
@@ -171,9 +171,9 @@ impl<'a> Plot<'a> {
 }
 
 /// The shape of a paper mark of `series` at one x position: the series'
-/// shape, or a diamond for the whole chart.
+/// shape, or a circle for the whole chart.
 fn paper_shape(series: Option<usize>) -> Shape {
-    series.map_or(Shape::Diamond, Shape::of)
+    series.map_or(Shape::Circle, Shape::of)
 }
 
 /// Values to pixels.
@@ -249,7 +249,7 @@ impl Chart for Layout<'_> {
         let mut placer = Placer::default();
         let colour = |s| self.mark_colour(s);
         paper_lines(root, (p, &mut placer), pl.paper, |v| at(x0, v).1, colour)?;
-        let series = || pl.lines.iter().map(|l| &l.1).zip(&self.colours).enumerate();
+        let series = || pl.lines.iter().map(|l| &l.2).zip(&self.colours).enumerate();
         for (_, (pts, &k)) in series() {
             for run in pts.split(Option::is_none).filter(|r| r.len() > 1) {
                 let run: Vec<(f64, f64)> = run.iter().flatten().map(|p| (p.0, p.1)).collect();
@@ -258,10 +258,13 @@ impl Chart for Layout<'_> {
             }
         }
         for (s, (pts, &k)) in series() {
-            for xy in pts.iter().flatten().map(|p| at(p.0, p.1)) {
-                marker(root, (Shape::of(s), xy, 5.0), k, false)?;
-                placer.take(around(xy, (5.0, 5.0)));
-            }
+            let xys: Vec<(f64, f64)> = pts.iter().flatten().map(|p| (p.0, p.1)).collect();
+            xys.iter()
+                .for_each(|p| placer.take(around(at(p.0, p.1), (6.0, 6.0))));
+            let marks = xys
+                .into_iter()
+                .map(|xy| marker(xy, (Shape::of(s), 6), k, false));
+            chart.draw_series(marks)?;
         }
 
         self.labels(root, placer, (p, &at))
@@ -287,7 +290,7 @@ impl Layout<'_> {
             labels.push((beside(xy, 20.0, &m.label, 400, p), m.label.as_str(), colour));
         }
         for h in pl.rings {
-            let point = |&(s, i): &(usize, usize)| pl.lines[s].1[i].as_ref().map(|p| at(p.0, p.1));
+            let point = |&(s, i): &(usize, usize)| pl.lines[s].2[i].as_ref().map(|p| at(p.0, p.1));
             let pts: Vec<(f64, f64)> = h.points.iter().filter_map(point).collect();
             let path = pts.iter().map(|&(x, y)| px(x, y));
             root.draw(&DashedPathElement::new(path, 3, 3, INK.stroke_width(1)))?;
@@ -306,7 +309,7 @@ impl Layout<'_> {
             labels.push(([over, under].concat(), text.0, INK));
             ringed.extend(pts);
         }
-        for (pts, &k) in pl.lines.iter().map(|l| &l.1).zip(&self.colours) {
+        for (pts, &k) in pl.lines.iter().map(|l| &l.2).zip(&self.colours) {
             for (x, y, l) in pts.iter().flatten().filter(|p| !p.2.is_empty()) {
                 let xy = at(*x, *y);
                 let d = if ringed.contains(&xy) { 15.0 } else { 8.0 };
@@ -327,12 +330,12 @@ mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::super::Series;
     use super::*;
-    use crate::palette::named;
+    use crate::palette::Key;
 
     /// A series of `values`.
-    fn series(name: &str, values: &[Option<f64>]) -> Series {
+    fn series(key: Key, name: &str, values: &[Option<f64>]) -> Series {
         let (name, values) = (name.into(), values.to_vec());
-        Series { name, values }
+        Series { key, name, values }
     }
 
     /// IPC over the warp count for two policies, one with a gap, with the
@@ -357,8 +360,12 @@ mod tests {
             x_ticks: Some(x.iter().map(|v| format!("{v}")).collect()),
             x,
             series: vec![
-                series("baseline", &[0.61, 0.64, 0.66, 0.67, 0.675].map(Some)),
-                series("WaSP", &wasp),
+                series(
+                    Key::Baseline,
+                    "baseline",
+                    &[0.61, 0.64, 0.66, 0.67, 0.675].map(Some),
+                ),
+                series(Key::Wasp, "WaSP", &wasp),
             ],
             paper: vec![
                 mark(Some(1), Some(1), 0.69, "paper 0.69"),
@@ -374,8 +381,8 @@ mod tests {
         let path = out("lines", "warps.png");
         draw_lines(&warps(), &path).expect("draw png");
         assert_eq!(image::image_dimensions(&path).ok(), Some((1400, 700)));
-        let base = pixels(&path, named("baseline").unwrap());
-        let wasp = pixels(&path, named("wasp").unwrap());
+        let base = pixels(&path, Key::Baseline.colour().unwrap());
+        let wasp = pixels(&path, Key::Wasp.colour().unwrap());
         assert!(base > 300 && wasp > 200, "{base}, {wasp} pixels");
         let path = out("lines", "warps.svg");
         draw_lines(&warps(), &path).expect("draw svg");
@@ -389,18 +396,23 @@ mod tests {
         let mut c = warps();
         (c.x, c.series) = (
             vec![1.0, 2.0, 4.0, 8.0],
-            vec![series("WaSP", &[-0.02, 0.01, 0.03, 0.02].map(Some))],
+            vec![series(
+                Key::Wasp,
+                "WaSP",
+                &[-0.02, 0.01, 0.03, 0.02].map(Some),
+            )],
         );
         (c.percent, c.reference, c.x_ticks, c.paper) = (true, Some(0.0), None, vec![]);
         let path = out("lines-numeric", "speedup.svg");
         draw_lines(&c, &path).expect("draw svg");
         texts(&path, "-2%|0%|3%|2|8");
-        (c.x, c.series) = (vec![5.0], vec![series("WaSP", &[Some(-0.01)])]);
+        (c.x, c.series) = (vec![5.0], vec![series(Key::Wasp, "WaSP", &[Some(-0.01)])]);
         let path = out("lines-numeric", "one.png");
         draw_lines(&c, &path).expect("draw png");
-        assert!(pixels(&path, named("wasp").unwrap()) > 20);
+        assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 20);
         c.x = (0..40).map(f64::from).collect();
         c.series = vec![series(
+            Key::Other,
             "v",
             &c.x.iter().map(|&x| Some(x)).collect::<Vec<_>>(),
         )];

@@ -8,24 +8,29 @@
 //! - tornado charts of a quantity's range per parameter ([`draw_tornado`]);
 //! - heat maps over two parameters on a diverging scale ([`draw_heatmap`]).
 //!
-//! Every chart is, top to bottom: the title and subtitle; the legend, a row
-//! above the plot so it hides no data; the plot. What plotters lacks is
-//! drawn by hand in `frame`: that legend row, the paper's marks (a dashed
-//! line across the plot, labelled right of it, for a value of every
-//! category; a short dashed line with a hollow marker for one category)
-//! and the placing of labels where they hide nothing. Colours come from
-//! [`crate::palette`], so a policy has one colour in every figure. Drawing
-//! is deterministic. `examples` (tests, ignored) writes one of each kind.
+//! Every chart is, top to bottom: the title and subtitle; the legend,
+//! plotters' series labels in columns above the plot so it hides no data;
+//! the plot. Markers are plotters' marker elements (`legend`). What
+//! plotters lacks is drawn by hand in `frame`: the paper's marks (a dashed line across
+//! the plot, labelled right of it, for a value of every category; a short
+//! dashed line with a hollow marker for one category) and the placing of
+//! labels where they hide nothing. The timeline
+//! ([`crate::timeline_plot`]) shares the frame and the legend. Colours come
+//! from [`crate::palette`] by each series' [`Key`], so a policy has one
+//! colour in every figure. Drawing is deterministic. `examples` (tests,
+//! ignored) writes one of each kind.
 
 mod bars;
 #[cfg(test)]
 mod examples;
-mod frame;
+pub(crate) mod frame;
 mod heatmap;
+pub(crate) mod legend;
 mod lines;
 mod tornado;
 mod xy;
 
+pub use crate::palette::Key;
 pub use bars::draw_bars;
 pub use heatmap::{draw_heatmap, HeatMap};
 pub use lines::draw_lines;
@@ -36,7 +41,9 @@ pub use xy::{draw_xy, Highlight, XyChart, XySeries};
 /// in the line).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Series {
-    /// The name in the legend; it chooses the colour ([`crate::palette`]).
+    /// What the series shows: it chooses the colour ([`crate::palette`]).
+    pub key: Key,
+    /// The name in the legend.
     pub name: String,
     /// One value per category or x position.
     pub values: Vec<Option<f64>>,

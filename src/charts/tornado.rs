@@ -7,9 +7,10 @@
 
 use super::frame::{
     around, builder, edge, plot_rect, range, style_mesh, text_size, tick_label, value_label, write,
-    Chart, Drawn, Frame, Placer, Rect, Swatch, LABEL, SMALL,
+    Chart, Drawn, Frame, Placer, Rect, LABEL, SMALL,
 };
-use super::{finite, who};
+use super::legend::Swatch;
+use super::{finite, who, Key};
 use crate::palette::{series_colours, shade};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -18,7 +19,9 @@ use std::path::Path;
 /// A series of a tornado chart.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TornadoSeries {
-    /// The name in the legend (e.g. "3D"); it chooses the colour.
+    /// What the series shows: it chooses the colour ([`crate::palette`]).
+    pub key: Key,
+    /// The name in the legend (e.g. "3D").
     pub name: String,
     /// The series' value on the shipped machine: a vertical line.
     pub reference: Option<f64>,
@@ -131,7 +134,7 @@ impl<'a> Tornado<'a> {
             .iter()
             .map(|r| text_size(&r.parameter, LABEL, false).0);
         let left = names.fold(0.0, f64::max) + 24.0;
-        let colours = series_colours(&c.series.iter().map(|s| &s.name).collect::<Vec<_>>());
+        let colours = series_colours(&c.series.iter().map(|s| s.key).collect::<Vec<_>>());
         let mut legend = Vec::new();
         for (s, &k) in c.series.iter().zip(&colours) {
             legend.push((s.name.clone(), Swatch::Block(k)));
@@ -144,7 +147,7 @@ impl<'a> Tornado<'a> {
                 s.name,
                 value_label(v, c.percent)
             );
-            legend.push((text, Swatch::Rule(shade(k, 0.62))));
+            legend.push((text, Swatch::Line(shade(k, 0.62).stroke_width(2), None)));
         }
         let frame = Frame::new((&c.title, &c.subtitle), legend, left, 1200.0);
         let x = x.start - pad..x.end + pad;
@@ -248,7 +251,7 @@ fn outward((x, mid): (f64, f64), text: &str, dir: f64) -> Vec<Rect> {
 pub(super) mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::*;
-    use crate::palette::named;
+    use crate::palette::Key;
 
     /// WaSP's speedup range over three parameters, for 3D and 2D scenes.
     pub(in super::super) fn gains() -> TornadoChart {
@@ -260,7 +263,8 @@ pub(super) mod tests {
             parameter: parameter.into(),
             spans,
         };
-        let series = |name: &str, r| TornadoSeries {
+        let series = |key, name: &str, r| TornadoSeries {
+            key,
             name: name.into(),
             reference: Some(r),
         };
@@ -277,7 +281,10 @@ pub(super) mod tests {
             title: "What decides WaSP's gain".into(),
             subtitle: "speedup range over each parameter's range".into(),
             x_label: "WaSP's speedup over the baseline".into(),
-            series: vec![series("3D", 0.001), series("2D", 0.02)],
+            series: vec![
+                series(Key::ThreeD, "3D", 0.001),
+                series(Key::TwoD, "2D", 0.02),
+            ],
             rows: vec![
                 row("l0.mshrs", mshrs),
                 row("core.max_warps", warps),
@@ -299,8 +306,8 @@ pub(super) mod tests {
         let path = out("tornado", "gains.png");
         draw_tornado(&gains(), &path).expect("draw png");
         let (d3, d2) = (
-            pixels(&path, named("3D").unwrap()),
-            pixels(&path, named("2D").unwrap()),
+            pixels(&path, Key::ThreeD.colour().unwrap()),
+            pixels(&path, Key::TwoD.colour().unwrap()),
         );
         assert!(d3 > 1000 && d2 > 1000, "{d3} 3D and {d2} 2D pixels");
         same_twice("tornado-same", &|p| draw_tornado(&gains(), p));

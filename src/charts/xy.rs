@@ -11,7 +11,9 @@ use std::path::Path;
 /// One series of an [`XyChart`]: points joined in their order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct XySeries {
-    /// The name in the legend; it chooses the colour ([`crate::palette`]).
+    /// What the series shows: it chooses the colour ([`crate::palette`]).
+    pub key: super::Key,
+    /// The name in the legend.
     pub name: String,
     /// The points (x, y).
     pub points: Vec<(f64, f64)>,
@@ -90,7 +92,7 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
     let lines = c
         .series
         .iter()
-        .map(|s| (s.name.as_str(), points(s)))
+        .map(|s| (s.name.as_str(), s.key, points(s)))
         .collect();
     let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
     let (rings, percent, reference) = (&c.highlights[..], c.percent, c.reference);
@@ -112,17 +114,18 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
 pub(super) mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::*;
-    use crate::palette::named;
+    use crate::palette::Key;
 
     /// Cycles against register-file bits for two policies over warp
     /// counts, WaSP@48 ringed with the baseline@64.
     pub(in super::super) fn area() -> XyChart {
         let warps = [32, 48, 64, 96];
-        let series = |name: &str, extra: f64, cycles: [f64; 4]| {
+        let series = |key, name: &str, extra: f64, cycles: [f64; 4]| {
             let at = |(&w, c): (&i32, f64)| (f64::from(w) * 4096.0 + extra, c);
             let points = warps.iter().zip(cycles).map(at).collect();
             let labels = warps.iter().map(|w| w.to_string()).collect();
             XySeries {
+                key,
                 name: name.into(),
                 points,
                 labels,
@@ -135,8 +138,13 @@ pub(super) mod tests {
             x_label: "register-file bits per core".into(),
             y_label: "cycles".into(),
             series: vec![
-                series("baseline", 0.0, [1.30e6, 1.12e6, 1.05e6, 1.01e6]),
-                series("WaSP", 36.0, [1.22e6, 1.07e6, 1.04e6, 1.02e6]),
+                series(
+                    Key::Baseline,
+                    "baseline",
+                    0.0,
+                    [1.30e6, 1.12e6, 1.05e6, 1.01e6],
+                ),
+                series(Key::Wasp, "WaSP", 36.0, [1.22e6, 1.07e6, 1.04e6, 1.02e6]),
             ],
             highlights: vec![Highlight {
                 points: vec![(1, 1), (0, 2)],
@@ -159,7 +167,7 @@ pub(super) mod tests {
         assert_eq!(svg.matches("r=\"11\"").count(), 2, "two rings");
         let path = out("xy", "area.png");
         draw_xy(&area(), &path).expect("draw png");
-        assert!(pixels(&path, named("wasp").unwrap()) > 100);
+        assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 100);
         same_twice("xy-same", &|p| draw_xy(&area(), p));
         let bad = |f: fn(&mut XyChart), want: &str| {
             let mut c = area();

@@ -20,8 +20,9 @@
 //! of the next start still shows as its red pointer. Per-core-tile
 //! dispatch: the same two styles and pointers, thin and in the colour of
 //! the core that takes or finishes the tile (labelled with the tile number
-//! in that colour, one row of labels per core). The colours are
-//! [`crate::palette`]'s.
+//! in that colour, one row of labels per core). The title strip and the
+//! legends (plotters' series labels, right of each panel) are the charts'
+//! ([`crate::charts`]), the colours [`crate::palette`]'s.
 //!
 //! # Long windows
 //!
@@ -35,8 +36,9 @@
 //! kept). When more than one column in ten still has a mark, lines
 //! across the panels would hide the data: starts become short ticks down
 //! from each panel's top edge and ends ticks up from its bottom edge (same
-//! colours), without tile labels or pointers. The files stay small (an SVG of a 200,000-cycle window with 800 tiles
-//! is under a megabyte) and drawing is fast whatever the window.
+//! colours), without tile labels or pointers. The files stay small (an
+//! SVG of a 200,000-cycle window with 800 tiles is under a megabyte) and
+//! drawing is fast whatever the window.
 //!
 //! # Fonts
 //!
@@ -45,20 +47,13 @@
 //! labels and legends on a machine with no fonts installed. (An SVG names
 //! the `sans-serif` family; its viewer supplies the glyphs.)
 
-mod colours;
 mod downsample;
-mod error;
 mod layout;
-mod legend;
 mod marks;
 mod panel;
 
 use crate::fonts::register_fonts;
-use crate::picture::{is_svg, save, Picture};
-use error::drawing;
-use layout::render;
-use plotters::coord::Shift;
-use plotters::prelude::*;
+use crate::picture::{is_svg, save};
 use std::path::Path;
 use wasp_sim::timeline::Timeline;
 
@@ -76,24 +71,9 @@ pub const HEIGHT: u32 = 1000;
 pub fn draw(t: &Timeline, path: &Path) -> Result<(), String> {
     let svg = is_svg(path, "a timeline")?;
     check(t)?;
-    register_fonts().map_err(drawing)?;
-    save(&TimelinePicture(t), "drawing the timeline", path, svg)
-}
-
-/// A timeline as a [`Picture`] of [`WIDTH`] x [`HEIGHT`] pixels.
-struct TimelinePicture<'a>(&'a Timeline);
-
-impl Picture for TimelinePicture<'_> {
-    fn size(&self) -> (u32, u32) {
-        (WIDTH, HEIGHT)
-    }
-
-    fn render<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        render(self.0, root)
-    }
+    let who = "drawing the timeline";
+    register_fonts().map_err(|e| format!("{who}: {e}"))?;
+    save(&layout::TimelineChart(t), who, path, svg)
 }
 
 /// The checks that keep [`render`] from drawing nonsense.
@@ -130,6 +110,8 @@ fn check(t: &Timeline) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::palette::{TILE_END, TILE_START};
+    use plotters::style::RGBColor;
     use wasp_sim::timeline::{TileMark, TimelineSample};
 
     /// A unique scratch directory for one test.
@@ -353,7 +335,7 @@ mod tests {
         draw(&synthetic(1000, 600), &path).expect("draw png");
         let img = image::open(&path).expect("png decodes").to_rgb8();
         let count = |c: RGBColor| img.pixels().filter(|p| p.0 == [c.0, c.1, c.2]).count();
-        let (ends, starts) = (count(colours::TILE_END), count(colours::TILE_START));
+        let (ends, starts) = (count(TILE_END), count(TILE_START));
         // A pointer is about 45 pixels; two ends and two starts in each of
         // three panels.
         assert!(

@@ -5,6 +5,7 @@
 use super::figure::{Figure, SeriesData};
 use super::numbers::change;
 use super::Figures;
+use crate::palette::Key;
 use crate::reproduce::paper;
 use crate::study::point::Point;
 use wasp_rtl::policy::PolicySpec;
@@ -29,6 +30,7 @@ impl Figures<'_> {
             p.wasp,
         ] {
             f.series.push(SeriesData {
+                key: pol.into(),
                 name: pol.to_string(),
                 values: self.single(
                     |s| p.policy_point(s, d, pol),
@@ -54,6 +56,7 @@ impl Figures<'_> {
         );
         for (name, path) in [("L1 misses", "l1.misses"), ("L2 misses", "l2.misses")] {
             f.series.push(SeriesData {
+                key: Key::Other,
                 name: name.into(),
                 values: self.pair(
                     |s| p.policy_point(s, d, PolicySpec::Baseline),
@@ -83,17 +86,29 @@ impl Figures<'_> {
         f.reference = None;
         let base = |s: &str| p.policy_point(s, d, PolicySpec::Baseline);
         let wasp = |s: &str| p.policy_point(s, d, p.wasp);
-        for (name, point, path) in [
+        for (key, name, point, path) in [
             (
+                Key::Baseline,
                 "baseline, all",
                 &base as &dyn Fn(&str) -> Point,
                 "memory_latency.all",
             ),
-            ("WaSP, all", &wasp, "memory_latency.all"),
-            ("WaSP, priority warps", &wasp, "memory_latency.priority"),
-            ("WaSP, regular warps", &wasp, "memory_latency.regular"),
+            (Key::Wasp, "WaSP, all", &wasp, "memory_latency.all"),
+            (
+                Key::Wasp,
+                "WaSP, priority warps",
+                &wasp,
+                "memory_latency.priority",
+            ),
+            (
+                Key::Wasp,
+                "WaSP, regular warps",
+                &wasp,
+                "memory_latency.regular",
+            ),
         ] {
             f.series.push(SeriesData {
+                key,
                 name: name.into(),
                 values: self.single(point, |r| r.get(path)),
             });
@@ -115,6 +130,7 @@ impl Figures<'_> {
             "change in latency",
         );
         f.series.push(SeriesData {
+            key: Key::Other,
             name: "memory latency".into(),
             values: self.pair(
                 |s| p.policy_point(s, d, PolicySpec::Baseline),
@@ -140,6 +156,7 @@ impl Figures<'_> {
             "change in energy",
         );
         f.series.push(SeriesData {
+            key: Key::Other,
             name: "energy".into(),
             values: self.pair(
                 |s| p.policy_point(s, d, PolicySpec::Baseline),
