@@ -1,7 +1,7 @@
 //! What every picture shares, and what plotters lacks: the strip above the
-//! plot (title, subtitle, legend), the paper's marks, the
-//! [`Placer`] that puts labels where they hide nothing; and the plot's
-//! `ChartBuilder`, mesh style, range and tick labels.
+//! plot (title, subtitle, legend), the paper's marks, the [`Placer`] that
+//! puts labels where they hide nothing; and the plot's `ChartBuilder`,
+//! mesh style, range and tick labels.
 
 use super::legend::{legend, line_height, marker, rows, Legend, Shape, Swatch};
 use crate::fonts::{font, register_fonts};

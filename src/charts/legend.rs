@@ -4,9 +4,9 @@
 //! ([`legend`]), and the markers of points and of the paper's values,
 //! built from plotters' marker elements ([`marker`]).
 
-use super::frame::{text_size, Area, Drawn};
 use crate::fonts::font;
 use crate::palette::INK;
+use plotters::coord::Shift;
 use plotters::element::{DashedPathElement, Drawable, DynElement, PointCollection};
 use plotters::prelude::*;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
@@ -193,7 +193,8 @@ pub(crate) fn line_height(size: u32) -> f64 {
 /// The width in pixels of a legend column of `entries` in the font of
 /// `size`: swatch, gap, widest text, gap.
 fn column_width(entries: &[(String, Swatch)], size: u32) -> f64 {
-    let text = |e: &(String, Swatch)| text_size(&e.0, size, false).0;
+    let text =
+        |e: &(String, Swatch)| f64::from(font(size, false).box_size(&e.0).map_or(0, |b| b.0));
     f64::from(SWATCH + 8) + entries.iter().map(text).fold(0.0, f64::max) + 24.0
 }
 
@@ -212,10 +213,10 @@ pub(crate) fn rows(legend: &[(String, Swatch)], size: u32, width: f64) -> usize 
 /// are the entries (their labels and swatches), labelled from its top
 /// left corner.
 pub(crate) fn legend<DB: DrawingBackend>(
-    area: &Area<DB>,
+    area: &DrawingArea<DB, Shift>,
     legend: &[(String, Swatch)],
     (rows, size): (usize, u32),
-) -> Drawn<DB> {
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let (mut x, h) = (0.0, area.dim_in_pixel().1);
     for column in legend.chunks(rows.max(1)) {
         let width = column_width(column, size);

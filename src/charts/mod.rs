@@ -181,11 +181,11 @@ fn check(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use std::path::{Path, PathBuf};
 
     /// A fresh path `file` in a scratch directory of the test `name`.
-    pub(super) fn out(name: &str, file: &str) -> PathBuf {
+    pub(crate) fn out(name: &str, file: &str) -> PathBuf {
         let dir = std::env::temp_dir().join(format!("wasp-charts-{}-{name}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("scratch dir");
         let path = dir.join(file);
@@ -196,7 +196,7 @@ mod tests {
     /// The texts of the SVG at `path`, each with its anchor (x, y) and
     /// whether it reads upwards, after asserting that `want` (texts
     /// separated by `|`) are among them.
-    pub(super) fn texts(path: &Path, want: &str) -> Vec<(String, f64, f64, bool)> {
+    pub(crate) fn texts(path: &Path, want: &str) -> Vec<(String, f64, f64, bool)> {
         let svg = std::fs::read_to_string(path).expect("svg");
         let attr = |part: &str, a: &str| {
             let v = part.split(&format!(" {a}=\"")).nth(1)?.split('"').next()?;
@@ -217,7 +217,7 @@ mod tests {
     }
 
     /// The number of pixels of `colour` in the PNG at `path`.
-    pub(super) fn pixels(path: &Path, colour: plotters::style::RGBColor) -> usize {
+    pub(crate) fn pixels(path: &Path, colour: plotters::style::RGBColor) -> usize {
         let img = image::open(path).expect("png decodes").to_rgb8();
         let want = [colour.0, colour.1, colour.2];
         img.pixels().filter(|p| p.0 == want).count()
@@ -227,7 +227,7 @@ mod tests {
     type Draw<'a> = &'a dyn Fn(&Path) -> Result<(), String>;
 
     /// Draws with `draw` twice as PNG and as SVG: the same bytes each time.
-    pub(super) fn same_twice(name: &str, draw: Draw) {
+    pub(crate) fn same_twice(name: &str, draw: Draw) {
         for ext in ["png", "svg"] {
             let (a, b) = (
                 out(name, &format!("a.{ext}")),
@@ -242,7 +242,7 @@ mod tests {
     }
 
     /// The error of drawing with `draw` into `file`; no file is written.
-    pub(super) fn error(name: &str, file: &str, draw: Draw) -> String {
+    pub(crate) fn error(name: &str, file: &str, draw: Draw) -> String {
         let path = out(name, file);
         let e = draw(&path).expect_err(name);
         assert!(!path.exists(), "{name}: a file was written");

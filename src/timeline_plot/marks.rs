@@ -95,7 +95,7 @@ pub(super) fn mark_entries(marks: &[Mark], dense: bool) -> Vec<(String, Swatch)>
 }
 
 /// The tile marks across `chart`: a start a solid line, an end a dashed
-/// one, each with its pointer at the top ([`pointer`]); when `dense`,
+/// one, each with its pointer at the top ([`pointer()`]); when `dense`,
 /// full-height lines would hide the data, so starts are ticks down from
 /// the panel's top and ends ticks up from its bottom.
 pub(super) fn draw_marks<DB: DrawingBackend>(
