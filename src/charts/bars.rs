@@ -13,7 +13,7 @@ use super::frame::{
     Drawn, Frame, Placer, LABEL, SMALL,
 };
 use super::legend::{Shape, Swatch};
-use super::{check, frame, who, BarChart, CategoryGroup};
+use super::{check, ensure, frame, who, BarChart, CategoryGroup};
 use crate::palette::{series_colours, shade, INK};
 use plotters::coord::ranged1d::SegmentedCoord;
 use plotters::coord::types::{RangedCoordf64, RangedCoordusize};
@@ -44,10 +44,9 @@ pub fn draw_bars(chart: &BarChart, path: &Path) -> Result<(), String> {
     check(&who, marks, (n, "categories"), name_of)?;
     let bad_group = |g: &CategoryGroup| g.categories.end > n || g.categories.is_empty();
     let bad_sep = c.separators.iter().any(|&i| i > n) || c.highlight.iter().any(|&i| i >= n);
-    if bad_sep || c.groups.iter().any(bad_group) {
-        let what = "a separator, highlight or group";
-        return Err(format!("{who}: {what} is past the {n} categories"));
-    }
+    let what = "a separator, highlight or group";
+    let bad = bad_sep || c.groups.iter().any(bad_group);
+    ensure(!bad, || format!("{who}: {what} is past the {n} categories"))?;
     write(&who, path, || Bars::new(chart, who.clone()))
 }
 

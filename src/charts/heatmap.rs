@@ -8,7 +8,7 @@ use super::frame::{
     builder, edge, style, style_mesh, text_size, tick_label, value_label, write, Chart, Drawn,
     Frame, LABEL, SMALL,
 };
-use super::{finite, who};
+use super::{ensure, finite, who};
 use crate::palette::diverging;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -50,25 +50,17 @@ pub struct HeatMap {
 /// that cannot be written.
 pub fn draw_heatmap(map: &HeatMap, path: &Path) -> Result<(), String> {
     let (who, nx, ny) = (who(&map.title), map.x.len(), map.y.len());
-    if nx == 0 || ny == 0 || map.values.len() != ny {
-        let rows = map.values.len();
-        return Err(format!(
-            "{who}: {rows} rows of values for {nx} columns and {ny} rows"
-        ));
-    }
+    let rows = map.values.len();
+    let what = format!("{rows} rows of values for {nx} columns and {ny} rows");
+    ensure(nx > 0 && ny > 0 && rows == ny, || format!("{who}: {what}"))?;
     for (row, name) in map.values.iter().zip(&map.y) {
-        if row.len() != nx {
-            return Err(format!(
-                "{who}: row `{name}` has {} values for {nx} columns",
-                row.len()
-            ));
-        }
+        let len = row.len();
+        ensure(len == nx, || {
+            format!("{who}: row `{name}` has {len} values for {nx} columns")
+        })?;
         for (v, col) in row.iter().zip(&map.x) {
-            finite(
-                &who,
-                format_args!("the cell ({col}, {name})"),
-                v.unwrap_or(0.0),
-            )?;
+            let cell = format_args!("the cell ({col}, {name})");
+            finite(&who, cell, v.unwrap_or(0.0))?;
         }
     }
     write(&who, path, || Heat::new(map, who.clone()))
@@ -198,12 +190,12 @@ fn name(names: &[String]) -> impl Fn(&SegmentValue<usize>) -> String + '_ {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::*;
 
     /// WaSP's speedup over L0 MSHRs and warps per core.
-    pub(in super::super) fn mshrs_by_warps() -> HeatMap {
+    fn mshrs_by_warps() -> HeatMap {
         let top = vec![Some(-0.05), Some(-0.013), None, Some(-0.004)];
         let rows = [[-0.01, 0.02, 0.03, 0.035], [-0.032, 0.001, 0.004, 0.005]];
         HeatMap {

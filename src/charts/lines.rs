@@ -13,7 +13,7 @@ use super::frame::{
     Frame, Placer, Rect, LABEL,
 };
 use super::legend::{marker, Shape, Swatch};
-use super::{check, finite, who, Highlight, Key, LineChart, PaperMark};
+use super::{check, ensure, finite, who, Highlight, Key, LineChart, PaperMark};
 use crate::palette::{series_colours, shade, INK};
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::types::RangedCoordf64;
@@ -38,20 +38,16 @@ pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
     let (who, x, n, c) = (who(&chart.title), &chart.x, chart.x.len(), chart);
     for i in 0..n {
         finite(&who, format_args!("x[{i}]"), x[i])?;
-        if i > 0 && x[i] <= x[i - 1] {
-            let (a, b) = (x[i - 1], x[i]);
-            return Err(format!(
-                "{who}: x[{i}] = {b} follows {a}: x must be strictly increasing"
-            ));
-        }
+        let (a, b) = (x[i.max(1) - 1], x[i]);
+        let order = "x must be strictly increasing";
+        ensure(i == 0 || b > a, || {
+            format!("{who}: x[{i}] = {b} follows {a}: {order}")
+        })?;
     }
-    let ticks = c.x_ticks.as_deref();
-    if let Some(t) = ticks.filter(|t| t.len() != n) {
-        return Err(format!(
-            "{who}: {} x tick labels for {n} x positions",
-            t.len()
-        ));
-    }
+    let (ticks, count) = (c.x_ticks.as_deref(), c.x_ticks.as_ref().map_or(n, Vec::len));
+    ensure(count == n, || {
+        format!("{who}: {count} x tick labels for {n} x positions")
+    })?;
     let name_of = |i: usize| format!("x = {}", ticks.map_or(x[i].to_string(), |t| t[i].clone()));
     let marks = (&c.series[..], &c.paper[..], c.reference);
     check(&who, marks, (n, "x positions"), name_of)?;

@@ -17,12 +17,9 @@
 //! labels where they hide nothing. The timeline
 //! ([`crate::timeline_plot`]) shares the frame and the legend. Colours come
 //! from [`crate::palette`] by each series' [`Key`], so a policy has one
-//! colour in every figure. Drawing is deterministic. `examples` (tests,
-//! ignored) writes one of each kind.
+//! colour in every figure. Drawing is deterministic.
 
 mod bars;
-#[cfg(test)]
-mod examples;
 pub(crate) mod frame;
 mod heatmap;
 pub(crate) mod legend;
@@ -136,6 +133,11 @@ fn who(title: &str) -> String {
     }
 }
 
+/// Ok when `ok`, else the error `msg()`.
+fn ensure(ok: bool, msg: impl FnOnce() -> String) -> Result<(), String> {
+    ok.then_some(()).ok_or_else(msg)
+}
+
 /// An error unless `v` is finite; `what` names it.
 fn finite(who: &str, what: impl std::fmt::Display, v: f64) -> Result<(), String> {
     match v.is_finite() {
@@ -153,28 +155,24 @@ fn check(
     name_of: impl Fn(usize) -> String,
 ) -> Result<(), String> {
     let (k, nothing) = (series.len(), "nothing to draw");
-    if n == 0 || k == 0 {
-        return Err(format!("{who}: {n} {what} and {k} series: {nothing}"));
-    }
+    ensure(n > 0 && k > 0, || {
+        format!("{who}: {n} {what} and {k} series: {nothing}")
+    })?;
     for s in series {
         let (name, len) = (&s.name, s.values.len());
-        if len != n {
-            return Err(format!(
-                "{who}: series `{name}` has {len} values for {n} {what}"
-            ));
-        }
+        ensure(len == n, || {
+            format!("{who}: series `{name}` has {len} values for {n} {what}")
+        })?;
         for (i, v) in s.values.iter().enumerate() {
             let at = format_args!("series `{name}` at {}", name_of(i));
             finite(who, at, v.unwrap_or(0.0))?;
         }
     }
     for m in paper {
-        let l = &m.label;
-        if m.series.is_some_and(|s| s >= k) || m.category.is_some_and(|c| c >= n) {
-            return Err(format!(
-                "{who}: paper mark `{l}` is past the {k} series or {n} {what}"
-            ));
-        }
+        let (l, past) = (&m.label, m.series >= Some(k) || m.category >= Some(n));
+        ensure(!past, || {
+            format!("{who}: paper mark `{l}` is past the {k} series or {n} {what}")
+        })?;
         finite(who, format_args!("paper mark `{l}`"), m.value)?;
     }
     finite(who, "the reference line", reference.unwrap_or(0.0))

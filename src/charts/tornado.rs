@@ -10,7 +10,7 @@ use super::frame::{
     Chart, Drawn, Frame, Placer, Rect, LABEL, SMALL,
 };
 use super::legend::Swatch;
-use super::{finite, who, Key};
+use super::{ensure, finite, who, Key};
 use crate::palette::{series_colours, shade};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -74,29 +74,25 @@ pub struct TornadoChart {
 /// above its high; a file that cannot be written.
 pub fn draw_tornado(chart: &TornadoChart, path: &Path) -> Result<(), String> {
     let (who, n) = (who(&chart.title), chart.series.len());
-    if n == 0 || chart.rows.is_empty() {
-        return Err(format!("{who}: no series or no rows: nothing to draw"));
-    }
+    let nothing = "no series or no rows: nothing to draw";
+    ensure(n > 0 && !chart.rows.is_empty(), || {
+        format!("{who}: {nothing}")
+    })?;
     for s in &chart.series {
-        finite(
-            &who,
-            format_args!("the reference of `{}`", s.name),
-            s.reference.unwrap_or(0.0),
-        )?;
+        let what = format_args!("the reference of `{}`", s.name);
+        finite(&who, what, s.reference.unwrap_or(0.0))?;
     }
     for r in &chart.rows {
         let (p, spans) = (&r.parameter, r.spans.len());
-        if spans != n {
-            return Err(format!("{who}: row `{p}` has {spans} spans for {n} series"));
-        }
+        ensure(spans == n, || {
+            format!("{who}: row `{p}` has {spans} spans for {n} series")
+        })?;
         for s in r.spans.iter().flatten() {
-            finite(&who, format_args!("row `{p}`"), s.low.0 + s.high.0)?;
-            if s.low.0 > s.high.0 {
-                return Err(format!(
-                    "{who}: row `{p}` has a low {} above its high {}",
-                    s.low.0, s.high.0
-                ));
-            }
+            let ((lo, _), (hi, _)) = (&s.low, &s.high);
+            finite(&who, format_args!("row `{p}`"), lo + hi)?;
+            ensure(lo <= hi, || {
+                format!("{who}: row `{p}` has a low {lo} above its high {hi}")
+            })?;
         }
     }
     write(&who, path, || Tornado::new(chart, who.clone()))
@@ -248,13 +244,13 @@ fn outward((x, mid): (f64, f64), text: &str, dir: f64) -> Vec<Rect> {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::*;
     use crate::palette::Key;
 
     /// WaSP's speedup range over three parameters, for 3D and 2D scenes.
-    pub(in super::super) fn gains() -> TornadoChart {
+    fn gains() -> TornadoChart {
         let span = |lo: f64, l: &str, hi: f64, h: &str| {
             let (low, high) = ((lo, l.into()), (hi, h.into()));
             Some(Span { low, high })

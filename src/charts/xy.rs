@@ -5,7 +5,7 @@
 //! [`super::lines`] draws them.
 
 use super::lines::{Plot, Point};
-use super::{finite, frame::write, who};
+use super::{ensure, finite, frame::write, who};
 use std::path::Path;
 
 /// One series of an [`XyChart`]: points joined in their order.
@@ -60,16 +60,14 @@ pub struct XyChart {
 /// file that cannot be written.
 pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
     let (who, c) = (who(&chart.title), chart);
-    if c.series.is_empty() {
-        return Err(format!("{who}: no series: nothing to draw"));
-    }
+    let nothing = "no series: nothing to draw";
+    ensure(!c.series.is_empty(), || format!("{who}: {nothing}"))?;
     for s in &c.series {
         let (n, l, name) = (s.points.len(), s.labels.len(), &s.name);
-        if n == 0 || (l > 0 && l != n) {
-            return Err(format!(
-                "{who}: series `{name}` has {n} points and {l} labels"
-            ));
-        }
+        let ok = n > 0 && (l == 0 || l == n);
+        ensure(ok, || {
+            format!("{who}: series `{name}` has {n} points and {l} labels")
+        })?;
         for (i, (x, y)) in s.points.iter().enumerate() {
             finite(&who, format_args!("series `{name}` at point {i}"), x + y)?;
         }
@@ -77,12 +75,10 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
     finite(&who, "the reference line", c.reference.unwrap_or(0.0))?;
     let missing = |&&(s, i): &&(usize, usize)| c.series.get(s).is_none_or(|s| i >= s.points.len());
     for h in &c.highlights {
-        if let Some((s, i)) = h.points.iter().find(missing) {
-            let caption = &h.caption;
-            return Err(format!(
-                "{who}: `{caption}` rings point {i} of series {s}: no such point"
-            ));
-        }
+        let (caption, found) = (&h.caption, h.points.iter().find(missing));
+        let no =
+            |(s, i)| format!("{who}: `{caption}` rings point {i} of series {s}: no such point");
+        found.map_or(Ok(()), |&p| Err(no(p)))?;
     }
     let points = |s: &XySeries| -> Vec<Option<Point>> {
         let label = |i: usize| s.labels.get(i).cloned().unwrap_or_default();
@@ -111,14 +107,14 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::*;
     use crate::palette::Key;
 
     /// Cycles against register-file bits for two policies over warp
     /// counts, WaSP@48 ringed with the baseline@64.
-    pub(in super::super) fn area() -> XyChart {
+    fn area() -> XyChart {
         let warps = [32, 48, 64, 96];
         let series = |key, name: &str, extra: f64, cycles: [f64; 4]| {
             let at = |(&w, c): (&i32, f64)| (f64::from(w) * 4096.0 + extra, c);
