@@ -134,7 +134,7 @@ fn who(title: &str) -> String {
 }
 
 /// Ok when `ok`, else the error `msg()`.
-fn ensure(ok: bool, msg: impl FnOnce() -> String) -> Result<(), String> {
+pub(crate) fn ensure(ok: bool, msg: impl FnOnce() -> String) -> Result<(), String> {
     ok.then_some(()).ok_or_else(msg)
 }
 

@@ -15,21 +15,13 @@ pub(super) struct Agg {
 
 impl Agg {
     pub(super) fn of(values: impl Iterator<Item = u32>) -> Agg {
-        let (mut min, mut max, mut sum, mut n) = (u32::MAX, 0u32, 0u64, 0u64);
-        for v in values {
-            min = min.min(v);
-            max = max.max(v);
-            sum += u64::from(v);
-            n += 1;
-        }
-        if n == 0 {
-            return Agg::default();
-        }
-        Agg {
-            min: f64::from(min),
-            max: f64::from(max),
-            mean: sum as f64 / n as f64,
-        }
+        let v: Vec<f64> = values.map(f64::from).collect();
+        let (min, max) = v
+            .iter()
+            .fold((f64::INFINITY, 0.0), |(lo, hi), &x| (x.min(lo), x.max(hi)));
+        let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
+        let min = if v.is_empty() { 0.0 } else { min };
+        Agg { min, max, mean }
     }
 }
 

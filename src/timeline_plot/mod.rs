@@ -22,7 +22,8 @@
 //! the core that takes or finishes the tile (labelled with the tile number
 //! in that colour, one row of labels per core). The title strip and the
 //! legends (plotters' series labels, right of each panel) are the charts'
-//! ([`crate::charts`]), the colours [`crate::palette`]'s.
+//! ([`crate::charts`]), the colours [`crate::palette`]'s, the font
+//! [`crate::fonts`]' embedded DejaVu Sans.
 //!
 //! # Long windows
 //!
@@ -39,19 +40,13 @@
 //! colours), without tile labels or pointers. The files stay small (an
 //! SVG of a 200,000-cycle window with 800 tiles is under a megabyte) and
 //! drawing is fast whatever the window.
-//!
-//! # Fonts
-//!
-//! Text is rendered by plotters' `ab_glyph` support from the DejaVu Sans
-//! that the `dejavu` crate embeds in the binary, so the picture has its
-//! labels and legends on a machine with no fonts installed. (An SVG names
-//! the `sans-serif` family; its viewer supplies the glyphs.)
 
 mod downsample;
 mod layout;
 mod marks;
 mod panel;
 
+use crate::charts::ensure;
 use crate::fonts::register_fonts;
 use crate::picture::{is_svg, save};
 use std::path::Path;
@@ -78,31 +73,20 @@ pub fn draw(t: &Timeline, path: &Path) -> Result<(), String> {
 
 /// The checks that keep the drawing from drawing nonsense.
 fn check(t: &Timeline) -> Result<(), String> {
-    if t.samples.is_empty() {
-        return Err(format!(
-            "the timeline of cycles {}..={} has no samples (did the run end before the window?): nothing to draw",
-            t.from, t.to
-        ));
-    }
-    let mut last = None;
-    for s in &t.samples {
-        if s.resident.len() != t.cores || s.priority_launches.len() != t.cores {
-            return Err(format!(
-                "timeline sample of cycle {}: {} resident counts and {} launch counts for {} cores",
-                s.cycle,
-                s.resident.len(),
-                s.priority_launches.len(),
-                t.cores
-            ));
-        }
-        if last.is_some_and(|c| s.cycle <= c) {
-            return Err(format!(
-                "timeline sample of cycle {} follows cycle {}: samples must be in cycle order",
-                s.cycle,
-                last.unwrap_or_default()
-            ));
-        }
-        last = Some(s.cycle);
+    let (from, to, cores) = (t.from, t.to, t.cores);
+    let why = "(did the run end before the window?): nothing to draw";
+    let none = || format!("the timeline of cycles {from}..={to} has no samples {why}");
+    ensure(!t.samples.is_empty(), none)?;
+    for (i, s) in t.samples.iter().enumerate() {
+        let (c, r, l) = (s.cycle, s.resident.len(), s.priority_launches.len());
+        let counts = format_args!("{r} resident counts and {l} launch counts for {cores} cores");
+        ensure(r == cores && l == cores, || {
+            format!("timeline sample of cycle {c}: {counts}")
+        })?;
+        let last = t.samples[i.max(1) - 1].cycle;
+        let order = format_args!("follows cycle {last}: samples must be in cycle order");
+        let after = || format!("timeline sample of cycle {c} {order}");
+        ensure(i == 0 || c > last, after)?;
     }
     Ok(())
 }
