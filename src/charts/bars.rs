@@ -9,8 +9,8 @@
 
 use super::frame::{
     builder, column, edge, paper_entry, paper_lines, paper_margin, paper_point, plot_rect, px,
-    range, style, style_mesh, text_size, tick_label, value_label, write, y_area, Area, Chart,
-    Drawn, Frame, Placer, LABEL, SMALL,
+    range, style, style_mesh, text_size, tick_label, value_label, write, y_area, Area, Drawn,
+    Frame, Picture, Placer, LABEL, SMALL,
 };
 use super::legend::{Shape, Swatch};
 use super::{check, ensure, frame, who, BarChart, CategoryGroup};
@@ -47,13 +47,12 @@ pub fn draw_bars(chart: &BarChart, path: &Path) -> Result<(), String> {
     let what = "a separator, highlight or group";
     let bad = bad_sep || c.groups.iter().any(bad_group);
     ensure(!bad, || format!("{who}: {what} is past the {n} categories"))?;
-    write(&who, path, || Bars::new(chart, who.clone()))
+    write(&who, path, || Bars::new(chart))
 }
 
 /// A bar chart laid out.
 struct Bars<'a> {
     c: &'a BarChart,
-    who: String,
     frame: Frame<'a>,
     colours: Vec<RGBColor>,
     y: std::ops::Range<f64>,
@@ -65,7 +64,7 @@ struct Bars<'a> {
 }
 
 impl<'a> Bars<'a> {
-    fn new(c: &'a BarChart, who: String) -> Self {
+    fn new(c: &'a BarChart) -> Self {
         let (n, s) = (c.categories.len(), c.series.len());
         let bars = present(&c.series).into_iter().map(|b| b.2);
         let data: Vec<f64> = bars.chain(c.paper.iter().map(|m| m.value)).collect();
@@ -107,7 +106,6 @@ impl<'a> Bars<'a> {
         let pad = (left, bottom, top, right);
         Bars {
             c,
-            who,
             frame,
             colours,
             y,
@@ -123,11 +121,7 @@ impl<'a> Bars<'a> {
     }
 }
 
-impl Chart for Bars<'_> {
-    fn who(&self) -> &str {
-        &self.who
-    }
-
+impl Picture for Bars<'_> {
     fn size(&self) -> (u32, u32) {
         let height = f64::from(self.frame.height()) + self.pad.2 + 438.0 + self.pad.1;
         (self.frame.width as u32, height.max(700.0) as u32)

@@ -6,9 +6,9 @@
 use super::legend::{legend, line_height, marker, rows, Legend, Shape, Swatch};
 use crate::fonts::{font, register_fonts};
 use crate::palette::{GRID, INK};
-use crate::picture::{is_svg, save, Picture};
+use crate::picture::{is_svg, save};
+pub(crate) use crate::picture::{Area, Drawn, Picture};
 use plotters::coord::types::RangedCoordf64;
-use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos as H, Pos, VPos as V};
@@ -23,38 +23,9 @@ pub(super) const SMALL: u32 = 13;
 pub(super) type Rect = (f64, f64, f64, f64);
 /// The label areas left of and under a plot, its margins over and right.
 pub(crate) type Pad = (f64, f64, f64, f64);
-/// A drawing area in pixels.
-pub(crate) type Area<DB> = DrawingArea<DB, Shift>;
-/// What drawing returns.
-pub(crate) type Drawn<DB, T = ()> =
-    Result<T, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
-
-/// A chart laid out: its error prefix, size and drawing.
-pub(crate) trait Chart {
-    /// `drawing <title>`.
-    fn who(&self) -> &str;
-    /// The picture's size in pixels.
-    fn size(&self) -> (u32, u32);
-    /// Draws the chart on `root`.
-    fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB>;
-}
-
-impl<C: Chart> Picture for C {
-    fn size(&self) -> (u32, u32) {
-        Chart::size(self)
-    }
-
-    fn render<DB: DrawingBackend>(&self, root: &Area<DB>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        self.draw(root).map_err(|e| format!("{}: {e}", self.who()))
-    }
-}
-
 /// Writes the chart that `layout` gives to `path` (PNG or SVG by the
 /// extension), registering the fonts first: the layout measures text.
-pub(super) fn write<C: Chart>(
+pub(super) fn write<C: Picture>(
     who: &str,
     path: &Path,
     layout: impl FnOnce() -> C,

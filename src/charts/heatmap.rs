@@ -5,8 +5,8 @@
 //! right of the grid.
 
 use super::frame::{
-    builder, edge, style, style_mesh, text_size, tick_label, value_label, write, Chart, Drawn,
-    Frame, LABEL, SMALL,
+    builder, edge, style, style_mesh, text_size, tick_label, value_label, write, Drawn, Frame,
+    Picture, LABEL, SMALL,
 };
 use super::{ensure, finite, who};
 use crate::palette::diverging;
@@ -63,13 +63,12 @@ pub fn draw_heatmap(map: &HeatMap, path: &Path) -> Result<(), String> {
             finite(&who, cell, v.unwrap_or(0.0))?;
         }
     }
-    write(&who, path, || Heat::new(map, who.clone()))
+    write(&who, path, || Heat::new(map))
 }
 
 /// A heat map laid out.
 struct Heat<'a> {
     m: &'a HeatMap,
-    who: String,
     frame: Frame<'a>,
     /// The largest magnitude: the ends of the scale.
     scale: f64,
@@ -77,7 +76,7 @@ struct Heat<'a> {
 }
 
 impl<'a> Heat<'a> {
-    fn new(m: &'a HeatMap, who: String) -> Self {
+    fn new(m: &'a HeatMap) -> Self {
         let scale = m
             .values
             .iter()
@@ -96,7 +95,6 @@ impl<'a> Heat<'a> {
         let frame = Frame::new((&m.title, &m.subtitle), Vec::new(), left, width);
         Heat {
             m,
-            who,
             frame,
             scale,
             left,
@@ -104,11 +102,7 @@ impl<'a> Heat<'a> {
     }
 }
 
-impl Chart for Heat<'_> {
-    fn who(&self) -> &str {
-        &self.who
-    }
-
+impl Picture for Heat<'_> {
     fn size(&self) -> (u32, u32) {
         let height = f64::from(self.frame.height()) + 72.0 * self.m.y.len() as f64 + 90.0;
         (self.frame.width as u32, height.clamp(560.0, 1200.0) as u32)
@@ -117,7 +111,7 @@ impl Chart for Heat<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
         let (m, s) = (self.m, self.scale);
         let area = self.frame.draw(root)?;
-        let (grid, bar) = area.split_horizontally(Chart::size(self).0 - BAR_W);
+        let (grid, bar) = area.split_horizontally(self.size().0 - BAR_W);
         let (lx, ly) = (m.x.len().max(2) - 1, m.y.len().max(2) - 1);
         let mut chart = builder(&grid, (self.left, 64.0, 10.0, 10.0))
             .build_cartesian_2d((0..lx).into_segmented(), (0..ly).into_segmented())?;

@@ -9,8 +9,8 @@
 
 use super::frame::{
     around, beside, builder, column, paper_entry, paper_lines, paper_margin, paper_point,
-    plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area, Chart, Drawn,
-    Frame, Placer, Rect, LABEL,
+    plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area, Drawn, Frame,
+    Picture, Placer, Rect, LABEL,
 };
 use super::legend::{marker, Shape, Swatch};
 use super::{check, ensure, finite, who, Highlight, Key, LineChart, PaperMark};
@@ -59,7 +59,6 @@ pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
     let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
     let (lines, paper) = (lines.collect(), &c.paper[..]);
     let plot = Plot {
-        who: who.clone(),
         texts,
         lines,
         x,
@@ -77,7 +76,6 @@ pub(super) type Point = (f64, f64, String);
 
 /// What line and XY charts draw.
 pub(super) struct Plot<'a> {
-    pub who: String,
     /// Title, subtitle, x label, y label.
     pub texts: [&'a str; 4],
     /// Each series' name, key and points (None: a gap).
@@ -198,11 +196,7 @@ impl Ranged for Ticked {
     }
 }
 
-impl Chart for Layout<'_> {
-    fn who(&self) -> &str {
-        &self.p.who
-    }
-
+impl Picture for Layout<'_> {
     fn size(&self) -> (u32, u32) {
         (
             WIDTH as u32,

@@ -7,7 +7,7 @@
 
 use super::frame::{
     around, builder, edge, plot_rect, range, style_mesh, text_size, tick_label, value_label, write,
-    Chart, Drawn, Frame, Placer, Rect, LABEL, SMALL,
+    Drawn, Frame, Picture, Placer, Rect, LABEL, SMALL,
 };
 use super::legend::Swatch;
 use super::{ensure, finite, who, Key};
@@ -95,14 +95,13 @@ pub fn draw_tornado(chart: &TornadoChart, path: &Path) -> Result<(), String> {
             })?;
         }
     }
-    write(&who, path, || Tornado::new(chart, who.clone()))
+    write(&who, path, || Tornado::new(chart))
 }
 
 /// A tornado chart laid out: the rows widest first, the x range, the
 /// width of the parameter names left of the plot.
 struct Tornado<'a> {
     c: &'a TornadoChart,
-    who: String,
     frame: Frame<'a>,
     colours: Vec<RGBColor>,
     order: Vec<usize>,
@@ -111,7 +110,7 @@ struct Tornado<'a> {
 }
 
 impl<'a> Tornado<'a> {
-    fn new(c: &'a TornadoChart, who: String) -> Self {
+    fn new(c: &'a TornadoChart) -> Self {
         let spans = |r: &'a TornadoRow| r.spans.iter().flatten();
         let width = |r| spans(r).map(|s| s.high.0 - s.low.0).fold(0.0, f64::max);
         let mut order: Vec<usize> = (0..c.rows.len()).collect();
@@ -149,7 +148,6 @@ impl<'a> Tornado<'a> {
         let x = x.start - pad..x.end + pad;
         Tornado {
             c,
-            who,
             frame,
             colours,
             order,
@@ -159,11 +157,7 @@ impl<'a> Tornado<'a> {
     }
 }
 
-impl Chart for Tornado<'_> {
-    fn who(&self) -> &str {
-        &self.who
-    }
-
+impl Picture for Tornado<'_> {
     fn size(&self) -> (u32, u32) {
         let rows = self.c.rows.len() as f64 * (22.0 * self.c.series.len() as f64 + 18.0);
         let height = f64::from(self.frame.height()) + rows + 90.0;

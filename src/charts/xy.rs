@@ -93,7 +93,6 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
     let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
     let (rings, percent, reference) = (&c.highlights[..], c.percent, c.reference);
     let plot = Plot {
-        who: who.clone(),
         texts,
         lines,
         x: &[],

@@ -6,7 +6,7 @@ use super::downsample::{downsample, Column};
 use super::marks::{draw_marks, label_tiles, mark_entries, merge_marks};
 use super::panel::{panel, panel_legend, plot_width, series, split, steps, Panel};
 use super::{HEIGHT, WIDTH};
-use crate::charts::frame::{Area, Chart, Drawn, Frame};
+use crate::charts::frame::{Area, Drawn, Frame, Picture};
 use crate::charts::legend::{Legend, Swatch};
 use crate::palette::{other, LEVELS};
 use plotters::element::DashedPathElement;
@@ -17,11 +17,7 @@ use wasp_sim::timeline::Timeline;
 /// A timeline to draw.
 pub(super) struct TimelineChart<'a>(pub &'a Timeline);
 
-impl Chart for TimelineChart<'_> {
-    fn who(&self) -> &str {
-        "drawing the timeline"
-    }
-
+impl Picture for TimelineChart<'_> {
     fn size(&self) -> (u32, u32) {
         (WIDTH, HEIGHT)
     }
