@@ -8,9 +8,9 @@
 //! label.
 
 use super::frame::{
-    builder, column, edge, paper_entry, paper_lines, paper_margin, paper_point, plot_rect, px,
-    range, style, style_mesh, text_size, tick_label, value_label, write, y_area, Area, Drawn,
-    Frame, Picture, Placer, LABEL, SMALL,
+    builder, column, edge, mark_colour, paper_entry, paper_lines, paper_margin, paper_point,
+    plot_rect, px, range, style, style_mesh, text_size, tick_label, value_label, write, y_area,
+    Area, Drawn, Frame, Picture, Placer, LABEL, SMALL,
 };
 use super::legend::{Shape, Swatch};
 use super::{check, ensure, frame, who, BarChart, CategoryGroup};
@@ -114,11 +114,6 @@ impl<'a> Bars<'a> {
             rotate,
         }
     }
-
-    /// The colour of the paper's marks of `series` (dark grey for none).
-    fn mark_colour(&self, series: Option<usize>) -> RGBColor {
-        series.map_or(INK, |s| shade(self.colours[s], 0.62))
-    }
 }
 
 impl Picture for Bars<'_> {
@@ -192,7 +187,7 @@ impl Bars<'_> {
         g: &Geom,
     ) -> Drawn<DB> {
         let (c, p) = (self.c, g.p);
-        let colour = |s| self.mark_colour(s);
+        let colour = |s| mark_colour(&self.colours, s);
         paper_lines(root, (p, &mut *placer), &c.paper, |v| g.py(v), colour)?;
         let bars = present(&c.series);
         let texts: Vec<String> = bars.iter().map(|b| value_label(b.2, c.percent)).collect();

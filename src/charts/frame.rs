@@ -5,7 +5,7 @@
 
 use super::legend::{legend, line_height, marker, rows, Legend, Shape, Swatch};
 use crate::fonts::{font, register_fonts};
-use crate::palette::{GRID, INK};
+use crate::palette::{shade, GRID, INK};
 use crate::picture::{is_svg, save};
 pub(crate) use crate::picture::{Area, Drawn, Picture};
 use plotters::coord::types::RangedCoordf64;
@@ -127,6 +127,12 @@ pub(super) fn paper_entry(paper: &[super::PaperMark], shape: Shape) -> Option<(S
         label,
         Swatch::Dashed(INK.stroke_width(2), marker.then_some(shape)),
     ))
+}
+
+/// The colour of the paper's marks of `series` (dark grey for none) in a
+/// chart of series `colours`.
+pub(super) fn mark_colour(colours: &[RGBColor], series: Option<usize>) -> RGBColor {
+    series.map_or(INK, |s| shade(colours[s], 0.62))
 }
 
 /// The width of the margin right of the plot for the labels of the paper's

@@ -77,18 +77,11 @@ struct Heat<'a> {
 
 impl<'a> Heat<'a> {
     fn new(m: &'a HeatMap) -> Self {
-        let scale = m
-            .values
-            .iter()
-            .flatten()
-            .flatten()
-            .fold(0.0f64, |s, v| s.max(v.abs()));
+        let values = m.values.iter().flatten().flatten();
+        let scale = values.fold(0.0f64, |s, v| s.max(v.abs()));
         let scale = if scale > 0.0 { scale } else { 1.0 };
-        let left =
-            m.y.iter()
-                .map(|y| text_size(y, LABEL, false).0)
-                .fold(0.0, f64::max)
-                + 44.0;
+        let names = m.y.iter().map(|y| text_size(y, LABEL, false).0);
+        let left = names.fold(0.0, f64::max) + 44.0;
         let width = (left + 110.0 * m.x.len() as f64 + f64::from(BAR_W) + 20.0)
             .clamp(800.0, 1600.0)
             .round();

@@ -8,9 +8,9 @@
 //! caption over them. Labels go where they hide nothing.
 
 use super::frame::{
-    around, beside, builder, column, paper_entry, paper_lines, paper_margin, paper_point,
-    plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area, Drawn, Frame,
-    Picture, Placer, Rect, LABEL,
+    around, beside, builder, column, mark_colour, paper_entry, paper_lines, paper_margin,
+    paper_point, plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area,
+    Drawn, Frame, Picture, Placer, Rect, LABEL,
 };
 use super::legend::{marker, Shape, Swatch};
 use super::{check, ensure, finite, who, Highlight, Key, LineChart, PaperMark};
@@ -129,21 +129,15 @@ impl<'a> Plot<'a> {
             None => numeric.collect(),
         };
         // Where labels would overlap, every k-th.
-        let widest = ticks
-            .iter()
-            .map(|t| text_size(&t.1, LABEL, false).0)
-            .fold(0.0, f64::max);
+        let widest = ticks.iter().map(|t| text_size(&t.1, LABEL, false).0);
         let gaps = ticks
             .windows(2)
             .map(|w| (w[1].0 - w[0].0) / (x.end - x.start) * plot_w);
-        let every = ((widest + 10.0) / gaps.fold(f64::INFINITY, f64::min).max(1.0))
-            .ceil()
-            .max(1.0);
-        let crowded = ticks
-            .iter_mut()
-            .enumerate()
-            .filter(|(i, _)| i % every as usize != 0);
-        crowded.for_each(|(_, t)| t.1.clear());
+        let gap = gaps.fold(f64::INFINITY, f64::min).max(1.0);
+        let every = ((widest.fold(0.0, f64::max) + 10.0) / gap).ceil().max(1.0) as usize;
+        for (_, t) in ticks.iter_mut().enumerate().filter(|(i, _)| i % every != 0) {
+            t.1.clear();
+        }
         let colours = series_colours(&self.lines.iter().map(|l| l.1).collect::<Vec<_>>());
         let swatch = |k, c: RGBColor| Swatch::Line(c.stroke_width(2), Some(Shape::of(k)));
         let entry = |(k, (l, &c))| (String::from(l), swatch(k, c));
@@ -212,8 +206,8 @@ impl Picture for Layout<'_> {
         let pad = (self.pad.0, 64.0, 10.0, self.pad.1);
         let mut chart = builder(&area, pad).build_cartesian_2d(x_axis, y.clone())?;
         let x_label = |v: &f64| {
-            let near = |t: &&(f64, String)| ((t.0 - v).abs() < 1e-9).then(|| t.1.clone());
-            self.ticks.iter().find_map(|t| near(&t)).unwrap_or_default()
+            let near = self.ticks.iter().find(|t| (t.0 - v).abs() < 1e-9);
+            near.map(|t| t.1.clone()).unwrap_or_default()
         };
         let y_label = tick_label(&y, 8, pl.percent);
         let mut mesh = chart.configure_mesh();
@@ -237,7 +231,7 @@ impl Picture for Layout<'_> {
             (f64::from(x), f64::from(y))
         };
         let mut placer = Placer::default();
-        let colour = |s| self.mark_colour(s);
+        let colour = |s| mark_colour(&self.colours, s);
         paper_lines(root, (p, &mut placer), pl.paper, |v| at(x0, v).1, colour)?;
         let series = || pl.lines.iter().map(|l| &l.2).zip(&self.colours).enumerate();
         for (_, (pts, &k)) in series() {
@@ -274,7 +268,7 @@ impl Layout<'_> {
         let (pl, mut labels, mut ringed) = (&self.p, Vec::new(), Vec::new());
         for m in pl.paper.iter().filter(|m| m.category.is_some()) {
             let i = m.category.unwrap_or(0);
-            let (xy, colour) = (at(pl.x[i], m.value), self.mark_colour(m.series));
+            let (xy, colour) = (at(pl.x[i], m.value), mark_colour(&self.colours, m.series));
             let (mark, shape) = ((xy, 16.0, 8.0), paper_shape(m.series));
             paper_point((root, &mut placer), mark, shape, colour)?;
             labels.push((beside(xy, 20.0, &m.label, 400, p), m.label.as_str(), colour));
@@ -307,11 +301,6 @@ impl Layout<'_> {
             }
         }
         placer.draw_all(root, labels, p)
-    }
-
-    /// The colour of the paper's marks of `series` (dark grey for none).
-    fn mark_colour(&self, series: Option<usize>) -> RGBColor {
-        series.map_or(INK, |s| shade(self.colours[s], 0.62))
     }
 }
 

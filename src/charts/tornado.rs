@@ -130,18 +130,14 @@ impl<'a> Tornado<'a> {
             .map(|r| text_size(&r.parameter, LABEL, false).0);
         let left = names.fold(0.0, f64::max) + 24.0;
         let colours = series_colours(&c.series.iter().map(|s| s.key).collect::<Vec<_>>());
-        let mut legend = Vec::new();
-        for (s, &k) in c.series.iter().zip(&colours) {
-            legend.push((s.name.clone(), Swatch::Block(k)));
-        }
-        for (s, &k) in c.series.iter().zip(&colours) {
+        let series = || c.series.iter().zip(&colours);
+        let mut legend: Vec<_> = series()
+            .map(|(s, &k)| (s.name.clone(), Swatch::Block(k)))
+            .collect();
+        for (s, &k) in series() {
             let Some(v) = s.reference else { continue };
-            let text = format!(
-                "{}, {}: {}",
-                c.reference_label,
-                s.name,
-                value_label(v, c.percent)
-            );
+            let (label, value) = (&c.reference_label, value_label(v, c.percent));
+            let text = format!("{label}, {}: {value}", s.name);
             legend.push((text, Swatch::Line(shade(k, 0.62).stroke_width(2), None)));
         }
         let frame = Frame::new((&c.title, &c.subtitle), legend, left, 1200.0);
