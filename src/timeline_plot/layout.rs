@@ -22,8 +22,54 @@ impl Picture for TimelineChart<'_> {
         (WIDTH, HEIGHT)
     }
 
+    /// Draws the whole picture on `root`: the title strip, the three
+    /// panels (each its data, then the tile marks and the legend), the
+    /// tile labels.
     fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB> {
-        render(self.0, root)
+        let t = self.0;
+        let first = t.samples.first().map_or(t.from, |s| s.cycle);
+        let last = t.samples.last().map_or(t.to, |s| s.cycle);
+        let x = t.from.min(first) as f64..t.to.max(last).saturating_add(1) as f64;
+        let (w, h) = root.dim_in_pixel();
+        let plot_w = plot_width(w) as usize;
+        let cols = downsample(t, plot_w);
+        let per_column = t.samples.len() as f64 / cols.len().max(1) as f64;
+        let banded = per_column > 1.0;
+        let (head, sub) = frame(t, banded, per_column);
+        let frame = Frame::new((&head, &sub), Vec::new(), 0.0, f64::from(w));
+        let body = frame.draw(root)?;
+        let body_h = h.saturating_sub(frame.height());
+        let (p1, rest) = body.split_vertically(body_h * 37 / 100);
+        let (p2, p3) = rest.split_vertically(body_h * 32 / 100);
+        let [(a1, l1), (a2, l2), (a3, l3)] = [p1, p2, p3].map(|p| split(&p));
+        let levels: &[usize] = if t.has_l0 { &[0, 1, 2] } else { &[1, 2] };
+        let mut charts = [
+            resident_panel(t, &a1, x.clone())?,
+            miss_panel(&a2, levels, (x.clone(), &cols))?,
+            launch_panel(&a3, (x, &cols, banded))?,
+        ];
+        // Tile marks behind the data; lines for dense marks would hide the
+        // data: ticks instead.
+        debug_assert_eq!(charts[0].plotting_area().dim_in_pixel().0 as usize, plot_w);
+        let marks = merge_marks(t, &charts[0]);
+        let dense = marks.len() > plot_w / 10;
+        for chart in &mut charts {
+            draw_marks(chart, &marks, dense)?;
+        }
+        let [c1, c2, c3] = &mut charts;
+        resident(c1, t, (&cols, banded))?;
+        for &l in levels {
+            series(c2, (&cols, banded), LEVELS[l], |c| c.outstanding[l])?;
+        }
+        launches(c3, t.cores, &cols)?;
+        let [e1, e2, e3] = legends(t, levels, mark_entries(&marks, dense), banded);
+        panel_legend(&l1, "Cores", &e1)?;
+        panel_legend(&l2, "Cache levels", &e2)?;
+        panel_legend(&l3, "Launching core", &e3)?;
+        if !dense {
+            label_tiles(root, c1, &marks)?;
+        }
+        Ok(())
     }
 }
 
@@ -35,21 +81,17 @@ fn slots_style() -> ShapeStyle {
 /// The title strip: the run and window, and how the window was drawn
 /// (`per_column` cycles per pixel column when `banded`).
 fn frame(t: &Timeline, banded: bool, per_column: f64) -> (String, String) {
-    let head = format!(
-        "wasp timeline: {} dispatch, cycles {}..={} ({} cycles, {} cores)",
-        t.dispatch,
-        t.from,
-        t.to,
-        t.to.saturating_sub(t.from) + 1,
-        t.cores
-    );
+    let (from, to, n) = (t.from, t.to, t.to.saturating_sub(t.from) + 1);
+    let window = format!("cycles {from}..={to} ({n} cycles, {} cores)", t.cores);
+    let bands = "lines are column means, light bands the column min..max";
     let sub = match banded {
-        true => format!(
-            "{per_column:.1} cycles per pixel column: lines are column means, light bands the column min..max"
-        ),
+        true => format!("{per_column:.1} cycles per pixel column: {bands}"),
         false => "one sample per cycle".to_string(),
     };
-    (head, sub)
+    (
+        format!("wasp timeline: {} dispatch, {window}", t.dispatch),
+        sub,
+    )
 }
 
 /// Panel 1's chart, the warps resident in each core: above the warp
@@ -68,13 +110,8 @@ fn resident_panel<'a, DB: DrawingBackend>(
     let plot_h = f64::from(area.dim_in_pixel().1.saturating_sub(63).max(100));
     let room = f64::from(10 + 16 * rows).min(plot_h / 2.0);
     let top = f64::from(t.max_warps.max(1)) * plot_h / (plot_h - room);
-    panel(
-        area,
-        ("Resident warps per core", "warps"),
-        false,
-        x,
-        0.0..top,
-    )
+    let caption = ("Resident warps per core", "warps");
+    panel(area, caption, false, x, 0.0..top)
 }
 
 /// Panel 1's data: a line per core under a dashed line at the warp slots.
@@ -99,15 +136,10 @@ fn legends(t: &Timeline, levels: &[usize], marks: Legend, banded: bool) -> [Lege
     let line = |c: RGBColor| Swatch::Line(c.stroke_width(3), None);
     let cores = (0..t.cores).map(|c| (format!("core {c}"), line(other(c))));
     let mut first: Legend = cores.chain(marks).collect();
-    let slots = (
-        format!("{} warp slots", t.max_warps),
-        Swatch::Dashed(slots_style(), None),
-    );
-    first.push(slots);
-    let mut second: Legend = levels
-        .iter()
-        .map(|&l| (format!("L{l}"), line(LEVELS[l])))
-        .collect();
+    let slots = format!("{} warp slots", t.max_warps);
+    first.push((slots, Swatch::Dashed(slots_style(), None)));
+    let level = |&l: &usize| (format!("L{l}"), line(LEVELS[l]));
+    let mut second: Legend = levels.iter().map(level).collect();
     if banded {
         let band = |c| ("min..max in column".to_string(), Swatch::Band(c));
         first.push(band(other(0)));
@@ -123,12 +155,7 @@ fn miss_panel<'a, DB: DrawingBackend>(
     levels: &[usize],
     (x, cols): (Range<f64>, &[Column]),
 ) -> Drawn<DB, Panel<'a, DB>> {
-    let most = |c: &Column| {
-        levels
-            .iter()
-            .map(|&l| c.outstanding[l].max)
-            .fold(0.0, f64::max)
-    };
+    let most = |c: &Column| levels.iter().fold(0.0, |m, &l| c.outstanding[l].max.max(m));
     let top = cols.iter().map(most).fold(0.0, f64::max).max(1.0);
     let caption = "Outstanding misses per cache level (MSHR entries, summed over the level)";
     panel(area, (caption, "misses"), false, x, 0.0..top * 1.08)
@@ -140,10 +167,8 @@ fn launch_panel<'a, DB: DrawingBackend>(
     area: &'a Area<DB>,
     (x, cols, banded): (Range<f64>, &[Column], bool),
 ) -> Drawn<DB, Panel<'a, DB>> {
-    let top = cols
-        .iter()
-        .map(|c| c.launches.iter().sum::<f64>())
-        .fold(0.0, f64::max);
+    let sums = cols.iter().map(|c| c.launches.iter().sum::<f64>());
+    let top = sums.fold(0.0, f64::max);
     let top = if top > 0.0 { top * 1.1 } else { 1.0 };
     let caption = match banded {
         true => "Priority-warp launches per cycle (mean over each pixel column, stacked by core)",
@@ -161,11 +186,8 @@ fn launches<DB: DrawingBackend>(
 ) -> Drawn<DB> {
     let mut below = vec![0.0; cols.len()];
     for c in 0..cores {
-        let above: Vec<f64> = cols
-            .iter()
-            .zip(&below)
-            .map(|(col, b)| b + col.launches[c])
-            .collect();
+        let above = cols.iter().zip(&below).map(|(col, b)| b + col.launches[c]);
+        let above: Vec<f64> = above.collect();
         let (mut runs, mut i) = (Vec::new(), 0);
         while let Some(start) = (i..cols.len()).find(|&j| cols[j].launches[c] != 0.0) {
             let end = (start..cols.len()).find(|&j| cols[j].launches[c] == 0.0);
@@ -177,54 +199,6 @@ fn launches<DB: DrawingBackend>(
         }
         chart.draw_series(runs)?;
         below = above;
-    }
-    Ok(())
-}
-
-/// Draws the whole picture on `root`: the title strip, the three panels
-/// (each its data, then the tile marks and the legend), the tile labels.
-fn render<DB: DrawingBackend>(t: &Timeline, root: &Area<DB>) -> Drawn<DB> {
-    let first = t.samples.first().map_or(t.from, |s| s.cycle);
-    let last = t.samples.last().map_or(t.to, |s| s.cycle);
-    let x = t.from.min(first) as f64..t.to.max(last).saturating_add(1) as f64;
-    let (w, h) = root.dim_in_pixel();
-    let plot_w = plot_width(w) as usize;
-    let cols = downsample(t, plot_w);
-    let per_column = t.samples.len() as f64 / cols.len().max(1) as f64;
-    let banded = per_column > 1.0;
-    let (head, sub) = frame(t, banded, per_column);
-    let frame = Frame::new((&head, &sub), Vec::new(), 0.0, f64::from(w));
-    let body = frame.draw(root)?;
-    let body_h = h.saturating_sub(frame.height());
-    let (p1, rest) = body.split_vertically(body_h * 37 / 100);
-    let (p2, p3) = rest.split_vertically(body_h * 32 / 100);
-    let [(a1, l1), (a2, l2), (a3, l3)] = [p1, p2, p3].map(|p| split(&p));
-    let levels: &[usize] = if t.has_l0 { &[0, 1, 2] } else { &[1, 2] };
-    let mut charts = [
-        resident_panel(t, &a1, x.clone())?,
-        miss_panel(&a2, levels, (x.clone(), &cols))?,
-        launch_panel(&a3, (x, &cols, banded))?,
-    ];
-    // Tile marks behind the data; lines for dense marks would hide the
-    // data: ticks instead.
-    debug_assert_eq!(charts[0].plotting_area().dim_in_pixel().0 as usize, plot_w);
-    let marks = merge_marks(t, &charts[0]);
-    let dense = marks.len() > plot_w / 10;
-    for chart in &mut charts {
-        draw_marks(chart, &marks, dense)?;
-    }
-    let [c1, c2, c3] = &mut charts;
-    resident(c1, t, (&cols, banded))?;
-    for &l in levels {
-        series(c2, (&cols, banded), LEVELS[l], |c| c.outstanding[l])?;
-    }
-    launches(c3, t.cores, &cols)?;
-    let [e1, e2, e3] = legends(t, levels, mark_entries(&marks, dense), banded);
-    panel_legend(&l1, "Cores", &e1)?;
-    panel_legend(&l2, "Cache levels", &e2)?;
-    panel_legend(&l3, "Launching core", &e3)?;
-    if !dense {
-        label_tiles(root, c1, &marks)?;
     }
     Ok(())
 }

@@ -80,15 +80,13 @@ pub(super) fn mark_entries(marks: &[Mark], dense: bool) -> Vec<(String, Swatch)>
             false => RGBColor(90, 90, 90).stroke_width(1),
         };
         let kind = if start { "start" } else { "end" };
+        let edge = if start { "top" } else { "bottom" };
         match dense {
             false => (format!("tile {kind}{suffix}"), Swatch::Tile(style, start)),
-            true => {
-                let edge = if start { "top" } else { "bottom" };
-                (
-                    format!("tile {kind} ({edge} ticks)"),
-                    Swatch::Ticks(style, start),
-                )
-            }
+            true => (
+                format!("tile {kind} ({edge} ticks)"),
+                Swatch::Ticks(style, start),
+            ),
         }
     };
     vec![entry(true), entry(false)]
