@@ -284,8 +284,8 @@ fn present(series: &[super::Series]) -> Vec<(usize, usize, f64)> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, out, pixels, same_twice, texts};
-    use super::super::{PaperMark, Series};
+    use super::super::tests::{error, mark, out, pixels, same_twice, texts};
+    use super::super::Series;
     use super::*;
     use crate::palette::Key;
 
@@ -294,17 +294,6 @@ mod tests {
         let values = values.iter().map(|&v| Some(v)).collect();
         let name = name.into();
         Series { key, name, values }
-    }
-
-    /// A paper mark.
-    fn mark(series: Option<usize>, category: Option<usize>, value: f64, label: &str) -> PaperMark {
-        let label = label.into();
-        PaperMark {
-            series,
-            category,
-            value,
-            label,
-        }
     }
 
     /// Sixteen scenes with long names in two groups and two means, two

@@ -119,18 +119,9 @@ impl Picture for Heat<'_> {
         for (j, row) in m.values.iter().enumerate() {
             for (i, v) in row.iter().enumerate() {
                 let t = v.map_or(0.0, |v| v / s);
-                let fill = if v.is_some() {
-                    diverging(t)
-                } else {
-                    RGBColor(200, 200, 200)
-                };
-                let mut cell = Rectangle::new(
-                    [
-                        (edge(i, lx), edge(j, ly)),
-                        (edge(i + 1, lx), edge(j + 1, ly)),
-                    ],
-                    fill.filled(),
-                );
+                let fill = v.map_or(RGBColor(200, 200, 200), |_| diverging(t));
+                let corner = |i, j| (edge(i, lx), edge(j, ly));
+                let mut cell = Rectangle::new([corner(i, j), corner(i + 1, j + 1)], fill.filled());
                 cell.set_margin(1, 1, 1, 1);
                 chart.draw_series(std::iter::once(cell))?;
                 let ink = if t.abs() > 0.6 { WHITE } else { BLACK };
@@ -143,11 +134,8 @@ impl Picture for Heat<'_> {
 
         // The colour bar: thin bands from -scale to +scale, ticks right.
         let mut key = ChartBuilder::on(&bar);
-        key.margin_top(20)
-            .margin_bottom(74)
-            .margin_left(20)
-            .margin_right(30)
-            .right_y_label_area_size(90);
+        key.margin(20).margin_bottom(74).margin_right(30);
+        key.right_y_label_area_size(90);
         let mut key = key.build_cartesian_2d(0.0..1.0, -s..s)?;
         let band = |k: u32| {
             let (a, b) = (f64::from(k) / 50.0 - 1.0, f64::from(k + 1) / 50.0 - 1.0);

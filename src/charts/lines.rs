@@ -306,7 +306,7 @@ impl Layout<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, out, pixels, same_twice, texts};
+    use super::super::tests::{error, mark, out, pixels, same_twice, texts};
     use super::super::Series;
     use super::*;
     use crate::palette::Key;
@@ -321,15 +321,6 @@ mod tests {
     /// paper's value at one count and its baseline across the plot.
     fn warps() -> LineChart {
         let x = vec![28.0, 32.0, 40.0, 48.0, 64.0];
-        let mark = |series, category, value, label: &str| {
-            let label = label.into();
-            PaperMark {
-                series,
-                category,
-                value,
-                label,
-            }
-        };
         let wasp = [Some(0.66), Some(0.68), None, Some(0.70), Some(0.705)];
         LineChart {
             title: "IPC by warp count".into(),

@@ -214,6 +214,22 @@ pub(crate) mod tests {
         texts
     }
 
+    /// A paper mark.
+    pub(crate) fn mark(
+        series: Option<usize>,
+        category: Option<usize>,
+        value: f64,
+        label: &str,
+    ) -> super::PaperMark {
+        let label = label.into();
+        super::PaperMark {
+            series,
+            category,
+            value,
+            label,
+        }
+    }
+
     /// The number of pixels of `colour` in the PNG at `path`.
     pub(crate) fn pixels(path: &Path, colour: plotters::style::RGBColor) -> usize {
         let img = image::open(path).expect("png decodes").to_rgb8();
