@@ -123,10 +123,8 @@ pub(super) fn paper_entry(paper: &[super::PaperMark], shape: Shape) -> Option<(S
     };
     let coloured = paper.iter().any(|m| m.series.is_some());
     let label = format!("{what}{}", if coloured { " (series colour)" } else { "" });
-    Some((
-        label,
-        Swatch::Dashed(INK.stroke_width(2), marker.then_some(shape)),
-    ))
+    let swatch = Swatch::Dashed(INK.stroke_width(2), marker.then_some(shape));
+    Some((label, swatch))
 }
 
 /// The colour of the paper's marks of `series` (dark grey for none) in a
@@ -224,11 +222,7 @@ pub(super) fn tick_label(r: &Range<f64>, n: usize, percent: bool) -> impl Fn(&f6
     let scale = if percent { 100.0 } else { 1.0 };
     let d = (-(step * scale).log10() - 1e-9).ceil().clamp(0.0, 9.0) as usize;
     move |v: &f64| {
-        let v = if v.abs() < step * 1e-6 {
-            0.0
-        } else {
-            *v * scale
-        };
+        let v = [*v * scale, 0.0][usize::from(v.abs() < step * 1e-6)];
         format!("{v:.d$}{}", if percent { "%" } else { "" })
     }
 }
@@ -342,11 +336,8 @@ impl Placer {
             };
             let up = r.3 - r.1 > r.2 - r.0 && text_size(text, SMALL, false).0 > r.2 - r.0 + 1.0;
             let s = style(SMALL, false, colour, H::Center, V::Center);
-            let s = if up {
-                s.transform(FontTransform::Rotate270)
-            } else {
-                s
-            };
+            let turn = [FontTransform::None, FontTransform::Rotate270];
+            let s = s.transform(turn[usize::from(up)].clone());
             root.draw_text(text, &s, px((r.0 + r.2) / 2.0, (r.1 + r.3) / 2.0))?;
         }
         Ok(())
@@ -365,14 +356,10 @@ pub(super) fn column(
     let (w, h) = text_size(text.0, SMALL, false);
     let (w, h) = if text.1 { (h, w) } else { (w, h) };
     let sign = if up { -1.0 } else { 1.0 };
-    let rect = |k: u32| {
-        around(
-            (x, y0 + sign * (h / 2.0 + 3.0 * f64::from(k))),
-            (w / 2.0, h / 2.0),
-        )
-    };
+    let centre = |k: u32| (x, y0 + sign * (h / 2.0 + 3.0 * f64::from(k)));
     let inside = |r: &Rect| if up { r.1 >= limit } else { r.3 <= limit };
-    (0..n).map(rect).take_while(inside).collect()
+    let rects = (0..n).map(|k| around(centre(k), (w / 2.0, h / 2.0)));
+    rects.take_while(inside).collect()
 }
 
 /// Rectangles for `text` beside `at` at `d` pixels (right, then left),
@@ -382,11 +369,8 @@ pub(super) fn beside(at: (f64, f64), d: f64, text: &str, n: u32, b: Rect) -> Vec
     let side = |s: f64| around((at.0 + s * (d + w / 2.0), at.1), (w / 2.0, h / 2.0));
     let under = column(at.0, (at.1 + d, false, b.3), (text, false), n);
     let over = column(at.0, (at.1 - d, true, b.1), (text, false), n);
-    [side(1.0), side(-1.0)]
-        .into_iter()
-        .chain(under)
-        .chain(over)
-        .collect()
+    let sides = [side(1.0), side(-1.0)];
+    sides.into_iter().chain(under).chain(over).collect()
 }
 
 #[cfg(test)]

@@ -87,11 +87,7 @@ pub(crate) fn marker<'a, DB: DrawingBackend + 'a, C>(
 ) -> Parts<'a, DB, C> {
     let mut parts = vec![shape.element(r, colour.filled())];
     if hollow && shape != Shape::Cross {
-        let inside = if shape == Shape::Triangle {
-            r - 3
-        } else {
-            r - 2
-        };
+        let inside = r - 2 - i32::from(shape == Shape::Triangle);
         parts.push(shape.element(inside, WHITE.filled()));
     }
     Parts(at, parts)
@@ -130,10 +126,8 @@ impl Swatch {
             }
             Swatch::Line(s, shape) => {
                 let mark = shape.map(|m| marker(mid, (m, 6), s.color, false).into_dyn());
-                [PathElement::new(line, s).into_dyn()]
-                    .into_iter()
-                    .chain(mark)
-                    .collect()
+                let solid = PathElement::new(line, s).into_dyn();
+                [solid].into_iter().chain(mark).collect()
             }
             Swatch::Dashed(s, shape) => {
                 let mark = shape.map(|m| marker(mid, (m, 6), s.color, true).into_dyn());
@@ -228,9 +222,8 @@ pub(crate) fn legend<DB: DrawingBackend>(
             series.legend(move |p| swatch.element(p));
         }
         let mut labels = chart.configure_series_labels();
-        labels
-            .position(SeriesLabelPosition::Coordinate(0, 0))
-            .margin(0);
+        labels.position(SeriesLabelPosition::Coordinate(0, 0));
+        labels.margin(0);
         labels.label_font(font(size, false).color(&BLACK));
         labels.legend_area_size(SWATCH + 8).draw()?;
         x += width;
