@@ -68,10 +68,8 @@ impl<'a> Bars<'a> {
         let (n, s) = (c.categories.len(), c.series.len());
         let bars = present(&c.series).into_iter().map(|b| b.2);
         let data: Vec<f64> = bars.chain(c.paper.iter().map(|m| m.value)).collect();
-        let (lo, hi) = (
-            data.iter().copied().fold(0.0, f64::min),
-            data.iter().copied().fold(0.0, f64::max),
-        );
+        let lo = data.iter().copied().fold(0.0, f64::min);
+        let hi = data.iter().copied().fold(0.0, f64::max);
         // Room over the tallest (under the lowest) bar for its value.
         let room = 0.06 * (hi - lo) * f64::from(u8::from(s <= 3 && n <= 20));
         let mut include = vec![0.0, hi + room * hi.signum(), lo + room * lo.signum()];
@@ -229,10 +227,8 @@ impl Bars<'_> {
             root.draw_text(name, &s, px((g.gx(i) + g.gx(i + 1)) / 2.0, p.3 + 10.0))?;
         }
         for (grp, row) in c.groups.iter().zip(&self.rows) {
-            let (x0, x1) = (
-                g.gx(grp.categories.start) + 6.0,
-                g.gx(grp.categories.end) - 6.0,
-            );
+            let run = &grp.categories;
+            let (x0, x1) = (g.gx(run.start) + 6.0, g.gx(run.end) - 6.0);
             let y = p.1 - 8.0 - 22.0 * row;
             let bracket = vec![px(x0, y + 4.0), px(x0, y), px(x1, y), px(x1, y + 4.0)];
             root.draw(&PathElement::new(bracket, INK))?;

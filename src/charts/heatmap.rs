@@ -82,9 +82,8 @@ impl<'a> Heat<'a> {
         let scale = if scale > 0.0 { scale } else { 1.0 };
         let names = m.y.iter().map(|y| text_size(y, LABEL, false).0);
         let left = names.fold(0.0, f64::max) + 44.0;
-        let width = (left + 110.0 * m.x.len() as f64 + f64::from(BAR_W) + 20.0)
-            .clamp(800.0, 1600.0)
-            .round();
+        let width = left + 110.0 * m.x.len() as f64 + f64::from(BAR_W) + 20.0;
+        let width = width.clamp(800.0, 1600.0).round();
         let frame = Frame::new((&m.title, &m.subtitle), Vec::new(), left, width);
         Heat {
             m,
@@ -111,9 +110,8 @@ impl Picture for Heat<'_> {
         let (x_name, y_name) = (name(&m.x), name(&m.y));
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_mesh()
-            .x_labels(m.x.len() + 1)
-            .y_labels(m.y.len() + 1);
+        mesh.disable_mesh().x_labels(m.x.len() + 1);
+        mesh.y_labels(m.y.len() + 1);
         mesh.x_label_formatter(&x_name).y_label_formatter(&y_name);
         mesh.x_desc(&m.x_label).y_desc(&m.y_label).draw()?;
         for (j, row) in m.values.iter().enumerate() {
@@ -139,20 +137,15 @@ impl Picture for Heat<'_> {
         let mut key = key.build_cartesian_2d(0.0..1.0, -s..s)?;
         let band = |k: u32| {
             let (a, b) = (f64::from(k) / 50.0 - 1.0, f64::from(k + 1) / 50.0 - 1.0);
-            Rectangle::new(
-                [(0.0, a * s), (1.0, b * s)],
-                diverging((a + b) / 2.0).filled(),
-            )
+            let colour = diverging((a + b) / 2.0);
+            Rectangle::new([(0.0, a * s), (1.0, b * s)], colour.filled())
         };
         key.draw_series((0..100).map(band))?;
         let ticks = tick_label(&(-s..s), 6, m.percent);
         let mut mesh = key.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_mesh()
-            .disable_x_axis()
-            .y_labels(6)
-            .y_label_formatter(&ticks);
-        mesh.y_desc(&m.scale_label).draw()
+        mesh.disable_mesh().disable_x_axis().y_labels(6);
+        mesh.y_label_formatter(&ticks).y_desc(&m.scale_label).draw()
     }
 }
 

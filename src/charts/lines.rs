@@ -104,9 +104,8 @@ pub(super) struct Layout<'a> {
 impl<'a> Plot<'a> {
     pub fn lay_out(self) -> Layout<'a> {
         let points = || self.lines.iter().flat_map(|l| l.2.iter().flatten());
-        let ys = points()
-            .map(|p| p.1)
-            .chain(self.paper.iter().map(|m| m.value));
+        let marks = self.paper.iter().map(|m| m.value);
+        let ys = points().map(|p| p.1).chain(marks);
         // Line charts hold 0 (or the reference); points over x do not.
         let base = vec![0.0; usize::from(!self.x.is_empty())];
         let y = range(ys, &self.reference.map_or(base, |r| vec![r]));
@@ -130,9 +129,8 @@ impl<'a> Plot<'a> {
         };
         // Where labels would overlap, every k-th.
         let widest = ticks.iter().map(|t| text_size(&t.1, LABEL, false).0);
-        let gaps = ticks
-            .windows(2)
-            .map(|w| (w[1].0 - w[0].0) / (x.end - x.start) * plot_w);
+        let span = x.end - x.start;
+        let gaps = ticks.windows(2).map(|w| (w[1].0 - w[0].0) / span * plot_w);
         let gap = gaps.fold(f64::INFINITY, f64::min).max(1.0);
         let every = ((widest.fold(0.0, f64::max) + 10.0) / gap).ceil().max(1.0) as usize;
         for (_, t) in ticks.iter_mut().enumerate().filter(|(i, _)| i % every != 0) {
@@ -192,10 +190,8 @@ impl Ranged for Ticked {
 
 impl Picture for Layout<'_> {
     fn size(&self) -> (u32, u32) {
-        (
-            WIDTH as u32,
-            (f64::from(self.frame.height()) + 504.0).max(700.0) as u32,
-        )
+        let height = (f64::from(self.frame.height()) + 504.0).max(700.0);
+        (WIDTH as u32, height as u32)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB> {
@@ -212,14 +208,11 @@ impl Picture for Layout<'_> {
         let y_label = tick_label(&y, 8, pl.percent);
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.x_label_formatter(&x_label)
-            .y_labels(8)
-            .y_label_formatter(&y_label);
+        mesh.x_label_formatter(&x_label).y_labels(8);
+        mesh.y_label_formatter(&y_label);
         mesh.x_desc(pl.texts[2]).y_desc(pl.texts[3]).draw()?;
-        let rule = pl
-            .reference
-            .map(|r| (r, 2))
-            .or((y0 < 0.0).then_some((0.0, 1)));
+        let zero = (y0 < 0.0).then_some((0.0, 1));
+        let rule = pl.reference.map(|r| (r, 2)).or(zero);
         let rule = rule.map(|(v, w)| PathElement::new(vec![(x0, v), (x1, v)], INK.stroke_width(w)));
         chart.draw_series(rule)?;
 
@@ -243,11 +236,11 @@ impl Picture for Layout<'_> {
         }
         for (s, (pts, &k)) in series() {
             let xys: Vec<(f64, f64)> = pts.iter().flatten().map(|p| (p.0, p.1)).collect();
-            xys.iter()
-                .for_each(|p| placer.take(around(at(p.0, p.1), (6.0, 6.0))));
-            let marks = xys
-                .into_iter()
-                .map(|xy| marker(xy, (Shape::of(s), 6), k, false));
+            for p in &xys {
+                placer.take(around(at(p.0, p.1), (6.0, 6.0)));
+            }
+            let shape = (Shape::of(s), 6);
+            let marks = xys.into_iter().map(|xy| marker(xy, shape, k, false));
             chart.draw_series(marks)?;
         }
 

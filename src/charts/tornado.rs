@@ -115,25 +115,18 @@ impl<'a> Tornado<'a> {
         let width = |r| spans(r).map(|s| s.high.0 - s.low.0).fold(0.0, f64::max);
         let mut order: Vec<usize> = (0..c.rows.len()).collect();
         order.sort_by(|&a, &b| width(&c.rows[b]).total_cmp(&width(&c.rows[a])));
-        let ends = c
-            .rows
-            .iter()
-            .flat_map(spans)
-            .flat_map(|s| [s.low.0, s.high.0]);
+        let ends = |s: &Span| [s.low.0, s.high.0];
+        let ends = c.rows.iter().flat_map(spans).flat_map(ends);
         let refs: Vec<f64> = c.series.iter().filter_map(|s| s.reference).collect();
         let x = range(ends, &refs);
         // Room for the end labels either side.
         let pad = 0.14 * (x.end - x.start);
-        let names = c
-            .rows
-            .iter()
-            .map(|r| text_size(&r.parameter, LABEL, false).0);
-        let left = names.fold(0.0, f64::max) + 24.0;
+        let name = |r: &TornadoRow| text_size(&r.parameter, LABEL, false).0;
+        let left = c.rows.iter().map(name).fold(0.0, f64::max) + 24.0;
         let colours = series_colours(&c.series.iter().map(|s| s.key).collect::<Vec<_>>());
         let series = || c.series.iter().zip(&colours);
-        let mut legend: Vec<_> = series()
-            .map(|(s, &k)| (s.name.clone(), Swatch::Block(k)))
-            .collect();
+        let block = |(s, &k): (&TornadoSeries, _)| (s.name.clone(), Swatch::Block(k));
+        let mut legend: Vec<_> = series().map(block).collect();
         for (s, &k) in series() {
             let Some(v) = s.reference else { continue };
             let (label, value) = (&c.reference_label, value_label(v, c.percent));
@@ -175,9 +168,8 @@ impl Picture for Tornado<'_> {
         let ticks = tick_label(&self.x, 10, c.percent);
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_y_mesh()
-            .y_labels(n + 1)
-            .y_label_formatter(&name);
+        mesh.disable_y_mesh().y_labels(n + 1);
+        mesh.y_label_formatter(&name);
         mesh.x_labels(10).x_label_formatter(&ticks);
         mesh.x_desc(&c.x_label).draw()?;
         let (p, map) = (plot_rect(&chart), chart.as_coord_spec().clone());
@@ -191,26 +183,17 @@ impl Picture for Tornado<'_> {
                 let Some(span) = span else { continue };
                 // Segment i spans the pixel rows y_of(i + 1) to y_of(i).
                 let top = (y_of(i + 1) + y_of(i) - bar * s) / 2.0 + j as f64 * bar;
-                let corners = [
-                    (span.low.0, edge(i, last)),
-                    (span.high.0, edge(i + 1, last)),
-                ];
+                let (y0, y1) = (edge(i, last), edge(i + 1, last));
+                let corners = [(span.low.0, y0), (span.high.0, y1)];
                 let mut rect = Rectangle::new(corners, colour.filled());
                 let (over, under) = (top - y_of(i + 1), y_of(i) - top - bar);
                 rect.set_margin(over.round() as u32, under.max(0.0).round() as u32, 0, 0);
                 chart.draw_series(std::iter::once(rect))?;
                 let (x0, x1, mid) = (x_of(span.low.0), x_of(span.high.0), top + bar / 2.0);
                 placer.take((x0, top, x1.max(x0 + 1.0), top + bar));
-                labels.push((
-                    outward((x0, mid), &span.low.1, -1.0),
-                    span.low.1.as_str(),
-                    BLACK,
-                ));
-                labels.push((
-                    outward((x1, mid), &span.high.1, 1.0),
-                    span.high.1.as_str(),
-                    BLACK,
-                ));
+                let (low, high) = (&span.low.1, &span.high.1);
+                labels.push((outward((x0, mid), low, -1.0), low.as_str(), BLACK));
+                labels.push((outward((x1, mid), high, 1.0), high.as_str(), BLACK));
             }
         }
         // The references over the bars.

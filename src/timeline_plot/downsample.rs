@@ -16,9 +16,8 @@ pub(super) struct Agg {
 impl Agg {
     pub(super) fn of(values: impl Iterator<Item = u32>) -> Agg {
         let v: Vec<f64> = values.map(f64::from).collect();
-        let (min, max) = v
-            .iter()
-            .fold((f64::INFINITY, 0.0), |(lo, hi), &x| (x.min(lo), x.max(hi)));
+        let bounds = |(lo, hi): (f64, f64), &x: &f64| (x.min(lo), x.max(hi));
+        let (min, max) = v.iter().fold((f64::INFINITY, 0.0), bounds);
         let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
         let min = if v.is_empty() { 0.0 } else { min };
         Agg { min, max, mean }

@@ -88,10 +88,8 @@ fn frame(t: &Timeline, banded: bool, per_column: f64) -> (String, String) {
         true => format!("{per_column:.1} cycles per pixel column: {bands}"),
         false => "one sample per cycle".to_string(),
     };
-    (
-        format!("wasp timeline: {} dispatch, {window}", t.dispatch),
-        sub,
-    )
+    let head = format!("wasp timeline: {} dispatch, {window}", t.dispatch);
+    (head, sub)
 }
 
 /// Panel 1's chart, the warps resident in each core: above the warp

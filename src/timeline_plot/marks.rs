@@ -79,8 +79,7 @@ pub(super) fn mark_entries(marks: &[Mark], dense: bool) -> Vec<(String, Swatch)>
             true => mark_style(None, start, dense),
             false => RGBColor(90, 90, 90).stroke_width(1),
         };
-        let kind = if start { "start" } else { "end" };
-        let edge = if start { "top" } else { "bottom" };
+        let (kind, edge) = [("end", "bottom"), ("start", "top")][usize::from(start)];
         match dense {
             false => (format!("tile {kind}{suffix}"), Swatch::Tile(style, start)),
             true => (
