@@ -102,9 +102,8 @@ impl<'a> Frame<'a> {
         let size = fit(sub, 20, false).unwrap_or(12);
         root.draw_text(sub, &style(size, false, INK, H::Left, V::Top), (16, 44))?;
         let (rows, top, w) = (self.rows(), self.title_h() as u32, self.width - self.left);
-        let strip = root
-            .clone()
-            .shrink((self.left as u32, top), (w as u32, self.height() - top));
+        let (at, size) = ((self.left as u32, top), (w as u32, self.height() - top));
+        let strip = root.clone().shrink(at, size);
         legend(&strip, &self.legend, (rows, LABEL))?;
         Ok(root.split_vertically(self.height()).1)
     }

@@ -113,11 +113,8 @@ impl<'a> Plot<'a> {
         let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
             (l.min(x), h.max(x))
         });
-        let pad = if hi > lo {
-            0.04 * (hi - lo)
-        } else {
-            lo.abs().max(2.0) * 0.5
-        };
+        // A single x gets a range around it.
+        let pad = [lo.abs().max(2.0) * 0.5, 0.04 * (hi - lo)][usize::from(hi > lo)];
         let x = lo - pad..hi + pad;
         let (left, right) = (y_area(&y, self.percent), paper_margin(self.paper));
         let (plot_w, label) = (WIDTH - left - right, tick_label(&x, 12, false));
