@@ -144,15 +144,8 @@ impl Picture for Bars<'_> {
         // The bars, kept free of labels, then the zero and reference lines.
         let map = chart.as_coord_spec().clone();
         let (p, s) = (plot_rect(&chart), c.series.len() as f64);
-        let mut g = Geom {
-            p,
-            map,
-            last,
-            bar: 0.0,
-            s,
-        };
-        g.bar = ((g.gx(1) - g.gx(0)).max(1.0) * 0.8 / s).min(64.0);
-        let inset = if g.bar > 8.0 { 1.0 } else { 0.0 };
+        let g = Geom { p, map, last, s };
+        let inset = if g.bar() > 8.0 { 1.0 } else { 0.0 };
         let mut placer = Placer::default();
         let mut rects = Vec::new();
         for (k, i, v) in present(&c.series) {
@@ -192,8 +185,8 @@ impl Bars<'_> {
         let mut labels = Vec::new();
         let few = c.series.len() <= 3 && c.categories.len() <= 20;
         for (&(k, i, v), text) in bars.iter().zip(&texts).filter(|_| few) {
-            let upright = text_size(text, SMALL, false).0 > g.bar + 2.0;
-            let (x, up) = (g.bar_x(i, k) + g.bar / 2.0, v >= 0.0);
+            let upright = text_size(text, SMALL, false).0 > g.bar() + 2.0;
+            let (x, up) = (g.bar_x(i, k) + g.bar() / 2.0, v >= 0.0);
             let (y, limit) = [(g.py(v) + 2.0, p.3), (g.py(v) - 2.0, p.1)][usize::from(up)];
             let candidates = column(x, (y, up, limit), (text, upright), 400);
             labels.push((candidates, text.as_str(), shade(self.colours[k], 0.62)));
@@ -239,13 +232,12 @@ impl Bars<'_> {
     }
 }
 
-/// The plot in pixels: its rectangle, plotters' mapping, the last segment,
-/// the width of a bar and the number of series.
+/// The plot in pixels: its rectangle, plotters' mapping, the last segment
+/// and the number of series.
 struct Geom {
     p: frame::Rect,
     map: Cartesian2d<SegmentedCoord<RangedCoordusize>, RangedCoordf64>,
     last: usize,
-    bar: f64,
     s: f64,
 }
 
@@ -260,11 +252,20 @@ impl Geom {
         f64::from(self.map.translate(&(edge(0, self.last), v)).1)
     }
 
+    /// The width of a category's group of bars.
+    fn group(&self) -> f64 {
+        (self.gx(1) - self.gx(0)).max(1.0)
+    }
+
+    /// The width of a bar.
+    fn bar(&self) -> f64 {
+        (self.group() * 0.8 / self.s).min(64.0)
+    }
+
     /// The pixel column of the left edge of series `k`'s bar in category
     /// `i`.
     fn bar_x(&self, i: usize, k: usize) -> f64 {
-        let group = (self.gx(1) - self.gx(0)).max(1.0);
-        self.gx(i) + (group - self.s * self.bar) / 2.0 + k as f64 * self.bar
+        self.gx(i) + (self.group() - self.s * self.bar()) / 2.0 + k as f64 * self.bar()
     }
 }
 
