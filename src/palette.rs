@@ -1,35 +1,77 @@
 //! The one palette of wasp's pictures: the reproduction's figures
 //! ([`crate::charts`]) and the timeline ([`crate::timeline_plot`]).
 //!
-//! A series whose name starts with a policy (`baseline`, `fullpriority`,
-//! `freemshr:10`, `wasp:0:3`, `WaSP, all`, `wasp-m:0`, `oracle-tile`,
-//! `raster`) or a scene group (`3D`, `2D`, `games`, `procedural`, also as
-//! `mean 3D`) always has that key's colour ([`named`]), whatever figure it
-//! is in. Other series (subsets, cache levels of a chart, cores of the
-//! timeline) take the colours of [`OTHERS`] in order, which are none of the
-//! named ones. [`series_colours`] gives a chart's series their colours,
-//! each distinct: a second series of the same key (e.g. `WaSP, priority
-//! warps` beside `WaSP, all`) gets a darker, then a lighter shade of it.
+//! A series says what it shows with a [`Key`], set by whoever builds it:
+//! a policy (from its [`PolicySpec`]), the oracle prefetcher or a scene
+//! group has that key's colour ([`Key::colour`]) whatever figure it is in.
+//! Other series (subsets, cache levels of a chart, cores of the timeline)
+//! take the colours of [`OTHERS`] in order, which are none of the keys'.
+//! [`series_colours`] gives a chart's series their colours, each distinct:
+//! a second series of the same key (e.g. `WaSP, priority warps` beside
+//! `WaSP, all`) gets a darker, then a lighter shade of it.
 
 use plotters::style::RGBColor;
+use wasp_rtl::policy::PolicySpec;
 
-/// The colour of each key, by the lower-case first word of a series name.
-const NAMED: [(&str, RGBColor); 14] = [
-    ("baseline", RGBColor(127, 127, 127)),
-    ("scanline", RGBColor(127, 127, 127)),
-    ("fullpriority", RGBColor(255, 127, 14)),
-    ("full-priority", RGBColor(255, 127, 14)),
-    ("freemshr", RGBColor(148, 103, 189)),
-    ("wasp", RGBColor(31, 119, 180)),
-    ("wasp-m", RGBColor(23, 190, 207)),
-    ("oracle", RGBColor(140, 86, 75)),
-    ("oracle-tile", RGBColor(140, 86, 75)),
-    ("raster", RGBColor(227, 119, 194)),
-    ("3d", RGBColor(44, 160, 44)),
-    ("2d", RGBColor(214, 39, 40)),
-    ("games", RGBColor(188, 189, 34)),
-    ("procedural", RGBColor(82, 84, 163)),
-];
+/// What a series shows, which chooses its colour.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Key {
+    /// The scanline baseline.
+    Baseline,
+    /// Fullpriority.
+    FullPriority,
+    /// FreeMSHR-N, any N.
+    FreeMshr,
+    /// WaSP, any threshold and CF.
+    Wasp,
+    /// WaSP with a measured CF.
+    WaspMeasured,
+    /// The oracle prefetcher's bound.
+    Oracle,
+    /// The 3D games.
+    ThreeD,
+    /// The 2D games.
+    TwoD,
+    /// The games together.
+    Games,
+    /// The procedural scenes.
+    Procedural,
+    /// None of these: the next of [`OTHERS`].
+    #[default]
+    Other,
+}
+
+impl Key {
+    /// The key's own colour; None for [`Key::Other`].
+    pub fn colour(self) -> Option<RGBColor> {
+        Some(match self {
+            Key::Baseline => RGBColor(127, 127, 127),
+            Key::FullPriority => RGBColor(255, 127, 14),
+            Key::FreeMshr => RGBColor(148, 103, 189),
+            Key::Wasp => RGBColor(31, 119, 180),
+            Key::WaspMeasured => RGBColor(23, 190, 207),
+            Key::Oracle => RGBColor(140, 86, 75),
+            Key::ThreeD => RGBColor(44, 160, 44),
+            Key::TwoD => RGBColor(214, 39, 40),
+            Key::Games => RGBColor(188, 189, 34),
+            Key::Procedural => RGBColor(82, 84, 163),
+            Key::Other => return None,
+        })
+    }
+}
+
+/// A policy's key: its kind, whatever its parameters.
+impl From<PolicySpec> for Key {
+    fn from(p: PolicySpec) -> Key {
+        match p {
+            PolicySpec::Baseline => Key::Baseline,
+            PolicySpec::FullPriority => Key::FullPriority,
+            PolicySpec::FreeMshr(_) => Key::FreeMshr,
+            PolicySpec::Wasp { .. } => Key::Wasp,
+            PolicySpec::WaspMeasured { .. } => Key::WaspMeasured,
+        }
+    }
+}
 
 /// The colours of series that are no named key, and of the timeline's
 /// cores, in order (ColorBrewer's Dark2 and two more).
@@ -62,24 +104,6 @@ pub const TILE_START: RGBColor = RGBColor(40, 40, 40);
 /// Tile ends in the timeline.
 pub const TILE_END: RGBColor = RGBColor(200, 30, 30);
 
-/// The key of a series name: its first word, lower case, after a leading
-/// `mean ` (`"WaSP, all"` -> `wasp`, `"wasp:0:3"` -> `wasp`, `"mean 3D"`
-/// -> `3d`).
-fn key(name: &str) -> String {
-    let lower = name.trim().to_ascii_lowercase();
-    let rest = lower.strip_prefix("mean ").unwrap_or(&lower);
-    rest.split([',', ' ', ':', '(', '@'])
-        .next()
-        .unwrap_or("")
-        .to_string()
-}
-
-/// The colour of a series whose name starts with a named key.
-pub fn named(name: &str) -> Option<RGBColor> {
-    let k = key(name);
-    NAMED.iter().find(|(n, _)| *n == k).map(|&(_, c)| c)
-}
-
 /// Other colour `i` (repeating past [`OTHERS`]).
 pub fn other(i: usize) -> RGBColor {
     OTHERS[i % OTHERS.len()]
@@ -99,39 +123,35 @@ pub fn shade(c: RGBColor, f: f64) -> RGBColor {
     RGBColor(s(c.0), s(c.1), s(c.2))
 }
 
-/// The colours of a chart's series, in order: each named key its colour
-/// (a repeat of a key darker, then lighter, by turns), other series the
-/// [`OTHERS`] in order.
-pub fn series_colours<S: AsRef<str>>(names: &[S]) -> Vec<RGBColor> {
-    let mut repeats: Vec<(RGBColor, usize)> = Vec::new();
+/// The colours of a chart's series of `keys`, in order: each key its
+/// colour (a repeat of a key darker, then lighter, by turns), other series
+/// the [`OTHERS`] in order.
+pub fn series_colours(keys: &[Key]) -> Vec<RGBColor> {
+    let mut repeats: Vec<(Key, usize)> = Vec::new();
     let mut others = 0;
-    names
-        .iter()
-        .map(|n| match named(n.as_ref()) {
-            Some(c) => {
-                let k = match repeats.iter_mut().find(|r| r.0 == c) {
-                    Some(r) => {
-                        r.1 += 1;
-                        r.1
-                    }
-                    None => {
-                        repeats.push((c, 0));
-                        0
-                    }
-                };
-                let step = k.div_ceil(2);
-                match k {
-                    0 => c,
-                    _ if k % 2 == 1 => shade(c, 0.8f64.powi(step as i32)),
-                    _ => shade(c, 1.0 + 0.6 * step as f64),
-                }
+    let mut colour = |&key: &Key| {
+        let Some(c) = key.colour() else {
+            others += 1;
+            return other(others - 1);
+        };
+        let k = match repeats.iter_mut().find(|r| r.0 == key) {
+            Some(r) => {
+                r.1 += 1;
+                r.1
             }
             None => {
-                others += 1;
-                other(others - 1)
+                repeats.push((key, 0));
+                0
             }
-        })
-        .collect()
+        };
+        let step = k.div_ceil(2);
+        match k {
+            0 => c,
+            _ if k % 2 == 1 => shade(c, 0.8f64.powi(step as i32)),
+            _ => shade(c, 1.0 + 0.6 * step as f64),
+        }
+    };
+    keys.iter().map(&mut colour).collect()
 }
 
 /// The diverging scale of heat maps at `t` in [-1, 1]: red below 0, white
@@ -156,44 +176,46 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_policy_has_one_colour_in_every_spelling() {
-        let wasp = named("wasp").expect("wasp");
-        for name in ["wasp:0:3", "WaSP", "WaSP, all", "wasp:6", "WaSP@48"] {
-            assert_eq!(named(name), Some(wasp), "{name}");
+    fn a_policy_has_one_colour_whatever_its_parameters() {
+        let wasp = Key::Wasp.colour();
+        for p in ["wasp:0:3", "wasp:6", "wasp"] {
+            let spec: PolicySpec = p.parse().expect("policy");
+            assert_eq!(Key::from(spec).colour(), wasp, "{p}");
         }
-        assert_ne!(named("wasp-m:0"), Some(wasp));
-        assert_eq!(named("freemshr:10"), named("freemshr"));
-        assert_eq!(named("mean 3D"), named("3D"));
-        assert_eq!(named("Mesh4 (size ratio 1/16)"), None);
+        let measured: PolicySpec = "wasp-m:0".parse().expect("policy");
+        assert_ne!(Key::from(measured).colour(), wasp);
+        assert_eq!(Key::from(PolicySpec::FreeMshr(10)), Key::FreeMshr);
+        assert_eq!(Key::Other.colour(), None);
     }
 
     #[test]
-    fn other_colours_are_no_named_colour() {
+    fn other_colours_are_no_key_colour() {
+        let keys = [Key::Baseline, Key::FullPriority, Key::FreeMshr, Key::Wasp];
+        let keys = keys
+            .into_iter()
+            .chain([Key::WaspMeasured, Key::Oracle, Key::ThreeD]);
+        let keys: Vec<Key> = keys
+            .chain([Key::TwoD, Key::Games, Key::Procedural])
+            .collect();
         for c in OTHERS {
-            assert!(NAMED.iter().all(|(_, n)| *n != c), "{c:?}");
+            assert!(keys.iter().all(|k| k.colour() != Some(c)), "{c:?}");
         }
     }
 
     #[test]
     fn a_chart_gets_distinct_colours() {
-        let names = [
-            "baseline, all",
-            "WaSP, all",
-            "WaSP, priority warps",
-            "WaSP, regular warps",
-            "L1 misses",
-        ];
-        let c = series_colours(&names);
-        assert_eq!(c[0], named("baseline").unwrap());
-        assert_eq!(c[1], named("wasp").unwrap());
+        let keys = [Key::Baseline, Key::Wasp, Key::Wasp, Key::Wasp, Key::Other];
+        let c = series_colours(&keys);
+        assert_eq!(Some(c[0]), Key::Baseline.colour());
+        assert_eq!(Some(c[1]), Key::Wasp.colour());
         assert_eq!(c[4], OTHERS[0]);
         for i in 0..c.len() {
             for j in 0..i {
-                assert_ne!(c[i], c[j], "{} and {}", names[i], names[j]);
+                assert_ne!(c[i], c[j], "{:?} and {:?}", keys[i], keys[j]);
             }
         }
-        // The same names give the same colours in any chart.
-        assert_eq!(series_colours(&["fullpriority", "wasp:0:3"])[1], c[1]);
+        // The same keys give the same colours in any chart.
+        assert_eq!(series_colours(&[Key::FullPriority, Key::Wasp])[1], c[1]);
     }
 
     #[test]

@@ -13,10 +13,14 @@ pub(crate) trait Picture {
     /// The picture's size in pixels.
     fn size(&self) -> (u32, u32);
     /// Draws the picture on `root` (of [`Picture::size`]).
-    fn render<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static;
+    fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB>;
 }
+
+/// A drawing area in pixels.
+pub(crate) type Area<DB> = DrawingArea<DB, Shift>;
+/// What drawing returns.
+pub(crate) type Drawn<DB, T = ()> =
+    Result<T, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// Whether `path` asks for an SVG (`.svg`) or a PNG (`.png`), in any case;
 /// `what` (e.g. "a chart") names the picture in the error.
@@ -44,13 +48,12 @@ pub(crate) fn save(
     svg: bool,
 ) -> Result<(), String> {
     let (w, h) = picture.size();
-    let failed = |e: DrawingAreaErrorKind<_>| format!("{who}: {e}");
     if svg {
         let mut text = String::new();
         {
             let root = SVGBackend::with_string(&mut text, (w, h)).into_drawing_area();
-            picture.render(&root)?;
-            root.present().map_err(failed)?;
+            let drawn = picture.draw(&root).and_then(|()| root.present());
+            drawn.map_err(|e| format!("{who}: {e}"))?;
         }
         crate::output::write_atomic(path, text.as_bytes())
             .map_err(|e| format!("writing {}: {e}", path.display()))
@@ -58,8 +61,8 @@ pub(crate) fn save(
         let mut pixels = vec![0u8; w as usize * h as usize * 3];
         {
             let root = BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area();
-            picture.render(&root)?;
-            root.present().map_err(|e| format!("{who}: {e}"))?;
+            let drawn = picture.draw(&root).and_then(|()| root.present());
+            drawn.map_err(|e| format!("{who}: {e}"))?;
         }
         let img = image::RgbImage::from_raw(w, h, pixels)
             .ok_or_else(|| format!("{who}: the pixel buffer has the wrong size"))?;

@@ -8,11 +8,12 @@
 //! label.
 
 use super::frame::{
-    builder, column, edge, paper_entry, paper_lines, paper_margin, paper_point, plot_rect, px,
-    range, style, style_mesh, text_size, tick_label, value_label, write, y_area, Area, Chart,
-    Drawn, Frame, Placer, Shape, Swatch, LABEL, SMALL,
+    builder, column, edge, mark_colour, paper_entry, paper_lines, paper_margin, paper_point,
+    plot_rect, px, range, style, style_mesh, text_size, tick_label, value_label, write, y_area,
+    Area, Drawn, Frame, Picture, Placer, LABEL, SMALL,
 };
-use super::{check, frame, who, BarChart, CategoryGroup};
+use super::legend::{Shape, Swatch};
+use super::{check, ensure, frame, who, BarChart, CategoryGroup};
 use crate::palette::{series_colours, shade, INK};
 use plotters::coord::ranged1d::SegmentedCoord;
 use plotters::coord::types::{RangedCoordf64, RangedCoordusize};
@@ -43,17 +44,15 @@ pub fn draw_bars(chart: &BarChart, path: &Path) -> Result<(), String> {
     check(&who, marks, (n, "categories"), name_of)?;
     let bad_group = |g: &CategoryGroup| g.categories.end > n || g.categories.is_empty();
     let bad_sep = c.separators.iter().any(|&i| i > n) || c.highlight.iter().any(|&i| i >= n);
-    if bad_sep || c.groups.iter().any(bad_group) {
-        let what = "a separator, highlight or group";
-        return Err(format!("{who}: {what} is past the {n} categories"));
-    }
-    write(&who, path, || Bars::new(chart, who.clone()))
+    let what = "a separator, highlight or group";
+    let bad = bad_sep || c.groups.iter().any(bad_group);
+    ensure(!bad, || format!("{who}: {what} is past the {n} categories"))?;
+    write(&who, path, || Bars::new(chart))
 }
 
 /// A bar chart laid out.
 struct Bars<'a> {
     c: &'a BarChart,
-    who: String,
     frame: Frame<'a>,
     colours: Vec<RGBColor>,
     y: std::ops::Range<f64>,
@@ -65,14 +64,12 @@ struct Bars<'a> {
 }
 
 impl<'a> Bars<'a> {
-    fn new(c: &'a BarChart, who: String) -> Self {
+    fn new(c: &'a BarChart) -> Self {
         let (n, s) = (c.categories.len(), c.series.len());
         let bars = present(&c.series).into_iter().map(|b| b.2);
         let data: Vec<f64> = bars.chain(c.paper.iter().map(|m| m.value)).collect();
-        let (lo, hi) = (
-            data.iter().copied().fold(0.0, f64::min),
-            data.iter().copied().fold(0.0, f64::max),
-        );
+        let lo = data.iter().copied().fold(0.0, f64::min);
+        let hi = data.iter().copied().fold(0.0, f64::max);
         // Room over the tallest (under the lowest) bar for its value.
         let room = 0.06 * (hi - lo) * f64::from(u8::from(s <= 3 && n <= 20));
         let mut include = vec![0.0, hi + room * hi.signum(), lo + room * lo.signum()];
@@ -99,15 +96,14 @@ impl<'a> Bars<'a> {
         let rows: Vec<f64> = c.groups.iter().map(&mut row).collect();
         let two = usize::from(rows.iter().any(|&r| r > 0.0));
         let top = [10.0, 34.0, 56.0][c.groups.len().min(1) + two];
-        let colours = series_colours(&c.series.iter().map(|s| &s.name).collect::<Vec<_>>());
+        let colours = series_colours(&c.series.iter().map(|s| s.key).collect::<Vec<_>>());
         let swatch = |(s, &k): (&super::Series, _)| (s.name.clone(), Swatch::Block(k));
         let mut legend: Vec<_> = c.series.iter().zip(&colours).map(swatch).collect();
-        legend.extend(paper_entry(&c.paper, Shape::Diamond));
+        legend.extend(paper_entry(&c.paper, Shape::Circle));
         let frame = Frame::new((&c.title, &c.subtitle), legend, left, width.round());
         let pad = (left, bottom, top, right);
         Bars {
             c,
-            who,
             frame,
             colours,
             y,
@@ -116,18 +112,9 @@ impl<'a> Bars<'a> {
             rotate,
         }
     }
-
-    /// The colour of the paper's marks of `series` (dark grey for none).
-    fn mark_colour(&self, series: Option<usize>) -> RGBColor {
-        series.map_or(INK, |s| shade(self.colours[s], 0.62))
-    }
 }
 
-impl Chart for Bars<'_> {
-    fn who(&self) -> &str {
-        &self.who
-    }
-
+impl Picture for Bars<'_> {
     fn size(&self) -> (u32, u32) {
         let height = f64::from(self.frame.height()) + self.pad.2 + 438.0 + self.pad.1;
         (self.frame.width as u32, height.max(700.0) as u32)
@@ -157,15 +144,8 @@ impl Chart for Bars<'_> {
         // The bars, kept free of labels, then the zero and reference lines.
         let map = chart.as_coord_spec().clone();
         let (p, s) = (plot_rect(&chart), c.series.len() as f64);
-        let mut g = Geom {
-            p,
-            map,
-            last,
-            bar: 0.0,
-            s,
-        };
-        g.bar = ((g.gx(1) - g.gx(0)).max(1.0) * 0.8 / s).min(64.0);
-        let inset = if g.bar > 8.0 { 1.0 } else { 0.0 };
+        let g = Geom { p, map, last, s };
+        let inset = if g.bar() > 8.0 { 1.0 } else { 0.0 };
         let mut placer = Placer::default();
         let mut rects = Vec::new();
         for (k, i, v) in present(&c.series) {
@@ -198,15 +178,15 @@ impl Bars<'_> {
         g: &Geom,
     ) -> Drawn<DB> {
         let (c, p) = (self.c, g.p);
-        let colour = |s| self.mark_colour(s);
+        let colour = |s| mark_colour(&self.colours, s);
         paper_lines(root, (p, &mut *placer), &c.paper, |v| g.py(v), colour)?;
         let bars = present(&c.series);
         let texts: Vec<String> = bars.iter().map(|b| value_label(b.2, c.percent)).collect();
         let mut labels = Vec::new();
         let few = c.series.len() <= 3 && c.categories.len() <= 20;
         for (&(k, i, v), text) in bars.iter().zip(&texts).filter(|_| few) {
-            let upright = text_size(text, SMALL, false).0 > g.bar + 2.0;
-            let (x, up) = (g.bar_x(i, k) + g.bar / 2.0, v >= 0.0);
+            let upright = text_size(text, SMALL, false).0 > g.bar() + 2.0;
+            let (x, up) = (g.bar_x(i, k) + g.bar() / 2.0, v >= 0.0);
             let (y, limit) = [(g.py(v) + 2.0, p.3), (g.py(v) - 2.0, p.1)][usize::from(up)];
             let candidates = column(x, (y, up, limit), (text, upright), 400);
             labels.push((candidates, text.as_str(), shade(self.colours[k], 0.62)));
@@ -219,7 +199,7 @@ impl Bars<'_> {
             };
             let (at, colour) = (((x0 + x1) / 2.0, g.py(m.value)), colour(m.series));
             let mark = (at, (x1 - x0) / 2.0, 5.0);
-            paper_point((root, &mut *placer), mark, Shape::Diamond, colour)?;
+            paper_point((root, &mut *placer), mark, Shape::Circle, colour)?;
             let text = (m.label.as_str(), false);
             let over = column(at.0, (at.1 - 8.0, true, p.1), text, 400);
             let under = column(at.0, (at.1 + 8.0, false, p.3), text, 400);
@@ -240,10 +220,8 @@ impl Bars<'_> {
             root.draw_text(name, &s, px((g.gx(i) + g.gx(i + 1)) / 2.0, p.3 + 10.0))?;
         }
         for (grp, row) in c.groups.iter().zip(&self.rows) {
-            let (x0, x1) = (
-                g.gx(grp.categories.start) + 6.0,
-                g.gx(grp.categories.end) - 6.0,
-            );
+            let run = &grp.categories;
+            let (x0, x1) = (g.gx(run.start) + 6.0, g.gx(run.end) - 6.0);
             let y = p.1 - 8.0 - 22.0 * row;
             let bracket = vec![px(x0, y + 4.0), px(x0, y), px(x1, y), px(x1, y + 4.0)];
             root.draw(&PathElement::new(bracket, INK))?;
@@ -254,13 +232,12 @@ impl Bars<'_> {
     }
 }
 
-/// The plot in pixels: its rectangle, plotters' mapping, the last segment,
-/// the width of a bar and the number of series.
+/// The plot in pixels: its rectangle, plotters' mapping, the last segment
+/// and the number of series.
 struct Geom {
     p: frame::Rect,
     map: Cartesian2d<SegmentedCoord<RangedCoordusize>, RangedCoordf64>,
     last: usize,
-    bar: f64,
     s: f64,
 }
 
@@ -275,11 +252,20 @@ impl Geom {
         f64::from(self.map.translate(&(edge(0, self.last), v)).1)
     }
 
+    /// The width of a category's group of bars.
+    fn group(&self) -> f64 {
+        (self.gx(1) - self.gx(0)).max(1.0)
+    }
+
+    /// The width of a bar.
+    fn bar(&self) -> f64 {
+        (self.group() * 0.8 / self.s).min(64.0)
+    }
+
     /// The pixel column of the left edge of series `k`'s bar in category
     /// `i`.
     fn bar_x(&self, i: usize, k: usize) -> f64 {
-        let group = (self.gx(1) - self.gx(0)).max(1.0);
-        self.gx(i) + (group - self.s * self.bar) / 2.0 + k as f64 * self.bar
+        self.gx(i) + (self.group() - self.s * self.bar()) / 2.0 + k as f64 * self.bar()
     }
 }
 
@@ -295,29 +281,16 @@ fn present(series: &[super::Series]) -> Vec<(usize, usize, f64)> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, out, pixels, same_twice, texts};
-    use super::super::{PaperMark, Series};
+    use super::super::tests::{error, mark, out, pixels, same_twice, texts};
+    use super::super::Series;
     use super::*;
-    use crate::palette::named;
+    use crate::palette::Key;
 
     /// A series with a value for every category.
-    fn full(name: &str, values: &[f64]) -> Series {
+    fn full(key: Key, name: &str, values: &[f64]) -> Series {
         let values = values.iter().map(|&v| Some(v)).collect();
-        Series {
-            name: name.into(),
-            values,
-        }
-    }
-
-    /// A paper mark.
-    fn mark(series: Option<usize>, category: Option<usize>, value: f64, label: &str) -> PaperMark {
-        let label = label.into();
-        PaperMark {
-            series,
-            category,
-            value,
-            label,
-        }
+        let name = name.into();
+        Series { key, name, values }
     }
 
     /// Sixteen scenes with long names in two groups and two means, two
@@ -327,7 +300,7 @@ mod tests {
         let categories = names.chain(["mean 3D".into(), "mean all".into()]).collect();
         let wasp: Vec<f64> = (0..18).map(|i| 0.01 * f64::from(i % 7) - 0.02).collect();
         let half: Vec<f64> = wasp.iter().map(|v| v / 2.0).collect();
-        let mut fp = full("Fullpriority", &half);
+        let mut fp = full(Key::FullPriority, "Fullpriority", &half);
         fp.values[3] = None;
         let group = |label: &str, categories| CategoryGroup {
             label: label.into(),
@@ -338,7 +311,7 @@ mod tests {
             subtitle: "shared-tile machine, 16 scenes".into(),
             y_label: "speedup".into(),
             categories,
-            series: vec![full("WaSP", &wasp), fp],
+            series: vec![full(Key::Wasp, "WaSP", &wasp), fp],
             paper: vec![
                 mark(Some(0), None, 0.039, "paper 3.9%"),
                 mark(None, None, 0.05, "paper best 5.0%"),
@@ -363,8 +336,8 @@ mod tests {
         draw_bars(&speedups(), &path).expect("draw png");
         let (w, h) = image::image_dimensions(&path).expect("png");
         assert!((900..=1800).contains(&w) && (700..=1000).contains(&h));
-        let wasp = pixels(&path, named("wasp").unwrap());
-        let full = pixels(&path, named("fullpriority").unwrap());
+        let wasp = pixels(&path, Key::Wasp.colour().unwrap());
+        let full = pixels(&path, Key::FullPriority.colour().unwrap());
         assert!(wasp > 500 && full > 200, "{wasp}, {full} pixels");
         let path = out("bars", "speedup.svg");
         draw_bars(&speedups(), &path).expect("draw svg");
@@ -383,8 +356,8 @@ mod tests {
         // Min_Estimate-like values whose labels would cross the lines.
         let mut c = speedups();
         c.categories = ["a", "b", "c", "d"].map(String::from).to_vec();
-        let one = full("one", &[0.23, 0.099, 0.11, 0.068]);
-        c.series = vec![one, full("two", &[0.045, 0.053, 0.071, 0.062])];
+        let one = full(Key::Other, "one", &[0.23, 0.099, 0.11, 0.068]);
+        c.series = vec![one, full(Key::Other, "two", &[0.045, 0.053, 0.071, 0.062])];
         let p2 = mark(Some(1), None, 0.0625, "p2");
         c.paper = vec![mark(Some(0), None, 0.12, "p1"), p2];
         (c.separators, c.highlight, c.groups, c.percent) = (vec![], vec![], vec![], false);
@@ -400,7 +373,7 @@ mod tests {
                 assert!((y - l).abs() >= half + 3.0, "`{text}` at {y} on {l}");
             }
         }
-        let four = |k| full(&format!("s{k}"), &[1.2, 0.5, 2.0, 1.0]);
+        let four = |k| full(Key::Other, &format!("s{k}"), &[1.2, 0.5, 2.0, 1.0]);
         c.series = (0..4).map(four).collect();
         draw_bars(&c, &path).expect("draw svg");
         let four = texts(&path, "s3");
@@ -408,7 +381,7 @@ mod tests {
             !four.iter().any(|t| t.0 == "0.50"),
             "four series: no values"
         );
-        (c.categories, c.series) = (vec!["only".into()], vec![full("WaSP", &[-0.02])]);
+        (c.categories, c.series) = (vec!["only".into()], vec![full(Key::Wasp, "WaSP", &[-0.02])]);
         (c.paper, c.percent) = (vec![], true);
         draw_bars(&c, &path).expect("draw svg");
         texts(&path, "-2.0%|0.0%|only");

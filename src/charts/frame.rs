@@ -1,13 +1,14 @@
-//! What every chart kind shares, and what plotters lacks: the strip above
-//! the plot (title, subtitle, legend row), markers, the paper's marks, the
-//! [`Placer`] that puts labels where they hide nothing; and the plot's
-//! `ChartBuilder`, mesh style, range and tick labels.
+//! What every picture shares, and what plotters lacks: the strip above the
+//! plot (title, subtitle, legend), the paper's marks, the [`Placer`] that
+//! puts labels where they hide nothing; and the plot's `ChartBuilder`,
+//! mesh style, range and tick labels.
 
+use super::legend::{legend, line_height, marker, rows, Legend, Shape, Swatch};
 use crate::fonts::{font, register_fonts};
-use crate::palette::{GRID, INK};
-use crate::picture::{is_svg, save, Picture};
+use crate::palette::{shade, GRID, INK};
+use crate::picture::{is_svg, save};
+pub(crate) use crate::picture::{Area, Drawn, Picture};
 use plotters::coord::types::RangedCoordf64;
-use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos as H, Pos, VPos as V};
@@ -21,39 +22,10 @@ pub(super) const SMALL: u32 = 13;
 /// A rectangle in pixels: left, top, right, bottom.
 pub(super) type Rect = (f64, f64, f64, f64);
 /// The label areas left of and under a plot, its margins over and right.
-pub(super) type Pad = (f64, f64, f64, f64);
-/// A drawing area in pixels.
-pub(super) type Area<DB> = DrawingArea<DB, Shift>;
-/// What drawing returns.
-pub(super) type Drawn<DB, T = ()> =
-    Result<T, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
-
-/// A chart laid out: its error prefix, size and drawing.
-pub(super) trait Chart {
-    /// `drawing <title>`.
-    fn who(&self) -> &str;
-    /// The picture's size in pixels.
-    fn size(&self) -> (u32, u32);
-    /// Draws the chart on `root`.
-    fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB>;
-}
-
-impl<C: Chart> Picture for C {
-    fn size(&self) -> (u32, u32) {
-        Chart::size(self)
-    }
-
-    fn render<DB: DrawingBackend>(&self, root: &Area<DB>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        self.draw(root).map_err(|e| format!("{}: {e}", self.who()))
-    }
-}
-
+pub(crate) type Pad = (f64, f64, f64, f64);
 /// Writes the chart that `layout` gives to `path` (PNG or SVG by the
 /// extension), registering the fonts first: the layout measures text.
-pub(super) fn write<C: Chart>(
+pub(super) fn write<C: Picture>(
     who: &str,
     path: &Path,
     layout: impl FnOnce() -> C,
@@ -85,76 +57,9 @@ pub(super) fn around((x, y): (f64, f64), r: (f64, f64)) -> Rect {
     (x - r.0, y - r.1, x + r.0, y + r.1)
 }
 
-/// The marker shapes of line series (series k has shape k mod 5) and of
-/// the paper's values.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Shape {
-    Circle,
-    Square,
-    Triangle,
-    Diamond,
-    TriangleDown,
-}
-
-impl Shape {
-    /// The shape of series `s`.
-    pub fn of(s: usize) -> Shape {
-        use Shape::*;
-        [Circle, Square, Triangle, Diamond, TriangleDown][s % 5]
-    }
-
-    /// The corners around `(x, y)`, `r` from centre to edge.
-    fn outline(self, (x, y): (f64, f64), r: f64) -> Vec<(i32, i32)> {
-        let circle = (0..16).map(|k| f64::from(k) * std::f64::consts::PI / 8.0);
-        let corners: Vec<(f64, f64)> = match self {
-            Shape::Circle => circle.map(|a| (a.cos(), a.sin())).collect(),
-            Shape::Square => vec![(-0.85, -0.85), (0.85, -0.85), (0.85, 0.85), (-0.85, 0.85)],
-            Shape::Triangle => vec![(0.0, -1.1), (1.0, 0.8), (-1.0, 0.8)],
-            Shape::TriangleDown => vec![(0.0, 1.1), (1.0, -0.8), (-1.0, -0.8)],
-            Shape::Diamond => vec![(0.0, -1.2), (1.0, 0.0), (0.0, 1.2), (-1.0, 0.0)],
-        };
-        let corner = |(dx, dy)| px(x + r * dx, y + r * dy);
-        corners.into_iter().map(corner).collect()
-    }
-}
-
-/// Draws a marker of `shape` at pixel `at`, `r` from centre to edge:
-/// filled in `colour`, or hollow (white inside, a 2-pixel outline).
-pub(super) fn marker<DB: DrawingBackend>(
-    area: &Area<DB>,
-    (shape, at, r): (Shape, (f64, f64), f64),
-    colour: RGBColor,
-    hollow: bool,
-) -> Drawn<DB> {
-    let outline = shape.outline(at, r);
-    let fill = if hollow { WHITE } else { colour };
-    area.draw(&Polygon::new(outline.clone(), fill.filled()))?;
-    if hollow {
-        let closed: Vec<_> = outline.iter().chain(outline.first()).copied().collect();
-        area.draw(&PathElement::new(closed, colour.stroke_width(2)))?;
-    }
-    Ok(())
-}
-
-/// How a legend entry shows what it names.
-#[derive(Clone, Debug)]
-pub(super) enum Swatch {
-    /// A filled block (bars).
-    Block(RGBColor),
-    /// A line through a filled marker (a line series).
-    Line(RGBColor, Shape),
-    /// A line (a reference).
-    Rule(RGBColor),
-    /// The paper's values: a dashed line and/or a hollow marker.
-    Paper(bool, Option<Shape>),
-}
-
-/// The entries of a legend: the text and how it looks.
-pub(super) type Legend = Vec<(String, Swatch)>;
-
-/// The strip above the plot: title, subtitle, the legend row from `left`;
+/// The strip above the plot: title, subtitle, the legend from `left`;
 /// `width` is the picture's.
-pub(super) struct Frame<'a> {
+pub(crate) struct Frame<'a> {
     pub title: (&'a str, &'a str),
     pub legend: Legend,
     pub left: f64,
@@ -172,29 +77,19 @@ impl<'a> Frame<'a> {
         }
     }
 
-    /// The legend entries' places: (row, x) each, wrapping at the width.
-    fn places(&self) -> Vec<(f64, f64)> {
-        let (mut row, mut x) = (0.0, self.left);
-        let place = |(label, _): &(String, Swatch)| {
-            let w = 38.0 + text_size(label, LABEL, false).0;
-            if x > self.left && x + w > self.width - 16.0 {
-                (row, x) = (row + 1.0, self.left);
-            }
-            x += w + 26.0;
-            (row, x - w - 26.0)
-        };
-        self.legend.iter().map(place).collect()
-    }
-
-    /// The height of the title strip, and of the whole strip.
+    /// The height of the title and subtitle.
     fn title_h(&self) -> f64 {
         52.0 + 26.0 * f64::from(u8::from(!self.title.1.is_empty()))
     }
 
-    /// The height of the strip: title, legend rows, a gap.
+    /// The lines of each column of the legend.
+    fn rows(&self) -> usize {
+        rows(&self.legend, LABEL, self.width - self.left - 16.0)
+    }
+
+    /// The height of the strip: title, legend, a gap.
     pub fn height(&self) -> u32 {
-        let rows = self.places().last().map_or(0.0, |p| p.0 + 1.0);
-        (self.title_h() + rows * 26.0 + 10.0) as u32
+        (self.title_h() + self.rows() as f64 * line_height(LABEL) + 10.0) as u32
     }
 
     /// Fills `root` white, draws the strip and returns the area under it.
@@ -206,32 +101,10 @@ impl<'a> Frame<'a> {
         root.draw_text(title, &style(size, true, BLACK, H::Left, V::Top), (16, 12))?;
         let size = fit(sub, 20, false).unwrap_or(12);
         root.draw_text(sub, &style(size, false, INK, H::Left, V::Top), (16, 44))?;
-        let text = style(LABEL, false, BLACK, H::Left, V::Center);
-        for ((label, swatch), (row, x0)) in self.legend.iter().zip(self.places()) {
-            let mid = self.title_h() + (row + 0.5) * 26.0;
-            let (x1, c) = (x0 + 30.0, (x0 + 15.0, mid));
-            let line = vec![px(x0, mid), px(x1, mid)];
-            match *swatch {
-                Swatch::Block(k) => {
-                    let block = [px(x0 + 4.0, mid - 8.0), px(x1 - 4.0, mid + 8.0)];
-                    root.draw(&Rectangle::new(block, k.filled()))?;
-                }
-                Swatch::Line(k, shape) => {
-                    root.draw(&PathElement::new(line, k.stroke_width(2)))?;
-                    marker(root, (shape, c, 5.0), k, false)?;
-                }
-                Swatch::Rule(k) => root.draw(&PathElement::new(line, k.stroke_width(2)))?,
-                Swatch::Paper(dashed, shape) => {
-                    if dashed {
-                        root.draw(&DashedPathElement::new(line, 5, 3, INK.stroke_width(2)))?;
-                    }
-                    if let Some(shape) = shape {
-                        marker(root, (shape, c, 6.0), INK, true)?;
-                    }
-                }
-            }
-            root.draw_text(label, &text, px(x1 + 8.0, mid))?;
-        }
+        let (rows, top, w) = (self.rows(), self.title_h() as u32, self.width - self.left);
+        let (at, size) = ((self.left as u32, top), (w as u32, self.height() - top));
+        let strip = root.clone().shrink(at, size);
+        legend(&strip, &self.legend, (rows, LABEL))?;
         Ok(root.split_vertically(self.height()).1)
     }
 }
@@ -249,7 +122,14 @@ pub(super) fn paper_entry(paper: &[super::PaperMark], shape: Shape) -> Option<(S
     };
     let coloured = paper.iter().any(|m| m.series.is_some());
     let label = format!("{what}{}", if coloured { " (series colour)" } else { "" });
-    Some((label, Swatch::Paper(line, marker.then_some(shape))))
+    let swatch = Swatch::Dashed(INK.stroke_width(2), marker.then_some(shape));
+    Some((label, swatch))
+}
+
+/// The colour of the paper's marks of `series` (dark grey for none) in a
+/// chart of series `colours`.
+pub(super) fn mark_colour(colours: &[RGBColor], series: Option<usize>) -> RGBColor {
+    series.map_or(INK, |s| shade(colours[s], 0.62))
 }
 
 /// The width of the margin right of the plot for the labels of the paper's
@@ -308,7 +188,7 @@ pub(super) fn paper_point<DB: DrawingBackend>(
     let ends = vec![px(at.0 - half, at.1), px(at.0 + half, at.1)];
     root.draw(&PathElement::new(ends.clone(), WHITE.stroke_width(5)))?;
     root.draw(&DashedPathElement::new(ends, 4, 2, colour.stroke_width(2)))?;
-    marker(root, (shape, at, r), colour, true)?;
+    root.draw(&marker(px(at.0, at.1), (shape, r as i32), colour, true))?;
     placer.take(around(at, (r + 2.0, r + 3.0)));
     Ok(())
 }
@@ -341,11 +221,7 @@ pub(super) fn tick_label(r: &Range<f64>, n: usize, percent: bool) -> impl Fn(&f6
     let scale = if percent { 100.0 } else { 1.0 };
     let d = (-(step * scale).log10() - 1e-9).ceil().clamp(0.0, 9.0) as usize;
     move |v: &f64| {
-        let v = if v.abs() < step * 1e-6 {
-            0.0
-        } else {
-            *v * scale
-        };
+        let v = [*v * scale, 0.0][usize::from(v.abs() < step * 1e-6)];
         format!("{v:.d$}{}", if percent { "%" } else { "" })
     }
 }
@@ -364,7 +240,7 @@ pub(super) fn value_label(v: f64, percent: bool) -> String {
 
 /// The mesh as every chart has it: the chart font, light grid lines at the
 /// ticks only.
-pub(super) fn style_mesh<X: Ranged, Y: Ranged, DB: DrawingBackend>(
+pub(crate) fn style_mesh<X: Ranged, Y: Ranged, DB: DrawingBackend>(
     m: &mut plotters::chart::MeshStyle<'_, '_, X, Y, DB>,
 ) {
     m.label_style(font(LABEL, false).color(&BLACK));
@@ -375,7 +251,7 @@ pub(super) fn style_mesh<X: Ranged, Y: Ranged, DB: DrawingBackend>(
 
 /// Every chart's `ChartBuilder`: label areas `left` wide and `bottom` high,
 /// margins `top` and `right` (for the paper's labels).
-pub(super) fn builder<DB: DrawingBackend>(area: &Area<DB>, pad: Pad) -> ChartBuilder<'_, '_, DB> {
+pub(crate) fn builder<DB: DrawingBackend>(area: &Area<DB>, pad: Pad) -> ChartBuilder<'_, '_, DB> {
     let (left, bottom, top, right) = pad;
     let mut b = ChartBuilder::on(area);
     b.margin_top(top as u32).margin_left(6).margin_bottom(8);
@@ -459,11 +335,8 @@ impl Placer {
             };
             let up = r.3 - r.1 > r.2 - r.0 && text_size(text, SMALL, false).0 > r.2 - r.0 + 1.0;
             let s = style(SMALL, false, colour, H::Center, V::Center);
-            let s = if up {
-                s.transform(FontTransform::Rotate270)
-            } else {
-                s
-            };
+            let turn = [FontTransform::None, FontTransform::Rotate270];
+            let s = s.transform(turn[usize::from(up)].clone());
             root.draw_text(text, &s, px((r.0 + r.2) / 2.0, (r.1 + r.3) / 2.0))?;
         }
         Ok(())
@@ -482,14 +355,10 @@ pub(super) fn column(
     let (w, h) = text_size(text.0, SMALL, false);
     let (w, h) = if text.1 { (h, w) } else { (w, h) };
     let sign = if up { -1.0 } else { 1.0 };
-    let rect = |k: u32| {
-        around(
-            (x, y0 + sign * (h / 2.0 + 3.0 * f64::from(k))),
-            (w / 2.0, h / 2.0),
-        )
-    };
+    let centre = |k: u32| (x, y0 + sign * (h / 2.0 + 3.0 * f64::from(k)));
     let inside = |r: &Rect| if up { r.1 >= limit } else { r.3 <= limit };
-    (0..n).map(rect).take_while(inside).collect()
+    let rects = (0..n).map(|k| around(centre(k), (w / 2.0, h / 2.0)));
+    rects.take_while(inside).collect()
 }
 
 /// Rectangles for `text` beside `at` at `d` pixels (right, then left),
@@ -499,11 +368,8 @@ pub(super) fn beside(at: (f64, f64), d: f64, text: &str, n: u32, b: Rect) -> Vec
     let side = |s: f64| around((at.0 + s * (d + w / 2.0), at.1), (w / 2.0, h / 2.0));
     let under = column(at.0, (at.1 + d, false, b.3), (text, false), n);
     let over = column(at.0, (at.1 - d, true, b.1), (text, false), n);
-    [side(1.0), side(-1.0)]
-        .into_iter()
-        .chain(under)
-        .chain(over)
-        .collect()
+    let sides = [side(1.0), side(-1.0)];
+    sides.into_iter().chain(under).chain(over).collect()
 }
 
 #[cfg(test)]

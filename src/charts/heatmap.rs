@@ -5,10 +5,10 @@
 //! right of the grid.
 
 use super::frame::{
-    builder, edge, style, style_mesh, text_size, tick_label, value_label, write, Chart, Drawn,
-    Frame, LABEL, SMALL,
+    builder, edge, style, style_mesh, text_size, tick_label, value_label, write, Drawn, Frame,
+    Picture, LABEL, SMALL,
 };
-use super::{finite, who};
+use super::{ensure, finite, who};
 use crate::palette::diverging;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -50,34 +50,25 @@ pub struct HeatMap {
 /// that cannot be written.
 pub fn draw_heatmap(map: &HeatMap, path: &Path) -> Result<(), String> {
     let (who, nx, ny) = (who(&map.title), map.x.len(), map.y.len());
-    if nx == 0 || ny == 0 || map.values.len() != ny {
-        let rows = map.values.len();
-        return Err(format!(
-            "{who}: {rows} rows of values for {nx} columns and {ny} rows"
-        ));
-    }
+    let rows = map.values.len();
+    let what = format!("{rows} rows of values for {nx} columns and {ny} rows");
+    ensure(nx > 0 && ny > 0 && rows == ny, || format!("{who}: {what}"))?;
     for (row, name) in map.values.iter().zip(&map.y) {
-        if row.len() != nx {
-            return Err(format!(
-                "{who}: row `{name}` has {} values for {nx} columns",
-                row.len()
-            ));
-        }
+        let len = row.len();
+        ensure(len == nx, || {
+            format!("{who}: row `{name}` has {len} values for {nx} columns")
+        })?;
         for (v, col) in row.iter().zip(&map.x) {
-            finite(
-                &who,
-                format_args!("the cell ({col}, {name})"),
-                v.unwrap_or(0.0),
-            )?;
+            let cell = format_args!("the cell ({col}, {name})");
+            finite(&who, cell, v.unwrap_or(0.0))?;
         }
     }
-    write(&who, path, || Heat::new(map, who.clone()))
+    write(&who, path, || Heat::new(map))
 }
 
 /// A heat map laid out.
 struct Heat<'a> {
     m: &'a HeatMap,
-    who: String,
     frame: Frame<'a>,
     /// The largest magnitude: the ends of the scale.
     scale: f64,
@@ -85,26 +76,17 @@ struct Heat<'a> {
 }
 
 impl<'a> Heat<'a> {
-    fn new(m: &'a HeatMap, who: String) -> Self {
-        let scale = m
-            .values
-            .iter()
-            .flatten()
-            .flatten()
-            .fold(0.0f64, |s, v| s.max(v.abs()));
+    fn new(m: &'a HeatMap) -> Self {
+        let values = m.values.iter().flatten().flatten();
+        let scale = values.fold(0.0f64, |s, v| s.max(v.abs()));
         let scale = if scale > 0.0 { scale } else { 1.0 };
-        let left =
-            m.y.iter()
-                .map(|y| text_size(y, LABEL, false).0)
-                .fold(0.0, f64::max)
-                + 44.0;
-        let width = (left + 110.0 * m.x.len() as f64 + f64::from(BAR_W) + 20.0)
-            .clamp(800.0, 1600.0)
-            .round();
+        let names = m.y.iter().map(|y| text_size(y, LABEL, false).0);
+        let left = names.fold(0.0, f64::max) + 44.0;
+        let width = left + 110.0 * m.x.len() as f64 + f64::from(BAR_W) + 20.0;
+        let width = width.clamp(800.0, 1600.0).round();
         let frame = Frame::new((&m.title, &m.subtitle), Vec::new(), left, width);
         Heat {
             m,
-            who,
             frame,
             scale,
             left,
@@ -112,11 +94,7 @@ impl<'a> Heat<'a> {
     }
 }
 
-impl Chart for Heat<'_> {
-    fn who(&self) -> &str {
-        &self.who
-    }
-
+impl Picture for Heat<'_> {
     fn size(&self) -> (u32, u32) {
         let height = f64::from(self.frame.height()) + 72.0 * self.m.y.len() as f64 + 90.0;
         (self.frame.width as u32, height.clamp(560.0, 1200.0) as u32)
@@ -125,33 +103,23 @@ impl Chart for Heat<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
         let (m, s) = (self.m, self.scale);
         let area = self.frame.draw(root)?;
-        let (grid, bar) = area.split_horizontally(Chart::size(self).0 - BAR_W);
+        let (grid, bar) = area.split_horizontally(self.size().0 - BAR_W);
         let (lx, ly) = (m.x.len().max(2) - 1, m.y.len().max(2) - 1);
         let mut chart = builder(&grid, (self.left, 64.0, 10.0, 10.0))
             .build_cartesian_2d((0..lx).into_segmented(), (0..ly).into_segmented())?;
         let (x_name, y_name) = (name(&m.x), name(&m.y));
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_mesh()
-            .x_labels(m.x.len() + 1)
-            .y_labels(m.y.len() + 1);
+        mesh.disable_mesh().x_labels(m.x.len() + 1);
+        mesh.y_labels(m.y.len() + 1);
         mesh.x_label_formatter(&x_name).y_label_formatter(&y_name);
         mesh.x_desc(&m.x_label).y_desc(&m.y_label).draw()?;
         for (j, row) in m.values.iter().enumerate() {
             for (i, v) in row.iter().enumerate() {
                 let t = v.map_or(0.0, |v| v / s);
-                let fill = if v.is_some() {
-                    diverging(t)
-                } else {
-                    RGBColor(200, 200, 200)
-                };
-                let mut cell = Rectangle::new(
-                    [
-                        (edge(i, lx), edge(j, ly)),
-                        (edge(i + 1, lx), edge(j + 1, ly)),
-                    ],
-                    fill.filled(),
-                );
+                let fill = v.map_or(RGBColor(200, 200, 200), |_| diverging(t));
+                let corner = |i, j| (edge(i, lx), edge(j, ly));
+                let mut cell = Rectangle::new([corner(i, j), corner(i + 1, j + 1)], fill.filled());
                 cell.set_margin(1, 1, 1, 1);
                 chart.draw_series(std::iter::once(cell))?;
                 let ink = if t.abs() > 0.6 { WHITE } else { BLACK };
@@ -164,28 +132,20 @@ impl Chart for Heat<'_> {
 
         // The colour bar: thin bands from -scale to +scale, ticks right.
         let mut key = ChartBuilder::on(&bar);
-        key.margin_top(20)
-            .margin_bottom(74)
-            .margin_left(20)
-            .margin_right(30)
-            .right_y_label_area_size(90);
+        key.margin(20).margin_bottom(74).margin_right(30);
+        key.right_y_label_area_size(90);
         let mut key = key.build_cartesian_2d(0.0..1.0, -s..s)?;
         let band = |k: u32| {
             let (a, b) = (f64::from(k) / 50.0 - 1.0, f64::from(k + 1) / 50.0 - 1.0);
-            Rectangle::new(
-                [(0.0, a * s), (1.0, b * s)],
-                diverging((a + b) / 2.0).filled(),
-            )
+            let colour = diverging((a + b) / 2.0);
+            Rectangle::new([(0.0, a * s), (1.0, b * s)], colour.filled())
         };
         key.draw_series((0..100).map(band))?;
         let ticks = tick_label(&(-s..s), 6, m.percent);
         let mut mesh = key.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_mesh()
-            .disable_x_axis()
-            .y_labels(6)
-            .y_label_formatter(&ticks);
-        mesh.y_desc(&m.scale_label).draw()
+        mesh.disable_mesh().disable_x_axis().y_labels(6);
+        mesh.y_label_formatter(&ticks).y_desc(&m.scale_label).draw()
     }
 }
 
@@ -198,12 +158,12 @@ fn name(names: &[String]) -> impl Fn(&SegmentValue<usize>) -> String + '_ {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::*;
 
     /// WaSP's speedup over L0 MSHRs and warps per core.
-    pub(in super::super) fn mshrs_by_warps() -> HeatMap {
+    fn mshrs_by_warps() -> HeatMap {
         let top = vec![Some(-0.05), Some(-0.013), None, Some(-0.004)];
         let rows = [[-0.01, 0.02, 0.03, 0.035], [-0.032, 0.001, 0.004, 0.005]];
         HeatMap {

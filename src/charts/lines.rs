@@ -8,11 +8,12 @@
 //! caption over them. Labels go where they hide nothing.
 
 use super::frame::{
-    around, beside, builder, column, marker, paper_entry, paper_lines, paper_margin, paper_point,
-    plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area, Chart, Drawn,
-    Frame, Placer, Rect, Shape, Swatch, LABEL,
+    around, beside, builder, column, mark_colour, paper_entry, paper_lines, paper_margin,
+    paper_point, plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area,
+    Drawn, Frame, Picture, Placer, Rect, LABEL,
 };
-use super::{check, finite, who, Highlight, LineChart, PaperMark};
+use super::legend::{marker, Shape, Swatch};
+use super::{check, ensure, finite, who, Highlight, Key, LineChart, PaperMark};
 use crate::palette::{series_colours, shade, INK};
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::types::RangedCoordf64;
@@ -37,34 +38,27 @@ pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
     let (who, x, n, c) = (who(&chart.title), &chart.x, chart.x.len(), chart);
     for i in 0..n {
         finite(&who, format_args!("x[{i}]"), x[i])?;
-        if i > 0 && x[i] <= x[i - 1] {
-            let (a, b) = (x[i - 1], x[i]);
-            return Err(format!(
-                "{who}: x[{i}] = {b} follows {a}: x must be strictly increasing"
-            ));
-        }
+        let (a, b) = (x[i.max(1) - 1], x[i]);
+        let order = "x must be strictly increasing";
+        ensure(i == 0 || b > a, || {
+            format!("{who}: x[{i}] = {b} follows {a}: {order}")
+        })?;
     }
-    let ticks = c.x_ticks.as_deref();
-    if let Some(t) = ticks.filter(|t| t.len() != n) {
-        return Err(format!(
-            "{who}: {} x tick labels for {n} x positions",
-            t.len()
-        ));
-    }
+    let (ticks, count) = (c.x_ticks.as_deref(), c.x_ticks.as_ref().map_or(n, Vec::len));
+    ensure(count == n, || {
+        format!("{who}: {count} x tick labels for {n} x positions")
+    })?;
     let name_of = |i: usize| format!("x = {}", ticks.map_or(x[i].to_string(), |t| t[i].clone()));
     let marks = (&c.series[..], &c.paper[..], c.reference);
     check(&who, marks, (n, "x positions"), name_of)?;
     let point = |(&x, v): (&f64, &Option<f64>)| v.map(|y| (x, y, String::new()));
     let lines = c.series.iter().map(|s| {
-        (
-            s.name.as_str(),
-            x.iter().zip(&s.values).map(point).collect(),
-        )
+        let points = x.iter().zip(&s.values).map(point).collect();
+        (s.name.as_str(), s.key, points)
     });
     let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
     let (lines, paper) = (lines.collect(), &c.paper[..]);
     let plot = Plot {
-        who: who.clone(),
         texts,
         lines,
         x,
@@ -82,11 +76,10 @@ pub(super) type Point = (f64, f64, String);
 
 /// What line and XY charts draw.
 pub(super) struct Plot<'a> {
-    pub who: String,
     /// Title, subtitle, x label, y label.
     pub texts: [&'a str; 4],
-    /// Each series' name and points (None: a gap).
-    pub lines: Vec<(&'a str, Vec<Option<Point>>)>,
+    /// Each series' name, key and points (None: a gap).
+    pub lines: Vec<(&'a str, Key, Vec<Option<Point>>)>,
     /// The x positions of the paper's marks and of the tick labels (None:
     /// plotters' ticks).
     pub x: &'a [f64],
@@ -110,10 +103,9 @@ pub(super) struct Layout<'a> {
 
 impl<'a> Plot<'a> {
     pub fn lay_out(self) -> Layout<'a> {
-        let points = || self.lines.iter().flat_map(|l| l.1.iter().flatten());
-        let ys = points()
-            .map(|p| p.1)
-            .chain(self.paper.iter().map(|m| m.value));
+        let points = || self.lines.iter().flat_map(|l| l.2.iter().flatten());
+        let marks = self.paper.iter().map(|m| m.value);
+        let ys = points().map(|p| p.1).chain(marks);
         // Line charts hold 0 (or the reference); points over x do not.
         let base = vec![0.0; usize::from(!self.x.is_empty())];
         let y = range(ys, &self.reference.map_or(base, |r| vec![r]));
@@ -121,11 +113,8 @@ impl<'a> Plot<'a> {
         let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
             (l.min(x), h.max(x))
         });
-        let pad = if hi > lo {
-            0.04 * (hi - lo)
-        } else {
-            lo.abs().max(2.0) * 0.5
-        };
+        // A single x gets a range around it.
+        let pad = [lo.abs().max(2.0) * 0.5, 0.04 * (hi - lo)][usize::from(hi > lo)];
         let x = lo - pad..hi + pad;
         let (left, right) = (y_area(&y, self.percent), paper_margin(self.paper));
         let (plot_w, label) = (WIDTH - left - right, tick_label(&x, 12, false));
@@ -136,27 +125,21 @@ impl<'a> Plot<'a> {
             None => numeric.collect(),
         };
         // Where labels would overlap, every k-th.
-        let widest = ticks
-            .iter()
-            .map(|t| text_size(&t.1, LABEL, false).0)
-            .fold(0.0, f64::max);
-        let gaps = ticks
-            .windows(2)
-            .map(|w| (w[1].0 - w[0].0) / (x.end - x.start) * plot_w);
-        let every = ((widest + 10.0) / gaps.fold(f64::INFINITY, f64::min).max(1.0))
-            .ceil()
-            .max(1.0);
-        let crowded = ticks
-            .iter_mut()
-            .enumerate()
-            .filter(|(i, _)| i % every as usize != 0);
-        crowded.for_each(|(_, t)| t.1.clear());
-        let colours = series_colours(&self.lines.iter().map(|l| l.0).collect::<Vec<_>>());
-        let entry = |(k, (l, &c))| (String::from(l), Swatch::Line(c, Shape::of(k)));
+        let widest = ticks.iter().map(|t| text_size(&t.1, LABEL, false).0);
+        let span = x.end - x.start;
+        let gaps = ticks.windows(2).map(|w| (w[1].0 - w[0].0) / span * plot_w);
+        let gap = gaps.fold(f64::INFINITY, f64::min).max(1.0);
+        let every = ((widest.fold(0.0, f64::max) + 10.0) / gap).ceil().max(1.0) as usize;
+        for (_, t) in ticks.iter_mut().enumerate().filter(|(i, _)| i % every != 0) {
+            t.1.clear();
+        }
+        let colours = series_colours(&self.lines.iter().map(|l| l.1).collect::<Vec<_>>());
+        let swatch = |k, c: RGBColor| Swatch::Line(c.stroke_width(2), Some(Shape::of(k)));
+        let entry = |(k, (l, &c))| (String::from(l), swatch(k, c));
         let names = self.lines.iter().map(|l| l.0).zip(&colours).enumerate();
         let mut legend: Vec<_> = names.map(entry).collect();
         let first = self.paper.iter().find(|m| m.category.is_some());
-        let shape = first.map_or(Shape::Diamond, |m| paper_shape(m.series));
+        let shape = first.map_or(Shape::Circle, |m| paper_shape(m.series));
         legend.extend(paper_entry(self.paper, shape));
         let frame = Frame::new((self.texts[0], self.texts[1]), legend, left, WIDTH);
         Layout {
@@ -171,9 +154,9 @@ impl<'a> Plot<'a> {
 }
 
 /// The shape of a paper mark of `series` at one x position: the series'
-/// shape, or a diamond for the whole chart.
+/// shape, or a circle for the whole chart.
 fn paper_shape(series: Option<usize>) -> Shape {
-    series.map_or(Shape::Diamond, Shape::of)
+    series.map_or(Shape::Circle, Shape::of)
 }
 
 /// Values to pixels.
@@ -202,16 +185,10 @@ impl Ranged for Ticked {
     }
 }
 
-impl Chart for Layout<'_> {
-    fn who(&self) -> &str {
-        &self.p.who
-    }
-
+impl Picture for Layout<'_> {
     fn size(&self) -> (u32, u32) {
-        (
-            WIDTH as u32,
-            (f64::from(self.frame.height()) + 504.0).max(700.0) as u32,
-        )
+        let height = (f64::from(self.frame.height()) + 504.0).max(700.0);
+        (WIDTH as u32, height as u32)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB> {
@@ -222,20 +199,17 @@ impl Chart for Layout<'_> {
         let pad = (self.pad.0, 64.0, 10.0, self.pad.1);
         let mut chart = builder(&area, pad).build_cartesian_2d(x_axis, y.clone())?;
         let x_label = |v: &f64| {
-            let near = |t: &&(f64, String)| ((t.0 - v).abs() < 1e-9).then(|| t.1.clone());
-            self.ticks.iter().find_map(|t| near(&t)).unwrap_or_default()
+            let near = self.ticks.iter().find(|t| (t.0 - v).abs() < 1e-9);
+            near.map(|t| t.1.clone()).unwrap_or_default()
         };
         let y_label = tick_label(&y, 8, pl.percent);
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.x_label_formatter(&x_label)
-            .y_labels(8)
-            .y_label_formatter(&y_label);
+        mesh.x_label_formatter(&x_label).y_labels(8);
+        mesh.y_label_formatter(&y_label);
         mesh.x_desc(pl.texts[2]).y_desc(pl.texts[3]).draw()?;
-        let rule = pl
-            .reference
-            .map(|r| (r, 2))
-            .or((y0 < 0.0).then_some((0.0, 1)));
+        let zero = (y0 < 0.0).then_some((0.0, 1));
+        let rule = pl.reference.map(|r| (r, 2)).or(zero);
         let rule = rule.map(|(v, w)| PathElement::new(vec![(x0, v), (x1, v)], INK.stroke_width(w)));
         chart.draw_series(rule)?;
 
@@ -247,9 +221,9 @@ impl Chart for Layout<'_> {
             (f64::from(x), f64::from(y))
         };
         let mut placer = Placer::default();
-        let colour = |s| self.mark_colour(s);
+        let colour = |s| mark_colour(&self.colours, s);
         paper_lines(root, (p, &mut placer), pl.paper, |v| at(x0, v).1, colour)?;
-        let series = || pl.lines.iter().map(|l| &l.1).zip(&self.colours).enumerate();
+        let series = || pl.lines.iter().map(|l| &l.2).zip(&self.colours).enumerate();
         for (_, (pts, &k)) in series() {
             for run in pts.split(Option::is_none).filter(|r| r.len() > 1) {
                 let run: Vec<(f64, f64)> = run.iter().flatten().map(|p| (p.0, p.1)).collect();
@@ -258,10 +232,13 @@ impl Chart for Layout<'_> {
             }
         }
         for (s, (pts, &k)) in series() {
-            for xy in pts.iter().flatten().map(|p| at(p.0, p.1)) {
-                marker(root, (Shape::of(s), xy, 5.0), k, false)?;
-                placer.take(around(xy, (5.0, 5.0)));
+            let xys: Vec<(f64, f64)> = pts.iter().flatten().map(|p| (p.0, p.1)).collect();
+            for p in &xys {
+                placer.take(around(at(p.0, p.1), (6.0, 6.0)));
             }
+            let shape = (Shape::of(s), 6);
+            let marks = xys.into_iter().map(|xy| marker(xy, shape, k, false));
+            chart.draw_series(marks)?;
         }
 
         self.labels(root, placer, (p, &at))
@@ -281,13 +258,13 @@ impl Layout<'_> {
         let (pl, mut labels, mut ringed) = (&self.p, Vec::new(), Vec::new());
         for m in pl.paper.iter().filter(|m| m.category.is_some()) {
             let i = m.category.unwrap_or(0);
-            let (xy, colour) = (at(pl.x[i], m.value), self.mark_colour(m.series));
+            let (xy, colour) = (at(pl.x[i], m.value), mark_colour(&self.colours, m.series));
             let (mark, shape) = ((xy, 16.0, 8.0), paper_shape(m.series));
             paper_point((root, &mut placer), mark, shape, colour)?;
             labels.push((beside(xy, 20.0, &m.label, 400, p), m.label.as_str(), colour));
         }
         for h in pl.rings {
-            let point = |&(s, i): &(usize, usize)| pl.lines[s].1[i].as_ref().map(|p| at(p.0, p.1));
+            let point = |&(s, i): &(usize, usize)| pl.lines[s].2[i].as_ref().map(|p| at(p.0, p.1));
             let pts: Vec<(f64, f64)> = h.points.iter().filter_map(point).collect();
             let path = pts.iter().map(|&(x, y)| px(x, y));
             root.draw(&DashedPathElement::new(path, 3, 3, INK.stroke_width(1)))?;
@@ -306,7 +283,7 @@ impl Layout<'_> {
             labels.push(([over, under].concat(), text.0, INK));
             ringed.extend(pts);
         }
-        for (pts, &k) in pl.lines.iter().map(|l| &l.1).zip(&self.colours) {
+        for (pts, &k) in pl.lines.iter().map(|l| &l.2).zip(&self.colours) {
             for (x, y, l) in pts.iter().flatten().filter(|p| !p.2.is_empty()) {
                 let xy = at(*x, *y);
                 let d = if ringed.contains(&xy) { 15.0 } else { 8.0 };
@@ -315,39 +292,25 @@ impl Layout<'_> {
         }
         placer.draw_all(root, labels, p)
     }
-
-    /// The colour of the paper's marks of `series` (dark grey for none).
-    fn mark_colour(&self, series: Option<usize>) -> RGBColor {
-        series.map_or(INK, |s| shade(self.colours[s], 0.62))
-    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, out, pixels, same_twice, texts};
+    use super::super::tests::{error, mark, out, pixels, same_twice, texts};
     use super::super::Series;
     use super::*;
-    use crate::palette::named;
+    use crate::palette::Key;
 
     /// A series of `values`.
-    fn series(name: &str, values: &[Option<f64>]) -> Series {
+    fn series(key: Key, name: &str, values: &[Option<f64>]) -> Series {
         let (name, values) = (name.into(), values.to_vec());
-        Series { name, values }
+        Series { key, name, values }
     }
 
     /// IPC over the warp count for two policies, one with a gap, with the
     /// paper's value at one count and its baseline across the plot.
     fn warps() -> LineChart {
         let x = vec![28.0, 32.0, 40.0, 48.0, 64.0];
-        let mark = |series, category, value, label: &str| {
-            let label = label.into();
-            PaperMark {
-                series,
-                category,
-                value,
-                label,
-            }
-        };
         let wasp = [Some(0.66), Some(0.68), None, Some(0.70), Some(0.705)];
         LineChart {
             title: "IPC by warp count".into(),
@@ -357,8 +320,12 @@ mod tests {
             x_ticks: Some(x.iter().map(|v| format!("{v}")).collect()),
             x,
             series: vec![
-                series("baseline", &[0.61, 0.64, 0.66, 0.67, 0.675].map(Some)),
-                series("WaSP", &wasp),
+                series(
+                    Key::Baseline,
+                    "baseline",
+                    &[0.61, 0.64, 0.66, 0.67, 0.675].map(Some),
+                ),
+                series(Key::Wasp, "WaSP", &wasp),
             ],
             paper: vec![
                 mark(Some(1), Some(1), 0.69, "paper 0.69"),
@@ -374,8 +341,8 @@ mod tests {
         let path = out("lines", "warps.png");
         draw_lines(&warps(), &path).expect("draw png");
         assert_eq!(image::image_dimensions(&path).ok(), Some((1400, 700)));
-        let base = pixels(&path, named("baseline").unwrap());
-        let wasp = pixels(&path, named("wasp").unwrap());
+        let base = pixels(&path, Key::Baseline.colour().unwrap());
+        let wasp = pixels(&path, Key::Wasp.colour().unwrap());
         assert!(base > 300 && wasp > 200, "{base}, {wasp} pixels");
         let path = out("lines", "warps.svg");
         draw_lines(&warps(), &path).expect("draw svg");
@@ -389,18 +356,23 @@ mod tests {
         let mut c = warps();
         (c.x, c.series) = (
             vec![1.0, 2.0, 4.0, 8.0],
-            vec![series("WaSP", &[-0.02, 0.01, 0.03, 0.02].map(Some))],
+            vec![series(
+                Key::Wasp,
+                "WaSP",
+                &[-0.02, 0.01, 0.03, 0.02].map(Some),
+            )],
         );
         (c.percent, c.reference, c.x_ticks, c.paper) = (true, Some(0.0), None, vec![]);
         let path = out("lines-numeric", "speedup.svg");
         draw_lines(&c, &path).expect("draw svg");
         texts(&path, "-2%|0%|3%|2|8");
-        (c.x, c.series) = (vec![5.0], vec![series("WaSP", &[Some(-0.01)])]);
+        (c.x, c.series) = (vec![5.0], vec![series(Key::Wasp, "WaSP", &[Some(-0.01)])]);
         let path = out("lines-numeric", "one.png");
         draw_lines(&c, &path).expect("draw png");
-        assert!(pixels(&path, named("wasp").unwrap()) > 20);
+        assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 20);
         c.x = (0..40).map(f64::from).collect();
         c.series = vec![series(
+            Key::Other,
             "v",
             &c.x.iter().map(|&x| Some(x)).collect::<Vec<_>>(),
         )];

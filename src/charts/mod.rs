@@ -8,24 +8,26 @@
 //! - tornado charts of a quantity's range per parameter ([`draw_tornado`]);
 //! - heat maps over two parameters on a diverging scale ([`draw_heatmap`]).
 //!
-//! Every chart is, top to bottom: the title and subtitle; the legend, a row
-//! above the plot so it hides no data; the plot. What plotters lacks is
-//! drawn by hand in `frame`: that legend row, the paper's marks (a dashed
-//! line across the plot, labelled right of it, for a value of every
-//! category; a short dashed line with a hollow marker for one category)
-//! and the placing of labels where they hide nothing. Colours come from
-//! [`crate::palette`], so a policy has one colour in every figure. Drawing
-//! is deterministic. `examples` (tests, ignored) writes one of each kind.
+//! Every chart is, top to bottom: the title and subtitle; the legend,
+//! plotters' series labels in columns above the plot so it hides no data;
+//! the plot. Markers are plotters' marker elements (`legend`). What
+//! plotters lacks is drawn by hand in `frame`: the paper's marks (a dashed line across
+//! the plot, labelled right of it, for a value of every category; a short
+//! dashed line with a hollow marker for one category) and the placing of
+//! labels where they hide nothing. The timeline
+//! ([`crate::timeline_plot`]) shares the frame and the legend. Colours come
+//! from [`crate::palette`] by each series' [`Key`], so a policy has one
+//! colour in every figure. Drawing is deterministic.
 
 mod bars;
-#[cfg(test)]
-mod examples;
-mod frame;
+pub(crate) mod frame;
 mod heatmap;
+pub(crate) mod legend;
 mod lines;
 mod tornado;
 mod xy;
 
+pub use crate::palette::Key;
 pub use bars::draw_bars;
 pub use heatmap::{draw_heatmap, HeatMap};
 pub use lines::draw_lines;
@@ -36,7 +38,9 @@ pub use xy::{draw_xy, Highlight, XyChart, XySeries};
 /// in the line).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Series {
-    /// The name in the legend; it chooses the colour ([`crate::palette`]).
+    /// What the series shows: it chooses the colour ([`crate::palette`]).
+    pub key: Key,
+    /// The name in the legend.
     pub name: String,
     /// One value per category or x position.
     pub values: Vec<Option<f64>>,
@@ -129,6 +133,11 @@ fn who(title: &str) -> String {
     }
 }
 
+/// Ok when `ok`, else the error `msg()`.
+pub(crate) fn ensure(ok: bool, msg: impl FnOnce() -> String) -> Result<(), String> {
+    ok.then_some(()).ok_or_else(msg)
+}
+
 /// An error unless `v` is finite; `what` names it.
 fn finite(who: &str, what: impl std::fmt::Display, v: f64) -> Result<(), String> {
     match v.is_finite() {
@@ -146,39 +155,35 @@ fn check(
     name_of: impl Fn(usize) -> String,
 ) -> Result<(), String> {
     let (k, nothing) = (series.len(), "nothing to draw");
-    if n == 0 || k == 0 {
-        return Err(format!("{who}: {n} {what} and {k} series: {nothing}"));
-    }
+    ensure(n > 0 && k > 0, || {
+        format!("{who}: {n} {what} and {k} series: {nothing}")
+    })?;
     for s in series {
         let (name, len) = (&s.name, s.values.len());
-        if len != n {
-            return Err(format!(
-                "{who}: series `{name}` has {len} values for {n} {what}"
-            ));
-        }
+        ensure(len == n, || {
+            format!("{who}: series `{name}` has {len} values for {n} {what}")
+        })?;
         for (i, v) in s.values.iter().enumerate() {
             let at = format_args!("series `{name}` at {}", name_of(i));
             finite(who, at, v.unwrap_or(0.0))?;
         }
     }
     for m in paper {
-        let l = &m.label;
-        if m.series.is_some_and(|s| s >= k) || m.category.is_some_and(|c| c >= n) {
-            return Err(format!(
-                "{who}: paper mark `{l}` is past the {k} series or {n} {what}"
-            ));
-        }
+        let (l, past) = (&m.label, m.series >= Some(k) || m.category >= Some(n));
+        ensure(!past, || {
+            format!("{who}: paper mark `{l}` is past the {k} series or {n} {what}")
+        })?;
         finite(who, format_args!("paper mark `{l}`"), m.value)?;
     }
     finite(who, "the reference line", reference.unwrap_or(0.0))
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use std::path::{Path, PathBuf};
 
     /// A fresh path `file` in a scratch directory of the test `name`.
-    pub(super) fn out(name: &str, file: &str) -> PathBuf {
+    pub(crate) fn out(name: &str, file: &str) -> PathBuf {
         let dir = std::env::temp_dir().join(format!("wasp-charts-{}-{name}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("scratch dir");
         let path = dir.join(file);
@@ -189,7 +194,7 @@ mod tests {
     /// The texts of the SVG at `path`, each with its anchor (x, y) and
     /// whether it reads upwards, after asserting that `want` (texts
     /// separated by `|`) are among them.
-    pub(super) fn texts(path: &Path, want: &str) -> Vec<(String, f64, f64, bool)> {
+    pub(crate) fn texts(path: &Path, want: &str) -> Vec<(String, f64, f64, bool)> {
         let svg = std::fs::read_to_string(path).expect("svg");
         let attr = |part: &str, a: &str| {
             let v = part.split(&format!(" {a}=\"")).nth(1)?.split('"').next()?;
@@ -209,8 +214,24 @@ mod tests {
         texts
     }
 
+    /// A paper mark.
+    pub(crate) fn mark(
+        series: Option<usize>,
+        category: Option<usize>,
+        value: f64,
+        label: &str,
+    ) -> super::PaperMark {
+        let label = label.into();
+        super::PaperMark {
+            series,
+            category,
+            value,
+            label,
+        }
+    }
+
     /// The number of pixels of `colour` in the PNG at `path`.
-    pub(super) fn pixels(path: &Path, colour: plotters::style::RGBColor) -> usize {
+    pub(crate) fn pixels(path: &Path, colour: plotters::style::RGBColor) -> usize {
         let img = image::open(path).expect("png decodes").to_rgb8();
         let want = [colour.0, colour.1, colour.2];
         img.pixels().filter(|p| p.0 == want).count()
@@ -220,7 +241,7 @@ mod tests {
     type Draw<'a> = &'a dyn Fn(&Path) -> Result<(), String>;
 
     /// Draws with `draw` twice as PNG and as SVG: the same bytes each time.
-    pub(super) fn same_twice(name: &str, draw: Draw) {
+    pub(crate) fn same_twice(name: &str, draw: Draw) {
         for ext in ["png", "svg"] {
             let (a, b) = (
                 out(name, &format!("a.{ext}")),
@@ -235,7 +256,7 @@ mod tests {
     }
 
     /// The error of drawing with `draw` into `file`; no file is written.
-    pub(super) fn error(name: &str, file: &str, draw: Draw) -> String {
+    pub(crate) fn error(name: &str, file: &str, draw: Draw) -> String {
         let path = out(name, file);
         let e = draw(&path).expect_err(name);
         assert!(!path.exists(), "{name}: a file was written");

@@ -7,9 +7,10 @@
 
 use super::frame::{
     around, builder, edge, plot_rect, range, style_mesh, text_size, tick_label, value_label, write,
-    Chart, Drawn, Frame, Placer, Rect, Swatch, LABEL, SMALL,
+    Drawn, Frame, Picture, Placer, Rect, LABEL, SMALL,
 };
-use super::{finite, who};
+use super::legend::Swatch;
+use super::{ensure, finite, who, Key};
 use crate::palette::{series_colours, shade};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -18,7 +19,9 @@ use std::path::Path;
 /// A series of a tornado chart.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TornadoSeries {
-    /// The name in the legend (e.g. "3D"); it chooses the colour.
+    /// What the series shows: it chooses the colour ([`crate::palette`]).
+    pub key: Key,
+    /// The name in the legend (e.g. "3D").
     pub name: String,
     /// The series' value on the shipped machine: a vertical line.
     pub reference: Option<f64>,
@@ -71,39 +74,34 @@ pub struct TornadoChart {
 /// above its high; a file that cannot be written.
 pub fn draw_tornado(chart: &TornadoChart, path: &Path) -> Result<(), String> {
     let (who, n) = (who(&chart.title), chart.series.len());
-    if n == 0 || chart.rows.is_empty() {
-        return Err(format!("{who}: no series or no rows: nothing to draw"));
-    }
+    let nothing = "no series or no rows: nothing to draw";
+    ensure(n > 0 && !chart.rows.is_empty(), || {
+        format!("{who}: {nothing}")
+    })?;
     for s in &chart.series {
-        finite(
-            &who,
-            format_args!("the reference of `{}`", s.name),
-            s.reference.unwrap_or(0.0),
-        )?;
+        let what = format_args!("the reference of `{}`", s.name);
+        finite(&who, what, s.reference.unwrap_or(0.0))?;
     }
     for r in &chart.rows {
         let (p, spans) = (&r.parameter, r.spans.len());
-        if spans != n {
-            return Err(format!("{who}: row `{p}` has {spans} spans for {n} series"));
-        }
+        ensure(spans == n, || {
+            format!("{who}: row `{p}` has {spans} spans for {n} series")
+        })?;
         for s in r.spans.iter().flatten() {
-            finite(&who, format_args!("row `{p}`"), s.low.0 + s.high.0)?;
-            if s.low.0 > s.high.0 {
-                return Err(format!(
-                    "{who}: row `{p}` has a low {} above its high {}",
-                    s.low.0, s.high.0
-                ));
-            }
+            let ((lo, _), (hi, _)) = (&s.low, &s.high);
+            finite(&who, format_args!("row `{p}`"), lo + hi)?;
+            ensure(lo <= hi, || {
+                format!("{who}: row `{p}` has a low {lo} above its high {hi}")
+            })?;
         }
     }
-    write(&who, path, || Tornado::new(chart, who.clone()))
+    write(&who, path, || Tornado::new(chart))
 }
 
 /// A tornado chart laid out: the rows widest first, the x range, the
 /// width of the parameter names left of the plot.
 struct Tornado<'a> {
     c: &'a TornadoChart,
-    who: String,
     frame: Frame<'a>,
     colours: Vec<RGBColor>,
     order: Vec<usize>,
@@ -112,45 +110,33 @@ struct Tornado<'a> {
 }
 
 impl<'a> Tornado<'a> {
-    fn new(c: &'a TornadoChart, who: String) -> Self {
+    fn new(c: &'a TornadoChart) -> Self {
         let spans = |r: &'a TornadoRow| r.spans.iter().flatten();
         let width = |r| spans(r).map(|s| s.high.0 - s.low.0).fold(0.0, f64::max);
         let mut order: Vec<usize> = (0..c.rows.len()).collect();
         order.sort_by(|&a, &b| width(&c.rows[b]).total_cmp(&width(&c.rows[a])));
-        let ends = c
-            .rows
-            .iter()
-            .flat_map(spans)
-            .flat_map(|s| [s.low.0, s.high.0]);
+        let ends = |s: &Span| [s.low.0, s.high.0];
+        let ends = c.rows.iter().flat_map(spans).flat_map(ends);
         let refs: Vec<f64> = c.series.iter().filter_map(|s| s.reference).collect();
         let x = range(ends, &refs);
         // Room for the end labels either side.
         let pad = 0.14 * (x.end - x.start);
-        let names = c
-            .rows
-            .iter()
-            .map(|r| text_size(&r.parameter, LABEL, false).0);
-        let left = names.fold(0.0, f64::max) + 24.0;
-        let colours = series_colours(&c.series.iter().map(|s| &s.name).collect::<Vec<_>>());
-        let mut legend = Vec::new();
-        for (s, &k) in c.series.iter().zip(&colours) {
-            legend.push((s.name.clone(), Swatch::Block(k)));
-        }
-        for (s, &k) in c.series.iter().zip(&colours) {
+        let name = |r: &TornadoRow| text_size(&r.parameter, LABEL, false).0;
+        let left = c.rows.iter().map(name).fold(0.0, f64::max) + 24.0;
+        let colours = series_colours(&c.series.iter().map(|s| s.key).collect::<Vec<_>>());
+        let series = || c.series.iter().zip(&colours);
+        let block = |(s, &k): (&TornadoSeries, _)| (s.name.clone(), Swatch::Block(k));
+        let mut legend: Vec<_> = series().map(block).collect();
+        for (s, &k) in series() {
             let Some(v) = s.reference else { continue };
-            let text = format!(
-                "{}, {}: {}",
-                c.reference_label,
-                s.name,
-                value_label(v, c.percent)
-            );
-            legend.push((text, Swatch::Rule(shade(k, 0.62))));
+            let (label, value) = (&c.reference_label, value_label(v, c.percent));
+            let text = format!("{label}, {}: {value}", s.name);
+            legend.push((text, Swatch::Line(shade(k, 0.62).stroke_width(2), None)));
         }
         let frame = Frame::new((&c.title, &c.subtitle), legend, left, 1200.0);
         let x = x.start - pad..x.end + pad;
         Tornado {
             c,
-            who,
             frame,
             colours,
             order,
@@ -160,11 +146,7 @@ impl<'a> Tornado<'a> {
     }
 }
 
-impl Chart for Tornado<'_> {
-    fn who(&self) -> &str {
-        &self.who
-    }
-
+impl Picture for Tornado<'_> {
     fn size(&self) -> (u32, u32) {
         let rows = self.c.rows.len() as f64 * (22.0 * self.c.series.len() as f64 + 18.0);
         let height = f64::from(self.frame.height()) + rows + 90.0;
@@ -186,9 +168,8 @@ impl Chart for Tornado<'_> {
         let ticks = tick_label(&self.x, 10, c.percent);
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_y_mesh()
-            .y_labels(n + 1)
-            .y_label_formatter(&name);
+        mesh.disable_y_mesh().y_labels(n + 1);
+        mesh.y_label_formatter(&name);
         mesh.x_labels(10).x_label_formatter(&ticks);
         mesh.x_desc(&c.x_label).draw()?;
         let (p, map) = (plot_rect(&chart), chart.as_coord_spec().clone());
@@ -202,26 +183,17 @@ impl Chart for Tornado<'_> {
                 let Some(span) = span else { continue };
                 // Segment i spans the pixel rows y_of(i + 1) to y_of(i).
                 let top = (y_of(i + 1) + y_of(i) - bar * s) / 2.0 + j as f64 * bar;
-                let corners = [
-                    (span.low.0, edge(i, last)),
-                    (span.high.0, edge(i + 1, last)),
-                ];
+                let (y0, y1) = (edge(i, last), edge(i + 1, last));
+                let corners = [(span.low.0, y0), (span.high.0, y1)];
                 let mut rect = Rectangle::new(corners, colour.filled());
                 let (over, under) = (top - y_of(i + 1), y_of(i) - top - bar);
                 rect.set_margin(over.round() as u32, under.max(0.0).round() as u32, 0, 0);
                 chart.draw_series(std::iter::once(rect))?;
                 let (x0, x1, mid) = (x_of(span.low.0), x_of(span.high.0), top + bar / 2.0);
                 placer.take((x0, top, x1.max(x0 + 1.0), top + bar));
-                labels.push((
-                    outward((x0, mid), &span.low.1, -1.0),
-                    span.low.1.as_str(),
-                    BLACK,
-                ));
-                labels.push((
-                    outward((x1, mid), &span.high.1, 1.0),
-                    span.high.1.as_str(),
-                    BLACK,
-                ));
+                let (low, high) = (&span.low.1, &span.high.1);
+                labels.push((outward((x0, mid), low, -1.0), low.as_str(), BLACK));
+                labels.push((outward((x1, mid), high, 1.0), high.as_str(), BLACK));
             }
         }
         // The references over the bars.
@@ -245,13 +217,13 @@ fn outward((x, mid): (f64, f64), text: &str, dir: f64) -> Vec<Rect> {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::*;
-    use crate::palette::named;
+    use crate::palette::Key;
 
     /// WaSP's speedup range over three parameters, for 3D and 2D scenes.
-    pub(in super::super) fn gains() -> TornadoChart {
+    fn gains() -> TornadoChart {
         let span = |lo: f64, l: &str, hi: f64, h: &str| {
             let (low, high) = ((lo, l.into()), (hi, h.into()));
             Some(Span { low, high })
@@ -260,7 +232,8 @@ pub(super) mod tests {
             parameter: parameter.into(),
             spans,
         };
-        let series = |name: &str, r| TornadoSeries {
+        let series = |key, name: &str, r| TornadoSeries {
+            key,
             name: name.into(),
             reference: Some(r),
         };
@@ -277,7 +250,10 @@ pub(super) mod tests {
             title: "What decides WaSP's gain".into(),
             subtitle: "speedup range over each parameter's range".into(),
             x_label: "WaSP's speedup over the baseline".into(),
-            series: vec![series("3D", 0.001), series("2D", 0.02)],
+            series: vec![
+                series(Key::ThreeD, "3D", 0.001),
+                series(Key::TwoD, "2D", 0.02),
+            ],
             rows: vec![
                 row("l0.mshrs", mshrs),
                 row("core.max_warps", warps),
@@ -299,8 +275,8 @@ pub(super) mod tests {
         let path = out("tornado", "gains.png");
         draw_tornado(&gains(), &path).expect("draw png");
         let (d3, d2) = (
-            pixels(&path, named("3D").unwrap()),
-            pixels(&path, named("2D").unwrap()),
+            pixels(&path, Key::ThreeD.colour().unwrap()),
+            pixels(&path, Key::TwoD.colour().unwrap()),
         );
         assert!(d3 > 1000 && d2 > 1000, "{d3} 3D and {d2} 2D pixels");
         same_twice("tornado-same", &|p| draw_tornado(&gains(), p));

@@ -5,13 +5,15 @@
 //! [`super::lines`] draws them.
 
 use super::lines::{Plot, Point};
-use super::{finite, frame::write, who};
+use super::{ensure, finite, frame::write, who};
 use std::path::Path;
 
 /// One series of an [`XyChart`]: points joined in their order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct XySeries {
-    /// The name in the legend; it chooses the colour ([`crate::palette`]).
+    /// What the series shows: it chooses the colour ([`crate::palette`]).
+    pub key: super::Key,
+    /// The name in the legend.
     pub name: String,
     /// The points (x, y).
     pub points: Vec<(f64, f64)>,
@@ -58,16 +60,14 @@ pub struct XyChart {
 /// file that cannot be written.
 pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
     let (who, c) = (who(&chart.title), chart);
-    if c.series.is_empty() {
-        return Err(format!("{who}: no series: nothing to draw"));
-    }
+    let nothing = "no series: nothing to draw";
+    ensure(!c.series.is_empty(), || format!("{who}: {nothing}"))?;
     for s in &c.series {
         let (n, l, name) = (s.points.len(), s.labels.len(), &s.name);
-        if n == 0 || (l > 0 && l != n) {
-            return Err(format!(
-                "{who}: series `{name}` has {n} points and {l} labels"
-            ));
-        }
+        let ok = n > 0 && (l == 0 || l == n);
+        ensure(ok, || {
+            format!("{who}: series `{name}` has {n} points and {l} labels")
+        })?;
         for (i, (x, y)) in s.points.iter().enumerate() {
             finite(&who, format_args!("series `{name}` at point {i}"), x + y)?;
         }
@@ -75,12 +75,10 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
     finite(&who, "the reference line", c.reference.unwrap_or(0.0))?;
     let missing = |&&(s, i): &&(usize, usize)| c.series.get(s).is_none_or(|s| i >= s.points.len());
     for h in &c.highlights {
-        if let Some((s, i)) = h.points.iter().find(missing) {
-            let caption = &h.caption;
-            return Err(format!(
-                "{who}: `{caption}` rings point {i} of series {s}: no such point"
-            ));
-        }
+        let (caption, found) = (&h.caption, h.points.iter().find(missing));
+        let no =
+            |(s, i)| format!("{who}: `{caption}` rings point {i} of series {s}: no such point");
+        found.map_or(Ok(()), |&p| Err(no(p)))?;
     }
     let points = |s: &XySeries| -> Vec<Option<Point>> {
         let label = |i: usize| s.labels.get(i).cloned().unwrap_or_default();
@@ -90,12 +88,11 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
     let lines = c
         .series
         .iter()
-        .map(|s| (s.name.as_str(), points(s)))
+        .map(|s| (s.name.as_str(), s.key, points(s)))
         .collect();
     let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
     let (rings, percent, reference) = (&c.highlights[..], c.percent, c.reference);
     let plot = Plot {
-        who: who.clone(),
         texts,
         lines,
         x: &[],
@@ -109,20 +106,21 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::super::tests::{error, out, pixels, same_twice, texts};
     use super::*;
-    use crate::palette::named;
+    use crate::palette::Key;
 
     /// Cycles against register-file bits for two policies over warp
     /// counts, WaSP@48 ringed with the baseline@64.
-    pub(in super::super) fn area() -> XyChart {
+    fn area() -> XyChart {
         let warps = [32, 48, 64, 96];
-        let series = |name: &str, extra: f64, cycles: [f64; 4]| {
+        let series = |key, name: &str, extra: f64, cycles: [f64; 4]| {
             let at = |(&w, c): (&i32, f64)| (f64::from(w) * 4096.0 + extra, c);
             let points = warps.iter().zip(cycles).map(at).collect();
             let labels = warps.iter().map(|w| w.to_string()).collect();
             XySeries {
+                key,
                 name: name.into(),
                 points,
                 labels,
@@ -135,8 +133,13 @@ pub(super) mod tests {
             x_label: "register-file bits per core".into(),
             y_label: "cycles".into(),
             series: vec![
-                series("baseline", 0.0, [1.30e6, 1.12e6, 1.05e6, 1.01e6]),
-                series("WaSP", 36.0, [1.22e6, 1.07e6, 1.04e6, 1.02e6]),
+                series(
+                    Key::Baseline,
+                    "baseline",
+                    0.0,
+                    [1.30e6, 1.12e6, 1.05e6, 1.01e6],
+                ),
+                series(Key::Wasp, "WaSP", 36.0, [1.22e6, 1.07e6, 1.04e6, 1.02e6]),
             ],
             highlights: vec![Highlight {
                 points: vec![(1, 1), (0, 2)],
@@ -159,7 +162,7 @@ pub(super) mod tests {
         assert_eq!(svg.matches("r=\"11\"").count(), 2, "two rings");
         let path = out("xy", "area.png");
         draw_xy(&area(), &path).expect("draw png");
-        assert!(pixels(&path, named("wasp").unwrap()) > 100);
+        assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 100);
         same_twice("xy-same", &|p| draw_xy(&area(), p));
         let bad = |f: fn(&mut XyChart), want: &str| {
             let mut c = area();

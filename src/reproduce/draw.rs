@@ -20,6 +20,7 @@ fn marks(v: &[PaperValue]) -> Vec<PaperMark> {
 
 fn series(f: &Figure) -> Vec<Series> {
     let series = f.series.iter().map(|s| Series {
+        key: s.key,
         name: s.name.clone(),
         values: s.values.clone(),
     });

@@ -3,7 +3,7 @@
 //! (the picture draws the mean as the line and min..max as a band), and the
 //! priority launches their mean per cycle.
 
-use wasp_sim::timeline::Timeline;
+use wasp_sim::timeline::{Timeline, TimelineSample};
 
 /// Minimum, maximum and mean of one series over one pixel column.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -14,22 +14,14 @@ pub(super) struct Agg {
 }
 
 impl Agg {
-    pub(super) fn of(values: impl Iterator<Item = u32>) -> Agg {
-        let (mut min, mut max, mut sum, mut n) = (u32::MAX, 0u32, 0u64, 0u64);
-        for v in values {
-            min = min.min(v);
-            max = max.max(v);
-            sum += u64::from(v);
-            n += 1;
-        }
-        if n == 0 {
-            return Agg::default();
-        }
-        Agg {
-            min: f64::from(min),
-            max: f64::from(max),
-            mean: sum as f64 / n as f64,
-        }
+    /// The aggregate of `value` over the samples `run`.
+    fn of(run: &[TimelineSample], value: impl Fn(&TimelineSample) -> u32) -> Agg {
+        let v: Vec<f64> = run.iter().map(|s| f64::from(value(s))).collect();
+        let bounds = |(lo, hi): (f64, f64), &x: &f64| (x.min(lo), x.max(hi));
+        let (min, max) = v.iter().fold((f64::INFINITY, 0.0), bounds);
+        let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
+        let min = if v.is_empty() { 0.0 } else { min };
+        Agg { min, max, mean }
     }
 }
 
@@ -49,38 +41,29 @@ pub(super) struct Column {
 pub(super) fn downsample(t: &Timeline, columns: usize) -> Vec<Column> {
     let n = t.samples.len();
     let columns = columns.clamp(1, n.max(1));
-    (0..columns)
-        .filter_map(|i| {
-            let lo = i * n / columns;
-            let hi = (i + 1) * n / columns;
-            let run = t.samples.get(lo..hi).filter(|r| !r.is_empty())?;
-            let first = run.first()?;
-            let last = run.last()?;
-            let resident = (0..t.cores)
-                .map(|c| Agg::of(run.iter().map(|s| s.resident[c])))
-                .collect();
-            let outstanding = [0, 1, 2].map(|l| Agg::of(run.iter().map(|s| s.outstanding[l])));
-            let launches = (0..t.cores)
-                .map(|c| {
-                    let sum: u64 = run.iter().map(|s| u64::from(s.priority_launches[c])).sum();
-                    sum as f64 / run.len() as f64
-                })
-                .collect();
-            Some(Column {
-                x0: first.cycle as f64,
-                x1: (last.cycle + 1) as f64,
-                resident,
-                outstanding,
-                launches,
-            })
-        })
+    let runs = (0..columns).map(|i| &t.samples[i * n / columns..(i + 1) * n / columns]);
+    runs.filter(|r| !r.is_empty())
+        .map(|run| column(t.cores, run))
         .collect()
+}
+
+/// The column of the samples `run` (not empty) of `cores` cores.
+fn column(cores: usize, run: &[TimelineSample]) -> Column {
+    let launches = |c: usize| Agg::of(run, |s| s.priority_launches[c]).mean;
+    Column {
+        x0: run[0].cycle as f64,
+        x1: (run[run.len() - 1].cycle + 1) as f64,
+        resident: (0..cores)
+            .map(|c| Agg::of(run, |s| s.resident[c]))
+            .collect(),
+        outstanding: [0, 1, 2].map(|l| Agg::of(run, |s| s.outstanding[l])),
+        launches: (0..cores).map(launches).collect(),
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use wasp_sim::timeline::TimelineSample;
 
     #[test]
     fn downsample_keeps_min_max_and_mean() {

@@ -2,8 +2,18 @@
 //! (3D games, then 2D games, then procedural scenes) and the group means
 //! after them.
 
+use crate::palette::Key;
 use crate::reproduce::plan::{Group, Plan};
 use std::ops::Range;
+
+/// The colour key of a scene group's series.
+pub fn group_key(g: Group) -> Key {
+    match g {
+        Group::ThreeD => Key::ThreeD,
+        Group::TwoD => Key::TwoD,
+        Group::Procedural => Key::Procedural,
+    }
+}
 
 /// The scenes in figure order and the mean columns after them.
 pub struct Axis {
@@ -13,6 +23,8 @@ pub struct Axis {
     pub groups: Vec<Group>,
     /// The mean columns: label and the scene indices it averages.
     pub means: Vec<(String, Vec<usize>)>,
+    /// The colour key of each mean column's group.
+    pub mean_keys: Vec<Key>,
 }
 
 impl Axis {
@@ -28,22 +40,28 @@ impl Axis {
         let idx = |f: &dyn Fn(Group) -> bool| -> Vec<usize> {
             (0..groups.len()).filter(|&i| f(groups[i])).collect()
         };
-        let mut means = Vec::new();
+        let (mut means, mut mean_keys) = (Vec::new(), Vec::new());
         let games = idx(&|g| g != Group::Procedural);
-        for (label, v) in [
-            ("mean 3D", idx(&|g| g == Group::ThreeD)),
-            ("mean 2D", idx(&|g| g == Group::TwoD)),
-            ("mean games", games),
-            ("mean procedural", idx(&|g| g == Group::Procedural)),
+        for (label, key, v) in [
+            ("mean 3D", Key::ThreeD, idx(&|g| g == Group::ThreeD)),
+            ("mean 2D", Key::TwoD, idx(&|g| g == Group::TwoD)),
+            ("mean games", Key::Games, games),
+            (
+                "mean procedural",
+                Key::Procedural,
+                idx(&|g| g == Group::Procedural),
+            ),
         ] {
             if !v.is_empty() {
                 means.push((label.to_string(), v));
+                mean_keys.push(key);
             }
         }
         Axis {
             scenes: s.into_iter().map(|x| x.1).collect(),
             groups,
             means,
+            mean_keys,
         }
     }
 
@@ -113,6 +131,7 @@ mod tests {
                 ("mean 3D".into(), vec![0, 1]),
                 ("mean games".into(), vec![0, 1, 2]),
             ],
+            mean_keys: vec![Key::ThreeD, Key::Games],
         };
         assert_eq!(
             axis.with_means(vec![Some(1.0), None, Some(3.0)]),

@@ -5,6 +5,7 @@
 use super::figure::{Figure, SeriesData};
 use super::numbers::change;
 use super::Figures;
+use crate::palette::Key;
 use crate::reproduce::paper;
 use crate::study::point::Point;
 use wasp_rtl::policy::PolicySpec;
@@ -30,6 +31,7 @@ impl Figures<'_> {
             p.wasp,
         ] {
             f.series.push(SeriesData {
+                key: pol.into(),
                 name: pol.to_string(),
                 values: self.single(
                     |s| p.policy_point(s, d, pol),
@@ -57,6 +59,7 @@ impl Figures<'_> {
         let l2: fn(&RunStats) -> f64 = |s| s.l2.misses as f64;
         for (name, stat) in [("L1 misses", l1), ("L2 misses", l2)] {
             f.series.push(SeriesData {
+                key: Key::Other,
                 name: name.into(),
                 values: self.pair(
                     |s| p.policy_point(s, d, PolicySpec::Baseline),
@@ -89,13 +92,19 @@ impl Figures<'_> {
         let all: fn(&LatencyStats) -> f64 = |l| l.all;
         let priority: fn(&LatencyStats) -> f64 = |l| l.priority;
         let regular: fn(&LatencyStats) -> f64 = |l| l.regular;
-        for (name, point, stat) in [
-            ("baseline, all", &base as &dyn Fn(&str) -> Point, all),
-            ("WaSP, all", &wasp, all),
-            ("WaSP, priority warps", &wasp, priority),
-            ("WaSP, regular warps", &wasp, regular),
+        for (key, name, point, stat) in [
+            (
+                Key::Baseline,
+                "baseline, all",
+                &base as &dyn Fn(&str) -> Point,
+                all,
+            ),
+            (Key::Wasp, "WaSP, all", &wasp, all),
+            (Key::Wasp, "WaSP, priority warps", &wasp, priority),
+            (Key::Wasp, "WaSP, regular warps", &wasp, regular),
         ] {
             f.series.push(SeriesData {
+                key,
                 name: name.into(),
                 values: self.single(point, |r| Some(stat(&r.stats.memory_latency))),
             });
@@ -117,6 +126,7 @@ impl Figures<'_> {
             "change in latency",
         );
         f.series.push(SeriesData {
+            key: Key::Other,
             name: "memory latency".into(),
             values: self.pair(
                 |s| p.policy_point(s, d, PolicySpec::Baseline),
@@ -142,6 +152,7 @@ impl Figures<'_> {
             "change in energy",
         );
         f.series.push(SeriesData {
+            key: Key::Other,
             name: "energy".into(),
             values: self.pair(
                 |s| p.policy_point(s, d, PolicySpec::Baseline),

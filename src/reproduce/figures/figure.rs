@@ -2,9 +2,13 @@
 //! (bars) or over x (lines), the paper's values drawn beside ours, and the
 //! texts and marks around them.
 
+use crate::palette::Key;
+
 /// A series: a value per category.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SeriesData {
+    /// What it shows: it chooses the colour.
+    pub key: Key,
     /// Legend name.
     pub name: String,
     /// Values (None: missing).

@@ -24,7 +24,7 @@ mod sensitivity;
 mod speedups;
 mod warps;
 
-pub use axis::{mean, Axis};
+pub use axis::{group_key, mean, Axis};
 pub use figure::{group_values, Figure, Kind, PaperValue};
 pub use scenes::scene_figures;
 

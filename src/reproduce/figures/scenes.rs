@@ -5,6 +5,7 @@
 use super::axis::Axis;
 use super::figure::{Figure, Kind, PaperValue, SeriesData};
 use super::numbers::size_ratio;
+use crate::palette::Key;
 use crate::reproduce::paper;
 use crate::reproduce::plan::Plan;
 use crate::study::runner::Outcome;
@@ -83,10 +84,12 @@ impl Scenes<'_> {
             y_label: "fraction of a tile's warps".into(),
             series: vec![
                 SeriesData {
+                    key: Key::Other,
                     name: "Min_Estimate1 (unique blocks / warps)".into(),
                     values: self.per(&|c| Some(c.min_estimate1)),
                 },
                 SeriesData {
+                    key: Key::Other,
                     name: "Min_Estimate2 (/ CF)".into(),
                     values: self.per(&|c| Some(c.min_estimate2)),
                 },
@@ -119,6 +122,7 @@ impl Scenes<'_> {
             title: "CF: distinct texture blocks per warp".into(),
             y_label: "blocks per warp".into(),
             series: vec![SeriesData {
+                key: Key::Other,
                 name: "CF".into(),
                 values: self.per(&|c| Some(c.cf)),
             }],
@@ -138,6 +142,7 @@ impl Scenes<'_> {
     fn subsets(&self, fig: &mut Figure, subsets: &[(&str, String, String)]) {
         for (i, (subset, name, label)) in subsets.iter().enumerate() {
             fig.series.push(SeriesData {
+                key: Key::Other,
                 name: name.clone(),
                 values: self.per(&|c| footprint_of(subset, c)),
             });

@@ -6,6 +6,7 @@ use super::axis::mean;
 use super::figure::{Figure, Kind, PaperValue, SeriesData};
 use super::numbers::speedup;
 use super::Figures;
+use crate::palette::Key;
 use crate::reproduce::paper;
 use crate::reproduce::plan::Width;
 use wasp_rtl::policy::PolicySpec;
@@ -125,6 +126,7 @@ impl Figures<'_> {
         let x: Vec<f64> = p.warps.iter().map(|&k| f64::from(k)).collect();
         let series = vec![
             SeriesData {
+                key: Key::Baseline,
                 name: "baseline".into(),
                 values: p
                     .warps
@@ -133,6 +135,7 @@ impl Figures<'_> {
                     .collect(),
             },
             SeriesData {
+                key: p.wasp.into(),
                 name: p.wasp.to_string(),
                 values: p.warps.iter().map(|&k| rel(k, p.wasp)).collect(),
             },

@@ -6,6 +6,7 @@ use super::axis::mean;
 use super::figure::{Figure, Kind, SeriesData};
 use super::numbers::{size_ratio, speedup};
 use super::Figures;
+use crate::palette::Key;
 use crate::reproduce::paper;
 use crate::reproduce::plan::Group;
 use wasp_rtl::policy::PolicySpec;
@@ -22,6 +23,7 @@ impl Figures<'_> {
             "speedup over the baseline",
         );
         f.series.push(SeriesData {
+            key: Key::Other,
             name: "ideal memory".into(),
             values: self.pair(
                 |s| p.policy_point(s, d, PolicySpec::Baseline),
@@ -46,6 +48,7 @@ impl Figures<'_> {
         );
         for &pol in p.policies.iter().skip(1) {
             f.series.push(SeriesData {
+                key: pol.into(),
                 name: pol.to_string(),
                 values: self.pair(
                     |s| p.policy_point(s, d, PolicySpec::Baseline),
@@ -76,7 +79,7 @@ impl Figures<'_> {
         let p = self.plan;
         let x: Vec<f64> = p.thresholds.iter().map(|&t| f64::from(t)).collect();
         let mut series = Vec::new();
-        for (label, idx) in &self.axis.means {
+        for ((label, idx), &key) in self.axis.means.iter().zip(&self.axis.mean_keys) {
             let values = p
                 .thresholds
                 .iter()
@@ -90,6 +93,7 @@ impl Figures<'_> {
                 })
                 .collect();
             series.push(SeriesData {
+                key,
                 name: label.clone(),
                 values,
             });
@@ -136,6 +140,7 @@ impl Figures<'_> {
         );
         for &m in &p.meshes {
             f.series.push(SeriesData {
+                key: Key::Other,
                 name: format!("Mesh{m} (size ratio {})", size_ratio(m)),
                 values: self.pair(
                     |s| p.policy_point(s, d, PolicySpec::Baseline),
@@ -171,6 +176,7 @@ impl Figures<'_> {
                 format!("{k} rejected quads a slot")
             };
             f.series.push(SeriesData {
+                key: Key::Other,
                 name,
                 values: self.pair(
                     |s| p.early_z_point(s, d, k, PolicySpec::Baseline),

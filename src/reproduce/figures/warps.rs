@@ -18,6 +18,7 @@ impl Figures<'_> {
         f.percent = false;
         for &pol in p.policies.iter().skip(1) {
             f.series.push(SeriesData {
+                key: pol.into(),
                 name: pol.to_string(),
                 values: self.single(
                     |s| p.policy_point(s, d, pol),
@@ -54,6 +55,7 @@ impl Figures<'_> {
         f.reference = None;
         for &pol in &p.policies {
             f.series.push(SeriesData {
+                key: pol.into(),
                 name: pol.to_string(),
                 values: self.single(
                     |s| p.policy_point(s, d, pol),

@@ -13,10 +13,10 @@ use super::knobs::Variant;
 use super::plan::MapPlan;
 use super::table::MapTable;
 use crate::charts::{
-    draw_heatmap, draw_tornado, draw_xy, HeatMap, Highlight, Span, TornadoChart, TornadoRow,
+    draw_heatmap, draw_tornado, draw_xy, HeatMap, Highlight, Key, Span, TornadoChart, TornadoRow,
     TornadoSeries, XyChart, XySeries,
 };
-use crate::reproduce::figures::mean;
+use crate::reproduce::figures::{group_key, mean};
 use crate::reproduce::plan::{Group, Plan, Width};
 use crate::study::cache::write_atomic;
 use crate::study::runner::Outcome;
@@ -76,6 +76,7 @@ pub fn tornado(t: &MapTable, figs: &Path, data: &Path) -> Result<Option<Drawn>, 
         series: groups
             .iter()
             .map(|&g| TornadoSeries {
+                key: group_key(g),
                 name: format!("{} scenes", g.label()),
                 reference: t.shipped.of(g).wasp,
             })
@@ -114,7 +115,10 @@ pub fn warps(t: &MapTable, figs: &Path, data: &Path) -> Result<Option<Drawn>, St
         return Ok(None);
     };
     let mut series = Vec::new();
-    for (v, name) in [(Variant::Wasp, "WaSP"), (Variant::Oracle, "oracle bound")] {
+    for (v, key, name) in [
+        (Variant::Wasp, Key::Wasp, "WaSP"),
+        (Variant::Oracle, Key::Oracle, "oracle bound"),
+    ] {
         for g in [Group::ThreeD, Group::TwoD] {
             let points: Vec<(f64, f64, String)> = k
                 .rows
@@ -128,6 +132,7 @@ pub fn warps(t: &MapTable, figs: &Path, data: &Path) -> Result<Option<Drawn>, St
                 continue;
             }
             series.push(XySeries {
+                key,
                 name: format!("{name}, {} scenes", g.label()),
                 points: points.iter().map(|p| (p.0, p.1)).collect(),
                 labels: Vec::new(),
@@ -279,6 +284,7 @@ pub fn area(plan: &Plan, out: &Outcome, figs: &Path, data: &Path) -> Result<Opti
             let want = if i == 0 { base_k } else { wasp_k };
             let at = pts.iter().position(|p| p.warps == want);
             series.push(XySeries {
+                key: pol.into(),
                 name: format!("{name}, width {}", w.width),
                 points: pts.iter().map(|p| (p.bits / 8192.0, p.cycles)).collect(),
                 labels: pts.iter().map(|p| p.warps.to_string()).collect(),
