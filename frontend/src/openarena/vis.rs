@@ -42,102 +42,10 @@ impl Vis {
         [planes, nodes, leaves, leaf_faces, vis]: [Lump; 5],
         n_faces: usize,
     ) -> Result<Vis, SceneError> {
-        let planes = (0..planes.1)
-            .map(|i| {
-                let at = planes.0 + 16 * i;
-                let f = |k: usize| r.f32_at(at + 4 * k, "plane");
-                Ok(([f(0)?, f(1)?, f(2)?], f(3)?))
-            })
-            .collect::<Result<Vec<_>, SceneError>>()?;
-        let n_leaves = leaves.1;
-        let nodes = (0..nodes.1)
-            .map(|i| {
-                let at = nodes.0 + 36 * i;
-                let plane = r.i32_at(at, "node")?;
-                let plane = usize::try_from(plane)
-                    .ok()
-                    .filter(|&p| p < planes.len())
-                    .ok_or_else(|| {
-                        r.err(
-                            at,
-                            format!("node {i}: plane {plane} out of range ({})", planes.len()),
-                        )
-                    })?;
-                let children = [r.i32_at(at + 4, "node")?, r.i32_at(at + 8, "node")?];
-                for (k, &c) in children.iter().enumerate() {
-                    let ok = if c >= 0 {
-                        (c as usize) < nodes.1
-                    } else {
-                        ((-1 - c) as usize) < n_leaves
-                    };
-                    if !ok {
-                        return Err(r.err(
-                            at + 4 + 4 * k,
-                            format!(
-                                "node {i}: child {c} out of range ({} nodes, {n_leaves} leaves)",
-                                nodes.1
-                            ),
-                        ));
-                    }
-                }
-                Ok((plane, children))
-            })
-            .collect::<Result<Vec<_>, SceneError>>()?;
-        let leaves = (0..n_leaves)
-            .map(|i| {
-                let at = leaves.0 + 48 * i;
-                let cluster = r.i32_at(at, "leaf")?;
-                let (first, count) = (r.i32_at(at + 32, "leaf")?, r.i32_at(at + 36, "leaf")?);
-                let range = match (usize::try_from(first), usize::try_from(count)) {
-                    (Ok(f), Ok(c)) if f + c <= leaf_faces.1 => f..f + c,
-                    _ => {
-                        return Err(r.err(
-                            at + 32,
-                            format!(
-                                "leaf {i}: leaf faces {first}+{count} out of range ({})",
-                                leaf_faces.1
-                            ),
-                        ))
-                    }
-                };
-                let faces = range
-                    .map(|k| {
-                        let f = r.i32_at(leaf_faces.0 + 4 * k, "leaf face")?;
-                        usize::try_from(f)
-                            .ok()
-                            .filter(|&f| f < n_faces)
-                            .ok_or_else(|| {
-                                r.err(
-                                    leaf_faces.0 + 4 * k,
-                                    format!("leaf face {f} out of range ({n_faces})"),
-                                )
-                            })
-                    })
-                    .collect::<Result<Vec<_>, SceneError>>()?;
-                Ok((cluster, faces))
-            })
-            .collect::<Result<Vec<_>, SceneError>>()?;
-        let (clusters, row_bytes, bits) = if vis.1 == 0 {
-            (0, 0, Vec::new())
-        } else {
-            let n = r.i32_at(vis.0, "visibility")?;
-            let sz = r.i32_at(vis.0 + 4, "visibility")?;
-            let size = usize::try_from(n)
-                .ok()
-                .zip(usize::try_from(sz).ok())
-                .and_then(|(n, s)| n.checked_mul(s).map(|b| (n, s, b)))
-                .filter(|&(n, s, b)| b + 8 <= vis.1 && s * 8 >= n);
-            let Some((n, s, b)) = size else {
-                return Err(r.err(
-                    vis.0,
-                    format!(
-                        "visibility: {n} clusters of {sz} bytes do not fit its {} bytes",
-                        vis.1
-                    ),
-                ));
-            };
-            (n, s, r.slice(vis.0 + 8, b, "visibility")?.to_vec())
-        };
+        let planes = read_planes(r, planes)?;
+        let nodes = read_nodes(r, nodes, planes.len(), leaves.1)?;
+        let leaves = read_leaves(r, leaves, leaf_faces, n_faces)?;
+        let (clusters, row_bytes, bits) = read_bits(r, vis)?;
         Ok(Vis {
             planes,
             nodes,
@@ -198,6 +106,130 @@ impl Vis {
                 .collect(),
         )
     }
+}
+
+/// The planes lump: normal and distance of each plane.
+fn read_planes(r: &Bytes, planes: Lump) -> Result<Vec<([f32; 3], f32)>, SceneError> {
+    (0..planes.1)
+        .map(|i| {
+            let at = planes.0 + 16 * i;
+            let f = |k: usize| r.f32_at(at + 4 * k, "plane");
+            Ok(([f(0)?, f(1)?, f(2)?], f(3)?))
+        })
+        .collect::<Result<Vec<_>, SceneError>>()
+}
+
+/// The nodes lump: each node's plane and children (a leaf as `-1 - index`),
+/// checked against `n_planes`, the nodes and `n_leaves`.
+fn read_nodes(
+    r: &Bytes,
+    nodes: Lump,
+    n_planes: usize,
+    n_leaves: usize,
+) -> Result<Vec<(usize, [i32; 2])>, SceneError> {
+    (0..nodes.1)
+        .map(|i| {
+            let at = nodes.0 + 36 * i;
+            let plane = r.i32_at(at, "node")?;
+            let plane = usize::try_from(plane)
+                .ok()
+                .filter(|&p| p < n_planes)
+                .ok_or_else(|| {
+                    r.err(
+                        at,
+                        format!("node {i}: plane {plane} out of range ({})", n_planes),
+                    )
+                })?;
+            let children = [r.i32_at(at + 4, "node")?, r.i32_at(at + 8, "node")?];
+            for (k, &c) in children.iter().enumerate() {
+                let ok = if c >= 0 {
+                    (c as usize) < nodes.1
+                } else {
+                    ((-1 - c) as usize) < n_leaves
+                };
+                if !ok {
+                    return Err(r.err(
+                        at + 4 + 4 * k,
+                        format!(
+                            "node {i}: child {c} out of range ({} nodes, {n_leaves} leaves)",
+                            nodes.1
+                        ),
+                    ));
+                }
+            }
+            Ok((plane, children))
+        })
+        .collect::<Result<Vec<_>, SceneError>>()
+}
+
+/// The leaves lump: each leaf's cluster and its faces (through the leaf
+/// faces lump), the faces checked against `n_faces`.
+fn read_leaves(
+    r: &Bytes,
+    leaves: Lump,
+    leaf_faces: Lump,
+    n_faces: usize,
+) -> Result<Vec<(i32, Vec<usize>)>, SceneError> {
+    (0..leaves.1)
+        .map(|i| {
+            let at = leaves.0 + 48 * i;
+            let cluster = r.i32_at(at, "leaf")?;
+            let (first, count) = (r.i32_at(at + 32, "leaf")?, r.i32_at(at + 36, "leaf")?);
+            let range = match (usize::try_from(first), usize::try_from(count)) {
+                (Ok(f), Ok(c)) if f + c <= leaf_faces.1 => f..f + c,
+                _ => {
+                    return Err(r.err(
+                        at + 32,
+                        format!(
+                            "leaf {i}: leaf faces {first}+{count} out of range ({})",
+                            leaf_faces.1
+                        ),
+                    ))
+                }
+            };
+            let faces = range
+                .map(|k| {
+                    let f = r.i32_at(leaf_faces.0 + 4 * k, "leaf face")?;
+                    usize::try_from(f)
+                        .ok()
+                        .filter(|&f| f < n_faces)
+                        .ok_or_else(|| {
+                            r.err(
+                                leaf_faces.0 + 4 * k,
+                                format!("leaf face {f} out of range ({n_faces})"),
+                            )
+                        })
+                })
+                .collect::<Result<Vec<_>, SceneError>>()?;
+            Ok((cluster, faces))
+        })
+        .collect::<Result<Vec<_>, SceneError>>()
+}
+
+/// The visibility lump: clusters, bytes per row and the rows (none for a
+/// map without visibility data).
+fn read_bits(r: &Bytes, vis: Lump) -> Result<(usize, usize, Vec<u8>), SceneError> {
+    Ok(if vis.1 == 0 {
+        (0, 0, Vec::new())
+    } else {
+        let n = r.i32_at(vis.0, "visibility")?;
+        let sz = r.i32_at(vis.0 + 4, "visibility")?;
+        let size = usize::try_from(n)
+            .ok()
+            .zip(usize::try_from(sz).ok())
+            .and_then(|(n, s)| n.checked_mul(s).map(|b| (n, s, b)))
+            .filter(|&(n, s, b)| b + 8 <= vis.1 && s * 8 >= n);
+        let Some((n, s, b)) = size else {
+            return Err(r.err(
+                vis.0,
+                format!(
+                    "visibility: {n} clusters of {sz} bytes do not fit its {} bytes",
+                    vis.1
+                ),
+            ));
+        };
+        (n, s, r.slice(vis.0 + 8, b, "visibility")?.to_vec())
+    })
 }
 
 #[cfg(test)]
