@@ -649,7 +649,7 @@ impl RunStats {
 
 mod csv;
 mod table;
-pub use csv::{csv_field, csv_records, csv_table, csv_text, flatten};
+pub use csv::{csv_records, csv_table, csv_text, flatten};
 
 #[cfg(test)]
 mod tests {

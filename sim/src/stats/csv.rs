@@ -116,19 +116,6 @@ where
     String::from_utf8(bytes).expect("CSV of UTF-8 fields is UTF-8")
 }
 
-/// One CSV field as [`csv_text`] writes it (quoted only where it must be),
-/// for a line put together by hand.
-pub fn csv_field(s: &str) -> String {
-    // A record of one empty field is written `""` (so that it is not an
-    // empty line); among other fields an empty one is empty.
-    if s.is_empty() {
-        return String::new();
-    }
-    let mut line = csv_text([[s]]);
-    line.pop(); // the record's `\n`
-    line
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -137,9 +124,6 @@ mod tests {
     fn fields_are_quoted_only_where_they_must_be() {
         let t = csv_text([vec!["a", "b,c", "d\"e", "f\ng", "", " x"], vec!["1", ""]]);
         assert_eq!(t, "a,\"b,c\",\"d\"\"e\",\"f\ng\",, x\n1,\n");
-        assert_eq!(csv_field("plain"), "plain");
-        assert_eq!(csv_field(""), "");
-        assert_eq!(csv_field("say \"hi\", then"), "\"say \"\"hi\"\", then\"");
         assert_eq!(csv_text(Vec::<Vec<&str>>::new()), "");
     }
 
