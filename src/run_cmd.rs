@@ -190,6 +190,8 @@ fn base_machine(config: Option<&Path>) -> Result<MachineConfig, CliError> {
         return Ok(MachineConfig::paper());
     };
     let mut c = read_config(p)?;
+    // A file that patches a base without naming itself is named as the
+    // base plus the file, not as the base alone.
     let named = std::fs::read_to_string(p)
         .ok()
         .and_then(|t| t.parse::<toml::Table>().ok())
