@@ -1,7 +1,5 @@
 //! [`Problem`]: one broken rule of the format, and how its message reads.
 
-use std::fmt;
-
 use crate::limits::{
     FORMAT_VERSION, FORMAT_VERSION_1, FORMAT_VERSION_2, FORMAT_VERSION_3, FORMAT_VERSION_FRAMES,
     FRAME_MARKER, MAGIC, MAX_ALU_RUN, MAX_FRAME_DIM, MAX_QUAD_INSTRS, MAX_REJECTED_RUN,
@@ -18,27 +16,50 @@ pub enum TextField {
 }
 
 /// What is wrong with a trace: one broken rule of the format. Its Display
-/// reads `what was wrong (expected what)`.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// reads `what was wrong (expected what)`; each variant's message stands
+/// beside it.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Problem {
     /// The input has no line at all.
+    #[error(
+        "empty input (expected `{MAGIC} {FORMAT_VERSION_FRAMES}`, `{MAGIC} {FORMAT_VERSION}`, \
+         `{MAGIC} {FORMAT_VERSION_3}`, `{MAGIC} {FORMAT_VERSION_2}` or `{MAGIC} \
+         {FORMAT_VERSION_1}` on line 1)"
+    )]
     EmptyInput,
     /// `z 0`.
+    #[error("0 rejected quads (expected `z N` with N at least 1)")]
     ZeroRejected,
     /// Rejected quads outside any tile.
+    #[error("rejected quads outside any tile (expected `tile TX TY` first)")]
     RejectedWithoutTile,
     /// More rejected quads in one place than a record holds.
+    #[error("{0} rejected quads in one place (expected 1 to {MAX_REJECTED_RUN})")]
     RejectedRunTooLong(u64),
     /// Two `z` lines in a row.
+    #[error("two `z` lines in a row (expected one `z N` with their sum)")]
     AdjacentRejected,
     /// A `z` line in a trace of a version without them.
+    #[error(
+        "`z` line in a format-{0} trace (expected `z` lines only from format \
+         {FORMAT_VERSION_3} on: write `{MAGIC} {FORMAT_VERSION}` on line 1)"
+    )]
     RejectedInOldVersion(u32),
     /// A frame boundary (`next-frame`) in a trace of a version without
     /// them (before 5).
+    #[error(
+        "`{FRAME_MARKER}` line in a format-{0} trace (expected frame boundaries only in format \
+         {FORMAT_VERSION_FRAMES}: write `{MAGIC} {FORMAT_VERSION_FRAMES}` on line 1)"
+    )]
     FrameMarkerInOldVersion(u32),
     /// A trilinear texture instruction (`T...`) in a trace of a version
     /// without them (before 4).
+    #[error(
+        "trilinear texture instruction `{}` in a format-{version} trace (expected `T` only \
+         from format {FORMAT_VERSION} on: write `t`, or `{MAGIC} {FORMAT_VERSION}` on line 1)",
+        clip(.token)
+    )]
     TrilinearInOldVersion {
         /// The file's format version.
         version: u32,
@@ -46,14 +67,32 @@ pub enum Problem {
         token: String,
     },
     /// The input is not UTF-8.
+    #[error("invalid UTF-8 (expected UTF-8 text)")]
     InvalidUtf8,
     /// A line holds a control character other than tab.
+    #[error("control character in line (expected printable text, blanks and tabs)")]
     ControlCharacter,
     /// Line 1 is not `wasp-trace 5`, `4`, `3`, `2` or `1`.
+    #[error(
+        "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION_FRAMES}`, `{MAGIC} \
+         {FORMAT_VERSION}`, `{MAGIC} {FORMAT_VERSION_3}`, `{MAGIC} {FORMAT_VERSION_2}` or \
+         `{MAGIC} {FORMAT_VERSION_1}` on line 1)",
+        clip(.0)
+    )]
     BadMagic(String),
     /// Line 1 names another format version.
+    #[error(
+        "unsupported format version `{}` (expected {FORMAT_VERSION_FRAMES}, {FORMAT_VERSION}, \
+         {FORMAT_VERSION_3}, {FORMAT_VERSION_2} or {FORMAT_VERSION_1})",
+        clip(.0)
+    )]
     UnsupportedVersion(String),
     /// A header line is missing before this line.
+    #[error(
+        "`{}` before the header line `{missing}` (expected `workload NAME` then \
+         `frame W H tile T` before the first tile)",
+        clip(.found)
+    )]
     MissingHeader {
         /// The header line that is missing.
         missing: &'static str,
@@ -61,8 +100,10 @@ pub enum Problem {
         found: String,
     },
     /// A header line appears twice or after the first tile.
+    #[error("{}", misplaced_header(.0))]
     MisplacedHeader(&'static str),
     /// A line starts with an unknown word.
+    #[error("unknown directive `{}` (expected {expected})", clip(.found))]
     UnknownDirective {
         /// The word found.
         found: String,
@@ -70,6 +111,7 @@ pub enum Problem {
         expected: &'static str,
     },
     /// A directive line has the wrong number of fields.
+    #[error("`{directive}` line with {found} fields (expected `{usage}`)")]
     WrongFieldCount {
         /// The directive.
         directive: &'static str,
@@ -79,6 +121,7 @@ pub enum Problem {
         usage: &'static str,
     },
     /// A decimal field is not a decimal number.
+    #[error("bad {what} `{}` (expected a decimal number)", clip(.found))]
     BadNumber {
         /// The field.
         what: &'static str,
@@ -86,6 +129,7 @@ pub enum Problem {
         found: String,
     },
     /// A number does not fit its range.
+    #[error("{what} `{}` out of range (expected at most {max})", clip(.found))]
     NumberTooLarge {
         /// The field.
         what: &'static str,
@@ -95,25 +139,49 @@ pub enum Problem {
         max: u64,
     },
     /// A block number is not 1 to 16 hex digits.
+    #[error(
+        "bad block number `{}` (expected 1 to 16 hex digits, no `0x`)",
+        clip(.found)
+    )]
     BadHex {
         /// The token.
         found: String,
     },
     /// The workload name is empty.
+    #[error("empty workload name (expected `workload NAME`)")]
     EmptyWorkload,
     /// A `texture-format` name that is not 1 to 32 lowercase letters,
     /// digits and `-`.
+    #[error(
+        "texture format `{}` (expected 1 to 32 lowercase letters, digits and `-`, \
+         e.g. `texture-format etc2`)",
+        clip(.0)
+    )]
     BadTextureFormat(String),
     /// A `texture-lines` line other than `texture-lines decoded`, or one
     /// repeated or misplaced (its word, as found).
+    #[error(
+        "`texture-lines {}` (expected `texture-lines decoded`, at most once, after \
+         `workload NAME` and before the `texture-level` lines and `frame W H tile T`)",
+        clip(.0)
+    )]
     BadTextureLines(String),
     /// A `texture-level` line that is malformed, misplaced or does not fit
     /// the levels before it (why).
+    #[error(
+        "bad `texture-level` line: {0} (expected `texture-level R0 RW RH S0 SW SH RX RY` \
+         after `texture-lines decoded`, before `frame W H tile T`)"
+    )]
     BadTextureLevel(String),
     /// A texture instruction's block that lies in no `texture-level` of a
     /// decoded-lines trace, or outside its level's stored grid.
+    #[error(
+        "block {0:x} lies in no `texture-level` of this decoded-lines trace, or outside \
+         its level's stored grid (expected every texture block inside a level)"
+    )]
     BlockOutsideTextureMap(u64),
     /// A workload name or note holds characters a line cannot.
+    #[error("{} {why} (expected printable text)", .field.name())]
     BadText {
         /// Which field.
         field: TextField,
@@ -121,6 +189,7 @@ pub enum Problem {
         why: &'static str,
     },
     /// Frame width or height out of range.
+    #[error("frame {dim} {value} (expected 1 to {MAX_FRAME_DIM} pixels)")]
     BadFrame {
         /// `width` or `height`.
         dim: &'static str,
@@ -128,8 +197,10 @@ pub enum Problem {
         value: u32,
     },
     /// Tile size not even or out of range.
+    #[error("tile size {0} (expected an even number of pixels from 2 to {MAX_TILE_SIZE})")]
     BadTileSize(u32),
     /// A tile outside the frame's tile grid.
+    #[error("tile {tx} {ty} outside the frame (expected x below {tiles_x} and y below {tiles_y})")]
     TileOutsideFrame {
         /// Tile column.
         tx: u32,
@@ -141,6 +212,7 @@ pub enum Problem {
         tiles_y: u32,
     },
     /// A tile appears twice.
+    #[error("tile {tx} {ty} appears twice (expected each tile at most once per frame)")]
     DuplicateTile {
         /// Tile column.
         tx: u32,
@@ -148,6 +220,9 @@ pub enum Problem {
         ty: u32,
     },
     /// A tile record has no `end` before the next tile or end of input.
+    #[error(
+        "tile {tx} {ty} is not closed (expected `end` before the next tile or the end of input)"
+    )]
     TileNotClosed {
         /// Tile column.
         tx: u32,
@@ -155,6 +230,7 @@ pub enum Problem {
         ty: u32,
     },
     /// A tile record has neither a quad nor a rejected quad.
+    #[error("tile {tx} {ty} is empty (expected at least one `q` or `z` line before `end`)")]
     EmptyTile {
         /// Tile column.
         tx: u32,
@@ -162,12 +238,19 @@ pub enum Problem {
         ty: u32,
     },
     /// `end` with no open tile.
+    #[error("`end` outside any tile (expected `tile TX TY` first)")]
     EndWithoutTile,
     /// A quad with no open tile.
+    #[error("quad outside any tile (expected `tile TX TY` first)")]
     QuadWithoutTile,
     /// An instruction with no open quad (builder only).
+    #[error("instruction outside any quad (expected a quad first)")]
     InstrWithoutQuad,
     /// A quad position beyond the tile's edge.
+    #[error(
+        "quad {x} {y} outside the tile (expected x and y from 0 to {})",
+        .side.saturating_sub(1)
+    )]
     QuadOutsideTile {
         /// Quad column.
         x: u32,
@@ -177,6 +260,10 @@ pub enum Problem {
         side: u32,
     },
     /// A quad whose top-left pixel is outside the frame.
+    #[error(
+        "quad {x} {y} at pixel ({px}, {py}) outside the frame (expected its top-left pixel \
+         inside the frame)"
+    )]
     QuadOutsideFrame {
         /// Quad column.
         x: u32,
@@ -188,6 +275,10 @@ pub enum Problem {
         py: u64,
     },
     /// A quad appears twice in a tile (version 1 only).
+    #[error(
+        "quad {x} {y} appears twice in the tile (expected each quad at most once in format \
+         {FORMAT_VERSION_1}; formats {FORMAT_VERSION_2} to {FORMAT_VERSION} allow repeats)"
+    )]
     DuplicateQuad {
         /// Quad column.
         x: u32,
@@ -195,6 +286,10 @@ pub enum Problem {
         y: u32,
     },
     /// A quad before its predecessor in scanline order (version 1 only).
+    #[error(
+        "quad {x} {y} after quad {prev_x} {prev_y} (expected scanline order in format \
+         {FORMAT_VERSION_1}: y, then x increasing)"
+    )]
     QuadOutOfOrder {
         /// Quad column.
         x: u32,
@@ -206,6 +301,7 @@ pub enum Problem {
         prev_y: u32,
     },
     /// A quad with no instruction.
+    #[error("quad {x} {y} has no instruction (expected at least one `aN`, `tB,...` or `TB,...`)")]
     EmptyQuad {
         /// Quad column.
         x: u32,
@@ -213,12 +309,22 @@ pub enum Problem {
         y: u32,
     },
     /// An ALU run of length 0.
+    #[error("ALU run of 0 (expected a run of at least 1)")]
     ZeroAlu,
     /// An ALU run longer than [`MAX_ALU_RUN`].
+    #[error("ALU run of {0} (expected 1 to {MAX_ALU_RUN})")]
     AluRunTooLong(u64),
     /// A quad program of more than [`MAX_QUAD_INSTRS`] instructions.
+    #[error(
+        "quad program of {0} instructions (expected 1 to {MAX_QUAD_INSTRS}, ALU runs counted \
+         by length)"
+    )]
     QuadTooLong(u64),
     /// Two ALU runs next to each other in the text.
+    #[error(
+        "adjacent ALU runs `a{first} a{second}` (expected one run `a{}`)",
+        u64::from(*.first) + u64::from(*.second)
+    )]
     AdjacentAlu {
         /// The first run.
         first: u32,
@@ -226,18 +332,34 @@ pub enum Problem {
         second: u32,
     },
     /// An instruction token that is neither `aN` nor `tB,...`.
+    #[error(
+        "bad instruction `{}` (expected `aN`, `tB,B,...` or `TB,B,...`)",
+        clip(.0)
+    )]
     BadInstr(String),
     /// A texture instruction without blocks.
+    #[error("texture instruction without blocks (expected `t` or `T` and hex block numbers)")]
     TexNoBlock,
     /// An empty entry in a block list, e.g. `t1,,2`.
+    #[error(
+        "empty block number in `{}` (expected hex digits between commas)",
+        clip(.0)
+    )]
     EmptyBlockEntry(String),
     /// A block listed twice in one texture instruction.
+    #[error("block {0:x} listed twice in one texture instruction (expected distinct blocks)")]
     DuplicateBlock(u64),
     /// More than [`MAX_TEX_BLOCKS`] blocks in one texture instruction.
+    #[error("texture instruction with {0} blocks (expected at most {MAX_TEX_BLOCKS})")]
     TooManyBlocks(usize),
     /// A tile whose pools would exceed 2^32 - 1 entries.
+    #[error("tile too large (expected fewer than 2^32 instruction entries and blocks)")]
     TileTooLarge,
     /// Tiles of another frame or tile size (builder only).
+    #[error(
+        "tiles of a {}x{} frame with {}-pixel tiles (expected {}x{} with {}-pixel tiles)",
+        .found.0, .found.1, .found.2, .expected.0, .expected.1, .expected.2
+    )]
     FrameMismatch {
         /// Their frame width, height and tile size.
         found: (u32, u32, u32),
@@ -246,266 +368,30 @@ pub enum Problem {
     },
 }
 
-impl fmt::Display for Problem {
-    // Long on purpose: one arm per variant, each arm that variant's whole
-    // message, so the match is the table of messages, read by variant.
-    // Split into groups it would name every variant twice (once to route
-    // it, once to word it) and need an unreachable arm per group.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use Problem::*;
+impl TextField {
+    /// How a message names the field.
+    fn name(self) -> &'static str {
         match self {
-            EmptyInput => write!(
-                f,
-                "empty input (expected `{MAGIC} {FORMAT_VERSION_FRAMES}`, `{MAGIC} \
-                 {FORMAT_VERSION}`, `{MAGIC} {FORMAT_VERSION_3}`, `{MAGIC} \
-                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)"
-            ),
-            InvalidUtf8 => write!(f, "invalid UTF-8 (expected UTF-8 text)"),
-            ZeroRejected => write!(f, "0 rejected quads (expected `z N` with N at least 1)"),
-            RejectedWithoutTile => write!(
-                f,
-                "rejected quads outside any tile (expected `tile TX TY` first)"
-            ),
-            RejectedRunTooLong(n) => write!(
-                f,
-                "{n} rejected quads in one place (expected 1 to {MAX_REJECTED_RUN})"
-            ),
-            AdjacentRejected => write!(
-                f,
-                "two `z` lines in a row (expected one `z N` with their sum)"
-            ),
-            RejectedInOldVersion(v) => write!(
-                f,
-                "`z` line in a format-{v} trace (expected `z` lines only from format \
-                 {FORMAT_VERSION_3} on: write `{MAGIC} {FORMAT_VERSION}` on line 1)"
-            ),
-            FrameMarkerInOldVersion(v) => write!(
-                f,
-                "`{FRAME_MARKER}` line in a format-{v} trace (expected frame boundaries \
-                 only in format {FORMAT_VERSION_FRAMES}: write `{MAGIC} \
-                 {FORMAT_VERSION_FRAMES}` on line 1)"
-            ),
-            TrilinearInOldVersion { version, token } => write!(
-                f,
-                "trilinear texture instruction `{}` in a format-{version} trace \
-                 (expected `T` only from format {FORMAT_VERSION} on: write `t`, or \
-                 `{MAGIC} {FORMAT_VERSION}` on line 1)",
-                clip(token)
-            ),
-            ControlCharacter => write!(
-                f,
-                "control character in line (expected printable text, blanks and tabs)"
-            ),
-            BadMagic(s) => write!(
-                f,
-                "bad magic line `{}` (expected `{MAGIC} {FORMAT_VERSION_FRAMES}`, `{MAGIC} \
-                 {FORMAT_VERSION}`, `{MAGIC} {FORMAT_VERSION_3}`, `{MAGIC} \
-                 {FORMAT_VERSION_2}` or `{MAGIC} {FORMAT_VERSION_1}` on line 1)",
-                clip(s)
-            ),
-            UnsupportedVersion(v) => write!(
-                f,
-                "unsupported format version `{}` (expected {FORMAT_VERSION_FRAMES}, \
-                 {FORMAT_VERSION}, {FORMAT_VERSION_3}, {FORMAT_VERSION_2} or \
-                 {FORMAT_VERSION_1})",
-                clip(v)
-            ),
-            MissingHeader { missing, found } => write!(
-                f,
-                "`{}` before the header line `{missing}` (expected `workload NAME` then \
-                 `frame W H tile T` before the first tile)",
-                clip(found)
-            ),
-            MisplacedHeader("texture-format") => write!(
-                f,
-                "header line `texture-format` repeated or after the `frame` line (expected \
-                 it at most once, between `workload NAME` and `frame W H tile T`)"
-            ),
-            MisplacedHeader(h) => write!(
-                f,
-                "header line `{h}` repeated or after the first tile (expected it once, \
-                 before the first tile)"
-            ),
-            UnknownDirective { found, expected } => {
-                write!(
-                    f,
-                    "unknown directive `{}` (expected {expected})",
-                    clip(found)
-                )
-            }
-            WrongFieldCount {
-                directive,
-                found,
-                usage,
-            } => write!(
-                f,
-                "`{directive}` line with {found} fields (expected `{usage}`)"
-            ),
-            BadNumber { what, found } => write!(
-                f,
-                "bad {what} `{}` (expected a decimal number)",
-                clip(found)
-            ),
-            NumberTooLarge { what, found, max } => write!(
-                f,
-                "{what} `{}` out of range (expected at most {max})",
-                clip(found)
-            ),
-            BadHex { found } => write!(
-                f,
-                "bad block number `{}` (expected 1 to 16 hex digits, no `0x`)",
-                clip(found)
-            ),
-            EmptyWorkload => write!(f, "empty workload name (expected `workload NAME`)"),
-            BadTextureFormat(s) => write!(
-                f,
-                "texture format `{}` (expected 1 to 32 lowercase letters, digits and `-`, \
-                 e.g. `texture-format etc2`)",
-                clip(s)
-            ),
-            BadTextureLines(s) => write!(
-                f,
-                "`texture-lines {}` (expected `texture-lines decoded`, at most once, after \
-                 `workload NAME` and before the `texture-level` lines and `frame W H tile T`)",
-                clip(s)
-            ),
-            BadTextureLevel(why) => write!(
-                f,
-                "bad `texture-level` line: {why} (expected `texture-level R0 RW RH S0 SW SH RX RY` \
-                 after `texture-lines decoded`, before `frame W H tile T`)"
-            ),
-            BlockOutsideTextureMap(b) => write!(
-                f,
-                "block {b:x} lies in no `texture-level` of this decoded-lines trace, or outside \
-                 its level's stored grid (expected every texture block inside a level)"
-            ),
-            BadText { field, why } => {
-                let name = match field {
-                    TextField::Workload => "workload name",
-                    TextField::Note => "header note",
-                };
-                write!(f, "{name} {why} (expected printable text)")
-            }
-            BadFrame { dim, value } => write!(
-                f,
-                "frame {dim} {value} (expected 1 to {MAX_FRAME_DIM} pixels)"
-            ),
-            BadTileSize(t) => write!(
-                f,
-                "tile size {t} (expected an even number of pixels from 2 to {MAX_TILE_SIZE})"
-            ),
-            TileOutsideFrame {
-                tx,
-                ty,
-                tiles_x,
-                tiles_y,
-            } => write!(
-                f,
-                "tile {tx} {ty} outside the frame (expected x below {tiles_x} and y below \
-                 {tiles_y})"
-            ),
-            DuplicateTile { tx, ty } => write!(
-                f,
-                "tile {tx} {ty} appears twice (expected each tile at most once per frame)"
-            ),
-            TileNotClosed { tx, ty } => write!(
-                f,
-                "tile {tx} {ty} is not closed (expected `end` before the next tile or the \
-                 end of input)"
-            ),
-            EmptyTile { tx, ty } => write!(
-                f,
-                "tile {tx} {ty} is empty (expected at least one `q` or `z` line before `end`)"
-            ),
-            EndWithoutTile => write!(f, "`end` outside any tile (expected `tile TX TY` first)"),
-            QuadWithoutTile => write!(f, "quad outside any tile (expected `tile TX TY` first)"),
-            InstrWithoutQuad => {
-                write!(f, "instruction outside any quad (expected a quad first)")
-            }
-            QuadOutsideTile { x, y, side } => write!(
-                f,
-                "quad {x} {y} outside the tile (expected x and y from 0 to {})",
-                side.saturating_sub(1)
-            ),
-            QuadOutsideFrame { x, y, px, py } => write!(
-                f,
-                "quad {x} {y} at pixel ({px}, {py}) outside the frame (expected its top-left \
-                 pixel inside the frame)"
-            ),
-            DuplicateQuad { x, y } => write!(
-                f,
-                "quad {x} {y} appears twice in the tile (expected each quad at most once in \
-                 format {FORMAT_VERSION_1}; formats {FORMAT_VERSION_2} to {FORMAT_VERSION} \
-                 allow repeats)"
-            ),
-            QuadOutOfOrder {
-                x,
-                y,
-                prev_x,
-                prev_y,
-            } => write!(
-                f,
-                "quad {x} {y} after quad {prev_x} {prev_y} (expected scanline order in \
-                 format {FORMAT_VERSION_1}: y, then x increasing)"
-            ),
-            EmptyQuad { x, y } => write!(
-                f,
-                "quad {x} {y} has no instruction (expected at least one `aN`, `tB,...` or \
-                 `TB,...`)"
-            ),
-            ZeroAlu => write!(f, "ALU run of 0 (expected a run of at least 1)"),
-            AluRunTooLong(n) => {
-                write!(f, "ALU run of {n} (expected 1 to {MAX_ALU_RUN})")
-            }
-            QuadTooLong(n) => write!(
-                f,
-                "quad program of {n} instructions (expected 1 to {MAX_QUAD_INSTRS}, ALU runs \
-                 counted by length)"
-            ),
-            AdjacentAlu { first, second } => write!(
-                f,
-                "adjacent ALU runs `a{first} a{second}` (expected one run `a{}`)",
-                u64::from(*first) + u64::from(*second)
-            ),
-            BadInstr(s) => write!(
-                f,
-                "bad instruction `{}` (expected `aN`, `tB,B,...` or `TB,B,...`)",
-                clip(s)
-            ),
-            TexNoBlock => write!(
-                f,
-                "texture instruction without blocks (expected `t` or `T` and hex block \
-                 numbers)"
-            ),
-            EmptyBlockEntry(s) => write!(
-                f,
-                "empty block number in `{}` (expected hex digits between commas)",
-                clip(s)
-            ),
-            DuplicateBlock(b) => write!(
-                f,
-                "block {b:x} listed twice in one texture instruction (expected distinct \
-                 blocks)"
-            ),
-            TooManyBlocks(n) => write!(
-                f,
-                "texture instruction with {n} blocks (expected at most {MAX_TEX_BLOCKS})"
-            ),
-            TileTooLarge => write!(
-                f,
-                "tile too large (expected fewer than 2^32 instruction entries and blocks)"
-            ),
-            FrameMismatch { found, expected } => write!(
-                f,
-                "tiles of a {}x{} frame with {}-pixel tiles (expected {}x{} with {}-pixel \
-                 tiles)",
-                found.0, found.1, found.2, expected.0, expected.1, expected.2
-            ),
+            TextField::Workload => "workload name",
+            TextField::Note => "header note",
         }
     }
 }
 
-impl std::error::Error for Problem {}
+/// The message of [`Problem::MisplacedHeader`]: `texture-format` has its
+/// own place in the header, the other header lines precede the first tile.
+fn misplaced_header(header: &str) -> String {
+    if header == "texture-format" {
+        "header line `texture-format` repeated or after the `frame` line (expected it at most \
+         once, between `workload NAME` and `frame W H tile T`)"
+            .to_string()
+    } else {
+        format!(
+            "header line `{header}` repeated or after the first tile (expected it once, before \
+             the first tile)"
+        )
+    }
+}
 
 /// Shortens a quoted token in a message so one bad line cannot make a huge
 /// error.
