@@ -9,11 +9,25 @@ fn def(map: &str, camera: &str) -> SceneDef {
     crate::def::test_def(Game::Openarena, map, camera, 1960, 768)
 }
 
-/// A whole synthetic game on disk: a pk3 with the map, a shader
+/// Writes the pk3 `name` of `files` (entry name, contents) into
+/// `root`'s baseoa.
+fn write_pk3(root: &Path, name: &str, files: &[(&str, &[u8])]) {
+    let f = File::create(root.join("baseoa").join(name)).unwrap();
+    let mut z = zip::ZipWriter::new(f);
+    let o = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    for (n, d) in files {
+        z.start_file(*n, o).unwrap();
+        z.write_all(d).unwrap();
+    }
+    z.finish().unwrap();
+}
+
+/// Writes a whole synthetic game under a fresh temporary root named
+/// after `test` and returns the root: a pk3 with the map, a shader
 /// script, a TGA and a JPEG.
-#[test]
-fn loads_a_synthetic_map() {
-    let root = std::env::temp_dir().join(format!("wasp-oa-test-{}", std::process::id()));
+fn synthetic_game(test: &str) -> PathBuf {
+    let root = std::env::temp_dir().join(format!("wasp-oa-{test}-{}", std::process::id()));
     std::fs::create_dir_all(root.join("baseoa")).unwrap();
     let mut jpg = Vec::new();
     image::RgbImage::from_pixel(8, 8, image::Rgb([200, 100, 50]))
@@ -22,29 +36,26 @@ fn loads_a_synthetic_map() {
             image::ImageFormat::Jpeg,
         )
         .unwrap();
-    let write_pk3 = |name: &str, files: &[(&str, &[u8])]| {
-        let f = File::create(root.join("baseoa").join(name)).unwrap();
-        let mut z = zip::ZipWriter::new(f);
-        let o = zip::write::SimpleFileOptions::default()
-            .compression_method(zip::CompressionMethod::Deflated);
-        for (n, d) in files {
-            z.start_file(*n, o).unwrap();
-            z.write_all(d).unwrap();
-        }
-        z.finish().unwrap();
-    };
     let script = b"textures/t/floor\n{\n{\nmap $lightmap\n}\n{\nmap textures/t/floor.tga\nblendfunc filter\n}\n}\n";
     write_pk3(
+        &root,
         "pak0.pk3",
         &[("scripts/t.shader", script), ("textures/t/floor.jpg", &jpg)],
     );
     write_pk3(
+        &root,
         "pak1.pk3",
         &[
             ("maps/mini.bsp", &tiny_bsp()),
             ("Textures/T/Floor.tga", &tiny_tga(true, true)),
         ],
     );
+    root
+}
+
+#[test]
+fn loads_a_synthetic_map() {
+    let root = synthetic_game("load");
     assert_eq!(maps(&root).unwrap(), vec!["mini".to_string()]);
     let s = load(&root, &def("mini", "spawn:0")).unwrap();
     // The floor polygon (lightmapped) and the patch (no lightmap);
@@ -72,6 +83,13 @@ fn loads_a_synthetic_map() {
     // The script's .tga wins over the JPEG of the same stem; the later
     // pk3's mixed-case entry matches case-insensitively.
     assert_eq!(s.textures[0].name, "Textures/T/Floor.tga");
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+#[test]
+fn textures_are_uploaded_at_the_engines_picmip() {
+    let root = synthetic_game("picmip");
+    let s = load(&root, &def("mini", "spawn:0")).unwrap();
     // Uploaded as the engine does at r_picmip 1: 3x2 rounded down to 2x2,
     // then halved; at picmip 0, only rounded down. Lightmaps keep 128.
     assert_eq!((s.textures[0].width, s.textures[0].height), (1, 1));
@@ -82,6 +100,14 @@ fn loads_a_synthetic_map() {
     assert_eq!(s0.textures[1].width, LIGHTMAP_SIDE as u32);
     assert_eq!(s.textures[1].width, LIGHTMAP_SIDE as u32);
     assert_eq!(&s.textures[1].rgba[0..4], &[0, 1, 2, 255]);
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+#[test]
+fn the_camera_stands_at_the_spawn_point() {
+    let root = synthetic_game("camera");
+    let s = load(&root, &def("mini", "spawn:0")).unwrap();
+    std::fs::remove_dir_all(&root).unwrap();
     let Camera::Perspective {
         eye,
         target,
@@ -97,12 +123,17 @@ fn loads_a_synthetic_map() {
     assert_eq!(eye, [16.0, 32.0, 24.0 + EYE_HEIGHT]);
     assert!((target[1] - eye[1] - 1.0).abs() < 1e-6 && (target[0] - eye[0]).abs() < 1e-6);
     assert_eq!(up, [0.0, 0.0, 1.0]);
+}
+
+#[test]
+fn a_bad_spawn_map_or_bsp_is_an_error() {
+    let root = synthetic_game("errors");
     let e = load(&root, &def("mini", "spawn:1")).unwrap_err();
     assert!(e.message.contains("1 spawn points"), "{e}");
     let e = load(&root, &def("nope", "spawn:0")).unwrap_err();
     assert!(e.message.contains("maps/nope.bsp"), "{e}");
     // A corrupt BSP inside a pk3: the error names pk3/entry and offset.
-    write_pk3("pak2.pk3", &[("maps/mini.bsp", &tiny_bsp()[..500])]);
+    write_pk3(&root, "pak2.pk3", &[("maps/mini.bsp", &tiny_bsp()[..500])]);
     let e = load(&root, &def("mini", "spawn:0")).unwrap_err();
     assert!(
         e.file.ends_with("pak2.pk3/maps/mini.bsp") && e.offset.is_some(),

@@ -9,12 +9,12 @@ fn def(map: &str, camera: &str) -> SceneDef {
     crate::def::test_def(Game::Supertuxkart, map, camera, 1960, 768)
 }
 
-/// A whole synthetic track on disk: scene.xml with the track model, a
-/// static object, a library instance, a LOD instance, quads, a
-/// texture and materials.xml.
-#[test]
-fn loads_a_synthetic_track() {
-    let root = std::env::temp_dir().join(format!("wasp-stk-test-{}", std::process::id()));
+/// Writes a whole synthetic track under a fresh temporary root named
+/// after `test` and returns the root: scene.xml with the track model, a
+/// static object, a library instance, a LOD instance, quads, a texture
+/// and materials.xml.
+fn synthetic_track(test: &str) -> PathBuf {
+    let root = std::env::temp_dir().join(format!("wasp-stk-{test}-{}", std::process::id()));
     let track = root.join("tracks/mini");
     let lib = root.join("library/thing");
     std::fs::create_dir_all(&track).unwrap();
@@ -68,7 +68,14 @@ fn loads_a_synthetic_track() {
         r#"<scene><object type="animation" model="m.spm" xyz="1 1 1"/></scene>"#,
     )
     .unwrap();
+    root
+}
+
+#[test]
+fn loads_a_synthetic_track() {
+    let root = synthetic_track("load");
     let s = load(&root, &def("mini", "start:1")).unwrap();
+    std::fs::remove_dir_all(&root).unwrap();
     // 5 instances (track, object, LOD, library) x 2 buffers... 4 instances.
     let tris: usize = s.meshes.iter().map(|m| m.indices.len() / 3).sum();
     assert_eq!(tris, 4 * 3);
@@ -102,6 +109,13 @@ fn loads_a_synthetic_track() {
     let want =
         to_rh(Xf::from_parts([10.0, 0.0, 0.0], [0.0, 90.0, 0.0], [2.0; 3]).apply([1.0, 0.5, -1.0]));
     assert!(m0.positions.iter().any(|p| len(sub(*p, want)) < 1e-4));
+}
+
+#[test]
+fn the_camera_stands_at_the_start_position() {
+    let root = synthetic_track("camera");
+    let s = load(&root, &def("mini", "start:1")).unwrap();
+    std::fs::remove_dir_all(&root).unwrap();
     // Camera: kart 1 is in the second column, 3.1 m behind the line
     // (on the loop's last quad), facing +z in the game = -z here.
     let Camera::Perspective { eye, target, .. } = s.camera else {
@@ -109,6 +123,11 @@ fn loads_a_synthetic_track() {
     };
     assert!(target[2] < eye[2]);
     assert!((eye[1] - (0.1 + CAM_UP)).abs() < 1e-4, "{eye:?}");
+}
+
+#[test]
+fn a_bad_start_track_or_camera_is_an_error() {
+    let root = synthetic_track("errors");
     let e = load(&root, &def("mini", "start:99")).unwrap_err();
     assert!(e.message.contains("64"), "{e}");
     let e = load(&root, &def("nope", "start:0")).unwrap_err();
