@@ -42,7 +42,6 @@ pub(crate) fn fail(text: &str) -> (usize, Problem, String) {
     }
 }
 
-/// A version-2 trace of `HEAD` and the lines `s`.
 /// Each text of `cases` fails to parse as `f.trace` at its line, with a
 /// message that says its words.
 pub(crate) fn reported_at(cases: &[(String, usize, &str)]) {
@@ -55,6 +54,7 @@ pub(crate) fn reported_at(cases: &[(String, usize, &str)]) {
     }
 }
 
+/// A version-2 trace of `HEAD` and the lines `s`.
 pub(crate) fn body(s: &str) -> String {
     format!("{HEAD}{s}")
 }
