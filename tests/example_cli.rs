@@ -2,7 +2,7 @@
 //! and the errors, run as a user runs them.
 
 use serde_json::Value;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use wasp_waves::readback;
 
 mod common;
@@ -134,63 +134,81 @@ fn vcd_matches_the_chronographs_cycle_by_cycle() {
                 rb.value_at(&sig(name), c)
                     .unwrap_or_else(|| panic!("{} missing at {c}", sig(name)))
             };
-            assert_eq!(
-                at("scheduler.free_mshrs"),
-                row["free_mshrs"].as_u64().unwrap(),
-                "{key} cycle {c}"
-            );
-            assert_eq!(
-                at("scheduler.nonblocked_priority"),
-                row["nonblocked_priority"].as_u64().unwrap(),
-                "{key} cycle {c}"
-            );
-            assert_eq!(
-                at("cache.mshr_occupancy"),
-                row["mshrs_held"].as_u64().unwrap()
-            );
-            assert_eq!(
-                at("cache.cache_stall") == 1,
-                row["blocked"].as_bool().unwrap()
-            );
-            let valid = at("cache.access_valid") == 1;
-            assert_eq!(valid, !row["warp"].is_null(), "{key} cycle {c}");
-            if valid {
-                assert_eq!(at("cache.access_warp"), row["warp"].as_u64().unwrap());
-                let block = row["block"].as_str().unwrap();
-                assert_eq!(
-                    at("cache.access_block"),
-                    (block.as_bytes()[0] - b'A' + 1) as u64
-                );
-                let code = match row["outcome"].as_str().unwrap() {
-                    "H" => 1,
-                    "X" => 2,
-                    "O" => 3,
-                    o => panic!("outcome {o}"),
-                };
-                assert_eq!(at("cache.access_outcome"), code);
-            }
-            let launched = !row["launched"].is_null();
-            let launch = at("scheduler.launch");
-            assert_eq!(launch != 0, launched, "{key} cycle {c}");
-            if launched {
-                let class = row["launched"][1].as_str().unwrap();
-                assert_eq!(launch, if class == "priority" { 2 } else { 1 });
-            }
-            if let Some(real) = row["real_free_mshrs"].as_i64() {
-                let bits = at("scheduler.real_free_mshrs");
-                // 11-bit two's complement.
-                let v = if bits & 0x400 != 0 {
-                    bits as i64 - 0x800
-                } else {
-                    bits as i64
-                };
-                assert_eq!(v, real, "{key} cycle {c}");
-                assert_eq!(at("scheduler.priority_over_regular") == 1, real > 1);
-            }
+            the_cache_matches_the_row(key, c, row, &at);
+            the_scheduler_matches_the_row(key, c, row, &at);
         }
     }
-    // The GTKWave save file preselects the signals with GTKWave's vector names.
-    let gtkw = std::fs::read_to_string(dir.join("example.vcd.gtkw")).unwrap();
+    the_save_file_preselects_the_signals(&dir.join("example.vcd.gtkw"));
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// The cache's signals at cycle `c` of run `key` (`at` reads a signal)
+/// are the chronograph's `row`: MSHRs held, the stall and the access.
+fn the_cache_matches_the_row(key: &str, c: u64, row: &Value, at: &dyn Fn(&str) -> u64) {
+    assert_eq!(
+        at("cache.mshr_occupancy"),
+        row["mshrs_held"].as_u64().unwrap()
+    );
+    assert_eq!(
+        at("cache.cache_stall") == 1,
+        row["blocked"].as_bool().unwrap()
+    );
+    let valid = at("cache.access_valid") == 1;
+    assert_eq!(valid, !row["warp"].is_null(), "{key} cycle {c}");
+    if valid {
+        assert_eq!(at("cache.access_warp"), row["warp"].as_u64().unwrap());
+        let block = row["block"].as_str().unwrap();
+        assert_eq!(
+            at("cache.access_block"),
+            (block.as_bytes()[0] - b'A' + 1) as u64
+        );
+        let code = match row["outcome"].as_str().unwrap() {
+            "H" => 1,
+            "X" => 2,
+            "O" => 3,
+            o => panic!("outcome {o}"),
+        };
+        assert_eq!(at("cache.access_outcome"), code);
+    }
+}
+
+/// The scheduler's signals at cycle `c` of run `key` are the
+/// chronograph's `row`: free MSHRs, non-blocked priority warps, the launch
+/// and WaSP's real free MSHRs.
+fn the_scheduler_matches_the_row(key: &str, c: u64, row: &Value, at: &dyn Fn(&str) -> u64) {
+    assert_eq!(
+        at("scheduler.free_mshrs"),
+        row["free_mshrs"].as_u64().unwrap(),
+        "{key} cycle {c}"
+    );
+    assert_eq!(
+        at("scheduler.nonblocked_priority"),
+        row["nonblocked_priority"].as_u64().unwrap(),
+        "{key} cycle {c}"
+    );
+    let launched = !row["launched"].is_null();
+    let launch = at("scheduler.launch");
+    assert_eq!(launch != 0, launched, "{key} cycle {c}");
+    if launched {
+        let class = row["launched"][1].as_str().unwrap();
+        assert_eq!(launch, if class == "priority" { 2 } else { 1 });
+    }
+    if let Some(real) = row["real_free_mshrs"].as_i64() {
+        let bits = at("scheduler.real_free_mshrs");
+        // 11-bit two's complement.
+        let v = if bits & 0x400 != 0 {
+            bits as i64 - 0x800
+        } else {
+            bits as i64
+        };
+        assert_eq!(v, real, "{key} cycle {c}");
+        assert_eq!(at("scheduler.priority_over_regular") == 1, real > 1);
+    }
+}
+
+/// The GTKWave save file preselects the signals with GTKWave's vector names.
+fn the_save_file_preselects_the_signals(path: &Path) {
+    let gtkw = std::fs::read_to_string(path).unwrap();
     assert!(gtkw.contains("[dumpfile]"));
     assert!(
         gtkw.contains("[*] one time unit = one clock cycle\n"),
@@ -199,7 +217,6 @@ fn vcd_matches_the_chronographs_cycle_by_cycle() {
     assert!(gtkw.contains("wasp_example.wasp.scheduler.free_mshrs[4:0]"));
     assert!(gtkw.contains("wasp_example.wasp.scheduler.real_free_mshrs[10:0]"));
     assert!(gtkw.contains("wasp_example.wasp.scheduler.priority_over_regular\n"));
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]

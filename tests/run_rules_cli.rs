@@ -8,10 +8,15 @@ mod common;
 use common::run::{dir, run_json, synth_trace};
 use common::{ok, stderr, wasp};
 
+/// A synthetic trace in a fresh scratch folder `launch-rule-{name}`.
+fn launch_rule_trace(name: &str) -> String {
+    let d = dir(&format!("launch-rule-{name}"));
+    synth_trace(&d, 3)
+}
+
 #[test]
-fn the_launch_rule_is_chosen_reported_and_counted() {
-    let d = dir("launch-rule");
-    let trace = synth_trace(&d, 3);
+fn the_launch_rule_is_hold_by_default_and_its_held_cycles_counted() {
+    let trace = launch_rule_trace("hold");
     // The default is the paper's `hold`; the JSON says so and carries the
     // hold idle core-cycles, in total and per core.
     let hold = run_json(&["--trace", &trace, "--policy", "wasp:14"]);
@@ -28,6 +33,11 @@ fn the_launch_rule_is_chosen_reported_and_counted() {
         per_core.iter().sum::<u64>()
     );
     assert!(hold["held_cycles"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn the_flag_and_set_both_choose_launch_which_never_holds() {
+    let trace = launch_rule_trace("launch");
     // --launch-rule and --set both choose `launch`, which never holds.
     let flag = run_json(&[
         "--trace",
@@ -50,6 +60,11 @@ fn the_launch_rule_is_chosen_reported_and_counted() {
         assert_eq!(v["held_cycles"], 0);
     }
     assert_eq!(flag["cycles"], set["cycles"]);
+}
+
+#[test]
+fn run_and_compare_report_the_launch_rule() {
+    let trace = launch_rule_trace("report");
     // The text table names the rule and the held cycles.
     let table = ok(&wasp(&[
         "run",
@@ -73,6 +88,11 @@ fn the_launch_rule_is_chosen_reported_and_counted() {
         "hold",
     ]));
     assert!(o.contains("launch rule hold") && o.contains("held"), "{o}");
+}
+
+#[test]
+fn a_bad_launch_rule_is_a_usage_error_naming_the_choices() {
+    let trace = launch_rule_trace("bad");
     // A bad rule is a usage error that names the choices.
     let o = wasp(&["run", "-q", "--trace", &trace, "--launch-rule", "idle"]);
     assert_eq!(o.status.code(), Some(2));

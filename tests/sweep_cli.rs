@@ -35,8 +35,20 @@ fn a_sweep_run_at_once_and_as_jobs_gives_the_same_table() {
     std::fs::write(&file, SWEEP).unwrap();
     let (a, b) = (d.join("a"), d.join("b"));
 
-    // (a) All at once.
-    let o = wasp(&["sweep", s(&file), "--out", s(&a), "--jobs", "2"]);
+    let csv_a = run_at_once(&file, &a);
+    the_list_numbers_the_points_as_the_jobs_do(&file);
+    let jobs = write_jobs(&file, &b, &d.join("jobs.txt"));
+    run_jobs(&jobs);
+    the_merged_jobs_give_the_same_table(&file, &b, &d.join("m.csv"), &csv_a);
+    a_rerun_finds_every_point_done(&file, &a, &csv_a);
+    a_merge_names_the_point_without_a_result(&file, &b, &csv_a);
+    a_point_out_of_range_is_a_usage_error(&file, &b);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// (a) All at once: the table, the CSV and the JSON; the CSV's text.
+fn run_at_once(file: &Path, a: &Path) -> String {
+    let o = wasp(&["sweep", s(file), "--out", s(a), "--jobs", "2"]);
     let table = ok(&o);
     assert!(table.starts_with("point  scene"), "{table}");
     assert!(table.contains("shared-tile  wasp:0:3"), "{table}");
@@ -61,32 +73,35 @@ fn a_sweep_run_at_once_and_as_jobs_gives_the_same_table() {
     assert_eq!(json.as_array().unwrap().len(), 2);
     assert_eq!(json[1]["stats"]["policy"], "wasp:0:3");
     assert!(json[0]["stats"]["cycles"].as_u64().unwrap() > 0);
+    csv_a
+}
 
-    // --list numbers the points as the jobs do.
-    let list = ok(&wasp(&["sweep", s(&file), "--list"]));
+/// --list numbers the points as the jobs do.
+fn the_list_numbers_the_points_as_the_jobs_do(file: &Path) {
+    let list = ok(&wasp(&["sweep", s(file), "--list"]));
     assert_eq!(
         list,
         "1\tprocedural-plane, config shipped, shared-tile, baseline\n\
          2\tprocedural-plane, config shipped, shared-tile, wasp:0:3\n"
     );
+}
 
-    // (b) As jobs, one process per point, then merged.
-    let jobs = d.join("jobs.txt");
+/// (b) As jobs: the jobs file `jobs` and how to run it; its lines.
+fn write_jobs(file: &Path, b: &Path, jobs: &Path) -> Vec<String> {
     let how = ok(&wasp(&[
         "sweep",
-        s(&file),
+        s(file),
         "--out",
-        s(&b),
+        s(b),
         "--jobs-file",
-        s(&jobs),
+        s(jobs),
     ]));
     assert!(how.contains("sbatch --array=1-2"), "{how}");
     assert!(how.contains("parallel -j 8 <"), "{how}");
-    let lines = std::fs::read_to_string(&jobs).unwrap();
-    let lines: Vec<&str> = lines.lines().collect();
+    let lines = rows(&std::fs::read_to_string(jobs).unwrap());
     assert_eq!(lines.len(), 2);
     assert!(
-        lines[1].ends_with(&format!("--out {} --point 2 -q", s(&b))),
+        lines[1].ends_with(&format!("--out {} --point 2 -q", s(b))),
         "{}",
         lines[1]
     );
@@ -95,6 +110,11 @@ fn a_sweep_run_at_once_and_as_jobs_gives_the_same_table() {
         "the file name has a space: {}",
         lines[0]
     );
+    lines
+}
+
+/// One process per point, each a line of the jobs file.
+fn run_jobs(lines: &[String]) {
     for (i, line) in lines.iter().enumerate() {
         // Run from elsewhere: the commands are self-contained.
         let o = Command::new("sh")
@@ -111,26 +131,28 @@ fn a_sweep_run_at_once_and_as_jobs_gives_the_same_table() {
         );
         assert!(stderr(&o).is_empty(), "-q: {}", stderr(&o));
     }
+}
+
+/// The jobs' points, merged into `merged`, are the table run at once.
+fn the_merged_jobs_give_the_same_table(file: &Path, b: &Path, merged: &Path, csv_a: &str) {
     assert!(
         !b.join("results.csv").exists(),
         "a job writes its point only"
     );
-    let merged = d.join("m.csv");
     ok(&wasp(&[
         "merge",
-        s(&b),
+        s(b),
         "--sweep",
-        s(&file),
+        s(file),
         "--csv",
-        s(&merged),
+        s(merged),
     ]));
-    assert_eq!(
-        rows(&std::fs::read_to_string(&merged).unwrap()),
-        rows(&csv_a)
-    );
+    assert_eq!(rows(&std::fs::read_to_string(merged).unwrap()), rows(csv_a));
+}
 
-    // (c) A rerun finds every point done.
-    let o = wasp(&["sweep", s(&file), "--out", s(&a)]);
+/// (c) A rerun finds every point done.
+fn a_rerun_finds_every_point_done(file: &Path, a: &Path, csv_a: &str) {
+    let o = wasp(&["sweep", s(file), "--out", s(a)]);
     ok(&o);
     assert!(
         stderr(&o).contains("2 tasks (0 run, 2 already done)"),
@@ -141,8 +163,10 @@ fn a_sweep_run_at_once_and_as_jobs_gives_the_same_table() {
         std::fs::read_to_string(a.join("results.csv")).unwrap(),
         csv_a
     );
+}
 
-    // A merge without one point's file writes the rest and names it.
+/// A merge without one point's file writes the rest and names it.
+fn a_merge_names_the_point_without_a_result(file: &Path, b: &Path, csv_a: &str) {
     let points: Vec<_> = std::fs::read_dir(b.join("points"))
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -153,22 +177,23 @@ fn a_sweep_run_at_once_and_as_jobs_gives_the_same_table() {
         .find(|p| std::fs::read_to_string(p).unwrap().contains("wasp:0:3"))
         .unwrap();
     std::fs::remove_file(wasp_m).unwrap();
-    let o = wasp(&["merge", s(&b), "--sweep", s(&file)]);
+    let o = wasp(&["merge", s(b), "--sweep", s(file)]);
     assert_eq!(o.status.code(), Some(1));
-    assert_eq!(rows(&stdout(&o)), rows(&csv_a)[..2]);
+    assert_eq!(rows(&stdout(&o)), rows(csv_a)[..2]);
     let e = stderr(&o);
     assert!(
         e.contains("1 of 2 points have no result: 2; run them with `wasp sweep"),
         "{e}"
     );
     assert!(e.contains("--point N`"), "{e}");
+}
 
-    // (d) A point out of range is a usage error naming the range.
-    let o = wasp(&["sweep", s(&file), "--out", s(&b), "--point", "99"]);
+/// (d) A point out of range is a usage error naming the range.
+fn a_point_out_of_range_is_a_usage_error(file: &Path, b: &Path) {
+    let o = wasp(&["sweep", s(file), "--out", s(b), "--point", "99"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--point 99: "), "{}", stderr(&o));
     assert!(stderr(&o).contains("has points 1 to 2"), "{}", stderr(&o));
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]

@@ -5,12 +5,13 @@
 
 use std::fmt::Write as _;
 use std::hash::Hasher;
+use wasp_rtl::cf_meter::CfMeter;
 use wasp_rtl::datapath::{Cf, Threshold, WaspDatapath};
 use wasp_rtl::free_mshr::{FreeMshrReg, MshrEvents};
 use wasp_rtl::nonblocked::PriorityEvents;
 use wasp_rtl::policy::{LaunchRule, PolicySpec};
 use wasp_rtl::queue::QueueClass;
-use wasp_rtl::scheduler::{launch_code, EdgeEvents, LaunchScheduler};
+use wasp_rtl::scheduler::{launch_code, EdgeEvents, LaunchDecision, LaunchScheduler};
 use wasp_rtl::subset::Mesh;
 use wasp_splitmix::SplitMix64;
 
@@ -373,6 +374,8 @@ pub(crate) struct Run {
     pub(crate) coverage: Coverage,
 }
 
+/// Drive the Rust scheduler of `cfg` with `seeds` seeds of `cycles` cycles
+/// each, every seed from reset.
 pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
     let mut run = Run {
         stimulus: String::new(),
@@ -380,188 +383,305 @@ pub(crate) fn drive_rust(cfg: &Config, seeds: u64, cycles: usize) -> Run {
         expected: Vec::new(),
         coverage: Coverage::default(),
     };
-    let k = cfg.mesh_k;
     for seed in 0..seeds {
+        let mut g = Generator::new(cfg, seed);
+        let mut s = cfg.scheduler();
+        run.stimulus.push_str("1 0 0 0 0 0 0 0 0 0 0\n");
+        for cyc in 0..cycles {
+            let c = g.cycle(cfg, &mut s);
+            c.count(&mut run.coverage);
+            write_inputs(&mut run.stimulus, &c.inp);
+            run.inputs.push((seed, cyc as u64, c.inp));
+            run.expected.push(c.out);
+        }
+    }
+    run
+}
+
+/// One cycle as driven: its inputs and the model's outputs, and what the
+/// coverage counts of it.
+struct Cycle {
+    inp: Inputs,
+    out: Outputs,
+    decision: LaunchDecision,
+    /// A priority warp waited when the cycle decided.
+    prio_waiting: bool,
+    /// A priority warp launched (0 or 1).
+    lp: i64,
+    /// A regular warp launched (0 or 1).
+    lr: i64,
+    /// wasp-m's meter at the start of the cycle.
+    meter: Option<CfMeter>,
+}
+
+impl Cycle {
+    /// Add the cycle to the coverage `c`.
+    fn count(&self, c: &mut Coverage) {
+        let (inp, out) = (&self.inp, &self.out);
+        let (lp, lr) = (self.lp, self.lr);
+        let pushed = inp.push_valid as u64;
+        c.pushes_accepted += pushed * out.push_accepted as u64;
+        c.pushes_refused += pushed * (out.push_accepted == 0) as u64;
+        c.cycles += 1;
+        c.priority_launches += lp as u64;
+        c.regular_launches += lr as u64;
+        c.priority_held_back +=
+            (self.prio_waiting && self.decision.select != Some(QueueClass::Priority)) as u64;
+        c.held += self.decision.held as u64;
+        c.launched_gate_closed += (lp == 1 && out.priority_over_regular == 0) as u64;
+        c.free_zero += (out.free_mshrs == 0) as u64;
+        c.real_free_negative += (out.real_free < 0) as u64;
+        c.faults += out.fault as u64;
+        c.max_nonblocked = c.max_nonblocked.max(out.nonblocked);
+        c.min_real_free = c.min_real_free.min(out.real_free);
+        if let Some(m) = self.meter {
+            c.meter_windows += (lp == 1 && out.fault == 0 && m.launches().get() == 15) as u64;
+            c.meter_saturated += (m.acc().get() == 127) as u64;
+            c.misses_clamped += (inp.misses > 3) as u64;
+            c.cf_values |= 1 << m.cf().quarters();
+        }
+    }
+}
+
+/// A cycle's inputs as a stimulus line (not a reset).
+fn write_inputs(stimulus: &mut String, inp: &Inputs) {
+    writeln!(
+        stimulus,
+        "0 {} {} {} {} {} {} {} {} {} {}",
+        inp.push_valid as u8,
+        inp.qx,
+        inp.qy,
+        inp.launch_enable as u8,
+        inp.allocs,
+        inp.replies,
+        inp.blocked,
+        inp.unblocked,
+        inp.finished,
+        inp.misses
+    )
+    .unwrap();
+}
+
+/// The stimulus of one seed: its random streams and knobs, and the state
+/// it models beyond the registers (blocked priority warps and regular
+/// warps in the core).
+struct Generator {
+    rng: Rng,
+    /// The misses of priority warps (read by wasp-m's meter) come from a
+    /// stream of their own, so that the other inputs are those of the
+    /// configurations before the meter.
+    miss_rng: Rng,
+    /// Per mille of cycles with misses: 100..=900.
+    miss_rate: u32,
+    knobs: Knobs,
+    blocked: i64,
+    regular_in_core: i64,
+    ticket: u32,
+}
+
+impl Generator {
+    fn new(cfg: &Config, seed: u64) -> Generator {
         let name_hash = {
             let mut h = fnv::FnvHasher::default();
             h.write(cfg.name.as_bytes());
             h.finish()
         };
         let mut rng = Rng::new(name_hash ^ seed.wrapping_mul(0x9e37_79b9_7f4a_7c15));
-        // The misses of priority warps (read by wasp-m's meter) come from
-        // a stream of their own, so that the other inputs are those of
-        // the configurations before the meter.
         let mut miss_rng = Rng::new(name_hash ^ seed.wrapping_mul(0xd1b5_4a32_d192_ed03) ^ 0x4d45);
-        // Per mille of cycles with misses: 100..=900.
         let miss_rate = 100 + miss_rng.upto(800) as u32;
         let knobs = Knobs::draw(&mut rng);
-        let mut s = cfg.scheduler();
-        // Generator state beyond the registers: blocked priority warps and
-        // regular warps in the core.
-        let mut blocked: i64 = 0;
-        let mut regular_in_core: i64 = 0;
-        let mut ticket = 0u32;
-        run.stimulus.push_str("1 0 0 0 0 0 0 0 0 0 0\n");
-        for cyc in 0..cycles {
-            let free = s.free_mshrs().free().get() as i64;
-            let nb = s.nonblocked().count().get() as i64;
-            let in_flight = cfg.mshrs as i64 - free;
-            // wasp-m: the meter's registers at the start of the cycle, and
-            // its CF in the datapath; the other policies: the wired CF.
-            let meter = s.cf_meter();
-            let dp = match meter {
-                Some(m) => WaspDatapath {
-                    cf: m.cf(),
-                    ..cfg.datapath()
-                },
-                None => cfg.datapath(),
-            };
-            let mut out = Outputs {
-                free_mshrs: free,
-                nonblocked: nb,
-                prio_occ: s.queue().occupancy(QueueClass::Priority) as i64,
-                reg_occ: s.queue().occupancy(QueueClass::Regular) as i64,
-                meter_launches: meter.map_or(0, |m| m.launches().get() as i64),
-                meter_acc: meter.map_or(0, |m| m.acc().get() as i64),
-                cf_q: dp.cf.quarters() as i64,
-                ..Outputs::default()
-            };
-            let mut inp = Inputs {
-                push_valid: rng.per_mille(knobs.push),
-                ..Inputs::default()
-            };
-            if rng.per_mille(knobs.priority_bias) {
-                inp.qx = (rng.upto(31) as u32) & !(k - 1);
-                inp.qy = (rng.upto(31) as u32) & !(k - 1);
-            } else {
-                inp.qx = rng.upto(31) as u32;
-                inp.qy = rng.upto(31) as u32;
-            }
-            let room = nb + blocked + regular_in_core < knobs.max_warps;
-            inp.launch_enable = rng.per_mille(knobs.enable) && room;
-
-            // 1. enqueue
-            out.is_priority = (s.classify(inp.qx, inp.qy) == QueueClass::Priority) as i64;
-            if inp.push_valid {
-                let ok = s.enqueue(ticket, inp.qx, inp.qy).is_ok();
-                ticket = ticket.wrapping_add(1);
-                out.push_accepted = ok as i64;
-                run.coverage.pushes_accepted += ok as u64;
-                run.coverage.pushes_refused += !ok as u64;
-            }
-            // 2. decide, and 3. launch (the pop at the FIFO's read port)
-            let prio_waiting = s.queue().has(QueueClass::Priority);
-            let l = s.launch(inp.launch_enable);
-            let d = l.decision;
-            let dpo = dp.eval(s.free_mshrs().free(), s.nonblocked().count());
-            if let Some(got) = d.datapath {
-                assert_eq!(
-                    got, dpo,
-                    "{}: the policy's datapath differs from its constants",
-                    cfg.name
-                );
-            }
-            out.product = dpo.product.get() as i64;
-            out.real_free = dpo.real_free.get() as i64;
-            out.priority_over_regular = dpo.priority_over_regular as i64;
-            out.select = launch_code(d.select) as i64;
-            let launched = l.warp.map(|(_, c)| c);
-            out.launch = launch_code(launched) as i64;
-            let lp = (launched == Some(QueueClass::Priority)) as i64;
-            let lr = (launched == Some(QueueClass::Regular)) as i64;
-
-            // 4. the cycle's events, legal for the model of the MSHR file
-            // and of the priority warps in the core
-            let replies = count(&mut rng, knobs.reply, in_flight);
-            let allocs = count(&mut rng, knobs.alloc, free + replies);
-            let unblocked = if knobs.bulk_unblock {
-                blocked * rng.per_mille(knobs.unblock) as i64
-            } else {
-                count(&mut rng, knobs.unblock, blocked)
-            };
-            let avail = nb + lp + unblocked;
-            let blocks = count(&mut rng, knobs.block, avail);
-            let finished = count(&mut rng, knobs.finish, avail - blocks);
-            let mut ev = [allocs, replies, blocks, unblocked, finished].map(|v| v as u8);
-            if cfg.illegal_per_mille > 0 && rng.per_mille(cfg.illegal_per_mille) {
-                let which = rng.upto(4) as usize;
-                ev[which] = rng.upto(255) as u8;
-            }
-            [
-                inp.allocs,
-                inp.replies,
-                inp.blocked,
-                inp.unblocked,
-                inp.finished,
-            ] = ev;
-            // Misses of priority warps: mostly 0..=3, one cycle in forty any
-            // u8 (the meter's input clamps it to 3).
-            inp.misses = if miss_rng.per_mille(25) {
-                miss_rng.upto(255) as u8
-            } else {
-                count(&mut miss_rng, miss_rate, 3) as u8
-            };
-            let r = s.clock(EdgeEvents {
-                mshr: MshrEvents {
-                    allocs: inp.allocs,
-                    replies: inp.replies,
-                },
-                prio: PriorityEvents {
-                    launched: false,
-                    blocked: inp.blocked,
-                    unblocked: inp.unblocked,
-                    finished: inp.finished,
-                    misses: inp.misses,
-                },
-            });
-            out.fault = r.is_err() as i64;
-            if r.is_ok() {
-                blocked += inp.blocked as i64 - inp.unblocked as i64;
-                // After an arbitrary (accepted) count, keep the generator's
-                // model consistent with the registers.
-                let nb_new = s.nonblocked().count().get() as i64;
-                blocked = blocked.clamp(0, MAX_WARPS - nb_new);
-            }
-            regular_in_core += lr;
-            regular_in_core -= count(&mut rng, knobs.regular_finish, regular_in_core);
-
-            let c = &mut run.coverage;
-            c.cycles += 1;
-            c.priority_launches += lp as u64;
-            c.regular_launches += lr as u64;
-            c.priority_held_back += (prio_waiting && d.select != Some(QueueClass::Priority)) as u64;
-            c.held += d.held as u64;
-            c.launched_gate_closed += (lp == 1 && out.priority_over_regular == 0) as u64;
-            c.free_zero += (free == 0) as u64;
-            c.real_free_negative += (out.real_free < 0) as u64;
-            c.faults += out.fault as u64;
-            c.max_nonblocked = c.max_nonblocked.max(nb);
-            c.min_real_free = c.min_real_free.min(out.real_free);
-            if let Some(m) = meter {
-                c.meter_windows += (lp == 1 && out.fault == 0 && m.launches().get() == 15) as u64;
-                c.meter_saturated += (m.acc().get() == 127) as u64;
-                c.misses_clamped += (inp.misses > 3) as u64;
-                c.cf_values |= 1 << m.cf().quarters();
-            }
-
-            writeln!(
-                run.stimulus,
-                "0 {} {} {} {} {} {} {} {} {} {}",
-                inp.push_valid as u8,
-                inp.qx,
-                inp.qy,
-                inp.launch_enable as u8,
-                inp.allocs,
-                inp.replies,
-                inp.blocked,
-                inp.unblocked,
-                inp.finished,
-                inp.misses
-            )
-            .unwrap();
-            run.inputs.push((seed, cyc as u64, inp));
-            run.expected.push(out);
+        Generator {
+            rng,
+            miss_rng,
+            miss_rate,
+            knobs,
+            blocked: 0,
+            regular_in_core: 0,
+            ticket: 0,
         }
     }
-    run
+
+    /// One cycle of the scheduler `s`: 1. enqueue, 2. decide and 3. launch
+    /// (the pop at the FIFO's read port), 4. the cycle's events at the
+    /// clock edge.
+    fn cycle(&mut self, cfg: &Config, s: &mut LaunchScheduler<u32>) -> Cycle {
+        let meter = s.cf_meter();
+        let (mut out, dp) = start_of_cycle(cfg, s, meter);
+        let mut inp = self.inputs(cfg.mesh_k, out.nonblocked);
+
+        // 1. enqueue
+        out.is_priority = (s.classify(inp.qx, inp.qy) == QueueClass::Priority) as i64;
+        if inp.push_valid {
+            let ok = s.enqueue(self.ticket, inp.qx, inp.qy).is_ok();
+            self.ticket = self.ticket.wrapping_add(1);
+            out.push_accepted = ok as i64;
+        }
+        // 2. decide, and 3. launch
+        let prio_waiting = s.queue().has(QueueClass::Priority);
+        let (decision, launched) = launch(cfg, s, &inp, &dp, &mut out);
+        let lp = (launched == Some(QueueClass::Priority)) as i64;
+        let lr = (launched == Some(QueueClass::Regular)) as i64;
+        // 4. the cycle's events
+        self.events(cfg, &mut inp, &out, lp);
+        out.fault = self.clock(s, &inp, lr) as i64;
+        Cycle {
+            inp,
+            out,
+            decision,
+            prio_waiting,
+            lp,
+            lr,
+            meter,
+        }
+    }
+
+    /// The inputs of the first half of a cycle: a push and its tile, and
+    /// the launch enable (only with room in the core; `nb` non-blocked
+    /// priority warps hold some of it).
+    fn inputs(&mut self, k: u32, nb: i64) -> Inputs {
+        let (rng, knobs) = (&mut self.rng, &self.knobs);
+        let mut inp = Inputs {
+            push_valid: rng.per_mille(knobs.push),
+            ..Inputs::default()
+        };
+        if rng.per_mille(knobs.priority_bias) {
+            inp.qx = (rng.upto(31) as u32) & !(k - 1);
+            inp.qy = (rng.upto(31) as u32) & !(k - 1);
+        } else {
+            inp.qx = rng.upto(31) as u32;
+            inp.qy = rng.upto(31) as u32;
+        }
+        let room = nb + self.blocked + self.regular_in_core < knobs.max_warps;
+        inp.launch_enable = rng.per_mille(knobs.enable) && room;
+        inp
+    }
+
+    /// The cycle's events into `inp`, legal for the model of the MSHR file
+    /// and of the priority warps in the core (`out`: the registers at the
+    /// start of the cycle; `lp`: a priority warp launched), except for the
+    /// few cycles of an illegal configuration.
+    fn events(&mut self, cfg: &Config, inp: &mut Inputs, out: &Outputs, lp: i64) {
+        let (rng, knobs) = (&mut self.rng, &self.knobs);
+        let (free, nb) = (out.free_mshrs, out.nonblocked);
+        let in_flight = cfg.mshrs as i64 - free;
+        let replies = count(rng, knobs.reply, in_flight);
+        let allocs = count(rng, knobs.alloc, free + replies);
+        let unblocked = if knobs.bulk_unblock {
+            self.blocked * rng.per_mille(knobs.unblock) as i64
+        } else {
+            count(rng, knobs.unblock, self.blocked)
+        };
+        let avail = nb + lp + unblocked;
+        let blocks = count(rng, knobs.block, avail);
+        let finished = count(rng, knobs.finish, avail - blocks);
+        let mut ev = [allocs, replies, blocks, unblocked, finished].map(|v| v as u8);
+        if cfg.illegal_per_mille > 0 && rng.per_mille(cfg.illegal_per_mille) {
+            let which = rng.upto(4) as usize;
+            ev[which] = rng.upto(255) as u8;
+        }
+        [
+            inp.allocs,
+            inp.replies,
+            inp.blocked,
+            inp.unblocked,
+            inp.finished,
+        ] = ev;
+        // Misses of priority warps: mostly 0..=3, one cycle in forty any
+        // u8 (the meter's input clamps it to 3).
+        inp.misses = if self.miss_rng.per_mille(25) {
+            self.miss_rng.upto(255) as u8
+        } else {
+            count(&mut self.miss_rng, self.miss_rate, 3) as u8
+        };
+    }
+
+    /// Clock `s` with the events of `inp`, and follow it in the
+    /// generator's model (`lr`: a regular warp launched). Whether the
+    /// registers refused the events (a fault).
+    fn clock(&mut self, s: &mut LaunchScheduler<u32>, inp: &Inputs, lr: i64) -> bool {
+        let r = s.clock(EdgeEvents {
+            mshr: MshrEvents {
+                allocs: inp.allocs,
+                replies: inp.replies,
+            },
+            prio: PriorityEvents {
+                launched: false,
+                blocked: inp.blocked,
+                unblocked: inp.unblocked,
+                finished: inp.finished,
+                misses: inp.misses,
+            },
+        });
+        if r.is_ok() {
+            self.blocked += inp.blocked as i64 - inp.unblocked as i64;
+            // After an arbitrary (accepted) count, keep the generator's
+            // model consistent with the registers.
+            let nb_new = s.nonblocked().count().get() as i64;
+            self.blocked = self.blocked.clamp(0, MAX_WARPS - nb_new);
+        }
+        self.regular_in_core += lr;
+        self.regular_in_core -= count(
+            &mut self.rng,
+            self.knobs.regular_finish,
+            self.regular_in_core,
+        );
+        r.is_err()
+    }
+}
+
+/// The registers of `s` at the start of a cycle, as the outputs that show
+/// them, and the cycle's datapath: wasp-m's with the CF of its `meter`,
+/// the other policies' with the wired CF.
+fn start_of_cycle(
+    cfg: &Config,
+    s: &LaunchScheduler<u32>,
+    meter: Option<CfMeter>,
+) -> (Outputs, WaspDatapath) {
+    let dp = match meter {
+        Some(m) => WaspDatapath {
+            cf: m.cf(),
+            ..cfg.datapath()
+        },
+        None => cfg.datapath(),
+    };
+    let out = Outputs {
+        free_mshrs: s.free_mshrs().free().get() as i64,
+        nonblocked: s.nonblocked().count().get() as i64,
+        prio_occ: s.queue().occupancy(QueueClass::Priority) as i64,
+        reg_occ: s.queue().occupancy(QueueClass::Regular) as i64,
+        meter_launches: meter.map_or(0, |m| m.launches().get() as i64),
+        meter_acc: meter.map_or(0, |m| m.acc().get() as i64),
+        cf_q: dp.cf.quarters() as i64,
+        ..Outputs::default()
+    };
+    (out, dp)
+}
+
+/// The decision of the cycle and the launch under `inp`'s enable, into
+/// `out` (checked against the datapath `dp` of the policy's constants):
+/// the decision and the class launched.
+fn launch(
+    cfg: &Config,
+    s: &mut LaunchScheduler<u32>,
+    inp: &Inputs,
+    dp: &WaspDatapath,
+    out: &mut Outputs,
+) -> (LaunchDecision, Option<QueueClass>) {
+    let l = s.launch(inp.launch_enable);
+    let d = l.decision;
+    let dpo = dp.eval(s.free_mshrs().free(), s.nonblocked().count());
+    if let Some(got) = d.datapath {
+        assert_eq!(
+            got, dpo,
+            "{}: the policy's datapath differs from its constants",
+            cfg.name
+        );
+    }
+    out.product = dpo.product.get() as i64;
+    out.real_free = dpo.real_free.get() as i64;
+    out.priority_over_regular = dpo.priority_over_regular as i64;
+    out.select = launch_code(d.select) as i64;
+    let launched = l.warp.map(|(_, c)| c);
+    out.launch = launch_code(launched) as i64;
+    (d, launched)
 }

@@ -135,22 +135,31 @@ fn deep_entries(map: &MapPlan) -> Vec<Entry> {
     deep
 }
 
+/// The opening of every file's comment.
+const HEAD: &str = "The map \"What decides WaSP's gain\" of `wasp reproduce`, written by \
+                    `wasp reproduce --sweep-files`.\nRun it into the reproduction's folder, \
+                    then `wasp reproduce --out` that folder for the grid and the report.";
+
 /// The map's sweep files on `scenes`: (file name, text).
 pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
+    let mut out = knob_files(map, scenes);
+    out.extend(draw_order_files(map, scenes));
+    out.extend(texture_format_files(map, scenes));
+    out
+}
+
+/// The machine knobs' files: every value under the baseline, Fullpriority
+/// and WaSP, every value with the bounds, and the deep-queue warp series.
+fn knob_files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
     let knobs = knob_entries(map);
     let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
     let bounds = with_bounds(&knobs);
-    let shipped: Vec<Entry> = vec![("shipped".into(), Vec::new())];
-    let orders = other_orders(map);
     let deep = deep_entries(map);
-    let head = "The map \"What decides WaSP's gain\" of `wasp reproduce`, written by \
-                `wasp reproduce --sweep-files`.\nRun it into the reproduction's folder, \
-                then `wasp reproduce --out` that folder for the grid and the report.";
-    let mut out = vec![
+    vec![
         (
             "map-policies.toml".into(),
             file(
-                &format!("{head}\nEvery knob value under the baseline, Fullpriority and WaSP."),
+                &format!("{HEAD}\nEvery knob value under the baseline, Fullpriority and WaSP."),
                 scenes,
                 &policies,
                 &knobs,
@@ -162,7 +171,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
             "map-bounds.toml".into(),
             file(
                 &format!(
-                    "{head}\nEvery knob value with the raster prefetcher, the oracle tile \
+                    "{HEAD}\nEvery knob value with the raster prefetcher, the oracle tile \
                      prefetcher and ideal memory, under the baseline."
                 ),
                 scenes,
@@ -176,7 +185,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
             "map-deep-queue.toml".into(),
             file(
                 &format!(
-                    "{head}\nThe warp counts with a {DEEP_QUEUE}-entry input queue (the \
+                    "{HEAD}\nThe warp counts with a {DEEP_QUEUE}-entry input queue (the \
                      oracle entries run under the baseline; their WaSP point is not part of \
                      the map)."
                 ),
@@ -187,13 +196,23 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
                 &[],
             ),
         ),
-    ];
+    ]
+}
+
+/// The draw-order knob's files (none if the map runs no other order): the
+/// shipped machine with the other orders under the baseline, Fullpriority
+/// and WaSP, and with the bounds.
+fn draw_order_files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
+    let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
+    let shipped: Vec<Entry> = vec![("shipped".into(), Vec::new())];
+    let orders = other_orders(map);
+    let mut out = Vec::new();
     if !orders.is_empty() {
         out.push((
             "map-draw-order.toml".into(),
             file(
                 &format!(
-                    "{head}\nThe shipped machine with the scenes drawn in other opaque \
+                    "{HEAD}\nThe shipped machine with the scenes drawn in other opaque \
                      orders, under the baseline, Fullpriority and WaSP."
                 ),
                 scenes,
@@ -207,7 +226,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
             "map-draw-order-bounds.toml".into(),
             file(
                 &format!(
-                    "{head}\nThe same orders with the raster prefetcher, the oracle and \
+                    "{HEAD}\nThe same orders with the raster prefetcher, the oracle and \
                      ideal memory, under the baseline."
                 ),
                 scenes,
@@ -218,7 +237,6 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
             ),
         ));
     }
-    out.extend(texture_format_files(map, scenes, head));
     out
 }
 
@@ -243,7 +261,7 @@ fn other_formats(map: &MapPlan) -> Vec<(String, Vec<Override>, Vec<String>)> {
 
 /// The texture-format knob's files: per machine its formats under the
 /// baseline, Fullpriority and WaSP, and with the bounds.
-fn texture_format_files(map: &MapPlan, scenes: &[String], head: &str) -> Vec<(String, String)> {
+fn texture_format_files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
     let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
     let mut out = Vec::new();
     for (suffix, sets, formats) in other_formats(map) {
@@ -258,7 +276,7 @@ fn texture_format_files(map: &MapPlan, scenes: &[String], head: &str) -> Vec<(St
             format!("map-texture-format{file_tag}.toml"),
             file(
                 &format!(
-                    "{head}
+                    "{HEAD}
 The shipped machine{what} with the scenes' textures stored in \
                      other formats, under the baseline, Fullpriority and WaSP."
                 ),
@@ -273,7 +291,7 @@ The shipped machine{what} with the scenes' textures stored in \
             format!("map-texture-format{file_tag}-bounds.toml"),
             file(
                 &format!(
-                    "{head}
+                    "{HEAD}
 The same formats{what} with the raster prefetcher, the oracle \
                      and ideal memory, under the baseline."
                 ),
