@@ -9,14 +9,12 @@
 
 use super::frame::{
     around, beside, builder, column, mark_colour, paper_entry, paper_lines, paper_margin,
-    paper_point, plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area,
-    Drawn, Frame, Picture, Placer, Rect, LABEL,
+    paper_point, pixel_of, plot_rect, px, range, style_mesh, text_size, write, y_area, Area, At,
+    Drawn, Frame, Picture, Placer, Rect, Ticked, LABEL,
 };
 use super::legend::{marker, Shape, Swatch};
 use super::{check, ensure, finite, who, Highlight, Key, LineChart, PaperMark};
 use crate::palette::{series_colours, shade, INK};
-use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
-use plotters::coord::types::RangedCoordf64;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use std::ops::Range;
@@ -90,14 +88,13 @@ pub(super) struct Plot<'a> {
     pub reference: Option<f64>,
 }
 
-/// A [`Plot`] laid out: its strip, colours, ranges, x ticks (an empty label
-/// is left out) and the label area left of it and the margin right.
+/// A [`Plot`] laid out: its strip, colours, x axis (an empty tick label is
+/// left out), y range and the label area left of it and the margin right.
 pub(super) struct Layout<'a> {
     p: Plot<'a>,
     frame: Frame<'a>,
     colours: Vec<RGBColor>,
-    ranges: (Range<f64>, Range<f64>),
-    ticks: Vec<(f64, String)>,
+    axes: (Ticked, Range<f64>),
     pad: (f64, f64),
 }
 
@@ -117,14 +114,16 @@ impl<'a> Plot<'a> {
         let pad = [lo.abs().max(2.0) * 0.5, 0.04 * (hi - lo)][usize::from(hi > lo)];
         let x = lo - pad..hi + pad;
         let (left, right) = (y_area(&y, self.percent), paper_margin(self.paper));
-        let (plot_w, label) = (WIDTH - left - right, tick_label(&x, 12, false));
-        let numeric = RangedCoordf64::from(x.clone()).key_points(12);
-        let numeric = numeric.into_iter().map(|v| (v, label(&v)));
-        let mut ticks: Vec<(f64, String)> = match self.ticks {
-            Some(labels) => self.x.iter().copied().zip(labels.iter().cloned()).collect(),
-            None => numeric.collect(),
+        let plot_w = WIDTH - left - right;
+        let mut x_axis = match self.ticks {
+            Some(labels) => Ticked(
+                x.clone().into(),
+                self.x.iter().copied().zip(labels.iter().cloned()).collect(),
+            ),
+            None => Ticked::numeric(&x, 12, false),
         };
         // Where labels would overlap, every k-th.
+        let ticks = &mut x_axis.1;
         let widest = ticks.iter().map(|t| text_size(&t.1, LABEL, false).0);
         let span = x.end - x.start;
         let gaps = ticks.windows(2).map(|w| (w[1].0 - w[0].0) / span * plot_w);
@@ -146,8 +145,7 @@ impl<'a> Plot<'a> {
             p: self,
             frame,
             colours,
-            ranges: (x, y),
-            ticks,
+            axes: (x_axis, y),
             pad: (left, right),
         }
     }
@@ -159,32 +157,6 @@ fn paper_shape(series: Option<usize>) -> Shape {
     series.map_or(Shape::Circle, Shape::of)
 }
 
-/// Values to pixels.
-type At<'a> = dyn Fn(f64, f64) -> (f64, f64) + 'a;
-
-/// A linear axis with the given ticks (plotters' `WithKeyPoints` has no
-/// label formatter over f64, which the mesh needs).
-#[derive(Clone)]
-struct Ticked(RangedCoordf64, Vec<f64>);
-
-impl Ranged for Ticked {
-    type FormatOption = DefaultFormatting;
-    type ValueType = f64;
-
-    fn map(&self, v: &f64, limit: (i32, i32)) -> i32 {
-        self.0.map(v, limit)
-    }
-
-    fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
-        let light = hint.weight().allow_light_points();
-        self.1.iter().copied().filter(|_| !light).collect()
-    }
-
-    fn range(&self) -> Range<f64> {
-        self.0.range()
-    }
-}
-
 impl Picture for Layout<'_> {
     fn size(&self) -> (u32, u32) {
         let height = (f64::from(self.frame.height()) + 504.0).max(700.0);
@@ -192,21 +164,14 @@ impl Picture for Layout<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB> {
-        let (pl, (x, y)) = (&self.p, self.ranges.clone());
-        let (x0, x1, y0) = (x.start, x.end, y.start);
+        let (pl, (x, y)) = (&self.p, &self.axes);
+        let ((x0, x1), y0) = ((x.range().start, x.range().end), y.start);
         let area = self.frame.draw(root)?;
-        let x_axis = Ticked(x.into(), self.ticks.iter().map(|t| t.0).collect());
         let pad = (self.pad.0, 64.0, 10.0, self.pad.1);
-        let mut chart = builder(&area, pad).build_cartesian_2d(x_axis, y.clone())?;
-        let x_label = |v: &f64| {
-            let near = self.ticks.iter().find(|t| (t.0 - v).abs() < 1e-9);
-            near.map(|t| t.1.clone()).unwrap_or_default()
-        };
-        let y_label = tick_label(&y, 8, pl.percent);
+        let y = Ticked::numeric(y, 8, pl.percent);
+        let mut chart = builder(&area, pad).build_cartesian_2d(x.clone(), y)?;
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.x_label_formatter(&x_label).y_labels(8);
-        mesh.y_label_formatter(&y_label);
         mesh.x_desc(pl.texts[2]).y_desc(pl.texts[3]).draw()?;
         let zero = (y0 < 0.0).then_some((0.0, 1));
         let rule = pl.reference.map(|r| (r, 2)).or(zero);
@@ -215,11 +180,7 @@ impl Picture for Layout<'_> {
 
         // The lines through each run of present points, then the markers,
         // all kept free of labels.
-        let (p, map) = (plot_rect(&chart), chart.as_coord_spec().clone());
-        let at = |x: f64, y: f64| {
-            let (x, y) = map.translate(&(x, y));
-            (f64::from(x), f64::from(y))
-        };
+        let (p, at) = (plot_rect(&chart), pixel_of(&chart));
         let mut placer = Placer::default();
         let colour = |s| mark_colour(&self.colours, s);
         paper_lines(root, (p, &mut placer), pl.paper, |v| at(x0, v).1, colour)?;
