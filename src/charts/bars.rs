@@ -277,7 +277,7 @@ fn present(series: &[super::Series]) -> Vec<(usize, usize, f64)> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, mark, out, pixels, same_twice, texts};
+    use super::super::tests::{error, mark, out, pixels, refused, same_twice, texts};
     use super::super::Series;
     use super::*;
     use crate::palette::Key;
@@ -385,20 +385,17 @@ mod tests {
 
     #[test]
     fn bad_charts_and_files_are_errors() {
-        let bad = |f: fn(&mut BarChart), want: &str| {
-            let mut c = speedups();
-            f(&mut c);
-            let e = error("bars-bad", "c.svg", &|p| draw_bars(&c, p));
-            assert!(e.starts_with("drawing Speedup") && e.contains(want), "{e}");
-        };
-        bad(|c| c.categories.clear(), "0 categories and 2 series");
-        bad(|c| c.series[1].values.truncate(17), "has 17 values for 18");
-        bad(|c| c.series[0].values[2] = Some(f64::NAN), "`scene-02");
-        bad(|c| c.paper[0].series = Some(2), "`paper 3.9%` is past");
-        bad(|c| c.paper[1].value = f64::INFINITY, "value inf");
-        bad(|c| c.reference = Some(f64::NAN), "the reference line");
-        bad(|c| c.separators.push(19), "past the 18 categories");
-        bad(|c| c.groups[0].categories = 0..19, "past the 18 categories");
+        let cases: &[(fn(&mut BarChart), _)] = &[
+            (|c| c.categories.clear(), "baseline: 0 categories and 2"),
+            (|c| c.series[1].values.truncate(17), "has 17 values for 18"),
+            (|c| c.series[0].values[2] = Some(f64::NAN), "`scene-02"),
+            (|c| c.paper[0].series = Some(2), "`paper 3.9%` is past"),
+            (|c| c.paper[1].value = f64::INFINITY, "value inf"),
+            (|c| c.reference = Some(f64::NAN), "the reference line"),
+            (|c| c.separators.push(19), "past the 18 categories"),
+            (|c| c.groups[0].categories = 0..19, "past the 18 categories"),
+        ];
+        refused(("bars-bad", &speedups()), draw_bars, cases);
         let e = error("bars-jpg", "chart.jpg", &|p| draw_bars(&speedups(), p));
         assert!(e.contains("chart.jpg") && e.contains(".png or .svg"), "{e}");
         let e = draw_bars(&speedups(), &out("bars-dir", "no").join("c.png")).unwrap_err();

@@ -257,7 +257,7 @@ impl Layout<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, mark, out, pixels, same_twice, texts};
+    use super::super::tests::{mark, out, pixels, refused, same_twice, texts};
     use super::super::Series;
     use super::*;
     use crate::palette::Key;
@@ -349,29 +349,14 @@ mod tests {
 
     #[test]
     fn bad_charts_are_errors() {
-        let bad = |f: fn(&mut LineChart), want: &str| {
-            let mut c = warps();
-            f(&mut c);
-            let e = error("lines-bad", "c.png", &|p| draw_lines(&c, p));
-            assert!(
-                e.starts_with("drawing IPC by warp") && e.contains(want),
-                "{e}"
-            );
-        };
-        bad(
-            |c| (c.x, c.x_ticks) = (vec![], None),
-            "0 x positions and 2 series",
-        );
-        bad(|c| c.x[2] = 32.0, "x[2] = 32 follows 32: x must be");
-        bad(|c| c.x[4] = f64::NAN, "x[4] has the non-finite value NaN");
-        bad(
-            |c| c.x_ticks = Some(vec!["28".into()]),
-            "1 x tick labels for 5",
-        );
-        bad(
-            |c| c.series[1].values[4] = Some(f64::NAN),
-            "`WaSP` at x = 64",
-        );
-        bad(|c| c.paper[0].category = Some(5), "`paper 0.69` is past");
+        let cases: &[(fn(&mut LineChart), _)] = &[
+            (|c| (c.x, c.x_ticks) = (vec![], None), "count: 0 x pos"),
+            (|c| c.x[2] = 32.0, "x[2] = 32 follows 32: x must be"),
+            (|c| c.x[4] = f64::NAN, "x[4] has the non-finite value NaN"),
+            (|c| c.x_ticks = Some(vec!["28".into()]), "1 x tick labels"),
+            (|c| c.series[1].values[4] = Some(f64::INFINITY), "x = 64"),
+            (|c| c.paper[0].category = Some(5), "`paper 0.69` is past"),
+        ];
+        refused(("lines-bad", &warps()), draw_lines, cases);
     }
 }

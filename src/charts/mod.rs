@@ -263,6 +263,21 @@ pub(crate) mod tests {
         e
     }
 
+    /// Asserts of each case that drawing `chart` with `draw` after the
+    /// case's change fails with an error that holds the case's text.
+    pub(crate) fn refused<C: Clone>(
+        (name, chart): (&str, &C),
+        draw: fn(&C, &Path) -> Result<(), String>,
+        cases: &[(fn(&mut C), &str)],
+    ) {
+        for (change, want) in cases {
+            let mut c = chart.clone();
+            change(&mut c);
+            let e = error(name, "c.svg", &|p| draw(&c, p));
+            assert!(e.contains(want), "{e}");
+        }
+    }
+
     #[test]
     fn errors_say_what_failed() {
         assert_eq!(super::who(""), "drawing the untitled chart");
