@@ -179,10 +179,8 @@ mod tests {
         let path = out("heat", "map.png");
         draw_heatmap(&mshrs_by_warps(), &path).expect("draw png");
         // The most negative cell has the scale's red end.
-        assert!(
-            pixels(&path, diverging(-1.0)) > 2000,
-            "no cell of the red end"
-        );
+        let red = pixels(&path, diverging(-1.0));
+        assert!(red > 2000, "{red} pixels of the red end");
         same_twice("heat-same", &|p| draw_heatmap(&mshrs_by_warps(), p));
         let cases: &[(fn(&mut HeatMap), _)] = &[
             (|c| c.values[1].truncate(3), "row `64` has 3 values for 4"),

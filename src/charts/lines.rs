@@ -257,22 +257,16 @@ impl Layout<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{mark, out, pixels, refused, same_twice, texts};
-    use super::super::Series;
+    use super::super::tests::{full, mark, out, pixels, refused, same_twice, texts};
     use super::*;
     use crate::palette::Key;
-
-    /// A series of `values`.
-    fn series(key: Key, name: &str, values: &[Option<f64>]) -> Series {
-        let (name, values) = (name.into(), values.to_vec());
-        Series { key, name, values }
-    }
 
     /// IPC over the warp count for two policies, one with a gap, with the
     /// paper's value at one count and its baseline across the plot.
     fn warps() -> LineChart {
         let x = vec![28.0, 32.0, 40.0, 48.0, 64.0];
-        let wasp = [Some(0.66), Some(0.68), None, Some(0.70), Some(0.705)];
+        let mut wasp = full(Key::Wasp, "WaSP", &[0.66, 0.68, 0.0, 0.70, 0.705]);
+        wasp.values[2] = None;
         LineChart {
             title: "IPC by warp count".into(),
             subtitle: "4 cores, 16 scenes".into(),
@@ -281,12 +275,8 @@ mod tests {
             x_ticks: Some(x.iter().map(|v| format!("{v}")).collect()),
             x,
             series: vec![
-                series(
-                    Key::Baseline,
-                    "baseline",
-                    &[0.61, 0.64, 0.66, 0.67, 0.675].map(Some),
-                ),
-                series(Key::Wasp, "WaSP", &wasp),
+                full(Key::Baseline, "baseline", &[0.61, 0.64, 0.66, 0.67, 0.675]),
+                wasp,
             ],
             paper: vec![
                 mark(Some(1), Some(1), 0.69, "paper 0.69"),
@@ -315,36 +305,23 @@ mod tests {
     #[test]
     fn numeric_axes_crowded_ticks_and_one_point_draw() {
         let mut c = warps();
-        (c.x, c.series) = (
-            vec![1.0, 2.0, 4.0, 8.0],
-            vec![series(
-                Key::Wasp,
-                "WaSP",
-                &[-0.02, 0.01, 0.03, 0.02].map(Some),
-            )],
-        );
+        c.x = vec![1.0, 2.0, 4.0, 8.0];
+        c.series = vec![full(Key::Wasp, "WaSP", &[-0.02, 0.01, 0.03, 0.02])];
         (c.percent, c.reference, c.x_ticks, c.paper) = (true, Some(0.0), None, vec![]);
         let path = out("lines-numeric", "speedup.svg");
         draw_lines(&c, &path).expect("draw svg");
         texts(&path, "-2%|0%|3%|2|8");
-        (c.x, c.series) = (vec![5.0], vec![series(Key::Wasp, "WaSP", &[Some(-0.01)])]);
+        (c.x, c.series) = (vec![5.0], vec![full(Key::Wasp, "WaSP", &[-0.01])]);
         let path = out("lines-numeric", "one.png");
         draw_lines(&c, &path).expect("draw png");
         assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 20);
         c.x = (0..40).map(f64::from).collect();
-        c.series = vec![series(
-            Key::Other,
-            "v",
-            &c.x.iter().map(|&x| Some(x)).collect::<Vec<_>>(),
-        )];
+        c.series = vec![full(Key::Other, "v", &c.x)];
         c.x_ticks = Some((0..40).map(|i| format!("scene-{i:02}")).collect());
         let path = out("lines-numeric", "many.svg");
         draw_lines(&c, &path).expect("draw svg");
-        let texts = texts(&path, "scene-00");
-        assert!(
-            !texts.iter().any(|t| t.0 == "scene-01"),
-            "crowded labels are thinned"
-        );
+        let thinned = !texts(&path, "scene-00").iter().any(|t| t.0 == "scene-01");
+        assert!(thinned, "crowded labels are thinned");
     }
 
     #[test]

@@ -214,6 +214,13 @@ pub(crate) mod tests {
         texts
     }
 
+    /// A series of `key` named `name` with a value for every category.
+    pub(crate) fn full(key: super::Key, name: &str, values: &[f64]) -> super::Series {
+        let values = values.iter().map(|&v| Some(v)).collect();
+        let name = name.into();
+        super::Series { key, name, values }
+    }
+
     /// A paper mark.
     pub(crate) fn mark(
         series: Option<usize>,
@@ -243,15 +250,10 @@ pub(crate) mod tests {
     /// Draws with `draw` twice as PNG and as SVG: the same bytes each time.
     pub(crate) fn same_twice(name: &str, draw: Draw) {
         for ext in ["png", "svg"] {
-            let (a, b) = (
-                out(name, &format!("a.{ext}")),
-                out(name, &format!("b.{ext}")),
-            );
+            let [a, b] = ["a", "b"].map(|file| out(name, &format!("{file}.{ext}")));
             draw(&a).and(draw(&b)).expect("drawn");
-            assert!(
-                std::fs::read(&a).ok() == std::fs::read(&b).ok(),
-                "{ext}s differ"
-            );
+            let same = std::fs::read(&a).ok() == std::fs::read(&b).ok();
+            assert!(same, "{ext}s differ");
         }
     }
 

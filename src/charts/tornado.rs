@@ -268,10 +268,8 @@ mod tests {
         assert!(y("core.max_warps") < y("l0.mshrs") && y("l0.mshrs") < y("core.issue"));
         let path = out("tornado", "gains.png");
         draw_tornado(&gains(), &path).expect("draw png");
-        let (d3, d2) = (
-            pixels(&path, Key::ThreeD.colour().unwrap()),
-            pixels(&path, Key::TwoD.colour().unwrap()),
-        );
+        let d3 = pixels(&path, Key::ThreeD.colour().unwrap());
+        let d2 = pixels(&path, Key::TwoD.colour().unwrap());
         assert!(d3 > 1000 && d2 > 1000, "{d3} 3D and {d2} 2D pixels");
         same_twice("tornado-same", &|p| draw_tornado(&gains(), p));
         let cases: &[(fn(&mut TornadoChart), _)] = &[

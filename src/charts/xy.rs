@@ -154,10 +154,8 @@ mod tests {
         let path = out("xy", "area.svg");
         draw_xy(&area(), &path).expect("draw svg");
         let want = "Cycles against register-file bits|register-file bits per core|WaSP|48|64";
-        texts(
-            &path,
-            &format!("{want}|paper: WaSP@48 against the baseline@64"),
-        );
+        let caption = "paper: WaSP@48 against the baseline@64";
+        texts(&path, &format!("{want}|{caption}"));
         let svg = std::fs::read_to_string(&path).expect("svg");
         assert_eq!(svg.matches("r=\"11\"").count(), 2, "two rings");
         let path = out("xy", "area.png");
