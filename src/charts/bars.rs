@@ -35,10 +35,8 @@ const GREY: RGBColor = RGBColor(236, 236, 236);
 /// categories; a file that cannot be written.
 pub fn draw_bars(chart: &BarChart, path: &Path) -> Result<(), String> {
     let (who, n, c) = (who(&chart.title), chart.categories.len(), chart);
-    let (marks, name_of) = ((&c.series[..], &c.paper[..], c.reference), |i| {
-        &c.categories[i]
-    });
-    let name_of = |i| format!("category `{}`", name_of(i));
+    let marks = (&c.series[..], &c.paper[..], c.reference);
+    let name_of = |i: usize| format!("category `{}`", c.categories[i]);
     check(&who, marks, (n, "categories"), name_of)?;
     let bad_group = |g: &CategoryGroup| g.categories.end > n || g.categories.is_empty();
     let bad_sep = c.separators.iter().any(|&i| i > n) || c.highlight.iter().any(|&i| i >= n);

@@ -54,17 +54,15 @@ pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
         let points = x.iter().zip(&s.values).map(point).collect();
         (s.name.as_str(), s.key, points)
     });
-    let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
-    let (lines, paper) = (lines.collect(), &c.paper[..]);
     let plot = Plot {
-        texts,
-        lines,
+        texts: [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str),
+        lines: lines.collect(),
         x,
         ticks,
-        paper,
-        rings: &[],
+        paper: &c.paper,
         percent: c.percent,
         reference: c.reference,
+        ..Plot::default()
     };
     write(&who, path, || plot.lay_out())
 }
@@ -73,6 +71,7 @@ pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
 pub(super) type Point = (f64, f64, String);
 
 /// What line and XY charts draw.
+#[derive(Default)]
 pub(super) struct Plot<'a> {
     /// Title, subtitle, x label, y label.
     pub texts: [&'a str; 4],

@@ -85,22 +85,14 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
         let point = |(i, &(x, y)): (usize, &(f64, f64))| Some((x, y, label(i)));
         s.points.iter().enumerate().map(point).collect()
     };
-    let lines = c
-        .series
-        .iter()
-        .map(|s| (s.name.as_str(), s.key, points(s)))
-        .collect();
-    let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
-    let (rings, percent, reference) = (&c.highlights[..], c.percent, c.reference);
+    let lines = c.series.iter().map(|s| (s.name.as_str(), s.key, points(s)));
     let plot = Plot {
-        texts,
-        lines,
-        x: &[],
-        ticks: None,
-        paper: &[],
-        rings,
-        percent,
-        reference,
+        texts: [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str),
+        lines: lines.collect(),
+        rings: &c.highlights,
+        percent: c.percent,
+        reference: c.reference,
+        ..Plot::default()
     };
     write(&who, path, || plot.lay_out())
 }
