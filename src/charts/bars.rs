@@ -275,7 +275,7 @@ fn present(series: &[super::Series]) -> Vec<(usize, usize, f64)> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, full, mark, out, pixels, refused, same_twice, texts};
+    use super::super::tests::{error, full, mark, out, pixels, refused, same_twice, texts, Case};
     use super::*;
     use crate::palette::Key;
 
@@ -372,7 +372,7 @@ mod tests {
 
     #[test]
     fn bad_charts_and_files_are_errors() {
-        let cases: &[(fn(&mut BarChart), _)] = &[
+        let cases: &[Case<BarChart>] = &[
             (|c| c.categories.clear(), "baseline: 0 categories and 2"),
             (|c| c.series[1].values.truncate(17), "has 17 values for 18"),
             (|c| c.series[0].values[2] = Some(f64::NAN), "`scene-02"),

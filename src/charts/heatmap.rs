@@ -150,7 +150,7 @@ impl Picture for Heat<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{out, pixels, refused, same_twice, texts};
+    use super::super::tests::{out, pixels, refused, same_twice, texts, Case};
     use super::*;
 
     /// WaSP's speedup over L0 MSHRs and warps per core.
@@ -182,7 +182,7 @@ mod tests {
         let red = pixels(&path, diverging(-1.0));
         assert!(red > 2000, "{red} pixels of the red end");
         same_twice("heat-same", &|p| draw_heatmap(&mshrs_by_warps(), p));
-        let cases: &[(fn(&mut HeatMap), _)] = &[
+        let cases: &[Case<HeatMap>] = &[
             (|c| c.values[1].truncate(3), "row `64` has 3 values for 4"),
             (|c| drop(c.values.pop()), "2 rows of values for 4 columns"),
             (|c| c.values[0][0] = Some(f64::NAN), "the cell (8, 32) has"),

@@ -256,7 +256,7 @@ impl Layout<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{full, mark, out, pixels, refused, same_twice, texts};
+    use super::super::tests::{full, mark, out, pixels, refused, same_twice, texts, Case};
     use super::*;
     use crate::palette::Key;
 
@@ -325,7 +325,7 @@ mod tests {
 
     #[test]
     fn bad_charts_are_errors() {
-        let cases: &[(fn(&mut LineChart), _)] = &[
+        let cases: &[Case<LineChart>] = &[
             (|c| (c.x, c.x_ticks) = (vec![], None), "count: 0 x pos"),
             (|c| c.x[2] = 32.0, "x[2] = 32 follows 32: x must be"),
             (|c| c.x[4] = f64::NAN, "x[4] has the non-finite value NaN"),

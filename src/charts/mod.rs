@@ -265,12 +265,15 @@ pub(crate) mod tests {
         e
     }
 
+    /// A bad change to a chart `C` and a text its error holds.
+    pub(crate) type Case<C> = (fn(&mut C), &'static str);
+
     /// Asserts of each case that drawing `chart` with `draw` after the
     /// case's change fails with an error that holds the case's text.
     pub(crate) fn refused<C: Clone>(
         (name, chart): (&str, &C),
         draw: fn(&C, &Path) -> Result<(), String>,
-        cases: &[(fn(&mut C), &str)],
+        cases: &[Case<C>],
     ) {
         for (change, want) in cases {
             let mut c = chart.clone();

@@ -210,7 +210,7 @@ fn outward((x, mid): (f64, f64), text: &str, dir: f64) -> Vec<Rect> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{out, pixels, refused, same_twice, texts};
+    use super::super::tests::{out, pixels, refused, same_twice, texts, Case};
     use super::*;
     use crate::palette::Key;
 
@@ -272,7 +272,7 @@ mod tests {
         let d2 = pixels(&path, Key::TwoD.colour().unwrap());
         assert!(d3 > 1000 && d2 > 1000, "{d3} 3D and {d2} 2D pixels");
         same_twice("tornado-same", &|p| draw_tornado(&gains(), p));
-        let cases: &[(fn(&mut TornadoChart), _)] = &[
+        let cases: &[Case<TornadoChart>] = &[
             (|c| drop(c.rows[0].spans.pop()), "`l0.mshrs` has 1 spans"),
             (|c| c.rows[2].spans[0] = span(1.0, "", 0.0, ""), "a low 1 "),
             (|c| c.series[1].reference = Some(f64::NAN), "of `2D`"),

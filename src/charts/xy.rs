@@ -99,7 +99,7 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{out, pixels, refused, same_twice, texts};
+    use super::super::tests::{out, pixels, refused, same_twice, texts, Case};
     use super::*;
     use crate::palette::Key;
 
@@ -154,7 +154,7 @@ mod tests {
         draw_xy(&area(), &path).expect("draw png");
         assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 100);
         same_twice("xy-same", &|p| draw_xy(&area(), p));
-        let cases: &[(fn(&mut XyChart), _)] = &[
+        let cases: &[Case<XyChart>] = &[
             (|c| c.series[0].labels.truncate(3), "4 points and 3 labels"),
             (|c| c.series[1].points[0].0 = f64::NAN, "`WaSP` at point 0"),
             (|c| c.highlights[0].points.push((2, 0)), "series 2: no"),

@@ -94,7 +94,7 @@ fn check(t: &Timeline) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::charts::tests::{error, out, pixels, refused, texts};
+    use crate::charts::tests::{error, out, pixels, refused, texts, Case};
     use crate::palette::{other, TILE_END, TILE_START};
     use wasp_sim::timeline::{TileMark, TimelineSample};
 
@@ -238,7 +238,7 @@ mod tests {
             let named = e.contains(name) && e.contains(".png") && e.contains(".svg");
             assert!(named, "{e}");
         }
-        let cases: &[(fn(&mut Timeline), _)] = &[
+        let cases: &[Case<Timeline>] = &[
             (
                 |t| t.samples.clear(),
                 "(did the run end before the window?)",
