@@ -468,18 +468,10 @@ mod tests {
         assert_eq!(labels(-0.03..0.05, true, [0.0, -0.02, 0.04]), want);
         let want = ["0.0", "0.2", "1.2"];
         assert_eq!(labels(0.0..1.3, false, [0.0, 0.2, 1.2]), want);
-        let values = [
-            (0.039, true),
-            (-0.0213, true),
-            (0.00123, true),
-            (0.0999, false),
-        ];
-        let want = ["3.9%", "-2.1%", "0.12%", "0.10"];
-        assert_eq!(values.map(|(v, p)| value_label(v, p)), want);
-        assert_eq!(
-            [value_label(0.0, false), value_label(1234.4, false)],
-            ["0", "1234"]
-        );
-        assert_eq!(value_label(0.009999999999999998, true), "1.0%");
+        let percent = |v| value_label(v, true);
+        let shown = [0.039, -0.0213, 0.00123, 0.009999999999999998].map(percent);
+        assert_eq!(shown, ["3.9%", "-2.1%", "0.12%", "1.0%"]);
+        let shown = [0.0999, 0.0, 1234.4].map(|v| value_label(v, false));
+        assert_eq!(shown, ["0.10", "0", "1234"]);
     }
 }

@@ -180,11 +180,8 @@ mod tests {
         let starting = |p: &str| texts.iter().filter(|t| t.0.starts_with(p)).count();
         let captions = starting("Outstanding misses") + starting("Priority-warp launches");
         assert_eq!(captions, 2);
-        let title = texts
-            .iter()
-            .find(|t| t.0.starts_with("wasp timeline"))
-            .expect("title");
-        assert!(title.0.contains("shared-tile dispatch") && title.0.contains("cycles 1000..=2199"));
+        let title = "wasp timeline: shared-tile dispatch, cycles 1000..=2199";
+        assert_eq!(starting(title), 1, "{texts:?}");
     }
 
     #[test]
@@ -206,10 +203,8 @@ mod tests {
         assert!(size < 3_000_000, "SVG of {size} bytes");
         let want = "min..max in column|tile start (top ticks)|tile end (bottom ticks)";
         let texts = texts(&svg, want);
-        assert!(texts.iter().any(|t| t.0.contains("per-core-tile dispatch")));
-        assert!(texts
-            .iter()
-            .any(|t| t.0.contains("cycles per pixel column")));
+        let has = |part: &str| texts.iter().any(|t| t.0.contains(part));
+        assert!(has("per-core-tile dispatch") && has("cycles per pixel column"));
     }
 
     #[test]
