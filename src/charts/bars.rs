@@ -1,5 +1,5 @@
-//! Grouped bar charts ([`draw_bars`]) on plotters' segmented coordinates:
-//! each category a segment with one bar per series, from 0 to the value.
+//! Grouped bar charts ([`draw_bars`]) in plotters' coordinates: each
+//! category a unit of x with one bar per series, from 0 to the value.
 //! Highlighted categories have a grey band behind them, separators are
 //! dotted lines, named runs of categories (3D games, ...) have their name
 //! over the plot. With at most three series and twenty categories each bar

@@ -1,5 +1,5 @@
 //! Charts of the reproduction (`wasp reproduce`), drawn with plotters'
-//! chart API (`ChartBuilder`, its mesh and series, segmented coordinates)
+//! chart API (`ChartBuilder`, its mesh, series and coordinates)
 //! and written as PNG or SVG by the file's extension:
 //!
 //! - grouped bars ([`draw_bars`]) and lines ([`draw_lines`]) beside the
