@@ -1,5 +1,5 @@
-//! Grouped bar charts ([`draw_bars`]) on plotters' segmented coordinates:
-//! each category a segment with one bar per series, from 0 to the value.
+//! Grouped bar charts ([`draw_bars`]) in plotters' coordinates: each
+//! category a unit of x with one bar per series, from 0 to the value.
 //! Highlighted categories have a grey band behind them, separators are
 //! dotted lines, named runs of categories (3D games, ...) have their name
 //! over the plot. With at most three series and twenty categories each bar
@@ -8,23 +8,21 @@
 //! label.
 
 use super::frame::{
-    builder, column, edge, mark_colour, paper_entry, paper_lines, paper_margin, paper_point,
-    plot_rect, px, range, style, style_mesh, text_size, tick_label, value_label, write, y_area,
-    Area, Drawn, Frame, Picture, Placer, LABEL, SMALL,
+    builder, column, mark_colour, paper_entry, paper_lines, paper_margin, paper_point, pixel_of,
+    plot_rect, px, range, rect_of, style, style_mesh, text_size, value_label, write, y_area, Area,
+    At, Drawn, Frame, Picture, Placer, Rect, Ticked, LABEL, SMALL,
 };
 use super::legend::{Shape, Swatch};
 use super::{check, ensure, frame, who, BarChart, CategoryGroup};
 use crate::palette::{series_colours, shade, INK};
-use plotters::coord::ranged1d::SegmentedCoord;
-use plotters::coord::types::{RangedCoordf64, RangedCoordusize};
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos as H, VPos as V};
+use std::path::Path;
 use FontTransform::Rotate270;
 
 /// Background of highlighted categories.
 const GREY: RGBColor = RGBColor(236, 236, 236);
-use std::path::Path;
 
 /// Draws `chart` into `path`, a PNG or an SVG by the file's extension
 /// (`.png`, `.svg`, in any case).
@@ -37,10 +35,8 @@ use std::path::Path;
 /// categories; a file that cannot be written.
 pub fn draw_bars(chart: &BarChart, path: &Path) -> Result<(), String> {
     let (who, n, c) = (who(&chart.title), chart.categories.len(), chart);
-    let (marks, name_of) = ((&c.series[..], &c.paper[..], c.reference), |i| {
-        &c.categories[i]
-    });
-    let name_of = |i| format!("category `{}`", name_of(i));
+    let marks = (&c.series[..], &c.paper[..], c.reference);
+    let name_of = |i: usize| format!("category `{}`", c.categories[i]);
     check(&who, marks, (n, "categories"), name_of)?;
     let bad_group = |g: &CategoryGroup| g.categories.end > n || g.categories.is_empty();
     let bad_sep = c.separators.iter().any(|&i| i > n) || c.highlight.iter().any(|&i| i >= n);
@@ -123,47 +119,45 @@ impl Picture for Bars<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB> {
         let (c, n, (lo, hi)) = (self.c, self.c.categories.len(), (self.y.start, self.y.end));
         let area = self.frame.draw(root)?;
-        // n segments; one category gets an empty second segment, as
-        // plotters maps a one-value discrete range outside the plot.
-        let last = n.max(2) - 1;
-        let edge = |i: usize| edge(i, last);
-        let segments = (0..last).into_segmented();
-        let mut chart = builder(&area, self.pad).build_cartesian_2d(segments, lo..hi)?;
-        let band = |&i: &usize| Rectangle::new([(edge(i), hi), (edge(i + 1), lo)], GREY.filled());
+        // Category i spans x from i to i + 1; its name is drawn apart.
+        let x = Ticked::categories(&vec![String::new(); n]);
+        let y = Ticked::numeric(&self.y, 8, c.percent);
+        let mut chart = builder(&area, self.pad).build_cartesian_2d(x, y)?;
+        let band = |&i: &usize| {
+            let x = i as f64;
+            Rectangle::new([(x, hi), (x + 1.0, lo)], GREY.filled())
+        };
         chart.draw_series(c.highlight.iter().map(band))?;
-        let ticks = tick_label(&self.y, 8, c.percent);
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_x_mesh().x_labels(n + 1);
-        mesh.x_label_formatter(&|_| String::new()).y_labels(8);
-        mesh.y_label_formatter(&ticks).y_desc(&c.y_label).draw()?;
+        mesh.disable_x_mesh().y_desc(&c.y_label).draw()?;
         let dots = RGBColor(90, 90, 90).stroke_width(2);
-        let sep = |&i: &usize| DashedPathElement::new([(edge(i), lo), (edge(i), hi)], 3, 4, dots);
+        let sep = |&i: &usize| {
+            let x = i as f64;
+            DashedPathElement::new([(x, lo), (x, hi)], 3, 4, dots)
+        };
         chart.draw_series(c.separators.iter().map(sep))?;
 
         // The bars, kept free of labels, then the zero and reference lines.
-        let map = chart.as_coord_spec().clone();
-        let (p, s) = (plot_rect(&chart), c.series.len() as f64);
-        let g = Geom { p, map, last, s };
-        let inset = if g.bar() > 8.0 { 1.0 } else { 0.0 };
+        let (p, pixel) = (plot_rect(&chart), pixel_of(&chart));
+        let slots = Slots::new(c.series.len(), (p.2 - p.0) / n as f64);
+        let inset = u32::from(slots.px > 8.0);
         let mut placer = Placer::default();
         let mut rects = Vec::new();
         for (k, i, v) in present(&c.series) {
-            let (x0, x1) = (g.bar_x(i, k) + inset, g.bar_x(i, k + 1) - inset);
-            placer.take((x0, g.py(v).min(g.py(0.0)), x1, g.py(v).max(g.py(0.0))));
-            let corners = [(edge(i), v), (edge(i + 1), 0.0)];
+            let corners = [(slots.left(i, k), v), (slots.left(i, k + 1), 0.0)];
+            placer.take(rect_of(&pixel, corners[0], corners[1]));
             let mut rect = Rectangle::new(corners, self.colours[k].filled());
-            let (l, r) = ((x0 - g.gx(i)).round(), (g.gx(i + 1) - x1).round());
-            rect.set_margin(0, 0, l as u32, r as u32);
+            rect.set_margin(0, 0, inset, inset);
             rects.push(rect);
         }
         chart.draw_series(rects)?;
         for (v, w) in [(Some(0.0), 1), (c.reference, 2)] {
-            let rule = v.map(|v| vec![(edge(0), v), (edge(n), v)]);
+            let rule = v.map(|v| vec![(0.0, v), (n as f64, v)]);
             chart.draw_series(rule.map(|r| PathElement::new(r, INK.stroke_width(w))))?;
         }
-        self.labels(root, &mut placer, &g)?;
-        self.names(root, &g)
+        self.labels(root, &mut placer, (p, &pixel, &slots))?;
+        self.names(root, (p, &pixel))
     }
 }
 
@@ -175,30 +169,40 @@ impl Bars<'_> {
         &self,
         root: &Area<DB>,
         placer: &mut Placer,
-        g: &Geom,
+        (p, pixel, slots): (Rect, &At, &Slots),
     ) -> Drawn<DB> {
-        let (c, p) = (self.c, g.p);
+        let c = self.c;
         let colour = |s| mark_colour(&self.colours, s);
-        paper_lines(root, (p, &mut *placer), &c.paper, |v| g.py(v), colour)?;
+        paper_lines(
+            root,
+            (p, &mut *placer),
+            &c.paper,
+            |v| pixel(0.0, v).1,
+            colour,
+        )?;
         let bars = present(&c.series);
         let texts: Vec<String> = bars.iter().map(|b| value_label(b.2, c.percent)).collect();
         let mut labels = Vec::new();
         let few = c.series.len() <= 3 && c.categories.len() <= 20;
         for (&(k, i, v), text) in bars.iter().zip(&texts).filter(|_| few) {
-            let upright = text_size(text, SMALL, false).0 > g.bar() + 2.0;
-            let (x, up) = (g.bar_x(i, k) + g.bar() / 2.0, v >= 0.0);
-            let (y, limit) = [(g.py(v) + 2.0, p.3), (g.py(v) - 2.0, p.1)][usize::from(up)];
+            let upright = text_size(text, SMALL, false).0 > slots.px + 2.0;
+            let (x, y) = pixel((slots.left(i, k) + slots.left(i, k + 1)) / 2.0, v);
+            let (y, limit, up) =
+                [(y + 2.0, p.3, false), (y - 2.0, p.1, true)][usize::from(v >= 0.0)];
             let candidates = column(x, (y, up, limit), (text, upright), 400);
             labels.push((candidates, text.as_str(), shade(self.colours[k], 0.62)));
         }
         for m in c.paper.iter().filter(|m| m.category.is_some()) {
             let i = m.category.unwrap_or(0);
-            let (x0, x1) = match m.series {
-                Some(k) => (g.bar_x(i, k) - 3.0, g.bar_x(i, k + 1) + 3.0),
-                None => (g.gx(i) + 3.0, g.gx(i + 1) - 3.0),
+            // Over the series' bar and 3 pixels wider, or over the
+            // category and 3 pixels narrower.
+            let ((x0, x1), d) = match m.series {
+                Some(k) => ((slots.left(i, k), slots.left(i, k + 1)), 3.0),
+                None => ((i as f64, i as f64 + 1.0), -3.0),
             };
-            let (at, colour) = (((x0 + x1) / 2.0, g.py(m.value)), colour(m.series));
-            let mark = (at, (x1 - x0) / 2.0, 5.0);
+            let ((x0, y), x1) = (pixel(x0, m.value), pixel(x1, 0.0).0);
+            let (at, colour) = (((x0 + x1) / 2.0, y), colour(m.series));
+            let mark = (at, (x1 - x0) / 2.0 + d, 5.0);
             paper_point((root, &mut *placer), mark, Shape::Circle, colour)?;
             let text = (m.label.as_str(), false);
             let over = column(at.0, (at.1 - 8.0, true, p.1), text, 400);
@@ -209,19 +213,19 @@ impl Bars<'_> {
     }
 
     /// The category names under the axis, the group names over the plot.
-    fn names<DB: DrawingBackend>(&self, root: &Area<DB>, g: &Geom) -> Drawn<DB> {
-        let (c, p) = (self.c, g.p);
+    fn names<DB: DrawingBackend>(&self, root: &Area<DB>, (p, pixel): (Rect, &At)) -> Drawn<DB> {
+        let (c, x) = (self.c, |i: usize| pixel(i as f64, 0.0).0);
         for (i, name) in c.categories.iter().enumerate() {
             let bold = c.highlight.contains(&i);
             let s = match self.rotate {
                 true => style(LABEL, bold, BLACK, H::Right, V::Center).transform(Rotate270),
                 false => style(LABEL, bold, BLACK, H::Center, V::Top),
             };
-            root.draw_text(name, &s, px((g.gx(i) + g.gx(i + 1)) / 2.0, p.3 + 10.0))?;
+            root.draw_text(name, &s, px((x(i) + x(i + 1)) / 2.0, p.3 + 10.0))?;
         }
         for (grp, row) in c.groups.iter().zip(&self.rows) {
             let run = &grp.categories;
-            let (x0, x1) = (g.gx(run.start) + 6.0, g.gx(run.end) - 6.0);
+            let (x0, x1) = (x(run.start) + 6.0, x(run.end) - 6.0);
             let y = p.1 - 8.0 - 22.0 * row;
             let bracket = vec![px(x0, y + 4.0), px(x0, y), px(x1, y), px(x1, y + 4.0)];
             root.draw(&PathElement::new(bracket, INK))?;
@@ -232,40 +236,30 @@ impl Bars<'_> {
     }
 }
 
-/// The plot in pixels: its rectangle, plotters' mapping, the last segment
-/// and the number of series.
-struct Geom {
-    p: frame::Rect,
-    map: Cartesian2d<SegmentedCoord<RangedCoordusize>, RangedCoordf64>,
-    last: usize,
+/// Where the bars of a category go, in units of x (a category is one
+/// unit): side by side over 80% of the category, none wider than 64
+/// pixels.
+struct Slots {
+    /// The number of series.
     s: f64,
+    /// A bar's width in units of x, and in pixels.
+    width: f64,
+    px: f64,
 }
 
-impl Geom {
-    /// The pixel column of the left edge of category `i`.
-    fn gx(&self, i: usize) -> f64 {
-        f64::from(self.map.translate(&(edge(i, self.last), 0.0)).0)
+impl Slots {
+    /// The slots of `s` series in categories `unit` pixels wide.
+    fn new(s: usize, unit: f64) -> Slots {
+        let s = s as f64;
+        let width = (0.8 / s).min(64.0 / unit.max(1.0));
+        let px = width * unit;
+        Slots { s, width, px }
     }
 
-    /// The pixel row of `v`.
-    fn py(&self, v: f64) -> f64 {
-        f64::from(self.map.translate(&(edge(0, self.last), v)).1)
-    }
-
-    /// The width of a category's group of bars.
-    fn group(&self) -> f64 {
-        (self.gx(1) - self.gx(0)).max(1.0)
-    }
-
-    /// The width of a bar.
-    fn bar(&self) -> f64 {
-        (self.group() * 0.8 / self.s).min(64.0)
-    }
-
-    /// The pixel column of the left edge of series `k`'s bar in category
-    /// `i`.
-    fn bar_x(&self, i: usize, k: usize) -> f64 {
-        self.gx(i) + (self.group() - self.s * self.bar()) / 2.0 + k as f64 * self.bar()
+    /// The left edge of series `k`'s bar in category `i` (the right edge
+    /// of the bar of series `k` - 1).
+    fn left(&self, i: usize, k: usize) -> f64 {
+        i as f64 + (1.0 - self.s * self.width) / 2.0 + k as f64 * self.width
     }
 }
 
@@ -281,17 +275,9 @@ fn present(series: &[super::Series]) -> Vec<(usize, usize, f64)> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, mark, out, pixels, same_twice, texts};
-    use super::super::Series;
+    use super::super::tests::{error, full, mark, out, pixels, refused, same_twice, texts, Case};
     use super::*;
     use crate::palette::Key;
-
-    /// A series with a value for every category.
-    fn full(key: Key, name: &str, values: &[f64]) -> Series {
-        let values = values.iter().map(|&v| Some(v)).collect();
-        let name = name.into();
-        Series { key, name, values }
-    }
 
     /// Sixteen scenes with long names in two groups and two means, two
     /// series of speedups (one negative), the paper's values.
@@ -376,11 +362,8 @@ mod tests {
         let four = |k| full(Key::Other, &format!("s{k}"), &[1.2, 0.5, 2.0, 1.0]);
         c.series = (0..4).map(four).collect();
         draw_bars(&c, &path).expect("draw svg");
-        let four = texts(&path, "s3");
-        assert!(
-            !four.iter().any(|t| t.0 == "0.50"),
-            "four series: no values"
-        );
+        let values = texts(&path, "s3").into_iter().any(|t| t.0 == "0.50");
+        assert!(!values, "four series: no values");
         (c.categories, c.series) = (vec!["only".into()], vec![full(Key::Wasp, "WaSP", &[-0.02])]);
         (c.paper, c.percent) = (vec![], true);
         draw_bars(&c, &path).expect("draw svg");
@@ -389,20 +372,17 @@ mod tests {
 
     #[test]
     fn bad_charts_and_files_are_errors() {
-        let bad = |f: fn(&mut BarChart), want: &str| {
-            let mut c = speedups();
-            f(&mut c);
-            let e = error("bars-bad", "c.svg", &|p| draw_bars(&c, p));
-            assert!(e.starts_with("drawing Speedup") && e.contains(want), "{e}");
-        };
-        bad(|c| c.categories.clear(), "0 categories and 2 series");
-        bad(|c| c.series[1].values.truncate(17), "has 17 values for 18");
-        bad(|c| c.series[0].values[2] = Some(f64::NAN), "`scene-02");
-        bad(|c| c.paper[0].series = Some(2), "`paper 3.9%` is past");
-        bad(|c| c.paper[1].value = f64::INFINITY, "value inf");
-        bad(|c| c.reference = Some(f64::NAN), "the reference line");
-        bad(|c| c.separators.push(19), "past the 18 categories");
-        bad(|c| c.groups[0].categories = 0..19, "past the 18 categories");
+        let cases: &[Case<BarChart>] = &[
+            (|c| c.categories.clear(), "baseline: 0 categories and 2"),
+            (|c| c.series[1].values.truncate(17), "has 17 values for 18"),
+            (|c| c.series[0].values[2] = Some(f64::NAN), "`scene-02"),
+            (|c| c.paper[0].series = Some(2), "`paper 3.9%` is past"),
+            (|c| c.paper[1].value = f64::INFINITY, "value inf"),
+            (|c| c.reference = Some(f64::NAN), "the reference line"),
+            (|c| c.separators.push(19), "past the 18 categories"),
+            (|c| c.groups[0].categories = 0..19, "past the 18 categories"),
+        ];
+        refused(("bars-bad", &speedups()), draw_bars, cases);
         let e = error("bars-jpg", "chart.jpg", &|p| draw_bars(&speedups(), p));
         assert!(e.contains("chart.jpg") && e.contains(".png or .svg"), "{e}");
         let e = draw_bars(&speedups(), &out("bars-dir", "no").join("c.png")).unwrap_err();

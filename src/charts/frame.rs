@@ -1,13 +1,14 @@
 //! What every picture shares, and what plotters lacks: the strip above the
 //! plot (title, subtitle, legend), the paper's marks, the [`Placer`] that
 //! puts labels where they hide nothing; and the plot's `ChartBuilder`,
-//! mesh style, range and tick labels.
+//! mesh style, range and axes ticked with their labels ([`Ticked`]).
 
 use super::legend::{legend, line_height, marker, rows, Legend, Shape, Swatch};
 use crate::fonts::{font, register_fonts};
 use crate::palette::{shade, GRID, INK};
 use crate::picture::{is_svg, save};
 pub(crate) use crate::picture::{Area, Drawn, Picture};
+use plotters::coord::ranged1d::{KeyPointHint, NoDefaultFormatting, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
@@ -213,16 +214,59 @@ pub(super) fn range(values: impl IntoIterator<Item = f64>, include: &[f64]) -> R
     lo - below..hi + 0.08 * (hi - lo)
 }
 
-/// The tick labels over `r` with at most `n` of plotters' ticks: as
-/// percentages when `percent`, with the decimals of the tick step.
-pub(super) fn tick_label(r: &Range<f64>, n: usize, percent: bool) -> impl Fn(&f64) -> String {
-    let ticks = RangedCoordf64::from(r.clone()).key_points(n);
-    let step = ticks.windows(2).map(|w| w[1] - w[0]).next().unwrap_or(1.0);
-    let scale = if percent { 100.0 } else { 1.0 };
-    let d = (-(step * scale).log10() - 1e-9).ceil().clamp(0.0, 9.0) as usize;
-    move |v: &f64| {
-        let v = [*v * scale, 0.0][usize::from(v.abs() < step * 1e-6)];
-        format!("{v:.d$}{}", if percent { "%" } else { "" })
+/// A linear axis ticked at given values, each tick with its label.
+/// (Plotters' `WithKeyPoints` keeps no labels, and an axis of f64 has no
+/// formatter for the mesh to give them.)
+#[derive(Clone)]
+pub(crate) struct Ticked(pub RangedCoordf64, pub Vec<(f64, String)>);
+
+impl Ticked {
+    /// The axis over `r` with at most `n` of plotters' ticks, labelled as
+    /// percentages when `percent`, with the decimals of the tick step.
+    pub fn numeric(r: &Range<f64>, n: usize, percent: bool) -> Ticked {
+        let ticks = RangedCoordf64::from(r.clone()).key_points(n);
+        let step = ticks.windows(2).map(|w| w[1] - w[0]).next().unwrap_or(1.0);
+        let scale = if percent { 100.0 } else { 1.0 };
+        let d = (-(step * scale).log10() - 1e-9).ceil().clamp(0.0, 9.0) as usize;
+        let label = |v: f64| {
+            let v = [v * scale, 0.0][usize::from(v.abs() < step * 1e-6)];
+            format!("{v:.d$}{}", if percent { "%" } else { "" })
+        };
+        let labelled = ticks.into_iter().map(|v| (v, label(v))).collect();
+        Ticked(r.clone().into(), labelled)
+    }
+
+    /// The axis over categories `0..n` of `names`, each a unit wide,
+    /// ticked at its centre with its name.
+    pub fn categories(names: &[String]) -> Ticked {
+        let centre = |(i, name): (usize, &String)| (i as f64 + 0.5, name.clone());
+        let ticks = names.iter().enumerate().map(centre).collect();
+        Ticked((0.0..names.len() as f64).into(), ticks)
+    }
+}
+
+impl Ranged for Ticked {
+    type FormatOption = NoDefaultFormatting;
+    type ValueType = f64;
+
+    fn map(&self, v: &f64, limit: (i32, i32)) -> i32 {
+        self.0.map(v, limit)
+    }
+
+    fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
+        let light = hint.weight().allow_light_points();
+        self.1.iter().map(|t| t.0).filter(|_| !light).collect()
+    }
+
+    fn range(&self) -> Range<f64> {
+        self.0.range()
+    }
+}
+
+impl ValueFormatter<f64> for Ticked {
+    fn format_ext(&self, v: &f64) -> String {
+        let near = self.1.iter().find(|t| (t.0 - v).abs() < 1e-9);
+        near.map(|t| t.1.clone()).unwrap_or_default()
     }
 }
 
@@ -261,23 +305,11 @@ pub(crate) fn builder<DB: DrawingBackend>(area: &Area<DB>, pad: Pad) -> ChartBui
 }
 
 /// The width of a y label area over `r`: the axis label and the widest of
-/// plotters' tick labels.
+/// the tick labels of [`Ticked::numeric`].
 pub(super) fn y_area(r: &Range<f64>, percent: bool) -> f64 {
-    let label = tick_label(r, 8, percent);
-    let ticks = RangedCoordf64::from(r.clone()).key_points(8);
-    let width = |v: &f64| text_size(&label(v), LABEL, false).0;
+    let ticks = Ticked::numeric(r, 8, percent).1;
+    let width = |t: &(f64, String)| text_size(&t.1, LABEL, false).0;
     ticks.iter().map(width).fold(0.0, f64::max) + 44.0
-}
-
-/// The edge before segment `i` of plotters' segments `0..=last`. (A
-/// chart of one category or row uses two segments, the second empty:
-/// plotters maps a one-value discrete range outside the plot.)
-pub(super) fn edge(i: usize, last: usize) -> SegmentValue<usize> {
-    if i <= last {
-        SegmentValue::Exact(i)
-    } else {
-        SegmentValue::Last
-    }
 }
 
 /// The plot's rectangle in pixels.
@@ -286,6 +318,36 @@ pub(super) fn plot_rect<DB: DrawingBackend, X: Ranged, Y: Ranged>(
 ) -> Rect {
     let ((x, y), f) = (chart.plotting_area().get_pixel_range(), f64::from);
     (f(x.start), f(y.start), f(x.end), f(y.end))
+}
+
+/// Values to pixels.
+pub(super) type At<'a> = dyn Fn(f64, f64) -> (f64, f64) + 'a;
+
+/// The pixel of each value in `chart`, through a copy of its mapping, so
+/// that the chart stays free to draw on.
+pub(super) fn pixel_of<DB: DrawingBackend, X, Y>(
+    chart: &ChartContext<'_, DB, Cartesian2d<X, Y>>,
+) -> impl Fn(f64, f64) -> (f64, f64)
+where
+    X: Ranged<ValueType = f64> + Clone,
+    Y: Ranged<ValueType = f64> + Clone,
+{
+    let map = chart.as_coord_spec().clone();
+    move |x, y| {
+        let (x, y) = map.translate(&(x, y));
+        (f64::from(x), f64::from(y))
+    }
+}
+
+/// The rectangle in pixels between the values `a` and `b`, which `pixel`
+/// maps to pixels ([`pixel_of`]).
+pub(super) fn rect_of(
+    pixel: impl Fn(f64, f64) -> (f64, f64),
+    a: (f64, f64),
+    b: (f64, f64),
+) -> Rect {
+    let (p, q) = (pixel(a.0, a.1), pixel(b.0, b.1));
+    (p.0.min(q.0), p.1.min(q.1), p.0.max(q.0), p.1.max(q.1))
 }
 
 /// Labels placed where they hide nothing already placed or taken.
@@ -398,28 +460,18 @@ mod tests {
 
     #[test]
     fn numbers_have_the_digits_they_need() {
-        let label = tick_label(&(-0.03..0.05), 8, true);
-        assert_eq!(
-            [label(&0.0), label(&-0.02), label(&0.04)],
-            ["0%", "-2%", "4%"]
-        );
-        let label = tick_label(&(0.0..1.3), 8, false);
-        assert_eq!(
-            [label(&0.0), label(&0.2), label(&1.2)],
-            ["0.0", "0.2", "1.2"]
-        );
-        let values = [
-            (0.039, true),
-            (-0.0213, true),
-            (0.00123, true),
-            (0.0999, false),
-        ];
-        let want = ["3.9%", "-2.1%", "0.12%", "0.10"];
-        assert_eq!(values.map(|(v, p)| value_label(v, p)), want);
-        assert_eq!(
-            [value_label(0.0, false), value_label(1234.4, false)],
-            ["0", "1234"]
-        );
-        assert_eq!(value_label(0.009999999999999998, true), "1.0%");
+        let labels = |r: Range<f64>, percent, at: [f64; 3]| {
+            let axis = Ticked::numeric(&r, 8, percent);
+            at.map(|v| axis.format_ext(&v))
+        };
+        let want = ["0%", "-2%", "4%"];
+        assert_eq!(labels(-0.03..0.05, true, [0.0, -0.02, 0.04]), want);
+        let want = ["0.0", "0.2", "1.2"];
+        assert_eq!(labels(0.0..1.3, false, [0.0, 0.2, 1.2]), want);
+        let percent = |v| value_label(v, true);
+        let shown = [0.039, -0.0213, 0.00123, 0.009999999999999998].map(percent);
+        assert_eq!(shown, ["3.9%", "-2.1%", "0.12%", "1.0%"]);
+        let shown = [0.0999, 0.0, 1234.4].map(|v| value_label(v, false));
+        assert_eq!(shown, ["0.10", "0", "1234"]);
     }
 }

@@ -1,12 +1,12 @@
-//! Heat maps ([`draw_heatmap`]): a grid over two parameters on plotters'
-//! segmented coordinates, each cell coloured on a diverging scale centred
+//! Heat maps ([`draw_heatmap`]): a grid over two parameters in plotters'
+//! coordinates, a unit square per cell, each cell coloured on a diverging scale centred
 //! on 0 (red below, white at 0, blue above: [`crate::palette::diverging`])
 //! with its value printed in it, and a colour bar, a chart of its own,
 //! right of the grid.
 
 use super::frame::{
-    builder, edge, style, style_mesh, text_size, tick_label, value_label, write, Drawn, Frame,
-    Picture, LABEL, SMALL,
+    builder, style, style_mesh, text_size, value_label, write, Drawn, Frame, Picture, Ticked,
+    LABEL, SMALL,
 };
 use super::{ensure, finite, who};
 use crate::palette::diverging;
@@ -104,29 +104,28 @@ impl Picture for Heat<'_> {
         let (m, s) = (self.m, self.scale);
         let area = self.frame.draw(root)?;
         let (grid, bar) = area.split_horizontally(self.size().0 - BAR_W);
-        let (lx, ly) = (m.x.len().max(2) - 1, m.y.len().max(2) - 1);
-        let mut chart = builder(&grid, (self.left, 64.0, 10.0, 10.0))
-            .build_cartesian_2d((0..lx).into_segmented(), (0..ly).into_segmented())?;
-        let (x_name, y_name) = (name(&m.x), name(&m.y));
+        // Column i spans x from i to i + 1, row j y from j to j + 1.
+        let (x, y) = (Ticked::categories(&m.x), Ticked::categories(&m.y));
+        let pad = (self.left, 64.0, 10.0, 10.0);
+        let mut chart = builder(&grid, pad).build_cartesian_2d(x, y)?;
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_mesh().x_labels(m.x.len() + 1);
-        mesh.y_labels(m.y.len() + 1);
-        mesh.x_label_formatter(&x_name).y_label_formatter(&y_name);
-        mesh.x_desc(&m.x_label).y_desc(&m.y_label).draw()?;
+        mesh.disable_mesh()
+            .x_desc(&m.x_label)
+            .y_desc(&m.y_label)
+            .draw()?;
         for (j, row) in m.values.iter().enumerate() {
             for (i, v) in row.iter().enumerate() {
                 let t = v.map_or(0.0, |v| v / s);
                 let fill = v.map_or(RGBColor(200, 200, 200), |_| diverging(t));
-                let corner = |i, j| (edge(i, lx), edge(j, ly));
-                let mut cell = Rectangle::new([corner(i, j), corner(i + 1, j + 1)], fill.filled());
+                let (x, y) = (i as f64, j as f64);
+                let mut cell = Rectangle::new([(x, y), (x + 1.0, y + 1.0)], fill.filled());
                 cell.set_margin(1, 1, 1, 1);
                 chart.draw_series(std::iter::once(cell))?;
                 let ink = if t.abs() > 0.6 { WHITE } else { BLACK };
                 let text = v.map_or("-".to_string(), |v| value_label(v, m.percent));
-                let at = (SegmentValue::CenterOf(i), SegmentValue::CenterOf(j));
                 let s = style(SMALL + 1, false, ink, HPos::Center, VPos::Center);
-                chart.draw_series(std::iter::once(Text::new(text, at, s)))?;
+                chart.draw_series(std::iter::once(Text::new(text, (x + 0.5, y + 0.5), s)))?;
             }
         }
 
@@ -134,32 +133,24 @@ impl Picture for Heat<'_> {
         let mut key = ChartBuilder::on(&bar);
         key.margin(20).margin_bottom(74).margin_right(30);
         key.right_y_label_area_size(90);
-        let mut key = key.build_cartesian_2d(0.0..1.0, -s..s)?;
+        let ticks = Ticked::numeric(&(-s..s), 6, m.percent);
+        let mut key = key.build_cartesian_2d(0.0..1.0, ticks)?;
         let band = |k: u32| {
             let (a, b) = (f64::from(k) / 50.0 - 1.0, f64::from(k + 1) / 50.0 - 1.0);
             let colour = diverging((a + b) / 2.0);
             Rectangle::new([(0.0, a * s), (1.0, b * s)], colour.filled())
         };
         key.draw_series((0..100).map(band))?;
-        let ticks = tick_label(&(-s..s), 6, m.percent);
         let mut mesh = key.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_mesh().disable_x_axis().y_labels(6);
-        mesh.y_label_formatter(&ticks).y_desc(&m.scale_label).draw()
-    }
-}
-
-/// The label of a segment's centre: its name.
-fn name(names: &[String]) -> impl Fn(&SegmentValue<usize>) -> String + '_ {
-    move |v| match v {
-        SegmentValue::CenterOf(i) => names.get(*i).cloned().unwrap_or_default(),
-        _ => String::new(),
+        mesh.disable_mesh().disable_x_axis();
+        mesh.y_desc(&m.scale_label).draw()
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, out, pixels, same_twice, texts};
+    use super::super::tests::{out, pixels, refused, same_twice, texts, Case};
     use super::*;
 
     /// WaSP's speedup over L0 MSHRs and warps per core.
@@ -188,19 +179,15 @@ mod tests {
         let path = out("heat", "map.png");
         draw_heatmap(&mshrs_by_warps(), &path).expect("draw png");
         // The most negative cell has the scale's red end.
-        assert!(
-            pixels(&path, diverging(-1.0)) > 2000,
-            "no cell of the red end"
-        );
+        let red = pixels(&path, diverging(-1.0));
+        assert!(red > 2000, "{red} pixels of the red end");
         same_twice("heat-same", &|p| draw_heatmap(&mshrs_by_warps(), p));
-        let bad = |f: fn(&mut HeatMap), want: &str| {
-            let mut c = mshrs_by_warps();
-            f(&mut c);
-            assert!(error("heat-bad", "m.svg", &|p| draw_heatmap(&c, p)).contains(want));
-        };
-        bad(|c| c.values[1].truncate(3), "row `64` has 3 values for 4");
-        bad(|c| drop(c.values.pop()), "2 rows of values for 4 columns");
-        bad(|c| c.values[0][0] = Some(f64::NAN), "the cell (8, 32) has");
-        bad(|c| c.x.clear(), "for 0 columns and 3 rows");
+        let cases: &[Case<HeatMap>] = &[
+            (|c| c.values[1].truncate(3), "row `64` has 3 values for 4"),
+            (|c| drop(c.values.pop()), "2 rows of values for 4 columns"),
+            (|c| c.values[0][0] = Some(f64::NAN), "the cell (8, 32) has"),
+            (|c| c.x.clear(), "for 0 columns and 3 rows"),
+        ];
+        refused(("heat-bad", &mshrs_by_warps()), draw_heatmap, cases);
     }
 }

@@ -138,7 +138,7 @@ impl Swatch {
                 Rectangle::new([(0, -6), (SWATCH, 6)], c.mix(0.18).filled()).into_dyn(),
                 PathElement::new(line, c.stroke_width(2)).into_dyn(),
             ],
-            Swatch::Tile(s, start) => tile(mid, s, start),
+            Swatch::Tile(s, start) => return tile((at.0 + mid.0, at.1 - 9), s, start, 18),
             Swatch::Ticks(s, top) => {
                 let (edge, d) = if top { (-4, 8) } else { (4, -8) };
                 let tick = |t| PathElement::new(vec![(t, edge), (t, edge + d)], s).into_dyn();
@@ -150,30 +150,27 @@ impl Swatch {
     }
 }
 
-/// A tile's start (solid) or end (dashed) line upright at `at`, with its
-/// pointer on top.
-fn tile<'a, DB: DrawingBackend + 'a>(
-    at: BackendCoord,
+/// A tile's start (solid) or end (dashed) line from `top` (in any
+/// coordinates) `len` pixels down, with an opaque pointer on top: a start
+/// points right (the tile runs on to the right), an end points left, so a
+/// tile ending where the next starts shows both.
+pub(crate) fn tile<'a, DB: DrawingBackend + 'a, C>(
+    top: C,
     s: ShapeStyle,
     start: bool,
-) -> Vec<DynElement<'a, DB, BackendCoord>> {
-    let line = vec![(at.0, at.1 - 9), (at.0, at.1 + 9)];
-    let tip = pointer(start)
-        .into_iter()
-        .map(|(x, y)| (at.0 + x, at.1 + y - 9));
-    let tip = Polygon::new(tip.collect::<Vec<_>>(), s.filled()).into_dyn();
-    match start {
-        true => vec![PathElement::new(line, s).into_dyn(), tip],
-        false => vec![DashedPathElement::new(line, 4, 3, s).into_dyn(), tip],
-    }
-}
-
-/// The pointer at the top of a tile line, as pixel offsets from the top of
-/// the line: a start points right (the tile runs on to the right), an end
-/// points left, so a tile ending where the next starts shows both.
-pub(crate) fn pointer(start: bool) -> Vec<BackendCoord> {
-    let d = if start { 1 } else { -1 };
-    vec![(0, 0), (9 * d, 5), (0, 10)]
+    len: i32,
+) -> Parts<'a, DB, C> {
+    let ((r, g, b), d) = (s.color.rgb(), if start { 1 } else { -1 });
+    let tip = Polygon::new(
+        vec![(0, 0), (9 * d, 5), (0, 10)],
+        RGBColor(r, g, b).filled(),
+    );
+    let line = vec![(0, 0), (0, len)];
+    let line = match start {
+        true => PathElement::new(line, s).into_dyn(),
+        false => DashedPathElement::new(line, 7, 5, s).into_dyn(),
+    };
+    Parts(top, vec![line, tip.into_dyn()])
 }
 
 /// The entries of a legend: the text and how it looks.

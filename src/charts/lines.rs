@@ -9,14 +9,12 @@
 
 use super::frame::{
     around, beside, builder, column, mark_colour, paper_entry, paper_lines, paper_margin,
-    paper_point, plot_rect, px, range, style_mesh, text_size, tick_label, write, y_area, Area,
-    Drawn, Frame, Picture, Placer, Rect, LABEL,
+    paper_point, pixel_of, plot_rect, px, range, style_mesh, text_size, write, y_area, Area, At,
+    Drawn, Frame, Picture, Placer, Rect, Ticked, LABEL,
 };
 use super::legend::{marker, Shape, Swatch};
 use super::{check, ensure, finite, who, Highlight, Key, LineChart, PaperMark};
 use crate::palette::{series_colours, shade, INK};
-use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
-use plotters::coord::types::RangedCoordf64;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use std::ops::Range;
@@ -56,17 +54,15 @@ pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
         let points = x.iter().zip(&s.values).map(point).collect();
         (s.name.as_str(), s.key, points)
     });
-    let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
-    let (lines, paper) = (lines.collect(), &c.paper[..]);
     let plot = Plot {
-        texts,
-        lines,
+        texts: [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str),
+        lines: lines.collect(),
         x,
         ticks,
-        paper,
-        rings: &[],
+        paper: &c.paper,
         percent: c.percent,
         reference: c.reference,
+        ..Plot::default()
     };
     write(&who, path, || plot.lay_out())
 }
@@ -75,6 +71,7 @@ pub fn draw_lines(chart: &LineChart, path: &Path) -> Result<(), String> {
 pub(super) type Point = (f64, f64, String);
 
 /// What line and XY charts draw.
+#[derive(Default)]
 pub(super) struct Plot<'a> {
     /// Title, subtitle, x label, y label.
     pub texts: [&'a str; 4],
@@ -90,14 +87,13 @@ pub(super) struct Plot<'a> {
     pub reference: Option<f64>,
 }
 
-/// A [`Plot`] laid out: its strip, colours, ranges, x ticks (an empty label
-/// is left out) and the label area left of it and the margin right.
+/// A [`Plot`] laid out: its strip, colours, x axis (an empty tick label is
+/// left out), y range and the label area left of it and the margin right.
 pub(super) struct Layout<'a> {
     p: Plot<'a>,
     frame: Frame<'a>,
     colours: Vec<RGBColor>,
-    ranges: (Range<f64>, Range<f64>),
-    ticks: Vec<(f64, String)>,
+    axes: (Ticked, Range<f64>),
     pad: (f64, f64),
 }
 
@@ -117,14 +113,16 @@ impl<'a> Plot<'a> {
         let pad = [lo.abs().max(2.0) * 0.5, 0.04 * (hi - lo)][usize::from(hi > lo)];
         let x = lo - pad..hi + pad;
         let (left, right) = (y_area(&y, self.percent), paper_margin(self.paper));
-        let (plot_w, label) = (WIDTH - left - right, tick_label(&x, 12, false));
-        let numeric = RangedCoordf64::from(x.clone()).key_points(12);
-        let numeric = numeric.into_iter().map(|v| (v, label(&v)));
-        let mut ticks: Vec<(f64, String)> = match self.ticks {
-            Some(labels) => self.x.iter().copied().zip(labels.iter().cloned()).collect(),
-            None => numeric.collect(),
+        let plot_w = WIDTH - left - right;
+        let mut x_axis = match self.ticks {
+            Some(labels) => Ticked(
+                x.clone().into(),
+                self.x.iter().copied().zip(labels.iter().cloned()).collect(),
+            ),
+            None => Ticked::numeric(&x, 12, false),
         };
         // Where labels would overlap, every k-th.
+        let ticks = &mut x_axis.1;
         let widest = ticks.iter().map(|t| text_size(&t.1, LABEL, false).0);
         let span = x.end - x.start;
         let gaps = ticks.windows(2).map(|w| (w[1].0 - w[0].0) / span * plot_w);
@@ -146,8 +144,7 @@ impl<'a> Plot<'a> {
             p: self,
             frame,
             colours,
-            ranges: (x, y),
-            ticks,
+            axes: (x_axis, y),
             pad: (left, right),
         }
     }
@@ -159,32 +156,6 @@ fn paper_shape(series: Option<usize>) -> Shape {
     series.map_or(Shape::Circle, Shape::of)
 }
 
-/// Values to pixels.
-type At<'a> = dyn Fn(f64, f64) -> (f64, f64) + 'a;
-
-/// A linear axis with the given ticks (plotters' `WithKeyPoints` has no
-/// label formatter over f64, which the mesh needs).
-#[derive(Clone)]
-struct Ticked(RangedCoordf64, Vec<f64>);
-
-impl Ranged for Ticked {
-    type FormatOption = DefaultFormatting;
-    type ValueType = f64;
-
-    fn map(&self, v: &f64, limit: (i32, i32)) -> i32 {
-        self.0.map(v, limit)
-    }
-
-    fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
-        let light = hint.weight().allow_light_points();
-        self.1.iter().copied().filter(|_| !light).collect()
-    }
-
-    fn range(&self) -> Range<f64> {
-        self.0.range()
-    }
-}
-
 impl Picture for Layout<'_> {
     fn size(&self) -> (u32, u32) {
         let height = (f64::from(self.frame.height()) + 504.0).max(700.0);
@@ -192,21 +163,14 @@ impl Picture for Layout<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &Area<DB>) -> Drawn<DB> {
-        let (pl, (x, y)) = (&self.p, self.ranges.clone());
-        let (x0, x1, y0) = (x.start, x.end, y.start);
+        let (pl, (x, y)) = (&self.p, &self.axes);
+        let ((x0, x1), y0) = ((x.range().start, x.range().end), y.start);
         let area = self.frame.draw(root)?;
-        let x_axis = Ticked(x.into(), self.ticks.iter().map(|t| t.0).collect());
         let pad = (self.pad.0, 64.0, 10.0, self.pad.1);
-        let mut chart = builder(&area, pad).build_cartesian_2d(x_axis, y.clone())?;
-        let x_label = |v: &f64| {
-            let near = self.ticks.iter().find(|t| (t.0 - v).abs() < 1e-9);
-            near.map(|t| t.1.clone()).unwrap_or_default()
-        };
-        let y_label = tick_label(&y, 8, pl.percent);
+        let y = Ticked::numeric(y, 8, pl.percent);
+        let mut chart = builder(&area, pad).build_cartesian_2d(x.clone(), y)?;
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.x_label_formatter(&x_label).y_labels(8);
-        mesh.y_label_formatter(&y_label);
         mesh.x_desc(pl.texts[2]).y_desc(pl.texts[3]).draw()?;
         let zero = (y0 < 0.0).then_some((0.0, 1));
         let rule = pl.reference.map(|r| (r, 2)).or(zero);
@@ -215,11 +179,7 @@ impl Picture for Layout<'_> {
 
         // The lines through each run of present points, then the markers,
         // all kept free of labels.
-        let (p, map) = (plot_rect(&chart), chart.as_coord_spec().clone());
-        let at = |x: f64, y: f64| {
-            let (x, y) = map.translate(&(x, y));
-            (f64::from(x), f64::from(y))
-        };
+        let (p, at) = (plot_rect(&chart), pixel_of(&chart));
         let mut placer = Placer::default();
         let colour = |s| mark_colour(&self.colours, s);
         paper_lines(root, (p, &mut placer), pl.paper, |v| at(x0, v).1, colour)?;
@@ -296,22 +256,16 @@ impl Layout<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, mark, out, pixels, same_twice, texts};
-    use super::super::Series;
+    use super::super::tests::{full, mark, out, pixels, refused, same_twice, texts, Case};
     use super::*;
     use crate::palette::Key;
-
-    /// A series of `values`.
-    fn series(key: Key, name: &str, values: &[Option<f64>]) -> Series {
-        let (name, values) = (name.into(), values.to_vec());
-        Series { key, name, values }
-    }
 
     /// IPC over the warp count for two policies, one with a gap, with the
     /// paper's value at one count and its baseline across the plot.
     fn warps() -> LineChart {
         let x = vec![28.0, 32.0, 40.0, 48.0, 64.0];
-        let wasp = [Some(0.66), Some(0.68), None, Some(0.70), Some(0.705)];
+        let mut wasp = full(Key::Wasp, "WaSP", &[0.66, 0.68, 0.0, 0.70, 0.705]);
+        wasp.values[2] = None;
         LineChart {
             title: "IPC by warp count".into(),
             subtitle: "4 cores, 16 scenes".into(),
@@ -320,12 +274,8 @@ mod tests {
             x_ticks: Some(x.iter().map(|v| format!("{v}")).collect()),
             x,
             series: vec![
-                series(
-                    Key::Baseline,
-                    "baseline",
-                    &[0.61, 0.64, 0.66, 0.67, 0.675].map(Some),
-                ),
-                series(Key::Wasp, "WaSP", &wasp),
+                full(Key::Baseline, "baseline", &[0.61, 0.64, 0.66, 0.67, 0.675]),
+                wasp,
             ],
             paper: vec![
                 mark(Some(1), Some(1), 0.69, "paper 0.69"),
@@ -354,63 +304,35 @@ mod tests {
     #[test]
     fn numeric_axes_crowded_ticks_and_one_point_draw() {
         let mut c = warps();
-        (c.x, c.series) = (
-            vec![1.0, 2.0, 4.0, 8.0],
-            vec![series(
-                Key::Wasp,
-                "WaSP",
-                &[-0.02, 0.01, 0.03, 0.02].map(Some),
-            )],
-        );
+        c.x = vec![1.0, 2.0, 4.0, 8.0];
+        c.series = vec![full(Key::Wasp, "WaSP", &[-0.02, 0.01, 0.03, 0.02])];
         (c.percent, c.reference, c.x_ticks, c.paper) = (true, Some(0.0), None, vec![]);
         let path = out("lines-numeric", "speedup.svg");
         draw_lines(&c, &path).expect("draw svg");
         texts(&path, "-2%|0%|3%|2|8");
-        (c.x, c.series) = (vec![5.0], vec![series(Key::Wasp, "WaSP", &[Some(-0.01)])]);
+        (c.x, c.series) = (vec![5.0], vec![full(Key::Wasp, "WaSP", &[-0.01])]);
         let path = out("lines-numeric", "one.png");
         draw_lines(&c, &path).expect("draw png");
         assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 20);
         c.x = (0..40).map(f64::from).collect();
-        c.series = vec![series(
-            Key::Other,
-            "v",
-            &c.x.iter().map(|&x| Some(x)).collect::<Vec<_>>(),
-        )];
+        c.series = vec![full(Key::Other, "v", &c.x)];
         c.x_ticks = Some((0..40).map(|i| format!("scene-{i:02}")).collect());
         let path = out("lines-numeric", "many.svg");
         draw_lines(&c, &path).expect("draw svg");
-        let texts = texts(&path, "scene-00");
-        assert!(
-            !texts.iter().any(|t| t.0 == "scene-01"),
-            "crowded labels are thinned"
-        );
+        let thinned = !texts(&path, "scene-00").iter().any(|t| t.0 == "scene-01");
+        assert!(thinned, "crowded labels are thinned");
     }
 
     #[test]
     fn bad_charts_are_errors() {
-        let bad = |f: fn(&mut LineChart), want: &str| {
-            let mut c = warps();
-            f(&mut c);
-            let e = error("lines-bad", "c.png", &|p| draw_lines(&c, p));
-            assert!(
-                e.starts_with("drawing IPC by warp") && e.contains(want),
-                "{e}"
-            );
-        };
-        bad(
-            |c| (c.x, c.x_ticks) = (vec![], None),
-            "0 x positions and 2 series",
-        );
-        bad(|c| c.x[2] = 32.0, "x[2] = 32 follows 32: x must be");
-        bad(|c| c.x[4] = f64::NAN, "x[4] has the non-finite value NaN");
-        bad(
-            |c| c.x_ticks = Some(vec!["28".into()]),
-            "1 x tick labels for 5",
-        );
-        bad(
-            |c| c.series[1].values[4] = Some(f64::NAN),
-            "`WaSP` at x = 64",
-        );
-        bad(|c| c.paper[0].category = Some(5), "`paper 0.69` is past");
+        let cases: &[Case<LineChart>] = &[
+            (|c| (c.x, c.x_ticks) = (vec![], None), "count: 0 x pos"),
+            (|c| c.x[2] = 32.0, "x[2] = 32 follows 32: x must be"),
+            (|c| c.x[4] = f64::NAN, "x[4] has the non-finite value NaN"),
+            (|c| c.x_ticks = Some(vec!["28".into()]), "1 x tick labels"),
+            (|c| c.series[1].values[4] = Some(f64::INFINITY), "x = 64"),
+            (|c| c.paper[0].category = Some(5), "`paper 0.69` is past"),
+        ];
+        refused(("lines-bad", &warps()), draw_lines, cases);
     }
 }

@@ -1,5 +1,5 @@
 //! Charts of the reproduction (`wasp reproduce`), drawn with plotters'
-//! chart API (`ChartBuilder`, its mesh and series, segmented coordinates)
+//! chart API (`ChartBuilder`, its mesh, series and coordinates)
 //! and written as PNG or SVG by the file's extension:
 //!
 //! - grouped bars ([`draw_bars`]) and lines ([`draw_lines`]) beside the
@@ -214,6 +214,13 @@ pub(crate) mod tests {
         texts
     }
 
+    /// A series of `key` named `name` with a value for every category.
+    pub(crate) fn full(key: super::Key, name: &str, values: &[f64]) -> super::Series {
+        let values = values.iter().map(|&v| Some(v)).collect();
+        let name = name.into();
+        super::Series { key, name, values }
+    }
+
     /// A paper mark.
     pub(crate) fn mark(
         series: Option<usize>,
@@ -243,15 +250,10 @@ pub(crate) mod tests {
     /// Draws with `draw` twice as PNG and as SVG: the same bytes each time.
     pub(crate) fn same_twice(name: &str, draw: Draw) {
         for ext in ["png", "svg"] {
-            let (a, b) = (
-                out(name, &format!("a.{ext}")),
-                out(name, &format!("b.{ext}")),
-            );
+            let [a, b] = ["a", "b"].map(|file| out(name, &format!("{file}.{ext}")));
             draw(&a).and(draw(&b)).expect("drawn");
-            assert!(
-                std::fs::read(&a).ok() == std::fs::read(&b).ok(),
-                "{ext}s differ"
-            );
+            let same = std::fs::read(&a).ok() == std::fs::read(&b).ok();
+            assert!(same, "{ext}s differ");
         }
     }
 
@@ -261,6 +263,24 @@ pub(crate) mod tests {
         let e = draw(&path).expect_err(name);
         assert!(!path.exists(), "{name}: a file was written");
         e
+    }
+
+    /// A bad change to a chart `C` and a text its error holds.
+    pub(crate) type Case<C> = (fn(&mut C), &'static str);
+
+    /// Asserts of each case that drawing `chart` with `draw` after the
+    /// case's change fails with an error that holds the case's text.
+    pub(crate) fn refused<C: Clone>(
+        (name, chart): (&str, &C),
+        draw: fn(&C, &Path) -> Result<(), String>,
+        cases: &[Case<C>],
+    ) {
+        for (change, want) in cases {
+            let mut c = chart.clone();
+            change(&mut c);
+            let e = error(name, "c.svg", &|p| draw(&c, p));
+            assert!(e.contains(want), "{e}");
+        }
     }
 
     #[test]

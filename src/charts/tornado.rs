@@ -2,12 +2,12 @@
 //! series (e.g. the 3D and the 2D scenes) from the lowest to the highest
 //! value a quantity takes over the parameter's range, each end labelled
 //! with the parameter value that gave it; a vertical line at each series'
-//! value on the shipped machine; the widest row on top. Rows are segments
-//! of plotters' segmented coordinates.
+//! value on the shipped machine; the widest row on top. The bars are
+//! rectangles in plotters' coordinates, a row a unit of y.
 
 use super::frame::{
-    around, builder, edge, plot_rect, range, style_mesh, text_size, tick_label, value_label, write,
-    Drawn, Frame, Picture, Placer, Rect, LABEL, SMALL,
+    around, builder, pixel_of, plot_rect, range, rect_of, style_mesh, text_size, value_label,
+    write, Drawn, Frame, Picture, Placer, Rect, Ticked, LABEL, SMALL,
 };
 use super::legend::Swatch;
 use super::{ensure, finite, who, Key};
@@ -154,44 +154,35 @@ impl Picture for Tornado<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
-        let (c, n, s) = (self.c, self.c.rows.len(), self.c.series.len() as f64);
+        let (c, s) = (self.c, self.c.series.len() as f64);
         let area = self.frame.draw(root)?;
-        // The k-th widest row is segment n-1-k (0 is at the bottom).
-        let last = n.max(2) - 1;
-        let rows = (0..last).into_segmented();
+        // Row i spans y from i to i + 1: the widest row on top.
+        let rows = self
+            .order
+            .iter()
+            .rev()
+            .map(|&r| c.rows[r].parameter.clone());
+        let y = Ticked::categories(&rows.collect::<Vec<_>>());
+        let x = Ticked::numeric(&self.x, 10, c.percent);
         let pad = (self.left, 64.0, 10.0, 40.0);
-        let mut chart = builder(&area, pad).build_cartesian_2d(self.x.clone(), rows)?;
-        let name = |v: &SegmentValue<usize>| match v {
-            SegmentValue::CenterOf(i) if *i < n => c.rows[self.order[n - 1 - i]].parameter.clone(),
-            _ => String::new(),
-        };
-        let ticks = tick_label(&self.x, 10, c.percent);
+        let mut chart = builder(&area, pad).build_cartesian_2d(x, y)?;
         let mut mesh = chart.configure_mesh();
         style_mesh(&mut mesh);
-        mesh.disable_y_mesh().y_labels(n + 1);
-        mesh.y_label_formatter(&name);
-        mesh.x_labels(10).x_label_formatter(&ticks);
-        mesh.x_desc(&c.x_label).draw()?;
-        let (p, map) = (plot_rect(&chart), chart.as_coord_spec().clone());
-        let y_of = |i: usize| f64::from(map.translate(&(0.0, edge(i, last))).1);
-        let x_of = |v: f64| f64::from(map.translate(&(v, edge(0, last))).0);
-        let bar = ((y_of(0) - y_of(1)) * 0.7 / s).min(28.0);
+        mesh.disable_y_mesh().x_desc(&c.x_label).draw()?;
+        let (p, pixel) = (plot_rect(&chart), pixel_of(&chart));
+        // The bars of a row over 70% of it, none thicker than 28 pixels:
+        // `bar` is a bar's thickness in rows.
+        let bar = (0.7 / s).min(28.0 / (pixel(0.0, 0.0).1 - pixel(0.0, 1.0).1));
         let (mut placer, mut labels) = (Placer::default(), Vec::new());
-        for (k, &r) in self.order.iter().enumerate() {
-            let i = n - 1 - k;
+        for (i, &r) in self.order.iter().rev().enumerate() {
             for (j, (span, &colour)) in c.rows[r].spans.iter().zip(&self.colours).enumerate() {
                 let Some(span) = span else { continue };
-                // Segment i spans the pixel rows y_of(i + 1) to y_of(i).
-                let top = (y_of(i + 1) + y_of(i) - bar * s) / 2.0 + j as f64 * bar;
-                let (y0, y1) = (edge(i, last), edge(i + 1, last));
-                let corners = [(span.low.0, y0), (span.high.0, y1)];
-                let mut rect = Rectangle::new(corners, colour.filled());
-                let (over, under) = (top - y_of(i + 1), y_of(i) - top - bar);
-                rect.set_margin(over.round() as u32, under.max(0.0).round() as u32, 0, 0);
-                chart.draw_series(std::iter::once(rect))?;
-                let (x0, x1, mid) = (x_of(span.low.0), x_of(span.high.0), top + bar / 2.0);
-                placer.take((x0, top, x1.max(x0 + 1.0), top + bar));
-                let (low, high) = (&span.low.1, &span.high.1);
+                let top = i as f64 + (1.0 + s * bar) / 2.0 - j as f64 * bar;
+                let corners = [(span.low.0, top - bar), (span.high.0, top)];
+                chart.draw_series(std::iter::once(Rectangle::new(corners, colour.filled())))?;
+                let (x0, y0, x1, y1) = rect_of(&pixel, corners[0], corners[1]);
+                placer.take((x0, y0, x1.max(x0 + 1.0), y1));
+                let (low, high, mid) = (&span.low.1, &span.high.1, (y0 + y1) / 2.0);
                 labels.push((outward((x0, mid), low, -1.0), low.as_str(), BLACK));
                 labels.push((outward((x1, mid), high, 1.0), high.as_str(), BLACK));
             }
@@ -199,10 +190,11 @@ impl Picture for Tornado<'_> {
         // The references over the bars.
         for (s, &colour) in c.series.iter().zip(&self.colours) {
             let Some(v) = s.reference else { continue };
-            let line = vec![(v, edge(0, last)), (v, edge(last + 1, last))];
+            let line = vec![(v, 0.0), (v, c.rows.len() as f64)];
             let style = shade(colour, 0.62).stroke_width(2);
             chart.draw_series(std::iter::once(PathElement::new(line, style)))?;
-            placer.take((x_of(v) - 3.0, p.1, x_of(v) + 3.0, p.3));
+            let x = pixel(v, 0.0).0;
+            placer.take((x - 3.0, p.1, x + 3.0, p.3));
         }
         placer.draw_all(root, labels, p)
     }
@@ -218,16 +210,18 @@ fn outward((x, mid): (f64, f64), text: &str, dir: f64) -> Vec<Rect> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, out, pixels, same_twice, texts};
+    use super::super::tests::{out, pixels, refused, same_twice, texts, Case};
     use super::*;
     use crate::palette::Key;
 
+    /// The span from `lo` (at the parameter value `l`) to `hi` (at `h`).
+    fn span(lo: f64, l: &str, hi: f64, h: &str) -> Option<Span> {
+        let (low, high) = ((lo, l.into()), (hi, h.into()));
+        Some(Span { low, high })
+    }
+
     /// WaSP's speedup range over three parameters, for 3D and 2D scenes.
     fn gains() -> TornadoChart {
-        let span = |lo: f64, l: &str, hi: f64, h: &str| {
-            let (low, high) = ((lo, l.into()), (hi, h.into()));
-            Some(Span { low, high })
-        };
         let row = |parameter: &str, spans| TornadoRow {
             parameter: parameter.into(),
             spans,
@@ -274,29 +268,16 @@ mod tests {
         assert!(y("core.max_warps") < y("l0.mshrs") && y("l0.mshrs") < y("core.issue"));
         let path = out("tornado", "gains.png");
         draw_tornado(&gains(), &path).expect("draw png");
-        let (d3, d2) = (
-            pixels(&path, Key::ThreeD.colour().unwrap()),
-            pixels(&path, Key::TwoD.colour().unwrap()),
-        );
+        let d3 = pixels(&path, Key::ThreeD.colour().unwrap());
+        let d2 = pixels(&path, Key::TwoD.colour().unwrap());
         assert!(d3 > 1000 && d2 > 1000, "{d3} 3D and {d2} 2D pixels");
         same_twice("tornado-same", &|p| draw_tornado(&gains(), p));
-        let bad = |f: fn(&mut TornadoChart), want: &str| {
-            let mut c = gains();
-            f(&mut c);
-            assert!(error("tornado-bad", "t.png", &|p| draw_tornado(&c, p)).contains(want));
-        };
-        bad(
-            |c| drop(c.rows[0].spans.pop()),
-            "row `l0.mshrs` has 1 spans for 2",
-        );
-        bad(
-            |c| c.rows[1].spans[0].as_mut().unwrap().low.0 = 0.5,
-            "a low 0.5 above",
-        );
-        bad(
-            |c| c.series[1].reference = Some(f64::NAN),
-            "the reference of `2D`",
-        );
-        bad(|c| c.rows.clear(), "no series or no rows");
+        let cases: &[Case<TornadoChart>] = &[
+            (|c| drop(c.rows[0].spans.pop()), "`l0.mshrs` has 1 spans"),
+            (|c| c.rows[2].spans[0] = span(1.0, "", 0.0, ""), "a low 1 "),
+            (|c| c.series[1].reference = Some(f64::NAN), "of `2D`"),
+            (|c| c.rows.clear(), "no series or no rows"),
+        ];
+        refused(("tornado-bad", &gains()), draw_tornado, cases);
     }
 }

@@ -85,29 +85,21 @@ pub fn draw_xy(chart: &XyChart, path: &Path) -> Result<(), String> {
         let point = |(i, &(x, y)): (usize, &(f64, f64))| Some((x, y, label(i)));
         s.points.iter().enumerate().map(point).collect()
     };
-    let lines = c
-        .series
-        .iter()
-        .map(|s| (s.name.as_str(), s.key, points(s)))
-        .collect();
-    let texts = [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str);
-    let (rings, percent, reference) = (&c.highlights[..], c.percent, c.reference);
+    let lines = c.series.iter().map(|s| (s.name.as_str(), s.key, points(s)));
     let plot = Plot {
-        texts,
-        lines,
-        x: &[],
-        ticks: None,
-        paper: &[],
-        rings,
-        percent,
-        reference,
+        texts: [&c.title, &c.subtitle, &c.x_label, &c.y_label].map(String::as_str),
+        lines: lines.collect(),
+        rings: &c.highlights,
+        percent: c.percent,
+        reference: c.reference,
+        ..Plot::default()
     };
     write(&who, path, || plot.lay_out())
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{error, out, pixels, same_twice, texts};
+    use super::super::tests::{out, pixels, refused, same_twice, texts, Case};
     use super::*;
     use crate::palette::Key;
 
@@ -154,30 +146,20 @@ mod tests {
         let path = out("xy", "area.svg");
         draw_xy(&area(), &path).expect("draw svg");
         let want = "Cycles against register-file bits|register-file bits per core|WaSP|48|64";
-        texts(
-            &path,
-            &format!("{want}|paper: WaSP@48 against the baseline@64"),
-        );
+        let caption = "paper: WaSP@48 against the baseline@64";
+        texts(&path, &format!("{want}|{caption}"));
         let svg = std::fs::read_to_string(&path).expect("svg");
         assert_eq!(svg.matches("r=\"11\"").count(), 2, "two rings");
         let path = out("xy", "area.png");
         draw_xy(&area(), &path).expect("draw png");
         assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 100);
         same_twice("xy-same", &|p| draw_xy(&area(), p));
-        let bad = |f: fn(&mut XyChart), want: &str| {
-            let mut c = area();
-            f(&mut c);
-            assert!(error("xy-bad", "c.svg", &|p| draw_xy(&c, p)).contains(want));
-        };
-        bad(
-            |c| drop(c.series[0].labels.pop()),
-            "has 4 points and 3 labels",
-        );
-        bad(|c| c.series[1].points[0].0 = f64::NAN, "`WaSP` at point 0");
-        bad(
-            |c| c.highlights[0].points.push((2, 0)),
-            "of series 2: no such",
-        );
-        bad(|c| c.series.clear(), "no series: nothing to draw");
+        let cases: &[Case<XyChart>] = &[
+            (|c| c.series[0].labels.truncate(3), "4 points and 3 labels"),
+            (|c| c.series[1].points[0].0 = f64::NAN, "`WaSP` at point 0"),
+            (|c| c.highlights[0].points.push((2, 0)), "series 2: no"),
+            (|c| c.series.clear(), "bits: no series: nothing to draw"),
+        ];
+        refused(("xy-bad", &area()), draw_xy, cases);
     }
 }

@@ -80,14 +80,8 @@ mod tests {
         assert_eq!(cols.len(), 2);
         assert_eq!((cols[0].x0, cols[0].x1), (0.0, 5.0));
         assert_eq!((cols[1].x0, cols[1].x1), (5.0, 10.0));
-        assert_eq!(
-            cols[0].resident[0],
-            Agg {
-                min: 0.0,
-                max: 4.0,
-                mean: 2.0
-            }
-        );
+        let r = cols[0].resident[0];
+        assert_eq!((r.min, r.max, r.mean), (0.0, 4.0, 2.0));
         assert_eq!(cols[1].outstanding[1].max, 18.0);
         assert_eq!(cols[0].launches[0], 0.6);
         // More columns than samples: one per sample.

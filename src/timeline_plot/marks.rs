@@ -4,16 +4,15 @@
 
 use super::panel::Panel;
 use crate::charts::frame::{Area, Drawn};
-use crate::charts::legend::{pointer, Swatch};
+use crate::charts::legend::{tile, Swatch};
 use crate::fonts::font;
 use crate::palette::{other, TILE_END, TILE_START};
-use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 use wasp_sim::timeline::Timeline;
 
 /// Length of a tick mark in pixels.
-const TICK: f64 = 10.0;
+const TICK: i32 = 10;
 
 /// A tile mark as drawn: at `x`, of `core` (per-core-tile) or all.
 #[derive(Clone, Copy, Debug)]
@@ -92,7 +91,7 @@ pub(super) fn mark_entries(marks: &[Mark], dense: bool) -> Vec<(String, Swatch)>
 }
 
 /// The tile marks across `chart`: a start a solid line, an end a dashed
-/// one, each with its pointer at the top ([`pointer()`]); when `dense`,
+/// one, each with its pointer at the top ([`tile()`]); when `dense`,
 /// full-height lines would hide the data, so starts are ticks down from
 /// the panel's top and ends ticks up from its bottom.
 pub(super) fn draw_marks<DB: DrawingBackend>(
@@ -101,25 +100,16 @@ pub(super) fn draw_marks<DB: DrawingBackend>(
     dense: bool,
 ) -> Drawn<DB> {
     let (y0, y1) = (chart.y_range().start, chart.y_range().end);
-    let plot_h = f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
-    let tick = (y1 - y0) * TICK / plot_h;
+    let plot_h = chart.plotting_area().dim_in_pixel().1 as i32;
     for m in marks {
         let style = mark_style(m.core, m.start, dense);
         if dense {
-            let ends = [(y1 - tick, y1), (y0, y0 + tick)][usize::from(!m.start)];
-            let line = vec![(m.x, ends.0), (m.x, ends.1)];
-            chart.draw_series(std::iter::once(PathElement::new(line, style)))?;
-            continue;
+            let (y, d) = if m.start { (y1, TICK) } else { (y0, -TICK) };
+            let tick = PathElement::new(vec![(0, 0), (0, d)], style);
+            chart.draw_series(std::iter::once(EmptyElement::at((m.x, y)) + tick))?;
+        } else {
+            chart.draw_series(std::iter::once(tile((m.x, y1), style, m.start, plot_h)))?;
         }
-        let tip = Polygon::new(pointer(m.start), mark_colour(m.core, m.start).0.filled());
-        chart.draw_series(std::iter::once(EmptyElement::at((m.x, y1)) + tip))?;
-        let line = vec![(m.x, y0), (m.x, y1)];
-        match m.start {
-            true => chart.draw_series(std::iter::once(PathElement::new(line, style)))?,
-            false => {
-                chart.draw_series(std::iter::once(DashedPathElement::new(line, 7, 5, style)))?
-            }
-        };
     }
     Ok(())
 }

@@ -4,15 +4,14 @@
 //! minima to maxima.
 
 use super::downsample::{Agg, Column};
-use crate::charts::frame::{builder, style_mesh, Area, Drawn};
+use crate::charts::frame::{builder, style_mesh, Area, Drawn, Ticked};
 use crate::charts::legend::{legend, line_height, Legend};
 use crate::fonts::font;
-use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::ops::Range;
 
 /// A panel's chart.
-pub(super) type Panel<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+pub(super) type Panel<'a, DB> = ChartContext<'a, DB, Cartesian2d<Ticked, Ticked>>;
 
 /// Width of the legend right of each plot.
 const LEGEND_W: u32 = 230;
@@ -40,22 +39,16 @@ pub(super) fn panel<'a, DB: DrawingBackend>(
 ) -> Drawn<DB, Panel<'a, DB>> {
     let under = if bottom { 52.0 } else { 28.0 };
     let mut b = builder(area, (f64::from(LEFT), under, 6.0, 14.0));
+    let (x, y) = (
+        Ticked::numeric(&x, 12, false),
+        Ticked::numeric(&y, 6, false),
+    );
     let mut chart = b
         .caption(caption, font(21, true))
         .build_cartesian_2d(x, y)?;
-    let round = |v: &f64| (v - v.round()).abs() < 1e-6;
-    let cycle = |v: &f64| match round(v) {
-        true => format!("{}", v.round() as i64),
-        false => format!("{v:.1}"),
-    };
-    let count = |v: &f64| match round(v) {
-        true => format!("{}", v.round() as i64),
-        false => format!("{v:.3}").trim_end_matches('0').to_string(),
-    };
     let mut mesh = chart.configure_mesh();
     style_mesh(&mut mesh);
-    mesh.x_labels(12).y_labels(6).y_desc(y_desc);
-    mesh.x_label_formatter(&cycle).y_label_formatter(&count);
+    mesh.y_desc(y_desc);
     if bottom {
         mesh.x_desc("cycle");
     }
