@@ -459,15 +459,15 @@ impl MemorySystem {
     /// from core `now % cores`. Returns whether some core has an L1 reply
     /// or a tag completing queued.
     ///
-    /// (Some 85 lines: one pass over the cores does all of it, the L2's
-    /// candidates included, because it runs every cycle. Moving the L0's
-    /// loop into a function of its own, inlined, costs 3.6 host
+    /// (One pass over the cores does all of it, the L2's candidates
+    /// included, because it runs every cycle; only their order is put right
+    /// after it, by [`Self::order_l2_candidates`], at no cost. Moving the
+    /// L0's loop into a function of its own, inlined, costs 3.6 host
     /// instructions per core-cycle, `scripts/icount.sh`.)
     #[inline(always)]
     fn requests_to_l1<const SHORTCUTS: bool>(&mut self, now: u64) -> bool {
-        let n = self.cores.len();
         let report = self.report_misses;
-        let first = (now % n as u64) as usize;
+        let first = (now % self.cores.len() as u64) as usize;
         self.l2_order.clear();
         // Candidates before core `first` in index order, moved behind the
         // others at the end.
@@ -540,16 +540,31 @@ impl MemorySystem {
             }
             queued |= !c.to_l0.is_empty() | !c.completing.is_empty();
         }
+        self.order_l2_candidates::<SHORTCUTS>(now, first, wrapped);
+        queued
+    }
+
+    /// The end of step 1: `l2_order` made the cores whose L2 request is
+    /// ready in cycle `now`, round robin from core `first`. With shortcuts
+    /// the pass over the cores has listed them in index order, `wrapped` of
+    /// them before `first`, which move behind the others; without, they are
+    /// listed here.
+    #[inline(always)]
+    fn order_l2_candidates<const SHORTCUTS: bool>(
+        &mut self,
+        now: u64,
+        first: usize,
+        wrapped: usize,
+    ) {
         if !SHORTCUTS {
             let ready = |c: &CoreMem| c.to_l2.front().is_some_and(|r| r.ready <= now);
             let cores = &self.cores;
-            let order = (first..n).chain(0..first);
+            let order = (first..cores.len()).chain(0..first);
             self.l2_order
                 .extend(order.filter(|&k| ready(&cores[k])).map(|k| k as u32));
         } else if wrapped > 0 {
             self.l2_order.rotate_left(wrapped);
         }
-        queued
     }
 
     /// Step 2: L1 misses to the L2, in rounds over the candidates (core
