@@ -9,73 +9,14 @@ use super::prefetch::{PrefetchQueue, PrefetchQueues};
 use super::ring::Ring;
 use crate::trace::TextureMap;
 
+mod answers;
 mod build;
 #[cfg(test)]
 mod lockstep;
 mod observe;
 mod readout;
+pub use answers::{Access, MissEvent, SchedCacheMshrs};
 pub use observe::MshrFileView;
-
-/// What happened to one access presented by a core.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Access {
-    /// Hit in the core's first level; completes after its hit latency.
-    Hit,
-    /// Primary miss: an MSHR entry was allocated, the block is requested
-    /// below; completes when the fill arrives.
-    Miss,
-    /// Merged into the MSHR entry of an earlier miss to the same block;
-    /// completes with that entry's fill.
-    SecondaryMiss,
-    /// Refused, retry later: every MSHR of the first level is occupied (cache
-    /// stall; counted in `stall_cycles`), or the block's MSHR entry cannot
-    /// merge another target (counted in `merge_stalls`).
-    Stall,
-    /// Refused, retry later: every port of the first level was used this cycle.
-    PortBusy,
-}
-
-impl Access {
-    /// The access was taken and its tag will be returned exactly once by
-    /// [`MemorySystem::take_completions`]; otherwise it must be retried.
-    #[inline]
-    pub fn accepted(self) -> bool {
-        matches!(self, Access::Hit | Access::Miss | Access::SecondaryMiss)
-    }
-}
-
-/// What the WaSP scheduler's free-MSHR register sees of the scheduler-level
-/// cache (L0 when present, else L1) of one core, for the last cycle given to
-/// [`MemorySystem::access`] or [`MemorySystem::tick`].
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct SchedCacheMshrs {
-    /// MSHR entries of the cache.
-    pub capacity: u32,
-    /// Entries allocated (primary misses) in this cycle.
-    pub allocated: u32,
-    /// Entries whose reply (fill) arrived in this cycle.
-    pub replied: u32,
-    /// Entries occupied as the cache sees them: awaiting a reply, or in the
-    /// cycle after their reply. The cache stalls when this equals `capacity`.
-    pub occupied: u32,
-    /// Entries awaiting their reply (outstanding misses).
-    pub outstanding: u32,
-}
-
-impl SchedCacheMshrs {
-    /// Free entries as the scheduler's register counts them (an entry is free
-    /// from its reply): `capacity - outstanding`.
-    #[inline]
-    pub fn free_from_reply(&self) -> u32 {
-        self.capacity - self.outstanding
-    }
-
-    /// Free entries as the cache sees them: `capacity - occupied`.
-    #[inline]
-    pub fn free(&self) -> u32 {
-        self.capacity - self.occupied
-    }
-}
 
 /// A request waiting to be presented to the next level.
 #[derive(Debug, Clone, Copy, Default)]
@@ -204,37 +145,6 @@ fn complete_all(
             completing.push_back((at, tag));
         }
     }
-}
-
-/// What became of the request of one of a core's MSHR entries at the next
-/// level, when it missed there: the events a core needs to know which of
-/// its warps wait on a miss at which level (its rule of which miss blocks
-/// a warp, `scheduler.blocked_on`). Reported only when
-/// [`MemConfig::report_misses`] asks, in the order they happen, by
-/// [`MemorySystem::take_miss_events`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MissEvent {
-    /// The request of L0 MSHR entry `l0` missed in the L1: it allocated L1
-    /// MSHR entry `l1` (`merged` false) or merged into it.
-    L1 {
-        /// The L0 entry.
-        l0: u32,
-        /// The L1 entry it allocated or merged into.
-        l1: u32,
-        /// It merged into a pending entry.
-        merged: bool,
-    },
-    /// The request of L1 MSHR entry `l1` missed in the L2 (allocating an
-    /// L2 entry or merging into one).
-    L2 {
-        /// The L1 entry.
-        l1: u32,
-    },
-    /// A prefetch allocated L1 MSHR entry `l1`: no access waits on it yet.
-    Prefetch {
-        /// The L1 entry.
-        l1: u32,
-    },
 }
 
 /// Move the tags of `from` to the end of `out`, leaving `from` empty. The
@@ -459,15 +369,15 @@ impl MemorySystem {
     /// from core `now % cores`. Returns whether some core has an L1 reply
     /// or a tag completing queued.
     ///
-    /// (Some 85 lines: one pass over the cores does all of it, the L2's
-    /// candidates included, because it runs every cycle. Moving the L0's
-    /// loop into a function of its own, inlined, costs 3.6 host
+    /// (One pass over the cores does all of it, the L2's candidates
+    /// included, because it runs every cycle; only their order is put right
+    /// after it, by [`Self::order_l2_candidates`], at no cost. Moving the
+    /// L0's loop into a function of its own, inlined, costs 3.6 host
     /// instructions per core-cycle, `scripts/icount.sh`.)
     #[inline(always)]
     fn requests_to_l1<const SHORTCUTS: bool>(&mut self, now: u64) -> bool {
-        let n = self.cores.len();
         let report = self.report_misses;
-        let first = (now % n as u64) as usize;
+        let first = (now % self.cores.len() as u64) as usize;
         self.l2_order.clear();
         // Candidates before core `first` in index order, moved behind the
         // others at the end.
@@ -540,16 +450,31 @@ impl MemorySystem {
             }
             queued |= !c.to_l0.is_empty() | !c.completing.is_empty();
         }
+        self.order_l2_candidates::<SHORTCUTS>(now, first, wrapped);
+        queued
+    }
+
+    /// The end of step 1: `l2_order` made the cores whose L2 request is
+    /// ready in cycle `now`, round robin from core `first`. With shortcuts
+    /// the pass over the cores has listed them in index order, `wrapped` of
+    /// them before `first`, which move behind the others; without, they are
+    /// listed here.
+    #[inline(always)]
+    fn order_l2_candidates<const SHORTCUTS: bool>(
+        &mut self,
+        now: u64,
+        first: usize,
+        wrapped: usize,
+    ) {
         if !SHORTCUTS {
             let ready = |c: &CoreMem| c.to_l2.front().is_some_and(|r| r.ready <= now);
             let cores = &self.cores;
-            let order = (first..n).chain(0..first);
+            let order = (first..cores.len()).chain(0..first);
             self.l2_order
                 .extend(order.filter(|&k| ready(&cores[k])).map(|k| k as u32));
         } else if wrapped > 0 {
             self.l2_order.rotate_left(wrapped);
         }
-        queued
     }
 
     /// Step 2: L1 misses to the L2, in rounds over the candidates (core
