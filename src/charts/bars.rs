@@ -173,13 +173,8 @@ impl Bars<'_> {
     ) -> Drawn<DB> {
         let c = self.c;
         let colour = |s| mark_colour(&self.colours, s);
-        paper_lines(
-            root,
-            (p, &mut *placer),
-            &c.paper,
-            |v| pixel(0.0, v).1,
-            colour,
-        )?;
+        let row = |v| pixel(0.0, v).1;
+        paper_lines(root, (p, &mut *placer), &c.paper, row, colour)?;
         let bars = present(&c.series);
         let texts: Vec<String> = bars.iter().map(|b| value_label(b.2, c.percent)).collect();
         let mut labels = Vec::new();
@@ -373,7 +368,7 @@ mod tests {
     #[test]
     fn bad_charts_and_files_are_errors() {
         let cases: &[Case<BarChart>] = &[
-            (|c| c.categories.clear(), "baseline: 0 categories and 2"),
+            (|c| c.categories.clear(), "0 categories and 2 series"),
             (|c| c.series[1].values.truncate(17), "has 17 values for 18"),
             (|c| c.series[0].values[2] = Some(f64::NAN), "`scene-02"),
             (|c| c.paper[0].series = Some(2), "`paper 3.9%` is past"),
@@ -382,7 +377,8 @@ mod tests {
             (|c| c.separators.push(19), "past the 18 categories"),
             (|c| c.groups[0].categories = 0..19, "past the 18 categories"),
         ];
-        refused(("bars-bad", &speedups()), draw_bars, cases);
+        let chart = ("bars-bad", &speedups(), "drawing Speedup");
+        refused(chart, draw_bars, cases);
         let e = error("bars-jpg", "chart.jpg", &|p| draw_bars(&speedups(), p));
         assert!(e.contains("chart.jpg") && e.contains(".png or .svg"), "{e}");
         let e = draw_bars(&speedups(), &out("bars-dir", "no").join("c.png")).unwrap_err();

@@ -188,6 +188,6 @@ mod tests {
             (|c| c.values[0][0] = Some(f64::NAN), "the cell (8, 32) has"),
             (|c| c.x.clear(), "for 0 columns and 3 rows"),
         ];
-        refused(("heat-bad", &mshrs_by_warps()), draw_heatmap, cases);
+        refused(("heat-bad", &mshrs_by_warps(), ""), draw_heatmap, cases);
     }
 }

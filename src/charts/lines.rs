@@ -326,13 +326,23 @@ mod tests {
     #[test]
     fn bad_charts_are_errors() {
         let cases: &[Case<LineChart>] = &[
-            (|c| (c.x, c.x_ticks) = (vec![], None), "count: 0 x pos"),
+            (
+                |c| (c.x, c.x_ticks) = (vec![], None),
+                "0 x positions and 2 series",
+            ),
             (|c| c.x[2] = 32.0, "x[2] = 32 follows 32: x must be"),
             (|c| c.x[4] = f64::NAN, "x[4] has the non-finite value NaN"),
-            (|c| c.x_ticks = Some(vec!["28".into()]), "1 x tick labels"),
-            (|c| c.series[1].values[4] = Some(f64::INFINITY), "x = 64"),
+            (
+                |c| c.x_ticks = Some(vec!["28".into()]),
+                "1 x tick labels for 5",
+            ),
+            (
+                |c| c.series[1].values[4] = Some(f64::NAN),
+                "`WaSP` at x = 64",
+            ),
             (|c| c.paper[0].category = Some(5), "`paper 0.69` is past"),
         ];
-        refused(("lines-bad", &warps()), draw_lines, cases);
+        let chart = ("lines-bad", &warps(), "drawing IPC by warp");
+        refused(chart, draw_lines, cases);
     }
 }

@@ -273,11 +273,20 @@ mod tests {
         assert!(d3 > 1000 && d2 > 1000, "{d3} 3D and {d2} 2D pixels");
         same_twice("tornado-same", &|p| draw_tornado(&gains(), p));
         let cases: &[Case<TornadoChart>] = &[
-            (|c| drop(c.rows[0].spans.pop()), "`l0.mshrs` has 1 spans"),
-            (|c| c.rows[2].spans[0] = span(1.0, "", 0.0, ""), "a low 1 "),
-            (|c| c.series[1].reference = Some(f64::NAN), "of `2D`"),
+            (
+                |c| drop(c.rows[0].spans.pop()),
+                "row `l0.mshrs` has 1 spans for 2",
+            ),
+            (
+                |c| c.rows[1].spans[0].as_mut().unwrap().low.0 = 0.5,
+                "a low 0.5 above",
+            ),
+            (
+                |c| c.series[1].reference = Some(f64::NAN),
+                "the reference of `2D`",
+            ),
             (|c| c.rows.clear(), "no series or no rows"),
         ];
-        refused(("tornado-bad", &gains()), draw_tornado, cases);
+        refused(("tornado-bad", &gains(), ""), draw_tornado, cases);
     }
 }

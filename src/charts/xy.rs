@@ -155,11 +155,17 @@ mod tests {
         assert!(pixels(&path, Key::Wasp.colour().unwrap()) > 100);
         same_twice("xy-same", &|p| draw_xy(&area(), p));
         let cases: &[Case<XyChart>] = &[
-            (|c| c.series[0].labels.truncate(3), "4 points and 3 labels"),
+            (
+                |c| c.series[0].labels.truncate(3),
+                "has 4 points and 3 labels",
+            ),
             (|c| c.series[1].points[0].0 = f64::NAN, "`WaSP` at point 0"),
-            (|c| c.highlights[0].points.push((2, 0)), "series 2: no"),
+            (
+                |c| c.highlights[0].points.push((2, 0)),
+                "of series 2: no such",
+            ),
             (|c| c.series.clear(), "bits: no series: nothing to draw"),
         ];
-        refused(("xy-bad", &area()), draw_xy, cases);
+        refused(("xy-bad", &area(), ""), draw_xy, cases);
     }
 }

@@ -236,14 +236,17 @@ mod tests {
         let cases: &[Case<Timeline>] = &[
             (
                 |t| t.samples.clear(),
-                "(did the run end before the window?)",
+                "no samples (did the run end before the window?): nothing to draw",
             ),
-            (|t| t.samples[7].resident.truncate(3), "cycle 7: 3 resident"),
+            (
+                |t| t.samples[7].resident.truncate(3),
+                "cycle 7: 3 resident counts and 4 launch counts for 4 cores",
+            ),
             (
                 |t| t.samples.swap(3, 4),
-                "3 follows cycle 4: samples must be",
+                "sample of cycle 3 follows cycle 4: samples must be in cycle order",
             ),
         ];
-        refused(("timeline-bad", &synthetic(0, 50)), draw, cases);
+        refused(("timeline-bad", &synthetic(0, 50), ""), draw, cases);
     }
 }
