@@ -140,6 +140,12 @@ const HEAD: &str = "The map \"What decides WaSP's gain\" of `wasp reproduce`, wr
                     `wasp reproduce --sweep-files`.\nRun it into the reproduction's folder, \
                     then `wasp reproduce --out` that folder for the grid and the report.";
 
+/// The policies a file's entries run under, in its order: the baseline,
+/// Fullpriority and the map's WaSP.
+fn policies(map: &MapPlan) -> [PolicySpec; 3] {
+    [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp]
+}
+
 /// The map's sweep files on `scenes`: (file name, text).
 pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
     let mut out = knob_files(map, scenes);
@@ -152,7 +158,7 @@ pub fn files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
 /// and WaSP, every value with the bounds, and the deep-queue warp series.
 fn knob_files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
     let knobs = knob_entries(map);
-    let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
+    let policies = policies(map);
     let bounds = with_bounds(&knobs);
     let deep = deep_entries(map);
     vec![
@@ -203,7 +209,7 @@ fn knob_files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
 /// shipped machine with the other orders under the baseline, Fullpriority
 /// and WaSP, and with the bounds.
 fn draw_order_files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
-    let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
+    let policies = policies(map);
     let shipped: Vec<Entry> = vec![("shipped".into(), Vec::new())];
     let orders = other_orders(map);
     let mut out = Vec::new();
@@ -262,7 +268,7 @@ fn other_formats(map: &MapPlan) -> Vec<(String, Vec<Override>, Vec<String>)> {
 /// The texture-format knob's files: per machine its formats under the
 /// baseline, Fullpriority and WaSP, and with the bounds.
 fn texture_format_files(map: &MapPlan, scenes: &[String]) -> Vec<(String, String)> {
-    let policies = [PolicySpec::Baseline, PolicySpec::FullPriority, map.wasp];
+    let policies = policies(map);
     let mut out = Vec::new();
     for (suffix, sets, formats) in other_formats(map) {
         let tag = suffix.trim_start_matches('+');
